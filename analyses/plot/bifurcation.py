@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Draws a bifurcation diagram (density of tail values against r) from a `btob bifurcation` HDF5 file.
+
+Usage: bifurcation.py DATA.h5 OUT.png
+Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
+"""
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.colors as mcolors  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLOURS = {0: "#d62728", 1: "#1f4fd6", 2: "#7f7f7f"}  # red, blue, grey (paper: bounds blue, r_crit,2 red)
+AXIS = {
+    "theta": r"$\theta$ (rad)",
+    "log10-theta": r"$\log_{10}\theta$  ($\theta$ in rad)",
+    "phi": r"$\varphi$ (rad)",
+    "w1": r"$w_1$ (strip, dimensionless)",
+    "w2": r"$w_2$ (strip, dimensionless)",
+}
+
+
+def attr(f, key, default=None):
+    v = f.attrs.get(key, default)
+    return v.decode() if isinstance(v, bytes) else v
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        dens = f["density"][...].astype(np.float64)  # (r_count, bins)
+        r = f["r"][...]
+        vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
+        over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
+        a = {k: attr(f, k) for k in f.attrs.keys()}
+    lo, hi = float(a["range_lo"]), float(a["range_hi"])
+    coord = a["coord"]
+
+    fig, ax = plt.subplots(figsize=(11, 6.2), dpi=150)
+    # Columns are r values; normalise each column to the fraction of its tail points (so the picture
+    # does not depend on the grid size) and show it with a logarithmic colour scale.
+    col = dens.sum(axis=1, keepdims=True)
+    frac = np.divide(dens, np.maximum(col, 1))
+    img = np.where(frac > 0, frac, np.nan).T
+    r0, r1 = float(r[0]), float(r[-1])
+    if r1 == r0:
+        r1 = r0 + 1e-12
+    positive = frac[frac > 0]
+    vmin = max(positive.min(), 1e-6) if positive.size else 1e-6
+    cmap = plt.get_cmap("magma_r").copy()
+    cmap.set_bad("white")
+    im = ax.imshow(img, origin="lower", aspect="auto", extent=[r0, r1, lo, hi], interpolation="nearest",
+                   cmap=cmap, norm=mcolors.LogNorm(vmin=vmin, vmax=max(positive.max(), vmin * 10) if positive.size else 1))
+    for v in vlines:
+        ax.axvline(v, color=COLOURS[0], lw=0.8, alpha=0.9)
+    for rv, c in over:
+        ax.axvline(rv, color=COLOURS.get(int(c), "k"), lw=0.6, alpha=0.75)
+    ax.set_xlim(r0, r1)
+    ax.set_ylim(lo, hi)
+    ax.set_xlabel("restitution coefficient $r$ (dimensionless)")
+    ax.set_ylabel(AXIS.get(coord, coord))
+    ax.ticklabel_format(axis="x", useOffset=False)
+    title = a.get("title") or a.get("name", "")
+    sub = (f"r in [{a['r_min']:.10g}, {a['r_max']:.10g}], {a['r_count']} values; grid {a['grid']} "
+           f"({a['initial_conditions']} orbits per r); {a['iterations']} iterations, last {a['tail']} shown; "
+           f"{a['scalar_type']}")
+    ax.set_title(f"{title}\n{sub}" if title.strip() else sub, fontsize=10)
+    cb = fig.colorbar(im, ax=ax, pad=0.01)
+    cb.set_label("fraction of the tail points of each r (per bin)")
+    fig.text(0.995, 0.005, f"btob {a.get('btob_version', '')} {a.get('git_commit', '')}", ha="right", va="bottom",
+             fontsize=6, color="#888888")
+    fig.tight_layout()
+    tmp = dst + f".tmp-{os.getpid()}.png"
+    fig.savefig(tmp)
+    os.replace(tmp, dst)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: bifurcation.py DATA.h5 OUT.png")
+    main(sys.argv[1], sys.argv[2])

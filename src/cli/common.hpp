@@ -1,0 +1,39 @@
+// Helpers shared by the subcommands: progress adapter, the invocation string, named r overlays.
+#pragma once
+
+#include "io/io.hpp"
+#include "iterate/kernel.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace btob::cli {
+
+// The whole command line of this process (for provenance).
+std::string& invocation();
+inline std::string command_line_of(const CLI::App*) { return invocation(); }
+
+// Adapts io::Progress to the kernel's ProgressSink (one per thread of control, lives as long as `p`).
+struct ProgressAdapter : iterate::ProgressSink {
+  io::Progress* p;
+  explicit ProgressAdapter(io::Progress* p_) : p(p_) {}
+  void update(std::size_t done, std::size_t total) override { p->update(done, total); }
+};
+ProgressAdapter& progress_adapter(io::Progress& p);
+
+// Named overlays of bifurcation diagrams: vertical lines at r values, each with a colour code
+// (0 red, 1 blue, 2 grey).  Modules register theirs (e.g. "windows", "stripes"); "thresholds" is
+// built in.  overlay_values returns the lines inside [r_min, r_max], flattened as (r, colour) pairs.
+using OverlayFn = std::function<std::vector<std::pair<double, int>>(double r_min, double r_max)>;
+std::map<std::string, OverlayFn>& overlays();
+struct RegisterOverlay {
+  RegisterOverlay(const std::string& name, OverlayFn f) { overlays()[name] = std::move(f); }
+};
+std::string overlay_names();
+std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max);
+
+}  // namespace btob::cli

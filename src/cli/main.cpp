@@ -1,0 +1,50 @@
+// Entry point of `btob`: builds the subcommands and maps errors to exit codes (2 usage, 1 otherwise).
+#include "cli/app.hpp"
+#include "cli/common.hpp"
+
+#include <btob/build_info.hpp>
+
+#include <boost/throw_exception.hpp>
+#include <cstdio>
+#include <iostream>
+#include <new>
+
+namespace btob::cli {
+std::vector<Registrar>& registry() {
+  static std::vector<Registrar> r;
+  return r;
+}
+}  // namespace btob::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"btob: statistics lab for the b-to-b map P_r of four 1-D inelastic hard spheres"};
+  app.set_version_flag("--version", std::string("btob ") + btob::build::version + " (" + btob::build::git_commit + ")");
+  app.require_subcommand(1);
+  for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + std::string(argv[i]);
+  for (auto& reg : btob::cli::registry()) reg(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const std::invalid_argument& e) {  // includes UsageError and validation errors
+    std::cerr << "btob: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::domain_error& e) {
+    std::cerr << "btob: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::length_error& e) {
+    std::cerr << "btob: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::out_of_range& e) {
+    std::cerr << "btob: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "btob: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "btob: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,57 @@
+// Non-template parts of btob::core: validation and precision names.
+#include "core/map.hpp"
+#include "core/scalar.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace btob::core {
+
+void validate_point(double x, double y, double z, const char* field) {
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+    throw std::domain_error(fmt::format("{}: got ({}, {}, {}), expected finite coordinates x,y,z", field, x, y, z));
+  if (x == 0 && y == 0 && z == 0)
+    throw std::domain_error(fmt::format("{}: got the zero vector, expected a non-zero normal vector x,y,z", field));
+  if (x * z > 0 || (x != 0 && z != 0 && std::signbit(x) == std::signbit(z)))
+    throw std::domain_error(
+        fmt::format("{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.2)", field, x, y, z));
+}
+
+std::string Precision::name() const {
+  switch (kind) {
+    case Kind::f32: return "float";
+    case Kind::f64: return "double";
+    case Kind::f80: return "long-double";
+    case Kind::f128: return "float128";
+    case Kind::mpfr: return fmt::format("mpfr:{}", mpfr_digits);
+  }
+  return "?";
+}
+
+Precision parse_precision(std::string_view text, const char* field) {
+  Precision p;
+  if (text == "float") p.kind = Precision::Kind::f32;
+  else if (text == "double") p.kind = Precision::Kind::f64;
+  else if (text == "long-double" || text == "long double" || text == "longdouble") p.kind = Precision::Kind::f80;
+  else if (text == "float128") p.kind = Precision::Kind::f128;
+  else if (text.starts_with("mpfr")) {
+    p.kind = Precision::Kind::mpfr;
+    std::string_view digits = text.substr(4);
+    if (!digits.empty() && digits.front() == ':') digits.remove_prefix(1);
+    int d = 0;
+    bool ok = !digits.empty();
+    for (char c : digits) {
+      if (c < '0' || c > '9' || d > 100000) { ok = false; break; }
+      d = d * 10 + (c - '0');
+    }
+    if (!ok || d < 10 || d > 10000)
+      throw std::invalid_argument(fmt::format("{}: got '{}', expected mpfr:<digits> with 10 <= digits <= 10000", field, text));
+    p.mpfr_digits = d;
+  } else {
+    throw std::invalid_argument(
+        fmt::format("{}: got '{}', expected one of float, double, long-double, float128, mpfr:<digits>", field, text));
+  }
+  return p;
+}
+
+}  // namespace btob::core

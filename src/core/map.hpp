@@ -1,0 +1,122 @@
+// The b-to-b map P_r of Theorem 3.1: matrices P1, P2, P3, the branch choice, symbols and collision letters.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace btob::core {
+
+// Conventions (paper, Sections 3 and 5.3):
+//  * u = (x, y, z) is a normal vector to the plane Span[p, q] right after a b-collision; only its
+//    direction matters (P(-u) = -P(u)).
+//  * The domain is the double quadrant x*z <= 0.  Every map evaluation first brings u into the
+//    quadrant Q = {x >= 0, z <= 0} (u -> -u when x < 0, or x == 0 and z > 0), which P keeps invariant.
+//  * In Q the branch (symbol) is 1 (collisions ab, matrix P1) when alpha*y - x > 0, 3 (cb, P3) when
+//    alpha*y - z < 0, and 2 (acb or cab, P2) otherwise.  In Q these tests imply the sign of y used in
+//    Theorem 3.1 (alpha*y > x >= 0 forces y > 0, alpha*y < z <= 0 forces y < 0), and the two cannot hold
+//    together.  Ties alpha*y - x = 0 or alpha*y - z = 0 go to P2 (Remark 3.4), and so does y = 0.
+//  * On x = 0 (p3 = 0: particles 3 and 4 touch at the b-collision) or z = 0 (p1 = 0) the physical
+//    system has a triple collision; the map is extended by the same formulas.  z = 0 is invariant under
+//    P1 (three-particle collapse of particles 1-2-3, theta -> 0), x = 0 under P3 (theta -> pi/2).
+//  * alpha = (1 + r) / 2 (eq. 2.8), r in (0, 1).
+
+template <class T> using Vec3 = Eigen::Matrix<T, 3, 1>;
+template <class T> using Mat3 = Eigen::Matrix<T, 3, 3>;
+
+// The symbols of Section 5.3: 1 = ab, 2 = acb or cab, 3 = cb.
+enum class Symbol : std::uint8_t { ab = 1, acb_or_cab = 2, cb = 3 };
+
+template <class T> T alpha(const T& r) { return (1 + r) / 2; }  // eq. (2.8)
+
+// Theorem 3.1, eq. (3.3).
+template <class T> Mat3<T> P1(const T& r) {
+  const T a = alpha(r);
+  Mat3<T> m;
+  m << -r, r * a, T(0),  //
+      -a, a * a - r, r * a,  //
+      T(0), T(0), r * r;
+  return m;
+}
+template <class T> Mat3<T> P2(const T& r) {
+  const T a = alpha(r);
+  Mat3<T> m;
+  m << r, -r * a, T(0),  //
+      a, -2 * a * a + r, a,  //
+      T(0), -r * a, r;
+  return m;
+}
+template <class T> Mat3<T> P3(const T& r) {
+  const T a = alpha(r);
+  Mat3<T> m;
+  m << r * r, T(0), T(0),  //
+      r * a, a * a - r, -a,  //
+      T(0), r * a, -r;
+  return m;
+}
+// P_i for i in {1, 2, 3}.
+template <class T> Mat3<T> P(int i, const T& r) {
+  switch (i) {
+    case 1: return P1(r);
+    case 2: return P2(r);
+    case 3: return P3(r);
+    default: throw std::invalid_argument("symbol: got " + std::to_string(i) + ", expected 1, 2 or 3");
+  }
+}
+// J of eq. (4.2): swaps x and z.  P3 = J P1 J.
+template <class T> Mat3<T> J() {
+  Mat3<T> m;
+  m << T(0), T(0), T(1), T(0), T(1), T(0), T(1), T(0), T(0);
+  return m;
+}
+
+// u or -u, whichever lies in Q = {x >= 0, z <= 0} (for u in the domain x*z <= 0).
+template <class T> Vec3<T> to_quadrant(const Vec3<T>& u) {
+  if (u(0) < 0 || (u(0) == 0 && u(2) > 0)) return -u;
+  return u;
+}
+
+// The branch 1, 2 or 3 of a vector already in Q.
+template <class T> int branch(const Vec3<T>& u, const T& r) {
+  const T a = alpha(r);
+  if (a * u(1) - u(0) > 0) return 1;
+  if (a * u(1) - u(2) < 0) return 3;
+  return 2;
+}
+
+template <class T> struct Step {
+  Vec3<T> u;   // P u (not normalised), in Q
+  int symbol;  // 1, 2 or 3
+};
+
+// One application of the piecewise-linear map (unnormalised), with the branch it used.
+template <class T> Step<T> step(const Vec3<T>& u, const T& r) {
+  const Vec3<T> q = to_quadrant(u);
+  const int s = branch(q, r);
+  return {P(s, r) * q, s};
+}
+
+// Collision letters of one step from u in Q: "ab", "cb", "acb" (y > 0) or "cab" (y < 0).  For symbol 2
+// with y == 0 the a and c collisions are simultaneous (K = CA = AC, Section 2.1): "(ac)b".
+template <class T> std::string letters(int symbol, const Vec3<T>& u_in_quadrant) {
+  if (symbol == 1) return "ab";
+  if (symbol == 3) return "cb";
+  if (u_in_quadrant(1) > 0) return "acb";
+  if (u_in_quadrant(1) < 0) return "cab";
+  return "(ac)b";
+}
+
+// Validation at the edge (CLI, scenes, public API); the kernel assumes valid input.
+template <class T> void validate_r(const T& r, const char* field = "r") {
+  using std::isfinite;
+  if (!(r > 0 && r < 1) || !isfinite(static_cast<double>(r)))
+    throw std::domain_error(std::string(field) + ": got " + std::to_string(static_cast<double>(r)) +
+                            ", expected a restitution coefficient in the open interval (0, 1)");
+}
+// A point u = (x, y, z): finite, non-zero, in the domain x*z <= 0.
+void validate_point(double x, double y, double z, const char* field = "point");
+
+}  // namespace btob::core

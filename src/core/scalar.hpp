@@ -1,0 +1,33 @@
+// The scalar types of the lab: float, double, long double, float128 (quadmath) and MPFR (any digits).
+#pragma once
+
+#include <boost/multiprecision/float128.hpp>
+#include <boost/multiprecision/mpfr.hpp>
+
+#include <string>
+#include <string_view>
+
+namespace btob::core {
+
+using float128 = boost::multiprecision::float128;
+using mpfr_float = boost::multiprecision::mpfr_float;  // digits set at run time (mpfr_float::default_precision)
+
+// A precision chosen by name: float, double, long-double, float128, mpfr:<digits> (10 <= digits <= 10000).
+struct Precision {
+  enum class Kind { f32, f64, f80, f128, mpfr } kind = Kind::f64;
+  int mpfr_digits = 0;  // decimal digits, for Kind::mpfr
+  std::string name() const;
+};
+
+// Parses a precision name; throws std::invalid_argument naming the field and the accepted names.
+Precision parse_precision(std::string_view text, const char* field = "precision");
+
+template <class T> constexpr const char* scalar_name() {
+  if constexpr (std::is_same_v<T, float>) return "float";
+  else if constexpr (std::is_same_v<T, double>) return "double";
+  else if constexpr (std::is_same_v<T, long double>) return "long-double";
+  else if constexpr (std::is_same_v<T, float128>) return "float128";
+  else return "mpfr";
+}
+
+}  // namespace btob::core

@@ -1,0 +1,219 @@
+// HDF5/CSV/manifest writers with provenance, and the progress bar.
+#include "io/io.hpp"
+
+#include <btob/build_info.hpp>
+
+#include <H5Cpp.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+
+#ifndef BTOB_SOURCE_DIR
+#define BTOB_SOURCE_DIR "."
+#endif
+
+namespace btob::io {
+
+namespace {
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+std::string git_dirty() {
+  // Whether the source tree had uncommitted changes when the result was made (best effort).
+  FILE* p = popen("git -C " BTOB_SOURCE_DIR " status --porcelain --untracked-files=no 2>/dev/null", "r");
+  if (!p) return "unknown";
+  char buf[256];
+  bool dirty = false;
+  while (fgets(buf, sizeof buf, p)) dirty = true;
+  pclose(p);
+  return dirty ? "yes" : "no";
+}
+double seconds_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+Attrs provenance(const std::string& command) {
+  return {{"btob_version", std::string(build::version)},
+          {"git_commit", std::string(build::git_commit)},
+          {"git_dirty", git_dirty()},
+          {"compiler", std::string(build::compiler)},
+          {"build_type", std::string(build::build_type)},
+          {"kernel_flags", std::string(build::kernel_flags)},
+          {"date_utc", now_utc()},
+          {"command", command}};
+}
+
+void ensure_dir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw std::runtime_error(fmt::format("out: cannot create directory '{}': {}", dir.string(), ec.message()));
+}
+
+struct H5Writer::Impl {
+  H5::H5File file;
+};
+
+H5Writer::H5Writer(fs::path path) : impl_(nullptr), path_(std::move(path)) {
+  tmp_ = path_;
+  tmp_ += fmt::format(".tmp-{}", getpid());
+  H5::Exception::dontPrint();
+  try {
+    impl_ = new Impl{H5::H5File(tmp_.string(), H5F_ACC_TRUNC)};
+  } catch (const H5::Exception& e) {
+    throw std::runtime_error(fmt::format("cannot create HDF5 file '{}': {}", tmp_.string(), e.getDetailMsg()));
+  }
+}
+
+H5Writer::~H5Writer() {
+  delete impl_;
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove(tmp_, ec);
+  }
+}
+
+void H5Writer::attrs(const Attrs& a) {
+  H5::Group root = impl_->file.openGroup("/");
+  for (const auto& [k, v] : a) {
+    H5::DataSpace scalar(H5S_SCALAR);
+    if (const auto* s = std::get_if<std::string>(&v)) {
+      H5::StrType t(H5::PredType::C_S1, s->empty() ? 1 : s->size());
+      root.createAttribute(k, t, scalar).write(t, s->empty() ? std::string(" ") : *s);
+    } else if (const auto* d = std::get_if<double>(&v)) {
+      root.createAttribute(k, H5::PredType::NATIVE_DOUBLE, scalar).write(H5::PredType::NATIVE_DOUBLE, d);
+    } else {
+      const long l = std::get<long>(v);
+      root.createAttribute(k, H5::PredType::NATIVE_LONG, scalar).write(H5::PredType::NATIVE_LONG, &l);
+    }
+  }
+}
+
+namespace {
+template <class V>
+void write_ds(H5::H5File& f, const std::string& name, const V& data, const std::vector<std::size_t>& dims,
+              const H5::PredType& type) {
+  std::vector<hsize_t> d(dims.begin(), dims.end());
+  H5::DataSpace space(static_cast<int>(d.size()), d.data());
+  H5::DSetCreatPropList plist;
+  std::size_t total = 1;
+  for (auto x : dims) total *= x;
+  if (total >= 4096 && total > 0) {  // chunked + deflate: density images are mostly empty
+    std::vector<hsize_t> chunk = d;
+    std::size_t c = total;
+    for (auto& x : chunk)
+      while (c > (1u << 18) && x > 1) {
+        c /= 2;
+        x = (x + 1) / 2;
+      }
+    plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
+    plist.setDeflate(4);
+  }
+  H5::DataSet ds = f.createDataSet(name, type, space, plist);
+  if (total > 0) ds.write(data.data(), type);
+}
+}  // namespace
+
+void H5Writer::dataset(const std::string& n, const std::vector<double>& v, const std::vector<std::size_t>& d) {
+  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_DOUBLE);
+}
+void H5Writer::dataset(const std::string& n, const std::vector<std::uint32_t>& v, const std::vector<std::size_t>& d) {
+  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT32);
+}
+void H5Writer::dataset(const std::string& n, const std::vector<std::uint8_t>& v, const std::vector<std::size_t>& d) {
+  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT8);
+}
+void H5Writer::dataset(const std::string& n, const std::vector<std::uint64_t>& v, const std::vector<std::size_t>& d) {
+  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT64);
+}
+
+void H5Writer::commit() {
+  impl_->file.close();
+  delete impl_;
+  impl_ = nullptr;
+  fs::rename(tmp_, path_);
+  committed_ = true;
+}
+
+void write_text_atomic(const fs::path& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += fmt::format(".tmp-{}", getpid());
+  {
+    std::ofstream f(tmp);
+    if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", tmp.string()));
+    f << text;
+    if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", tmp.string()));
+  }
+  fs::rename(tmp, path);
+}
+
+namespace {
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (c == '\n') { o += "\\n"; continue; }
+    o += c;
+  }
+  return o;
+}
+}  // namespace
+
+void write_manifest(const fs::path& path, const Attrs& a) {
+  std::ostringstream s;
+  s << "{\n";
+  std::size_t i = 0;
+  for (const auto& [k, v] : a) {
+    s << "  \"" << json_escape(k) << "\": ";
+    if (const auto* str = std::get_if<std::string>(&v)) s << '"' << json_escape(*str) << '"';
+    else if (const auto* d = std::get_if<double>(&v)) s << fmt::format("{}", *d);
+    else s << std::get<long>(v);
+    s << (++i < a.size() ? ",\n" : "\n");
+  }
+  s << "}\n";
+  write_text_atomic(path, s.str());
+}
+
+Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) != 0), start_(seconds_now()) {}
+Progress::~Progress() {
+  if (tty_ && last_percent_ >= 0) std::cerr << "\n";
+}
+void Progress::update(std::size_t done, std::size_t total) {
+  if (!tty_ || total == 0) return;
+  const int p = static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total));
+  if (p == last_percent_) return;
+  const double el = seconds_now() - start_;
+  if (el < 0.5 && p < 100) return;  // short runs stay quiet
+  last_percent_ = p;
+  const int w = 30, f = w * p / 100;
+  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s", label_, std::string(f, '#'), std::string(w - f, '.'), p, el)
+            << std::flush;
+}
+
+bool run_plot(const std::string& script, const std::vector<std::string>& args) {
+  const char* env = std::getenv("BTOB_PYTHON");
+  const std::string py = env && *env ? env : "/usr/bin/python3";
+  std::string cmd = py + " '" + std::string(BTOB_SOURCE_DIR) + "/analyses/plot/" + script + "'";
+  for (const auto& a : args) cmd += " '" + a + "'";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    std::cerr << "btob: warning: plot script " << script << " failed (exit " << WEXITSTATUS(rc)
+              << "); data were written, run analyses/plot/" << script << " by hand\n";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace btob::io

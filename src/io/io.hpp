@@ -1,0 +1,72 @@
+// Output with provenance: HDF5 arrays with attributes, CSV tables, manifests; atomic (temp + rename).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace btob::io {
+
+namespace fs = std::filesystem;
+
+// Attribute values recorded with every result.
+using Attr = std::variant<std::string, double, long>;
+using Attrs = std::map<std::string, Attr>;
+
+// The provenance every result carries: version, git commit, compiler, kernel flags, date, command line.
+Attrs provenance(const std::string& command);
+
+// Creates `dir` (and parents) or throws std::runtime_error naming it.
+void ensure_dir(const fs::path& dir);
+
+// An HDF5 file written atomically: datasets go to `<path>.tmp-<pid>`, renamed onto `path` by commit().
+// If the object is destroyed without commit() the temporary file is removed (no partial output).
+class H5Writer {
+ public:
+  explicit H5Writer(fs::path path);
+  ~H5Writer();
+  H5Writer(const H5Writer&) = delete;
+  H5Writer& operator=(const H5Writer&) = delete;
+  void attrs(const Attrs& a);  // file-level attributes
+  void dataset(const std::string& name, const std::vector<double>& data, const std::vector<std::size_t>& dims);
+  void dataset(const std::string& name, const std::vector<std::uint32_t>& data, const std::vector<std::size_t>& dims);
+  void dataset(const std::string& name, const std::vector<std::uint8_t>& data, const std::vector<std::size_t>& dims);
+  void dataset(const std::string& name, const std::vector<std::uint64_t>& data, const std::vector<std::size_t>& dims);
+  void commit();
+
+ private:
+  struct Impl;
+  Impl* impl_;
+  fs::path path_, tmp_;
+  bool committed_ = false;
+};
+
+// Writes `text` to `path` atomically (temp file + rename).
+void write_text_atomic(const fs::path& path, const std::string& text);
+
+// A manifest (key: value lines, JSON object) beside a result.
+void write_manifest(const fs::path& path, const Attrs& a);
+
+// A progress bar on stderr, shown only when stderr is a terminal; quiet otherwise.
+class Progress {
+ public:
+  explicit Progress(std::string label);
+  ~Progress();
+  void update(std::size_t done, std::size_t total);
+
+ private:
+  std::string label_;
+  bool tty_;
+  int last_percent_ = -1;
+  double start_;
+};
+
+// Runs the matplotlib script analyses/plot/<script> on `args`; returns false (with a one-line
+// warning) when no Python with matplotlib is available.  The interpreter is $BTOB_PYTHON or the
+// system python3 (Debian's python3-matplotlib).
+bool run_plot(const std::string& script, const std::vector<std::string>& args);
+
+}  // namespace btob::io

@@ -1,0 +1,149 @@
+// Ensembles: r values and initial-condition grids.
+#include "iterate/ensemble.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace btob::iterate {
+
+std::vector<double> linspace_r(double a, double b, long n) {
+  if (n < 1) throw std::invalid_argument(fmt::format("r-count: got {}, expected at least 1", n));
+  core::validate_r(a, "r-min");
+  core::validate_r(b, "r-max");
+  if (b < a) throw std::invalid_argument(fmt::format("r-max: got {} < r-min = {}, expected r-min <= r-max", b, a));
+  checked_bytes(static_cast<std::size_t>(n), sizeof(double), "r-count");
+  std::vector<double> r(static_cast<std::size_t>(n));
+  for (long i = 0; i < n; ++i) r[i] = n == 1 ? a : a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1);
+  if (n > 1) r.back() = b;
+  return r;
+}
+
+std::vector<Vec3<double>> paper_grid() {
+  std::vector<Vec3<double>> g;
+  for (int gi = 1; gi <= 8; ++gi)
+    for (int h = 1; h <= 4; ++h) g.emplace_back(1.0, -(1.0 + 8.0) / (2.0 + gi), -0.1 - h);
+  return g;
+}
+
+std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_max) {
+  if (n1 < 1 || n2 < 1)
+    throw std::invalid_argument(fmt::format("grid: got strip:{}x{}, expected at least 1x1 points", n1, n2));
+  if (!(w1_min < w1_max) || !std::isfinite(w1_min) || !std::isfinite(w1_max))
+    throw std::invalid_argument(fmt::format("grid: got w1 range [{}, {}], expected finite w1-min < w1-max", w1_min, w1_max));
+  checked_bytes(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), sizeof(Vec3<double>), "grid");
+  std::vector<Vec3<double>> g;
+  g.reserve(static_cast<std::size_t>(n1 * n2));
+  for (long i = 0; i < n1; ++i)
+    for (long j = 0; j < n2; ++j) {
+      const double w1 = w1_min + (w1_max - w1_min) * (i + 0.5) / n1;
+      const double w2 = -1.0 + 2.0 * (j + 0.5) / n2;
+      g.emplace_back((1 + w2) / 2, w1, (w2 - 1) / 2);
+    }
+  return g;
+}
+
+namespace {
+// SplitMix64: a counter-based generator, so point i depends only on (seed, i).
+std::uint64_t splitmix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+double unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }  // [0, 1)
+}  // namespace
+
+std::vector<Vec3<double>> random_points(long n, std::uint64_t seed) {
+  if (n < 1) throw std::invalid_argument(fmt::format("grid: got random:{}, expected at least 1 point", n));
+  checked_bytes(static_cast<std::size_t>(n), sizeof(Vec3<double>), "grid");
+  std::vector<Vec3<double>> g;
+  g.reserve(static_cast<std::size_t>(n));
+  for (long i = 0; i < n; ++i) {
+    const std::uint64_t base = splitmix(seed ^ splitmix(static_cast<std::uint64_t>(i)));
+    // Uniform on the sphere (Archimedes: y uniform in [-1, 1], azimuth uniform), folded into Q.
+    const double y = 2 * unit(splitmix(base + 1)) - 1;
+    const double az = 0.5 * std::numbers::pi * (unit(splitmix(base + 2)) + 0x1.0p-54);  // (0, pi/2)
+    const double rho = std::sqrt(std::max(0.0, 1 - y * y));
+    g.emplace_back(rho * std::cos(az), y, -rho * std::sin(az));
+  }
+  return g;
+}
+
+namespace {
+double parse_double(std::string_view s, const char* field, std::string_view whole) {
+  double v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || p != s.data() + s.size())
+    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a number", field, s, whole));
+  return v;
+}
+long parse_long(std::string_view s, const char* field, std::string_view whole) {
+  long v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || p != s.data() + s.size())
+    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a whole number", field, s, whole));
+  return v;
+}
+std::vector<std::string_view> split(std::string_view s, char sep) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t k = s.find(sep, start);
+    out.push_back(s.substr(start, k == std::string_view::npos ? std::string_view::npos : k - start));
+    if (k == std::string_view::npos) break;
+    start = k + 1;
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field) {
+  const auto usage = [&] {
+    return std::invalid_argument(fmt::format(
+        "{}: got '{}', expected paper, strip:NxM[:w1min:w1max], random:N or a list x,y,z;x,y,z;...", field, spec));
+  };
+  if (spec == "paper") return paper_grid();
+  if (spec.starts_with("strip:")) {
+    const auto parts = split(spec.substr(6), ':');
+    const auto dims = split(parts[0], 'x');
+    if (dims.size() != 2 || (parts.size() != 1 && parts.size() != 3)) throw usage();
+    const long n1 = parse_long(dims[0], field, spec), n2 = parse_long(dims[1], field, spec);
+    if (parts.size() == 3)
+      return strip_grid(n1, n2, parse_double(parts[1], field, spec), parse_double(parts[2], field, spec));
+    return strip_grid(n1, n2);
+  }
+  if (spec.starts_with("random:")) return random_points(parse_long(spec.substr(7), field, spec), seed);
+  if (spec.find(',') != std::string_view::npos) {
+    std::vector<Vec3<double>> g;
+    for (auto item : split(spec, ';')) {
+      if (item.empty()) continue;
+      const auto c = split(item, ',');
+      if (c.size() != 3) throw usage();
+      const double x = parse_double(c[0], field, spec), y = parse_double(c[1], field, spec),
+                   z = parse_double(c[2], field, spec);
+      core::validate_point(x, y, z, field);
+      g.emplace_back(x, y, z);
+    }
+    if (g.empty()) throw usage();
+    return g;
+  }
+  throw usage();
+}
+
+std::size_t checked_bytes(std::size_t count, std::size_t item_bytes, const char* field) {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  const double budget = pages > 0 && page > 0 ? 0.75 * static_cast<double>(pages) * static_cast<double>(page) : 16e9;
+  const double need = static_cast<double>(count) * static_cast<double>(item_bytes);
+  if (need > budget)
+    throw std::length_error(fmt::format("{}: needs {:.3g} GB of memory, more than the {:.3g} GB this machine allows "
+                                        "(3/4 of physical memory); ask for fewer points or iterations",
+                                        field, need / 1e9, budget / 1e9));
+  return static_cast<std::size_t>(need);
+}
+
+}  // namespace btob::iterate

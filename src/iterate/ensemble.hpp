@@ -1,0 +1,48 @@
+// Ensembles of orbits: r values x initial conditions (the Section 4 grid, strip grids, seeded random, lists).
+#pragma once
+
+#include "core/map.hpp"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace btob::iterate {
+
+using core::Vec3;
+
+// Orbit o of an ensemble has r = r[o / initial.size()] and starts at initial[o % initial.size()]:
+// every r value sees the same initial conditions (same grid, same seed).
+struct Ensemble {
+  std::vector<double> r;                 // restitution coefficients, each in (0, 1)
+  std::vector<Vec3<double>> initial;     // initial directions, each in the domain x*z <= 0
+  std::string grid_description;          // how `initial` was made (recorded in every result)
+  std::uint64_t seed = 0;                // seed of random grids (0 when none)
+
+  std::size_t orbits() const { return r.size() * initial.size(); }
+};
+
+// n evenly spaced values from a to b inclusive (n = 1 gives a).  Throws on an empty or invalid range.
+std::vector<double> linspace_r(double a, double b, long n);
+
+// The 8x4 grid of Section 4: X = (1, -(1+8)/(2+g), -0.1-h), g = 1..8, h = 1..4, as printed in the paper
+// (y = -9/(2+g); README explains the choice).  Ordered g-major.
+std::vector<Vec3<double>> paper_grid();
+
+// An n1 x n2 grid of cell centres on the strip (eq. 5.5): w1 in [w1_min, w1_max], w2 in [-1, 1].
+std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min = -2, double w1_max = 2);
+
+// n points uniform on the quarter sphere {x >= 0, z <= 0} (the projective uniform measure), from a
+// counter-based generator seeded by (seed, index): the same seed gives the same points on any thread count.
+std::vector<Vec3<double>> random_points(long n, std::uint64_t seed);
+
+// Parses a grid spec: "paper", "strip:NxM[:w1min:w1max]", "random:N", or a list "x,y,z;x,y,z;...".
+// Throws std::invalid_argument naming `field` and the accepted forms.
+std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field = "grid");
+
+// Bytes needed to hold `count` items of `item_bytes`; throws std::length_error naming `field` and the
+// size when it exceeds the memory budget (default: 3/4 of physical memory).
+std::size_t checked_bytes(std::size_t count, std::size_t item_bytes, const char* field);
+
+}  // namespace btob::iterate

@@ -1,0 +1,42 @@
+// The batched iterator of P_r: structure-of-arrays SIMD kernel, OpenMP driver, and its scalar reference.
+#pragma once
+
+#include "iterate/ensemble.hpp"
+
+#include <cstdint>
+
+namespace btob::iterate {
+
+// A Recorder says what a run keeps.  The kernel calls, for every recorded state k (k steps done,
+// first_step() <= k <= iterations), once per batch of `lanes` consecutive orbits starting at `orbit0`:
+//     rec.record(orbit0, lanes, k, x, y, z, sym)
+// x, y, z hold the (unnormalised, power-of-two-rescaled) state of each lane, in the quadrant Q, and
+// sym[l] the symbol 1/2/3 of step k (only when Rec::needs_symbols; else sym is null).  Calls for
+// different batches may come from different threads at once: a recorder writes only its orbits' slice
+// (or a per-thread buffer indexed by thread).  Required members:
+//     static constexpr bool needs_symbols;
+//     long first_step() const;
+
+// Run options.  threads <= 0 means OpenMP's default.  Results never depend on `threads`.
+struct ProgressSink {
+  virtual void update(std::size_t done, std::size_t total) = 0;
+  virtual ~ProgressSink() = default;
+};
+struct RunOptions {
+  int threads = 0;
+  ProgressSink* progress = nullptr;
+};
+
+// Number of steps between renormalisations for scalar type T that keeps every state normal and finite
+// for all r in the ensemble (from operator-norm bounds of the branch matrices, see kernel_impl.hpp).
+template <class T> int renormalisation_interval(const std::vector<double>& r);
+
+// Iterates every orbit of the ensemble `iterations` times with the batched kernel (T = float or
+// double, or long double without SIMD).  Each orbit's initial vector is normalised once.
+template <class T, class Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
+
+// The scalar reference: one orbit at a time, the paper's matrices P1/P2/P3 chosen with branches and
+// the vector normalised every step (Appendix A.2).  Same recorder interface, lanes = 1.
+template <class T, class Rec> void run_scalar(const Ensemble& ensemble, long iterations, Rec& rec);
+
+}  // namespace btob::iterate

@@ -1,0 +1,5 @@
+// The batched kernel instantiated for long double (compiled with the kernel flags, cmake/KernelFlags.cmake).
+#include "iterate/kernel_instances.hpp"
+namespace btob::iterate {
+BTOB_INSTANTIATE_KERNEL(long double)
+}  // namespace btob::iterate

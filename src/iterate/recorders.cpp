@@ -1,0 +1,55 @@
+// Non-template parts of the recorders.
+#include "iterate/recorders.hpp"
+
+#include <fmt/format.h>
+
+namespace btob::iterate {
+
+Coord parse_coord(const std::string& name, const char* field) {
+  if (name == "theta") return Coord::theta;
+  if (name == "log10-theta" || name == "log-theta") return Coord::log10_theta;
+  if (name == "phi") return Coord::phi;
+  if (name == "w1") return Coord::w1;
+  if (name == "w2") return Coord::w2;
+  throw std::invalid_argument(fmt::format("{}: got '{}', expected theta, log10-theta, phi, w1 or w2", field, name));
+}
+
+const char* coord_name(Coord c) {
+  switch (c) {
+    case Coord::theta: return "theta";
+    case Coord::log10_theta: return "log10-theta";
+    case Coord::phi: return "phi";
+    case Coord::w1: return "w1";
+    case Coord::w2: return "w2";
+  }
+  return "?";
+}
+
+DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, long tail_, std::size_t bins_, double lo_,
+                                 double hi_, int threads)
+    : coord(c), iterations(iterations_), tail(tail_), n_ic(e.initial.size()), columns(e.r.size()), bins(bins_), lo(lo_),
+      hi(hi_) {
+  if (bins < 1) throw std::invalid_argument(fmt::format("bins: got {}, expected at least 1", bins));
+  if (!(lo < hi)) throw std::invalid_argument(fmt::format("range: got [{}, {}], expected lo < hi", lo, hi));
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
+  per_thread.assign(static_cast<std::size_t>(nt), std::vector<std::uint32_t>(columns * bins, 0));
+  under_t.assign(static_cast<std::size_t>(nt), std::vector<std::uint64_t>(columns, 0));
+  over_t = under_t;
+}
+
+std::vector<std::uint32_t> DensityRecorder::merge() {
+  std::vector<std::uint32_t> img(columns * bins, 0);
+  under.assign(columns, 0);
+  over.assign(columns, 0);
+  for (std::size_t t = 0; t < per_thread.size(); ++t) {
+    for (std::size_t i = 0; i < img.size(); ++i) img[i] += per_thread[t][i];
+    for (std::size_t c = 0; c < columns; ++c) {
+      under[c] += under_t[t][c];
+      over[c] += over_t[t][c];
+    }
+  }
+  return img;
+}
+
+}  // namespace btob::iterate
