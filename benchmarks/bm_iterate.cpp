@@ -1,0 +1,77 @@
+// Throughput of the iterator in map iterations per second: the scalar loop of Appendix A.2 (baseline)
+// against the batched SIMD kernel, float and double, 1 and 2 threads, on the Figure 4.1 workload.
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+using namespace btob::iterate;
+
+// Figure 4.1: r in [0.0717, 0.1717] x the 32-point grid of Section 4.  `r_count` values of r.
+Ensemble fig41(long r_count) {
+  Ensemble e;
+  e.r = linspace_r(0.0717, 0.1717, r_count);
+  e.initial = paper_grid();
+  e.grid_description = "paper";
+  return e;
+}
+
+// Appendix A.2 as printed: one orbit at a time, branches, normalise every step.
+template <class T> void BM_scalar_loop(benchmark::State& st) {
+  const Ensemble e = fig41(st.range(0));
+  const long iters = st.range(1);
+  for (auto _ : st) {
+    FinalRecorder rec(e.orbits(), iters);
+    run_scalar<T>(e, iters, rec);
+    benchmark::DoNotOptimize(rec.out.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
+}
+
+// The batched kernel, recording only the final state (the iteration phase alone).
+template <class T> void BM_batched(benchmark::State& st) {
+  const Ensemble e = fig41(st.range(0));
+  const long iters = st.range(1);
+  RunOptions opt;
+  opt.threads = static_cast<int>(st.range(2));
+  for (auto _ : st) {
+    FinalRecorder rec(e.orbits(), iters);
+    run<T>(e, iters, rec, opt);
+    benchmark::DoNotOptimize(rec.out.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
+}
+
+// The whole Figure 4.1 computation: 5000 iterations, the last 100 binned into the density image.
+template <class T> void BM_fig41_density(benchmark::State& st) {
+  const Ensemble e = fig41(st.range(0));
+  const long iters = st.range(1);
+  RunOptions opt;
+  opt.threads = static_cast<int>(st.range(2));
+  for (auto _ : st) {
+    DensityRecorder rec(Coord::theta, e, iters, 100, 800, 0.0, 1.5707963267948966, opt.threads);
+    run<T>(e, iters, rec, opt);
+    benchmark::DoNotOptimize(rec.merge().data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
+}
+
+}  // namespace
+
+// Baseline: 50 r values x 32 orbits x 5000 iterations (8e6 map iterations per run).
+BENCHMARK(BM_scalar_loop<double>)->Name("scalar_loop/double")->Args({50, 5000})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<float>)->Name("scalar_loop/float")->Args({50, 5000})->Unit(benchmark::kMillisecond);
+// Batched: 1000 r values x 32 orbits x 5000 iterations (1.6e8 map iterations), threads 1 and 2.
+BENCHMARK(BM_batched<double>)->Name("batched/double")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<float>)->Name("batched/float")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+// The full Figure 4.1 workload (5000 r, 8e8 map iterations) with the density recorder.
+BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41_density<float>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+// Smoke runs for CTest (tiny sizes).
+BENCHMARK(BM_scalar_loop<double>)->Name("smoke/scalar_loop")->Args({2, 50});
+BENCHMARK(BM_batched<double>)->Name("smoke/batched")->Args({2, 50, 2})->UseRealTime();
+BENCHMARK(BM_fig41_density<float>)->Name("smoke/density")->Args({2, 200, 2})->UseRealTime();
+
+BENCHMARK_MAIN();
