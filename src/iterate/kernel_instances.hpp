@@ -13,6 +13,10 @@
                                                            Both<TailRecorder, SymbolRecorder>&, const RunOptions&); \
   template void run<T, Both<DensityRecorder, TailRecorder>>(const Ensemble&, long,                            \
                                                             Both<DensityRecorder, TailRecorder>&, const RunOptions&); \
+  template void run<T, Both<SymbolRecorder, TailRecorder>>(const Ensemble&, long,                            \
+                                                           Both<SymbolRecorder, TailRecorder>&, const RunOptions&); \
+  template void run<T, Both<FinalRecorder, SymbolRecorder>>(const Ensemble&, long,                           \
+                                                            Both<FinalRecorder, SymbolRecorder>&, const RunOptions&); \
   template void run_scalar<T, TailRecorder>(const Ensemble&, long, TailRecorder&);                            \
   template void run_scalar<T, SymbolRecorder>(const Ensemble&, long, SymbolRecorder&);                        \
   template void run_scalar<T, FinalRecorder>(const Ensemble&, long, FinalRecorder&);                          \

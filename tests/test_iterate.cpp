@@ -1,0 +1,270 @@
+// Tests of the batched iterator: equals the scalar reference, deterministic across threads, the paper's
+// periodic orbits of Section 4, renormalisation at the extremes, recorders and ensembles.
+#include "core/coords.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+
+using namespace btob;
+using namespace btob::iterate;
+
+namespace {
+
+Ensemble make(std::vector<double> r, std::vector<Vec3<double>> ic) {
+  Ensemble e;
+  e.r = std::move(r);
+  e.initial = std::move(ic);
+  return e;
+}
+
+// True when seq (symbols 1/2/3) is periodic with a rotation of `word` (e.g. "1133").
+bool on_cycle(const std::uint8_t* seq, std::size_t n, const std::string& word) {
+  const std::size_t p = word.size();
+  for (std::size_t shift = 0; shift < p; ++shift) {
+    bool ok = true;
+    for (std::size_t i = 0; i < n && ok; ++i) ok = seq[i] == word[(i + shift) % p] - '0';
+    if (ok) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(Ensemble, PaperGridAsPrinted) {
+  const auto g = paper_grid();
+  ASSERT_EQ(g.size(), 32u);
+  // X = (1, -(1+8)/(2+g), -0.1-h), g = 1..8, h = 1..4 (Section 4), g-major.
+  EXPECT_DOUBLE_EQ(g[0](1), -3.0);
+  EXPECT_DOUBLE_EQ(g[0](2), -1.1);
+  EXPECT_DOUBLE_EQ(g[31](1), -0.9);
+  EXPECT_DOUBLE_EQ(g[31](2), -4.1);
+  for (const auto& u : g) EXPECT_LT(u(1), 0);  // first collisions cb or cab, as the paper wants
+}
+
+TEST(Ensemble, RandomPointsAreSeededAndInTheQuadrant) {
+  const auto a = random_points(1000, 42), b = random_points(1000, 42), c = random_points(1000, 43);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  for (const auto& u : a) {
+    EXPECT_GE(u(0), 0);
+    EXPECT_LE(u(2), 0);
+    EXPECT_NEAR(u.norm(), 1.0, 1e-15);  // unit vectors up to rounding of sqrt/cos/sin
+  }
+}
+
+TEST(Ensemble, StripGridMapsToStripCoordinates) {
+  const auto g = strip_grid(4, 3, -2, 2);
+  ASSERT_EQ(g.size(), 12u);
+  const auto [w1, w2] = core::strip<double>(g[0]);
+  EXPECT_NEAR(w1, -1.5, 1e-15);  // first cell centre
+  EXPECT_NEAR(w2, -2.0 / 3.0, 1e-15);
+}
+
+TEST(Ensemble, ErrorsNameTheField) {
+  EXPECT_THROW(parse_grid("strip:0x4", 1), std::invalid_argument);
+  EXPECT_THROW(parse_grid("random:-3", 1), std::invalid_argument);
+  EXPECT_THROW(parse_grid("hexagon", 1), std::invalid_argument);
+  EXPECT_THROW(parse_grid("1,2,3", 1), std::domain_error);  // x*z > 0: outside the domain
+  EXPECT_THROW(parse_grid("0,0,0", 1), std::domain_error);
+  EXPECT_THROW(parse_grid("nan,1,-1", 1), std::domain_error);
+  EXPECT_THROW(parse_grid("strip:100000000x100000000", 1), std::length_error);
+  try {
+    linspace_r(0.5, 1.5, 10);
+    FAIL();
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find("r-max"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(0, 1)"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(linspace_r(0.2, 0.1, 10), std::invalid_argument);
+  EXPECT_THROW(linspace_r(0.1, 0.2, 0), std::invalid_argument);
+}
+
+TEST(Recorders, AtanPosMatchesStdAtan2) {
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  double worst = 0, worst_f = 0;
+  for (int i = 0; i < 200000; ++i) {
+    // Spread over many orders of magnitude, both sides of the diagonal.
+    const double a = std::pow(10.0, -30 * u(gen)) * u(gen), b = std::pow(10.0, -30 * u(gen)) * u(gen);
+    const double ref = std::atan2(a, b);
+    if (ref == 0) continue;
+    worst = std::max(worst, std::fabs(atan_pos<double>(a, b) - ref) / ref);
+    const float af = static_cast<float>(a), bf = static_cast<float>(b);
+    if (af > 0 && bf > 0)
+      worst_f = std::max(worst_f, static_cast<double>(std::fabs(atan_pos<float>(af, bf) - std::atan2(af, bf)) / std::atan2(af, bf)));
+  }
+  // Cephes' atan is accurate to ~1 ulp; allow 2 ulp (4.4e-16) in double and 2 ulp (2.4e-7) in float.
+  EXPECT_LT(worst, 4.5e-16);
+  EXPECT_LT(worst_f, 2.4e-7);
+  EXPECT_EQ(atan_pos<double>(0.0, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(atan_pos<double>(1.0, 0.0), std::numbers::pi / 2);
+  EXPECT_DOUBLE_EQ(atan_pos<double>(1.0, 1.0), std::numbers::pi / 4);
+}
+
+TEST(Kernel, BatchedEqualsScalarLoopOnTheSection4WorkloadAtR015) {
+  // Section 4 workload at r = 0.15: 32 orbits of the paper grid.  The orbits converge to the sink
+  // 1133, so symbol sequences are reproducible across implementations (perf-notes: chaotic orbits
+  // are not, and are compared by distribution below).
+  const Ensemble e = make({0.15}, paper_grid());
+  SymbolRecorder batched(e.orbits(), 1, 1000), scalar(e.orbits(), 1, 1000), batched_f(e.orbits(), 1, 1000);
+  run<double>(e, 1000, batched);
+  run_scalar<double>(e, 1000, scalar);
+  run<float>(e, 1000, batched_f);
+  EXPECT_EQ(batched.out, scalar.out);
+  EXPECT_EQ(batched_f.out, scalar.out);  // float too: the window is wide and the sink strongly attracting
+}
+
+TEST(Kernel, GenericLanesEqualSimdLanesOnSinks) {
+  // long double runs the per-lane generic path.  At r = 0.15 the orbits reach the sink 1133 without a
+  // chaotic transient, so whole symbol sequences agree; at r = 0.1 the transient is chaotic and only
+  // the final cycle 111333 is compared.
+  const Ensemble e = make({0.15}, paper_grid());
+  SymbolRecorder d(e.orbits(), 1, 2000), ld(e.orbits(), 1, 2000);
+  run<double>(e, 2000, d);
+  run<long double>(e, 2000, ld);
+  EXPECT_EQ(d.out, ld.out);
+  const Ensemble e2 = make({0.1}, paper_grid());
+  SymbolRecorder t(e2.orbits(), 29881, 30000);
+  run<long double>(e2, 30000, t);
+  for (std::size_t o = 0; o < e2.orbits(); ++o) EXPECT_TRUE(on_cycle(&t.out[o * t.count], t.count, "111333")) << o;
+}
+
+TEST(Kernel, OneThreadEqualsTwoThreadsBitwise) {
+  Ensemble e = make(linspace_r(0.0717, 0.1717, 37), random_points(11, 5));  // batches straddle r values
+  RunOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  TailRecorder a(Coord::theta, e.orbits(), 3000, 50), b(Coord::theta, e.orbits(), 3000, 50);
+  run<double>(e, 3000, a, one);
+  run<double>(e, 3000, b, two);
+  EXPECT_EQ(a.out, b.out);  // bitwise: each orbit is computed by the same instructions on any thread
+  DensityRecorder da(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 1), db(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 2);
+  run<float>(e, 3000, da, one);
+  run<float>(e, 3000, db, two);
+  EXPECT_EQ(da.merge(), db.merge());
+}
+
+TEST(Kernel, PaperSection4Sinks) {
+  // At r = 0.15 all 32 orbits end on the cycle 1133 (four b-collisions per period); at r = 0.1 on
+  // 111333 (Section 4, Table 5.1).
+  for (const auto& [r, word] : std::vector<std::pair<double, std::string>>{{0.15, "1133"}, {0.1, "111333"}}) {
+    const Ensemble e = make({r}, paper_grid());
+    SymbolRecorder s(e.orbits(), 20001, 20120);
+    run<double>(e, 20120, s);
+    for (std::size_t o = 0; o < e.orbits(); ++o)
+      EXPECT_TRUE(on_cycle(&s.out[o * s.count], s.count, word)) << "r = " << r << " orbit " << o;
+  }
+}
+
+TEST(Kernel, ThreeParticleCollapseBelowThreshold) {
+  // r = 0.05 < 7 - 4 sqrt(3): orbits converge to the three-particle collapse, symbol 1 forever with
+  // theta -> 0, or symbol 3 forever with theta -> pi/2 (Section 5.2, Proposition 5.1).
+  const Ensemble e = make({0.05}, paper_grid());
+  SymbolRecorder s(e.orbits(), 4801, 5000);
+  TailRecorder t(Coord::theta, e.orbits(), 5000, 1);
+  Both<SymbolRecorder, TailRecorder> both(s, t);
+  run<double>(e, 5000, both);
+  int ones = 0, threes = 0;
+  for (std::size_t o = 0; o < e.orbits(); ++o) {
+    const bool all1 = on_cycle(&s.out[o * s.count], s.count, "1");
+    const bool all3 = on_cycle(&s.out[o * s.count], s.count, "3");
+    EXPECT_TRUE(all1 || all3) << "orbit " << o;
+    if (all1) {
+      ++ones;
+      EXPECT_LT(t.out[o], 1e-100);  // theta decays like (r^2/lambda_P1,3)^k per step: far below 1e-100 at k = 5000
+    }
+    if (all3) {
+      ++threes;
+      EXPECT_GT(t.out[o], std::numbers::pi / 2 - 1e-15);
+    }
+    EXPECT_TRUE(std::isfinite(t.out[o]));
+  }
+  EXPECT_EQ(ones + threes, 32);
+}
+
+TEST(Kernel, TailHistogramsAgreeWithScalarLoopAtEveryR) {
+  // Across Figure 4.1's range the batched kernel and the scalar loop give the same distribution of
+  // tail values at every r.  On chaotic r the orbits part after ~60 steps (perf-notes), so compare
+  // distributions: per r, the Kolmogorov-Smirnov distance of the 32 x 100 tail thetas.
+  const long iters = 3000, tail = 100;
+  const Ensemble e = make(linspace_r(0.0717, 0.1717, 60), paper_grid());
+  TailRecorder a(Coord::theta, e.orbits(), iters, tail), b(Coord::theta, e.orbits(), iters, tail);
+  run<double>(e, iters, a);
+  run_scalar<double>(e, iters, b);
+  const std::size_t per_r = e.initial.size() * tail;
+  // Histograms at the plots' resolution (200 bins on [0, pi/2]); the distance is the largest gap
+  // between the two cumulative histograms (Kolmogorov-Smirnov on binned data).  Exact values are
+  // not comparable where orbits collapse (theta ~ 1e-150 in one run, 1e-160 in the other).
+  const int bins = 200;
+  double worst = 0, mean = 0;
+  for (std::size_t ir = 0; ir < e.r.size(); ++ir) {
+    std::vector<double> ha(bins, 0), hb(bins, 0);
+    for (std::size_t i = ir * per_r; i < (ir + 1) * per_r; ++i) {
+      ha[std::min(bins - 1, static_cast<int>(a.out[i] / (std::numbers::pi / 2) * bins))] += 1.0 / per_r;
+      hb[std::min(bins - 1, static_cast<int>(b.out[i] / (std::numbers::pi / 2) * bins))] += 1.0 / per_r;
+    }
+    double ca = 0, cb = 0, d = 0;
+    for (int k = 0; k < bins; ++k) {
+      ca += ha[k];
+      cb += hb[k];
+      d = std::max(d, std::fabs(ca - cb));
+    }
+    worst = std::max(worst, d);
+    mean += d / static_cast<double>(e.r.size());
+  }
+  // Tail points of one orbit are strongly correlated, so the effective sample is ~ the 32 orbits: the
+  // KS distance of two independent samples of 32 exceeds 0.34 with probability 5%.  Sinks agree exactly.
+  std::printf("binned KS distance batched vs scalar: worst %.3f, mean %.3f over %zu r values\n", worst, mean, e.r.size());
+  EXPECT_LT(worst, 0.45) << "mean KS distance " << mean;
+  EXPECT_LT(mean, 0.15);
+}
+
+TEST(Kernel, RenormalisationAtTheExtremes) {
+  // r = 1e-6: the branch matrices shrink vectors by ~r per step; the interval adapts and the state
+  // stays finite and non-zero in float and double (perf-notes: a fixed K underflows as r -> 0).
+  for (double r : {1e-6, 1e-3, 0.5, 0.999999}) {
+    const Ensemble e = make({r}, random_points(64, 3));
+    FinalRecorder fd(e.orbits(), 20000), ff(e.orbits(), 20000);
+    run<double>(e, 20000, fd);
+    run<float>(e, 20000, ff);
+    for (std::size_t o = 0; o < e.orbits(); ++o) {
+      for (const auto* rec : {&fd, &ff}) {
+        const auto& u = rec->out[o];
+        ASSERT_TRUE(std::isfinite(u(0)) && std::isfinite(u(1)) && std::isfinite(u(2))) << "r = " << r;
+        EXPECT_NEAR(u.norm(), 1.0, 1e-12);
+        EXPECT_GE(u(0), 0);
+        EXPECT_LE(u(2), 0);
+      }
+    }
+    EXPECT_GE(renormalisation_interval<float>({r}), 1);
+    EXPECT_GE(renormalisation_interval<double>({r}), renormalisation_interval<float>({r}));
+  }
+  EXPECT_EQ(renormalisation_interval<double>({0.1}), renormalisation_interval<double>({0.1, 0.1}));
+}
+
+TEST(Kernel, KernelStepMatchesThePaperMatrices) {
+  // One step of the kernel (matrices divided by r, power-of-two rescaling) gives the direction of
+  // P_s u and the branch s of core::step, on random points of every branch, to a few ulps.
+  std::vector<Vec3<double>> ic = random_points(2000, 11);
+  for (double r : {0.01, 0.0718, 0.2, 0.9}) {
+    const Ensemble e = make({r}, ic);
+    FinalRecorder f(e.orbits(), 1);
+    SymbolRecorder s(e.orbits(), 1, 1);
+    Both<FinalRecorder, SymbolRecorder> rec(f, s);
+    run<double>(e, 1, rec);
+    for (std::size_t o = 0; o < ic.size(); ++o) {
+      const core::Step<double> st = core::step<double>(ic[o], r);
+      const Vec3<double> ref = st.u / st.u.norm();
+      EXPECT_EQ(s.out[o], st.symbol) << "r = " << r << " point " << o;
+      EXPECT_LT((f.out[o] - ref).norm(), 1e-14) << "r = " << r;  // unit vectors: a few ulps of 1
+    }
+  }
+}
