@@ -1,0 +1,394 @@
+// Tests of src/windows: Q_n against Table B.2, lower/upper bounds against Table B.1, certificates,
+// precision agreement, thin stripes and thresholds against closed forms, the matrix route, errors.
+#include "windows/direct.hpp"
+#include "windows/polynomial.hpp"
+#include "windows/windows.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/constants/constants.hpp>
+
+#include <cctype>
+#include <numeric>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace btob::windows;
+
+// Table B.2 of the paper, copied verbatim from its LaTeX source (developed, factorised), n = 1..10.
+struct TableB2Row {
+  int n;
+  const char* developed;
+  const char* factorised;
+};
+const TableB2Row kTableB2[] = {
+    {1,
+     R"(\frac{1}{16}r^4 - \frac{1}{4}r^3 - \frac{5}{8}r^2 - \frac{1}{4}r + \frac{1}{16})",
+     R"(\frac{1}{16}(r+1)^2(r^2-6r+1))"},
+    {2,
+     R"(\frac{5}{256}r^8 - \frac{5}{32}r^7 + \frac{3}{64}r^6 - \frac{3}{32}r^5 + \frac{81}{128}r^4 - \frac{3}{32}r^3 + \frac{3}{64}r^2 - \frac{5}{32}r + \frac{5}{256})",
+     R"(\frac{1}{256}(r+1)^2(5r^6-50r^5+107r^4-188r^3+107r^2-50r+5))"},
+    {3,
+     R"(\frac{21}{4096}r^{12} -\frac{73}{1024}r^{11} +\frac{357}{2048}r^{10} +\frac{59}{1024}r^9 +\frac{283}{4096}r^8 +\frac{7}{512}r^7 -\frac{509}{1024}r^6 +\frac{7}{512}r^5 +\frac{283}{4096}r^4 + \frac{59}{1024}r^3 + \frac{357}{2048}r^2 - \frac{73}{1024}r + \frac{21}{4096})",
+     R"(\frac{1}{4096}(r^2-1)^2(21r^8 - 292 r^7 + 756 r^6 - 348 r^5 + 1774 r^4 - 348 r^3 + 756 r^2 - 292 r + 21))"},
+    {4,
+     R"(\frac{85}{65536}r^{16} - \frac{53}{2048}r^{15} + \frac{1095}{8192}r^{14} - \frac{211}{2048}r^{13} - \frac{1277}{16384}r^{12} - \frac{137}{2048}r^{11} - \frac{303}{8192}r^{10} - \frac{111}{2048}r^9 - \frac{17697}{32768}r^8 - \frac{111}{2048}r^7 - \frac{303}{8192}r^6 - \frac{137}{2048}r^5 - \frac{1277}{16384}r^4 - \frac{211}{2048}r^3 + \frac{1095}{8192}r^2 - \frac{53}{2048}r + \frac{85}{65536})",
+     R"(\frac{1}{65536}(r + 1)^2(85 r^{14} - 1866 r^{13} + 12407 r^{12} - 29700 r^{11} + 41885 r^{10} - 58454 r^9 + 72599 r^8 - 90296 r^7 + 72599 r^6 - 58454 r^5 + 41885 r^4 - 29700 r^3 + 12407 r^2 - 1866 r + 85))"},
+    {5,
+     R"(\frac{341}{1048576}r^{20} - \frac{2215}{262144}r^{19} + \frac{35547}{524288}r^{18} - \frac{42543}{262144}r^{17} - \frac{10319}{1048576}r^{16} + \frac{1325}{65536}r^{15} + \frac{2977}{131072}r^{14} - \frac{159}{65536}r^{13} - \frac{17155}{524288}r^{12} - \frac{12721}{131072}r^{11} - \frac{156383}{262144}r^{10} - \frac{12721}{131072}r^9 - \frac{17155}{524288}r^8 - \frac{159}{65536}r^7 + \frac{2977}{131072}r^6 + \frac{1325}{65536}r^5 - \frac{10319}{1048576}r^4 - \frac{42543}{262144}r^3 + \frac{35547}{524288}r^2 - \frac{2215}{262144}r + \frac{341}{1048576})",
+     R"(\frac{1}{1048576} (r + 1)^2(341r^{18} - 9542r^{17} + 89837r^{16} - 340304r^{15} + 580452r^{14} - 799400r^{13} + 1042164r^{12} - 1287472r^{11} + 1498470r^{10} - 1811236r^9 + 1498470r^8 - 1287472r^7 + 1042164r^6 - 799400r^5 + 580452r^4 - 340304r^3 + 89837r^2 - 9542r + 341))"},
+    {6,
+     R"(\frac{1365}{16777216}r^{24} - \frac{5459}{2097152}r^{23} + \frac{119361}{4194304}r^{22} - \frac{249245}{2097152}r^{21} + \frac{1046837}{8388608}r^{20} + \frac{178783}{2097152}r^{19} + \frac{198397}{4194304}r^{18} + \frac{41649}{2097152}r^{17} + \frac{324955}{16777216}r^{16} + \frac{32985}{1048576}r^{15} + \frac{74977}{2097152}r^{14} - \frac{15849}{1048576}r^{13} - \frac{2145421}{4194304}r^{12} - \frac{15849}{1048576}r^{11} + \frac{74977}{2097152}r^{10} + \frac{32985}{1048576}r^9 + \frac{324955}{16777216}r^8 + \frac{41649}{2097152}r^7 + \frac{198397}{4194304}r^6 + \frac{178783}{2097152}r^5 + \frac{1046837}{8388608}r^4 - \frac{249245}{2097152}r^3 + \frac{119361}{4194304}r^2 - \frac{5459}{2097152}r + \frac{1365}{16777216})",
+     R"(\frac{1}{16777216}(r^2 - 1)^2(1365r^{20} - 43672r^{19} + 480174r^{18} - 2081304r^{17} + 3052657r^{16} - 2688672r^{15} + 6418728r^{14} - 2962848r^{13} + 10109754r^{12} - 2709264r^{11} + 14400596r^{10} - 2709264r^9 + 10109754r^8 - 2962848r^7 + 6418728r^6 - 2688672r^5 + 3052657r^4 - 2081304r^3 + 480174r^2 - 43672r + 1365))"},
+    {7,
+     R"(\frac{5461}{268435456}r^{28} - \frac{51877}{67108864}r^{27} + \frac{1438737}{134217728}r^{26} - \frac{4339241}{67108864}r^{25} + \frac{40022743}{268435456}r^{24} - \frac{1129031}{33554432}r^{23} - \frac{5192403}{67108864}r^{22} - \frac{2073279}{33554432}r^{21} - \frac{6301571}{268435456}r^{20} - \frac{655231}{67108864}r^{19} - \frac{2823425}{134217728}r^{18} - \frac{1836819}{67108864}r^{17} - \frac{4944041}{268435456}r^{16} - \frac{872357}{16777216}r^{15} - \frac{18088117}{33554432}r^{14} - \frac{872357}{16777216}r^{13} - \frac{4944041}{268435456}r^{12} - \frac{1836819}{67108864}r^{11} - \frac{2823425}{134217728}r^{10} - \frac{655231}{67108864}r^9 - \frac{6301571}{268435456}r^8 - \frac{2073279}{33554432}r^7 - \frac{5192403}{67108864}r^6 - \frac{1129031}{33554432}r^5 + \frac{40022743}{268435456}r^4 - \frac{4339241}{67108864}r^3 + \frac{1438737}{134217728}r^2 - \frac{51877}{67108864}r + \frac{5461}{268435456})",
+     R"(\frac{1}{268435456}(r + 1)^2(5461r^{26} - 218430r^{25} + 3308873r^{24} - 23756280r^{23} + 84226430r^{22} - 153728828r^{21} + 202461614r^{20} - 267780632r^{19} + 326798079r^{18} - 388436450r^{17} + 444427971r^{16} - 507766768r^{15} + 566161524r^{14} - 638513992r^{13} + 566161524r^{12} - 507766768r^{11} + 444427971r^{10} - 388436450r^9 + 326798079r^8 - 267780632r^7 + 202461614r^6 - 153728828r^5 + 84226430r^4 - 23756280r^3 + 3308873r^2 - 218430r + 5461))"},
+    {8,
+     R"(\frac{21845}{4294967296}r^{32} - \frac{60073}{268435456}r^{31} + \frac{1010289}{268435456}r^{30} - \frac{8010651}{268435456}r^{29} + \frac{58278227}{536870912}r^{28} - \frac{34802629}{268435456}r^{27} - \frac{15076669}{268435456}r^{26} + \frac{2386713}{268435456}r^{25} + \frac{18759667}{1073741824}r^{24} - \frac{3118757}{268435456}r^{23} - \frac{3881071}{268435456}r^{22} + \frac{3019329}{268435456}r^{21} + \frac{9472389}{536870912}r^{20} - \frac{1744673}{268435456}r^{19} - \frac{8984773}{268435456}r^{18} - \frac{24778123}{268435456}r^{17} - \frac{1259891681}{2147483648}r^{16} - \frac{24778123}{268435456}r^{15} - \frac{8984773}{268435456}r^{14} - \frac{1744673}{268435456}r^{13} + \frac{9472389}{536870912}r^{12} + \frac{3019329}{268435456}r^{11} - \frac{3881071}{268435456}r^{10} - \frac{3118757}{268435456}r^9 + \frac{18759667}{1073741824}r^8 + \frac{2386713}{268435456}r^7 - \frac{15076669}{268435456}r^6 - \frac{34802629}{268435456}r^5 + \frac{58278227}{536870912}r^4 - \frac{8010651}{268435456}r^3 + \frac{1010289}{268435456}r^2 - \frac{60073}{268435456}r + \frac{21845}{4294967296})",
+     R"(\frac{1}{4294967296}(r + 1)^2(21845r^{30} - 1004858r^{29} + 18152495r^{28} - 163470548r^{27} + 775014417r^{26} - 1943400350r^{25} + 2870559579r^{24} - 3759531400r^{23} + 4723541889r^{22} - 5737452490r^{21} + 6689265955r^{20} - 7592770156r^{19} + 8572053469r^{18} - 9579251550r^{17} + 10442693263r^{16} - 11702584944r^{15} + 10442693263r^{14} - 9579251550r^{13} + 8572053469r^{12} - 7592770156r^{11} + 6689265955r^{10} - 5737452490r^9 + 4723541889r^8 - 3759531400r^7 + 2870559579r^6 - 1943400350r^5 + 775014417r^4 - 163470548r^3 + 18152495r^2 - 1004858r + 21845))"},
+    {9,
+     R"(\frac{87381}{68719476736}r^{36} - \frac{1092259}{17179869184}r^{35} + \frac{43209447}{34359738368}r^{34} - \frac{212853619}{17179869184}r^{33} + \frac{4269713485}{68719476736}r^{32} - \frac{296590343}{2147483648}r^{31} + \frac{252213133}{4294967296}r^{30} + \frac{188040453}{2147483648}r^{29} + \frac{905801569}{17179869184}r^{28} + \frac{159965871}{4294967296}r^{27} + \frac{416297761}{8589934592}r^{26} + \frac{116931159}{4294967296}r^{25} - \frac{243450859}{17179869184}r^{24} - \frac{30883381}{2147483648}r^{23} + \frac{81855995}{4294967296}r^{22} + \frac{79821671}{2147483648}r^{21} + \frac{1070869059}{34359738368}r^{20} - \frac{208374721}{8589934592}r^{19} - \frac{8911424427}{17179869184}r^{18} - \frac{208374721}{8589934592}r^{17} + \frac{1070869059}{34359738368}r^{16} + \frac{79821671}{2147483648}r^{15} + \frac{81855995}{4294967296}r^{14} - \frac{30883381}{2147483648}r^{13} - \frac{243450859}{17179869184}r^{12} + \frac{116931159}{4294967296}r^{11} + \frac{416297761}{8589934592}r^{10} + \frac{159965871}{4294967296}r^9 + \frac{905801569}{17179869184}r^8 + \frac{188040453}{2147483648}r^7 + \frac{252213133}{4294967296}r^6 - \frac{296590343}{2147483648}r^5 + \frac{4269713485}{68719476736}r^4 - \frac{212853619}{17179869184}r^3 + \frac{43209447}{34359738368}r^2 - \frac{1092259}{17179869184}r + \frac{87381}{68719476736})",
+     R"(\frac{1}{68719476736}(r^2 - 1)^2(87381r^{32} - 4369036r^{31} + 86593656r^{30} - 860152548r^{29} + 4442813416r^{28} - 11206827036r^{27} + 12834443304r^{26} - 15536207028r^{25} + 24849279468r^{24} - 17306133084r^{23} + 40194497720r^{22} - 17205160596r^{21} + 54565912536r^{20} - 18092456300r^{19} + 70247023272r^{18} - 16425458532r^{17} + 88069872126r^{16} - 16425458532r^{15} + 70247023272r^{14} - 18092456300r^{13} + 54565912536r^{12} - 17205160596r^{11} + 40194497720r^{10} - 17306133084r^9 + 24849279468r^8 - 15536207028r^7 + 12834443304r^6 - 11206827036r^5 + 4442813416r^4 - 860152548r^3 + 86593656r^2 - 4369036r + 87381))"},
+    {10,
+     R"(\frac{349525}{1099511627776}r^{40} - \frac{2446673}{137438953472}r^{39} + \frac{111323415}{274877906944}r^{38} - \frac{656403031}{137438953472}r^{37} + \frac{16860878795}{549755813888}r^{36} - \frac{13880529647}{137438953472}r^{35} + \frac{35431771167}{274877906944}r^{34} + \frac{3945563655}{137438953472}r^{33} - \frac{51933796943}{1099511627776}r^{32} - \frac{1902386801}{34359738368}r^{31} - \frac{3442320253}{68719476736}r^{30} - \frac{1723679415}{34359738368}r^{29} - \frac{1719740815}{137438953472}r^{28} + \frac{1000292645}{34359738368}r^{27} + \frac{834339215}{68719476736}r^{26} - \frac{947288877}{34359738368}r^{25} - \frac{18459801603}{549755813888}r^{24} - \frac{1260871583}{68719476736}r^{23} - \frac{1215137471}{137438953472}r^{22} - \frac{3475964857}{68719476736}r^{21} - \frac{148356134671}{274877906944}r^{20} - \frac{3475964857}{68719476736}r^{19} - \frac{1215137471}{137438953472}r^{18} - \frac{1260871583}{68719476736}r^{17} - \frac{18459801603}{549755813888}r^{16} - \frac{947288877}{34359738368}r^{15} + \frac{834339215}{68719476736}r^{14} + \frac{1000292645}{34359738368}r^{13} - \frac{1719740815}{137438953472}r^{12} - \frac{1723679415}{34359738368}r^{11} - \frac{3442320253}{68719476736}r^{10} - \frac{1902386801}{34359738368}r^9 - \frac{51933796943}{1099511627776}r^8 + \frac{3945563655}{137438953472}r^7 + \frac{35431771167}{274877906944}r^6 - \frac{13880529647}{137438953472}r^5 + \frac{16860878795}{549755813888}r^4 - \frac{656403031}{137438953472}r^3 + \frac{111323415}{274877906944}r^2 - \frac{2446673}{137438953472}r + \frac{349525}{1099511627776})",
+     R"(\frac{1}{1099511627776}(r + 1)^2(349525r^{38} - 20272434r^{37} + 485489003r^{36} - 6201929820r^{35} + 45640128227r^{34} - 196122563810r^{33} + 488332084061r^{32} - 748977095072r^{31} + 957688309140r^{30} - 1227275900840r^{29} + 1441786368492r^{28} - 1711454577424r^{27} + 1967364859836r^{26} - 2191265777608r^{25} + 2428516122820r^{24} - 2696079712096r^{23} + 2926723698166r^{22} - 3177541629564r^{21} + 3418638461194r^{20} - 3715350730536r^{19} + 3418638461194r^{18} - 3177541629564r^{17} + 2926723698166r^{16} - 2696079712096r^{15} + 2428516122820r^{14} - 2191265777608r^{13} + 1967364859836r^{12} - 1711454577424r^{11} + 1441786368492r^{10} - 1227275900840r^9 + 957688309140r^8 - 748977095072r^7 + 488332084061r^6 - 196122563810r^5 + 45640128227r^4 - 6201929820r^3 + 485489003r^2 - 20272434r + 349525))"},
+};
+
+// Parses a LaTeX polynomial in r: terms [+-] [\frac{a}{b} | a] [r[^k | ^{k}]].  Returns power -> coefficient.
+std::map<int, mpq_class> parse_latex_poly(const std::string& text) {
+  std::string s;
+  for (char ch : text)
+    if (!std::isspace(static_cast<unsigned char>(ch))) s += ch;
+  std::map<int, mpq_class> out;
+  std::size_t i = 0;
+  auto number = [&]() {
+    std::size_t j = i;
+    while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) ++j;
+    mpz_class v(s.substr(i, j - i));
+    i = j;
+    return v;
+  };
+  while (i < s.size()) {
+    int sign = 1;
+    if (s[i] == '+') ++i;
+    else if (s[i] == '-') sign = -1, ++i;
+    mpq_class c = 1;
+    if (s.compare(i, 6, "\\frac{") == 0) {
+      i += 6;
+      mpz_class a = number();
+      EXPECT_EQ(s.substr(i, 2), "}{");
+      i += 2;
+      mpz_class b = number();
+      EXPECT_EQ(s[i], '}');
+      ++i;
+      c = mpq_class(a, b);
+      c.canonicalize();
+    } else if (std::isdigit(static_cast<unsigned char>(s[i]))) {
+      c = mpq_class(number());
+    }
+    int power = 0;
+    if (i < s.size() && s[i] == 'r') {
+      ++i;
+      power = 1;
+      if (i < s.size() && s[i] == '^') {
+        ++i;
+        const bool brace = s[i] == '{';
+        if (brace) ++i;
+        power = static_cast<int>(number().get_si());
+        if (brace) ++i;
+      }
+    }
+    out[power] += sign * c;
+  }
+  return out;
+}
+
+struct ParsedFactorised {
+  mpz_class denominator;
+  int plus_one = 0, minus_one = 0;
+  std::map<int, mpq_class> cofactor;
+};
+
+// Parses "\frac{1}{D}(r+1)^2(poly)" or "\frac{1}{D}(r^2-1)^2(poly)".
+ParsedFactorised parse_latex_factorised(const std::string& text) {
+  std::string s;
+  for (char ch : text)
+    if (!std::isspace(static_cast<unsigned char>(ch))) s += ch;
+  ParsedFactorised f;
+  const std::size_t open = s.find('{', s.find('}') + 1), close = s.find('}', open);
+  f.denominator = mpz_class(s.substr(open + 1, close - open - 1));
+  std::size_t i = close + 1;
+  while (i < s.size()) {
+    EXPECT_EQ(s[i], '(');
+    const std::size_t end = s.find(')', i);
+    const std::string inner = s.substr(i + 1, end - i - 1);
+    i = end + 1;
+    int k = 1;
+    if (i < s.size() && s[i] == '^') k = s[i + 1] - '0', i += 2;
+    if (inner == "r+1") f.plus_one += k;
+    else if (inner == "r-1") f.minus_one += k;
+    else if (inner == "r^2-1") f.plus_one += k, f.minus_one += k;
+    else f.cofactor = parse_latex_poly(inner);
+  }
+  return f;
+}
+
+struct TableB1Row {
+  int n;
+  std::string lower, upper;
+};
+std::vector<TableB1Row> read_table_b1() {
+  std::ifstream in("/work/shared/reference/windows_paper_table_B1.csv");
+  if (!in) in.open("reference/windows_paper_table_B1.csv");
+  std::vector<TableB1Row> rows;
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string n, lo, up;
+    std::getline(ss, n, ',');
+    std::getline(ss, lo, ',');
+    std::getline(ss, up, ',');
+    rows.push_back({std::stoi(n), lo, up});
+  }
+  return rows;
+}
+
+// Expands a parsed factorised row: (1/D) (r+1)^p (r-1)^m cofactor.
+std::map<int, mpq_class> expand(const ParsedFactorised& f) {
+  std::map<int, mpq_class> acc = f.cofactor;
+  auto times_linear = [](const std::map<int, mpq_class>& a, int root) {  // * (r - root)
+    std::map<int, mpq_class> out;
+    for (const auto& [k, v] : a) out[k + 1] += v, out[k] -= root * v;
+    return out;
+  };
+  for (int i = 0; i < f.plus_one; ++i) acc = times_linear(acc, -1);
+  for (int i = 0; i < f.minus_one; ++i) acc = times_linear(acc, 1);
+  for (auto& [k, v] : acc) v /= mpq_class(f.denominator);
+  return acc;
+}
+
+// Known erratum of Table B.2: for n = 2 the developed form prints +81/128 r^4; the paper's own factorised
+// form (r+1)^2(5r^6-50r^5+107r^4-...)/256 expands to -81/128 r^4 (107 - 2*188 + 107 = -162), and so do we.
+bool is_erratum_b2(int n, int k) { return n == 2 && k == 4; }
+
+TEST(WindowPolynomial, DevelopedFormEqualsTableB2) {
+  for (const auto& row : kTableB2) {
+    const RationalPoly q = window_polynomial(row.n);
+    const auto expected = parse_latex_poly(row.developed);
+    const auto from_factorised = expand(parse_latex_factorised(row.factorised));
+    ASSERT_EQ(q.degree(), 4 * row.n) << "n = " << row.n;
+    for (int k = 0; k <= q.degree(); ++k) {
+      const auto it = expected.find(k);
+      const mpq_class e = it == expected.end() ? mpq_class(0) : it->second;
+      const auto jt = from_factorised.find(k);
+      const mpq_class ef = jt == from_factorised.end() ? mpq_class(0) : jt->second;
+      EXPECT_EQ(q.coefficient(k), ef) << "n = " << row.n << ", factorised row expanded, coefficient of r^" << k;
+      if (is_erratum_b2(row.n, k)) EXPECT_EQ(q.coefficient(k), -e) << "n = " << row.n << ", erratum r^" << k;
+      else EXPECT_EQ(q.coefficient(k), e) << "n = " << row.n << ", coefficient of r^" << k;
+    }
+    EXPECT_EQ(expected.rbegin()->first, 4 * row.n);
+  }
+}
+
+TEST(WindowPolynomial, FactorisedFormEqualsTableB2) {
+  for (const auto& row : kTableB2) {
+    const Factorised f = factorise(window_polynomial(row.n));
+    const ParsedFactorised e = parse_latex_factorised(row.factorised);
+    EXPECT_EQ(f.denominator, e.denominator) << "n = " << row.n;
+    EXPECT_EQ(f.plus_one, e.plus_one) << "n = " << row.n;
+    EXPECT_EQ(f.minus_one, e.minus_one) << "n = " << row.n;
+    ASSERT_EQ(f.cofactor.degree(), e.cofactor.rbegin()->first) << "n = " << row.n;
+    for (int k = 0; k <= f.cofactor.degree(); ++k)
+      EXPECT_EQ(mpq_class(f.cofactor[static_cast<std::size_t>(k)]), e.cofactor.count(k) ? e.cofactor.at(k) : mpq_class(0))
+          << "n = " << row.n << ", cofactor coefficient of r^" << k;
+  }
+}
+
+TEST(WindowPolynomial, PalindromicAndTraceDegree) {
+  // r^(4n) Q_n(1/r) = Q_n(r) (Q_n is symmetric by construction) and deg P_n = 2n (Section 4).
+  for (int n = 1; n <= 30; ++n) {
+    const RationalPoly q = window_polynomial(n);
+    EXPECT_EQ(q.numerator.reversed(4 * n), q.numerator) << "n = " << n;
+    EXPECT_EQ(trace_polynomial(n).degree(), 2 * n) << "n = " << n;
+  }
+}
+
+TEST(WindowPolynomial, TraceMatchesFloatingMatrixPower) {
+  // P_n(r) from the exact polynomial vs tr(J (BA)^n) in double at r = 0.3 (an independent evaluation).
+  const double r = 0.3, a = (1 + r) / 2;
+  const double A[9] = {-r, 0, 0, a, 1, 0, 0, 0, 1}, B[9] = {1, a, 0, 0, -r, 0, 0, a, 1};
+  double BA[9], M[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) BA[3 * i + j] = B[3 * i] * A[j] + B[3 * i + 1] * A[3 + j] + B[3 * i + 2] * A[6 + j];
+  for (int n = 1; n <= 12; ++n) {
+    double N[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) N[3 * i + j] = BA[3 * i] * M[j] + BA[3 * i + 1] * M[3 + j] + BA[3 * i + 2] * M[6 + j];
+    std::copy(N, N + 9, M);
+    const RationalPoly p = trace_polynomial(n);
+    mpq_class v = 0, x(3, 10), xp = 1;
+    for (int k = 0; k <= p.degree(); ++k, xp *= x) v += p.coefficient(k) * xp;
+    // 1e-13: a dozen double products of entries below 2 in magnitude.
+    EXPECT_NEAR(v.get_d(), M[6] + M[4] + M[2], 1e-13) << "n = " << n;
+  }
+}
+
+TEST(WindowBounds, LowerBoundsEqualTableB1) {
+  for (const auto& row : read_table_b1()) {
+    EXPECT_EQ(fixed(window_lower_bound(row.n, 12), 12), row.lower) << "n = " << row.n;
+  }
+}
+
+// Known erratum of Table B.1: r_crit,2(52) = 0.0718724765988266... (eq. 4.3; also mpmath at 40 digits),
+// which rounds to ...599 and truncates to ...598; the paper prints ...597.
+bool is_erratum_b1_upper(int n) { return n == 52; }
+
+TEST(WindowBounds, UpperBoundsEqualTableB1) {
+  for (const auto& row : read_table_b1()) {
+    if (row.n == 1) {
+      EXPECT_TRUE(row.upper.empty());
+      continue;
+    }
+    const std::string ours = fixed(r_crit2(row.n, 20), 12);
+    if (is_erratum_b1_upper(row.n)) {
+      EXPECT_NE(ours, row.upper);
+      EXPECT_NE(fixed(r_crit2(row.n, 20), 20).substr(0, 14), row.upper);  // not a truncation either
+      EXPECT_EQ(ours.substr(0, 13), row.upper.substr(0, 13));          // first 11 decimals agree
+    } else {
+      EXPECT_EQ(ours, row.upper) << "n = " << row.n;
+    }
+  }
+}
+
+TEST(WindowBounds, ClosedFormsOfSmallN) {
+  // Q_1 = (r+1)^2 (r^2 - 6r + 1)/16: lower bound 3 - 2 sqrt 2; r_crit,2(2) = 3 - 2 sqrt 2 and
+  // r_crit,2(3) = (sqrt 3 - sqrt 2)^2 = 5 - 2 sqrt 6 (the thresholds quoted in Section 4).
+  const auto th = thresholds(60);
+  mpfr_float::default_precision(70);
+  const mpfr_float tol("1e-55");  // 60 requested digits, values below 1
+  EXPECT_LT(abs(window_lower_bound(1, 60) - th[1].value), tol);
+  EXPECT_LT(abs(r_crit2(2, 60) - th[1].value), tol);
+  EXPECT_LT(abs(r_crit2(3, 60) - th[2].value), tol);
+  // The README of reference/ quotes 16 truncated decimals.
+  EXPECT_EQ(fixed(th[0].value, 20).substr(0, 18), "0.0717967697244908");
+  EXPECT_EQ(fixed(th[3].value, 20).substr(0, 18), "0.5874010519681994");
+}
+
+TEST(WindowBounds, BoundsInsideThreeParticleThresholdAndUpperBound) {
+  // 7 - 4 sqrt 3 < lower(n) < r_crit,2(n), and lower(n) decreases with n (Table B.1).
+  mpfr_float::default_precision(40);
+  const mpfr_float c = thresholds(30)[0].value;
+  mpfr_float prev = 1;
+  for (int n = 2; n <= 60; ++n) {
+    const mpfr_float lo = window_lower_bound(n, 20);
+    EXPECT_GT(lo, c) << n;
+    EXPECT_LT(lo, r_crit2(n, 20)) << n;
+    EXPECT_LT(lo, prev) << n;
+    prev = lo;
+  }
+}
+
+TEST(WindowBounds, TwoPrecisionsAgreeSubset) {
+  // 256 vs 512 decimals agree to >= 100 digits (subset here; all n <= 150 in test_long_windows).
+  for (int n : {1, 2, 7, 33, 90, 150}) {
+    const mpfr_float a = window_lower_bound(n, 256), b = window_lower_bound(n, 512);
+    mpfr_float::default_precision(600);
+    EXPECT_LT(abs(a - b), mpfr_float("1e-250")) << "n = " << n;  // both correct to >= 256 decimals
+  }
+}
+
+TEST(WindowCertificates, ValidForSmallN) {
+  // Exact certificates for n = 1..24 (1..40 in test_long_windows).
+  for (int n = 1; n <= 24; ++n) {
+    const Certificate c = certify_lower_bound(n, 12);
+    EXPECT_TRUE(c.valid()) << "n = " << n << " a = " << c.a.get_str() << " signs " << c.sign_a << "," << c.sign_b
+                           << " roots(0,a] = " << c.roots_0_a << " roots(a,b) = " << c.roots_a_b;
+  }
+}
+
+TEST(WindowCertificates, SturmCountsKnownPolynomials) {
+  // (x-1)(x-2)(x-3) = x^3 - 6x^2 + 11x - 6: 3 roots in (0, 4], 1 in (1.5, 2.5], none in (3.5, inf).
+  const IntPoly p({mpz_class(-6), mpz_class(11), mpz_class(-6), mpz_class(1)});
+  const auto seq = sturm_sequence(p);
+  EXPECT_EQ(sturm_count(seq, mpq_class(0), mpq_class(4)), 3);
+  EXPECT_EQ(sturm_count(seq, mpq_class(3, 2), mpq_class(5, 2)), 1);
+  EXPECT_EQ(sturm_count_to_infinity(seq, mpq_class(7, 2)), 0);
+  // (x^2 - 2)^2 (x + 5): distinct roots -5, -sqrt2, sqrt2; negative leading coefficient variant too.
+  const IntPoly q = IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) * IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) *
+                    IntPoly::x_plus(5);
+  EXPECT_EQ(sturm_count(sturm_sequence(q), mpq_class(-10), mpq_class(10)), 3);
+  EXPECT_EQ(sturm_count(sturm_sequence(mpz_class(-3) * q), mpq_class(-1), mpq_class(10)), 1);  // only sqrt 2
+  EXPECT_EQ(sturm_count_to_infinity(sturm_sequence(q), mpq_class(-6)), 3);
+  // Palindromic reduction: x^2 + 3x + 1 = x (s + 3).
+  EXPECT_EQ(palindromic_reduce(IntPoly({mpz_class(1), mpz_class(3), mpz_class(1)})), IntPoly({mpz_class(3), mpz_class(1)}));
+}
+
+TEST(WindowCertificates, CertificateRejectsWrongInterval) {
+  // The certificate machinery must fail on a bracket that does not hold the root.
+  const RationalPoly q = window_polynomial(5);
+  const mpq_class a(796489, 10000000), b(796490, 10000000);  // 0.0796489 < root 0.07964890975 < 0.0796490
+  EXPECT_LT(q.numerator.sign_at(a) * q.numerator.sign_at(b), 0);
+  const mpq_class c(796490, 10000000), d(796491, 10000000);
+  EXPECT_GT(q.numerator.sign_at(c) * q.numerator.sign_at(d), 0);
+}
+
+TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {
+  // The matrix route (no huge coefficients) in MPFR with 60 digits vs the certified polynomial root.
+  for (int n : {1, 2, 5, 20, 75, 150}) {
+    const mpfr_float exact = window_lower_bound(n, 40);
+    mpfr_float::default_precision(60);
+    const mpfr_float m = window_lower_bound_in<mpfr_float>(n, Route::matrix);
+    EXPECT_LT(abs(m - exact), mpfr_float("1e-40")) << "n = " << n;  // 60 digits minus ~20 lost near the double eigenvalue
+  }
+  // In double the matrix route is exact to 12 decimals for small n (the precision study measures the limit).
+  for (int n = 1; n <= 10; ++n)
+    EXPECT_NEAR(window_lower_bound_in<double>(n, Route::matrix), static_cast<double>(window_lower_bound(n, 20)), 5e-13) << n;
+  // The sign convention: Q_n > 0 at 7 - 4 sqrt 3 and < 0 at r_crit,2(n).
+  EXPECT_GT(window_condition<double>(10, 7 - 4 * std::sqrt(3.0)), 0);
+  EXPECT_LT(window_condition<double>(10, static_cast<double>(r_crit2(10, 20))), 0);
+}
+
+TEST(ThinStripes, RotationAngleIsTwoPiLOverM) {
+  // eq. (5.6) inverts cos(beta) = -(1-r)^2/(4r) (Section 5.2): check cos(2 pi l/m) = -(1-r)^2/(4r).
+  const auto stripes = thin_stripes(40, 50);
+  mpfr_float::default_precision(60);
+  const mpfr_float pi = boost::math::constants::pi<mpfr_float>();
+  ASSERT_FALSE(stripes.empty());
+  for (const auto& s : stripes) {
+    const mpfr_float r = s.value;
+    EXPECT_LT(abs(cos(2 * pi * s.l / s.m) + (1 - r) * (1 - r) / (4 * r)), mpfr_float("1e-45")) << s.l << "/" << s.m;
+    EXPECT_GE(r, thresholds(50)[1].value - mpfr_float("1e-45"));
+    EXPECT_LT(r, 1);
+  }
+  EXPECT_EQ(stripes.front().l * 2, stripes.front().m);  // r(1/2) = 3 - 2 sqrt 2 is the smallest
+  // Count: reduced l/m with 1/4 < l/m <= 1/2, m <= 40.
+  int count = 0;
+  for (int m = 1; m <= 40; ++m)
+    for (int l = 1; 2 * l <= m; ++l)
+      if (std::gcd(l, m) == 1 && 4 * l > m) ++count;
+  EXPECT_EQ(static_cast<int>(stripes.size()), count);
+}
+
+TEST(WindowErrors, MessagesNameTheField) {
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no throw");
+  };
+  EXPECT_EQ(message([] { window_polynomial(0); }), "n: got 0, expected an integer in 1..100000");
+  EXPECT_EQ(message([] { r_crit2(1, 20); }), "n: got 1, expected an integer in 2..100000");
+  EXPECT_EQ(message([] { window_lower_bound(3, 9); }), "digits: got 9, expected 10..10000");
+  EXPECT_EQ(message([] { window_lower_bound(3, 10001); }), "digits: got 10001, expected 10..10000");
+  EXPECT_EQ(message([] { thin_stripes(0, 20); }), "m: got 0, expected an integer in 1..100000");
+}
+
+}  // namespace
