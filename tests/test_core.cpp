@@ -1,0 +1,298 @@
+// Tests of btob::core: invariants of P_r (quadrant, symmetries, spectra), branch conventions on exact
+// ties, coordinates (theta, phi, strip, particles) and the validation errors.
+#include "core/coords.hpp"
+#include "core/map.hpp"
+#include "core/scalar.hpp"
+#include "iterate/ensemble.hpp"
+
+// core/coords.hpp calls Vec3::cross (to_particles, from_particles) but includes only <Eigen/Core>;
+// cross() is declared there and defined in <Eigen/Geometry>, so a unit that includes coords.hpp alone
+// fails to link.  The fix belongs in coords.hpp (#include <Eigen/Geometry>); until then:
+#include <Eigen/Geometry>
+#include <Eigen/Eigenvalues>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using btob::core::Vec3;
+using V = Vec3<double>;
+using M = btob::core::Mat3<double>;
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+const std::vector<double> kR = {0.01, 0.07, 0.0718, 0.1, 0.17, 0.2, 0.5, 0.9, 0.99};
+
+// S = -J: (x, y, z) -> (-z, -y, -x), the symmetry of the proof of Theorem 3.1; it maps Q onto Q.
+V S(const V& u) { return V(-u(2), -u(1), -u(0)); }
+
+// Expects `what()` of the exception thrown by f to contain every string of `parts`.
+template <class E, class F> void expect_error(F f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    ADD_FAILURE() << "no exception";
+  } catch (const E& e) {
+    const std::string msg = e.what();
+    for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "message '" << msg << "' lacks '" << p << "'";
+  } catch (...) {
+    ADD_FAILURE() << "exception of another type";
+  }
+}
+
+TEST(Map, QuadrantIsInvariant) {
+  const auto pts = btob::iterate::random_points(20000, 11);
+  for (double r : kR)
+    for (const V& u : pts) {
+      const V w = btob::core::step(u, r).u;
+      ASSERT_GE(w(0), 0.0) << "r=" << r;
+      ASSERT_LE(w(2), 0.0) << "r=" << r;
+      ASSERT_GT(w.norm(), 0.0);
+    }
+}
+
+TEST(Map, OddExtension) {
+  // P(u) = -P(-u) on the other quadrant (Theorem 3.1): step(-u) and step(u) give the same vector of Q.
+  const auto pts = btob::iterate::random_points(20000, 12);
+  for (double r : kR)
+    for (const V& u : pts) {
+      const auto a = btob::core::step(u, r), b = btob::core::step<double>(-u, r);
+      ASSERT_EQ(a.symbol, b.symbol);
+      ASSERT_EQ(a.u, b.u);  // bitwise: negation is exact
+      ASSERT_EQ(btob::core::P(a.symbol, r) * (-u), -a.u);  // linearity of the branch, exact
+    }
+}
+
+TEST(Map, JSymmetrySwapsSymbols1And3) {
+  for (double r : kR) {
+    const M J = btob::core::J<double>();
+    // Permutations are exact, so these hold bitwise.
+    EXPECT_EQ(J * btob::core::P1(r) * J, btob::core::P3(r));
+    EXPECT_EQ(J * btob::core::P2(r) * J, btob::core::P2(r));
+  }
+  const auto pts = btob::iterate::random_points(20000, 13);
+  for (double r : kR)
+    for (const V& u : pts) {
+      const auto a = btob::core::step(u, r), b = btob::core::step(S(u), r);
+      ASSERT_EQ(b.symbol, 4 - a.symbol) << "r=" << r;  // branch tests negate exactly under S
+      // P3 (S u) and S (P1 u) sum the same products in another order: a few ulps of |P| |u|.
+      const double tol = 8 * eps * btob::core::P(a.symbol, r).norm() * u.norm();
+      ASSERT_LE((b.u - S(a.u)).norm(), tol) << "r=" << r;
+    }
+}
+
+TEST(Map, Determinants) {
+  for (double r : kR) {
+    // The cofactor sums cancel: terms of size r^(k-1) add up to r^k, so the relative error is a few
+    // ulps divided by r.
+    const double tol = 16 * eps / r;
+    EXPECT_NEAR(btob::core::P1(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
+    EXPECT_NEAR(btob::core::P2(r).determinant() / std::pow(r, 3), 1.0, tol) << r;
+    EXPECT_NEAR(btob::core::P3(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
+  }
+}
+
+TEST(Map, EigenvectorsOfPropositions51And52) {
+  for (double r : kR) {
+    const double a = btob::core::alpha(r);
+    // Prop. 5.2: P2 (1, 0, -1) = r (1, 0, -1); every product is exact (entries times 0 or 1).
+    EXPECT_EQ(btob::core::P2(r) * V(1, 0, -1), r * V(1, 0, -1));
+    // Prop. 5.1: P1 (alpha, r + 1, 3 alpha) = r^2 (alpha, r + 1, 3 alpha): rounding of 3 terms of size <= 4.
+    const V e(a, r + 1, 3 * a);
+    EXPECT_LE((btob::core::P1(r) * e - r * r * e).norm(), 16 * eps * e.norm()) << r;
+    // The planes z = 0 (P1) and x = z (P2) are invariant.
+    EXPECT_EQ((btob::core::P1(r) * V(0.3, -0.7, 0))(2), 0.0);
+    const V w = btob::core::P2(r) * V(0.3, -0.7, 0.3);
+    EXPECT_EQ(w(0), w(2));
+  }
+  // Spectra: real below the thresholds 7 - 4 sqrt 3 (P1) and 3 - 2 sqrt 2 (P2), modulus r above.
+  const auto sorted_eigs = [](const M& m) {
+    Eigen::EigenSolver<M> es(m);
+    std::vector<std::complex<double>> v(es.eigenvalues().data(), es.eigenvalues().data() + 3);
+    std::sort(v.begin(), v.end(), [](auto x, auto y) { return x.real() < y.real(); });
+    return v;
+  };
+  const double tol = 1e-12;  // eigenvalues of a well-separated 3x3 spectrum: ~ eps * |P| * condition
+  {
+    const double r = 0.05, sq = std::sqrt(r * r - 14 * r + 1);
+    const auto v = sorted_eigs(btob::core::P1(r));
+    EXPECT_NEAR(v[0].real(), r * r, tol);
+    EXPECT_NEAR(v[1].real(), (r * r - 6 * r + 1 - (r + 1) * sq) / 8, tol);
+    EXPECT_NEAR(v[2].real(), (r * r - 6 * r + 1 + (r + 1) * sq) / 8, tol);
+    for (auto x : v) EXPECT_EQ(x.imag(), 0.0);
+  }
+  for (double r : {0.1, 0.5, 0.9}) {
+    const auto v = sorted_eigs(btob::core::P1(r));
+    int complex_pairs = 0;
+    for (auto x : v)
+      if (x.imag() != 0) {
+        ++complex_pairs;
+        EXPECT_NEAR(std::abs(x), r, tol) << r;
+      }
+    EXPECT_EQ(complex_pairs, 2) << r;
+  }
+  {
+    const double r = 0.1, a = btob::core::alpha(r), sq = std::sqrt(a * a - 2 * r);
+    const auto v = sorted_eigs(btob::core::P2(r));
+    EXPECT_NEAR(v[0].real(), r - a * a - a * sq, tol);
+    EXPECT_NEAR(v[1].real(), r - a * a + a * sq, tol);
+    EXPECT_NEAR(v[2].real(), r, tol);
+  }
+  for (double r : {0.2, 0.5, 0.9}) {
+    const auto v = sorted_eigs(btob::core::P2(r));
+    for (auto x : v) EXPECT_NEAR(std::abs(x), r, tol) << r;
+  }
+}
+
+TEST(Map, BranchConventionsOnExactTies) {
+  // r = 0.5: alpha = 0.75, so the ties below are exact in binary floating point.
+  const double r = 0.5;
+  ASSERT_EQ(btob::core::alpha(r), 0.75);
+  EXPECT_EQ(btob::core::branch(V(0.75, 1, -1), r), 2);     // alpha y - x == 0 -> P2 (Remark 3.4)
+  EXPECT_EQ(btob::core::branch(V(1, -1, -0.75), r), 2);    // alpha y - z == 0 -> P2
+  EXPECT_EQ(btob::core::branch(V(1, 0, -1), r), 2);        // y == 0 -> P2
+  EXPECT_EQ(btob::core::branch(V(0, 0, -1), r), 2);        // x == y == 0 (alpha y - x == 0) -> P2
+  EXPECT_EQ(btob::core::branch(V(1, 0, 0), r), 2);         // y == z == 0 (alpha y - z == 0) -> P2
+  // One ulp-sized step off the ties selects P1 / P3.
+  EXPECT_EQ(btob::core::branch(V(0.75 - 0x1p-40, 1, -1), r), 1);
+  EXPECT_EQ(btob::core::branch(V(1, -1, -0.75 + 0x1p-40), r), 3);
+  EXPECT_EQ(btob::core::step(V(0.75, 1, -1), r).symbol, 2);
+  EXPECT_EQ(btob::core::step(V(0.75, 1, -1), r).u, btob::core::P2(r) * V(0.75, 1, -1));
+  // The other quadrant is folded first: (-0.75, -1, 1) is the same tie.
+  EXPECT_EQ(btob::core::step(V(-0.75, -1, 1), r).symbol, 2);
+  // Letters: y > 0 -> acb, y < 0 -> cab, y == 0 -> simultaneous a and c.
+  EXPECT_EQ(btob::core::letters(2, V(1, 0.1, -1)), "acb");
+  EXPECT_EQ(btob::core::letters(2, V(1, -0.1, -1)), "cab");
+  EXPECT_EQ(btob::core::letters(2, V(1, 0, -1)), "(ac)b");
+  EXPECT_EQ(btob::core::letters(1, V(0.1, 1, -1)), "ab");
+  EXPECT_EQ(btob::core::letters(3, V(1, -1, -0.1)), "cb");
+  expect_error<std::invalid_argument>([] { btob::core::P(4, 0.5); }, {"symbol", "got 4", "1, 2 or 3"});
+}
+
+TEST(Coords, AnglesRoundTrip) {
+  // theta, phi come back through atan2 of products of sines and cosines: a few ulps of pi.
+  const double tol = 1e-14;
+  for (int i = 1; i < 50; ++i)
+    for (int j = 1; j < 50; ++j) {
+      const double th = 0.5 * std::numbers::pi * i / 50, ph = std::numbers::pi * j / 50;
+      const V u = btob::core::from_angles(th, ph);
+      EXPECT_NEAR(u.norm(), 1.0, 4 * eps);
+      EXPECT_GE(u(0), 0.0);
+      EXPECT_LE(u(2), 0.0);
+      EXPECT_NEAR(btob::core::theta(u), th, tol);
+      EXPECT_NEAR(btob::core::phi(u), ph, tol);
+      // theta and phi depend on the direction only, and on neither quadrant representative.
+      EXPECT_NEAR(btob::core::theta<double>(-3.0 * u), th, tol);
+      EXPECT_NEAR(btob::core::phi<double>(-3.0 * u), ph, tol);
+    }
+}
+
+TEST(Coords, StripRoundTrip) {
+  for (double w1 = -8; w1 <= 8; w1 += 0.37)
+    for (double w2 = -1; w2 <= 1; w2 += 0.0625) {
+      const auto [a, b] = btob::core::strip(btob::core::from_strip(w1, w2));
+      // x - z == 1 exactly for these inputs (w2 on a dyadic grid), so only the division rounds.
+      EXPECT_NEAR(a, w1, 1e-14 * std::max(1.0, std::abs(w1)));
+      EXPECT_NEAR(b, w2, 1e-14);
+      const auto [c, d] = btob::core::strip<double>(-2.5 * btob::core::from_strip(w1, w2));
+      EXPECT_NEAR(c, w1, 1e-14 * std::max(1.0, std::abs(w1)));
+      EXPECT_NEAR(d, w2, 1e-14);
+    }
+}
+
+TEST(Coords, StripBoundariesSeparateTheBranches) {
+  // Section 5.3: w2 = 2 alpha w1 - 1 is alpha y - x = 0, w2 = 2 alpha w1 + 1 is alpha y - z = 0.
+  const double d = 1e-9;  // far above rounding (1e-16) and far below the grid spacing
+  for (double r : kR) {
+    const double a = btob::core::alpha(r);
+    for (double w1 = -3; w1 <= 3; w1 += 0.01) {
+      const double lo = 2 * a * w1 - 1, hi = 2 * a * w1 + 1;
+      const auto br = [&](double w2) { return btob::core::branch(btob::core::from_strip(w1, w2), r); };
+      if (lo - d >= -1 && lo - d <= 1) EXPECT_EQ(br(lo - d), 1) << r << " " << w1;
+      if (lo + d >= -1 && lo + d <= 1) EXPECT_EQ(br(lo + d), 2) << r << " " << w1;
+      if (hi - d >= -1 && hi - d <= 1) EXPECT_EQ(br(hi - d), 2) << r << " " << w1;
+      if (hi + d >= -1 && hi + d <= 1) EXPECT_EQ(br(hi + d), 3) << r << " " << w1;
+      // Inside the parallelogram the letters are acb for w1 > 0 and cab for w1 < 0.
+      const double mid = 2 * a * w1;
+      if (mid >= -1 && mid <= 1 && std::abs(w1) > 1e-12) {
+        const V u = btob::core::from_strip(w1, mid);
+        EXPECT_EQ(btob::core::letters(btob::core::branch(u, r), u), w1 > 0 ? "acb" : "cab");
+      }
+    }
+  }
+}
+
+TEST(Coords, ParticlesRoundTrip) {
+  const auto pts = btob::iterate::random_points(20000, 14);
+  double worst = 0;
+  for (const V& u : pts) {
+    const auto c = btob::core::to_particles(u);
+    ASSERT_EQ(c.p(1), 0.0);  // right after a b-collision
+    ASSERT_GE(c.p(0), 0.0);
+    ASSERT_GE(c.p(2), 0.0);
+    ASSERT_GT(c.q(1), 0.0);  // the pair 2-3 separates
+    EXPECT_NEAR(c.p.norm(), 1.0, 4 * eps);
+    EXPECT_NEAR(c.q.norm(), 1.0, 4 * eps);
+    EXPECT_NEAR(c.p.dot(c.q), 0.0, 8 * eps);  // q is built orthogonal to p
+    // theta is the angle of p: tan theta = p1 / p3 (Section 4).
+    EXPECT_NEAR(std::atan2(c.p(0), c.p(2)), btob::core::theta(u), 1e-14);
+    const V w = btob::core::from_particles(c);
+    worst = std::max(worst, std::atan2(w.cross(u).norm(), w.dot(u)));
+  }
+  // p and q are orthogonal and unit, so p x q and the two cross products before it are well
+  // conditioned: the direction comes back to a few ulps.
+  EXPECT_LT(worst, 1e-14);
+}
+
+TEST(Validation, PointErrors) {
+  using btob::core::validate_point;
+  EXPECT_NO_THROW(validate_point(1, 2, -3));
+  EXPECT_NO_THROW(validate_point(0, 1, 0));
+  EXPECT_NO_THROW(validate_point(-1, 0, 2));
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  expect_error<std::domain_error>([&] { validate_point(nan, 0, -1); }, {"point: got", "finite"});
+  expect_error<std::domain_error>([&] { validate_point(1, inf, -1, "initial"); }, {"initial: got", "finite"});
+  expect_error<std::domain_error>([&] { validate_point(0, 0, 0); }, {"point: got the zero vector", "non-zero"});
+  expect_error<std::domain_error>([&] { validate_point(1, 0, 1); }, {"point: got (1, 0, 1)", "x*z <= 0"});
+  // x*z underflows to 0 but the signs agree: still outside the domain.
+  expect_error<std::domain_error>([&] { validate_point(1e-200, 0, 1e-200, "grid"); }, {"grid:", "x*z <= 0"});
+  expect_error<std::domain_error>([&] { validate_point(-1e-200, 0, -1e-200); }, {"point:", "x*z <= 0"});
+}
+
+TEST(Validation, RErrors) {
+  using btob::core::validate_r;
+  EXPECT_NO_THROW(validate_r(0.5));
+  EXPECT_NO_THROW(validate_r(1e-300));
+  for (double r : {0.0, 1.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    expect_error<std::domain_error>([&] { validate_r(r); }, {"r: got", "open interval (0, 1)"});
+  expect_error<std::domain_error>([] { validate_r(2.0, "r-max"); }, {"r-max: got 2", "(0, 1)"});
+  expect_error<std::domain_error>([] { validate_r(0.0L); }, {"r: got 0"});
+}
+
+TEST(Validation, PrecisionNames) {
+  using btob::core::Precision;
+  using btob::core::parse_precision;
+  EXPECT_EQ(parse_precision("float").kind, Precision::Kind::f32);
+  EXPECT_EQ(parse_precision("double").kind, Precision::Kind::f64);
+  EXPECT_EQ(parse_precision("long-double").kind, Precision::Kind::f80);
+  EXPECT_EQ(parse_precision("float128").kind, Precision::Kind::f128);
+  const auto p = parse_precision("mpfr:50");
+  EXPECT_EQ(p.kind, Precision::Kind::mpfr);
+  EXPECT_EQ(p.mpfr_digits, 50);
+  for (const char* name : {"float", "double", "long-double", "float128", "mpfr:10", "mpfr:10000"})
+    EXPECT_EQ(parse_precision(name).name(), name);
+  for (const char* bad : {"mpfr:9", "mpfr:10001", "mpfr:", "mpfr", "mpfr:1e3", "mpfr:-20", "mpfr:99999999999"})
+    expect_error<std::invalid_argument>([&] { parse_precision(bad); }, {"precision: got '", "mpfr:<digits> with 10 <= digits <= 10000"});
+  expect_error<std::invalid_argument>([] { parse_precision("quad", "scalar"); },
+                                      {"scalar: got 'quad'", "expected one of float, double, long-double, float128, mpfr:<digits>"});
+  EXPECT_STREQ(btob::core::scalar_name<double>(), "double");
+  EXPECT_STREQ(btob::core::scalar_name<btob::core::float128>(), "float128");
+}
+
+}  // namespace
