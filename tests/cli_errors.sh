@@ -1,3 +1,70 @@
 #!/usr/bin/env bash
-# placeholder, filled below
-exit 0
+# The command line's error contract, checked as a user meets it: bad input gets a one-line error that
+# names the field, exit status 2, and no output file created or overwritten.
+set -u
+btob="$1"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+fail=0
+
+expect_error() {  # expect_error <word the message must contain> <btob arguments...>
+  local want="$1"
+  shift
+  local err rc
+  err=$("$btob" "$@" 2>&1 >/dev/null)
+  rc=$?
+  local lines
+  lines=$(printf '%s\n' "$err" | grep -c .)
+  if [ "$rc" -ne 2 ]; then
+    echo "FAIL (exit $rc, expected 2): btob $*"; echo "  $err"; fail=1
+  elif [ "$lines" -ne 1 ]; then
+    echo "FAIL ($lines lines, expected one): btob $*"; echo "$err"; fail=1
+  elif ! grep -q -- "$want" <<<"$err"; then
+    echo "FAIL (message lacks '$want'): btob $*"; echo "  $err"; fail=1
+  else
+    echo "ok: btob $* -> $err"
+  fi
+}
+
+b=(bifurcation --out "$out/b" --r-count 5 --iterations 50 --tail 10 --no-plot --quiet)
+expect_error "r-min" "${b[@]}" --r-min 1.5
+expect_error "r-max" "${b[@]}" --r-max 0
+expect_error "r-min" "${b[@]}" --r-min nan
+expect_error "r-count" "${b[@]}" --r-count 0
+expect_error "iterations" "${b[@]}" --iterations 0
+expect_error "tail" "${b[@]}" --tail 100
+expect_error "grid" "${b[@]}" --grid "1,2,3"
+expect_error "grid" "${b[@]}" --grid "nan,1,-1"
+expect_error "grid" "${b[@]}" --grid "0,0,0"
+expect_error "grid" "${b[@]}" --grid strip:0x3
+expect_error "grid" "${b[@]}" --grid "strip:200000x200000"
+expect_error "coord" "${b[@]}" --coord psi
+expect_error "precision" "${b[@]}" --precision quad
+expect_error "precision" "${b[@]}" --precision mpfr:5
+expect_error "bins" "${b[@]}" --bins 0
+expect_error "overlay" "${b[@]}" --overlay nonsense
+expect_error "threads" "${b[@]}" --threads -1
+expect_error "r-count" "${b[@]}" --r-count 100000000000
+[ -e "$out/b" ] && [ -n "$(ls -A "$out/b")" ] && { echo "FAIL: output written despite errors: $(ls "$out/b")"; fail=1; }
+
+printf 'command = "bifurcation"\n[args]\nr-mni = 0.1\n' >"$out/bad_key.toml"
+expect_error "r-mni" run "$out/bad_key.toml" --out "$out/s"
+printf 'command = "bifurcation"\nspeed = 3\n' >"$out/bad_top.toml"
+expect_error "speed" run "$out/bad_top.toml" --out "$out/s"
+printf 'command = "bifurcation"\n[args\n' >"$out/malformed.toml"
+expect_error "malformed.toml" run "$out/malformed.toml" --out "$out/s"
+printf 'command = "teleport"\n' >"$out/bad_cmd.toml"
+expect_error "teleport" run "$out/bad_cmd.toml" --out "$out/s"
+expect_error "scene" run "$out/missing.toml"
+[ -e "$out/s" ] && { echo "FAIL: scene output written despite errors"; fail=1; }
+
+# A good run writes its data and manifest, and an existing result is replaced only by a complete one.
+"$btob" "${b[@]}" --name ok || { echo "FAIL: a valid bifurcation run failed"; fail=1; }
+for f in ok.h5 ok.json; do [ -s "$out/b/$f" ] || { echo "FAIL: $f missing"; fail=1; }; done
+before=$(md5sum "$out/b/ok.h5")
+"$btob" "${b[@]}" --name ok --r-min 2 2>/dev/null
+[ "$(md5sum "$out/b/ok.h5")" = "$before" ] || { echo "FAIL: a failed run changed an existing result"; fail=1; }
+ls "$out/b" | grep -q tmp && { echo "FAIL: temporary files left behind"; fail=1; }
+
+if [ "$fail" -eq 0 ]; then echo "cli_errors: all checks passed"; fi
+exit $fail

@@ -13,6 +13,7 @@ void run_scene(const std::string& path, const std::string& out_override) {
     throw UsageError(fmt::format("scene: got '{}', expected an existing TOML scene file", path));
   const io::Scene s = io::read_scene(path);
   CLI::App fresh{"btob"};
+  fresh.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (auto& reg : registry()) reg(fresh);
   CLI::App* sub = nullptr;
   for (CLI::App* c : fresh.get_subcommands([](CLI::App*) { return true; }))

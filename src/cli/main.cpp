@@ -20,13 +20,16 @@ int main(int argc, char** argv) {
   CLI::App app{"btob: statistics lab for the b-to-b map P_r of four 1-D inelastic hard spheres"};
   app.set_version_flag("--version", std::string("btob ") + btob::build::version + " (" + btob::build::git_commit + ")");
   app.require_subcommand(1);
+  // A flag given twice takes its last value (scenes and scripts can override earlier flags).
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + std::string(argv[i]);
   for (auto& reg : btob::cli::registry()) reg(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "btob: error: " << e.what() << " (see --help)\n";
+    return 2;
   } catch (const std::invalid_argument& e) {  // includes UsageError and validation errors
     std::cerr << "btob: error: " << e.what() << "\n";
     return 2;

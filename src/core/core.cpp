@@ -7,6 +7,8 @@
 
 namespace btob::core {
 
+std::string detail::shortest(double v) { return fmt::format("{}", v); }
+
 void validate_point(double x, double y, double z, const char* field) {
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
     throw std::domain_error(fmt::format("{}: got ({}, {}, {}), expected finite coordinates x,y,z", field, x, y, z));

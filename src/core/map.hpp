@@ -109,11 +109,14 @@ template <class T> std::string letters(int symbol, const Vec3<T>& u_in_quadrant)
   return "(ac)b";
 }
 
+namespace detail {
+std::string shortest(double v);  // the shortest decimal that reads back as v
+}
 // Validation at the edge (CLI, scenes, public API); the kernel assumes valid input.
 template <class T> void validate_r(const T& r, const char* field = "r") {
   using std::isfinite;
   if (!(r > 0 && r < 1) || !isfinite(static_cast<double>(r)))
-    throw std::domain_error(std::string(field) + ": got " + std::to_string(static_cast<double>(r)) +
+    throw std::domain_error(std::string(field) + ": got " + detail::shortest(static_cast<double>(r)) +
                             ", expected a restitution coefficient in the open interval (0, 1)");
 }
 // A point u = (x, y, z): finite, non-zero, in the domain x*z <= 0.

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages btob needs (only the missing ones).  Why each: see README.md, "Dependencies".
+set -euo pipefail
+packages=(
+  g++ cmake ninja-build pkg-config git        # toolchain
+  libeigen3-dev                               # small fixed-size matrices, QR (core, references, Lyapunov)
+  libboost-dev                                # Multiprecision (gmp_rational, mpfr_float, float128), Math (root finders, intervals)
+  libgmp-dev libmpfr-dev                      # exact rationals and arbitrary precision behind Boost.Multiprecision
+  libfftw3-dev                                # correlation functions C_N by FFT
+  libhdf5-dev                                 # result files with their provenance attributes
+  libcli11-dev libtomlplusplus-dev libfmt-dev # command line, scene files, formatting
+  libgtest-dev libbenchmark-dev               # tests and benchmarks
+  python3 python3-matplotlib python3-numpy python3-h5py  # plots
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "setup: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
