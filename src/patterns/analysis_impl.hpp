@@ -1,0 +1,369 @@
+// Template bodies of the periodic-orbit analysis (Section 6): products, cubic spectrum, feasibility, windows.
+#pragma once
+
+#include "patterns/patterns.hpp"
+
+#include <boost/multiprecision/eigen.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace btob::patterns {
+namespace detail {
+
+template <class T> T abs_(const T& x) { using std::abs; return abs(x); }
+template <class T> T sqrt_(const T& x) { using std::sqrt; return sqrt(x); }
+template <class T> T log_(const T& x) { using std::log; return log(x); }
+template <class T> T exp_(const T& x) { using std::exp; return exp(x); }
+template <class T> T cos_(const T& x) { using std::cos; return cos(x); }
+template <class T> T acos_(const T& x) { using std::acos; return acos(x); }
+template <class T> T cbrt_(const T& x) {
+  if (x == 0) return T(0);
+  const T a = abs_(x);
+  T y = exp_(log_(a) / 3);
+  y -= (y * y * y - a) / (3 * y * y);  // one Newton step: exp/log lose a few ulps
+  return x < 0 ? T(-y) : y;
+}
+template <class T> T eps_() { return std::numeric_limits<T>::epsilon(); }
+
+// A matrix product kept normalised: value = exp(log_scale) * m, max |m_ij| = 1.
+template <class T> struct Scaled {
+  Mat3<T> m = Mat3<T>::Identity();
+  T log_scale = T(0);
+  void normalise() {
+    T mx = T(0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) mx = std::max<T>(mx, abs_<T>(m(i, j)));
+    m /= mx;
+    log_scale += log_(mx);
+  }
+};
+
+template <class T> T det3(const Mat3<T>& m) {
+  return m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+         m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+}
+
+template <class T> Mat3<T> cofactor(const Mat3<T>& a) {
+  Mat3<T> c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      c(i, j) = a(i1, j1) * a(i2, j2) - a(i1, j2) * a(i2, j1);
+    }
+  return c;
+}
+
+// Eigenvalues of a real 3x3 matrix from its characteristic polynomial l^3 + a l^2 + b l + c.
+template <class T> struct Root {
+  T re, im;
+  bool real;
+};
+template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, const T& c) {
+  const T p = b - a * a / 3, q = 2 * a * a * a / 27 - a * b / 3 + c;
+  const T D = (q / 2) * (q / 2) + (p / 3) * (p / 3) * (p / 3);  // < 0: three distinct real roots
+  const auto f = [&](const T& l) -> T { return ((l + a) * l + b) * l + c; };
+  const auto df = [&](const T& l) -> T { return (3 * l + 2 * a) * l + b; };
+  const auto polish = [&](T l) -> T {
+    // Newton steps on the original cubic, kept only while |f| decreases (guards near double roots).
+    for (int it = 0; it < 4; ++it) {
+      const T d = df(l);
+      if (d == 0) break;
+      const T next = l - f(l) / d;
+      if (!(abs_<T>(f(next)) < abs_<T>(f(l)))) break;
+      l = next;
+    }
+    return l;
+  };
+  std::array<Root<T>, 3> r;
+  if (D <= 0 && p < 0) {
+    const T m = 2 * sqrt_<T>(-p / 3);
+    T arg = 3 * q / (p * m);
+    arg = std::clamp<T>(arg, T(-1), T(1));
+    const T th = acos_<T>(arg) / 3;
+    const T two_pi_3 = 2 * acos_<T>(T(-1)) / 3;
+    for (int k = 0; k < 3; ++k) r[k] = {polish(m * cos_<T>(th - two_pi_3 * k) - a / 3), T(0), true};
+    return r;
+  }
+  // One real root (or a triple root when p = q = 0): stable Cardano, then the quadratic factor.
+  const T s = sqrt_<T>(std::max<T>(D, T(0)));
+  const T u = cbrt_<T>(-q / 2 - (q < 0 ? T(-s) : s));
+  const T t = u == 0 ? T(0) : T(u - p / (3 * u));
+  const T l = polish(t - a / 3);
+  const T S = -a - l;                                // sum of the other two roots
+  const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // their product (l dominant: -c/l has no cancellation)
+  const T disc = S * S - 4 * P;
+  r[0] = {l, T(0), true};
+  if (disc < 0) {
+    const T im = sqrt_<T>(-disc) / 2;
+    r[1] = {S / 2, im, false};
+    r[2] = {S / 2, T(-im), false};
+  } else {
+    const T sq = sqrt_<T>(disc);
+    const T m1 = S >= 0 ? T((S + sq) / 2) : T((S - sq) / 2);
+    const T m2 = m1 != 0 ? T(P / m1) : T(S - m1);
+    r[1] = {m1, T(0), true};
+    r[2] = {m2, T(0), true};
+  }
+  return r;
+}
+
+template <class T> T modulus(const Root<T>& x) { return x.real ? abs_<T>(x.re) : sqrt_<T>(x.re * x.re + x.im * x.im); }
+
+// Unit eigenvector of A for the real eigenvalue l: the largest cross product of two rows of A - l I.
+template <class T> Vec3<T> eigenvector(const Mat3<T>& A, const T& l) {
+  Mat3<T> B = A;
+  for (int i = 0; i < 3; ++i) B(i, i) -= l;
+  Vec3<T> best = Vec3<T>::Zero();
+  T bn = T(-1);
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const Vec3<T> v(B(i, 1) * B(j, 2) - B(i, 2) * B(j, 1), B(i, 2) * B(j, 0) - B(i, 0) * B(j, 2),
+                    B(i, 0) * B(j, 1) - B(i, 1) * B(j, 0));
+    const T n = v.squaredNorm();
+    if (n > bn) { bn = n; best = v; }
+  }
+  if (!(bn > 0)) return Vec3<T>(T(1), T(0), T(0));  // A = l I: every vector (does not occur for P_r words)
+  return best / sqrt_<T>(bn);
+}
+
+// The matrix analysed for w (its primitive root): J M_h when w = h J(h), else M_w; normalised.
+template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced) {
+  const std::size_t n = reduced ? w.size() / 2 : w.size();
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  Scaled<T> M;
+  for (std::size_t k = 0; k < n; ++k) {
+    M.m = P[w.s[k] - 1] * M.m;
+    // Renormalise every 8 factors: entries shrink at most like r^2 per factor (|det P_i| = r^3 or r^4),
+    // so 8 factors stay far from underflow for r > 1e-10 in double.
+    if (k % 8 == 7) M.normalise();
+  }
+  if (reduced) M.m = core::J<T>() * M.m;
+  M.normalise();
+  return M;
+}
+
+// Feasibility along the word from the unit vector v (any sign): returns -1 when every inequality holds
+// strictly, 0 when v is not strictly inside the domain x z < 0, k when the k-th inequality fails.
+// margins (if non-null) receives the p + 1 margins (domain, then one per symbol), sign-invariant.
+template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
+  const T a = core::alpha(r);
+  const T dom = -v(0) * v(2);  // > 0 strictly inside the domain (eq. 3.2)
+  if (margins) margins->assign(1, dom);
+  int fail = dom > 0 ? -1 : 0;
+  v = core::to_quadrant(v);
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const int s = w.s[k];
+    // Branch conditions of core::branch, as margins that are > 0 when the step uses symbol s.
+    T m;
+    if (s == 1) m = a * v(1) - v(0);
+    else if (s == 3) m = v(2) - a * v(1);
+    else m = std::min<T>(v(0) - a * v(1), a * v(1) - v(2));
+    if (margins) margins->push_back(m);
+    if (!(m > 0) && fail < 0) {
+      fail = static_cast<int>(k) + 1;
+      if (!margins) return fail;
+    }
+    v = P[s - 1] * v;
+    v /= v.norm();
+  }
+  return fail;
+}
+
+template <class T> struct Spectrum {
+  std::array<Root<T>, 3> roots;  // by decreasing modulus
+  std::array<T, 3> mod;
+  Scaled<T> A;
+};
+template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced) {
+  Spectrum<T> s;
+  s.A = analysed_matrix(w, r, reduced);
+  const Mat3<T>& m = s.A.m;
+  const T tr = m.trace();
+  const T minors = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) + m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0) +
+                   m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1);
+  const T det = det3<T>(m);
+  s.roots = cubic_roots<T>(-tr, minors, -det);
+  std::sort(s.roots.begin(), s.roots.end(), [](const Root<T>& x, const Root<T>& y) { return modulus(x) > modulus(y); });
+  for (int i = 0; i < 3; ++i) s.mod[i] = modulus(s.roots[i]);
+  return s;
+}
+
+// Relative tolerance for "two moduli are equal" (a tie is not strict dominance): the cubic's roots carry
+// an error of a few ulps of the largest modulus when they are simple.
+template <class T> T tie_tol() { return 64 * eps_<T>(); }
+
+// Stability predicate with its failure reason ("" when stable).
+template <class T> std::string stability_reason(const Word& w, const T& r, bool reduced) {
+  const Spectrum<T> s = spectrum(w, r, reduced);
+  if (!s.roots[0].real) return "complex";
+  if (!(s.mod[1] < s.mod[0] * (1 - tie_tol<T>()))) return s.roots[1].real ? "dominance" : "complex";
+  const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[0].re);
+  const int f = feasibility(w, r, v);
+  if (f < 0) return "";
+  return f == 0 ? "domain" : fmt::format("feas{}", f);
+}
+
+template <class T> void check_inputs(const Word& w, const T& r) {
+  if (w.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  for (auto c : w.s)
+    if (c < 1 || c > 3) throw std::invalid_argument(fmt::format("word: got symbol {}, expected 1, 2 or 3", int(c)));
+  core::validate_r(r, "r");
+}
+
+}  // namespace detail
+
+template <class T> bool is_stable(const Word& w0, const T& r) {
+  const Word w = primitive_root(w0);
+  return detail::stability_reason(w, r, is_J_square(w)).empty();
+}
+
+template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
+  using namespace detail;
+  check_inputs(w0, r);
+  Verdict<T> v;
+  v.word = primitive_root(w0);
+  v.r = r;
+  v.reduced = is_J_square(v.word);
+  const Word& w = v.word;
+  const Spectrum<T> s = spectrum(w, r, v.reduced);
+  for (int i = 0; i < 3; ++i) {
+    EigenInfo<T> e;
+    e.re = s.roots[i].re;
+    e.im = s.roots[i].im;
+    e.modulus = s.mod[i];
+    e.real = s.roots[i].real;
+    if (e.real) {
+      e.vector = core::to_quadrant(eigenvector<T>(s.A.m, e.re));
+      e.first_failure = feasibility(w, r, e.vector);
+      e.in_domain = e.first_failure != 0;
+      e.feasible = e.first_failure < 0;
+    }
+    v.spectrum.push_back(e);
+  }
+  v.reason = stability_reason(w, r, v.reduced);
+  if (v.reason.empty()) {
+    v.outcome = Outcome::stable;
+    v.orbit_eigen = 0;
+  } else {
+    for (int i = 0; i < 3; ++i)
+      if (v.spectrum[i].feasible) { v.outcome = Outcome::unstable; v.orbit_eigen = i; break; }
+  }
+  if (v.orbit_eigen >= 0) {
+    Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
+    const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+    for (auto c : w.s) {
+      v.orbit.push_back(u);
+      v.letters += core::letters<T>(c, u);
+      u = core::to_quadrant<T>(P[c - 1] * u);
+      u /= u.norm();
+    }
+  }
+  // Exponents from M_w (= A^2 when reduced) and its second exterior power (cofactor matrix, Lambda^2).
+  {
+    const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+    Scaled<T> C;
+    T log_det = T(0);
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
+      C.normalise();
+      log_det += log_(abs_<T>(det3<T>(P[w.s[k] - 1])));
+    }
+    const Spectrum<T> sm = spectrum(w, r, false);
+    const T tr = C.m.trace();
+    const T minors = C.m(0, 0) * C.m(1, 1) - C.m(0, 1) * C.m(1, 0) + C.m(0, 0) * C.m(2, 2) - C.m(0, 2) * C.m(2, 0) +
+                     C.m(1, 1) * C.m(2, 2) - C.m(1, 2) * C.m(2, 1);
+    auto rc = cubic_roots<T>(-tr, minors, T(-det3<T>(C.m)));
+    T rho_c = T(0);
+    for (auto& x : rc) rho_c = std::max<T>(rho_c, modulus(x));
+    const T log_l1 = log_(sm.mod[0]) + sm.A.log_scale;
+    const T log_l1l2 = log_(rho_c) + C.log_scale;
+    const T p = T(static_cast<long>(w.size()));
+    v.lyapunov2 = (log_l1l2 - 2 * log_l1) / p;
+    v.lyapunov3 = (log_det - log_l1l2 - log_l1) / p;
+  }
+  return v;
+}
+
+template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q) {
+  using namespace detail;
+  check_inputs(w0, r);
+  const Word w = primitive_root(w0);
+  const Spectrum<T> s = spectrum(w, r, is_J_square(w));
+  int idx = -1;
+  for (int i = 0; i < 3 && idx < 0; ++i)
+    if (s.roots[i].real && (track == Track::dominant_real || s.roots[i].re < 0)) idx = i;
+  if (idx < 0) return std::numeric_limits<T>::quiet_NaN();
+  if (q == Quantity::dominance_gap) {
+    T other = T(0);
+    for (int i = 0; i < 3; ++i)
+      if (i != idx) other = std::max<T>(other, s.mod[i]);
+    return (s.mod[idx] - other) / s.mod[idx];
+  }
+  const Vec3<T> u = eigenvector<T>(s.A.m, s.roots[idx].re);
+  switch (q) {
+    case Quantity::x_component: return u(2) < 0 ? T(u(0)) : T(-u(0));
+    case Quantity::z_component: return u(0) > 0 ? T(u(2)) : T(-u(2));
+    case Quantity::alpha_y_minus_x: {
+      const T val = core::alpha(r) * u(1) - u(0);
+      return u(0) > 0 ? val : T(-val);
+    }
+    default: return T(0);
+  }
+}
+
+template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol) {
+  T flo = quantity(w, lo, track, q);
+  const T fhi = quantity(w, hi, track, q);
+  if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
+    throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]", static_cast<double>(lo),
+                                        static_cast<double>(hi)));
+  for (int it = 0; it < 100000 && hi - lo > tol; ++it) {
+    const T mid = (lo + hi) / 2;
+    const T fm = quantity(w, mid, track, q);
+    if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; }
+    else hi = mid;
+  }
+  return (lo + hi) / 2;
+}
+
+template <class T>
+std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+  using namespace detail;
+  if (w0.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  const Word w = primitive_root(w0);
+  const bool red = is_J_square(w);
+  std::vector<Interval<T>> out;
+  std::vector<char> st(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red).empty();
+  // Bisects the predicate between a (stable) and b (not stable); returns the endpoint and b's reason.
+  const auto refine = [&](T a, T b) {
+    for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
+      const T mid = (a + b) / 2;
+      if (stability_reason<T>(w, mid, red).empty()) a = mid;
+      else b = mid;
+    }
+    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red)};
+  };
+  for (std::size_t i = 0; i < grid.size();) {
+    if (!st[i]) { ++i; continue; }
+    std::size_t j = i;
+    while (j + 1 < grid.size() && st[j + 1]) ++j;
+    Interval<T> iv;
+    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
+    else std::tie(iv.lo, iv.lo_reason) = refine(T(grid[i]), T(grid[i - 1]));
+    if (j + 1 == grid.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
+    else std::tie(iv.hi, iv.hi_reason) = refine(T(grid[j]), T(grid[j + 1]));
+    out.push_back(iv);
+    i = j + 1;
+  }
+  return out;
+}
+
+}  // namespace btob::patterns

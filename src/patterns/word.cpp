@@ -1,0 +1,203 @@
+// Words over {1,2,3}: parsing the paper's notation, printing, rotations, J, canonical forms, enumeration.
+#include "patterns/patterns.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace btob::patterns {
+namespace {
+
+// Rank in the canonical order 1 < 3 < 2.
+int rank(std::uint8_t s) { return s == 1 ? 0 : (s == 3 ? 1 : 2); }
+
+bool less_rot(const Word& w, std::size_t i, const Word& v, std::size_t j) {
+  const std::size_t n = w.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const int a = rank(w.s[(i + k) % n]), b = rank(v.s[(j + k) % n]);
+    if (a != b) return a < b;
+  }
+  return false;
+}
+
+// Smallest rotation of w in the canonical order: returns its start index (O(n^2), n is small).
+std::size_t min_rotation(const Word& w) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < w.size(); ++i)
+    if (less_rot(w, i, w, best)) best = i;
+  return best;
+}
+
+[[noreturn]] void bad(const char* field, std::string_view text, const std::string& what) {
+  throw std::invalid_argument(fmt::format("{}: got '{}', {}", field, text, what));
+}
+
+}  // namespace
+
+Word parse_word(std::string_view text, const char* field) {
+  const std::string expected =
+      "expected a word over 1, 2, 3 such as 132312, 132^3312^3, (ab)(cb)(acb) or abcbacb";
+  if (text.empty()) bad(field, text, "an empty word; " + expected);
+  Word w;
+  std::size_t i = 0;
+  const auto letters_at = [&](std::size_t& k, std::vector<std::uint8_t>& out) -> bool {
+    // Greedy letter parsing: ab -> 1, cb -> 3, acb / cab -> 2.
+    auto at = [&](std::size_t j) { return j < text.size() ? text[j] : '\0'; };
+    if (at(k) == 'a' && at(k + 1) == 'b') { out.push_back(1); k += 2; return true; }
+    if (at(k) == 'c' && at(k + 1) == 'b') { out.push_back(3); k += 2; return true; }
+    if ((at(k) == 'a' && at(k + 1) == 'c' && at(k + 2) == 'b') || (at(k) == 'c' && at(k + 1) == 'a' && at(k + 2) == 'b')) {
+      out.push_back(2);
+      k += 3;
+      return true;
+    }
+    return false;
+  };
+  while (i < text.size()) {
+    std::vector<std::uint8_t> unit;
+    const char c = text[i];
+    if (c >= '1' && c <= '3') {
+      unit.push_back(static_cast<std::uint8_t>(c - '0'));
+      ++i;
+    } else if (c == '(') {
+      ++i;
+      while (i < text.size() && text[i] != ')') {
+        if (text[i] >= '1' && text[i] <= '3') unit.push_back(static_cast<std::uint8_t>(text[i++] - '0'));
+        else if (!letters_at(i, unit)) bad(field, text, fmt::format("unexpected '{}' at position {}; {}", text[i], i + 1, expected));
+      }
+      if (i >= text.size()) bad(field, text, "an unclosed '('; " + expected);
+      if (unit.empty()) bad(field, text, "an empty group '()'; " + expected);
+      ++i;
+    } else if (c == 'a' || c == 'c') {
+      if (!letters_at(i, unit)) bad(field, text, fmt::format("letters at position {} that are not ab, cb, acb or cab", i + 1));
+    } else {
+      bad(field, text, fmt::format("unexpected '{}' at position {}; {}", c, i + 1, expected));
+    }
+    long times = 1;
+    if (i < text.size() && text[i] == '^') {
+      ++i;
+      if (i < text.size() && text[i] == '{') ++i;  // LaTeX 2^{36}
+      std::size_t start = i;
+      times = 0;
+      while (i < text.size() && text[i] >= '0' && text[i] <= '9' && times < 100000) times = times * 10 + (text[i++] - '0');
+      if (i == start || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
+      if (i < text.size() && text[i] == '}') ++i;
+    }
+    for (long t = 0; t < times; ++t) w.s.insert(w.s.end(), unit.begin(), unit.end());
+    if (w.size() > 100000) bad(field, text, "a word longer than 100000 symbols");
+  }
+  return w;
+}
+
+std::string to_digits(const Word& w) {
+  std::string out;
+  for (auto c : w.s) out.push_back(static_cast<char>('0' + c));
+  return out;
+}
+
+std::string to_paper(const Word& w) {
+  std::string out;
+  for (std::size_t i = 0; i < w.size();) {
+    std::size_t j = i;
+    while (j < w.size() && w.s[j] == w.s[i]) ++j;
+    const std::size_t run = j - i;
+    const char c = static_cast<char>('0' + w.s[i]);
+    const bool power = (w.s[i] == 2 && run >= 2) || run >= 4;
+    if (power) out += fmt::format("{}^{}", c, run);
+    else out.append(run, c);
+    i = j;
+  }
+  return out;
+}
+
+std::string to_letters(const Word& w) {
+  std::string out;
+  for (auto c : w.s) out += c == 1 ? "ab" : (c == 3 ? "cb" : "acb");
+  return out;
+}
+
+int collisions(const Word& w) {
+  int n = 0;
+  for (auto c : w.s) n += c == 2 ? 3 : 2;
+  return n;
+}
+
+Word apply_J(const Word& w) {
+  Word v = w;
+  for (auto& c : v.s) c = static_cast<std::uint8_t>(4 - c);
+  return v;
+}
+
+Word rotate(const Word& w, std::size_t k) {
+  Word v = w;
+  if (!w.s.empty()) std::rotate(v.s.begin(), v.s.begin() + static_cast<long>(k % w.size()), v.s.end());
+  return v;
+}
+
+Word primitive_root(const Word& w) {
+  const std::size_t n = w.size();
+  for (std::size_t d = 1; d < n; ++d) {
+    if (n % d) continue;
+    bool ok = true;
+    for (std::size_t i = d; i < n && ok; ++i) ok = w.s[i] == w.s[i - d];
+    if (ok) return Word{std::vector<std::uint8_t>(w.s.begin(), w.s.begin() + static_cast<long>(d))};
+  }
+  return w;
+}
+
+bool is_primitive(const Word& w) { return primitive_root(w).size() == w.size(); }
+
+Word canonical(const Word& w) {
+  if (w.s.empty()) return w;
+  const Word j = apply_J(w);
+  const std::size_t a = min_rotation(w), b = min_rotation(j);
+  return less_rot(j, b, w, a) ? rotate(j, b) : rotate(w, a);
+}
+
+bool is_J_square(const Word& w) {
+  const std::size_t n = w.size();
+  if (n == 0 || n % 2) return false;
+  for (std::size_t i = 0; i < n / 2; ++i)
+    if (w.s[i + n / 2] != 4 - w.s[i]) return false;
+  return true;
+}
+
+std::vector<Word> enumerate_canonical(int max_length) {
+  if (max_length < 1 || max_length > 18)
+    throw std::invalid_argument(fmt::format("max-length: got {}, expected 1..18", max_length));
+  std::vector<Word> out;
+  for (int n = 1; n <= max_length; ++n) {
+    // Odometer over {1,2,3}^n; keep canonical primitive words.  A canonical word starts with its
+    // smallest symbol in the order 1 < 3 < 2, so starting with 1 suffices unless the word has no 1 and no 3.
+    Word w{std::vector<std::uint8_t>(static_cast<std::size_t>(n), 1)};
+    std::vector<Word> level;
+    while (true) {
+      if (w.s[0] == 1 || n == 1) {
+        if (is_primitive(w) && canonical(w) == w) level.push_back(w);
+      }
+      int k = n - 1;
+      while (k >= 0 && w.s[static_cast<std::size_t>(k)] == 3) w.s[static_cast<std::size_t>(k--)] = 1;
+      if (k < 0) break;
+      ++w.s[static_cast<std::size_t>(k)];
+    }
+    if (n == 1) level = {Word{{1}}, Word{{2}}};  // 3 = J(1)
+    std::sort(level.begin(), level.end(), [](const Word& a, const Word& b) {
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (a.s[i] != b.s[i]) return rank(a.s[i]) < rank(b.s[i]);
+      return false;
+    });
+    out.insert(out.end(), level.begin(), level.end());
+  }
+  return out;
+}
+
+const char* outcome_name(Outcome o) {
+  switch (o) {
+    case Outcome::none: return "no periodic orbit";
+    case Outcome::unstable: return "unstable orbit";
+    case Outcome::stable: return "stable orbit";
+  }
+  return "?";
+}
+
+}  // namespace btob::patterns
