@@ -62,6 +62,8 @@ template <class T> struct ParticleCycle {
   std::string letters;       // collisions of the cycle, e.g. "acb"
   T lambda;                  // the run started from (p, q - lambda p), see simulate_b_to_b
   T time;                    // flight time from the start to the b-collision (units of the input)
+  T condition;               // sum over flights of (|p| + t |q|) / |p + t q| plus |p| |q| / |p x q| at the
+                             // end: rounding errors of the final plane are about eps * condition
   ParticleStatus status;
 };
 

@@ -88,7 +88,7 @@ namespace detail {
 // One attempt from (p, q - lambda p).  Pair j collides first among those approaching (q_j < 0, p_j > 0):
 // the smallest t_j = -p_j / q_j.
 template <class T> ParticleCycle<T> particle_attempt(const core::Particles<T>& start, const T& r, const T& lambda) {
-  ParticleCycle<T> out{start, {}, lambda, T(0), ParticleStatus::ok};
+  ParticleCycle<T> out{start, {}, lambda, T(0), T(0), ParticleStatus::ok};
   Vec3<T> p = start.p, q = start.q - lambda * start.p;
   const Mat3<T> K[3] = {collision_matrix<T>('a', r), collision_matrix<T>('b', r), collision_matrix<T>('c', r)};
   for (int collisions = 0; collisions < 4; ++collisions) {
@@ -106,7 +106,9 @@ template <class T> ParticleCycle<T> particle_attempt(const core::Particles<T>& s
       out.status = ParticleStatus::separated;
       break;
     }
+    const T before = p.norm() + t_first * q.norm();
     p += t_first * q;  // free flight (eq. 2.2)
+    out.condition += before / p.norm();
     p(first) = T(0);   // exactly in contact
     for (int j = 0; j < 3; ++j) p(j) = std::max(p(j), T(0));  // rounding must not cross another wall
     q = K[first] * q;  // eq. (2.4)
@@ -114,6 +116,7 @@ template <class T> ParticleCycle<T> particle_attempt(const core::Particles<T>& s
     out.letters += static_cast<char>('a' + first);
     if (first == 1) {
       out.state = {p, q};
+      out.condition += p.norm() * q.norm() / p.cross(q).norm();
       return out;
     }
   }
