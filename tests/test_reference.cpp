@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -25,6 +26,13 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 
 const std::vector<double> kR = {0.01, 0.07, 0.0718, 0.1, 0.17, 0.2, 0.5, 0.9, 0.99};
 const std::uint64_t kSeed = 20240501;
+
+// "%.3g" of x, for RecordProperty (the measured numbers quoted in the notes).
+std::string g3(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 // Angle between the lines of a and b, in [0, pi/2].
 double angle(V a, V b) {
@@ -103,7 +111,7 @@ TEST(CrossProduct, AgreesWithLinearMap) {
     EXPECT_LT(worst_well, 1e-12) << "r=" << r;
     EXPECT_GT(well, 50000) << "r=" << r;  // the 1e-12 claim covers most points, not a few
     EXPECT_LT(excluded, 5) << "r=" << r;  // boundary exclusions: probability ~1e-12 per point
-    RecordProperty("max_angle_r" + std::to_string(r), std::to_string(worst));
+    RecordProperty("max_angle_r" + g3(r), g3(worst));
   }
 }
 
@@ -124,7 +132,7 @@ TEST(CrossProduct, LinearMapIsAccurateAgainstQuadPrecision) {
       ASSERT_LE(a, 4 * eps * linear_condition(u, r) + 4 * eps) << "r=" << r;
       worst = std::max(worst, a);
     }
-    RecordProperty("max_angle_quad_r" + std::to_string(r), std::to_string(worst));
+    RecordProperty("max_angle_quad_r" + g3(r), g3(worst));
   }
 }
 
@@ -170,7 +178,7 @@ TEST(Particles, AgreesWithLinearMap) {
     }
     // With q orthogonal to p most starts separate before the cycle ends and need the shift q - lambda p.
     EXPECT_GT(shifted, 0);
-    RecordProperty("max_angle_particles_r" + std::to_string(r), std::to_string(worst));
+    RecordProperty("max_angle_particles_r" + g3(r), g3(worst));
   }
 }
 
