@@ -110,7 +110,7 @@ std::string RationalPoly::developed(const char* var) const {
     const mpq_class a = abs(q);
     if (s.empty()) s += q < 0 ? "-" : "";
     else s += q < 0 ? " - " : " + ";
-    if (a != 1 || k == 0) s += rational_text(a);
+    if (a != 1 || k == 0) s += rational_text(a) + (k >= 1 && a.get_den() != 1 ? " " : "");
     if (k >= 1) s += var;
     if (k >= 2) s += "^" + std::to_string(k);
   }
