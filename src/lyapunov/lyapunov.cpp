@@ -1,0 +1,96 @@
+// Non-template parts of the Lyapunov module and the explicit instantiations (double, long double).
+#include "lyapunov/lyapunov_impl.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include <complex>
+#include <numeric>
+
+namespace btob::lyapunov {
+
+void validate(const Options& o) {
+  if (o.iterations < 1) throw std::invalid_argument(fmt::format("iterations: got {}, expected at least 1", o.iterations));
+  if (o.transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected at least 0", o.transient));
+  if (o.reorthonormalise < 1)
+    throw std::invalid_argument(fmt::format("reorthonormalise: got {}, expected at least 1", o.reorthonormalise));
+  if (o.blocks < 2) throw std::invalid_argument(fmt::format("blocks: got {}, expected at least 2", o.blocks));
+  if (o.blocks > o.iterations)
+    throw std::invalid_argument(fmt::format("blocks: got {}, expected at most iterations = {}", o.blocks, o.iterations));
+}
+
+namespace detail {
+Estimate batch_means(const std::vector<double>& cum, const std::vector<long>& block_end) {
+  const std::size_t B = cum.size();
+  Estimate e;
+  if (B == 0) return e;
+  std::vector<double> mean(B);
+  for (std::size_t j = 0; j < B; ++j) {
+    const double prev = j ? cum[j - 1] : 0.0;
+    const long len = block_end[j] - (j ? block_end[j - 1] : 0);
+    mean[j] = (cum[j] - prev) / static_cast<double>(len);
+  }
+  const double m = std::accumulate(mean.begin(), mean.end(), 0.0) / static_cast<double>(B);
+  double ss = 0;
+  for (double x : mean) ss += (x - m) * (x - m);
+  e.value = cum.back() / static_cast<double>(block_end.back());
+  e.error = B > 1 ? std::sqrt(ss / static_cast<double>(B - 1) / static_cast<double>(B)) : 0.0;
+  return e;
+}
+}  // namespace detail
+
+FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, double delta, const Options& opt) {
+  validate(opt);
+  detail::check_start(u0, r);
+  if (!(delta > 0 && delta < 1)) throw std::invalid_argument(fmt::format("delta: got {}, expected 0 < delta < 1", delta));
+  Vec3<double> u = core::to_quadrant<double>(u0).normalized();
+  Vec3<double> v = (u + delta * tangent_basis(u).col(0)).normalized();
+  FiniteDifference fd;
+  double sum = 0;
+  const long total = opt.transient + opt.iterations;
+  for (long k = 1; k <= total; ++k) {
+    const int s = core::branch(u, r), s2 = core::branch(v, r);
+    u = detail::apply(s, u, r).normalized();
+    v = detail::apply(s2, v, r).normalized();
+    const Vec3<double> d = v - u;
+    const double dist = d.norm();
+    if (k > opt.transient) {
+      sum += std::log(dist / delta);
+      fd.straddles += (s != s2);
+    }
+    v = (u + delta * d / dist).normalized();  // re-place the partner at distance ~delta along the separation
+  }
+  fd.lambda1 = sum / static_cast<double>(opt.iterations);
+  return fd;
+}
+
+std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r) {
+  core::validate_r(r);
+  if (period_symbols.empty()) throw std::invalid_argument("period: got an empty word, expected symbols 1, 2, 3");
+  Mat3<double> M = Mat3<double>::Identity();
+  for (int s : period_symbols) M = core::P<double>(s, r) * M;  // P_{s_p} ... P_{s_1}
+  const Eigen::EigenSolver<Mat3<double>> es(M, false);
+  std::array<double, 3> mod;
+  for (int i = 0; i < 3; ++i) mod[i] = std::abs(es.eigenvalues()(i));
+  std::sort(mod.begin(), mod.end(), std::greater<>());
+  const double p = static_cast<double>(period_symbols.size());
+  return {std::log(mod[1] / mod[0]) / p, std::log(mod[2] / mod[0]) / p};
+}
+
+int detect_period(const std::vector<int>& s, int max_period, int check) {
+  const long n = static_cast<long>(s.size());
+  for (int p = 1; p <= max_period; ++p) {
+    if (n < check + p) return 0;
+    bool ok = true;
+    for (long i = n - check; i < n && ok; ++i) ok = s[i] == s[i - p];
+    if (ok) return p;
+  }
+  return 0;
+}
+
+template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
+template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
+template LinearResult linear_exponents<double>(const Vec3<double>&, const double&, const Options&);
+template LinearResult linear_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
+
+}  // namespace btob::lyapunov

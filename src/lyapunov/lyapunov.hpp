@@ -1,0 +1,100 @@
+// Lyapunov exponents of the b-to-b map (paper, Section 7 (3)): the projective derivative cocycle and the
+// linear cocycle of the products of P_i along an orbit, both with QR (Benettin) re-orthonormalisation.
+#pragma once
+
+#include "core/map.hpp"
+
+#include <array>
+#include <vector>
+
+namespace btob::lyapunov {
+
+using core::Mat3;
+using core::Vec3;
+
+// Conventions:
+//  * Exponents are per map iteration, natural log.  The projective exponents lambda1 >= lambda2 are those
+//    of u -> P u / |P u| on the sphere (the 2-D map of the paper); the linear exponents chi1, chi2, chi3
+//    are those of the products P_{s_n} ... P_{s_1} along the same orbit, with the frame started at
+//    [u0, e1, e2] (e1, e2 the tangent basis below), so that chi1 is the growth rate of the orbit vector
+//    itself and lambda_i = chi_{i+1} - chi1 holds step by step, up to rounding.
+//  * Both routes run transient + iterations steps from u0 (brought into Q); the orbit and the tangent
+//    frame are iterated together and only the last `iterations` steps are averaged.
+//  * Error bars: batch means.  The averaged steps are cut into `blocks` consecutive blocks (sizes differ
+//    by at most one step); error = standard deviation of the block means / sqrt(blocks).
+struct Options {
+  long transient = 1000;     // steps discarded before averaging (orbit and frame converge), >= 0
+  long iterations = 100000;  // averaged steps, >= blocks
+  int reorthonormalise = 1;  // QR every this many steps (also at the transient's end and block ends), >= 1
+  int blocks = 20;           // batch-means blocks, >= 2
+};
+
+// Throws std::invalid_argument "field: got X, expected Y" for non-positive lengths or blocks > iterations.
+void validate(const Options& opt);
+
+struct Estimate {
+  double value = 0;  // per iteration, natural log
+  double error = 0;  // batch-means standard error
+};
+
+// Exponent against the number of averaged steps n (powers of two and block ends, increasing).
+struct Convergence {
+  std::vector<long> n;
+  std::vector<std::vector<double>> exponents;  // exponents[i][j]: exponent i at n[j]
+};
+
+struct ProjectiveResult {
+  std::array<Estimate, 2> lambda;  // lambda1 >= lambda2 of the projective cocycle
+  long iterations = 0;
+  int blocks = 0;
+  Convergence convergence;
+  std::vector<int> symbols_tail;  // symbols of the last min(iterations, 4096) steps (for period detection)
+  Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
+};
+
+struct LinearResult {
+  std::array<Estimate, 3> chi;  // in frame order: chi1 = growth of the orbit vector, then QR order
+  long iterations = 0;
+  int blocks = 0;
+  Convergence convergence;
+};
+
+// Orthonormal basis (e1, e2) of the tangent plane u^perp, u != 0 (columns of a 3x2 matrix).
+template <class T> Eigen::Matrix<T, 3, 2> tangent_basis(const Vec3<T>& u);
+
+// The derivative of u -> P u / |P u| at u as a 3x3 matrix acting on tangent vectors v (v . u = 0):
+// D(u) v = (P v - w (w . P v)) / |P u|, w = P u / |P u|.  Valid for any u != 0 with |u| = 1.
+template <class T> Mat3<T> projective_derivative(const Mat3<T>& P, const Vec3<T>& u);
+
+// Both projective exponents from u0 at restitution r (r in (0,1), u0 in the domain, non-zero).
+template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, const T& r, const Options& opt);
+
+// The three exponents of the linear cocycle along the same orbit (Householder QR of 3 vectors).
+template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, const Options& opt);
+
+// Finite differences: two orbits a distance delta apart, the partner re-placed at distance delta along
+// the current separation after every step.  Returns the average log-stretching per step, the naive
+// estimate of lambda1 that is wrong wherever the pair straddles a branch boundary (the map is
+// discontinuous there).  `straddles` counts the steps at which the two points used different branches.
+struct FiniteDifference {
+  double lambda1 = 0;
+  long straddles = 0;
+};
+FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, double delta, const Options& opt);
+
+// The exponents of a periodic orbit from the eigenvalues l1, l2, l3 (|l1| >= |l2| >= |l3|) of its period
+// matrix P_{s_p} ... P_{s_1}: {log|l2/l1| / p, log|l3/l1| / p}.  Symbols in {1, 2, 3}.
+std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r);
+
+// The shortest period p of the tail of a symbol sequence (the last `check` symbols repeat with period p),
+// or 0 when none up to max_period.
+int detect_period(const std::vector<int>& symbols, int max_period, int check);
+
+extern template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
+extern template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&,
+                                                                   const Options&);
+extern template LinearResult linear_exponents<double>(const Vec3<double>&, const double&, const Options&);
+extern template LinearResult linear_exponents<long double>(const Vec3<long double>&, const long double&,
+                                                           const Options&);
+
+}  // namespace btob::lyapunov

@@ -1,0 +1,195 @@
+// Template bodies of lyapunov.hpp (the projective and linear QR cocycles); included by lyapunov.cpp and by
+// code that needs other scalar types (float128, mpfr).
+#pragma once
+
+#include "lyapunov/lyapunov.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace btob::lyapunov {
+namespace detail {
+
+// One step of the map from u in Q with the branch s already chosen, in the form of eq. (3.2) (Theorem 3.1):
+// written with c1 = alpha y - x and c3 = alpha y - z so that the image stays in Q exactly (x' = -r c1 >= 0
+// on branch 2, etc.), which the plain matrix product does not guarantee under rounding near boundaries.
+template <class T> Vec3<T> apply(int s, const Vec3<T>& u, const T& r) {
+  const T a = core::alpha(r);
+  const T c1 = a * u(1) - u(0), c3 = a * u(1) - u(2);
+  if (s == 1) return Vec3<T>(r * c1, a * c1 - r * u(1) + r * a * u(2), r * r * u(2));
+  if (s == 3) return Vec3<T>(r * r * u(0), a * c3 - r * u(1) + r * a * u(0), r * c3);
+  return Vec3<T>(-r * c1, -a * c1 - a * c3 + r * u(1), -r * c3);
+}
+
+// Where QR happens and where exponents are recorded.  Steps are numbered 1..transient+iterations; step
+// k is "averaged" when k > transient.  QR at every multiple of m counted from the transient's end, at
+// the transient's end, and at every checkpoint (block ends, powers of two of the averaged length).
+struct Schedule {
+  long transient, n;
+  int m, blocks;
+  std::vector<long> block_end;   // averaged-step counts at which blocks end, increasing, last = n
+  std::vector<long> checkpoint;  // averaged-step counts recorded in the convergence report
+  explicit Schedule(const Options& o) : transient(o.transient), n(o.iterations), m(o.reorthonormalise), blocks(o.blocks) {
+    for (int j = 1; j <= blocks; ++j) block_end.push_back(n * j / blocks);
+    for (long p = 1; p < n; p *= 2) checkpoint.push_back(p);
+    checkpoint.insert(checkpoint.end(), block_end.begin(), block_end.end());
+    std::sort(checkpoint.begin(), checkpoint.end());
+    checkpoint.erase(std::unique(checkpoint.begin(), checkpoint.end()), checkpoint.end());
+  }
+  bool qr_at(long k, std::size_t next_cp) const {
+    if (k <= transient) return k % m == 0 || k == transient;
+    const long j = k - transient;
+    return j % m == 0 || (next_cp < checkpoint.size() && checkpoint[next_cp] == j);
+  }
+};
+
+// Accumulates the sums of log R_ii; records cumulative sums at block ends and averages at checkpoints.
+template <int N> struct Accumulator {
+  const Schedule& sc;
+  std::array<long double, N> sum{};
+  std::vector<std::array<double, N>> at_block_end;
+  std::size_t next_cp = 0, next_block = 0;
+  Convergence conv;
+  explicit Accumulator(const Schedule& s) : sc(s) { conv.exponents.assign(N, {}); }
+  template <class T> void add(long k, const std::array<T, N>& logs) {
+    if (k <= sc.transient) return;
+    for (int i = 0; i < N; ++i) sum[i] += static_cast<long double>(logs[i]);
+    const long j = k - sc.transient;
+    if (next_cp < sc.checkpoint.size() && sc.checkpoint[next_cp] == j) {
+      conv.n.push_back(j);
+      for (int i = 0; i < N; ++i) conv.exponents[i].push_back(static_cast<double>(sum[i] / j));
+      ++next_cp;
+    }
+    if (next_block < sc.block_end.size() && sc.block_end[next_block] == j) {
+      std::array<double, N> c;
+      for (int i = 0; i < N; ++i) c[i] = static_cast<double>(sum[i]);
+      at_block_end.push_back(c);
+      ++next_block;
+    }
+  }
+  Estimate estimate(int i) const;
+};
+
+// Batch means from cumulative sums at block ends (cum[j] after block j) and the block ends themselves.
+Estimate batch_means(const std::vector<double>& cum, const std::vector<long>& block_end);
+
+template <int N> Estimate Accumulator<N>::estimate(int i) const {
+  std::vector<double> cum;
+  for (const auto& c : at_block_end) cum.push_back(c[i]);
+  Estimate e = batch_means(cum, sc.block_end);
+  e.value = static_cast<double>(sum[i] / sc.n);  // the full-length average, in the accumulator's precision
+  return e;
+}
+
+template <class T> void check_start(const Vec3<T>& u0, const T& r) {
+  core::validate_r(r);
+  core::validate_point(static_cast<double>(u0(0)), static_cast<double>(u0(1)), static_cast<double>(u0(2)), "point");
+}
+
+}  // namespace detail
+
+template <class T> Eigen::Matrix<T, 3, 2> tangent_basis(const Vec3<T>& u) {
+  using std::abs;
+  int i = 0;  // the coordinate axis least aligned with u
+  for (int j = 1; j < 3; ++j)
+    if (abs(u(j)) < abs(u(i))) i = j;
+  Vec3<T> axis = Vec3<T>::Zero();
+  axis(i) = T(1);
+  Eigen::Matrix<T, 3, 2> b;
+  b.col(0) = u.cross(axis).normalized();
+  b.col(1) = u.cross(Vec3<T>(b.col(0))).normalized();
+  return b;
+}
+
+template <class T> Mat3<T> projective_derivative(const Mat3<T>& P, const Vec3<T>& u) {
+  const Vec3<T> pu = P * u;
+  const T g = pu.norm();
+  const Vec3<T> w = pu / g;
+  return (Mat3<T>::Identity() - w * w.transpose()) * P / g;
+}
+
+template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, const T& r, const Options& opt) {
+  using std::log;
+  validate(opt);
+  detail::check_start(u0, r);
+  const detail::Schedule sc(opt);
+  detail::Accumulator<2> acc(sc);
+  const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
+  Vec3<T> u = core::to_quadrant<T>(u0);
+  u /= u.norm();
+  Eigen::Matrix<T, 3, 2> V = tangent_basis(u);
+  const long total = opt.transient + opt.iterations;
+  ProjectiveResult res;
+  const long keep = std::min<long>(opt.iterations, 4096);
+  for (long k = 1; k <= total; ++k) {
+    const int s = core::branch(u, r);
+    const Vec3<T> pu = detail::apply(s, u, r);
+    const T g = pu.norm();
+    const Vec3<T> w = pu / g;
+    // D(u) V = (P V - w (w . P V)) / |P u| (Section 7 (3): the derivative cocycle on tangent planes).
+    Eigen::Matrix<T, 3, 2> W = Pm[s - 1] * V;
+    W -= w * (w.transpose() * W);
+    V = W / g;
+    u = w;
+    if (k > total - keep) res.symbols_tail.push_back(s);
+    if (sc.qr_at(k, acc.next_cp)) {  // Gram-Schmidt QR of the two tangent vectors
+      const T n1 = V.col(0).norm();
+      V.col(0) /= n1;
+      V.col(1) -= V.col(0) * V.col(0).dot(V.col(1));
+      const T n2 = V.col(1).norm();
+      V.col(1) /= n2;
+      acc.add(k, std::array<T, 2>{log(n1), log(n2)});
+    }
+  }
+  res.lambda = {acc.estimate(0), acc.estimate(1)};
+  res.iterations = opt.iterations;
+  res.blocks = opt.blocks;
+  res.convergence = acc.conv;
+  res.final_point = Vec3<double>(static_cast<double>(u(0)), static_cast<double>(u(1)), static_cast<double>(u(2)));
+  return res;
+}
+
+template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, const Options& opt) {
+  using std::abs;
+  using std::log;
+  validate(opt);
+  detail::check_start(u0, r);
+  const detail::Schedule sc(opt);
+  detail::Accumulator<3> acc(sc);
+  const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
+  Vec3<T> u = core::to_quadrant<T>(u0);
+  u /= u.norm();
+  Mat3<T> Q;
+  Q.col(0) = u;
+  Q.template rightCols<2>() = tangent_basis(u);
+  const long total = opt.transient + opt.iterations;
+  for (long k = 1; k <= total; ++k) {
+    const int s = core::branch(u, r);
+    const Vec3<T> pu = detail::apply(s, u, r);
+    u = pu / pu.norm();  // the orbit, computed exactly as in the projective route
+    Q = Pm[s - 1] * Q;   // the linear cocycle: products of P_i along the orbit
+    if (sc.qr_at(k, acc.next_cp)) {
+      const Eigen::HouseholderQR<Mat3<T>> qr(Q);
+      const Mat3<T> R = qr.matrixQR().template triangularView<Eigen::Upper>();
+      Mat3<T> Qn = qr.householderQ();
+      std::array<T, 3> logs;
+      for (int i = 0; i < 3; ++i) logs[i] = log(abs(R(i, i)));
+      // The first column is the orbit vector (Q.col(0) = +-u up to rounding): pin it to the orbit so that
+      // rounding in the frame cannot drift it away from the orbit on chaotic orbits.
+      Qn.col(0) = u;
+      Q = Qn;
+      acc.add(k, logs);
+    }
+  }
+  LinearResult res;
+  res.chi = {acc.estimate(0), acc.estimate(1), acc.estimate(2)};
+  res.iterations = opt.iterations;
+  res.blocks = opt.blocks;
+  res.convergence = acc.conv;
+  return res;
+}
+
+}  // namespace btob::lyapunov

@@ -1,0 +1,84 @@
+// Lyapunov maps on the batched kernel: run the TangentRecorder, turn its cumulative sums into exponents.
+#include "lyapunov/maps.hpp"
+
+#include "iterate/tangent.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "lyapunov/lyapunov_impl.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace btob::lyapunov {
+
+OrbitExponents map_exponents(const iterate::Ensemble& ens, const MapOptions& opt) {
+  Options o;
+  o.transient = opt.transient;
+  o.iterations = opt.iterations;
+  o.blocks = opt.blocks;
+  validate(o);
+  for (double r : ens.r) core::validate_r(r);
+  iterate::TangentRecorder rec(ens, opt.transient, opt.iterations, opt.blocks);
+  if (opt.single_precision) iterate::run<float>(ens, rec.total_steps(), rec, opt.run);
+  else iterate::run<double>(ens, rec.total_steps(), rec, opt.run);
+  return exponents_from(rec);
+}
+
+OrbitExponents exponents_from(const iterate::TangentRecorder& rec) {
+  const std::size_t N = rec.ens->orbits(), B = static_cast<std::size_t>(rec.blocks);
+  OrbitExponents out;
+  out.iterations = rec.n;
+  out.blocks = rec.blocks;
+  for (auto* v : {&out.lambda1, &out.err1, &out.lambda2, &out.err2, &out.chi1}) v->resize(N);
+  std::vector<double> c1(B), c2(B), cc(B);
+  for (std::size_t o = 0; o < N; ++o) {
+    const double* c = rec.cum.data() + o * (B + 1) * 3;
+    const double logr = std::log(rec.rr[o]);
+    // Cumulative sums over averaged steps at each block end (Section 7 (3); identities in tangent.hpp).
+    for (std::size_t j = 0; j < B; ++j) {
+      const double* e = c + (j + 1) * 3;
+      const double dL = e[0] - c[0], dG = e[1] - c[1], dn = e[2] - c[2];
+      c1[j] = dL - dG;                          // log |D^n v0|
+      c2[j] = dn * logr - 3 * dG - c1[j];       // log |det D^n| - log |D^n v0|
+      cc[j] = dG + static_cast<double>(rec.block_end[j]) * logr;  // log |P^n u0|
+    }
+    const Estimate l1 = detail::batch_means(c1, rec.block_end), l2 = detail::batch_means(c2, rec.block_end),
+                   x1 = detail::batch_means(cc, rec.block_end);
+    out.lambda1[o] = l1.value, out.err1[o] = l1.error;
+    out.lambda2[o] = l2.value, out.err2[o] = l2.error;
+    out.chi1[o] = x1.value;
+  }
+  return out;
+}
+
+int classify(double lambda, double err, long n) {
+  const double bar = 3 * err + 10.0 / static_cast<double>(n);
+  if (lambda > bar) return 1;
+  if (lambda < -bar) return -1;
+  return 0;
+}
+
+RSummary summarise(const OrbitExponents& e, std::size_t r_count, std::size_t n_ic) {
+  RSummary s;
+  for (auto* v : {&s.min, &s.median, &s.max, &s.frac_positive, &s.frac_zero, &s.frac_negative}) v->resize(r_count);
+  std::vector<double> col(n_ic);
+  for (std::size_t i = 0; i < r_count; ++i) {
+    int pos = 0, neg = 0, zero = 0;
+    for (std::size_t j = 0; j < n_ic; ++j) {
+      const std::size_t o = i * n_ic + j;
+      col[j] = e.lambda1[o];
+      const int c = classify(e.lambda1[o], e.err1[o], e.iterations);
+      (c > 0 ? pos : c < 0 ? neg : zero)++;
+    }
+    std::sort(col.begin(), col.end());
+    s.min[i] = col.front();
+    s.max[i] = col.back();
+    s.median[i] = n_ic % 2 ? col[n_ic / 2] : 0.5 * (col[n_ic / 2 - 1] + col[n_ic / 2]);
+    const double n = static_cast<double>(n_ic);
+    s.frac_positive[i] = pos / n, s.frac_zero[i] = zero / n, s.frac_negative[i] = neg / n;
+  }
+  return s;
+}
+
+}  // namespace btob::lyapunov

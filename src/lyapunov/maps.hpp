@@ -1,0 +1,50 @@
+// Lyapunov maps: the projective exponents of every orbit of an ensemble (r values x initial conditions),
+// computed on the batched SIMD kernel (iterate::TangentRecorder), and their summary per r value.
+#pragma once
+
+#include "iterate/ensemble.hpp"
+#include "iterate/kernel.hpp"
+
+#include <vector>
+
+namespace btob::iterate {
+struct TangentRecorder;
+}
+
+namespace btob::lyapunov {
+
+struct MapOptions {
+  long transient = 1000;     // steps before averaging (orbit and tangent vector together), >= 0
+  long iterations = 10000;   // averaged steps per orbit, >= blocks
+  int blocks = 10;           // batch-means blocks, >= 2
+  bool single_precision = false;  // run the kernel in float (tangent arithmetic stays in double)
+  iterate::RunOptions run;   // threads, progress
+};
+
+// Per-orbit exponents, in the ensemble's orbit order (o = r index * initial.size() + ic index).
+struct OrbitExponents {
+  std::vector<double> lambda1, err1, lambda2, err2;  // projective exponents and batch-means errors
+  std::vector<double> chi1;                          // growth rate of the orbit vector under P (linear cocycle)
+  long iterations = 0;
+  int blocks = 0;
+};
+
+// Throws std::invalid_argument naming the field for invalid options (see lyapunov::validate).
+OrbitExponents map_exponents(const iterate::Ensemble& ensemble, const MapOptions& opt);
+
+// The exponents from a finished run of a TangentRecorder (batch means over its blocks).
+OrbitExponents exponents_from(const iterate::TangentRecorder& rec);
+
+// Sign of an exponent given its error bar: +1 when lambda > k err + b, -1 when lambda < -(k err + b), else 0,
+// with k = 3 (three standard errors) and b = 10 / n (finite-time bias floor: for a bounded cocycle
+// |lambda_n - lambda| <= log(kappa) / n, kappa the conditioning of the frame, taken <= e^10).
+int classify(double lambda, double err, long n);
+
+// Summary of lambda1 per r value over its initial conditions.
+struct RSummary {
+  std::vector<double> min, median, max;
+  std::vector<double> frac_positive, frac_zero, frac_negative;
+};
+RSummary summarise(const OrbitExponents& e, std::size_t r_count, std::size_t n_ic);
+
+}  // namespace btob::lyapunov
