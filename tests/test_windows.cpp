@@ -2,6 +2,7 @@
 // precision agreement, thin stripes and thresholds against closed forms, the matrix route, errors.
 #include "windows/direct.hpp"
 #include "windows/polynomial.hpp"
+#include "windows/verify.hpp"
 #include "windows/windows.hpp"
 
 #include <gtest/gtest.h>
@@ -389,6 +390,27 @@ TEST(WindowErrors, MessagesNameTheField) {
   EXPECT_EQ(message([] { window_lower_bound(3, 9); }), "digits: got 9, expected 10..10000");
   EXPECT_EQ(message([] { window_lower_bound(3, 10001); }), "digits: got 10001, expected 10..10000");
   EXPECT_EQ(message([] { thin_stripes(0, 20); }), "m: got 0, expected an integer in 1..100000");
+}
+
+TEST(WindowVerify, IteratorSeesPatternInsideAndNotBelowTwoToTwenty) {
+  // Section 4: inside (lower, r_crit,2) all 32 orbits of the paper grid end on (1^n 3^n); 5% of the
+  // width below the lower bound none does.
+  const auto rows = verify_windows(2, 20);
+  ASSERT_EQ(rows.size(), 19u * 4u);
+  for (const auto& row : rows)
+    EXPECT_TRUE(row.pass()) << "n = " << row.n << " " << row.position << " r = " << row.r << ": " << row.on_pattern << " of "
+                            << row.orbits << " on pattern";
+}
+
+TEST(WindowVerify, PatternDetector) {
+  const std::vector<std::uint8_t> good{1, 1, 3, 3, 1, 1, 3, 3, 1, 1}, rotated{3, 1, 1, 3, 3, 1, 1, 3, 3, 1},
+      wrong{1, 3, 1, 3, 1, 3, 1, 3, 1, 3}, broken{1, 1, 3, 3, 1, 1, 3, 2, 1, 1};
+  EXPECT_TRUE(on_pattern(good.data(), 10, 2));
+  EXPECT_TRUE(on_pattern(rotated.data(), 10, 2));
+  EXPECT_FALSE(on_pattern(wrong.data(), 10, 2));   // (13)^n is the n = 1 pattern, not n = 2
+  EXPECT_TRUE(on_pattern(wrong.data(), 10, 1));
+  EXPECT_FALSE(on_pattern(broken.data(), 10, 2));  // one symbol 2 breaks it
+  EXPECT_FALSE(on_pattern(good.data(), 7, 2));     // shorter than two periods
 }
 
 }  // namespace
