@@ -233,14 +233,15 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
   v.reduced = is_J_square(v.word);
   const Word& w = v.word;
   const Spectrum<T> s = spectrum(w, r, v.reduced);
+  const T scale = exp_(s.A.log_scale);  // eigenvalues of the unnormalised matrix
   for (int i = 0; i < 3; ++i) {
     EigenInfo<T> e;
-    e.re = s.roots[i].re;
-    e.im = s.roots[i].im;
-    e.modulus = s.mod[i];
+    e.re = s.roots[i].re * scale;
+    e.im = s.roots[i].im * scale;
+    e.modulus = s.mod[i] * scale;
     e.real = s.roots[i].real;
     if (e.real) {
-      e.vector = core::to_quadrant(eigenvector<T>(s.A.m, e.re));
+      e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
       e.first_failure = feasibility(w, r, e.vector);
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;

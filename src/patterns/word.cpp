@@ -68,6 +68,9 @@ Word parse_word(std::string_view text, const char* field) {
       if (i >= text.size()) bad(field, text, "an unclosed '('; " + expected);
       if (unit.empty()) bad(field, text, "an empty group '()'; " + expected);
       ++i;
+    } else if (c == ' ' || c == '.') {
+      ++i;
+      continue;
     } else if (c == 'a' || c == 'c') {
       if (!letters_at(i, unit)) bad(field, text, fmt::format("letters at position {} that are not ab, cb, acb or cab", i + 1));
     } else {
@@ -76,12 +79,35 @@ Word parse_word(std::string_view text, const char* field) {
     long times = 1;
     if (i < text.size() && text[i] == '^') {
       ++i;
-      if (i < text.size() && text[i] == '{') ++i;  // LaTeX 2^{36}
-      std::size_t start = i;
+      std::string_view e;
+      if (i < text.size() && text[i] == '{') {  // LaTeX 2^{36}: unambiguous
+        const std::size_t close = text.find('}', i);
+        if (close == std::string_view::npos) bad(field, text, "an unclosed '^{'");
+        e = text.substr(i + 1, close - i - 1);
+        i = close + 1;
+      } else {
+        // The paper writes 132^3312^3 for 132^{3}312^{3}: a digit run followed by another '^' also holds the
+        // next symbols.  The exponent is then the string's last exponent if the run starts with it (the
+        // paper's families 132^n312^n, 131312^n313132^n), else the run minus its last digit.
+        std::size_t end = i;
+        while (end < text.size() && text[end] >= '0' && text[end] <= '9') ++end;
+        std::size_t len = end - i;
+        if (end < text.size() && text[end] == '^' && len >= 2) {
+          const std::size_t last = text.rfind('^');
+          std::string_view tail = text.substr(last + 1);
+          if (!tail.empty() && tail.front() == '{') tail = tail.substr(1, tail.find('}') == std::string_view::npos ? 0 : tail.find('}') - 1);
+          const std::string_view run = text.substr(i, len);
+          len = (!tail.empty() && tail.size() < len && run.substr(0, tail.size()) == tail) ? tail.size() : len - 1;
+        }
+        e = text.substr(i, len);
+        i += len;
+      }
       times = 0;
-      while (i < text.size() && text[i] >= '0' && text[i] <= '9' && times < 100000) times = times * 10 + (text[i++] - '0');
-      if (i == start || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
-      if (i < text.size() && text[i] == '}') ++i;
+      for (char d : e) {
+        if (d < '0' || d > '9' || times > 100000) { times = -1; break; }
+        times = times * 10 + (d - '0');
+      }
+      if (e.empty() || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
     }
     for (long t = 0; t < times; ++t) w.s.insert(w.s.end(), unit.begin(), unit.end());
     if (w.size() > 100000) bad(field, text, "a word longer than 100000 symbols");
@@ -96,18 +122,29 @@ std::string to_digits(const Word& w) {
 }
 
 std::string to_paper(const Word& w) {
-  std::string out;
-  for (std::size_t i = 0; i < w.size();) {
-    std::size_t j = i;
-    while (j < w.size() && w.s[j] == w.s[i]) ++j;
-    const std::size_t run = j - i;
-    const char c = static_cast<char>('0' + w.s[i]);
-    const bool power = (w.s[i] == 2 && run >= 2) || run >= 4;
-    if (power) out += fmt::format("{}^{}", c, run);
-    else out.append(run, c);
-    i = j;
+  // Plain form first (132^3312^3, as the paper prints it); braces for inner exponents when the plain form
+  // would not parse back to w (e.g. 12^{10}3).
+  const auto render = [&](bool braces) {
+    std::string out;
+    for (std::size_t i = 0; i < w.size();) {
+      std::size_t j = i;
+      while (j < w.size() && w.s[j] == w.s[i]) ++j;
+      const std::size_t run = j - i;
+      const char c = static_cast<char>('0' + w.s[i]);
+      const bool power = (w.s[i] == 2 && run >= 2) || run >= 4;
+      if (power) out += (braces && j < w.size()) ? fmt::format("{}^{{{}}}", c, run) : fmt::format("{}^{}", c, run);
+      else out.append(run, c);
+      i = j;
+    }
+    return out;
+  };
+  std::string plain = render(false);
+  if (w.s.empty()) return plain;
+  try {
+    if (parse_word(plain) == w) return plain;
+  } catch (const std::invalid_argument&) {
   }
-  return out;
+  return render(true);
 }
 
 std::string to_letters(const Word& w) {
