@@ -36,6 +36,7 @@ def main(src, dst):
         r = f["r"][...]
         vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
         over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
+        broken = f["broken"][...] if "broken" in f else np.zeros(0)
         a = {k: attr(f, k) for k in f.attrs.keys()}
     lo, hi = float(a["range_lo"]), float(a["range_hi"])
     coord = a["coord"]
@@ -59,6 +60,12 @@ def main(src, dst):
         ax.axvline(v, color=COLOURS[0], lw=0.8, alpha=0.9)
     for rv, c in over:
         ax.axvline(rv, color=COLOURS.get(int(c), "k"), lw=0.6, alpha=0.75)
+    if broken.size and broken.sum() > 0:
+        # Paper, Figure 4.7: red dots mark r values where the trigonometric algorithm could not iterate.
+        bad = r[broken > 0]
+        ax.plot(bad, np.full(bad.shape, hi - 0.01 * (hi - lo)), ".", color=COLOURS[0], ms=2,
+                label=f"orbits broken down (acos singular) at {bad.size} r values")
+        ax.legend(loc="lower right", fontsize=8)
     ax.set_xlim(r0, r1)
     ax.set_ylim(lo, hi)
     ax.set_xlabel("restitution coefficient $r$ (dimensionless)")
@@ -67,7 +74,7 @@ def main(src, dst):
     title = a.get("title") or a.get("name", "")
     sub = (f"r in [{a['r_min']:.10g}, {a['r_max']:.10g}], {a['r_count']} values; grid {a['grid']} "
            f"({a['initial_conditions']} orbits per r); {a['iterations']} iterations, last {a['tail']} shown; "
-           f"{a['scalar_type']}")
+           f"{a['scalar_type']}" + (f", {a['algorithm']} algorithm" if a.get("algorithm", "linear") != "linear" else ""))
     ax.set_title(f"{title}\n{sub}" if title.strip() else sub, fontsize=10)
     cb = fig.colorbar(im, ax=ax, pad=0.01)
     cb.set_label("fraction of the tail points of each r (per bin)")

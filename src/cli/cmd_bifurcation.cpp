@@ -6,6 +6,7 @@
 #include "io/io.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
+#include "reference/reference.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -34,6 +35,7 @@ struct BifurcationArgs {
   std::vector<double> range;   // lo, hi of the coordinate axis (log10 units with --log)
   std::vector<double> vlines;  // r values drawn as vertical lines
   std::vector<std::string> overlays;
+  std::string algorithm = "linear";
   bool raw = false, no_plot = false, quiet = false;
 };
 
@@ -78,6 +80,10 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
     lo = a.range[0];
     hi = a.range[1];
   }
+  if (a.algorithm != "linear" && a.algorithm != "trig")
+    throw UsageError(fmt::format("algorithm: got '{}', expected linear (Theorem 3.1) or trig (Appendix A.1)", a.algorithm));
+  if (a.algorithm == "trig" && (a.raw || prec.kind == core::Precision::Kind::f32))
+    throw UsageError("algorithm: trig runs in double or long-double and keeps no raw tails");
   for (double v : a.vlines)
     if (!std::isfinite(v)) throw UsageError("vline: expected finite r values");
 
@@ -101,10 +107,17 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   if (a.raw) raw = std::make_unique<TailRecorder>(coord, ens.orbits(), a.iterations, a.tail);
 
   const auto t1 = std::chrono::steady_clock::now();
-  switch (prec.kind) {
-    case core::Precision::Kind::f32: run_kernel<float>(ens, a.iterations, dens, raw.get(), opt); break;
-    case core::Precision::Kind::f80: run_kernel<long double>(ens, a.iterations, dens, raw.get(), opt); break;
-    default: run_kernel<double>(ens, a.iterations, dens, raw.get(), opt); break;
+  std::vector<std::uint64_t> broken(ens.r.size(), 0);  // trig algorithm: orbits that broke down, per r
+  if (a.algorithm == "trig") {
+    broken = prec.kind == core::Precision::Kind::f80
+                 ? reference::trig_density<long double>(ens, a.iterations, dens, threads)
+                 : reference::trig_density<double>(ens, a.iterations, dens, threads);
+  } else {
+    switch (prec.kind) {
+      case core::Precision::Kind::f32: run_kernel<float>(ens, a.iterations, dens, raw.get(), opt); break;
+      case core::Precision::Kind::f80: run_kernel<long double>(ens, a.iterations, dens, raw.get(), opt); break;
+      default: run_kernel<double>(ens, a.iterations, dens, raw.get(), opt); break;
+    }
   }
   const auto t2 = std::chrono::steady_clock::now();
   const std::vector<std::uint32_t> img = dens.merge();
@@ -126,6 +139,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   attrs["range_hi"] = hi;
   attrs["bins"] = a.bins;
   attrs["scalar_type"] = prec.name();
+  attrs["algorithm"] = a.algorithm;
   attrs["threads"] = static_cast<long>(threads);
   attrs["renormalisation_interval"] = static_cast<long>(
       prec.kind == core::Precision::Kind::f32 ? renormalisation_interval<float>(ens.r) : renormalisation_interval<double>(ens.r));
@@ -140,6 +154,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
     w.dataset("underflow", dens.under, {ens.r.size()});
     w.dataset("overflow", dens.over, {ens.r.size()});
     w.dataset("vlines", a.vlines, {a.vlines.size()});
+    w.dataset("broken", broken, {broken.size()});
     w.dataset("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2});
     if (raw) w.dataset("tail", raw->out, {ens.r.size(), ens.initial.size(), static_cast<std::size_t>(a.tail)});
     w.commit();
@@ -179,6 +194,8 @@ Register reg([](CLI::App& app) {
   c->add_option("--range", a->range, "lo hi of the coordinate axis (log10 units with --log)")->expected(2);
   c->add_option("--vline", a->vlines, "r values drawn as vertical lines")->expected(1, -1);
   c->add_option("--overlay", a->overlays, "named overlays: " + overlay_names())->expected(1, -1);
+  c->add_option("--algorithm", a->algorithm, "linear (Theorem 3.1, batched kernel) or trig (Appendix A.1, per collision)")
+      ->capture_default_str();
   c->add_flag("--raw", a->raw, "also store the raw tails in the HDF5 file");
   c->add_flag("--no-plot", a->no_plot, "write data only");
   c->add_flag("--quiet", a->quiet, "no progress or summary on stderr");

@@ -3,6 +3,8 @@
 
 #include "core/map.hpp"
 
+#include <Eigen/Geometry>  // cross products
+
 #include <cmath>
 #include <numbers>
 #include <utility>

@@ -14,6 +14,10 @@ void validate_point(double x, double y, double z, const char* field) {
     throw std::domain_error(fmt::format("{}: got ({}, {}, {}), expected finite coordinates x,y,z", field, x, y, z));
   if (x == 0 && y == 0 && z == 0)
     throw std::domain_error(fmt::format("{}: got the zero vector, expected a non-zero normal vector x,y,z", field));
+  if (x == 0 && z == 0)
+    throw std::domain_error(fmt::format(
+        "{}: got ({}, {}, {}) with x = z = 0, expected x or z non-zero (x = z = 0 puts all four particles in contact)",
+        field, x, y, z));
   if (x * z > 0 || (x != 0 && z != 0 && std::signbit(x) == std::signbit(z)))
     throw std::domain_error(
         fmt::format("{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.2)", field, x, y, z));
