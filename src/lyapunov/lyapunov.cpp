@@ -68,13 +68,21 @@ std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols,
   core::validate_r(r);
   if (period_symbols.empty()) throw std::invalid_argument("period: got an empty word, expected symbols 1, 2, 3");
   Mat3<double> M = Mat3<double>::Identity();
-  for (int s : period_symbols) M = core::P<double>(s, r) * M;  // P_{s_p} ... P_{s_1}
+  double log_det = 0;
+  for (int s : period_symbols) {
+    M = core::P<double>(s, r) * M;  // P_{s_p} ... P_{s_1}
+    log_det += (s == 2 ? 3 : 4) * std::log(r);  // det P1 = det P3 = r^4, det P2 = r^3 (Section 5.1)
+  }
   const Eigen::EigenSolver<Mat3<double>> es(M, false);
-  std::array<double, 3> mod;
-  for (int i = 0; i < 3; ++i) mod[i] = std::abs(es.eigenvalues()(i));
-  std::sort(mod.begin(), mod.end(), std::greater<>());
+  std::array<std::complex<double>, 3> ev = {es.eigenvalues()(0), es.eigenvalues()(1), es.eigenvalues()(2)};
+  std::sort(ev.begin(), ev.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  const double l1 = std::log(std::abs(ev[0]));
+  // A complex pair below the dominant eigenvalue: |l2| = |l3| = sqrt(det / |l1|).  Else l2 from the solver.
+  const bool pair = ev[1].imag() != 0 && ev[2].imag() != 0;
+  const double l2 = pair ? (log_det - l1) / 2 : std::log(std::abs(ev[1]));
+  const double l3 = log_det - l1 - l2;
   const double p = static_cast<double>(period_symbols.size());
-  return {std::log(mod[1] / mod[0]) / p, std::log(mod[2] / mod[0]) / p};
+  return {(l2 - l1) / p, (l3 - l1) / p};
 }
 
 int detect_period(const std::vector<int>& s, int max_period, int check) {
@@ -88,6 +96,10 @@ int detect_period(const std::vector<int>& s, int max_period, int check) {
   return 0;
 }
 
+template Eigen::Matrix<double, 3, 2> tangent_basis<double>(const Vec3<double>&);
+template Eigen::Matrix<long double, 3, 2> tangent_basis<long double>(const Vec3<long double>&);
+template Mat3<double> projective_derivative<double>(const Mat3<double>&, const Vec3<double>&);
+template Mat3<long double> projective_derivative<long double>(const Mat3<long double>&, const Vec3<long double>&);
 template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
 template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
 template LinearResult linear_exponents<double>(const Vec3<double>&, const double&, const Options&);

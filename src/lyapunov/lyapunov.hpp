@@ -20,6 +20,10 @@ using core::Vec3;
 //    itself and lambda_i = chi_{i+1} - chi1 holds step by step, up to rounding.
 //  * Both routes run transient + iterations steps from u0 (brought into Q); the orbit and the tangent
 //    frame are iterated together and only the last `iterations` steps are averaged.
+//  * Besides the plain averages (the paper's lambda_n), weighted Birkhoff averages with the weight
+//    exp(-1/(t(1-t))), t = step/iterations (Das, Sander, Yorke, Nonlinearity 2017): on periodic orbits whose
+//    tangent frame rotates (complex eigenvalues) the plain average converges like 1/n, the weighted one
+//    faster than any power of 1/n.
 //  * Error bars: batch means.  The averaged steps are cut into `blocks` consecutive blocks (sizes differ
 //    by at most one step); error = standard deviation of the block means / sqrt(blocks).
 struct Options {
@@ -45,6 +49,7 @@ struct Convergence {
 
 struct ProjectiveResult {
   std::array<Estimate, 2> lambda;  // lambda1 >= lambda2 of the projective cocycle
+  std::array<double, 2> weighted;  // the same, as weighted Birkhoff averages (fast on (quasi-)periodic orbits)
   long iterations = 0;
   int blocks = 0;
   Convergence convergence;
@@ -54,6 +59,7 @@ struct ProjectiveResult {
 
 struct LinearResult {
   std::array<Estimate, 3> chi;  // in frame order: chi1 = growth of the orbit vector, then QR order
+  std::array<double, 3> weighted;  // the same, as weighted Birkhoff averages
   long iterations = 0;
   int blocks = 0;
   Convergence convergence;
@@ -83,13 +89,17 @@ struct FiniteDifference {
 FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, double delta, const Options& opt);
 
 // The exponents of a periodic orbit from the eigenvalues l1, l2, l3 (|l1| >= |l2| >= |l3|) of its period
-// matrix P_{s_p} ... P_{s_1}: {log|l2/l1| / p, log|l3/l1| / p}.  Symbols in {1, 2, 3}.
+// matrix M = P_{s_p} ... P_{s_1}: {log|l2/l1| / p, log|l3/l1| / p}.  Symbols in {1, 2, 3}.  |l3| is taken as
+// |det M| / (|l1| |l2|) with det M the product of det P_i (r^4, r^3, r^4): an eigen-solver gives the smallest
+// eigenvalue only to eps |l1|, far too coarse when |l3/l1| ~ 1e-13.
 std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r);
 
 // The shortest period p of the tail of a symbol sequence (the last `check` symbols repeat with period p),
 // or 0 when none up to max_period.
 int detect_period(const std::vector<int>& symbols, int max_period, int check);
 
+extern template Eigen::Matrix<double, 3, 2> tangent_basis<double>(const Vec3<double>&);
+extern template Mat3<double> projective_derivative<double>(const Mat3<double>&, const Vec3<double>&);
 extern template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
 extern template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&,
                                                                    const Options&);

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Draws a Lyapunov map (largest projective exponent of every orbit against r) from a `btob lyapunov-map` file.
+
+Usage: lyapunov_map.py DATA.h5 OUT.png
+Top: lambda1 of every orbit (dots), min/median/max per r, vertical lines at the thresholds 7-4sqrt3,
+3-2sqrt2, 5-2sqrt6, 2^(2/3)-1 (red) and the window bounds (blue/grey, when the windows overlay was built).
+Bottom: fraction of orbits whose lambda1 is clearly positive / zero / negative given its error bar.
+Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
+"""
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLOURS = {0: "#d62728", 1: "#1f4fd6", 2: "#9f9f9f"}
+
+
+def attr(f, key, default=None):
+    v = f.attrs.get(key, default)
+    return v.decode() if isinstance(v, bytes) else v
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        r = f["r"][...]
+        lam = f["lambda1"][...]
+        mn, med, mx = f["min"][...], f["median"][...], f["max"][...]
+        fp, fz, fn = f["frac_positive"][...], f["frac_zero"][...], f["frac_negative"][...]
+        lines = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
+        a = {k: attr(f, k) for k in f.attrs.keys()}
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    rr = np.repeat(r, lam.shape[1])
+    ax.scatter(rr, lam.ravel(), s=0.3, c="0.55", alpha=0.35, linewidths=0, rasterized=True, label="each orbit")
+    ax.plot(r, med, color="k", lw=0.8, label="median over initial conditions")
+    ax.plot(r, mn, color="#2ca02c", lw=0.5, label="min")
+    ax.plot(r, mx, color="#ff7f0e", lw=0.5, label="max")
+    ax.axhline(0, color="k", lw=0.4, ls=":")
+    for x, c in lines:
+        for axis in (ax, bx):
+            axis.axvline(x, color=COLOURS.get(int(c), "k"), lw=0.5, alpha=0.6)
+    lo = np.percentile(lam, 0.5)
+    ax.set_ylim(max(lo, -3.0) - 0.05, max(0.05, np.max(lam) * 1.2))
+    ax.set_ylabel(r"$\lambda_1$ (per map iteration, natural log)")
+    ax.legend(loc="lower right", fontsize=8, markerscale=8)
+    bx.stackplot(r, fn, fz, fp, colors=["#1f77b4", "#bbbbbb", "#d62728"], labels=["negative", "zero", "positive"], lw=0)
+    bx.set_ylim(0, 1)
+    bx.set_ylabel("fraction of orbits")
+    bx.set_xlabel("restitution coefficient r (dimensionless)")
+    bx.legend(loc="upper right", fontsize=7, ncol=3)
+    title = a.get("title") or "Largest Lyapunov exponent of the b-to-b map"
+    fig.suptitle(
+        f"{title}\nr in [{float(a['r_min']):.4g}, {float(a['r_max']):.4g}], {int(a['r_count'])} values x grid "
+        f"{a['grid']} ({int(a['initial_conditions'])} points), {int(a['iterations'])} iterations after "
+        f"{int(a['transient'])} transient; red: thresholds, blue/grey: window bounds",
+        fontsize=10,
+    )
+    fig.tight_layout()
+    tmp = dst + ".tmp.png"
+    fig.savefig(tmp, dpi=130)
+    os.replace(tmp, dst)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

@@ -1,0 +1,289 @@
+// Lyapunov exponents: periodic orbits against eigenvalues of period matrices, quasi-periodic orbits, the two QR
+// routes against each other, the batched TangentRecorder against the QR route, finite differences, errors.
+#include "core/map.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/tangent.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "lyapunov/maps.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+using namespace btob;
+using V3 = Eigen::Vector3d;
+
+std::string word(const std::vector<int>& s) {
+  std::string w;
+  for (int x : s) w += static_cast<char>('0' + x);
+  return w;
+}
+// True when a is a rotation of b (same cyclic word).
+bool same_cycle(const std::string& a, const std::string& b) { return a.size() == b.size() && (b + b).find(a) != std::string::npos; }
+
+// The dominant real eigenvector of M, brought into Q.
+V3 dominant_eigenvector(const Eigen::Matrix3d& M) {
+  Eigen::EigenSolver<Eigen::Matrix3d> es(M);
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(es.eigenvalues()(i)) > std::abs(es.eigenvalues()(k))) k = i;
+  const V3 v = es.eigenvectors().col(k).real();
+  return core::to_quadrant<double>(v.normalized());
+}
+
+// (ab)^n(cb)^n: symbols 1^n 3^n, period matrix P3^n P1^n.
+Eigen::Matrix3d ab_cb(int n, double r) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  for (int i = 0; i < n; ++i) M = core::P1(r) * M;
+  for (int i = 0; i < n; ++i) M = core::P3(r) * M;
+  return M;
+}
+
+// Table B.1 (reference CSV): lower and upper bounds of the window of (ab)^n(cb)^n.
+std::pair<double, double> window(int n) {
+  std::ifstream f("/work/shared/reference/windows_paper_table_B1.csv");
+  std::string line;
+  std::getline(f, line);
+  while (std::getline(f, line)) {
+    std::stringstream ss(line);
+    std::string a, b, c;
+    std::getline(ss, a, ',');
+    std::getline(ss, b, ',');
+    std::getline(ss, c, ',');
+    if (std::stoi(a) == n) return {std::stod(b), c.empty() ? 3 - 2 * std::sqrt(2.0) : std::stod(c)};
+  }
+  return {0, 0};
+}
+
+// Runs the projective route from u0, checks the detected period is `expected` (up to rotation) and that the
+// exponents match the eigenvalues of the period matrix.  `periods` full periods are averaged (a whole number of
+// periods: a partial period adds an O(1/n) term).
+void check_periodic(double r, const V3& u0, const std::string& expected, long periods, double tol) {
+  SCOPED_TRACE("r = " + std::to_string(r) + ", pattern " + expected);
+  const long p = static_cast<long>(expected.size());
+  lyapunov::Options o;
+  o.transient = 20000;  // the orbit and the frame converge geometrically; 2e4 steps is far beyond what they need
+  o.iterations = p * periods;
+  o.blocks = 10;
+  const auto res = lyapunov::projective_exponents<double>(u0, r, o);
+  const int found = lyapunov::detect_period(res.symbols_tail, 64, 512);
+  ASSERT_EQ(found, p);
+  const std::vector<int> period(res.symbols_tail.end() - p, res.symbols_tail.end());
+  EXPECT_TRUE(same_cycle(word(period), expected)) << word(period);
+  const auto ref = lyapunov::periodic_exponents(period, r);
+  EXPECT_NEAR(res.lambda[0].value, ref[0], tol);
+  EXPECT_NEAR(res.lambda[1].value, ref[1], tol);
+  // The weighted Birkhoff averages: 1e-8 on every periodic orbit, real or complex subdominant eigenvalues.
+  EXPECT_NEAR(res.weighted[0], ref[0], 1e-8);
+  EXPECT_NEAR(res.weighted[1], ref[1], 1e-8);
+  // lambda1 + lambda2 = (log|det M| - 3 log|M u|) / p is exact on the orbit (no frame term): 1e-10 allows the
+  // rounding of ~1e6 summed logarithms.
+  EXPECT_NEAR(res.lambda[0].value + res.lambda[1].value, ref[0] + ref[1], 1e-10);
+}
+
+TEST(Lyapunov, DerivativeMatchesCentralDifferences) {
+  // D(u) v against (F(u + h v) - F(u - h v)) / 2h, F(u) = P u / |P u|, at points inside each branch.
+  const double r = 0.3;
+  for (const V3& u : {V3(0.3, 0.9, -0.2), V3(0.7, 0.0, -0.7), V3(0.2, -0.9, -0.3)}) {
+    const V3 q = u.normalized();
+    const int s = core::branch(q, r);
+    const Eigen::Matrix3d P = core::P<double>(s, r);
+    const auto D = lyapunov::projective_derivative<double>(P, q);
+    const auto T = lyapunov::tangent_basis<double>(q);
+    for (int j = 0; j < 2; ++j) {
+      const V3 v = T.col(j);
+      const double h = 1e-6;
+      const V3 a = P * (q + h * v), b = P * (q - h * v);
+      const V3 fd = (a / a.norm() - b / b.norm()) / (2 * h);
+      // central differences: O(h^2) truncation + O(eps/h) rounding ~ 1e-10; 1e-8 leaves room.
+      EXPECT_LT((D * v - fd).norm(), 1e-8) << "branch " << s;
+      EXPECT_NEAR((D * v).dot(P * q), 0.0, 1e-14);  // D v is tangent at the image
+    }
+  }
+}
+
+TEST(Lyapunov, PeriodicOrbit1133AtR015) { check_periodic(0.15, V3(1, -0.9, -0.2), "1133", 100000, 1e-8); }
+TEST(Lyapunov, PeriodicOrbit111333AtR01) { check_periodic(0.1, V3(1, -0.9, -0.2), "111333", 100000, 1e-8); }
+
+TEST(Lyapunov, PeriodicOrbit132312) {
+  // Theorem (Stability of 132312): the periodic point is the dominant eigenvector of J P2 P3 P1.  Its
+  // subdominant eigenvalues are a complex pair, so the tangent frame rotates and the plain finite-time exponents
+  // converge like C / n with C up to ~0.5 (measured): 1e-7 at n = 6e6; the weighted averages reach 1e-8.
+  for (double r : {0.3, 0.5}) {
+    const Eigen::Matrix3d M = core::J<double>() * core::P2(r) * core::P3(r) * core::P1(r);
+    check_periodic(r, dominant_eigenvector(M), "132312", 1000000, 1e-7);
+  }
+}
+
+TEST(Lyapunov, PeriodicOrbitsAbCbInTheirWindows) {
+  for (int n = 2; n <= 6; ++n) {
+    const auto [lo, hi] = window(n);
+    ASSERT_GT(hi, lo) << "Table B.1 row " << n;
+    const double r = (lo + hi) / 2;
+    std::string w = std::string(n, '1') + std::string(n, '3');
+    check_periodic(r, dominant_eigenvector(ab_cb(n, r)), w, 1000000 / n, 1e-8);
+  }
+}
+
+TEST(Lyapunov, QuasiPeriodicOrbitsAroundTheP2Centre) {
+  // Section 5.2: for r > 3 - 2 sqrt2 the P2 fixed point (1,0,-1) is a centre; nearby orbits stay on invariant
+  // curves inside the P2 region, where all eigenvalues of P2 have modulus r: both exponents are 0.
+  for (double r : {0.2, 0.3}) {
+    lyapunov::Options o;
+    o.transient = 1000;
+    o.iterations = 1000000;
+    const auto res = lyapunov::projective_exponents<double>(V3(1, 0.02, -1), r, o);
+    for (int s : res.symbols_tail) ASSERT_EQ(s, 2) << "the orbit left the P2 region";
+    // 1e-4: the brief's bound; the bounded-frame term log(kappa)/n is ~1e-6 here.
+    EXPECT_LT(std::abs(res.lambda[0].value), 1e-4);
+    EXPECT_LT(std::abs(res.lambda[0].value), 3 * res.lambda[0].error + 1e-6) << "not within 3 error bars of 0";
+    EXPECT_LT(std::abs(res.lambda[1].value), 1e-4);
+  }
+}
+
+TEST(Lyapunov, ProjectiveEqualsLinearDifferences) {
+  // lambda_i = chi_{i+1} - chi_1 step by step (same orbit, frames [u0, e1, e2]): equal up to rounding.
+  struct Case {
+    double r;
+    V3 u;
+    long n;
+  };
+  for (const Case& c : {Case{0.15, V3(1, -0.9, -0.2), 200000}, Case{0.3, V3(1, 0.02, -1), 200000},
+                        Case{0.11, V3(1, -0.9, -0.2), 200000}, Case{0.5, V3(0.3, 0.5, -0.6), 200000}}) {
+    for (int m : {1, 3}) {
+      lyapunov::Options o;
+      o.transient = 1000;
+      o.iterations = c.n;
+      o.reorthonormalise = m;
+      const auto p = lyapunov::projective_exponents<double>(c.u, c.r, o);
+      const auto l = lyapunov::linear_exponents<double>(c.u, c.r, o);
+      // 1e-10: both are sums of 2e5 logs of the same quantities computed in different orders (rounding ~1e-15 each).
+      EXPECT_NEAR(l.chi[1].value - l.chi[0].value, p.lambda[0].value, 1e-10) << "r=" << c.r << " m=" << m;
+      EXPECT_NEAR(l.chi[2].value - l.chi[0].value, p.lambda[1].value, 1e-10) << "r=" << c.r << " m=" << m;
+    }
+  }
+}
+
+TEST(Lyapunov, ChaoticBetweenWindowsIsPositiveAndPrecisionIndependent) {
+  // r = 0.11 lies between the windows n = 2 (from 0.1275) and n = 3 (up to 0.1010): lambda1 > 0, the same in
+  // double and long double within the error bars (different rounding, different orbits, same statistics).
+  lyapunov::Options o;
+  o.transient = 1000;
+  o.iterations = 100000;
+  const auto d = lyapunov::projective_exponents<double>(V3(1, -0.9, -0.2), 0.11, o);
+  const auto q = lyapunov::projective_exponents<long double>(Eigen::Matrix<long double, 3, 1>(1, -0.9L, -0.2L), 0.11L, o);
+  EXPECT_GT(d.lambda[0].value, 10 * d.lambda[0].error);
+  EXPECT_NEAR(d.lambda[0].value, q.lambda[0].value, 5 * (d.lambda[0].error + q.lambda[0].error));
+}
+
+TEST(Lyapunov, FiniteDifferencesStraddleBoundaries) {
+  // Just below the upper end 3 - 2 sqrt2 of the 1133 window the periodic orbit passes close to a branch
+  // boundary.  A finite-difference partner at distance delta lands on the other branch at every period: the
+  // map is discontinuous there, the separation jumps to O(1), and the estimate is wrong (even positive),
+  // while the tangent cocycle gives the eigenvalue answer.
+  const double r = 0.1715;
+  const V3 u0(1, -0.9, -0.2);
+  lyapunov::Options o;
+  o.transient = 20000;
+  o.iterations = 4 * 25000;
+  const auto res = lyapunov::projective_exponents<double>(u0, r, o);
+  ASSERT_EQ(lyapunov::detect_period(res.symbols_tail, 16, 256), 4);
+  const std::vector<int> period(res.symbols_tail.end() - 4, res.symbols_tail.end());
+  const auto ref = lyapunov::periodic_exponents(period, r);
+  EXPECT_NEAR(res.lambda[0].value, ref[0], 1e-8);
+  // The smallest relative distance of the orbit to a branch boundary, alpha y - x = 0 or alpha y - z = 0.
+  double dmin = 1;
+  {
+    lyapunov::Options s = o;
+    s.iterations = 4;
+    s.blocks = 2;
+    V3 u = res.final_point;
+    for (int k = 0; k < 8; ++k) {
+      const double a = core::alpha(r);
+      dmin = std::min({dmin, std::abs(a * u(1) - u(0)) / std::hypot(a, 1.0), std::abs(a * u(1) - u(2)) / std::hypot(a, 1.0)});
+      u = core::step(u, r).u.normalized();
+    }
+  }
+  const auto fd = lyapunov::finite_difference_exponent(u0, r, 10 * dmin, o);
+  EXPECT_GT(fd.straddles, 1000);
+  EXPECT_GT(std::abs(fd.lambda1 - ref[0]), 0.1) << "finite differences should be wrong here";
+  // And far from boundaries (delta 1e-3 of the distance) finite differences are right to O(delta).
+  const auto ok = lyapunov::finite_difference_exponent(u0, r, 1e-3 * dmin, o);
+  EXPECT_EQ(ok.straddles, 0);
+  EXPECT_NEAR(ok.lambda1, ref[0], 1e-3);
+}
+
+TEST(Lyapunov, BatchedRecorderMatchesQrRoute) {
+  iterate::Ensemble e;
+  e.r = {0.0717, 0.15, 0.3, 0.11};
+  e.initial = iterate::paper_grid();
+  e.initial.resize(8);
+  e.grid_description = "paper[0:8]";
+  lyapunov::MapOptions mo;
+  mo.transient = 1000;
+  mo.iterations = 20000;
+  mo.blocks = 10;
+  mo.run.threads = 1;
+  const auto m = lyapunov::map_exponents(e, mo);
+  mo.run.threads = 2;
+  const auto m2 = lyapunov::map_exponents(e, mo);
+  EXPECT_EQ(m.lambda1, m2.lambda1);  // bitwise: threads never change results
+  EXPECT_EQ(m.lambda2, m2.lambda2);
+  lyapunov::Options o;
+  o.transient = mo.transient;
+  o.iterations = mo.iterations;
+  o.blocks = mo.blocks;
+  for (std::size_t k = 0; k < e.orbits(); ++k) {
+    const double r = e.r[k / e.initial.size()];
+    const auto p = lyapunov::projective_exponents<double>(e.initial[k % e.initial.size()], r, o);
+    const double tol = r == 0.11 ? 5 * (p.lambda[0].error + m.err1[k])  // chaotic: orbits differ after ~50 steps
+                                 : 1e-9;  // regular: same orbit up to rounding, same exponent to ~1e-12
+    EXPECT_NEAR(m.lambda1[k], p.lambda[0].value, tol) << "orbit " << k << " r " << r;
+    EXPECT_NEAR(m.lambda2[k], p.lambda[1].value, r == 0.11 ? 5 * (p.lambda[1].error + m.err2[k]) : 1e-9) << "orbit " << k;
+  }
+  // The scalar reference kernel (one orbit at a time, normalised every step) with the same recorder.
+  iterate::TangentRecorder rec(e, mo.transient, mo.iterations, mo.blocks);
+  iterate::run_scalar<double>(e, rec.total_steps(), rec);
+  const auto s = lyapunov::exponents_from(rec);
+  for (std::size_t k = 0; k < 8; ++k) EXPECT_NEAR(s.lambda1[k], m.lambda1[k], 1e-9);  // r = 0.0717: periodic
+  const auto sum = lyapunov::summarise(m, e.r.size(), e.initial.size());
+  EXPECT_EQ(sum.frac_positive[3], 1.0);  // r = 0.11: every orbit chaotic
+  EXPECT_EQ(sum.frac_negative[1], 1.0);  // r = 0.15: every orbit on the stable 1133
+}
+
+TEST(Lyapunov, ErrorsNameTheField) {
+  const auto msg = [](lyapunov::Options o) {
+    try {
+      lyapunov::validate(o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  lyapunov::Options o;
+  o.iterations = 0;
+  EXPECT_EQ(msg(o).rfind("iterations: got 0", 0), 0u);
+  o = {};
+  o.transient = -1;
+  EXPECT_EQ(msg(o).rfind("transient: got -1", 0), 0u);
+  o = {};
+  o.reorthonormalise = 0;
+  EXPECT_EQ(msg(o).rfind("reorthonormalise: got 0", 0), 0u);
+  o = {};
+  o.iterations = 5;
+  EXPECT_EQ(msg(o).rfind("blocks: got 20, expected at most iterations = 5", 0), 0u);
+  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, -1), 1.5, {}), std::domain_error);
+  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, 1), 0.5, {}), std::domain_error);
+  EXPECT_EQ(lyapunov::classify(0.01, 0.001, 100000), 1);
+  EXPECT_EQ(lyapunov::classify(-0.01, 0.001, 100000), -1);
+  EXPECT_EQ(lyapunov::classify(0.002, 0.001, 100000), 0);
+}
+
+}  // namespace
