@@ -110,7 +110,11 @@ void cmd_stripes(int max_m, int digits) {
 }
 
 // ---- overlays ---------------------------------------------------------------------------------------
-// Lower bounds and r_crit,2 in double, computed once per n from the 20-decimal values (cached).
+// Lower bounds and r_crit,2 in double, computed once per n (cached).  n <= 150: from the 20-decimal
+// root of Q_n (the certified route); n > 150: from the matrix route in long double, which the precision
+// study (results/windows/precision.csv) shows correct to ~20 decimals for every n <= 150, while the
+// polynomial route for n = 150..400 costs ~20 s in all (Q_n of degree up to 1600).
+constexpr int kOverlayPolynomialMaxN = 150;
 struct BoundCache {
   std::mutex mu;
   std::map<int, std::pair<double, double>> v;  // n -> (lower, r_crit,2 or NaN)
@@ -118,7 +122,9 @@ struct BoundCache {
     std::lock_guard<std::mutex> lock(mu);
     auto it = v.find(n);
     if (it != v.end()) return it->second;
-    const double lo = static_cast<double>(windows::window_lower_bound(n, 20));
+    const double lo = n <= kOverlayPolynomialMaxN
+                          ? static_cast<double>(windows::window_lower_bound(n, 20))
+                          : static_cast<double>(windows::window_lower_bound_in<long double>(n, windows::Route::matrix));
     const double up = n >= 2 ? static_cast<double>(windows::r_crit2(n, 20)) : std::nan("");
     return v[n] = {lo, up};
   }
@@ -225,7 +231,9 @@ void study(const char* name, windows::Route route, const Range& r, const std::ve
   int largest_all = 0, largest_any = 0;
   bool prefix = true;
   double total_s = 0;
+  const unsigned digits = mpfr_float::default_precision();  // the MPFR row's working precision
   for (int n = r.first; n <= r.last; ++n) {
+    mpfr_float::default_precision(digits);
     const auto t0 = std::chrono::steady_clock::now();
     const T v = windows::window_lower_bound_in<T>(n, route);
     const double s = seconds_since(t0);
