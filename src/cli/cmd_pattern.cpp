@@ -139,10 +139,19 @@ void atlas(const PatternArgs& a, const std::string& command_line) {
           if (e.word == f.word)
             for (const auto& iv : e.intervals) in = in || (iv.lo < f.r && f.r < iv.hi);
         status = in ? "stable in atlas" : "NOT stable in atlas";
+        if (!in) {
+          // A symbol-periodic orbit that is not a stable periodic orbit: say what the analysis sees there.
+          const Verdict<double> v = analyse<double>(f.word, f.r);
+          status += fmt::format(" ({}; {}; |l2|/|l1| = {:.6f})", outcome_name(v.outcome), v.reason,
+                                v.spectrum[1].modulus / v.spectrum[0].modulus);
+        }
         disagreements += !in;
       } else {
         const Verdict<double> v = analyse<double>(f.word, f.r);
-        status = fmt::format("longer than L: {}", v.outcome == Outcome::stable ? "stable (verdict)" : "NOT stable (verdict)");
+        status = v.outcome == Outcome::stable
+                     ? std::string("longer than L: stable (verdict)")
+                     : fmt::format("longer than L: NOT stable (verdict: {}; {}; |l2|/|l1| = {:.6f})", outcome_name(v.outcome),
+                                   v.reason, v.spectrum[1].modulus / v.spectrum[0].modulus);
         disagreements += v.outcome != Outcome::stable;
       }
       const std::size_t ir = static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin());
@@ -150,6 +159,13 @@ void atlas(const PatternArgs& a, const std::string& command_line) {
                          d.ics, static_cast<double>(d.periodic[ir]) / static_cast<double>(d.ics), status);
     }
     io::write_text_atomic(out / "detected.csv", det);
+    // Stability sets of the found patterns longer than L (not in the atlas), same columns as atlas.csv.
+    std::vector<AtlasEntry> long_entries;
+    for (const auto& f : d.found)
+      if (static_cast<int>(f.word.size()) > a.max_length &&
+          std::none_of(long_entries.begin(), long_entries.end(), [&](const AtlasEntry& e) { return e.word == f.word; }))
+        long_entries.push_back({f.word, stability_set<double>(f.word, grid, tol)});
+    io::write_text_atomic(out / "long_windows.csv", atlas_csv(long_entries));
     std::string missed = "r,word,symbols,r_low,r_high\n";
     long n_missed = 0;
     for (double r : rs)

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Draws the atlas of stable periodic patterns against r, with the iterator's detections overlaid.
+
+Usage: patterns_atlas.py DIR OUT.png
+Reads DIR/atlas.csv (word,r_low,r_high,low_reason,high_reason), DIR/detected.csv and DIR/atlas.json (written by
+`btob pattern atlas`); writes OUT.png atomically (temporary file, then rename).  One horizontal bar per
+pattern; when there are more than MAX_ROWS patterns, the ones with the widest windows are shown (and the title
+says so), plus every pattern the iterator found.
+"""
+import csv
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MAX_ROWS = 40
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit("usage: patterns_atlas.py DIR OUT.png")
+    folder, out = sys.argv[1], sys.argv[2]
+    atlas = read_csv(os.path.join(folder, "atlas.csv"))
+    long_windows = read_csv(os.path.join(folder, "long_windows.csv"))
+    detected = read_csv(os.path.join(folder, "detected.csv"))
+    meta = {}
+    if os.path.exists(os.path.join(folder, "atlas.json")):
+        with open(os.path.join(folder, "atlas.json")) as f:
+            meta = json.load(f)
+    intervals = {}
+    for row in atlas:
+        intervals.setdefault(row["word"], []).append((float(row["r_low"]), float(row["r_high"])))
+    width = {w: sum(h - lo for lo, h in iv) for w, iv in intervals.items()}
+    for row in long_windows:
+        intervals.setdefault(row["word"], []).append((float(row["r_low"]), float(row["r_high"])))
+    found_words = {row["word"] for row in detected}
+    ranked = sorted(width, key=lambda w: -width[w])
+    shown = ranked[:MAX_ROWS]
+    for w in ranked[MAX_ROWS:]:
+        if w in found_words:
+            shown.append(w)
+    # Patterns found by the iterator that are longer than L (not in the atlas) get their own rows.
+    long_found = sorted({row["word"] for row in detected if row["status"].startswith("longer")} - set(shown))
+    # Symbol-periodic sequences the analysis does not call stable (neutral rotations in the P2 region).
+    other = sorted({row["word"] for row in detected} - set(shown) - set(long_found))
+    rows = long_found + sorted(shown, key=lambda w: min(lo for lo, _ in intervals[w])) + other
+    fig, axes = plt.subplots(1, 2, figsize=(14, max(4.5, 0.28 * len(rows) + 1.8)), sharey=True,
+                             gridspec_kw={"width_ratios": [1, 1.4]})
+    for ax, (x0, x1) in zip(axes, [(0, 1), (0.07, 0.27)]):
+        draw(ax, rows, intervals, detected, found_words, x0, x1)
+    axes[0].set_ylabel("pattern (1 = ab, 3 = cb, 2 = acb/cab), canonical up to rotation and J")
+    axes[1].set_title("zoom on r in [0.07, 0.27]", fontsize=9)
+    n_words = len(width)
+    L = meta.get("max_length", "?")
+    title = (f"Stable periodic patterns of P_r, r in (0, 1), words up to L = {L} symbols "
+             f"({n_words} with a window")
+    if n_words > MAX_ROWS:
+        title += f"; the {MAX_ROWS} widest shown, plus those the iterator found"
+    title += ")"
+    if detected:
+        title += (f"\niterator: {meta.get('check_ics', '?')} random points x {meta.get('check_r_values', '?')} r values "
+                  f"(Table 5.1), {meta.get('check_iterations', '?')} iterations, last {meta.get('check_tail', '?')} "
+                  f"symbols; top rows: symbol-periodic but not stable; bottom rows: found patterns longer than L")
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=130)
+    os.replace(tmp, out)
+
+
+def draw(ax, rows, intervals, detected, found_words, x0, x1):
+    for i, w in enumerate(rows):
+        for lo, hi in intervals.get(w, []):
+            ax.barh(i, hi - lo, left=lo, height=0.6, color="#1f4fd6" if w in found_words else "#9ab0e6")
+    label_done = set()
+    for row in detected:
+        w = row["word"]
+        if w not in rows:
+            continue
+        i = rows.index(w)
+        r = float(row["r"])
+        ok = row["status"] in ("stable in atlas", "longer than L: stable (verdict)")
+        key = "agree" if ok else "disagree"
+        ax.plot(r, i, marker="o" if ok else "x", color="#2ca02c" if ok else "#d62728", ms=5, ls="none",
+                label=None if key in label_done else ("iterator: periodic, stable in analysis" if ok else
+                                                      "iterator: symbol-periodic, NOT stable in analysis"))
+        label_done.add(key)
+    ax.set_yticks(range(len(rows)))
+    ax.set_yticklabels(rows, fontsize=7)
+    ax.set_xlabel("restitution coefficient r (dimensionless)")
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(-1, len(rows))
+    ax.grid(axis="x", alpha=0.3)
+    if label_done:
+        ax.legend(loc="upper right", fontsize=8)
+
+
+if __name__ == "__main__":
+    main()
