@@ -99,6 +99,8 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   io::ensure_dir(out);
   io::Progress progress(fmt::format("bifurcation {}", a.name));
   RunOptions opt;
+  std::size_t degenerate = 0;
+  opt.degenerate = &degenerate;
   opt.threads = a.threads;
   opt.progress = a.quiet ? nullptr : &progress_adapter(progress);
   const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
@@ -143,6 +145,11 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   attrs["threads"] = static_cast<long>(threads);
   attrs["renormalisation_interval"] = static_cast<long>(
       prec.kind == core::Precision::Kind::f32 ? renormalisation_interval<float>(ens.r) : renormalisation_interval<double>(ens.r));
+  attrs["degenerate_orbits"] = static_cast<long>(degenerate);
+  if (degenerate > 0)
+    std::cerr << fmt::format("btob: warning: {} of {} orbits ended in a non-finite or zero state in {}: this precision "
+                             "cannot cope at these r; use double or wider\n",
+                             degenerate, ens.orbits(), prec.name());
   attrs["iteration_seconds"] = std::chrono::duration<double>(t2 - t1).count();
 
   const io::fs::path h5 = out / (a.name + ".h5");

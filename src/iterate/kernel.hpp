@@ -25,6 +25,9 @@ struct ProgressSink {
 struct RunOptions {
   int threads = 0;
   ProgressSink* progress = nullptr;
+  // When set, receives the number of orbits whose final state is not a finite non-zero vector (the
+  // precision could not cope, e.g. float at extreme r); 0 on healthy runs.
+  std::size_t* degenerate = nullptr;
 };
 
 // Number of steps between renormalisations for scalar type T that keeps every state normal and finite
@@ -32,7 +35,8 @@ struct RunOptions {
 template <class T> int renormalisation_interval(const std::vector<double>& r);
 
 // Iterates every orbit of the ensemble `iterations` times with the batched kernel (T = float or
-// double, or long double without SIMD).  Each orbit's initial vector is normalised once.
+// double with SIMD; long double, float128, MPFR per lane).  Each orbit starts from its initial vector
+// scaled by a power of two (exact), in the quadrant Q.
 template <class T, class Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
 
 // The scalar reference: one orbit at a time, the paper's matrices P1/P2/P3 chosen with branches and

@@ -51,19 +51,23 @@ inline v16sf negabs_of(v16sf v) { return (v16sf)((v16si)v | (v16si{} + INT32_MIN
 template <class V> struct StepResult {
   V x, y, z;
 };
-template <class T> inline T abs_of(T v) { return std::fabs(v); }
-template <class T> inline T negabs_of(T v) { return -std::fabs(v); }
+template <class T> inline T abs_of(const T& v) {
+  using std::fabs;  // and boost::multiprecision's fabs by argument-dependent lookup
+  return fabs(v);
+}
+template <class T> inline T negabs_of(const T& v) { return -abs_of(v); }
 
 template <class V, class M>
 inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
   const V ay = a * y;
-  const V c1 = ay - x, c3 = ay - z;
+  const V c1 = V(ay - x), c3 = V(ay - z);
   s1 = c1 > V{};
   s3 = c3 < V{};
-  const V xn = s3 ? r * x : abs_of(c1);
-  const V zn = s1 ? r * z : negabs_of(c3);
+  // V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
+  const V xn = s3 ? V(r * x) : V(abs_of(c1));
+  const V zn = s1 ? V(r * z) : V(negabs_of(c3));
   const V ks = k * (xn + zn);
-  return {xn, (s1 | s3) ? ks - y : ks + y, zn};
+  return {xn, (s1 | s3) ? V(ks - y) : V(ks + y), zn};
 }
 
 // Generic lanes (long double, or any T without a vector type): the per-lane loop.
@@ -182,6 +186,16 @@ template <class T, int B> inline void renormalise(T* __restrict x, T* __restrict
   }
 }
 
+// The starting vector of an orbit: the initial vector brought into Q and scaled by an exact power of
+// two so that its largest component lies in [1, 2) (subnormal inputs included).  The direction is the
+// user's to the last bit (exact ties alpha*y = x stay ties), and every precision starts from it.
+inline core::Vec3<double> unit_start(const core::Vec3<double>& u) {
+  int e = 0;
+  std::frexp(u.cwiseAbs().maxCoeff(), &e);
+  const core::Vec3<double> q = core::to_quadrant<double>(u);
+  return {std::ldexp(q(0), 1 - e), std::ldexp(q(1), 1 - e), std::ldexp(q(2), 1 - e)};
+}
+
 // log2 bounds of one step's growth and shrinkage in the max-norm, over the three scaled branch
 // matrices: |M u| <= |M| |u| and |M u| >= |u| / |M^-1| (operator infinity norms).
 inline void step_log2_bounds(double r, double& grow, double& shrink) {
@@ -224,7 +238,7 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
   const int K = renormalisation_interval<T>(ens.r);
   const long first = std::max<long>(rec.first_step(), 1);
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
-  std::atomic<std::size_t> done{0};
+  std::atomic<std::size_t> done{0}, degenerate{0};
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
@@ -234,8 +248,7 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
     const int lanes = static_cast<int>(std::min<std::size_t>(B, n_orbits - o0));
     for (int l = 0; l < B; ++l) {
       const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
-      const auto& u = ens.initial[o % n_ic];
-      const core::Vec3<double> q = core::to_quadrant<double>(u / u.norm());
+      const core::Vec3<double> q = detail::unit_start(ens.initial[o % n_ic]);
       const double rv = ens.r[o / n_ic];
       x[l] = static_cast<T>(q(0));
       y[l] = static_cast<T>(q(1));
@@ -267,12 +280,24 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
       }
       rec.record(o0, lanes, step, x, y, z, Rec::needs_symbols ? sym : nullptr);
     }
+    if (opt.degenerate) {
+      // A state that is no longer a finite non-zero vector means the precision could not cope: count
+      // it, so that callers say so instead of plotting garbage.
+      std::size_t bad = 0;
+      for (int l = 0; l < lanes; ++l) {
+        using std::isfinite;
+        const bool finite = isfinite(x[l]) && isfinite(y[l]) && isfinite(z[l]);
+        if (!finite || (x[l] == 0 && y[l] == 0 && z[l] == 0)) ++bad;
+      }
+      if (bad) degenerate.fetch_add(bad, std::memory_order_relaxed);
+    }
     if (opt.progress) {
       const std::size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (omp_get_thread_num() == 0) opt.progress->update(d, n_batches);
     }
   }
   if (opt.progress) opt.progress->update(n_batches, n_batches);
+  if (opt.degenerate) *opt.degenerate = degenerate.load();
 }
 
 template <class T, class Rec> void run_scalar(const Ensemble& ens, long iterations, Rec& rec) {
@@ -280,9 +305,12 @@ template <class T, class Rec> void run_scalar(const Ensemble& ens, long iteratio
   const long first = std::max<long>(rec.first_step(), 1);
   for (std::size_t o = 0; o < ens.orbits(); ++o) {
     const T rv = static_cast<T>(ens.r[o / n_ic]);
-    const core::Vec3<double>& u0 = ens.initial[o % n_ic];
-    core::Vec3<T> u = core::to_quadrant<T>(core::Vec3<T>(T(u0(0)), T(u0(1)), T(u0(2))));
-    u /= u.norm();
+    const core::Vec3<double> u0 = detail::unit_start(ens.initial[o % n_ic]);
+    core::Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
+    {
+      using std::sqrt;
+      u /= sqrt(u(0) * u(0) + u(1) * u(1) + u(2) * u(2));  // Appendix A.2 starts from X/norm(X)
+    }
     const core::Mat3<T> Pm[3] = {core::P1(rv), core::P2(rv), core::P3(rv)};
     const T av = core::alpha(rv);
     for (long step = 1; step <= iterations; ++step) {
@@ -292,7 +320,8 @@ template <class T, class Rec> void run_scalar(const Ensemble& ens, long iteratio
       if (u(1) > 0 && c2 > 0) s = 1;
       else if (u(1) < 0 && c3 < 0) s = 3;
       u = Pm[s - 1] * u;
-      u /= u.norm();
+      using std::sqrt;
+      u /= sqrt(u(0) * u(0) + u(1) * u(1) + u(2) * u(2));
       if (step >= first) {
         T x = u(0), y = u(1), z = u(2);
         std::uint8_t sym = static_cast<std::uint8_t>(s);

@@ -44,13 +44,25 @@ enum class Coord { theta, log10_theta, phi, w1, w2 };
 Coord parse_coord(const std::string& name, const char* field = "coord");
 const char* coord_name(Coord c);
 
-template <class T> inline T coord_value(Coord c, T x, T y, T z) {
+// atan2 for a, b >= 0: the vectorisable atan_pos in float/double, the type's own atan2 otherwise
+// (long double, float128, MPFR keep their precision).
+template <class T> inline T atan2_pos(const T& a, const T& b) {
+  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) return atan_pos<T>(a, b);
+  else {
+    using std::atan2;
+    return atan2(a, b);
+  }
+}
+
+template <class T> inline T coord_value(Coord c, const T& x, const T& y, const T& z) {
+  using std::log10;
+  using std::sqrt;
   switch (c) {
-    case Coord::theta: return atan_pos<T>(-z, x);
-    case Coord::log10_theta: return std::log10(atan_pos<T>(-z, x));
+    case Coord::theta: return atan2_pos<T>(-z, x);
+    case Coord::log10_theta: return log10(atan2_pos<T>(-z, x));
     case Coord::phi: {
-      const T n = std::sqrt(x * x + z * z);
-      return -y >= T(0) ? atan_pos<T>(n, -y) : T(std::numbers::pi) - atan_pos<T>(n, y);
+      const T n = sqrt(x * x + z * z);
+      return -y >= T(0) ? atan2_pos<T>(n, -y) : T(std::numbers::pi) - atan2_pos<T>(n, y);
     }
     case Coord::w1: return y / (x - z);
     case Coord::w2: return (x + z) / (x - z);
