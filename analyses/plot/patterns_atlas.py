@@ -102,8 +102,8 @@ def draw(ax, rows, intervals, detected, found_words, x0, x1):
     ax.set_xlim(x0, x1)
     ax.set_ylim(-1, len(rows))
     ax.grid(axis="x", alpha=0.3)
-    if label_done:
-        ax.legend(loc="upper right", fontsize=8)
+    if label_done and x0 > 0:  # one legend, in the zoom panel's empty lower-right corner
+        ax.legend(loc="lower right", fontsize=8)
 
 
 if __name__ == "__main__":
