@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Regenerates results/windows (issue 4): certified bounds, precision study, iterator check.
+# Usage: analyses/windows/regenerate.sh [path/to/btob]   (run from the repository root)
+set -euo pipefail
+BTOB=${1:-build/btob}
+OUT=results/windows
+mkdir -p "$OUT"
+# Table B.1 with exact certificates (n = 1..100, 12 decimals; ~minutes, the Sturm sequences of n ~ 100).
+"$BTOB" windows bounds --n 1..100 --digits 12 --certify > "$OUT/bounds_certified.csv.tmp"
+mv "$OUT/bounds_certified.csv.tmp" "$OUT/bounds_certified.csv"
+# Precision study (precision.csv, precision_summary.csv, precision.json, precision.png).
+"$BTOB" windows precision --n 1..150 --out "$OUT"
+# The iterator inside and below each window (verify.csv + verify.json).
+"$BTOB" windows verify --n 2..125 --out "$OUT" --quiet
