@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Speed against accuracy of each precision and algorithm, from results/precision/tradeoff.csv.
+
+Left: iterations per second against how long the symbol sequence agrees with a 256-digit run (median
+over orbits) at each r.  Right: iterations per second against the largest window (ab)^n(cb)^n resolved.
+Usage: precision_tradeoff.py tradeoff.csv OUT.png
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main(src, dst):
+    with open(src) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    rows = list(csv.DictReader(lines))
+    with open(src) as f:
+        header = [l[2:].strip() for l in f if l.startswith("#")]
+    rs = [k[len("agree_median_r"):] for k in rows[0].keys() if k.startswith("agree_median_r")]
+    iters = next((h.split("iterations=")[1].split()[0] for h in header if "iterations=" in h), "?")
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.5), dpi=140, gridspec_kw={"width_ratios": [1.6, 1]})
+    markers = "os^Dv<>"
+    for i, r in enumerate(rs):
+        x = [float(row["iterations_per_second"]) for row in rows]
+        y = [max(1, int(row[f"agree_median_r{r}"])) for row in rows]
+        ax.scatter(x, y, marker=markers[i % len(markers)], s=40, label=f"r = {r}", alpha=0.85)
+        for xi, yi, row in zip(x, y, rows):
+            if i == 0:
+                ax.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4), fontsize=7)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.axhline(int(iters) if iters.isdigit() else 1, color="#999999", ls=":", lw=1)
+    ax.set_xlabel("map iterations per second (2 threads)")
+    ax.set_ylabel("iterations until the symbols differ from the 256-digit run\n(median over orbits; dotted: all agree)")
+    ax.set_title(f"symbol agreement with MPFR 256 digits ({iters} iterations compared)", fontsize=9)
+    ax.legend(fontsize=8)
+    lin = [row for row in rows if row["window_n_max"]]
+    bx.scatter([float(row["iterations_per_second"]) for row in lin], [int(row["window_n_max"]) for row in lin], color="#1f4fd6")
+    for row in lin:
+        bx.annotate(row["method"], (float(row["iterations_per_second"]), int(row["window_n_max"])),
+                    textcoords="offset points", xytext=(5, 4), fontsize=7)
+    bx.set_xscale("log")
+    bx.set_xlabel("map iterations per second (2 threads)")
+    bx.set_ylabel("largest n whose window (ab)^n(cb)^n is resolved")
+    bx.set_title("windows near 7-4*sqrt(3) (middle of window n)", fontsize=9)
+    fig.suptitle("btob: speed against accuracy, per precision and algorithm", fontsize=11)
+    fig.tight_layout()
+    tmp = dst + f".tmp-{os.getpid()}.png"
+    fig.savefig(tmp)
+    os.replace(tmp, dst)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: precision_tradeoff.py tradeoff.csv OUT.png")
+    main(sys.argv[1], sys.argv[2])
