@@ -253,12 +253,14 @@ TEST(Coords, ParticlesRoundTrip) {
 TEST(Validation, PointErrors) {
   using btob::core::validate_point;
   EXPECT_NO_THROW(validate_point(1, 2, -3));
-  EXPECT_NO_THROW(validate_point(0, 1, 0));
+  EXPECT_NO_THROW(validate_point(0, 1, -1));
   EXPECT_NO_THROW(validate_point(-1, 0, 2));
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   expect_error<std::domain_error>([&] { validate_point(nan, 0, -1); }, {"point: got", "finite"});
   expect_error<std::domain_error>([&] { validate_point(1, inf, -1, "initial"); }, {"initial: got", "finite"});
   expect_error<std::domain_error>([&] { validate_point(0, 0, 0); }, {"point: got the zero vector", "non-zero"});
+  // x = z = 0: p = (-z, 0, x) = 0, all four particles in contact; no strip point, no particles.
+  expect_error<std::domain_error>([&] { validate_point(0, 1, 0); }, {"point: got (0, 1, 0)", "x = z = 0"});
   expect_error<std::domain_error>([&] { validate_point(1, 0, 1); }, {"point: got (1, 0, 1)", "x*z <= 0"});
   // x*z underflows to 0 but the signs agree: still outside the domain.
   expect_error<std::domain_error>([&] { validate_point(1e-200, 0, 1e-200, "grid"); }, {"grid:", "x*z <= 0"});
