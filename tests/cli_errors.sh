@@ -58,6 +58,22 @@ expect_error "teleport" run "$out/bad_cmd.toml" --out "$out/s"
 expect_error "scene" run "$out/missing.toml"
 [ -e "$out/s" ] && { echo "FAIL: scene output written despite errors"; fail=1; }
 
+# The other subcommands (windows: issue 4, pattern: issue 5, lyapunov: issue 6, precision: issue 9).
+expect_error "n" windows bounds --n 0
+expect_error "digits" windows bounds --n 1..3 --digits 5
+expect_error "digits" windows bounds --n 1..3 --digits 20000
+expect_error "n" windows verify --n 1..3 --out "$out/w"
+expect_error "word" pattern 14 --r 0.3
+expect_error "word" pattern "" --r 0.3
+expect_error "r" pattern 132 --r 1.2
+expect_error "iterations" lyapunov --r 0.3 --point 1,0.1,-1 --iterations 0
+expect_error "transient" lyapunov --r 0.3 --point 1,0.1,-1 --iterations 100 --transient 200
+expect_error "r" lyapunov --r 0 --point 1,0.1,-1 --iterations 100 --transient 10
+expect_error "point" lyapunov --r 0.3 --point 1,0.1,1 --iterations 100 --transient 10
+expect_error "orbits" precision --orbits 0 --out "$out/p"
+expect_error "precision" bifurcation --out "$out/b" --precision mpfr:20000 --no-plot
+[ -e "$out/w" ] || [ -e "$out/p" ] && { echo "FAIL: output written despite errors"; fail=1; }
+
 # A good run writes its data and manifest, and an existing result is replaced only by a complete one.
 "$btob" "${b[@]}" --name ok || { echo "FAIL: a valid bifurcation run failed"; fail=1; }
 for f in ok.h5 ok.json; do [ -s "$out/b/$f" ] || { echo "FAIL: $f missing"; fail=1; }; done
