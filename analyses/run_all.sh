@@ -13,7 +13,7 @@ for scene in analyses/scenes/*.toml; do
   "$btob" run "$scene"
   printf 'run_all: %-12s %6d ms\n' "$name" $(( ($(date +%s%N) - t0) / 1000000 ))
 done
-# Further analyses (one script each, named analyses/<name>.sh), e.g. windows, patterns, lyapunov, stats.
+# Further analyses: one script per module, analyses/<module>.sh, each taking the btob binary.
 for script in analyses/*.sh; do
   case "$(basename "$script")" in run_all.sh) continue ;; esac
   echo "run_all: $script"

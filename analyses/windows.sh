@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates results/windows (issue 4): certified bounds, precision study, iterator check.
-# Usage: analyses/windows/regenerate.sh [path/to/btob]   (run from the repository root)
+# Usage: analyses/windows.sh [path/to/btob]   (run from the repository root; called by analyses/run_all.sh)
 set -euo pipefail
-BTOB=${1:-build/btob}
+BTOB=${1:-build/release/btob}
 OUT=results/windows
 mkdir -p "$OUT"
 # Table B.1 with exact certificates (n = 1..100, 12 decimals; ~minutes, the Sturm sequences of n ~ 100).
