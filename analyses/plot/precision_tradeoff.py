@@ -23,7 +23,7 @@ def main(src, dst):
         header = [l[2:].strip() for l in f if l.startswith("#")]
     rs = [k[len("agree_median_r"):] for k in rows[0].keys() if k.startswith("agree_median_r")]
     iters = next((h.split("iterations=")[1].split()[0] for h in header if "iterations=" in h), "?")
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.5), dpi=140, gridspec_kw={"width_ratios": [1.6, 1]})
+    fig, (ax, cx, bx) = plt.subplots(1, 3, figsize=(17, 5.8), dpi=130, gridspec_kw={"width_ratios": [1.3, 1.3, 1]})
     markers = "os^Dv<>"
     for i, r in enumerate(rs):
         x = [float(row["iterations_per_second"]) for row in rows]
@@ -39,11 +39,32 @@ def main(src, dst):
     ax.set_ylabel("iterations until the symbols differ from the 256-digit run\n(median over orbits; dotted: all agree)")
     ax.set_title(f"symbol agreement with MPFR 256 digits ({iters} iterations compared)", fontsize=9)
     ax.legend(fontsize=8)
+    for i, r in enumerate(rs):
+        key = f"final_error_median_r{r}"
+        if key not in rows[0]:
+            continue
+        x = [float(row["iterations_per_second"]) for row in rows]
+        y = [max(1e-20, float(row[key])) for row in rows]
+        cx.scatter(x, y, marker=markers[i % len(markers)], s=40, label=f"r = {r}", alpha=0.85)
+        if i == 1:
+            for xi, yi, row in zip(x, y, rows):
+                cx.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4), fontsize=7)
+    cx.set_xscale("log")
+    cx.set_yscale("log")
+    cx.set_xlabel("map iterations per second (2 threads)")
+    cx.set_ylabel("angle between final state and 256-digit run (rad, median)\n(1e-20: below double resolution)")
+    cx.set_title(f"state error after {iters} iterations", fontsize=9)
+    cx.legend(fontsize=8)
     lin = [row for row in rows if row["window_n_max"]]
     bx.scatter([float(row["iterations_per_second"]) for row in lin], [int(row["window_n_max"]) for row in lin], color="#1f4fd6")
     for row in lin:
         bx.annotate(row["method"], (float(row["iterations_per_second"]), int(row["window_n_max"])),
                     textcoords="offset points", xytext=(5, 4), fontsize=7)
+    nmax = max([int(v) for row in rows for v in [row["window_n_max"]] if v] + [1])
+    bx.axhline(nmax, color="#999999", ls=":", lw=1)
+    bx.text(bx.get_xlim()[0] if False else min(float(row["iterations_per_second"]) for row in lin), nmax * 1.02,
+            "largest n tested", fontsize=7, color="#666666")
+    bx.set_ylim(0, nmax * 1.15)
     bx.set_xscale("log")
     bx.set_xlabel("map iterations per second (2 threads)")
     bx.set_ylabel("largest n whose window (ab)^n(cb)^n is resolved")

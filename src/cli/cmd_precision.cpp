@@ -14,7 +14,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <functional>
 #include <iostream>
@@ -35,7 +39,18 @@ struct PrecisionArgs {
   bool no_plot = false;
 };
 
-// Symbols 1/2/3 of `iterations` steps of each orbit of e, in precision T (batched kernel).
+// Symbols 1/2/3 of `iterations` steps of each orbit of e, and the final unit states, in precision T.
+struct Trace {
+  std::vector<std::uint8_t> symbols;
+  std::vector<Vec3<double>> final;
+};
+template <class T> Trace trace(const Ensemble& e, long iterations) {
+  FinalRecorder f(e.orbits(), iterations);
+  SymbolRecorder s(e.orbits(), 1, iterations);
+  Both<FinalRecorder, SymbolRecorder> both(f, s);
+  run<T>(e, iterations, both);
+  return {std::move(s.out), std::move(f.out)};
+}
 template <class T> std::vector<std::uint8_t> symbols(const Ensemble& e, long iterations) {
   SymbolRecorder s(e.orbits(), 1, iterations);
   run<T>(e, iterations, s);
@@ -44,8 +59,11 @@ template <class T> std::vector<std::uint8_t> symbols(const Ensemble& e, long ite
 
 // The same with the trigonometric algorithm of Appendix A.1 (double); a broken orbit's remaining
 // symbols are 0 (never equal to the reference).
-std::vector<std::uint8_t> trig_symbols(const Ensemble& e, long iterations) {
-  std::vector<std::uint8_t> out(e.orbits() * static_cast<std::size_t>(iterations), 0);
+Trace trig_trace(const Ensemble& e, long iterations) {
+  Trace t;
+  t.symbols.assign(e.orbits() * static_cast<std::size_t>(iterations), 0);
+  t.final.assign(e.orbits(), Vec3<double>::Constant(std::numeric_limits<double>::quiet_NaN()));
+  auto& out = t.symbols;
   const std::size_t n_ic = e.initial.size();
   for (std::size_t o = 0; o < e.orbits(); ++o) {
     const double r = e.r[o / n_ic];
@@ -55,10 +73,12 @@ std::vector<std::uint8_t> trig_symbols(const Ensemble& e, long iterations) {
       const auto c = reference::trig_b_to_b<double>(s, r);
       if (c.status != reference::TrigStatus::ok) break;
       out[o * iterations + k] = c.letters == "ab" ? 1 : (c.letters == "cb" ? 3 : 2);
+      if (k == iterations - 1) t.final[o] = core::from_angles<double>(c.theta, c.phi);
     }
   }
-  return out;
+  return t;
 }
+std::vector<std::uint8_t> trig_symbols(const Ensemble& e, long iterations) { return trig_trace(e, iterations).symbols; }
 
 // Iterations per second of precision T on e (FinalRecorder, all threads), timed over >= 0.3 s.
 template <class T> double throughput(const Ensemble& e, long iterations) {
@@ -99,6 +119,7 @@ struct Row {
   int digits = 0;  // decimal digits of the arithmetic
   double rate = 0;
   std::vector<long> agree_min, agree_median;
+  std::vector<double> error_median;  // median angle (rad) between the final state and the reference's
   int n_max = 0;
 };
 
@@ -120,14 +141,17 @@ void precision_study(const PrecisionArgs& a) {
   using core::mpfr_float;
   // Reference: 256 decimal digits.
   mpfr_float::default_precision(256);
-  const std::vector<std::uint8_t> ref = symbols<mpfr_float>(e, N);
+  const Trace reference_trace = trace<mpfr_float>(e, N);
+  const std::vector<std::uint8_t>& ref = reference_trace.symbols;
 
   using SymFn = std::function<std::vector<std::uint8_t>(const Ensemble&, long)>;
+  using TraceFn = std::function<Trace(const Ensemble&, long)>;
   struct Method {
     std::string name;
     int digits;
     SymFn sym;
     std::function<double(const Ensemble&, long)> rate;
+    TraceFn tr;
   };
   const auto mp = [](int d) {
     return Method{fmt::format("linear/mpfr:{}", d), d,
@@ -138,13 +162,17 @@ void precision_study(const PrecisionArgs& a) {
                   [d](const Ensemble& en, long it) {
                     mpfr_float::default_precision(d);
                     return throughput<mpfr_float>(en, it);
+                  },
+                  [d](const Ensemble& en, long it) {
+                    mpfr_float::default_precision(d);
+                    return trace<mpfr_float>(en, it);
                   }};
   };
   std::vector<Method> methods = {
-      {"linear/float", 7, symbols<float>, throughput<float>},
-      {"linear/double", 16, symbols<double>, throughput<double>},
-      {"linear/long-double", 19, symbols<long double>, throughput<long double>},
-      {"linear/float128", 34, symbols<core::float128>, throughput<core::float128>},
+      {"linear/float", 7, symbols<float>, throughput<float>, trace<float>},
+      {"linear/double", 16, symbols<double>, throughput<double>, trace<double>},
+      {"linear/long-double", 19, symbols<long double>, throughput<long double>, trace<long double>},
+      {"linear/float128", 34, symbols<core::float128>, throughput<core::float128>, trace<core::float128>},
       mp(50),
       mp(100),
       {"trig/double", 16, trig_symbols,
@@ -153,7 +181,8 @@ void precision_study(const PrecisionArgs& a) {
          trig_symbols(en, it);
          return static_cast<double>(en.orbits()) * static_cast<double>(it) /
                 std::chrono::duration<double>(Clock::now() - t0).count();
-       }},
+       },
+       trig_trace},
   };
 
   std::vector<Row> rows;
@@ -163,16 +192,23 @@ void precision_study(const PrecisionArgs& a) {
     Row row;
     row.method = m.name;
     row.digits = m.digits;
-    const std::vector<std::uint8_t> s = m.sym(e, N);
+    const Trace tr = m.tr(e, N);
+    const std::vector<std::uint8_t>& s = tr.symbols;
     const std::size_t n_ic = e.initial.size();
     for (std::size_t ir = 0; ir < e.r.size(); ++ir) {
       std::vector<long> agree;
+      std::vector<double> err;
       for (std::size_t ic = 0; ic < n_ic; ++ic) {
         const std::size_t o = ir * n_ic + ic;
         long k = 0;
         while (k < N && s[o * N + k] == ref[o * N + k]) ++k;
         agree.push_back(k);
+        const Vec3<double>& a_ = tr.final[o];
+        const Vec3<double>& b_ = reference_trace.final[o];
+        err.push_back(std::isfinite(a_.sum()) ? std::atan2(a_.cross(b_).norm(), a_.dot(b_)) : M_PI);
       }
+      std::sort(err.begin(), err.end());
+      row.error_median.push_back(err[err.size() / 2]);
       std::sort(agree.begin(), agree.end());
       row.agree_min.push_back(agree.front());
       row.agree_median.push_back(agree[agree.size() / 2]);
@@ -191,16 +227,18 @@ void precision_study(const PrecisionArgs& a) {
   progress.update(methods.size(), methods.size());
 
   std::ostringstream csv;
-  csv << "# btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits\n";
+  csv << "# btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
+         "between the final states (median over orbits)\n";
   csv << fmt::format("# orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
                      "the middle of window n, 20000+400n iterations, n in [{}]; version {} ({})\n",
                      a.orbits, a.orbits, a.seed, N, fmt::join(a.window_n, " "), build::version, build::git_commit);
   csv << "method,decimal_digits,iterations_per_second";
-  for (double r : a.r_values) csv << fmt::format(",agree_min_r{0},agree_median_r{0}", r);
+  for (double r : a.r_values) csv << fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
   csv << ",window_n_max\n";
   for (const Row& row : rows) {
     csv << fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
-    for (std::size_t i = 0; i < row.agree_min.size(); ++i) csv << "," << row.agree_min[i] << "," << row.agree_median[i];
+    for (std::size_t i = 0; i < row.agree_min.size(); ++i)
+      csv << "," << row.agree_min[i] << "," << row.agree_median[i] << fmt::format(",{:.3g}", row.error_median[i]);
     csv << "," << (row.n_max < 0 ? std::string("") : std::to_string(row.n_max)) << "\n";
   }
   io::write_text_atomic(out / "tradeoff.csv", csv.str());
