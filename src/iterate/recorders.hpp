@@ -143,18 +143,36 @@ struct DensityRecorder {
     std::uint32_t* img = per_thread[static_cast<std::size_t>(t)].data();
     const double scale = static_cast<double>(bins) / (hi - lo);
     alignas(64) double v[64];
+    // Column (r index) of the first lane, then advanced without a division per point.
+    std::size_t col = o0 / n_ic, in_col = o0 % n_ic;
     for (int l0 = 0; l0 < lanes; l0 += 64) {
       const int n = std::min(64, lanes - l0);
-      const Coord c = coord;
-#pragma omp simd
-      for (int l = 0; l < n; ++l) v[l] = static_cast<double>(coord_value<T>(c, x[l0 + l], y[l0 + l], z[l0 + l]));
+      values(coord, n, x + l0, y + l0, z + l0, v);
       for (int l = 0; l < n; ++l) {
-        const std::size_t col = (o0 + l0 + l) / n_ic;
         const double f = (v[l] - lo) * scale;
         if (!(f >= 0)) ++under_t[t][col];
         else if (f >= static_cast<double>(bins)) ++over_t[t][col];
         else ++img[col * bins + static_cast<std::size_t>(f)];
+        if (++in_col == n_ic) {
+          in_col = 0;
+          ++col;
+        }
       }
+    }
+  }
+  // v[l] = coordinate c of lanes 0..n-1, one vectorisable loop per coordinate (the switch is hoisted).
+  template <class T> static void values(Coord c, int n, const T* x, const T* y, const T* z, double* v) {
+    switch (c) {
+      case Coord::theta:
+#pragma omp simd
+        for (int l = 0; l < n; ++l) v[l] = static_cast<double>(coord_value<T>(Coord::theta, x[l], y[l], z[l]));
+        break;
+      case Coord::phi:
+#pragma omp simd
+        for (int l = 0; l < n; ++l) v[l] = static_cast<double>(coord_value<T>(Coord::phi, x[l], y[l], z[l]));
+        break;
+      default:
+        for (int l = 0; l < n; ++l) v[l] = static_cast<double>(coord_value<T>(c, x[l], y[l], z[l]));
     }
   }
   // The merged image (columns x bins) and under/overflow counts.
