@@ -32,7 +32,7 @@ def attr(f, key, default=None):
 
 def main(src, dst):
     with h5py.File(src, "r") as f:
-        dens = f["density"][...].astype(np.float64)  # (r_count, bins)
+        dens = f["density"][...].astype(np.float32)  # (r_count, bins)
         r = f["r"][...]
         vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
         over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
@@ -46,6 +46,13 @@ def main(src, dst):
     # does not depend on the grid size) and show it with a logarithmic colour scale.
     col = dens.sum(axis=1, keepdims=True)
     frac = np.divide(dens, np.maximum(col, 1))
+    # More r columns than the axes have pixels: average groups of adjacent columns instead of letting
+    # the renderer drop columns (an r with a sink would vanish), and keep memory small.
+    group = int(np.ceil(frac.shape[0] / 1400))
+    if group > 1:
+        pad = (-frac.shape[0]) % group
+        frac = np.concatenate([frac, np.zeros((pad, frac.shape[1]))]).reshape(-1, group, frac.shape[1]).mean(axis=1)
+    del dens
     img = np.where(frac > 0, frac, np.nan).T
     r0, r1 = float(r[0]), float(r[-1])
     if r1 == r0:
