@@ -60,10 +60,6 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   if (a.bins < 1 || a.bins > 100000) throw UsageError(fmt::format("bins: got {}, expected 1..100000", a.bins));
   if (a.threads < 0) throw UsageError(fmt::format("threads: got {}, expected at least 1", a.threads));
   const core::Precision prec = core::parse_precision(a.precision, "precision");
-  if (prec.kind != core::Precision::Kind::f32 && prec.kind != core::Precision::Kind::f64 &&
-      prec.kind != core::Precision::Kind::f80)
-    throw UsageError(fmt::format("precision: got '{}', the batched kernel runs float, double or long-double",
-                                 a.precision));
   Coord coord = parse_coord(a.coord, "coord");
   if (a.log) {
     if (coord != Coord::theta) throw UsageError(fmt::format("log: got --log with coord {}, --log applies to theta", a.coord));
@@ -82,7 +78,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   }
   if (a.algorithm != "linear" && a.algorithm != "trig")
     throw UsageError(fmt::format("algorithm: got '{}', expected linear (Theorem 3.1) or trig (Appendix A.1)", a.algorithm));
-  if (a.algorithm == "trig" && (a.raw || prec.kind == core::Precision::Kind::f32))
+  if (a.algorithm == "trig" && (a.raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
     throw UsageError("algorithm: trig runs in double or long-double and keeps no raw tails");
   for (double v : a.vlines)
     if (!std::isfinite(v)) throw UsageError("vline: expected finite r values");
@@ -118,6 +114,11 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
     switch (prec.kind) {
       case core::Precision::Kind::f32: run_kernel<float>(ens, a.iterations, dens, raw.get(), opt); break;
       case core::Precision::Kind::f80: run_kernel<long double>(ens, a.iterations, dens, raw.get(), opt); break;
+      case core::Precision::Kind::f128: run_kernel<core::float128>(ens, a.iterations, dens, raw.get(), opt); break;
+      case core::Precision::Kind::mpfr:
+        core::mpfr_float::default_precision(static_cast<unsigned>(prec.mpfr_digits));
+        run_kernel<core::mpfr_float>(ens, a.iterations, dens, raw.get(), opt);
+        break;
       default: run_kernel<double>(ens, a.iterations, dens, raw.get(), opt); break;
     }
   }
@@ -193,7 +194,8 @@ Register reg([](CLI::App& app) {
       ->capture_default_str();
   c->add_option("--seed", a->seed, "seed of random grids")->capture_default_str();
   c->add_option("--threads", a->threads, "OpenMP threads (default: all cores)");
-  c->add_option("--precision", a->precision, "float, double or long-double")->capture_default_str();
+  c->add_option("--precision", a->precision, "float, double, long-double, float128 or mpfr:<digits> (10..10000)")
+      ->capture_default_str();
   c->add_option("--out", a->out, "output directory")->capture_default_str();
   c->add_option("--name", a->name, "file stem of the outputs")->capture_default_str();
   c->add_option("--title", a->title, "figure title (r range, grid and iterations are added)");
