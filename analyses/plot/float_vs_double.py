@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Compares the Figure 4.1 density images computed in float and in double.
+
+Per r: the Kolmogorov-Smirnov distance between the two binned theta distributions (700 bins), and the
+number of occupied bins (1 to a few on sinks, hundreds on chaotic r).  Writes distance.csv and
+float_vs_double.png to OUTDIR.  Usage: float_vs_double.py FLOAT.h5 DOUBLE.h5 OUTDIR
+"""
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def load(path):
+    with h5py.File(path, "r") as f:
+        return f["density"][...].astype(np.float64), f["r"][...], dict(f.attrs)
+
+
+def main(fpath, dpath, out):
+    df, r, af = load(fpath)
+    dd, r2, ad = load(dpath)
+    assert np.array_equal(r, r2)
+    cf = np.cumsum(df, axis=1) / np.maximum(df.sum(axis=1, keepdims=True), 1)
+    cd = np.cumsum(dd, axis=1) / np.maximum(dd.sum(axis=1, keepdims=True), 1)
+    ks = np.abs(cf - cd).max(axis=1)
+    occ_f, occ_d = (df > 0).sum(axis=1), (dd > 0).sum(axis=1)
+    tmp = os.path.join(out, f"distance.csv.tmp-{os.getpid()}")
+    with open(tmp, "w") as f:
+        f.write("# binned KS distance between float and double tails of Figure 4.1 (700 bins on [0, pi/2]); "
+                f"iterations {ad.get('iterations')}, tail {ad.get('tail')}, grid {ad.get('grid')}\n")
+        f.write("r,ks_distance,occupied_bins_float,occupied_bins_double\n")
+        for i in range(len(r)):
+            f.write(f"{r[i]:.8f},{ks[i]:.4f},{occ_f[i]},{occ_d[i]}\n")
+    os.replace(tmp, os.path.join(out, "distance.csv"))
+
+    import matplotlib.colors as mcolors
+    lo, hi = float(ad.get("range_lo", 0)), float(ad.get("range_hi", np.pi / 2))
+    fig, (a0, a2, a1) = plt.subplots(3, 1, figsize=(11, 10), dpi=130, sharex=True,
+                                     gridspec_kw={"height_ratios": [2, 2, 1]})
+    for ax, dens, name in ((a0, df, "float"), (a2, dd, "double")):
+        frac = dens / np.maximum(dens.sum(axis=1, keepdims=True), 1)
+        group = int(np.ceil(len(r) / 1400))
+        if group > 1:
+            pad = (-frac.shape[0]) % group
+            frac = np.concatenate([frac, np.zeros((pad, frac.shape[1]))]).reshape(-1, group, frac.shape[1]).mean(axis=1)
+        cmap = plt.get_cmap("magma_r").copy()
+        cmap.set_bad("white")
+        im = ax.imshow(np.where(frac > 0, frac, np.nan).T, origin="lower", aspect="auto", extent=[r[0], r[-1], lo, hi],
+                       cmap=cmap, norm=mcolors.LogNorm(vmin=1e-4, vmax=1), interpolation="nearest")
+        ax.set_ylabel(r"$\log_{10}\theta$ ($\theta$ in rad)")
+        under = f"; theta below 1e{lo:.0f} (incl. 0): {int(np.round(100 * (1 - dens.sum() / (len(r) * 32 * int(ad.get('tail', 100))))))}% of points"
+        ax.set_title(f"{name}: Figure 4.1 workload in log scale ({len(r)} r values, 32 orbits, "
+                     f"{ad.get('iterations')} iterations, last {ad.get('tail')}){under}", fontsize=9)
+        fig.colorbar(im, ax=ax, pad=0.01).set_label("fraction per bin")
+    a1.plot(r, ks, lw=0.5, color="#333333")
+    fig.colorbar(im, ax=a1, pad=0.01).ax.set_visible(False)  # same width as the panels above
+    a1.set_xlabel("restitution coefficient $r$ (dimensionless)")
+    a1.set_ylabel("KS distance\nfloat vs double\n(binned, log scale)")
+    a1.set_ylim(0, 1)
+    a1.set_title(f"max {ks.max():.3f}, median {np.median(ks):.3f}; r with distance > 0.2: {(ks > 0.2).sum()} of {len(r)}",
+                 fontsize=9)
+    fig.tight_layout()
+    tmp = os.path.join(out, f"float_vs_double.tmp-{os.getpid()}.png")
+    fig.savefig(tmp)
+    os.replace(tmp, os.path.join(out, "float_vs_double.png"))
+    print(f"float vs double: KS max {ks.max():.3f} at r = {r[ks.argmax()]:.6f}, median {np.median(ks):.4f}, "
+          f"{(ks > 0.2).sum()} r values above 0.2")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4:
+        sys.exit("usage: float_vs_double.py FLOAT.h5 DOUBLE.h5 OUTDIR")
+    main(*sys.argv[1:])
