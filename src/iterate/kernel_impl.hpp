@@ -3,6 +3,7 @@
 
 #include "core/map.hpp"
 #include "iterate/kernel.hpp"
+#include "iterate/lanes.hpp"
 
 #include <Eigen/Dense>
 #include <omp.h>
@@ -18,13 +19,6 @@
 namespace btob::iterate {
 namespace detail {
 
-// Lanes per batch: 4 vectors of 512 bits in flight (perf-notes: one step's dependency chain is ~21
-// cycles and its issue cost ~5, so 4 independent vectors hide the latency; 8 spill registers).
-template <class T> constexpr int batch_lanes() {
-  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) return 6 * 64 / static_cast<int>(sizeof(T));
-  else return 8;
-}
-
 // One step of the map for all lanes, with the matrices divided by r (M_i = P_i / r: same direction,
 // same symbol, better conditioned).  In Q, with c1 = a y - x, c3 = a y - z and k = a / r:
 //   M1 u = (c1, k c1 - y + a z, r z)           if c1 > 0          (symbol 1, ab)
@@ -37,16 +31,16 @@ template <class T> constexpr int batch_lanes() {
 // (case 1: k (c1 + r z) = k c1 + a z; case 3: k (r x + c3) = a x + k c3; case 2: -k (c1 + c3)).
 // The selection is branch-free; the quadrant Q is invariant (x' >= 0, z' <= 0 by construction).
 // Written once for a scalar T or a GCC vector type V (the scalar form is the reference of the SIMD one).
-// 64-byte GCC vector types of the SIMD path.
-using v8df = double __attribute__((vector_size(64)));
-using v8di = std::int64_t __attribute__((vector_size(64)));
-using v16sf = float __attribute__((vector_size(64)));
-using v16si = std::int32_t __attribute__((vector_size(64)));
+// GCC vector types of the SIMD path.
+using vf64 = double __attribute__((vector_size(kVectorBytes)));
+using vi64 = std::int64_t __attribute__((vector_size(kVectorBytes)));
+using vf32 = float __attribute__((vector_size(kVectorBytes)));
+using vi32 = std::int32_t __attribute__((vector_size(kVectorBytes)));
 // |v| and -|v| of a vector by sign-bit arithmetic (GCC vector casts reinterpret the bits).
-inline v8df abs_of(v8df v) { return (v8df)((v8di)v & ~(v8di{} + INT64_MIN)); }
-inline v8df negabs_of(v8df v) { return (v8df)((v8di)v | (v8di{} + INT64_MIN)); }
-inline v16sf abs_of(v16sf v) { return (v16sf)((v16si)v & ~(v16si{} + INT32_MIN)); }
-inline v16sf negabs_of(v16sf v) { return (v16sf)((v16si)v | (v16si{} + INT32_MIN)); }
+inline vf64 abs_of(vf64 v) { return (vf64)((vi64)v & ~(vi64{} + INT64_MIN)); }
+inline vf64 negabs_of(vf64 v) { return (vf64)((vi64)v | (vi64{} + INT64_MIN)); }
+inline vf32 abs_of(vf32 v) { return (vf32)((vi32)v & ~(vi32{} + INT32_MIN)); }
+inline vf32 negabs_of(vf32 v) { return (vf32)((vi32)v | (vi32{} + INT32_MIN)); }
 
 template <class V> struct StepResult {
   V x, y, z;
@@ -89,21 +83,20 @@ inline void steps(T* __restrict x, T* __restrict y, T* __restrict z, const T* __
   }
 }
 
-// SIMD lanes for float/double: 64-byte GCC vectors (one AVX-512 register; GCC lowers them to two
-// AVX2 or four SSE2 operations on narrower targets, so the same code is correct on any x86-64).
+// SIMD lanes for float/double: GCC vectors of kVectorBytes (one AVX-512, AVX or SSE2 register).
 // NV independent vectors are kept in registers for the n steps between renormalisations: one step's
 // dependency chain is ~20 cycles and its issue cost ~5, so 4 vectors in flight hide the latency.
 template <class T> struct SimdTypes;
 template <> struct SimdTypes<double> {
-  using V = v8df;
-  using I = v8di;
+  using V = vf64;
+  using I = vi64;
 };
 template <> struct SimdTypes<float> {
-  using V = v16sf;
-  using I = v16si;
+  using V = vf32;
+  using I = vi32;
 };
 template <class T> struct Simd {
-  static constexpr int W = 64 / sizeof(T);  // lanes per vector
+  static constexpr int W = kVectorBytes / sizeof(T);  // lanes per vector
   static constexpr int NV = 6;              // vectors in flight
   static constexpr int B = W * NV;          // lanes per batch
   using V = typename SimdTypes<T>::V;

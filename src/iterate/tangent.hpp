@@ -1,6 +1,8 @@
 // TangentRecorder: the projective derivative cocycle carried along every orbit of a batched run (Section 7 (3)).
 #pragma once
 
+#include "iterate/lanes.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -41,7 +43,10 @@ struct TangentRecorder {
     const std::size_t N = e.orbits();
     checked_bytes(N, sizeof(double) * (13 + 3 * (blocks + 1)), "tangent recorder");
     for (int j = 1; j <= blocks; ++j) block_end.push_back(n * j / blocks);
-    const std::size_t padded = (N + 63) / 64 * 64;  // whole batches of the widest kernel (64 float lanes)
+    // Whole batches of the widest kernel (96 float lanes with AVX-512, see iterate/lanes.hpp); a fixed
+    // bound because this constructor also runs in units compiled without the kernel's flags.
+    constexpr std::size_t widest = 128;
+    const std::size_t padded = (N + widest - 1) / widest * widest;
     for (auto* a : {&sx, &sy, &sz, &vx, &vy, &vz, &pg, &eg, &ev, &n13, &rr, &aa, &kk})
       a->assign(padded, 1.0);  // padding lanes hold harmless finite values
     cum.assign(N * static_cast<std::size_t>(blocks + 1) * 3, 0.0);
@@ -52,9 +57,9 @@ struct TangentRecorder {
     }
   }
   long first_step() const { return 1; }
-  // Lanes per kernel batch (kernel_impl.hpp: detail::batch_lanes): 64 float, 32 double.
+  // Lanes per kernel batch (iterate/lanes.hpp: detail::batch_lanes).
   template <class T>
-  static constexpr int kLanes = sizeof(T) == 4 ? 64 : (sizeof(T) == 8 ? 32 : 8);
+  static constexpr int kLanes = detail::batch_lanes<T>();
   long total_steps() const { return transient + n; }  // the run's `iterations`
 
   template <class T>
