@@ -1,0 +1,274 @@
+// Non-hyperbolicity (issue 6 item 5): singular values of D P-hat (closed form vs SVD and central differences, the
+// P2 centre), covariant Lyapunov vectors (periodic sinks vs eigenvectors of the period matrix, covariance on a
+// chaotic orbit, the degenerate rotation region of P2), strip images and errors.
+#include "core/coords.hpp"
+#include "core/map.hpp"
+#include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/lyapunov.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <cstdio>
+#include <random>
+#include <string>
+
+namespace {
+
+using namespace btob;
+using V3 = Eigen::Vector3d;
+using M32 = Eigen::Matrix<double, 3, 2>;
+
+std::string sci(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3e", x);
+  return b;
+}
+
+double det_of(int s, double r) { return s == 2 ? r * r * r : r * r * r * r; }
+
+// |sin| of the angle between two lines spanned by a and b.
+double sin_between(const V3& a, const V3& b) { return a.normalized().cross(b.normalized()).norm(); }
+
+TEST(Hyperbolicity, ClosedFormEqualsSvdOfTheDerivative) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (double r : {0.08, 0.3, 0.6}) {
+    for (int s = 1; s <= 3; ++s) {
+      const Eigen::Matrix3d P = core::P<double>(s, r);
+      for (int i = 0; i < 200; ++i) {
+        const V3 u = core::to_quadrant<double>(V3(std::abs(U(rng)), U(rng), -std::abs(U(rng)))).normalized();
+        const V3 w = (P * u).normalized();
+        const Eigen::Matrix2d A =
+            lyapunov::tangent_basis<double>(w).transpose() * lyapunov::projective_derivative<double>(P, u) *
+            lyapunov::tangent_basis<double>(u);
+        const Eigen::JacobiSVD<Eigen::Matrix2d> svd(A);
+        const auto sv = lyapunov::singular_values<double>(P, det_of(s, r), u);
+        // Both are backward stable: errors ~ eps * s1 * (|P| / |P u|) <= 1e-13 s1 here; 1e-11 leaves room.
+        EXPECT_NEAR(sv[0], svd.singularValues()(0), 1e-11 * sv[0]) << "r=" << r << " s=" << s;
+        EXPECT_NEAR(sv[1], svd.singularValues()(1), 1e-11 * sv[0]) << "r=" << r << " s=" << s;
+      }
+    }
+  }
+}
+
+TEST(Hyperbolicity, SingularValuesMatchCentralDifferences) {
+  // u -> P u / |P u| differentiated along the great circles through u in the directions of the tangent basis,
+  // projected on the tangent basis at the image.  Central differences with h = 1e-5: truncation h^2 |F'''| / 6
+  // with |F'''| ~ 6 k^3 (k = |P| / |P u|, each derivative of the quotient brings one factor k), rounding
+  // eps k / h.  The bound below uses 10x that sum.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double h = 1e-5, eps = 2.2e-16;
+  double worst = 0;
+  for (double r : {0.1, 0.3, 0.6}) {
+    for (int i = 0; i < 300; ++i) {
+      const V3 u = V3(std::abs(U(rng)), U(rng), -std::abs(U(rng))).normalized();
+      const int s = core::branch(u, r);
+      const Eigen::Matrix3d P = core::P<double>(s, r);
+      const auto F = [&](const V3& v) { return V3((P * v).normalized()); };
+      const M32 Bu = lyapunov::tangent_basis<double>(u), Bw = lyapunov::tangent_basis<double>(F(u));
+      Eigen::Matrix2d J;
+      for (int j = 0; j < 2; ++j) {
+        // F is projectively invariant, so F(u +- h e) = F of the great-circle point (u +- h e) / sqrt(1 + h^2),
+        // whose velocity at h = 0 is e.
+        J.col(j) = Bw.transpose() * (F(u + h * Bu.col(j)) - F(u - h * Bu.col(j))) / (2 * h);
+      }
+      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(J);
+      const auto sv = lyapunov::singular_values<double>(P, det_of(s, r), u);
+      const double k = Eigen::JacobiSVD<Eigen::Matrix3d>(P).singularValues()(0) / (P * u).norm();
+      const double tol = 10 * (h * h * k * k * k + eps * k / h) * sv[0];
+      EXPECT_NEAR(sv[0], svd.singularValues()(0), tol) << "r=" << r << " k=" << k;
+      EXPECT_NEAR(sv[1], svd.singularValues()(1), tol) << "r=" << r << " k=" << k;
+      worst = std::max(worst, std::abs(sv[0] - svd.singularValues()(0)) / sv[0]);
+    }
+  }
+  RecordProperty("worst_relative_difference_s1", sci(worst));
+}
+
+TEST(Hyperbolicity, P2CentreHasUnitDeterminantAndExpands) {
+  // Section 5.2: (1, 0, -1) is the real eigenvector of P2 (eigenvalue r), so |P2 u| = r and s1 s2 = r^3 / r^3 = 1
+  // exactly: the derivative is conjugate to a rotation, s1 >= 1 >= s2, and the centre is never contracting.
+  for (double r : {0.2, 0.3, 0.6}) {
+    const V3 c = V3(1, 0, -1).normalized();
+    ASSERT_LT((core::P2(r) * c - r * c).norm(), 1e-15);
+    const auto sv = lyapunov::step_singular_values(c, r);
+    EXPECT_EQ(sv.symbol, 2);
+    EXPECT_NEAR(sv.s1 * sv.s2, 1.0, 1e-14);  // a few roundings of O(1) quantities
+    EXPECT_GE(sv.s1, 1.0);
+  }
+}
+
+// Runs Ginelli's method on a periodic sink and compares, at every window step, the CLVs with the projections on
+// the tangent plane of the subdominant eigenvectors of the period matrix started at that step.
+void check_periodic_clvs(double r, const V3& u0, std::size_t period) {
+  SCOPED_TRACE("r = " + std::to_string(r));
+  lyapunov::ClvOptions o;
+  o.transient = 20000;  // the orbit converges geometrically; 2e4 steps bring it to rounding level
+  o.window = 400;
+  o.backward_transient = 2000;  // the backward vectors converge like exp(-(lambda1 - lambda2) k), gap >= 0.05 here
+  o.keep_vectors = true;
+  const auto res = lyapunov::covariant_vectors<double>(u0, r, o);
+  EXPECT_FALSE(res.degenerate);
+  double worst = 0;
+  for (std::size_t j = 0; j + period < res.angle.size(); ++j) {
+    Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+    for (std::size_t i = 0; i < period; ++i) M = core::P<double>(res.symbols[j + i], r) * M;
+    const Eigen::EigenSolver<Eigen::Matrix3d> es(M);
+    std::array<int, 3> idx = {0, 1, 2};
+    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b)); });
+    for (int i : idx) ASSERT_EQ(es.eigenvalues()(i).imag(), 0.0) << "complex eigenvalues: CLVs undefined";
+    const V3 u = res.points[j];
+    ASSERT_LT(sin_between(es.eigenvectors().col(idx[0]).real(), u), 1e-9) << "not on the periodic orbit";
+    const Eigen::Matrix3d proj = Eigen::Matrix3d::Identity() - u * u.transpose();
+    const V3 t2 = proj * es.eigenvectors().col(idx[1]).real(), t3 = proj * es.eigenvectors().col(idx[2]).real();
+    // Eigenvectors from the solver carry ~eps * cond errors (cond <= 1e3 here); the CLVs converge to rounding level.
+    EXPECT_LT(sin_between(res.clv1[j], t2), 1e-9) << j;
+    EXPECT_LT(sin_between(res.clv2[j], t3), 1e-9) << j;
+    const double expected = std::acos(std::min(1.0, std::abs(t2.normalized().dot(t3.normalized()))));
+    EXPECT_NEAR(res.angle[j], expected, 1e-9) << j;
+    worst = std::max(worst, std::abs(res.angle[j] - expected));
+  }
+  testing::Test::RecordProperty("worst_angle_error_r" + std::to_string(r), sci(worst));
+}
+
+TEST(Hyperbolicity, ClvsOnPeriodicSinksAreProjectedEigenvectors) {
+  check_periodic_clvs(0.15, V3(1, -0.9, -0.2), 4);   // 1133 (colleague's test_lyapunov)
+  check_periodic_clvs(0.1, V3(1, -0.9, -0.2), 6);    // 111333
+}
+
+TEST(Hyperbolicity, ClvsAreCovariantOnAChaoticOrbit) {
+  // r = 0.11 (between the windows n = 3 and n = 2, lambda1 > 0): D_k CLV_j(k) must be parallel to CLV_j(k+1),
+  // and the mean log growth of CLV_j equal the forward QR exponents.
+  const double r = 0.11;
+  lyapunov::ClvOptions o;
+  o.transient = 10000;
+  o.window = 20000;
+  o.backward_transient = 10000;
+  o.keep_vectors = true;
+  const auto res = lyapunov::covariant_vectors<double>(V3(1, -0.9, -0.2), r, o);
+  ASSERT_FALSE(res.degenerate);
+  ASSERT_GT(res.lambda[0], 0.1);
+  double worst = 0, growth[2] = {0, 0};
+  for (std::size_t k = 0; k + 1 < res.points.size(); ++k) {
+    const V3 u = res.points[k];
+    const Eigen::Matrix3d D = lyapunov::projective_derivative<double>(core::P<double>(res.symbols[k], r), u);
+    const V3 a = D * res.clv1[k], b = D * res.clv2[k];
+    worst = std::max({worst, sin_between(a, res.clv1[k + 1]), sin_between(b, res.clv2[k + 1])});
+    growth[0] += std::log(a.norm());
+    growth[1] += std::log(b.norm());
+  }
+  // Each step commits rounding ~eps * |D| / s2(D) to the covariant direction; backward iteration keeps it from
+  // growing.  1e-9 is a generous bound on this orbit (|D| / s2 < 1e5 measured).
+  EXPECT_LT(worst, 1e-9);
+  RecordProperty("worst_covariance_sin", sci(worst));
+  const double n = static_cast<double>(res.points.size() - 1);
+  // CLV growth differs from the QR diagonal by log of bounded angle ratios at the two ends: O(10 / n) = 5e-4.
+  EXPECT_NEAR(growth[0] / n, res.lambda[0], 5e-4);
+  EXPECT_NEAR(growth[1] / n, res.lambda[1], 5e-4);
+  // The expanding fraction agrees with step_singular_values at the recorded points.
+  long e = 0;
+  for (std::size_t k = 0; k < res.points.size(); ++k) e += lyapunov::step_singular_values(res.points[k], r).s1 >= 1;
+  EXPECT_EQ(e, static_cast<long>(res.expanding_fraction * static_cast<double>(res.points.size()) + 0.5));
+}
+
+TEST(Hyperbolicity, RotationRegionOfP2IsDegenerate) {
+  // In the P2 region around the centre (r > 3 - 2 sqrt2), P2 = r * E diag(1, R_theta) E^{-1} with R_theta a
+  // rotation (all eigenvalues of modulus r): in the chart (a1/a0, a2/a0) of the eigenbasis E the projective map
+  // is a rigid rotation.  The invariant curves are the circles a1^2 + a2^2 = t a0^2, their tangent field is
+  // covariant, but so is every direction (no twist): lambda1 = lambda2 = 0 and the Oseledets splitting is
+  // trivial, so Ginelli's CLVs are not defined there -- the orbit must be flagged degenerate.
+  for (double r : {0.2, 0.3}) {
+    const Eigen::EigenSolver<Eigen::Matrix3d> es(core::P2(r));
+    int k0 = 0;
+    for (int i = 0; i < 3; ++i)
+      if (es.eigenvalues()(i).imag() == 0) k0 = i;
+    const int kc = (k0 + 1) % 3;
+    for (int i = 0; i < 3; ++i) ASSERT_NEAR(std::abs(es.eigenvalues()(i)), r, 1e-14);  // rounding of a 3x3 solver
+    Eigen::Matrix3d E;
+    E << es.eigenvectors().col(k0).real(), es.eigenvectors().col(kc).real(), es.eigenvectors().col(kc).imag();
+    const Eigen::Matrix3d Einv = E.inverse();
+    lyapunov::ClvOptions o;
+    o.transient = 1000;
+    o.window = 20000;
+    o.backward_transient = 1000;
+    o.keep_vectors = true;
+    const auto res = lyapunov::covariant_vectors<double>(V3(1, 0.02, -1), r, o);
+    for (auto s : res.symbols) ASSERT_EQ(s, 2) << "the orbit left the P2 region";
+    EXPECT_TRUE(res.degenerate) << res.lambda[0] << " " << res.lambda[1];
+    const auto t_of = [&](const V3& u) {
+      const V3 a = Einv * u;
+      return (a(1) * a(1) + a(2) * a(2)) / (a(0) * a(0));
+    };
+    const auto tangent = [&](const V3& u) {  // tangent of the invariant circle through u: u x grad Q_t(u)
+      const V3 a = Einv * u;
+      const V3 grad = Einv.transpose() * V3(-t_of(u) * a(0), a(1), a(2));
+      return V3(u.cross(grad));
+    };
+    const double t0 = t_of(res.points.front());
+    double worst = 0;
+    for (std::size_t k = 0; k + 1 < res.points.size(); ++k) {
+      EXPECT_NEAR(t_of(res.points[k]), t0, 1e-10 * t0);  // the circle is invariant (rounding drift over 2e4 steps)
+      const Eigen::Matrix3d D = lyapunov::projective_derivative<double>(core::P2(r), res.points[k]);
+      worst = std::max(worst, sin_between(D * tangent(res.points[k]), tangent(res.points[k + 1])));
+    }
+    EXPECT_LT(worst, 1e-10);  // the tangent field is covariant: one step of rounding on O(1) quantities
+    // Both exponents vanish: |lambda| <= 2 log(cond E) / n, cond E < 1e2 here.
+    EXPECT_LT(std::abs(res.lambda[0]), 10.0 / 20000);
+    EXPECT_LT(std::abs(res.lambda[1]), 10.0 / 20000);
+  }
+}
+
+TEST(Hyperbolicity, StripImage) {
+  const auto img = lyapunov::strip_singular_values(0.3, 40, 20, -2, 2);
+  ASSERT_EQ(img.s1.size(), 800u);
+  for (std::size_t i = 0; i < img.s1.size(); ++i) {
+    const auto sv = lyapunov::step_singular_values(core::from_strip(img.w1[i], img.w2[i]), 0.3);
+    // The strip coordinates round-trip to a few ulps; s1 is Lipschitz with constant ~ s1 there.
+    EXPECT_NEAR(sv.s1, img.s1[i], 1e-13 * img.s1[i]);
+    EXPECT_EQ(sv.symbol, img.symbol[i]);
+    EXPECT_GE(img.s1[i], img.s2[i]);
+  }
+  // Branch 1 lies below w2 = 2 alpha w1 - 1, branch 3 above w2 = 2 alpha w1 + 1 (Section 5.3).
+  const double a = core::alpha(0.3);
+  for (std::size_t i = 0; i < img.s1.size(); ++i) {
+    if (img.w2[i] < 2 * a * img.w1[i] - 1 - 1e-12) EXPECT_EQ(img.symbol[i], 1);
+    else if (img.w2[i] > 2 * a * img.w1[i] + 1 + 1e-12) EXPECT_EQ(img.symbol[i], 3);
+    else EXPECT_EQ(img.symbol[i], 2);
+  }
+  EXPECT_GT(img.expanding_fraction, 0.0);
+  EXPECT_LT(img.expanding_fraction, 1.0);
+}
+
+TEST(Hyperbolicity, Errors) {
+  const auto msg = [](auto f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  lyapunov::ClvOptions o;
+  o.window = 0;
+  EXPECT_EQ(msg([&] { lyapunov::validate(o); }), "window: got 0, expected at least 1");
+  o = {};
+  o.transient = -1;
+  EXPECT_EQ(msg([&] { lyapunov::validate(o); }), "transient: got -1, expected at least 0");
+  o = {};
+  o.backward_transient = 0;
+  EXPECT_EQ(msg([&] { lyapunov::validate(o); }), "backward-transient: got 0, expected at least 1");
+  o = {};
+  o.bins = 0;
+  EXPECT_EQ(msg([&] { lyapunov::validate(o); }), "bins: got 0, expected at least 1");
+  EXPECT_THROW(lyapunov::covariant_vectors<double>(V3(1, 0, 1), 0.3, {}), std::logic_error);  // x z > 0
+  EXPECT_THROW(lyapunov::strip_singular_values(1.5, 4, 4, -1, 1), std::domain_error);
+  EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 0, 4, -1, 1); }).find("grid"), std::string::npos);
+  EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 4, 4, 1, -1); }).find("w1"), std::string::npos);
+}
+
+}  // namespace
