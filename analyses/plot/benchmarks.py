@@ -10,7 +10,7 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 
 # Estimated ceiling of the double kernel on 2 cores (README, "Speed"): 7 FMA-pipe operations per
@@ -45,9 +45,7 @@ def main(src, dst):
                  "suffix /1 or /2 = threads", fontsize=9)
     ax.set_xlim(min(rate) / 2, max(max(rate), LIMIT_DOUBLE_2T) * 8)
     fig.tight_layout()
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
+    save_atomic(fig, dst)
 
 
 if __name__ == "__main__":

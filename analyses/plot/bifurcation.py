@@ -10,7 +10,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -88,9 +88,7 @@ def main(src, dst):
     fig.text(0.995, 0.005, f"btob {a.get('btob_version', '')} {a.get('git_commit', '')}", ha="right", va="bottom",
              fontsize=6, color="#888888")
     fig.tight_layout()
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
+    save_atomic(fig, dst)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -65,9 +65,7 @@ def main(fpath, dpath, out):
     a1.set_title(f"max {ks.max():.3f}, median {np.median(ks):.3f}; r with distance > 0.2: {(ks > 0.2).sum()} of {len(r)}",
                  fontsize=9)
     fig.tight_layout()
-    tmp = os.path.join(out, f"float_vs_double.tmp-{os.getpid()}.png")
-    fig.savefig(tmp)
-    os.replace(tmp, os.path.join(out, "float_vs_double.png"))
+    save_atomic(fig, os.path.join(out, "float_vs_double.png"))
     print(f"float vs double: KS max {ks.max():.3f} at r = {r[ks.argmax()]:.6f}, median {np.median(ks):.4f}, "
           f"{(ks > 0.2).sum()} r values above 0.2")
 

@@ -11,7 +11,7 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 
 
@@ -71,9 +71,7 @@ def main(src, dst):
     bx.set_title("windows near 7-4*sqrt(3) (middle of window n)", fontsize=9)
     fig.suptitle("btob: speed against accuracy, per precision and algorithm", fontsize=11)
     fig.tight_layout()
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
+    save_atomic(fig, dst)
 
 
 if __name__ == "__main__":

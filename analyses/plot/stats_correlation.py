@@ -7,7 +7,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -16,7 +16,7 @@ def main(src, dst):
     with h5py.File(src, "r") as f:
         c = f["C_N"][...]
         ps = f["power_spectrum"][...]
-        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+        a = attrs(f)
     n = np.arange(len(c))
     fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.6), dpi=130)
     ax.plot(n, c, lw=0.8)
@@ -34,9 +34,7 @@ def main(src, dst):
     fig.suptitle(f"C_N({a['observables']}; n) at r = {a['r']}, from {a['point']}, N = {a['N']}, transient {a['transient']}, "
                  f"{a['method']}, double", fontsize=10)
     fig.tight_layout()
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
+    save_atomic(fig, dst)
 
 
 if __name__ == "__main__":

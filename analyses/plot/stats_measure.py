@@ -8,7 +8,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -20,7 +20,7 @@ def main(src, dst):
         tv = f["tv_to_mean"][...]
         cn, ct = f["convergence_n"][...], f["convergence_tv"][...]
         ext = f["extent"][...]
-        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+        a = attrs(f)
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.2), dpi=130, gridspec_kw={"width_ratios": [1.4, 1]})
     cmap = plt.get_cmap("viridis").copy()
     cmap.set_bad("white")
@@ -48,9 +48,7 @@ def main(src, dst):
     fig.suptitle(f"Empirical measures at r = {a['r']}, grid {a['grid']}, {a['iterations']} iterations after {a['transient']}, "
                  f"{a['bins']}x{a['bins']} bins ({a['chart']} chart), double", fontsize=10)
     fig.tight_layout()
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
+    save_atomic(fig, dst)
 
 
 if __name__ == "__main__":

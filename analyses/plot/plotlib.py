@@ -1,0 +1,18 @@
+"""Shared helpers of the plot scripts: Agg backend, HDF5 attributes as str, atomic PNG writes."""
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+
+def attrs(h5obj):
+    """The attributes of an h5py file or dataset, bytes decoded to str."""
+    return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5obj.attrs.items()}
+
+
+def save_atomic(fig, dst):
+    """Writes the figure to a temporary file beside dst, then renames it (no partial PNG)."""
+    tmp = f"{dst}.tmp-{os.getpid()}.png"
+    fig.savefig(tmp)
+    os.replace(tmp, dst)
