@@ -19,8 +19,15 @@ Ensemble fig41(long r_count) {
   return e;
 }
 
+// MPFR's digits come from the benchmark's last argument (range(digits_arg)).
+template <class T> void set_digits(const benchmark::State& st, int digits_arg) {
+  if constexpr (std::is_same_v<T, btob::core::mpfr_float>)
+    btob::core::mpfr_float::default_precision(static_cast<unsigned>(st.range(digits_arg)));
+}
+
 // Appendix A.2 as printed: one orbit at a time, branches, normalise every step.
 template <class T> void BM_scalar_loop(benchmark::State& st) {
+  set_digits<T>(st, 2);
   const Ensemble e = fig41(st.range(0));
   const long iters = st.range(1);
   for (auto _ : st) {
@@ -33,6 +40,7 @@ template <class T> void BM_scalar_loop(benchmark::State& st) {
 
 // The batched kernel, recording only the final state (the iteration phase alone).
 template <class T> void BM_batched(benchmark::State& st) {
+  set_digits<T>(st, 3);
   const Ensemble e = fig41(st.range(0));
   const long iters = st.range(1);
   RunOptions opt;
@@ -59,33 +67,6 @@ template <class T> void BM_fig41_density(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
 }
 
-// Wide precisions (issue 9): the kernel's generic lanes, batched over threads, and the scalar loop, on a
-// small Figure 4.1-like workload (r_count x 32 orbits x iterations).  MPFR digits = range(3).
-template <class T> void BM_wide_batched(benchmark::State& st) {
-  if constexpr (std::is_same_v<T, btob::core::mpfr_float>) btob::core::mpfr_float::default_precision(static_cast<unsigned>(st.range(3)));
-  const Ensemble e = fig41(st.range(0));
-  const long iters = st.range(1);
-  RunOptions opt;
-  opt.threads = static_cast<int>(st.range(2));
-  for (auto _ : st) {
-    FinalRecorder rec(e.orbits(), iters);
-    run<T>(e, iters, rec, opt);
-    benchmark::DoNotOptimize(rec.out.data());
-  }
-  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
-}
-template <class T> void BM_wide_scalar(benchmark::State& st) {
-  if constexpr (std::is_same_v<T, btob::core::mpfr_float>) btob::core::mpfr_float::default_precision(static_cast<unsigned>(st.range(2)));
-  const Ensemble e = fig41(st.range(0));
-  const long iters = st.range(1);
-  for (auto _ : st) {
-    FinalRecorder rec(e.orbits(), iters);
-    run_scalar<T>(e, iters, rec);
-    benchmark::DoNotOptimize(rec.out.data());
-  }
-  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
-}
-
 }  // namespace
 
 // Baseline: 50 r values x 32 orbits x 5000 iterations (8e6 map iterations per run).
@@ -98,12 +79,12 @@ BENCHMARK(BM_batched<float>)->Name("batched/float")->Args({1000, 5000, 1})->Args
 BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_fig41_density<float>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 // Wider precisions: batched 1 and 2 threads, scalar loop.
-BENCHMARK(BM_wide_batched<long double>)->Name("batched/long-double")->Args({20, 2000, 1, 0})->Args({20, 2000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_wide_batched<btob::core::float128>)->Name("batched/float128")->Args({4, 1000, 1, 0})->Args({4, 1000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_wide_batched<btob::core::mpfr_float>)->Name("batched/mpfr")->Args({1, 500, 1, 50})->Args({1, 500, 2, 50})->Args({1, 500, 1, 100})->Args({1, 500, 2, 100})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_wide_scalar<long double>)->Name("scalar_loop/long-double")->Args({4, 2000})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_wide_scalar<btob::core::float128>)->Name("scalar_loop/float128")->Args({2, 1000})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_wide_scalar<btob::core::mpfr_float>)->Name("scalar_loop/mpfr")->Args({1, 300, 50})->Args({1, 300, 100})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<long double>)->Name("batched/long-double")->Args({20, 2000, 1, 0})->Args({20, 2000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<btob::core::float128>)->Name("batched/float128")->Args({4, 1000, 1, 0})->Args({4, 1000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<btob::core::mpfr_float>)->Name("batched/mpfr")->Args({1, 500, 1, 50})->Args({1, 500, 2, 50})->Args({1, 500, 1, 100})->Args({1, 500, 2, 100})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<long double>)->Name("scalar_loop/long-double")->Args({4, 2000})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<btob::core::float128>)->Name("scalar_loop/float128")->Args({2, 1000})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<btob::core::mpfr_float>)->Name("scalar_loop/mpfr")->Args({1, 300, 50})->Args({1, 300, 100})->Unit(benchmark::kMillisecond);
 // Smoke runs for CTest (tiny sizes).
 BENCHMARK(BM_scalar_loop<double>)->Name("smoke/scalar_loop")->Args({2, 50});
 BENCHMARK(BM_batched<double>)->Name("smoke/batched")->Args({2, 50, 2})->UseRealTime();
