@@ -14,6 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -40,13 +41,15 @@ def main(src, dst):
             label=r"fraction of orbits with $\lambda_1-\lambda_2 < 10/n$ (CLV angle undefined)")
     ax.set_ylim(-0.03, 1.03)
     ax.set_ylabel("fraction")
-    ax.legend(fontsize=8, loc="upper right")
+    ax.legend(fontsize=8, loc="lower right")
     ax = axs[2]
     deg = np.degrees
     ax.semilogy(r, deg(d["angle_median"]), "C2.-", ms=3, lw=0.7, label="median CLV angle")
     ax.semilogy(r, deg(d["angle_q05"]), "C1.-", ms=3, lw=0.7, label="5% quantile")
     ax.semilogy(r, deg(d["angle_min"]), "C4.", ms=2, label="minimum")
     ax.set_ylabel("angle between CLVs (degrees)")
+    ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
     ax.legend(fontsize=8, loc="lower right")
     ax = axs[3]
     h = d["angle_histogram"].astype(float)
