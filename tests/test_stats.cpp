@@ -1,119 +1,302 @@
-// Tests of src/stats: C_N by FFT equals the direct sum; periodicity, non-decay and decay of C_N on
-// periodic, quasi-periodic and chaotic orbits; empirical measures in one basin and on distinct curves.
+// Tests of src/stats: C_N by FFT equals the direct sum (float, double, long double; random and orbit
+// series); periodic, quasi-periodic and chaotic C_N; empirical measures in one basin and on distinct
+// invariant curves; the SeriesRecorder against the TailRecorder; errors (API and command line).
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
 #include "stats/stats.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
 #include <random>
+#include <string>
 
 using namespace btob;
 using namespace btob::stats;
 
 namespace {
-double max_abs(const std::vector<double>& v) {
+template <class T> double max_abs(const std::vector<T>& v) {
   double m = 0;
-  for (double x : v) m = std::max(m, std::fabs(x));
+  for (T x : v) m = std::max(m, static_cast<double>(std::fabs(x)));
   return m;
 }
-double max_rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
+// max_n |a_n - b_n| / max_n |b_n|: relative to the scale of C_N (C_N itself crosses zero).
+template <class T> double max_rel_diff(const std::vector<T>& a, const std::vector<T>& b) {
   double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::fabs(a[i] - b[i]));
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, static_cast<double>(std::fabs(a[i] - b[i])));
   return d / max_abs(b);
 }
-const iterate::Vec3<double> kGrid0{1, -3, -1.1};  // first point of the Section 4 grid
+const iterate::Vec3<double> kGrid0{1, -3, -1.1};   // first point of the Section 4 grid (g = 1, h = 1)
+const iterate::Vec3<double> kRotation{1, 0.02, -1};  // inside the P2 rotation region near (1, 0, -1) (Section 5.2)
+
+std::vector<double> random_series(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 gen(seed);
+  std::normal_distribution<double> g(0.7, 2.0);  // non-zero mean: the centring identity is exercised
+  std::vector<double> x(n);
+  double ar = 0;
+  for (auto& v : x) v = ar = 0.6 * ar + g(gen);  // AR(1): correlated over ~5 lags, C_N not trivially flat
+  return x;
+}
 }  // namespace
 
-TEST(Correlation, FftEqualsDirectOnRandomSeries) {
-  std::mt19937_64 gen(3);
-  std::normal_distribution<double> g(0.7, 2.0);  // non-zero mean: the centring path is exercised
-  std::vector<double> x(30000), y(30000);
-  for (auto& v : x) v = g(gen);
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] = 0.3 * x[k] + g(gen);
-  Correlator c;
-  const long N = 20000, n_max = 5000;
-  // Relative to the largest |C_N|: the direct sum's rounding grows like sqrt(N) eps |x||y|, the FFT's like
-  // log(L) eps; both far below 1e-12 at N = 2e4.
-  EXPECT_LT(max_rel_diff(c.correlation(x, y, N, n_max), correlation_direct(x, y, N, n_max)), 1e-12);
-  EXPECT_LT(max_rel_diff(c.correlation(x, x, N, n_max), correlation_direct(x, x, N, n_max)), 1e-12);
-  // The plan is reused for the next series of the same length.
-  EXPECT_LT(max_rel_diff(c.correlation(y, x, N, n_max), correlation_direct(y, x, N, n_max)), 1e-12);
+TEST(Fft, RoundTripAndLengths) {
+  RealFft<double> f(12);
+  for (int k = 0; k < 12; ++k) f.data()[k] = k * k - 3.0;
+  f.forward();
+  EXPECT_NEAR(f.spectrum()[0].real(), 506 - 36, 1e-12);  // sum of the inputs (sum k^2 = 506); 1e-12: 12 terms of size 1e2
+  f.inverse();
+  for (int k = 0; k < 12; ++k) EXPECT_NEAR(f.data()[k] / 12, k * k - 3.0, 1e-12);  // unnormalised: n x
+  EXPECT_EQ(fast_fft_length(1100000), 1105920);  // 2^13 3^3 5
+  EXPECT_EQ(fast_fft_length(1), 1);
+  EXPECT_EQ(fast_fft_length(7), 8);
+  EXPECT_THROW(RealFft<float>(0), std::invalid_argument);
 }
 
-TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
-  const OrbitSeries s = orbit_series(0.11, kGrid0, 1000, 40000);
-  Correlator c;
-  for (Observable o : {Observable::phi, Observable::w2, Observable::cos_phi, Observable::symbol1}) {
-    const auto x = observe(s, o);
-    EXPECT_LT(max_rel_diff(c.correlation(x, x, 30000, 2000), correlation_direct(x, x, 30000, 2000)), 1e-12)
-        << observable_name(o);
+TEST(Correlation, FftEqualsDirectOnRandomSeries) {
+  const auto x = random_series(30000, 3), y0 = random_series(30000, 4);
+  std::vector<double> y(x.size());
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] = 0.3 * x[k] + y0[k];
+  const long N = 20000, n_max = 5000;
+  Correlator<double> c(N, n_max);
+  // Both routes round at ~1e-15 of max |C_N| (centred FFT: log2(L) eps; blocked direct sum: ~128 eps per
+  // block); 1e-12 is the required agreement.
+  EXPECT_LT(max_rel_diff(c(x, y), correlation_direct(x, y, N, n_max)), 1e-12);
+  EXPECT_LT(max_rel_diff(c(x, x), correlation_direct(x, x, N, n_max)), 1e-12);
+  EXPECT_LT(max_rel_diff(c(y, x), correlation_direct(y, x, N, n_max)), 1e-12);  // the same plan, reused
+}
+
+TEST(Correlation, DirectSumIsThePaperFormula) {
+  // Small case against the formula of Section 7 (2) written out in long double with no rearrangement.
+  const auto x = random_series(300, 7), y = random_series(300, 8);
+  const long N = 200, n_max = 60;
+  const auto c = correlation_direct(x, y, N, n_max);
+  long double mx = 0, my = 0;
+  for (long k = 0; k < N; ++k) mx += x[k], my += y[k];
+  mx /= N, my /= N;
+  for (long n = 0; n <= n_max; ++n) {
+    long double s = 0;
+    for (long k = 0; k < N; ++k) s += static_cast<long double>(x[k]) * y[k + n];
+    EXPECT_NEAR(c[n], static_cast<double>(s / N - mx * my), 1e-13);  // 200 terms of size ~10: ~1e-14 rounding
   }
 }
 
-TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
-  // r = 0.15: the orbit sits on the sink 1133 (period 4) after the transient, to machine precision.
-  const OrbitSeries s = orbit_series(0.15, kGrid0, 5000, 21000);
-  const auto x = observe(s, Observable::phi);
-  Correlator c;
-  const auto cn = c.correlation(x, x, 20000, 1000);
-  double worst = 0;
-  for (long n = 0; n + 4 <= 1000; ++n) worst = std::max(worst, std::fabs(cn[n + 4] - cn[n]));
-  EXPECT_LT(worst, 1e-10);
-  EXPECT_GT(max_abs(cn), 0.1);  // and it is not trivially zero
+TEST(Correlation, PrecisionFollowsT) {
+  const auto xd = random_series(12000, 5);
+  const std::vector<float> xf(xd.begin(), xd.end());
+  const std::vector<long double> xl(xd.begin(), xd.end());
+  const long N = 10000, n_max = 1000;
+  const auto ref = correlation_direct(xl, xl, N, n_max);
+  Correlator<float> cf(N, n_max);
+  Correlator<long double> cl(N, n_max);
+  const auto f = cf(xf, xf);
+  std::vector<long double> fl(f.begin(), f.end());
+  // float: inputs rounded to 6e-8 relative and the transforms round at ~log2(L) 6e-8; 1e-5 of max |C_N|.
+  EXPECT_LT(max_rel_diff(fl, ref), 1e-5);
+  EXPECT_GT(max_rel_diff(fl, ref), 1e-9);  // and it really ran in float (double would be ~1e-15)
+  // long double: both routes in 64-bit mantissas, ~1e-18; 1e-15 leaves room for the FFT's log factor.
+  EXPECT_LT(max_rel_diff(cl(xl, xl), ref), 1e-15);
 }
 
-TEST(Correlation, QuasiPeriodicDoesNotDecayChaoticDoes) {
-  Correlator c;
-  // r = 0.2 from (1, 0.02, -1): an invariant curve of the P2 rotation (Section 5.2).
-  const auto q = observe(orbit_series(0.2, {1, 0.02, -1}, 1000, 101000), Observable::phi);
-  const auto cq = c.correlation(q, q, 100000, 1000);
-  const Decay dq = fit_decay(cq, 1000, 50);
-  EXPECT_LT(std::fabs(dq.rate), 1e-3) << "quasi-periodic: envelope " << dq.envelope_first << " -> " << dq.envelope_last;
-  EXPECT_GT(dq.envelope_last, 0.5 * dq.envelope_first);
-  // r = 0.11 (apparent chaos, positive Lyapunov exponent ~0.66): |C_N| falls by two decades within ~30 lags.
-  const auto x = observe(orbit_series(0.11, kGrid0, 1000, 201000), Observable::phi);
-  const auto cx = c.correlation(x, x, 200000, 200);
-  const Decay dx = fit_decay(cx, 30, 3);
-  EXPECT_GT(dx.rate, 0.05) << "chaotic decay rate " << dx.rate << " +- " << dx.rate_error;
-  EXPECT_LT(max_abs(std::vector<double>(cx.begin() + 50, cx.end())), 0.05 * cx[0]);
+TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
+  const OrbitSeries s = orbit_series(0.11, kGrid0, 1000, 42000);
+  for (Observable o : {Observable::theta, Observable::phi, Observable::w1, Observable::w2, Observable::cos_phi,
+                       Observable::symbol1, Observable::symbol2, Observable::symbol3}) {
+    const auto x = observe(s, o);
+    Correlator<double> c(40000, 2000);
+    EXPECT_LT(max_rel_diff(c(x, x), correlation_direct(x, x, 40000, 2000)), 1e-12) << observable_name(o);
+  }
+  // Two observables and a user function composed with one (tolerance as above).
+  const auto a = observe(s, Observable::phi, [](double p) { return std::sin(3 * p); });
+  const auto b = observe(s, [](const iterate::Vec3<double>& u, int sym) { return u(0) * u(2) + (sym == 2); });
+  Correlator<double> c(40000, 2000);
+  EXPECT_LT(max_rel_diff(c(a, b), correlation_direct(a, b, 40000, 2000)), 1e-12);
+}
+
+TEST(Series, MatchesTailAndSymbolRecorders) {
+  // The SeriesRecorder's angles agree with the existing recorders' on the same orbit (same kernel run).
+  const long T = 100, L = 500;
+  const OrbitSeries s = orbit_series(0.3, kGrid0, T, L);
+  iterate::Ensemble e;
+  e.r = {0.3};
+  e.initial = {kGrid0};
+  iterate::TailRecorder th(iterate::Coord::phi, 1, T + L, L);
+  iterate::SymbolRecorder sy(1, T + 1, T + L);
+  iterate::Both<iterate::TailRecorder, iterate::SymbolRecorder> both(th, sy);
+  iterate::run<double>(e, T + L, both);
+  for (long k = 0; k < L; ++k) {
+    EXPECT_NEAR(value(Observable::phi, s.state(k), s.symbol[k]), th.out[k], 1e-14);  // atan2 vs atan_pos: ~1e-16
+    EXPECT_EQ(s.symbol[k], sy.out[k]);
+  }
+  const auto many = orbit_series(0.3, std::vector<iterate::Vec3<double>>{kGrid0, {1, -1, -2}}, T, L, 2);
+  EXPECT_EQ(many[0].x, s.x);  // an orbit does not depend on its neighbours or the thread count (bitwise)
+}
+
+TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
+  // r = 0.15: the orbit of the first grid point sits on the sink 1133 (period 4) after the transient.
+  const OrbitSeries s = orbit_series(0.15, kGrid0, 5000, 21000);
+  for (Observable o : {Observable::phi, Observable::w1, Observable::symbol1}) {
+    const auto x = observe(s, o);
+    Correlator<double> c(20000, 1000);
+    const auto cn = c(x, x);
+    double worst = 0;
+    for (long n = 0; n + 4 <= 1000; ++n) worst = std::max(worst, std::fabs(cn[n + 4] - cn[n]));
+    EXPECT_LT(worst, 1e-10) << observable_name(o);  // the required p-periodicity (sink reached to rounding)
+    EXPECT_GT(max_abs(cn), 1e-3) << observable_name(o);  // and not trivially zero
+    double worst2 = 0;  // but not 2-periodic (period exactly 4)
+    for (long n = 0; n + 2 <= 1000; ++n) worst2 = std::max(worst2, std::fabs(cn[n + 2] - cn[n]));
+    EXPECT_GT(worst2, 1e-3) << observable_name(o);
+  }
+}
+
+TEST(Correlation, QuasiPeriodicDoesNotDecay) {
+  // r = 0.2 from (1, 0.02, -1): an invariant curve of the P2 rotation (Section 7.1).
+  const auto q = observe(orbit_series(0.2, kRotation, 1000, 101000), Observable::phi);
+  Correlator<double> c(100000, 1000);
+  const auto cq = c(q, q);
+  const Decay d = fit_decay(cq, 1000, 50, 4 * cq[0] / std::sqrt(1e5));
+  const auto env = envelope(cq, 50);
+  const double lo = *std::min_element(env.begin(), env.end()), hi = *std::max_element(env.begin(), env.end());
+  std::printf("quasi-periodic r = 0.2: C_N(0) = %.4g, envelope over windows of 50 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
+              cq[0], lo, hi, d.rate, d.rate_error);
+  EXPECT_FALSE(d.decays);
+  EXPECT_EQ(d.windows, 20);  // every window stays above the noise floor
+  EXPECT_LT(std::fabs(d.rate), 1e-4);  // no decay: 1e-4 per iteration would be a 10% fall over 1000 lags
+  EXPECT_GT(lo, 0.9 * hi);  // the envelope is flat to 10% (oscillation without decay)
+}
+
+TEST(Correlation, ChaoticDecays) {
+  // r = 0.11 (apparently chaotic, positive Lyapunov exponent): |C_N| decays to the noise floor.
+  const long N = 200000;
+  const auto x = observe(orbit_series(0.11, kGrid0, 1000, N + 400), Observable::phi);
+  Correlator<double> c(N, 400);
+  const auto cx = c(x, x);
+  const double floor = 4 * cx[0] / std::sqrt(static_cast<double>(N));
+  const Decay d = fit_decay(cx, 400, 4, floor);
+  std::printf("chaotic r = 0.11: C_N(0) = %.4g, rate %.4g +- %.2g per iteration over %ld windows of 4 lags, envelope "
+              "%.3g -> %.3g (floor %.2g)\n",
+              cx[0], d.rate, d.rate_error, d.windows, d.envelope_first, d.envelope_last, floor);
+  EXPECT_TRUE(d.decays);
+  EXPECT_GT(d.rate, 0.01);  // faster than 1% per iteration (fitted ~0.1, see notes)
+  EXPECT_LT(max_abs(std::vector<double>(cx.begin() + 200, cx.end())), 0.05 * cx[0]);
+}
+
+TEST(Spectrum, PeriodogramFindsThePeriod) {
+  const long N = 4096;
+  std::vector<double> x(N);
+  for (long k = 0; k < N; ++k) x[k] = 2 + std::cos(2 * std::numbers::pi * 0.25 * k);  // period 4
+  Periodogram<double> p(N);
+  const auto s = p(x);
+  EXPECT_EQ(std::max_element(s.begin(), s.end()) - s.begin(), N / 4);
+  double sum = 0;
+  for (std::size_t j = 1; j < s.size(); ++j) sum += s[j] * (j == s.size() - 1 ? 1 : 2);  // both halves
+  EXPECT_NEAR(sum / N, 0.5, 1e-12);  // Parseval: variance of cos = 1/2
 }
 
 TEST(Measures, OneBasinGivesOneMeasure) {
   // r = 0.15: the 32 orbits of the Section 4 grid all end on 1133: their empirical measures coincide.
-  const std::vector<iterate::Vec3<double>> ics = iterate::paper_grid();
+  const auto series = orbit_series(0.15, iterate::paper_grid(), 10000, 100000);
   std::vector<Measure> ms;
-  for (const auto& u : ics) ms.push_back(empirical_measure(orbit_series(0.15, u, 10000, 100000), Chart::strip, 200, 200));
+  for (const auto& s : series) ms.push_back(empirical_measure(s, Chart::strip, 200, 200));
   for (const auto& m : ms) {
-    EXPECT_LT(total_variation(m, ms[0]), 1e-3);
+    EXPECT_LT(total_variation(m, ms[0]), 1e-3);  // the required coincidence after 1e5 iterations
     EXPECT_LT(wasserstein_1d(m.marginal_u(), ms[0].marginal_u(), m.u_lo, m.u_hi), 1e-3);
     double sum = 0;
     for (double v : m.mass) sum += v;
-    EXPECT_NEAR(sum, 1.0, 1e-12);  // weights 1/N
+    EXPECT_NEAR(sum, 1.0, 1e-12);  // weights 1/N: 4e4 bins summed
   }
+  EXPECT_EQ(group_measures(ms, 0.05), std::vector<int>(ms.size(), 0));
+  // The measure is atomic: 4 points, mass 1/4 each.
+  int atoms = 0;
+  for (double v : ms[0].mass) atoms += v > 0;
+  EXPECT_EQ(atoms, 4);
 }
 
 TEST(Measures, DistinctInvariantCurvesGiveDistinctMeasures) {
-  // r = 0.2: two orbits on different invariant curves of the P2 rotation (Section 7.1).
-  const Measure a = empirical_measure(orbit_series(0.2, {1, 0.01, -1}, 1000, 100000), Chart::strip, 400, 400);
-  const Measure b = empirical_measure(orbit_series(0.2, {1, 0.06, -1}, 1000, 100000), Chart::strip, 400, 400);
-  EXPECT_GT(total_variation(a, b), 0.5);
-  const Measure a2 = empirical_measure(orbit_series(0.2, {1, 0.01, -1}, 1000, 100000), Chart::angles, 100, 100);
-  EXPECT_NEAR(total_variation(a2, a2), 0.0, 0.0);
+  // r = 0.2: orbits on different invariant curves of the P2 rotation have different measures (Section 7.1).
+  const auto s = orbit_series(0.2, std::vector<iterate::Vec3<double>>{{1, 0.01, -1}, {1, 0.06, -1}}, 1000, 100000);
+  const Measure a = empirical_measure(s[0], Chart::strip, 200, 200), b = empirical_measure(s[1], Chart::strip, 200, 200);
+  EXPECT_GT(total_variation(a, b), 0.5);  // nested curves: nearly disjoint supports
+  EXPECT_EQ(group_measures({a, b}, 0.05), (std::vector<int>{0, 1}));
+  // Each curve's own measure converges: first half vs second half of its orbit.
+  const Measure a1 = empirical_measure(s[0], Chart::strip, 200, 200, 0, 50000);
+  const Measure a2 = empirical_measure(s[0], Chart::strip, 200, 200, 50000, 50000);
+  EXPECT_LT(total_variation(a1, a2), 0.1);  // a 1-D curve spread over ~100s of bins, 5e4 points each
+  EXPECT_GT(wasserstein_1d(a.marginal_v(), b.marginal_v(), a.v_lo, a.v_hi), 1e-3);
+  // The angles chart holds the same points.
+  const Measure c = empirical_measure(s[0], Chart::angles, 100, 100);
+  EXPECT_EQ(c.points, 100000);
 }
 
 TEST(Stats, BadInputNamesTheField) {
+  const auto expect_message = [](auto f, const std::string& word) {
+    try {
+      f();
+      ADD_FAILURE() << "no exception, expected one naming " << word;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
   std::vector<double> x(100, 1.0);
-  Correlator c;
-  try {
-    c.correlation(x, x, 50, 50);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("n-max"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(correlation_direct(x, x, 90, 20), std::invalid_argument);  // psi too short
-  EXPECT_THROW(parse_observable("psi"), std::invalid_argument);
+  expect_message([&] { Correlator<double>(50, 50); }, "n-max: got 50, expected 0 <= n-max < N = 50");
+  expect_message([&] { correlation_direct(x, x, 50, 60); }, "n-max");
+  expect_message([&] { correlation_direct(x, x, 90, 20); }, "series: got 100 and 100 values");
+  expect_message([&] { Correlator<double> c(90, 20); c(x, x); }, "series");
+  expect_message([] { parse_observable("psi"); }, "observable: got 'psi', expected one of theta");
+  expect_message([] { parse_chart("polar"); }, "coords: got 'polar'");
   const OrbitSeries s = orbit_series(0.3, kGrid0, 10, 100);
-  EXPECT_THROW(empirical_measure(s, Chart::strip, 0, 10), std::invalid_argument);
+  expect_message([&] { empirical_measure(s, Chart::strip, 0, 10); }, "bins: got 0x10");
+  expect_message([&] { empirical_measure(s, Chart::strip, 10, 10, 50, 60); }, "iterations");
+  expect_message([] { orbit_series(0.3, kGrid0, -1, 100); }, "transient");
+  expect_message([] { fit_decay(std::vector<double>(10), 20, 2); }, "n-fit");
   EXPECT_THROW(orbit_series(1.5, kGrid0, 10, 100), std::domain_error);
+}
+
+namespace {
+// The btob binary beside this test's build directory (tests/test_stats -> ../btob).
+std::filesystem::path btob_binary() {
+  return std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path() / "btob";
+}
+struct CliRun {
+  int status;
+  std::string err;
+};
+CliRun run_btob(const std::string& args) {
+  const std::string cmd = btob_binary().string() + " " + args + " 2>&1 >/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string err;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) err += buf;
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, err};
+}
+}  // namespace
+
+TEST(Cli, BadInputIsOneLineNamingTheFieldExit2) {
+  if (!std::filesystem::exists(btob_binary())) GTEST_SKIP() << "btob not built at " << btob_binary();
+  const auto out = std::filesystem::temp_directory_path() / ("btob_stats_cli_" + std::to_string(getpid()));
+  const std::string o = " --out " + out.string() + " --no-plot";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"correlate --r 0.2 --n-max 100 --iterations 100" + o, "n-max: got 100"},
+      {"correlate --r 0.2 --n-max 10 --iterations 100 --observable phi,chi" + o, "observable: got 'chi'"},
+      {"correlate --r 0.2 --observable w3" + o, "observable: got 'w3'"},
+      {"correlate --r 0.2 --method fast" + o, "method: got 'fast'"},
+      {"correlate --r 0.2 --precision half" + o, "precision: got 'half'"},
+      {"correlate --r 1.2" + o, "r"},
+      {"correlate --r 0.2 --point 1,0,1" + o, "point"},
+      {"measure --r 0.15 --bins 0" + o, "bins: got 0"},
+      {"measure --r 0.15 --coords polar" + o, "coords: got 'polar'"},
+      {"measure --r 0.15 --iterations 3" + o, "iterations: got 3"},
+      {"measure --r 0.15 --tv-same 0" + o, "tv-same: got 0"},
+  };
+  for (const auto& [args, word] : cases) {
+    const CliRun r = run_btob(args);
+    EXPECT_EQ(r.status, 2) << args << " -> " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
+    EXPECT_NE(r.err.find(word), std::string::npos) << args << " -> " << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out)) << "bad input must not create the output directory";
 }

@@ -1,234 +1,132 @@
-// Observables, correlation functions (direct and FFTW) and empirical measures along orbits of P_r.
+// Orbit series, observables, empirical measures, distances and the decay fit (Section 7 (2)).
 #include "stats/stats.hpp"
 
 #include "core/coords.hpp"
 #include "iterate/kernel.hpp"
-#include "iterate/recorders.hpp"
+#include "iterate/series.hpp"
 
-#include <fftw3.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
 
 namespace btob::stats {
 
-Observable parse_observable(const std::string& name, const char* field) {
+std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
+                                      long length, int threads) {
+  core::validate_r(r, "r");
+  for (const auto& u : u0) core::validate_point(u(0), u(1), u(2), "point");
+  if (transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected >= 0", transient));
+  if (length < 1) throw std::invalid_argument(fmt::format("iterations: got {}, expected >= 1", length));
+  if (u0.empty()) throw std::invalid_argument("grid: got no initial condition, expected at least one");
+  iterate::Ensemble e;
+  e.r = {r};
+  e.initial = u0;
+  // Twice the series (recorder, then the per-orbit copies) must fit.
+  iterate::checked_bytes(2 * u0.size() * static_cast<std::size_t>(length), 3 * sizeof(double) + 1, "iterations");
+  iterate::SeriesRecorder rec(u0.size(), transient + 1, length);
+  iterate::RunOptions opt;
+  opt.threads = threads;
+  iterate::run<double>(e, transient + length, rec, opt);
+  std::vector<OrbitSeries> out(u0.size());
+  for (std::size_t o = 0; o < u0.size(); ++o) {
+    const auto b = static_cast<std::ptrdiff_t>(o * static_cast<std::size_t>(length)), n = static_cast<std::ptrdiff_t>(length);
+    out[o].x.assign(rec.x.begin() + b, rec.x.begin() + b + n);
+    out[o].y.assign(rec.y.begin() + b, rec.y.begin() + b + n);
+    out[o].z.assign(rec.z.begin() + b, rec.z.begin() + b + n);
+    out[o].symbol.assign(rec.symbol.begin() + b, rec.symbol.begin() + b + n);
+  }
+  return out;
+}
+
+OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length) {
+  return std::move(orbit_series(r, std::vector<iterate::Vec3<double>>{u0}, transient, length, 1)[0]);
+}
+
+namespace {
+const std::map<std::string, Observable>& observable_table() {
   static const std::map<std::string, Observable> m = {
       {"theta", Observable::theta},     {"phi", Observable::phi},         {"w1", Observable::w1},
       {"w2", Observable::w2},           {"cos-phi", Observable::cos_phi}, {"symbol1", Observable::symbol1},
       {"symbol2", Observable::symbol2}, {"symbol3", Observable::symbol3}};
-  const auto it = m.find(name);
-  if (it == m.end())
-    throw std::invalid_argument(fmt::format(
-        "{}: got '{}', expected theta, phi, w1, w2, cos-phi, symbol1, symbol2 or symbol3", field, name));
+  return m;
+}
+}  // namespace
+
+std::string observable_names() { return "theta, phi, w1, w2, cos-phi, symbol1, symbol2, symbol3"; }
+
+Observable parse_observable(const std::string& name, const char* field) {
+  const auto it = observable_table().find(name);
+  if (it == observable_table().end())
+    throw std::invalid_argument(fmt::format("{}: got '{}', expected one of {}", field, name, observable_names()));
   return it->second;
 }
 
 std::string observable_name(Observable o) {
-  switch (o) {
-    case Observable::theta: return "theta";
-    case Observable::phi: return "phi";
-    case Observable::w1: return "w1";
-    case Observable::w2: return "w2";
-    case Observable::cos_phi: return "cos-phi";
-    case Observable::symbol1: return "symbol1";
-    case Observable::symbol2: return "symbol2";
-    case Observable::symbol3: return "symbol3";
-  }
+  for (const auto& [name, v] : observable_table())
+    if (v == o) return name;
   return "?";
 }
 
-OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length) {
-  core::validate_r(r, "r");
-  core::validate_point(u0(0), u0(1), u0(2), "point");
-  if (transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected >= 0", transient));
-  if (length < 1) throw std::invalid_argument(fmt::format("iterations: got {}, expected >= 1", length));
-  iterate::checked_bytes(static_cast<std::size_t>(length), 2 * sizeof(double) + 1, "iterations");
-  iterate::Ensemble e;
-  e.r = {r};
-  e.initial = {u0};
-  const long total = transient + length;
-  iterate::TailRecorder th(iterate::Coord::theta, 1, total, length), ph(iterate::Coord::phi, 1, total, length);
-  iterate::Both<iterate::TailRecorder, iterate::TailRecorder> both(th, ph);
-  iterate::run<double>(e, total, both);
-  iterate::SymbolRecorder sy(1, transient + 1, total);
-  iterate::run<double>(e, total, sy);  // the same orbit, bit for bit (deterministic kernel)
-  return {std::move(th.out), std::move(ph.out), std::move(sy.out)};
+double value(Observable o, const iterate::Vec3<double>& u, int symbol) {
+  const double x = u(0), y = u(1), z = u(2);  // a unit vector in Q: x >= 0, z <= 0
+  switch (o) {
+    case Observable::theta: return std::atan2(-z, x);                          // Section 4
+    case Observable::phi: return std::atan2(std::sqrt(x * x + z * z), -y);    // Section 5.1, cos phi = -y
+    case Observable::w1: return y / (x - z);                                   // eq. (5.5)
+    case Observable::w2: return (x + z) / (x - z);                             // eq. (5.5)
+    case Observable::cos_phi: return -y;
+    case Observable::symbol1: return symbol == 1;
+    case Observable::symbol2: return symbol == 2;
+    case Observable::symbol3: return symbol == 3;
+  }
+  return 0;
 }
 
 std::vector<double> observe(const OrbitSeries& s, Observable o, const std::function<double(double)>& f) {
-  std::vector<double> v(s.theta.size());
-  for (std::size_t k = 0; k < v.size(); ++k) {
-    double x = 0;
-    switch (o) {
-      case Observable::theta: x = s.theta[k]; break;
-      case Observable::phi: x = s.phi[k]; break;
-      case Observable::cos_phi: x = std::cos(s.phi[k]); break;
-      case Observable::w1:
-      case Observable::w2: {
-        const auto u = core::from_angles<double>(s.theta[k], s.phi[k]);
-        const auto [w1, w2] = core::strip<double>(u);
-        x = o == Observable::w1 ? w1 : w2;
-        break;
-      }
-      case Observable::symbol1: x = s.symbol[k] == 1; break;
-      case Observable::symbol2: x = s.symbol[k] == 2; break;
-      case Observable::symbol3: x = s.symbol[k] == 3; break;
-    }
-    v[k] = f ? f(x) : x;
+  std::vector<double> v(static_cast<std::size_t>(s.size()));
+  for (long k = 0; k < s.size(); ++k) {
+    const double a = value(o, s.state(k), s.symbol[k]);
+    v[k] = f ? f(a) : a;
   }
   return v;
 }
 
-namespace {
-void check_lengths(const std::vector<double>& phi, const std::vector<double>& psi, long N, long n_max) {
-  if (N < 1) throw std::invalid_argument(fmt::format("iterations: got N = {}, expected N >= 1", N));
-  if (n_max < 0 || n_max >= N)
-    throw std::invalid_argument(fmt::format("n-max: got {}, expected 0 <= n-max < N = {}", n_max, N));
-  if (static_cast<long>(phi.size()) < N || static_cast<long>(psi.size()) < N + n_max)
-    throw std::invalid_argument(fmt::format("series: got {} and {} values, expected at least N = {} and N + n-max = {}",
-                                            phi.size(), psi.size(), N, N + n_max));
-}
-double mean(const std::vector<double>& x, long N) {
-  // Pairwise-free but compensated (Neumaier) so that 1e6-term means are accurate to ~1e-16 relative.
-  double s = 0, c = 0;
-  for (long k = 0; k < N; ++k) {
-    const double t = s + x[k];
-    c += std::fabs(s) >= std::fabs(x[k]) ? (s - t) + x[k] : (x[k] - t) + s;
-    s = t;
-  }
-  return (s + c) / static_cast<double>(N);
-}
-}  // namespace
-
-std::vector<double> correlation_direct(const std::vector<double>& phi, const std::vector<double>& psi, long N, long n_max) {
-  check_lengths(phi, psi, N, n_max);
-  const double mp = mean(phi, N), mq = mean(psi, N);
-  std::vector<double> c(static_cast<std::size_t>(n_max + 1));
-  for (long n = 0; n <= n_max; ++n) {
-    double s = 0;
-    for (long k = 0; k < N; ++k) s += phi[k] * psi[k + n];
-    c[n] = s / static_cast<double>(N) - mp * mq;
-  }
-  return c;
+std::vector<double> observe(const OrbitSeries& s, const StateFunction& f) {
+  std::vector<double> v(static_cast<std::size_t>(s.size()));
+  for (long k = 0; k < s.size(); ++k) v[k] = f(s.state(k), s.symbol[k]);
+  return v;
 }
 
-namespace {
-std::mutex& planner_mutex() {  // one process-wide lock for FFTW's planner
-  static std::mutex m;
-  return m;
-}
-// Smallest 2^a 3^b 5^c >= n (FFTW is fastest on such sizes).
-long fast_size(long n) {
-  long best = 1;
-  while (best < n) best *= 2;
-  for (long p2 = 1; p2 < best; p2 *= 2)
-    for (long p3 = p2; p3 < best; p3 *= 3)
-      for (long p5 = p3; p5 < best; p5 *= 5)
-        if (p5 >= n && p5 < best) best = p5;
-  return best;
-}
-struct Plan {
-  long L = 0;
-  double* in = nullptr;
-  fftw_complex* out = nullptr;
-  fftw_plan fwd = nullptr, inv = nullptr;
-  explicit Plan(long L_) : L(L_) {
-    std::lock_guard<std::mutex> lock(planner_mutex());
-    in = fftw_alloc_real(static_cast<std::size_t>(L));
-    out = fftw_alloc_complex(static_cast<std::size_t>(L / 2 + 1));
-    if (!in || !out) throw std::length_error(fmt::format("series: FFT of length {} does not fit in memory", L));
-    fwd = fftw_plan_dft_r2c_1d(static_cast<int>(L), in, out, FFTW_ESTIMATE);
-    inv = fftw_plan_dft_c2r_1d(static_cast<int>(L), out, in, FFTW_ESTIMATE);
-  }
-  ~Plan() {
-    std::lock_guard<std::mutex> lock(planner_mutex());
-    fftw_destroy_plan(fwd);
-    fftw_destroy_plan(inv);
-    fftw_free(in);
-    fftw_free(out);
-  }
-};
-}  // namespace
-
-struct Correlator::Impl {
-  std::map<long, std::unique_ptr<Plan>> plans;  // reused across orbits of the same length
-  Plan& plan(long L) {
-    auto& p = plans[L];
-    if (!p) p = std::make_unique<Plan>(L);
-    return *p;
-  }
-};
-
-Correlator::Correlator() : impl_(std::make_unique<Impl>()) {}
-Correlator::~Correlator() = default;
-
-std::vector<double> Correlator::correlation(const std::vector<double>& phi, const std::vector<double>& psi, long N,
-                                            long n_max) {
-  check_lengths(phi, psi, N, n_max);
-  const long L = fast_size(N + n_max);
-  Plan& p = impl_->plan(L);
-  const long H = L / 2 + 1;
-  // Centring both series by their means over k < N before transforming keeps the products small, so the
-  // FFT's rounding (eps * sum |phi| |psi|) stays relative to the covariance, not to the raw second moment.
-  const double mp = mean(phi, N), mq = mean(psi, N);
-  std::vector<std::complex<double>> A(static_cast<std::size_t>(H));
-  std::fill(p.in, p.in + L, 0.0);
-  for (long k = 0; k < N; ++k) p.in[k] = phi[k] - mp;
-  fftw_execute_dft_r2c(p.fwd, p.in, p.out);
-  for (long j = 0; j < H; ++j) A[j] = {p.out[j][0], p.out[j][1]};
-  std::fill(p.in, p.in + L, 0.0);
-  for (long k = 0; k < N + n_max; ++k) p.in[k] = psi[k] - mq;
-  fftw_execute_dft_r2c(p.fwd, p.in, p.out);
-  for (long j = 0; j < H; ++j) {
-    const std::complex<double> v = std::conj(A[j]) * std::complex<double>(p.out[j][0], p.out[j][1]);
-    p.out[j][0] = v.real();
-    p.out[j][1] = v.imag();
-  }
-  fftw_execute_dft_c2r(p.inv, p.out, p.in);  // unnormalised: multiply by 1/L
-  // sum_{k<N} (phi_k - mp)(psi_{k+n} - mq) = sum phi_k psi_{k+n} - mq sum phi_k - mp sum_{k<N} psi_{k+n} + N mp mq
-  //   = N C_N(n) + N mp mq - mp sum_{k<N} psi_{k+n} ... corrected below with the running window sums of psi.
-  std::vector<double> c(static_cast<std::size_t>(n_max + 1));
-  double window = 0;  // sum_{k<N} (psi_{k+n} - mq), updated as n grows
-  for (long k = 0; k < N; ++k) window += psi[k] - mq;
-  for (long n = 0; n <= n_max; ++n) {
-    const double centred = p.in[n] / static_cast<double>(L);  // sum_{k<N} (phi_k - mp)(psi_{k+n} - mq)
-    // sum phi_k psi_{k+n} / N - mp mq = centred / N + mp * window / N  (the mq terms cancel)
-    c[n] = centred / static_cast<double>(N) + mp * window / static_cast<double>(N);
-    if (n < n_max) window += (psi[n + N] - mq) - (psi[n] - mq);
-  }
-  return c;
-}
-
-std::vector<double> Correlator::power_spectrum(const std::vector<double>& x, long N) {
-  if (N < 2 || static_cast<long>(x.size()) < N)
-    throw std::invalid_argument(fmt::format("series: got {} values for N = {}, expected N >= 2 values", x.size(), N));
-  Plan& p = impl_->plan(N);
-  const double m = mean(x, N);
-  for (long k = 0; k < N; ++k) p.in[k] = x[k] - m;
-  fftw_execute_dft_r2c(p.fwd, p.in, p.out);
-  std::vector<double> s(static_cast<std::size_t>(N / 2 + 1));
-  for (long j = 0; j <= N / 2; ++j) s[j] = (p.out[j][0] * p.out[j][0] + p.out[j][1] * p.out[j][1]) / static_cast<double>(N);
-  return s;
-}
-
-Decay fit_decay(const std::vector<double>& c, long n_fit, long window) {
-  if (window < 1 || n_fit < 2 * window || static_cast<long>(c.size()) <= n_fit)
-    throw std::invalid_argument(fmt::format("n-fit: got {} with window {} for {} lags, expected 2 window <= n-fit < lags",
-                                            n_fit, window, c.size()));
-  // Envelope: max |C_N| over consecutive windows of lags 1.., then a least-squares line through log(envelope).
-  std::vector<double> xs, ys;
-  for (long start = 1; start + window <= n_fit + 1; start += window) {
+std::vector<double> envelope(const std::vector<double>& c, long window) {
+  if (window < 1) throw std::invalid_argument(fmt::format("window: got {}, expected >= 1", window));
+  std::vector<double> e;
+  for (long start = 1; start + window <= static_cast<long>(c.size()); start += window) {
     double m = 0;
     for (long n = start; n < start + window; ++n) m = std::max(m, std::fabs(c[n]));
-    xs.push_back(static_cast<double>(start) + 0.5 * static_cast<double>(window - 1));
-    ys.push_back(std::log(std::max(m, 1e-300)));
+    e.push_back(m);
   }
+  return e;
+}
+
+Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor) {
+  if (window < 1 || n_fit < window || n_fit >= static_cast<long>(c.size()))
+    throw std::invalid_argument(
+        fmt::format("n-fit: got {} with window {} for {} lags, expected window <= n-fit < lags", n_fit, window, c.size()));
+  const std::vector<double> env = envelope(std::vector<double>(c.begin(), c.begin() + n_fit + 1), window);
+  std::vector<double> xs, ys;
+  for (std::size_t i = 0; i < env.size(); ++i) {
+    if (!(env[i] > floor)) break;  // the first window at the noise floor ends the fit
+    xs.push_back(1.0 + static_cast<double>(i * window) + 0.5 * static_cast<double>(window - 1));
+    ys.push_back(std::log(env[i]));
+  }
+  Decay d;
+  d.windows = static_cast<long>(xs.size());
+  if (xs.size() < 3) return d;  // too few windows above the floor for a line and its error
   const double n = static_cast<double>(xs.size());
   const double mx = std::accumulate(xs.begin(), xs.end(), 0.0) / n, my = std::accumulate(ys.begin(), ys.end(), 0.0) / n;
   double sxx = 0, sxy = 0;
@@ -239,13 +137,21 @@ Decay fit_decay(const std::vector<double>& c, long n_fit, long window) {
   const double slope = sxy / sxx;
   double sse = 0;
   for (std::size_t i = 0; i < xs.size(); ++i) sse += std::pow(ys[i] - my - slope * (xs[i] - mx), 2);
-  Decay d;
   d.rate = -slope;
-  d.rate_error = xs.size() > 2 ? std::sqrt(sse / (n - 2) / sxx) : 0;
+  d.rate_error = std::sqrt(sse / (n - 2) / sxx);
   d.envelope_first = std::exp(ys.front());
   d.envelope_last = std::exp(ys.back());
+  // Decay: a slope three standard errors below zero and a tenfold fall of the envelope over the fit.
+  d.decays = d.rate > 3 * d.rate_error && d.envelope_last < 0.1 * d.envelope_first;
   return d;
 }
+
+Chart parse_chart(const std::string& name, const char* field) {
+  if (name == "strip") return Chart::strip;
+  if (name == "angles") return Chart::angles;
+  throw std::invalid_argument(fmt::format("{}: got '{}', expected strip or angles", field, name));
+}
+std::string chart_name(Chart c) { return c == Chart::strip ? "strip" : "angles"; }
 
 std::vector<double> Measure::marginal_u() const {
   std::vector<double> m(static_cast<std::size_t>(bins_u), 0);
@@ -263,11 +169,11 @@ std::vector<double> Measure::marginal_v() const {
 Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first, long count) {
   if (bins_u < 1 || bins_v < 1 || bins_u > 100000 || bins_v > 100000)
     throw std::invalid_argument(fmt::format("bins: got {}x{}, expected 1..100000 in each direction", bins_u, bins_v));
-  const long n_all = static_cast<long>(s.theta.size());
+  const long n_all = s.size();
   if (count < 0) count = n_all - first;
   if (first < 0 || count < 1 || first + count > n_all)
-    throw std::invalid_argument(fmt::format("iterations: got points [{}, {}) of {}, expected a non-empty range", first,
-                                            first + count, n_all));
+    throw std::invalid_argument(
+        fmt::format("iterations: got points [{}, {}) of {}, expected a non-empty range", first, first + count, n_all));
   Measure m;
   m.chart = chart;
   m.bins_u = bins_u;
@@ -277,36 +183,43 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
   } else {
     m.u_lo = 0, m.u_hi = std::numbers::pi / 2, m.v_lo = 0, m.v_hi = std::numbers::pi;
   }
-  m.mass.assign(static_cast<std::size_t>(bins_u) * bins_v, 0);
+  m.mass.assign(static_cast<std::size_t>(bins_u) * static_cast<std::size_t>(bins_v), 0);
   m.points = count;
-  const double w = 1.0 / static_cast<double>(count);
+  // Integer counts first, one division at the end: the masses are exact multiples of 1/N to rounding.
+  std::vector<long> counts(m.mass.size(), 0);
+  const double su = bins_u / (m.u_hi - m.u_lo), sv = bins_v / (m.v_hi - m.v_lo);
   for (long k = first; k < first + count; ++k) {
+    const double x = s.x[k], y = s.y[k], z = s.z[k];
     double u, v;
     if (chart == Chart::strip) {
-      const auto [w1, w2] = core::strip<double>(core::from_angles<double>(s.theta[k], s.phi[k]));
-      u = std::atan(w1);
-      v = w2;
+      u = std::atan2(y, x - z);  // atan(w1), x - z > 0 in Q
+      v = (x + z) / (x - z);
     } else {
-      u = s.theta[k];
-      v = s.phi[k];
+      u = std::atan2(-z, x);
+      v = std::atan2(std::sqrt(x * x + z * z), -y);
     }
-    const int i = std::clamp(static_cast<int>((u - m.u_lo) / (m.u_hi - m.u_lo) * bins_u), 0, bins_u - 1);
-    const int j = std::clamp(static_cast<int>((v - m.v_lo) / (m.v_hi - m.v_lo) * bins_v), 0, bins_v - 1);
-    m.mass[static_cast<std::size_t>(i) * bins_v + j] += w;
+    const int i = std::clamp(static_cast<int>((u - m.u_lo) * su), 0, bins_u - 1);
+    const int j = std::clamp(static_cast<int>((v - m.v_lo) * sv), 0, bins_v - 1);
+    ++counts[static_cast<std::size_t>(i) * bins_v + j];
   }
+  for (std::size_t b = 0; b < counts.size(); ++b) m.mass[b] = static_cast<double>(counts[b]) / static_cast<double>(count);
   return m;
 }
 
 double total_variation(const Measure& a, const Measure& b) {
   if (a.bins_u != b.bins_u || a.bins_v != b.bins_v || a.chart != b.chart)
-    throw std::invalid_argument("measure: the two measures must use the same chart and bins");
+    throw std::invalid_argument(fmt::format("measure: got {} {}x{} and {} {}x{}, expected the same chart and bins",
+                                            chart_name(a.chart), a.bins_u, a.bins_v, chart_name(b.chart), b.bins_u,
+                                            b.bins_v));
   double s = 0;
   for (std::size_t i = 0; i < a.mass.size(); ++i) s += std::fabs(a.mass[i] - b.mass[i]);
   return 0.5 * s;
 }
 
 double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b, double lo, double hi) {
-  if (a.size() != b.size() || a.empty()) throw std::invalid_argument("marginal: expected two marginals on the same bins");
+  if (a.size() != b.size() || a.empty())
+    throw std::invalid_argument(
+        fmt::format("marginal: got {} and {} bins, expected two non-empty marginals on the same bins", a.size(), b.size()));
   const double dx = (hi - lo) / static_cast<double>(a.size());
   double fa = 0, fb = 0, s = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -315,6 +228,24 @@ double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b
     s += std::fabs(fa - fb) * dx;
   }
   return s;
+}
+
+std::vector<int> group_measures(const std::vector<Measure>& ms, double tv_same) {
+  if (!(tv_same > 0 && tv_same <= 1)) throw std::invalid_argument(fmt::format("tv-same: got {}, expected in (0, 1]", tv_same));
+  std::vector<int> label(ms.size(), -1);
+  std::vector<std::size_t> heads;  // first member of each group
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    for (std::size_t g = 0; g < heads.size(); ++g)
+      if (total_variation(ms[i], ms[heads[g]]) < tv_same) {
+        label[i] = static_cast<int>(g);
+        break;
+      }
+    if (label[i] < 0) {
+      label[i] = static_cast<int>(heads.size());
+      heads.push_back(i);
+    }
+  }
+  return label;
 }
 
 }  // namespace btob::stats

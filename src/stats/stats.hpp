@@ -1,86 +1,146 @@
-// Statistics along orbits (Section 7 (2)): observables, empirical measures and their distances,
-// correlation functions C_N by FFT (FFTW) and by the direct sum.
+// Statistics along orbits of P^_r (Section 7 (2)): observables, empirical measures and their distances,
+// correlation functions C_N (FFTW and the direct sum), power spectra, decay of correlations.
 #pragma once
 
 #include "iterate/ensemble.hpp"
+#include "stats/fft.hpp"
 
 #include <complex>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
 namespace btob::stats {
 
-// ---- Observables ---------------------------------------------------------------------------------
-// theta, phi (rad), w1, w2 (strip, eq. 5.5), cos(phi), and the indicators of the symbols 1, 2, 3.
+// ---- Orbits and observables -------------------------------------------------------------------------
+// The states x_k = P^_r^{transient+1+k}(u0), k = 0..length-1, as unit vectors in the quadrant Q (double),
+// with the symbol 1/2/3 of the step that produced each (one batched run, iterate::SeriesRecorder).
+struct OrbitSeries {
+  std::vector<double> x, y, z;
+  std::vector<std::uint8_t> symbol;
+  long size() const { return static_cast<long>(x.size()); }
+  iterate::Vec3<double> state(long k) const { return {x[k], y[k], z[k]}; }
+};
+// Validates r, u0 (domain x z <= 0), transient >= 0, length >= 1 and the memory (25 bytes per point);
+// throws std::invalid_argument / std::domain_error / std::length_error naming the field.
+OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length);
+// Many initial conditions at one r in one OpenMP run (threads <= 0: OpenMP's default; results do not
+// depend on it).
+std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
+                                      long length, int threads = 0);
+
+// theta in [0, pi/2], phi in [0, pi] (rad, Section 4 and 5.1), w1 in R, w2 in [-1, 1] (strip, eq. 5.5),
+// cos(phi) in [-1, 1], and the indicators 1{symbol = s} in {0, 1} of the symbols 1, 2, 3.
 enum class Observable { theta, phi, w1, w2, cos_phi, symbol1, symbol2, symbol3 };
-// Throws std::invalid_argument "observable: got 'x', expected ..." for an unknown name.
+// Throws std::invalid_argument "<field>: got 'x', expected theta, phi, ..." for an unknown name.
 Observable parse_observable(const std::string& name, const char* field = "observable");
 std::string observable_name(Observable o);
+std::string observable_names();  // "theta, phi, w1, w2, cos-phi, symbol1, symbol2, symbol3"
+double value(Observable o, const iterate::Vec3<double>& u, int symbol);
 
-// The orbit of one initial point at r, after `transient` steps, as the states' angles and symbols of
-// `length` consecutive steps (batched kernel, double).  Memory is checked up front.
-struct OrbitSeries {
-  std::vector<double> theta, phi;  // angles of the states
-  std::vector<std::uint8_t> symbol;  // symbol of the step that produced each state
-};
-OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length);
-
-// The values of an observable along a recorded orbit, optionally composed with f (user function).
+// The series o(x_k), or f(o(x_k)) when f is given (a user function composed with the observable).
 std::vector<double> observe(const OrbitSeries& s, Observable o, const std::function<double(double)>& f = {});
+// Any user function of the unit state and the symbol.
+using StateFunction = std::function<double(const iterate::Vec3<double>& u, int symbol)>;
+std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
 
-// ---- Correlation functions -----------------------------------------------------------------------
-// C_N(phi, psi; n) = (1/N) sum_{k<N} phi_k psi_{k+n} - (1/N sum_{k<N} phi_k)(1/N sum_{k<N} psi_k), n = 0..n_max
-// (Section 7 (2)).  Needs phi.size() >= N and psi.size() >= N + n_max; throws std::invalid_argument naming
-// the field otherwise (n_max must be < N).
-std::vector<double> correlation_direct(const std::vector<double>& phi, const std::vector<double>& psi, long N, long n_max);
+// ---- Correlation functions C_N (Section 7 (2)) ---------------------------------------------------
+//     C_N(phi, psi; n) = (1/N) sum_{k<N} phi_k psi_{k+n} - ((1/N) sum_{k<N} phi_k) ((1/N) sum_{k<N} psi_k)
+// for lags n = 0..n_max: phi needs N values, psi needs N + n_max (both means over k < N, as printed).
+// Both routes throw std::invalid_argument naming the field: "n-max: got M, expected 0 <= n-max < N = ..."
+// (n_max >= N is rejected: fewer than half the pairs would be averaged), "iterations" for N < 1,
+// "series" for too short inputs.  T = float, double, long double (all arithmetic in T).
 
-// The same by FFT: phi_{0..N-1} and psi_{0..N+n_max-1} zero-padded to L >= N + n_max (no wrap-around for lags
-// 0..n_max), c = IFFT(conj(FFT phi) FFT psi) / L.  Real-to-complex transforms; plans are made once per size
-// and reused (one plan per object), planner calls behind one process-wide mutex (FFTW's planner is not
-// thread-safe; execution is).  Precision: double.
-class Correlator {
+// The direct sum, O(N n_max): per lag, 8 interleaved partial sums over blocks of 1024 products, each block
+// added to a compensated (Neumaier) total; the means are compensated too.
+template <class T>
+std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max);
+
+// The FFT route, O(L log L), L = fast_fft_length(N + n_max): phi_k - mean(phi) (k < N) and psi_k -
+// mean(psi) (k < N + n_max) are zero padded to L, so the circular correlation IFFT(conj(FFT a) FFT b)/L
+// has no wrap-around for lags 0..n_max; then C_N(n) = that / N + mean(phi) * sum_{k<N}(psi_{k+n} -
+// mean(psi)) / N (exact identity; centring keeps the FFT's rounding relative to the covariance, not to
+// the raw second moment).  One object = one length = one plan pair, reused for every orbit.
+template <class T> class Correlator {
  public:
-  Correlator();
-  ~Correlator();
-  Correlator(const Correlator&) = delete;
-  Correlator& operator=(const Correlator&) = delete;
-  std::vector<double> correlation(const std::vector<double>& phi, const std::vector<double>& psi, long N, long n_max);
-  // Power spectrum |FFT(x - mean)|^2 / N of x_0..x_{N-1}, frequencies k/N, k = 0..N/2.
-  std::vector<double> power_spectrum(const std::vector<double>& x, long N);
+  Correlator(long N, long n_max);  // validates N >= 1, 0 <= n_max < N; plans length L
+  std::vector<T> operator()(const std::vector<T>& phi, const std::vector<T>& psi);
+  long N() const { return N_; }
+  long n_max() const { return n_max_; }
+  long fft_length() const { return fft_.size(); }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  long N_, n_max_;
+  RealFft<T> fft_;
+  std::vector<std::complex<T>> a_;
 };
 
-// The decay of |C_N(n)|: least-squares slope of log(max |C_N| over windows of `window` lags) against n, over
-// lags 1..n_fit.  rate > 0 means exponential decay exp(-rate n); ~0 means no decay.
+// Periodogram of x_0..x_{N-1}: S_j = |sum_k (x_k - mean) exp(-2 pi i j k / N)|^2 / N, j = 0..N/2, at
+// frequency j / N cycles per iteration (no padding; S is the DFT of the circular autocovariance with
+// weights 1/N, so sum over all N frequencies = N * variance).  One plan per object.
+template <class T> class Periodogram {
+ public:
+  explicit Periodogram(long N);  // N >= 2
+  std::vector<T> operator()(const std::vector<T>& x);
+
+ private:
+  long N_;
+  RealFft<T> fft_;
+};
+
+// Envelope and decay of |C_N(n)|: max |C_N| over consecutive windows of `window` lags starting at lag 1;
+// the least-squares line through log(envelope) over windows up to lag n_fit whose envelope is above
+// `floor` (the statistical noise of C_N, ~C_N(0)/sqrt(N): below it a fit measures noise, not decay).
 struct Decay {
-  double rate = 0, rate_error = 0;
-  double envelope_first = 0, envelope_last = 0;  // max |C_N| over the first and the last window
+  double rate = 0, rate_error = 0;                // |C_N| ~ exp(-rate n); one-sigma error of the slope
+  double envelope_first = 0, envelope_last = 0;   // first and last fitted windows
+  long windows = 0;                               // windows fitted
+  bool decays = false;                            // rate > 3 rate_error and the envelope fell tenfold
 };
-Decay fit_decay(const std::vector<double>& c, long n_fit, long window);
+std::vector<double> envelope(const std::vector<double>& c, long window);  // windows over lags 1..
+Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor = 0);
 
-// ---- Empirical measures --------------------------------------------------------------------------
-// A 2-D histogram with weights 1/N: in the strip (u = atan(w1) in (-pi/2, pi/2), v = w2 in [-1, 1]) or in
-// the angles (u = theta in [0, pi/2], v = phi in [0, pi]).
+// ---- Empirical measures (Section 7 (2): mu_{N,x} = (1/N) sum_{k<N} delta_{x_k}) --------------------
+// 2-D histograms with weights 1/N: in the strip (u = atan(w1) = atan2(y, x - z) in (-pi/2, pi/2),
+// v = w2 in [-1, 1]) or in the angles (u = theta in [0, pi/2], v = phi in [0, pi]).  Equal bins; a value on
+// the upper edge goes to the last bin.
 enum class Chart { strip, angles };
+Chart parse_chart(const std::string& name, const char* field = "coords");
+std::string chart_name(Chart c);
 struct Measure {
   Chart chart = Chart::strip;
   int bins_u = 0, bins_v = 0;
   double u_lo = 0, u_hi = 0, v_lo = 0, v_hi = 0;
-  std::vector<double> mass;  // bins_u * bins_v, row-major in u; sums to 1
+  std::vector<double> mass;  // bins_u * bins_v, row-major in u: mass[i * bins_v + j]; sums to 1
   long points = 0;
   std::vector<double> marginal_u() const;
   std::vector<double> marginal_v() const;
 };
+// Points first..first+count-1 of s (count < 0: to the end).  bins in 1..100000 per direction, else
+// std::invalid_argument "bins: got ...".
 Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first = 0, long count = -1);
 
-double total_variation(const Measure& a, const Measure& b);  // (1/2) sum |a - b| over bins, in [0, 1]
-// 1-D Wasserstein distance of two marginals on the same bins: sum |F_a - F_b| * bin width.
+// (1/2) sum over bins |a - b|, in [0, 1] (total variation of the binned measures).
+double total_variation(const Measure& a, const Measure& b);
+// W1 of two marginals on the same equal bins over [lo, hi]: sum_i |F_a(i) - F_b(i)| * bin width (units
+// of the axis; mass at bin granularity, so W1 <= (hi - lo)).
 double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b, double lo, double hi);
+
+// Groups measures that are closer than tv_same in total variation (greedy in index order: a measure
+// joins the first group whose first member is within tv_same): the labels 0, 1, ... of the groups, one
+// per measure.  Orbits ending on the same attractor with a physical measure land in one group.
+std::vector<int> group_measures(const std::vector<Measure>& ms, double tv_same);
+
+extern template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long);
+extern template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long);
+extern template std::vector<long double> correlation_direct(const std::vector<long double>&,
+                                                            const std::vector<long double>&, long, long);
+extern template class Correlator<float>;
+extern template class Correlator<double>;
+extern template class Correlator<long double>;
+extern template class Periodogram<float>;
+extern template class Periodogram<double>;
+extern template class Periodogram<long double>;
 
 }  // namespace btob::stats

@@ -1,0 +1,137 @@
+// C_N(phi, psi; n) by the direct sum and by FFT (FFTW), and the periodogram (Section 7 (2)); T = float,
+// double, long double.
+#include "stats/stats.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace btob::stats {
+namespace {
+
+// Neumaier's compensated sum: add v to (s, c); the total is s + c.
+template <class T> inline void add(T& s, T& c, T v) {
+  const T t = s + v;
+  c += std::fabs(s) >= std::fabs(v) ? (s - t) + v : (v - t) + s;
+  s = t;
+}
+
+template <class T> T mean(const std::vector<T>& x, long N) {
+  T s = 0, c = 0;
+  for (long k = 0; k < N; ++k) add(s, c, x[k]);
+  return (s + c) / static_cast<T>(N);
+}
+
+void check_sizes(long N, long n_max) {
+  if (N < 1) throw std::invalid_argument(fmt::format("iterations: got N = {}, expected N >= 1", N));
+  if (n_max < 0 || n_max >= N)
+    throw std::invalid_argument(fmt::format("n-max: got {}, expected 0 <= n-max < N = {}", n_max, N));
+}
+
+template <class T> void check_series(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max) {
+  check_sizes(N, n_max);
+  if (static_cast<long>(phi.size()) < N || static_cast<long>(psi.size()) < N + n_max)
+    throw std::invalid_argument(fmt::format("series: got {} and {} values, expected at least N = {} and N + n-max = {}",
+                                            phi.size(), psi.size(), N, N + n_max));
+}
+
+long checked_fft_length(long N, long n_max) {
+  check_sizes(N, n_max);
+  return fast_fft_length(N + n_max);
+}
+
+}  // namespace
+
+template <class T>
+std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max) {
+  check_series(phi, psi, N, n_max);
+  const T mp = mean(phi, N), mq = mean(psi, N);
+  std::vector<T> c(static_cast<std::size_t>(n_max + 1));
+  constexpr long block = 1024;  // rounding per block ~ 128 eps (8 partial sums of 128 products each)
+  const T* a = phi.data();
+#pragma omp parallel for schedule(static)
+  for (long n = 0; n <= n_max; ++n) {
+    const T* b = psi.data() + n;
+    T total = 0, comp = 0;
+    for (long k0 = 0; k0 < N; k0 += block) {
+      const long k1 = std::min(N, k0 + block);
+      T acc[8] = {};
+      long k = k0;
+      for (; k + 8 <= k1; k += 8)
+        for (int j = 0; j < 8; ++j) acc[j] += a[k + j] * b[k + j];
+      T s = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+      for (; k < k1; ++k) s += a[k] * b[k];
+      add(total, comp, s);
+    }
+    c[n] = (total + comp) / static_cast<T>(N) - mp * mq;
+  }
+  return c;
+}
+
+template <class T>
+Correlator<T>::Correlator(long N, long n_max) : N_(N), n_max_(n_max), fft_(checked_fft_length(N, n_max)) {
+  a_.resize(static_cast<std::size_t>(fft_.size() / 2 + 1));
+}
+
+template <class T> std::vector<T> Correlator<T>::operator()(const std::vector<T>& phi, const std::vector<T>& psi) {
+  check_series(phi, psi, N_, n_max_);
+  const long L = fft_.size(), H = L / 2 + 1, N = N_, M = n_max_;
+  const T mp = mean(phi, N), mq = mean(psi, N);
+  T* d = fft_.data();
+  std::complex<T>* X = fft_.spectrum();
+  std::fill(d, d + L, T(0));  // zero padding: phi beyond N, psi beyond N + n_max
+  for (long k = 0; k < N; ++k) d[k] = phi[k] - mp;
+  fft_.forward();
+  std::copy(X, X + H, a_.begin());
+  std::fill(d, d + L, T(0));
+  for (long k = 0; k < N + M; ++k) d[k] = psi[k] - mq;
+  fft_.forward();
+  for (long j = 0; j < H; ++j) X[j] = std::conj(a_[j]) * X[j];
+  fft_.inverse();  // d[n] = L sum_{k<N} (phi_k - mp)(psi_{k+n} - mq) for n <= n_max (no wrap-around)
+  // sum_{k<N} phi_k psi_{k+n} / N - mp mq = centred(n) / N + mp W(n) / N, W(n) = sum_{k<N} (psi_{k+n} - mq),
+  // W updated lag by lag with a compensated sum.
+  T w = 0, wc = 0;
+  for (long k = 0; k < N; ++k) add(w, wc, psi[k] - mq);
+  std::vector<T> c(static_cast<std::size_t>(M + 1));
+  const T invL = T(1) / static_cast<T>(L), invN = T(1) / static_cast<T>(N);
+  for (long n = 0; n <= M; ++n) {
+    c[n] = d[n] * invL * invN + mp * (w + wc) * invN;
+    if (n < M) {
+      add(w, wc, psi[n + N] - mq);
+      add(w, wc, -(psi[n] - mq));
+    }
+  }
+  return c;
+}
+
+template <class T> Periodogram<T>::Periodogram(long N) : N_(N), fft_(std::max<long>(N, 1)) {
+  if (N < 2) throw std::invalid_argument(fmt::format("iterations: got N = {}, expected N >= 2 for a spectrum", N));
+}
+
+template <class T> std::vector<T> Periodogram<T>::operator()(const std::vector<T>& x) {
+  if (static_cast<long>(x.size()) < N_)
+    throw std::invalid_argument(fmt::format("series: got {} values, expected at least N = {}", x.size(), N_));
+  const T m = mean(x, N_);
+  T* d = fft_.data();
+  for (long k = 0; k < N_; ++k) d[k] = x[k] - m;
+  fft_.forward();
+  const std::complex<T>* X = fft_.spectrum();
+  std::vector<T> s(static_cast<std::size_t>(N_ / 2 + 1));
+  for (long j = 0; j <= N_ / 2; ++j) s[j] = std::norm(X[j]) / static_cast<T>(N_);
+  return s;
+}
+
+template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long);
+template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long);
+template std::vector<long double> correlation_direct(const std::vector<long double>&, const std::vector<long double>&,
+                                                     long, long);
+template class Correlator<float>;
+template class Correlator<double>;
+template class Correlator<long double>;
+template class Periodogram<float>;
+template class Periodogram<double>;
+template class Periodogram<long double>;
+
+}  // namespace btob::stats
