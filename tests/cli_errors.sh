@@ -3,28 +3,7 @@
 # names the field, exit status 2, and no output file created or overwritten.
 set -u
 btob="$1"
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-fail=0
-
-expect_error() {  # expect_error <word the message must contain> <btob arguments...>
-  local want="$1"
-  shift
-  local err rc
-  err=$("$btob" "$@" 2>&1 >/dev/null)
-  rc=$?
-  local lines
-  lines=$(printf '%s\n' "$err" | grep -c .)
-  if [ "$rc" -ne 2 ]; then
-    echo "FAIL (exit $rc, expected 2): btob $*"; echo "  $err"; fail=1
-  elif [ "$lines" -ne 1 ]; then
-    echo "FAIL ($lines lines, expected one): btob $*"; echo "$err"; fail=1
-  elif ! grep -q -- "$want" <<<"$err"; then
-    echo "FAIL (message lacks '$want'): btob $*"; echo "  $err"; fail=1
-  else
-    echo "ok: btob $* -> $err"
-  fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 b=(bifurcation --out "$out/b" --r-count 5 --iterations 50 --tail 10 --no-plot --quiet)
 expect_error "r-min" "${b[@]}" --r-min 1.5

@@ -4,28 +4,7 @@
 # Usage: cli_errors_lyapunov.sh PATH/TO/btob
 set -u
 btob="$1"
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-fail=0
-
-expect_error() {  # expect_error <word the message must contain> <btob arguments...>
-  local want="$1"
-  shift
-  local err rc
-  err=$("$btob" "$@" 2>&1 >/dev/null)
-  rc=$?
-  local lines
-  lines=$(printf '%s\n' "$err" | grep -c .)
-  if [ "$rc" -ne 2 ]; then
-    echo "FAIL (exit $rc, expected 2): btob $*"; echo "  $err"; fail=1
-  elif [ "$lines" -ne 1 ]; then
-    echo "FAIL ($lines lines, expected one): btob $*"; echo "$err"; fail=1
-  elif ! grep -q -- "$want" <<<"$err"; then
-    echo "FAIL (message lacks '$want'): btob $*"; echo "  $err"; fail=1
-  else
-    echo "ok: btob $* -> $err"
-  fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 # btob lyapunov (one orbit): the cases of /tmp/notes/issue-6.md not already in cli_errors.sh.
 p=(lyapunov --point 1,0.1,-1 --iterations 100 --transient 10)
