@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Draws C_N(phi, psi; n) (linear and log |C_N|) and the power spectrum from a `btob correlate` HDF5 file.
+"""Draws C_N(phi, psi; n) against the lag n (linear, and log |C_N| with the window envelope, the noise floor
+and the fitted decay) and the power spectrum, from a `btob correlate` HDF5 file.
 Usage: stats_correlation.py DATA.h5 OUT.png"""
 import os
 import sys
@@ -7,7 +8,7 @@ import sys
 import h5py
 import matplotlib
 
-from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
+matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -15,26 +16,48 @@ import numpy as np  # noqa: E402
 def main(src, dst):
     with h5py.File(src, "r") as f:
         c = f["C_N"][...]
-        ps = f["power_spectrum"][...]
-        a = attrs(f)
+        env = f["envelope"][...]
+        freq, ps = f["spectrum_frequency"][...], f["power_spectrum"][...]
+        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
     n = np.arange(len(c))
-    fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.6), dpi=130)
-    ax.plot(n, c, lw=0.8)
+    obs = a["observables"].split(",")
+    label = obs[0] if obs[0] == obs[1] else f"{obs[0]}, {obs[1]}"
+    fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(16, 4.8), dpi=120)
+    shown = min(len(c), 201)  # the first 200 lags resolve the oscillation; the log panel shows all lags
+    ax.plot(n[:shown], c[:shown], lw=0.7, marker=".", ms=3)
+    ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("lag n (map iterations)")
-    ax.set_ylabel(r"$C_N(n)$")
-    bx.semilogy(n, np.abs(c) + 1e-300, lw=0.8)
-    if "decay_rate" in a:
-        bx.set_title(f"fitted decay rate {a['decay_rate']:.3g} +- {a['decay_rate_error']:.2g} per iteration", fontsize=9)
+    ax.set_ylabel(rf"$C_N({label};\,n)$ (units of the observables squared)")
+    ax.set_title(f"C_N against n, lags 0..{shown - 1} (all {len(c) - 1} lags on the right)", fontsize=9)
+
+    bx.semilogy(n[1:], np.abs(c[1:]) + 1e-300, lw=0.5, color="C0", label=r"$|C_N(n)|$")
+    w = int(round((len(c) - 1) / max(len(env), 1))) if len(env) else 1
+    if len(env):
+        centres = 1 + w * np.arange(len(env)) + 0.5 * (w - 1)
+        bx.semilogy(centres, env, "o-", ms=2.5, lw=0.8, color="C1", label=f"envelope (max over {w} lags)")
+    bx.axhline(a["noise_floor"], color="grey", ls="--", lw=0.8, label=r"noise floor $4|C_N(0)|/\sqrt{N}$")
+    if "decay_rate" in a and a["decay_windows"] >= 3:
+        nfit = np.linspace(1, 1 + w * a["decay_windows"], 50)
+        bx.semilogy(nfit, a["envelope_first"] * np.exp(-a["decay_rate"] * (nfit - nfit[0])), "k:", lw=1.2,
+                    label=f"fit: rate {a['decay_rate']:.3g} ± {a['decay_rate_error']:.2g} /iteration "
+                          f"({'decays' if a['decays'] == 'yes' else 'no decay'})")
+    bx.set_ylim(bottom=max(1e-18, 0.1 * min(np.abs(c[1:][np.abs(c[1:]) > 0]).min(), a["noise_floor"])))
     bx.set_xlabel("lag n (map iterations)")
     bx.set_ylabel(r"$|C_N(n)|$")
-    freq = np.arange(len(ps)) / (2 * (len(ps) - 1))
-    cx.semilogy(freq[1:], ps[1:] + 1e-300, lw=0.5)
-    cx.set_xlabel("frequency (cycles per iteration)")
-    cx.set_ylabel("power spectrum of the first observable")
-    fig.suptitle(f"C_N({a['observables']}; n) at r = {a['r']}, from {a['point']}, N = {a['N']}, transient {a['transient']}, "
-                 f"{a['method']}, double", fontsize=10)
+    bx.set_title(f"log |C_N|: envelope {a['envelope_min']:.3g} .. {a['envelope_max']:.3g}", fontsize=9)
+    bx.legend(fontsize=7, loc="lower left", framealpha=0.9)
+
+    cx.semilogy(freq, ps + 1e-300, lw=0.6)
+    cx.set_xlabel("frequency (cycles per map iteration)")
+    cx.set_ylabel(f"periodogram of {obs[0]} (power per frequency bin)")
+    cx.set_title(f"power spectrum; peak at {a['spectrum_peak_frequency']:.6g} cycles/iteration", fontsize=9)
+    extra = f", FFT vs direct {a['max_rel_diff_fft_direct']:.1e} rel." if "max_rel_diff_fft_direct" in a else ""
+    fig.suptitle(f"C_N({label}; n) at r = {a['r']}, x0 = ({a['point']}), N = {a['N']:.0e}, n ≤ {a['n_max']}, "
+                 f"transient {a['transient']}, method {a['method']}, {a['scalar_type']}{extra}", fontsize=10)
     fig.tight_layout()
-    save_atomic(fig, dst)
+    tmp = dst + f".tmp-{os.getpid()}.png"
+    fig.savefig(tmp)
+    os.replace(tmp, dst)
 
 
 if __name__ == "__main__":

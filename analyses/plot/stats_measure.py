@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Draws the mean empirical measure of `btob measure` (log colour, support outlined) and each initial
-condition's total-variation distance to it, with the convergence against N.
+"""Draws the empirical measures of a `btob measure` HDF5 file: one image per group of coinciding measures
+(log colour, support outlined per group), their marginals, and the convergence against N.
 Usage: stats_measure.py DATA.h5 OUT.png"""
 import os
 import sys
@@ -8,7 +8,7 @@ import sys
 import h5py
 import matplotlib
 
-from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
+matplotlib.use("Agg")
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -16,39 +16,75 @@ import numpy as np  # noqa: E402
 
 def main(src, dst):
     with h5py.File(src, "r") as f:
-        m = f["mean_measure"][...]
-        tv = f["tv_to_mean"][...]
-        cn, ct = f["convergence_n"][...], f["convergence_tv"][...]
+        counts = f["group_counts"][...].astype(float)
+        mu, mv = f["group_marginal_u"][...], f["group_marginal_v"][...]
+        size = f["group_size"][...]
+        tvmax = f["group_tv_max"][...]
+        cn = f["convergence_n"][...]
+        within, tofull = f["convergence_tv_within_group"][...], f["convergence_tv_to_full"][...]
+        tv = f["tv_to_group_head"][...]
         ext = f["extent"][...]
-        a = attrs(f)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.2), dpi=130, gridspec_kw={"width_ratios": [1.4, 1]})
+        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+    G, B = counts.shape[0], counts.shape[1]
+    mass = counts / a["iterations"]
+    strip = a["coords"] == "strip"
+    xl = r"$\arctan w_1$ (rad)" if strip else r"$\theta$ (rad)"
+    yl = r"$w_2$ (dimensionless)" if strip else r"$\varphi$ (rad)"
+    fig, axs = plt.subplots(1, 3, figsize=(17, 5.2), dpi=120, gridspec_kw={"width_ratios": [1.35, 1, 1]})
+    ax, bx, cx = axs
+    total = mass.sum(axis=0) / G
+    pos = total[total > 0]
     cmap = plt.get_cmap("viridis").copy()
     cmap.set_bad("white")
-    pos = m[m > 0]
-    im = ax.imshow(np.where(m > 0, m, np.nan).T, origin="lower", aspect="auto", extent=list(ext), cmap=cmap,
-                   norm=mcolors.LogNorm(vmin=max(pos.min(), 1e-8) if pos.size else 1e-8, vmax=pos.max() if pos.size else 1),
-                   interpolation="nearest")
-    ax.contour(np.linspace(ext[0], ext[1], m.shape[0]), np.linspace(ext[2], ext[3], m.shape[1]), (m > 0).T.astype(float),
-               levels=[0.5], colors="k", linewidths=0.4)
-    if a["chart"] == "strip":
-        ax.set_xlabel(r"$\arctan w_1$ (rad)")
-        ax.set_ylabel(r"$w_2$ (dimensionless)")
-    else:
-        ax.set_xlabel(r"$\theta$ (rad)")
-        ax.set_ylabel(r"$\varphi$ (rad)")
-    fig.colorbar(im, ax=ax, pad=0.01).set_label("mass per bin (weights 1/N), support outlined")
-    ax.set_title(f"mean empirical measure of {a['initial_conditions']} orbits", fontsize=9)
-    bx.semilogy(np.arange(len(tv)), np.maximum(tv, 1e-17), "o", ms=3, label="each orbit vs the mean")
-    bx.semilogy(cn, np.maximum(ct, 1e-17), "-", label="orbit 0: mu_N vs mu of the whole run (x = N)")
-    bx.set_xscale("symlog", linthresh=32)
-    bx.set_xlabel("initial condition index / N (map iterations)")
-    bx.set_ylabel("total variation distance (1e-17: zero)")
-    bx.legend(fontsize=8)
-    bx.set_title(f"largest distance between two orbits' measures: {a['tv_max_pair']:.3g}", fontsize=9)
-    fig.suptitle(f"Empirical measures at r = {a['r']}, grid {a['grid']}, {a['iterations']} iterations after {a['transient']}, "
-                 f"{a['bins']}x{a['bins']} bins ({a['chart']} chart), double", fontsize=10)
+    im = ax.imshow(np.where(total > 0, total, np.nan).T, origin="lower", aspect="auto", extent=list(ext), cmap=cmap,
+                   norm=mcolors.LogNorm(vmin=pos.min(), vmax=pos.max()), interpolation="nearest")
+    xs = np.linspace(ext[0], ext[1], B + 1)
+    ys = np.linspace(ext[2], ext[3], B + 1)
+    xc, yc = 0.5 * (xs[1:] + xs[:-1]), 0.5 * (ys[1:] + ys[:-1])
+    for g in range(G):
+        sup = (mass[g] > 0).T.astype(float)
+        if sup.sum() <= 8:  # atoms: mark the bins
+            ii, jj = np.nonzero(mass[g])
+            ax.plot(xc[ii], yc[jj], "s", mfc="none", mec=f"C{g % 10}", ms=9, mew=1.2,
+                    label=f"group {g}: {size[g]} orbits, {int(sup.sum())} atoms")
+        else:
+            ax.contour(xc, yc, sup, levels=[0.5], colors=[f"C{g % 10}"], linewidths=0.6)
+            ax.plot([], [], color=f"C{g % 10}", label=f"group {g}: {size[g]} orbits, support {int(sup.sum())} bins")
+    ax.set_xlabel(xl)
+    ax.set_ylabel(yl)
+    ax.legend(fontsize=7, loc="upper right")
+    fig.colorbar(im, ax=ax, pad=0.01).set_label("mass per bin (weights 1/N, mean over groups)")
+    ax.set_title(f"empirical measures, {B}x{B} bins; support outlined per group", fontsize=9)
+    xu = np.linspace(ext[0], ext[1], B)
+    xv = np.linspace(ext[2], ext[3], B)
+    for g in range(G):
+        bx.step(xu, mu[g], where="mid", lw=0.8, color=f"C{g % 10}", label=f"group {g}: u marginal")
+        bx.step(xv, mv[g], where="mid", lw=0.8, ls="--", color=f"C{g % 10}", label=f"group {g}: v marginal")
+    bx.set_yscale("log")
+    bx.set_xlabel(f"u = {xl} (solid), v = {yl} (dashed)")
+    bx.set_ylabel("mass per bin")
+    bx.set_title("1-D marginals of each group's first measure", fontsize=9)
+    bx.legend(fontsize=6, ncol=2)
+    for g in range(G):
+        if size[g] > 1:
+            cx.loglog(cn, np.maximum(within[:, g], 1e-7), "o-", ms=3, color=f"C{g % 10}",
+                      label=f"group {g}: max TV between members at N")
+        cx.loglog(cn, np.maximum(tofull[:, g], 1e-7), "s:", ms=3, color=f"C{g % 10}",
+                  label=f"group {g}: TV(mu_N, mu at N = {a['iterations']})")
+    cx.loglog(cn, 1 / np.sqrt(cn), "k--", lw=0.6, label=r"$N^{-1/2}$")
+    cx.axhline(1e-3, color="grey", lw=0.6, ls="-.", label="1e-3")
+    cx.set_xlabel("N (map iterations after the transient)")
+    cx.set_ylabel("total variation distance (1e-7 stands for 0)")
+    cx.set_title(f"convergence; largest TV within a group at N = {a['iterations']}: {a['tv_max_within_groups']:.2g}",
+                 fontsize=9)
+    cx.legend(fontsize=6)
+    fig.suptitle(f"Empirical measures at r = {a['r']}, grid {a['grid']} ({a['initial_conditions']} initial conditions, "
+                 f"{G} group(s) at TV < {a['tv_same']}), N = {a['iterations']} after transient {a['transient']}, "
+                 f"{a['coords']} coordinates, double", fontsize=10)
     fig.tight_layout()
-    save_atomic(fig, dst)
+    tmp = dst + f".tmp-{os.getpid()}.png"
+    fig.savefig(tmp)
+    os.replace(tmp, dst)
 
 
 if __name__ == "__main__":

@@ -191,6 +191,7 @@ struct MeasureArgs {
   int bins = 200, threads = 0;
   double tv_same = 0.05;
   std::string coords = "strip";
+  std::vector<double> extent;
   std::string out = "results/stats", name = "measure";
   bool no_plot = false;
 };
@@ -202,6 +203,9 @@ void measure(const MeasureArgs& a) {
   if (a.bins < 1 || a.bins > 4000) throw UsageError(fmt::format("bins: got {}, expected 1..4000", a.bins));
   if (!(a.tv_same > 0 && a.tv_same <= 1)) throw UsageError(fmt::format("tv-same: got {}, expected in (0, 1]", a.tv_same));
   const stats::Chart chart = stats::parse_chart(a.coords, "coords");
+  if (!a.extent.empty() && (a.extent.size() != 4 || !(a.extent[0] < a.extent[1]) || !(a.extent[2] < a.extent[3])))
+    throw UsageError(fmt::format("extent: got {} values, expected u_lo,u_hi,v_lo,v_hi with u_lo < u_hi, v_lo < v_hi",
+                                 a.extent.size()));
   const auto ics = iterate::parse_grid(a.grid, a.seed, "grid");
   iterate::checked_bytes(ics.size() * static_cast<std::size_t>(a.bins) * a.bins, 2 * sizeof(double), "grid x bins^2");
   iterate::checked_bytes(2 * ics.size() * static_cast<std::size_t>(a.iterations), 3 * sizeof(double) + 1, "grid x iterations");
@@ -210,7 +214,7 @@ void measure(const MeasureArgs& a) {
 
   const auto series = stats::orbit_series(a.r, ics, a.transient, a.iterations, a.threads);
   std::vector<stats::Measure> ms;
-  for (const auto& s : series) ms.push_back(stats::empirical_measure(s, chart, a.bins, a.bins));
+  for (const auto& s : series) ms.push_back(stats::empirical_measure(s, chart, a.bins, a.bins, 0, -1, a.extent));
   const std::vector<int> group = stats::group_measures(ms, a.tv_same);
   const int G = *std::max_element(group.begin(), group.end()) + 1;
   std::vector<std::size_t> head(static_cast<std::size_t>(G), ms.size()), size(static_cast<std::size_t>(G), 0);
@@ -246,12 +250,12 @@ void measure(const MeasureArgs& a) {
   for (const long n : checkpoints) {
     conv_n.push_back(static_cast<double>(n));
     std::vector<stats::Measure> heads;
-    for (int g = 0; g < G; ++g) heads.push_back(stats::empirical_measure(series[head[g]], chart, a.bins, a.bins, 0, n));
+    for (int g = 0; g < G; ++g) heads.push_back(stats::empirical_measure(series[head[g]], chart, a.bins, a.bins, 0, n, a.extent));
     std::vector<double> within(static_cast<std::size_t>(G), 0);
     for (std::size_t i = 0; i < ms.size(); ++i)
       if (i != head[group[i]])
         within[group[i]] = std::max(within[group[i]], stats::total_variation(
-                                                          stats::empirical_measure(series[i], chart, a.bins, a.bins, 0, n),
+                                                          stats::empirical_measure(series[i], chart, a.bins, a.bins, 0, n, a.extent),
                                                           heads[group[i]]));
     for (int g = 0; g < G; ++g) {
       conv_within.push_back(within[g]);
@@ -259,11 +263,12 @@ void measure(const MeasureArgs& a) {
     }
   }
   std::vector<std::uint32_t> counts;  // per group head: counts per bin (mass * N)
-  std::vector<double> marg_u, marg_v;
+  std::vector<double> marg_u, marg_v, outside;
   for (int g = 0; g < G; ++g) {
     const auto& m = ms[head[g]];
     for (double v : m.mass) counts.push_back(static_cast<std::uint32_t>(std::llround(v * static_cast<double>(m.points))));
     const auto mu = m.marginal_u(), mv = m.marginal_v();
+    outside.push_back(m.outside);
     marg_u.insert(marg_u.end(), mu.begin(), mu.end());
     marg_v.insert(marg_v.end(), mv.begin(), mv.end());
   }
@@ -290,6 +295,7 @@ void measure(const MeasureArgs& a) {
     w.dataset("group_marginal_v", marg_v, {G_, B});
     w.dataset("group_head", u64(head), {G_});
     w.dataset("group_size", u64(size), {G_});
+    w.dataset("group_outside", outside, {G_});
     w.dataset("group_tv_max", tv_max_group, {G_});
     std::vector<std::uint64_t> gl(group.begin(), group.end());
     w.dataset("group", gl, {gl.size()});
@@ -347,6 +353,8 @@ Register reg([](CLI::App& app) {
   mc->add_option("--bins", m->bins, "bins per direction, 1..4000")->capture_default_str();
   mc->add_option("--coords", m->coords, "strip (atan w1 in (-pi/2, pi/2), w2 in [-1,1]) or angles (theta, phi in rad)")
       ->capture_default_str();
+  mc->add_option("--extent", m->extent, "u_lo,u_hi,v_lo,v_hi: histogram only this part of the chart (zoom); "
+                                        "mass outside is kept as one extra cell")->delimiter(',');
   mc->add_option("--tv-same", m->tv_same, "two measures closer than this in total variation count as one attractor")
       ->capture_default_str();
   mc->add_option("--threads", m->threads, "OpenMP threads of the iteration (0: default); results do not depend on it")

@@ -48,24 +48,39 @@ template <class T>
 std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max) {
   check_series(phi, psi, N, n_max);
   const T mp = mean(phi, N), mq = mean(psi, N);
+  // Centred copies: the raw sum (1/N) sum phi psi - mp mq cancels to ~eps E[phi]E[psi] / C_N(0) (1e-12 on an
+  // invariant curve where C_N(0) ~ 1e-3); with a_k = phi_k - mp, b_j = psi_j - mq, exactly
+  //     C_N(n) = (1/N) sum_{k<N} a_k b_{k+n} + mp (1/N) sum_{k<N} b_{k+n},
+  // both sums taken directly for every lag.
+  std::vector<T> a(static_cast<std::size_t>(N)), b(static_cast<std::size_t>(N + n_max));
+  for (long k = 0; k < N; ++k) a[k] = phi[k] - mp;
+  for (long k = 0; k < N + n_max; ++k) b[k] = psi[k] - mq;
   std::vector<T> c(static_cast<std::size_t>(n_max + 1));
   constexpr long block = 1024;  // rounding per block ~ 128 eps (8 partial sums of 128 products each)
-  const T* a = phi.data();
+  const T* pa = a.data();
 #pragma omp parallel for schedule(static)
   for (long n = 0; n <= n_max; ++n) {
-    const T* b = psi.data() + n;
-    T total = 0, comp = 0;
+    const T* pb = b.data() + n;
+    T total = 0, comp = 0, wt = 0, wc = 0;
     for (long k0 = 0; k0 < N; k0 += block) {
       const long k1 = std::min(N, k0 + block);
-      T acc[8] = {};
+      T acc[8] = {}, w[8] = {};
       long k = k0;
       for (; k + 8 <= k1; k += 8)
-        for (int j = 0; j < 8; ++j) acc[j] += a[k + j] * b[k + j];
+        for (int j = 0; j < 8; ++j) {
+          acc[j] += pa[k + j] * pb[k + j];
+          w[j] += pb[k + j];
+        }
       T s = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
-      for (; k < k1; ++k) s += a[k] * b[k];
+      T sw = ((w[0] + w[1]) + (w[2] + w[3])) + ((w[4] + w[5]) + (w[6] + w[7]));
+      for (; k < k1; ++k) {
+        s += pa[k] * pb[k];
+        sw += pb[k];
+      }
       add(total, comp, s);
+      add(wt, wc, sw);
     }
-    c[n] = (total + comp) / static_cast<T>(N) - mp * mq;
+    c[n] = (total + comp) / static_cast<T>(N) + mp * ((wt + wc) / static_cast<T>(N));
   }
   return c;
 }

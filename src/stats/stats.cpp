@@ -166,7 +166,8 @@ std::vector<double> Measure::marginal_v() const {
   return m;
 }
 
-Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first, long count) {
+Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first, long count,
+                          const std::vector<double>& extent) {
   if (bins_u < 1 || bins_v < 1 || bins_u > 100000 || bins_v > 100000)
     throw std::invalid_argument(fmt::format("bins: got {}x{}, expected 1..100000 in each direction", bins_u, bins_v));
   const long n_all = s.size();
@@ -183,10 +184,18 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
   } else {
     m.u_lo = 0, m.u_hi = std::numbers::pi / 2, m.v_lo = 0, m.v_hi = std::numbers::pi;
   }
+  if (!extent.empty()) {
+    if (extent.size() != 4 || !(extent[0] < extent[1]) || !(extent[2] < extent[3]))
+      throw std::invalid_argument(fmt::format("extent: got {} values, expected u_lo < u_hi, v_lo < v_hi",
+                                              extent.size()));
+    m.u_lo = extent[0], m.u_hi = extent[1], m.v_lo = extent[2], m.v_hi = extent[3];
+  }
+  const bool whole = extent.empty();
   m.mass.assign(static_cast<std::size_t>(bins_u) * static_cast<std::size_t>(bins_v), 0);
   m.points = count;
   // Integer counts first, one division at the end: the masses are exact multiples of 1/N to rounding.
   std::vector<long> counts(m.mass.size(), 0);
+  long out = 0;
   const double su = bins_u / (m.u_hi - m.u_lo), sv = bins_v / (m.v_hi - m.v_lo);
   for (long k = first; k < first + count; ++k) {
     const double x = s.x[k], y = s.y[k], z = s.z[k];
@@ -198,22 +207,28 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
       u = std::atan2(-z, x);
       v = std::atan2(std::sqrt(x * x + z * z), -y);
     }
+    if (!whole && !(u >= m.u_lo && u <= m.u_hi && v >= m.v_lo && v <= m.v_hi)) {
+      ++out;
+      continue;
+    }
     const int i = std::clamp(static_cast<int>((u - m.u_lo) * su), 0, bins_u - 1);
     const int j = std::clamp(static_cast<int>((v - m.v_lo) * sv), 0, bins_v - 1);
     ++counts[static_cast<std::size_t>(i) * bins_v + j];
   }
   for (std::size_t b = 0; b < counts.size(); ++b) m.mass[b] = static_cast<double>(counts[b]) / static_cast<double>(count);
+  m.outside = static_cast<double>(out) / static_cast<double>(count);
   return m;
 }
 
 double total_variation(const Measure& a, const Measure& b) {
-  if (a.bins_u != b.bins_u || a.bins_v != b.bins_v || a.chart != b.chart)
-    throw std::invalid_argument(fmt::format("measure: got {} {}x{} and {} {}x{}, expected the same chart and bins",
+  if (a.bins_u != b.bins_u || a.bins_v != b.bins_v || a.chart != b.chart || a.u_lo != b.u_lo || a.u_hi != b.u_hi ||
+      a.v_lo != b.v_lo || a.v_hi != b.v_hi)
+    throw std::invalid_argument(fmt::format("measure: got {} {}x{} and {} {}x{}, expected the same chart, extent and bins",
                                             chart_name(a.chart), a.bins_u, a.bins_v, chart_name(b.chart), b.bins_u,
                                             b.bins_v));
   double s = 0;
   for (std::size_t i = 0; i < a.mass.size(); ++i) s += std::fabs(a.mass[i] - b.mass[i]);
-  return 0.5 * s;
+  return 0.5 * (s + std::fabs(a.outside - b.outside));
 }
 
 double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b, double lo, double hi) {

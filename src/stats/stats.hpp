@@ -52,8 +52,11 @@ std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
 // (n_max >= N is rejected: fewer than half the pairs would be averaged), "iterations" for N < 1,
 // "series" for too short inputs.  T = float, double, long double (all arithmetic in T).
 
-// The direct sum, O(N n_max): per lag, 8 interleaved partial sums over blocks of 1024 products, each block
-// added to a compensated (Neumaier) total; the means are compensated too.
+// The direct sum, O(N n_max): on the centred series a = phi - mean(phi), b = psi - mean(psi), per lag
+// C_N(n) = (1/N) sum_{k<N} a_k b_{k+n} + mean(phi) (1/N) sum_{k<N} b_{k+n} (exact identity, no cancellation
+// against mean(phi) mean(psi)); 8 interleaved partial sums over blocks of 1024 terms, each block added to a
+// compensated (Neumaier) total; the means are compensated too; lags in parallel (OpenMP, static: the
+// result does not depend on the thread count).
 template <class T>
 std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max);
 
@@ -112,16 +115,19 @@ struct Measure {
   Chart chart = Chart::strip;
   int bins_u = 0, bins_v = 0;
   double u_lo = 0, u_hi = 0, v_lo = 0, v_hi = 0;
-  std::vector<double> mass;  // bins_u * bins_v, row-major in u: mass[i * bins_v + j]; sums to 1
+  std::vector<double> mass;  // bins_u * bins_v, row-major in u: mass[i * bins_v + j]
+  double outside = 0;        // mass of the points outside [u_lo, u_hi] x [v_lo, v_hi]; mass + outside = 1
   long points = 0;
   std::vector<double> marginal_u() const;
   std::vector<double> marginal_v() const;
 };
 // Points first..first+count-1 of s (count < 0: to the end).  bins in 1..100000 per direction, else
-// std::invalid_argument "bins: got ...".
-Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first = 0, long count = -1);
+// std::invalid_argument "bins: got ...".  `extent` {u_lo, u_hi, v_lo, v_hi} zooms into part of the chart
+// (empty: the whole chart); points outside it count in Measure::outside.
+Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first = 0, long count = -1,
+                          const std::vector<double>& extent = {});
 
-// (1/2) sum over bins |a - b|, in [0, 1] (total variation of the binned measures).
+// (1/2) (sum over bins |a - b| + |a.outside - b.outside|), in [0, 1] (total variation of the binned measures).
 double total_variation(const Measure& a, const Measure& b);
 // W1 of two marginals on the same equal bins over [lo, hi]: sum_i |F_a(i) - F_b(i)| * bin width (units
 // of the axis; mass at bin granularity, so W1 <= (hi - lo)).
