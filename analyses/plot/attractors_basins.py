@@ -1,0 +1,53 @@
+"""Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions."""
+import csv
+import sys
+
+import h5py
+import numpy as np
+from matplotlib import colors
+from matplotlib import pyplot as plt
+from matplotlib.patches import Patch
+
+from plotlib import attrs, save_atomic
+
+
+def main(h5_path, csv_path, png_path):
+    with h5py.File(h5_path, "r") as f:
+        a = attrs(f)
+        labels = f["labels"][...]
+    rows = list(csv.DictReader(open(csv_path)))
+    n_att = int(a["attractors"])
+    # Colours: unresolved black, then a qualitative palette by id (ids are sorted keys: stable across runs).
+    palette = plt.get_cmap("tab20").colors
+    cols = [(0, 0, 0)] + [palette[i % len(palette)] for i in range(n_att)]
+    cmap = colors.ListedColormap(cols)
+    norm = colors.BoundaryNorm(np.arange(-0.5, n_att + 1.5), n_att + 1)
+    fig, ax = plt.subplots(figsize=(9, 5.2), constrained_layout=True)
+    ax.imshow(labels, origin="lower", cmap=cmap, norm=norm, interpolation="nearest", aspect="auto",
+              extent=[a["axis1_lo"], a["axis1_hi"], a["axis2_lo"], a["axis2_hi"]])
+    strip = a["grid_kind"] == "strip"
+    r = float(a["r"])
+    if strip:
+        al = (1 + r) / 2
+        w1 = np.linspace(a["axis1_lo"], a["axis1_hi"], 200)
+        for s in (-1, 1):  # the P2 parallelogram w2 = 2 alpha w1 -+ 1 (Section 5.3)
+            ax.plot(w1, 2 * al * w1 + s, color="white", lw=0.6, ls="--")
+        ax.set_ylim(a["axis2_lo"], a["axis2_hi"])
+    ax.set_xlabel("$w_1$" if strip else r"$\theta$")
+    ax.set_ylabel("$w_2$" if strip else r"$\varphi$")
+    n = int(a["n1"]) * int(a["n2"])
+    ax.set_title(f"basins at r = {r:g}: {a['n1']} x {a['n2']} {a['grid_kind']} grid, transient {a['transient']}, "
+                 f"window {a['window']}", fontsize=9)
+    handles = []
+    for row in rows:
+        i = int(row["attractor"])
+        frac = float(row["fraction"])
+        lab = (f"{row['pattern'] or row['type']} [{row['type']}] "
+               f"{100 * frac:.2f}% ({100 * float(row['ci_low']):.2f}-{100 * float(row['ci_high']):.2f})")
+        handles.append(Patch(color=cols[i], label=lab))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, 95% CI")
+    save_atomic(fig, png_path)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:4])

@@ -1,0 +1,148 @@
+// Attractors of P_r-hat (Section 7.1 (1)): per-orbit classification, attractor identity, basins over grids
+// with frequencies and confidence intervals, basin fractions across r (Table 5.1 with many orbits).
+#pragma once
+
+#include "core/map.hpp"
+#include "iterate/ensemble.hpp"
+#include "iterate/kernel.hpp"
+#include "patterns/patterns.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::attractors {
+
+using core::Vec3;
+
+// Conventions.
+//  * Iterations are map iterations of P_r (one symbol 1, 2 or 3 each).  Points are unit vectors in
+//    Q = {x >= 0, z <= 0}; strip coordinates (w1, w2) are those of eq. (5.5).
+//  * Pass 1 (every orbit, batched kernel, no tangent): `transient` steps, then a window of `window`
+//    steps in which the return to the window's first point (period <= max_period), the symbols and
+//    the counts of symbols 1 / 3 are recorded.  Pass 2 (orbits without a period): Lyapunov exponent
+//    lambda1 (TangentRecorder, batch means) and the weighted Birkhoff rotation number about the P2
+//    centre (1, 0, -1) with the P2 invariant I (iterate/attractor_recorder.hpp).  Refinement: orbits
+//    still unresolved are continued from where they stopped with `refine_factor` times the transient.
+//  * Types: periodic (a stable periodic orbit, the pattern tool's verdict attached), collapse
+//    (three-particle collapse, z -> 0 with symbol 1 or x -> 0 with symbol 3; r <= 7 - 4 sqrt(3)),
+//    quasi-periodic (lambda1 = 0 within its error bar and a converged rotation number), chaotic
+//    (lambda1 > 0 beyond its error bar), unresolved (the budget ran out; `detail` says why).
+
+enum class Type : std::uint8_t { unresolved = 0, collapse = 1, periodic = 2, quasi_periodic = 3, chaotic = 4 };
+const char* type_name(Type t);
+
+struct Options {
+  long transient = 5000;       // steps before the window (paper: 5000 iterations), >= 1
+  long window = 1000;          // window of pass 1, >= max_period
+  int max_period = 256;        // longest period searched (132^67312^67 has 138 symbols), 1 .. 1024
+  // Return tolerance on unit vectors (max norm): a stable orbit contracts by e^(lambda2 p) per period, so
+  // after the transient its returns are ~1e-15; quasi-periodic orbits do not return closer than ~1e-6
+  // within 256 steps at the grid sizes we use.  In (0, 1e-3].
+  double return_tol = 1e-9;
+  // A periodic point must lie within this distance (max norm, unit vectors) of the pattern tool's exact
+  // periodic point: it confirms that the numerical cycle is the stable orbit of its word.  In (0, 1e-2].
+  double point_tol = 1e-7;
+  // theta (or pi/2 - theta) below this at the end of the window, with symbol 1 (3) throughout, is a
+  // three-particle collapse (theta shrinks geometrically, like (r^2 / lambda_P1)^n).  In (0, 0.1].
+  double collapse_theta = 1e-6;
+  long lyap_transient = 500;    // pass 2: steps aligning the tangent vector before averaging, >= 1
+  long lyap_iterations = 4000;  // pass 2: averaged steps (also the Birkhoff window), >= 10 * lyap_blocks
+  int lyap_blocks = 10;         // batch-means blocks, 2 .. 1000
+  // |rotation(full record) - rotation(first half)| below this (turns) counts as converged: the weighted
+  // average converges faster than any power of 1/n on a smooth invariant curve (Das-Yorke), to ~1e-10
+  // at n = 4000; chaotic orbits differ by ~1e-2.  In (0, 0.1].
+  double rotation_tol = 1e-6;
+  int refine_factor = 10;  // refinement pass: transient multiplied by this for unresolved orbits, 0 = off, <= 1000
+  iterate::RunOptions run;  // threads (results never depend on them), progress
+};
+// Throws std::invalid_argument "field: got X, expected Y" naming the option.
+void validate(const Options& opt);
+
+// The verdict on one orbit, with its evidence.
+struct OrbitVerdict {
+  Type type = Type::unresolved;
+  int period = 0;            // in map iterations (periodic; 1 for collapse)
+  patterns::Word word;       // periodic: the symbols of one period from the window's first point
+  std::string key;           // attractor identity key (see attractor_key)
+  double residual = 0;       // periodic: return distance |u_p - u_0|; else the closest return up to max_period
+  int closest_return = 0;    // j of that closest return
+  double lambda1 = 0, err1 = 0;  // pass 2 (batch means); periodic / collapse: the exact exponent log|l2/l1|/p, err 0
+  double rotation = 0, rotation_delta = 0;  // turns per iteration, and |full - half| of the weighted averages
+  double invariant = 0, invariant_spread = 0;  // weighted mean of I and (max - min) / mean over the record
+  bool p2_region = false;    // no symbol 1 or 3 in the window (an orbit of the P2 parallelogram)
+  long iterations = 0;       // map iterations spent on this orbit
+  Vec3<double> point;        // a point on the attractor (the window's first point, unit, in Q)
+  std::string detail;        // why unresolved, or extra evidence
+};
+
+// Identity of the attractor an orbit reached, as a string key that sorts deterministically:
+//   "C1" / "C3"  collapse on z = 0 / x = 0;   "P<digits>"  periodic, word rotated to its smallest rotation
+//   (order 1 < 3 < 2; J-mirrors are different attractors);   "Q2" quasi-periodic invariant curves of the P2
+//   parallelogram (a continuum: one family);   "Q" other quasi-periodic;   "X" chaotic;   "" unresolved.
+std::string attractor_key(const OrbitVerdict& v);
+// Same attractor at r: same key and, for periodic orbits, b's point lies on a's cycle (within point_tol);
+// for quasi-periodic curves, same rotation number (turns) and same invariant I (relative), within `curve_tol`.
+bool same_attractor(const OrbitVerdict& a, const OrbitVerdict& b, double r, double point_tol = 1e-7,
+                    double curve_tol = 1e-6);
+
+// Classifies every orbit of a one-r ensemble (ens.r.size() == 1), in ensemble order.
+std::vector<OrbitVerdict> classify(const iterate::Ensemble& ens, const Options& opt);
+// One orbit (the batched path with one lane).
+OrbitVerdict classify_point(const Vec3<double>& u0, double r, const Options& opt);
+
+// An attractor found at one r.
+struct Attractor {
+  int id = 0;                   // 1-based, by sorted key (0 is reserved for unresolved points)
+  Type type = Type::unresolved;
+  std::string key;
+  std::string pattern;          // paper notation (132^3312^3; 312^2 for the J-mirror of 132^2; "1" / "3" collapse)
+  std::string canonical;        // patterns::canonical in paper notation (mirrors share it)
+  int period = 0;
+  int collisions = 0;           // letters a, b, c per period (Table 5.1's last column)
+  std::string letters;          // collision letters from the exact periodic point (acb / cab resolved)
+  std::string stability;        // periodic: the pattern tool's outcome at r, and its reason if not stable
+  double lyapunov2 = 0;         // periodic: the pattern tool's projective exponent log|l2/l1|/p
+  Vec3<double> point;           // representative: the exact periodic point (periodic) or the point of the
+                                // lowest-index orbit of the basin
+  std::size_t count = 0;        // basin size (orbits)
+  double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;  // quasi-periodic ranges
+};
+
+// Attractors of a set of verdicts: one per key, ids by sorted key, counts; `labels` (same order as the
+// verdicts) gets the ids (0: unresolved).  Periodic keys are checked against patterns::analyse at r.
+std::vector<Attractor> collect(const std::vector<OrbitVerdict>& v, double r, std::vector<std::uint32_t>* labels);
+
+// A binomial proportion with its two-sided 95% Clopper-Pearson interval (boost::math::binomial_distribution).
+struct Fraction {
+  double value = 0, low = 0, high = 0;
+};
+Fraction fraction(std::size_t successes, std::size_t trials, double confidence = 0.95);
+
+// A grid of initial conditions: "strip:NxM" (cell centres, w1 in [w1_min, w1_max], w2 in [-1, 1]) or
+// "angles:NxM" (theta in [0, pi/2] x phi in [0, pi], cell centres), shifted by (du, dv) cells (|du|, |dv| <=
+// 1/2; replicate grids).  Throws std::invalid_argument naming `field` for an empty or malformed grid.
+struct Grid {
+  std::string kind;  // "strip" or "angles"
+  long n1 = 0, n2 = 0;  // columns (w1 or theta) x rows (w2 or phi)
+  double lo1 = -2, hi1 = 2, lo2 = -1, hi2 = 1;
+};
+Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const char* field = "grid");
+std::vector<Vec3<double>> grid_points(const Grid& g, double du = 0, double dv = 0);
+
+// Basins at one r over a grid and K replicate grids shifted by seeded random fractions of a cell.
+struct Basins {
+  double r = 0;
+  Grid grid;
+  std::vector<Attractor> attractors;       // union over the main grid and the replicates, ids by key
+  std::vector<std::uint32_t> labels;       // main grid, index i2 * n1 + i1 (row-major, w2 rows)
+  std::vector<Fraction> fractions;         // per attractor (main grid); unresolved last
+  Fraction unresolved;
+  std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; unresolved appended last
+  std::size_t unresolved_first_pass = 0;   // before refinement
+  long iterations_total = 0;               // map iterations spent (all passes, all grids)
+  double seconds = 0;
+};
+Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt);
+
+}  // namespace btob::attractors

@@ -1,0 +1,162 @@
+// Recorders of the attractor classification (src/attractors): period returns and the P2 rotation (Section 5.2).
+#pragma once
+
+#include "iterate/ensemble.hpp"
+#include "iterate/recorders.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+namespace btob::iterate {
+
+// First pass of the classification.  For every orbit, over the window of steps transient+1 .. transient+window:
+//   * s0: the unit state after `transient` steps (the reference point of the return test);
+//   * the symbols of the first max_period window steps, 2 bits each (word w_1 .. w_p, w_1 applied to s0);
+//   * d_j = max-norm distance between the unit state after j window steps and s0 (j <= max_period):
+//     the first j with d_j < return_tol is the period, d_j its residual; the smallest d_j is kept as evidence;
+//   * counts of symbols 1 and 3 over the whole window (collapse and P2-region tests);
+//   * the unit state at the end of the window.
+// Requires transient >= 1, window >= max_period >= 1.  Storage: orbits x (11 doubles + 4 ints + words).
+struct ReturnRecorder {
+  static constexpr bool needs_symbols = true;
+  long transient, window;
+  int max_period;
+  double return_tol;
+  int words;  // uint64 words of packed symbols per orbit
+  std::vector<double> s0x, s0y, s0z, fx, fy, fz, best_d, resid;
+  std::vector<std::int32_t> best_j, period, n1, n3;
+  std::vector<std::uint64_t> syms;
+
+  ReturnRecorder(std::size_t orbits, long transient_, long window_, int max_period_, double return_tol_)
+      : transient(transient_), window(window_), max_period(max_period_), return_tol(return_tol_),
+        words((2 * max_period_ + 63) / 64) {
+    checked_bytes(orbits, 8 * 8 + 4 * 4 + 8 * static_cast<std::size_t>(words), "orbits (return recorder)");
+    for (auto* v : {&s0x, &s0y, &s0z, &fx, &fy, &fz, &resid}) v->assign(orbits, 0.0);
+    best_d.assign(orbits, std::numeric_limits<double>::infinity());
+    for (auto* v : {&best_j, &period, &n1, &n3}) v->assign(orbits, 0);
+    syms.assign(orbits * static_cast<std::size_t>(words), 0);
+  }
+  long first_step() const { return transient; }
+  long total_steps() const { return transient + window; }  // the run's `iterations`
+  // Symbol j = 1 .. max_period of the window of orbit o.
+  int symbol(std::size_t o, int j) const {
+    const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
+    return static_cast<int>((syms[o * static_cast<std::size_t>(words) + b / 64] >> (b % 64)) & 3u);
+  }
+
+  template <class T>
+  void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t* sym) {
+    const long j = k - transient;
+    for (int l = 0; l < lanes; ++l) {
+      const std::size_t o = o0 + static_cast<std::size_t>(l);
+      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
+      const double inv = 1 / std::sqrt(X * X + Y * Y + Z * Z);
+      const double ux = X * inv, uy = Y * inv, uz = Z * inv;
+      if (j == 0) {
+        s0x[o] = ux, s0y[o] = uy, s0z[o] = uz;
+        continue;
+      }
+      n1[o] += sym[l] == 1;
+      n3[o] += sym[l] == 3;
+      if (j <= max_period) {
+        const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
+        syms[o * static_cast<std::size_t>(words) + b / 64] |= static_cast<std::uint64_t>(sym[l]) << (b % 64);
+        const double d = std::max(std::fabs(ux - s0x[o]), std::max(std::fabs(uy - s0y[o]), std::fabs(uz - s0z[o])));
+        if (d < best_d[o]) best_d[o] = d, best_j[o] = static_cast<std::int32_t>(j);
+        if (period[o] == 0 && d < return_tol) period[o] = static_cast<std::int32_t>(j), resid[o] = d;
+      }
+      if (j == window) fx[o] = ux, fy[o] = uy, fz[o] = uz;
+    }
+  }
+};
+
+// atan2(a, b) on the whole circle, in (-pi, pi], from the vectorisable atan_pos.
+template <class T> inline T atan2_full(T a, T b) {
+  const T t = atan_pos<T>(std::fabs(a), std::fabs(b));  // in [0, pi/2]
+  const T q = b >= T(0) ? t : T(std::numbers::pi) - t;
+  return a >= T(0) ? q : -q;
+}
+
+// Second pass (orbits not found periodic): the rotation about the P2 centre (1, 0, -1) and the conserved
+// quantity of P2 (Section 5.2), averaged with the weights w(t) = exp(-1/(t(1-t))) of Das and Yorke.
+// With s = x + z, a = x - z (a >= 0 in Q):
+//   I(u) = (2 s^2 - 4 alpha s y + 4 r y^2) / a^2    (= 2 w2^2 - 2 alpha w1 w2 + 4 r w1^2 on the strip)
+// is invariant under P2 for every r (P2 keeps the plane x = z and a -> r a, and det(P2|_{x=z}) = r^2); for
+// r > 3 - 2 sqrt(2) it is positive definite and, in the coordinates xi = (s - alpha y)/sqrt(2),
+// eta = sqrt(r - alpha^2/2) y, P2 acts as a rotation by the angle beta of cos(beta) = -(1-r)^2/(4r).
+// Per orbit: weighted Birkhoff averages of the angle increment (in (-pi, pi]) over the whole record and
+// over its first half, and min / max / weighted mean of I.  Records steps start .. start + n (n >= 4);
+// the increments of steps start+1 .. start+n are averaged.  One r per run (the classification runs
+// one r at a time); `rotation_defined` is false when r <= 3 - 2 sqrt(2) (no rotation, angles not kept).
+struct RotationRecorder {
+  static constexpr bool needs_symbols = false;
+  long start, n;
+  double r, alpha, c_eta;
+  bool rotation_defined;
+  std::vector<double> w_full, w_half;  // weights of increments j = 1 .. n (w_half zero beyond n/2)
+  double sum_full = 0, sum_half = 0;
+  std::vector<double> last, s_full, s_half, i_min, i_max, i_mean;
+  std::vector<double> fx, fy, fz;  // the unit state at step start + n (where a longer run would continue)
+
+  RotationRecorder(std::size_t orbits, double r_, long start_, long n_)
+      : start(start_), n(n_), r(r_), alpha((1 + r_) / 2) {
+    checked_bytes(orbits, 9 * sizeof(double), "orbits (rotation recorder)");
+    rotation_defined = r - alpha * alpha / 2 > 0;
+    c_eta = rotation_defined ? std::sqrt(r - alpha * alpha / 2) : 0.0;
+    w_full.assign(static_cast<std::size_t>(n) + 1, 0.0);
+    w_half.assign(static_cast<std::size_t>(n) + 1, 0.0);
+    const auto w = [](double t) { return t <= 0 || t >= 1 ? 0.0 : std::exp(-1 / (t * (1 - t))); };
+    const long h = n / 2;
+    for (long j = 1; j <= n; ++j) {
+      w_full[static_cast<std::size_t>(j)] = w((static_cast<double>(j) - 0.5) / static_cast<double>(n));
+      if (j <= h) w_half[static_cast<std::size_t>(j)] = w((static_cast<double>(j) - 0.5) / static_cast<double>(h));
+      sum_full += w_full[static_cast<std::size_t>(j)];
+      sum_half += w_half[static_cast<std::size_t>(j)];
+    }
+    for (auto* v : {&last, &s_full, &s_half, &i_mean, &fx, &fy, &fz}) v->assign(orbits, 0.0);
+    i_min.assign(orbits, std::numeric_limits<double>::infinity());
+    i_max.assign(orbits, -std::numeric_limits<double>::infinity());
+  }
+  long first_step() const { return start; }
+  // Weighted Birkhoff averages of the angle increment, in turns (rotation numbers in (-1/2, 1/2]).
+  double rotation(std::size_t o) const { return s_full[o] / sum_full / (2 * std::numbers::pi); }
+  double rotation_half(std::size_t o) const { return s_half[o] / sum_half / (2 * std::numbers::pi); }
+  double invariant(std::size_t o) const { return i_mean[o] / sum_full; }
+
+  template <class T>
+  void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t*) {
+    const long j = k - start;
+    if (j > n) return;
+    const double wf = w_full[static_cast<std::size_t>(j)], wh = w_half[static_cast<std::size_t>(j)];
+    const double al = alpha, rr = r, ce = c_eta;
+    const bool rot = rotation_defined;
+    for (int l = 0; l < lanes; ++l) {
+      const std::size_t o = o0 + static_cast<std::size_t>(l);
+      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
+      const double s = X + Z, a = X - Z;
+      if (j == n) {
+        const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
+        fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
+      }
+      const double inv = a > 0 ? 1 / (a * a) : std::numeric_limits<double>::infinity();
+      const double I = (2 * s * s - 4 * al * s * Y + 4 * rr * Y * Y) * inv;
+      i_min[o] = std::min(i_min[o], I);
+      i_max[o] = std::max(i_max[o], I);
+      i_mean[o] += wf * I;
+      if (!rot) continue;
+      const double ang = atan2_full<double>(ce * Y, (s - al * Y) * std::numbers::sqrt2 / 2);
+      if (j > 0) {
+        double d = ang - last[o];
+        d = d > std::numbers::pi ? d - 2 * std::numbers::pi : (d <= -std::numbers::pi ? d + 2 * std::numbers::pi : d);
+        s_full[o] += wf * d;
+        s_half[o] += wh * d;
+      }
+      last[o] = ang;
+    }
+  }
+};
+
+}  // namespace btob::iterate
