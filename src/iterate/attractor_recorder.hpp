@@ -83,7 +83,7 @@ template <class T> inline T atan2_full(T a, T b) {
 // Second pass (orbits not found periodic): the rotation about the P2 centre (1, 0, -1) and the conserved
 // quantity of P2 (Section 5.2), averaged with the weights w(t) = exp(-1/(t(1-t))) of Das and Yorke.
 // With s = x + z, a = x - z (a >= 0 in Q):
-//   I(u) = (2 s^2 - 4 alpha s y + 4 r y^2) / a^2    (= 2 w2^2 - 2 alpha w1 w2 + 4 r w1^2 on the strip)
+//   I(u) = (2 s^2 - 4 alpha s y + 4 r y^2) / a^2    (= 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 on the strip)
 // is invariant under P2 for every r (P2 keeps the plane x = z and a -> r a, and det(P2|_{x=z}) = r^2); for
 // r > 3 - 2 sqrt(2) it is positive definite and, in the coordinates xi = (s - alpha y)/sqrt(2),
 // eta = sqrt(r - alpha^2/2) y, P2 acts as a rotation by the angle beta of cos(beta) = -(1-r)^2/(4r).

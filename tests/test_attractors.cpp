@@ -1,0 +1,258 @@
+// Tests of src/attractors: classification (Table 5.1 patterns, collapse, quasi-periodic, chaotic), identity,
+// basins, fractions with intervals, determinism across thread counts, errors.
+#include "attractors/attractors.hpp"
+#include "core/coords.hpp"
+#include "iterate/attractor_recorder.hpp"
+#include "iterate/kernel.hpp"
+#include "patterns/patterns.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+namespace btob::attractors {
+namespace {
+
+iterate::Ensemble ensemble(double r, std::vector<Vec3<double>> pts) {
+  iterate::Ensemble e;
+  e.r = {r};
+  e.initial = std::move(pts);
+  return e;
+}
+
+// Patterns (paper notation) of the attractors found, by type.
+std::map<std::string, Attractor> found(double r, const std::vector<Vec3<double>>& pts, const Options& o = {}) {
+  const auto v = classify(ensemble(r, pts), o);
+  std::map<std::string, Attractor> m;
+  for (const auto& a : collect(v, r, nullptr)) m[a.pattern] = a;
+  return m;
+}
+
+// Every periodic attractor must be a stable orbit of its word for the pattern tool at the same r.
+void expect_stable(const std::map<std::string, Attractor>& m, double r) {
+  for (const auto& [p, a] : m)
+    if (a.type == Type::periodic) {
+      EXPECT_EQ(a.stability, patterns::outcome_name(patterns::Outcome::stable)) << p << " at r = " << r;
+      EXPECT_TRUE(patterns::is_stable<double>(patterns::parse_word(p), r)) << p << " at r = " << r;
+      EXPECT_LT(a.lyapunov2, 0) << p;
+    }
+}
+
+TEST(Attractors, PaperGridOneBasin1133AtR015) {
+  const auto m = found(0.15, iterate::paper_grid());
+  ASSERT_EQ(m.size(), 1u);
+  ASSERT_TRUE(m.count("1133"));
+  EXPECT_EQ(m.at("1133").count, 32u);
+  EXPECT_EQ(m.at("1133").collisions, 8);  // Table 5.1: length 8
+  expect_stable(m, 0.15);
+}
+
+TEST(Attractors, PaperGridOneBasin111333AtR01) {
+  const auto m = found(0.1, iterate::paper_grid());
+  ASSERT_EQ(m.size(), 1u);
+  ASSERT_TRUE(m.count("111333"));
+  EXPECT_EQ(m.at("111333").collisions, 12);
+  expect_stable(m, 0.1);
+}
+
+TEST(Attractors, CollapseAndItsMirrorAtR005) {
+  const auto pts = grid_points(parse_grid("strip:20x20", -2, 2));
+  const auto v = classify(ensemble(0.05, pts), {});
+  const auto a = collect(v, 0.05, nullptr);
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[0].key, "C1");
+  EXPECT_EQ(a[1].key, "C3");
+  EXPECT_EQ(a[0].count + a[1].count, pts.size());
+  for (const auto& x : v) {
+    EXPECT_EQ(x.type, Type::collapse);
+    const double th = core::theta<double>(x.point);
+    // theta -> 0 with symbol 1, pi/2 with symbol 3 (Section 5.2); 1e-6 = Options::collapse_theta.
+    EXPECT_LT(x.key == "C1" ? th : std::numbers::pi / 2 - th, 1e-6);
+  }
+  // r above 7 - 4 sqrt(3) never gives a collapse verdict.
+  for (const auto& x : classify(ensemble(0.08, pts), {})) EXPECT_NE(x.type, Type::collapse);
+}
+
+TEST(Attractors, R02PeriodicCoexistsWithQuasiPeriodicCurves) {
+  const double r = 0.2;
+  const auto m = found(r, grid_points(parse_grid("strip:40x40", -2, 2)));
+  ASSERT_TRUE(m.count("132^3312^3"));
+  ASSERT_TRUE(m.count("P2 invariant curves"));
+  EXPECT_EQ(m.at("132^3312^3").period, 10);
+  EXPECT_EQ(m.at("132^3312^3").collisions, 26);
+  expect_stable(m, r);
+  // The rotation number of every P2 curve is beta / 2 pi with cos(beta) = -(1-r)^2/(4r) (Section 5.2), up to
+  // the weighted average's accuracy (1e-9: Das-Yorke convergence at 4000 steps is far below).
+  const auto& q = m.at("P2 invariant curves");
+  const double beta = std::acos(-(1 - r) * (1 - r) / (4 * r)) / (2 * std::numbers::pi);
+  EXPECT_NEAR(std::fabs(q.rotation_min), beta, 1e-9);
+  EXPECT_NEAR(std::fabs(q.rotation_max), beta, 1e-9);
+  EXPECT_LT(q.invariant_min, q.invariant_max);  // a family of different curves
+}
+
+TEST(Attractors, R021ThreePatternsCoexist) {
+  const auto m = found(0.21, grid_points(parse_grid("strip:40x40", -2, 2)));
+  for (const char* p : {"132^2", "312^2", "132^3312^3"}) EXPECT_TRUE(m.count(p)) << p;
+  expect_stable(m, 0.21);
+  // Mirror attractors are distinct (J symmetry: same canonical form, different keys) with equal basins
+  // on the J-symmetric strip grid (w -> -w maps the grid onto itself).
+  EXPECT_EQ(m.at("132^2").canonical, m.at("312^2").canonical);
+  EXPECT_NE(m.at("132^2").key, m.at("312^2").key);
+  EXPECT_EQ(m.at("132^2").count, m.at("312^2").count);
+}
+
+TEST(Attractors, Pattern132312From03To06) {
+  const auto pts = grid_points(parse_grid("strip:16x16", -2, 2));
+  for (double r : {0.3, 0.34, 0.45, 0.5, 0.6}) {
+    const auto m = found(r, pts);
+    EXPECT_TRUE(m.count("132312")) << "r = " << r;
+    if (m.count("132312")) EXPECT_EQ(m.at("132312").collisions, 14);
+    expect_stable(m, r);
+  }
+}
+
+TEST(Attractors, ChaoticBetweenWindows) {
+  // r = 0.102: Table 5.1 finds no periodic orbit; the exponent is positive beyond its error bar.
+  const auto v = classify(ensemble(0.102, iterate::paper_grid()), {});
+  for (const auto& x : v) {
+    EXPECT_EQ(x.type, Type::chaotic) << x.detail;
+    EXPECT_GT(x.lambda1, 3 * x.err1 + 0.01);
+  }
+}
+
+TEST(Attractors, P2InvariantIsConservedAndDistinguishesCurves) {
+  const double r = 0.3;
+  // Two points near the P2 centre (strip origin) on different ellipses, and the image of the first.
+  const Vec3<double> u1 = core::from_strip<double>(0.05, 0.02), u2 = core::from_strip<double>(0.1, 0.05);
+  Vec3<double> u1b = core::to_quadrant<double>(core::P2<double>(r) * u1);
+  const Options o;
+  const OrbitVerdict a = classify_point(u1, r, o), b = classify_point(u2, r, o), c = classify_point(u1b, r, o);
+  ASSERT_EQ(a.type, Type::quasi_periodic);
+  ASSERT_EQ(b.type, Type::quasi_periodic);
+  EXPECT_TRUE(a.p2_region);
+  EXPECT_LT(a.invariant_spread, 1e-9);  // exact invariance, rounding only
+  // I on the strip: 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 (attractor_recorder.hpp).
+  const double al = (1 + r) / 2;
+  EXPECT_NEAR(a.invariant, 2 * 0.02 * 0.02 - 4 * al * 0.05 * 0.02 + 4 * r * 0.05 * 0.05, 1e-12);
+  EXPECT_TRUE(same_attractor(a, c, r));
+  EXPECT_FALSE(same_attractor(a, b, r));
+}
+
+TEST(Attractors, PeriodicIdentityUpToPhase) {
+  const double r = 0.15;
+  const auto v = classify(ensemble(r, iterate::paper_grid()), {});
+  for (std::size_t i = 1; i < v.size(); ++i) EXPECT_TRUE(same_attractor(v[0], v[i], r));
+  // A perturbed copy of the cycle point is a different point: not on the cycle.
+  OrbitVerdict w = v[0];
+  w.point(1) += 1e-3;
+  EXPECT_FALSE(same_attractor(v[0], w, r));
+}
+
+TEST(Attractors, ScalarReferenceGivesTheSameReturns) {
+  const auto e = ensemble(0.21, grid_points(parse_grid("strip:6x6", -2, 2)));
+  iterate::ReturnRecorder a(e.orbits(), 3000, 300, 64, 1e-9), b(e.orbits(), 3000, 300, 64, 1e-9);
+  iterate::run<double>(e, a.total_steps(), a);
+  iterate::run_scalar<double>(e, b.total_steps(), b);
+  for (std::size_t o = 0; o < e.orbits(); ++o) {
+    EXPECT_EQ(a.period[o], b.period[o]) << o;
+    for (int j = 1; j <= 64; ++j) EXPECT_EQ(a.symbol(o, j), b.symbol(o, j)) << o << " " << j;
+  }
+}
+
+TEST(Basins, FractionsSumToOneWithIntervals) {
+  const Basins b = basins(0.21, parse_grid("strip:30x20", -2, 2), 2, 7, {});
+  double sum = b.unresolved.value;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < b.attractors.size(); ++i) {
+    sum += b.fractions[i].value;
+    count += b.attractors[i].count;
+    EXPECT_LE(b.fractions[i].low, b.fractions[i].value);
+    EXPECT_GE(b.fractions[i].high, b.fractions[i].value);
+    EXPECT_EQ(b.attractors[i].id, static_cast<int>(i) + 1);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-12);  // fractions of integer counts over one total
+  EXPECT_EQ(b.labels.size(), 600u);
+  EXPECT_EQ(b.replicate_fractions.size(), b.attractors.size() + 1);
+  for (const auto& rf : b.replicate_fractions) EXPECT_EQ(rf.size(), 3u);
+}
+
+TEST(Basins, ClopperPearsonReferenceValues) {
+  // Exact two-sided 95% interval for 5 of 10 (tables of Clopper and Pearson 1934: 0.1871, 0.8129).
+  const Fraction f = fraction(5, 10);
+  EXPECT_NEAR(f.low, 0.187086, 1e-6);
+  EXPECT_NEAR(f.high, 0.812914, 1e-6);
+  const Fraction z = fraction(0, 100);
+  EXPECT_EQ(z.low, 0.0);
+  EXPECT_NEAR(z.high, 1 - std::pow(0.025, 0.01), 1e-9);  // (alpha/2)^(1/n) rule at k = 0
+}
+
+TEST(Basins, LabelsIdenticalWithOneAndTwoThreads) {
+  Options o1, o2;
+  o1.run.threads = 1;
+  o2.run.threads = 2;
+  const Grid g = parse_grid("strip:40x30", -2, 2);
+  const Basins a = basins(0.24, g, 1, 3, o1), b = basins(0.24, g, 1, 3, o2);
+  EXPECT_EQ(a.labels, b.labels);
+  ASSERT_EQ(a.attractors.size(), b.attractors.size());
+  for (std::size_t i = 0; i < a.attractors.size(); ++i) {
+    EXPECT_EQ(a.attractors[i].key, b.attractors[i].key);
+    EXPECT_EQ(a.fractions[i].value, b.fractions[i].value);
+  }
+  EXPECT_EQ(a.replicate_fractions, b.replicate_fractions);
+}
+
+TEST(Basins, IdsDoNotDependOnProcessingOrder) {
+  const double r = 0.21;
+  auto pts = grid_points(parse_grid("strip:20x20", -2, 2));
+  const auto v1 = classify(ensemble(r, pts), {});
+  std::reverse(pts.begin(), pts.end());
+  const auto v2 = classify(ensemble(r, pts), {});
+  const auto a1 = collect(v1, r, nullptr), a2 = collect(v2, r, nullptr);
+  ASSERT_EQ(a1.size(), a2.size());
+  for (std::size_t i = 0; i < a1.size(); ++i) {
+    EXPECT_EQ(a1[i].key, a2[i].key);
+    EXPECT_EQ(a1[i].id, a2[i].id);
+    EXPECT_EQ(a1[i].count, a2[i].count);
+  }
+}
+
+TEST(Errors, NameTheField) {
+  const auto msg = [](auto&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_THROW(parse_grid("strip:0x10", -2, 2), std::invalid_argument);
+  EXPECT_NE(msg([] { parse_grid("strip:0x10", -2, 2); }).find("grid: got 0 x 10"), std::string::npos);
+  EXPECT_THROW(parse_grid("strip:10", -2, 2), std::invalid_argument);
+  EXPECT_THROW(parse_grid("disk:10x10", -2, 2), std::invalid_argument);
+  EXPECT_NE(msg([] { parse_grid("strip:4x4", 2, -2); }).find("w1-range"), std::string::npos);
+  Options o;
+  o.return_tol = 0.5;
+  EXPECT_THROW(validate(o), std::invalid_argument);
+  EXPECT_NE(msg([&] { validate(o); }).find("return-tol: got 0.5"), std::string::npos);
+  o = {};
+  o.max_period = 2000;
+  EXPECT_NE(msg([&] { validate(o); }).find("max-period"), std::string::npos);
+  o = {};
+  o.window = 10;
+  EXPECT_NE(msg([&] { validate(o); }).find("window"), std::string::npos);
+  o = {};
+  o.rotation_tol = 0;
+  EXPECT_NE(msg([&] { validate(o); }).find("rotation-tol"), std::string::npos);
+  EXPECT_THROW(basins(1.0, parse_grid("strip:2x2", -2, 2), 0, 1, {}), std::domain_error);
+  EXPECT_NE(msg([] { basins(0.0, parse_grid("strip:2x2", -2, 2), 0, 1, {}); }).find("r: got 0"), std::string::npos);
+  EXPECT_THROW(basins(0.2, parse_grid("strip:2x2", -2, 2), -1, 1, {}), std::invalid_argument);
+  EXPECT_THROW(classify_point(Vec3<double>(1, 0, 1), 0.2, {}), std::domain_error);  // x z > 0
+  // A grid that cannot fit is refused before any work, with the size it needs.
+  EXPECT_THROW(basins(0.2, parse_grid("strip:4000000x4000000", -2, 2), 0, 1, {}), std::length_error);
+}
+
+}  // namespace
+}  // namespace btob::attractors
