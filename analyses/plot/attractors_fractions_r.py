@@ -20,7 +20,7 @@ def main(h5_path, png_path):
     fig, ax = plt.subplots(figsize=(11, 5), constrained_layout=True)
     cmap = plt.get_cmap("tab20").colors
     cols = [cmap[i % len(cmap)] for i in range(len(names) - 1)] + [(0, 0, 0)]
-    ax.stackplot(x, frac.T, labels=names, colors=cols, step=None)
+    ax.stackplot(x, frac.T, labels=names, colors=cols, step="mid")  # one bar per r: no interpolation across gaps
     ax.set_xticks(x)
     ax.set_xticklabels([f"{v:g}" for v in r], rotation=60, fontsize=8)
     ax.set_xlim(x[0], x[-1])

@@ -298,8 +298,8 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
 
   // Comparison with Table 5.1: periodic fraction (paper: % of 10 orbits) and the patterns found.
   std::string cmp =
-      "r,paper_percent_periodic,paper_patterns,periodic_fraction,ci_low,ci_high,patterns_found,paper_patterns_found,"
-      "extra_patterns,other_types\n";
+      "r,paper_percent_periodic,paper_ci_low,paper_ci_high,consistent,paper_patterns,periodic_fraction,ci_low,ci_high,"
+      "patterns_found,paper_patterns_found,extra_patterns,other_types\n";
   for (const auto& row : rows) {
     const TableRow* t = nullptr;
     for (const auto& x : table)
@@ -333,8 +333,17 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
     for (const auto& p : found)
       if (!paper.count(p)) extra += (extra.empty() ? "" : "; ") + p;
     const auto f = attractors::fraction(periodic, pts.size());
-    cmp += fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", row.r, t ? t->percent : "", csv_quote(t ? t->patterns : ""),
-                       f.value, f.low, f.high, csv_quote(found_s), paper_found, csv_quote(extra), csv_quote(other));
+    // The paper's percentage is k of 10 orbits: its own 95% interval, and whether our fraction lies inside.
+    std::string pci_lo, pci_hi, consistent;
+    if (t && !t->percent.empty()) {
+      const auto k = static_cast<std::size_t>(std::llround(std::stod(t->percent) / 10));
+      const auto pf = attractors::fraction(k, 10);
+      pci_lo = fmt::format("{:.4f}", pf.low), pci_hi = fmt::format("{:.4f}", pf.high);
+      consistent = f.value >= pf.low && f.value <= pf.high ? "yes" : "no";
+    }
+    cmp += fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", row.r, t ? t->percent : "", pci_lo, pci_hi,
+                       consistent, csv_quote(t ? t->patterns : ""), f.value, f.low, f.high, csv_quote(found_s),
+                       paper_found, csv_quote(extra), csv_quote(other));
   }
   io::write_text_atomic(out / "table_5_1_comparison.csv", cmp);
 
