@@ -33,17 +33,29 @@ DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, l
   if (!(lo < hi)) throw std::invalid_argument(fmt::format("range: got [{}, {}], expected lo < hi", lo, hi));
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
-  per_thread.assign(static_cast<std::size_t>(nt), std::vector<std::uint32_t>(columns * bins, 0));
+  // Each thread zeroes (first-touches) its own image: no serial memset and copy of nt images.
+  per_thread.resize(static_cast<std::size_t>(nt));
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+  for (int t = 0; t < nt; ++t) per_thread[static_cast<std::size_t>(t)].assign(columns * bins, 0);
   under_t.assign(static_cast<std::size_t>(nt), std::vector<std::uint64_t>(columns, 0));
   over_t = under_t;
 }
 
 std::vector<std::uint32_t> DensityRecorder::merge() {
-  std::vector<std::uint32_t> img(columns * bins, 0);
+  // Integer sums into thread 0's image (in place, no new allocation); the image is consumed.
+  if (per_thread.empty()) throw std::logic_error("DensityRecorder::merge: called twice");
+  std::vector<std::uint32_t> img = std::move(per_thread[0]);
+  const std::size_t n = img.size();
   under.assign(columns, 0);
   over.assign(columns, 0);
-  for (std::size_t t = 0; t < per_thread.size(); ++t) {
-    for (std::size_t i = 0; i < img.size(); ++i) img[i] += per_thread[t][i];
+  for (std::size_t t = 1; t < per_thread.size(); ++t) {
+    const std::uint32_t* src = per_thread[t].data();
+    std::uint32_t* dst = img.data();
+#pragma omp parallel for simd schedule(static) num_threads(static_cast<int>(per_thread.size()))
+    for (std::size_t i = 0; i < n; ++i) dst[i] += src[i];
+  }
+  per_thread.clear();
+  for (std::size_t t = 0; t < under_t.size(); ++t) {
     for (std::size_t c = 0; c < columns; ++c) {
       under[c] += under_t[t][c];
       over[c] += over_t[t][c];

@@ -175,7 +175,7 @@ struct DensityRecorder {
         for (int l = 0; l < n; ++l) v[l] = static_cast<double>(coord_value<T>(c, x[l], y[l], z[l]));
     }
   }
-  // The merged image (columns x bins) and under/overflow counts.
+  // The merged image (columns x bins) and under/overflow counts; call once (it consumes the images).
   std::vector<std::uint32_t> merge();
 };
 
