@@ -97,7 +97,7 @@ template <> struct SimdTypes<float> {
 };
 template <class T> struct Simd {
   static constexpr int W = kVectorBytes / sizeof(T);  // lanes per vector
-  static constexpr int NV = 6;              // vectors in flight
+  static constexpr int NV = kVectorsInFlight;  // vectors in flight
   static constexpr int B = W * NV;          // lanes per batch
   using V = typename SimdTypes<T>::V;
   using I = typename SimdTypes<T>::I;
@@ -126,7 +126,7 @@ inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, con
     k[j] = S::load(ks + j * S::W);
   }
   for (int s = 0; s < n; ++s) {
-#pragma GCC unroll 6
+#pragma GCC unroll 8
     for (int j = 0; j < S::NV; ++j) {
       const StepResult<V> o = map_step<V, I>(x[j], y[j], z[j], r[j], a[j], k[j], s1[j], s3[j]);
       x[j] = o.x;

@@ -16,10 +16,13 @@ inline constexpr int kVectorBytes = 32;
 inline constexpr int kVectorBytes = 16;
 #endif
 // Lanes per batch: 6 vectors in flight (one step's dependency chain is ~18 cycles and its issue cost
-// ~5 per vector on Zen 4, so 6 independent vectors hide the latency; measured: 4 -> 6.3e9, 6 -> 6.9e9,
-// 8 -> 6.7e9 map iterations/s on 2 cores).
+// ~3-5 per vector, so 6 independent vectors hide the latency).  Measured, double, map iterations/s:
+// Zen 4, 2 threads: 4 -> 6.3e9, 6 -> 6.9e9, 8 -> 6.7e9; Zen 5, 1 thread: 4 -> 4.4e9, 5 -> 5.4e9,
+// 6 -> 6.0e9 (8 spills registers: 36 live vectors of state and parameters exceed the 32 zmm).
+inline constexpr int kVectorsInFlight = 6;
 template <class T> constexpr int batch_lanes() {
-  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) return 6 * kVectorBytes / static_cast<int>(sizeof(T));
+  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>)
+    return kVectorsInFlight * kVectorBytes / static_cast<int>(sizeof(T));
   else return 8;
 }
 
