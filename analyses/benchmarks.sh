@@ -11,7 +11,7 @@ mkdir -p "$out"
 for bm in "$bdir"/bm_iterate; do
   name=$(basename "$bm")
   tmp="$out/$name.json.tmp-$$"
-  "$bm" --benchmark_filter='^(scalar_loop|batched|fig41_density)' --benchmark_min_time=1 \
+  "$bm" --benchmark_filter='^(core_clock|scalar_loop|batched|fig41_density)' --benchmark_min_time=1 \
         --benchmark_out="$tmp" --benchmark_out_format=json >/dev/null
   mv "$tmp" "$out/$name.json"
 done

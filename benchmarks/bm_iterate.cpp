@@ -6,6 +6,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <fstream>
+#include <string>
+
 namespace {
 
 using namespace btob::iterate;
@@ -67,8 +70,41 @@ template <class T> void BM_fig41_density(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
 }
 
+// The core clock under load, for the hardware-limit estimate: a chain of dependent 1-cycle integer adds
+// retires one add per cycle, so adds per second = cycles per second (counter "GHz").
+void BM_core_clock(benchmark::State& st) {
+  constexpr long kChain = 1L << 24;
+  for (auto _ : st) {
+    long v = 0;
+    for (long i = 0; i < kChain; i += 8) {
+#if defined(__x86_64__)
+      asm volatile("add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\t"
+                   "add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0" : "+r"(v));
+#else
+      v += 8;
+      benchmark::DoNotOptimize(v);
+#endif
+    }
+    benchmark::DoNotOptimize(v);
+  }
+  st.counters["GHz"] = benchmark::Counter(static_cast<double>(kChain) * static_cast<double>(st.iterations()) * 1e-9,
+                                          benchmark::Counter::kIsRate);
+}
+
+// "cpu family" and "model" of /proc/cpuinfo (Zen 4 is AMD family 25, Zen 5 family 26), for the JSON.
+std::string cpuinfo_field(const std::string& key) {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key, 0) == 0 && line.find(':') != std::string::npos) {
+      const std::string v = line.substr(line.find(':') + 1);
+      return v.empty() ? v : v.substr(v.find_first_not_of(' '));
+    }
+  return "unknown";
+}
+
 }  // namespace
 
+BENCHMARK(BM_core_clock)->Name("core_clock")->Unit(benchmark::kMillisecond);
 // Baseline: 50 r values x 32 orbits x 5000 iterations (8e6 map iterations per run).
 BENCHMARK(BM_scalar_loop<double>)->Name("scalar_loop/double")->Args({50, 5000})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_scalar_loop<float>)->Name("scalar_loop/float")->Args({50, 5000})->Unit(benchmark::kMillisecond);
@@ -90,4 +126,14 @@ BENCHMARK(BM_scalar_loop<double>)->Name("smoke/scalar_loop")->Args({2, 50});
 BENCHMARK(BM_batched<double>)->Name("smoke/batched")->Args({2, 50, 2})->UseRealTime();
 BENCHMARK(BM_fig41_density<float>)->Name("smoke/density")->Args({2, 200, 2})->UseRealTime();
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("cpu_vendor", cpuinfo_field("vendor_id"));
+  benchmark::AddCustomContext("cpu_family", cpuinfo_field("cpu family"));
+  benchmark::AddCustomContext("cpu_model", cpuinfo_field("model\t"));
+  benchmark::AddCustomContext("cpu_model_name", cpuinfo_field("model name"));
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
