@@ -314,8 +314,9 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
         found.insert(x.pattern);
         found_s += fmt::format("{}{} ({:.3f})", found_s.empty() ? "" : "; ", x.pattern, row.fr[i].value);
       } else {
-        other += fmt::format("{}{} {} ({:.3f})", other.empty() ? "" : "; ", attractors::type_name(x.type), x.pattern,
-                             row.fr[i].value);
+        const std::string type = attractors::type_name(x.type);
+        const std::string label = x.pattern.empty() || x.pattern == type ? type : type + " " + x.pattern;
+        other += fmt::format("{}{} ({:.3f})", other.empty() ? "" : "; ", label, row.fr[i].value);
       }
     }
     other += fmt::format("{}unresolved ({:.3f})", other.empty() ? "" : "; ", row.unresolved.value);
@@ -355,8 +356,8 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
     for (std::size_t i = 0; i < rows.size(); ++i)
       for (std::size_t j = 0; j < rows[i].at.size(); ++j)
         if (rows[i].at[j].key == k.second) frac[i * (keys.size() + 1) + col] = rows[i].fr[j].value;
-    at[fmt::format("column_{}", col)] =
-        fmt::format("{} ({})", pat, attractors::type_name(static_cast<attractors::Type>(k.first)));
+    const std::string type = attractors::type_name(static_cast<attractors::Type>(k.first));
+    at[fmt::format("column_{}", col)] = pat.empty() || pat == type ? type : fmt::format("{} ({})", pat, type);
     ++col;
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
