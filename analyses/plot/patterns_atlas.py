@@ -71,7 +71,7 @@ def main():
     if detected:
         title += (f"\niterator: {meta.get('check_ics', '?')} random points x {meta.get('check_r_values', '?')} r values "
                   f"(Table 5.1), {meta.get('check_iterations', '?')} iterations, last {meta.get('check_tail', '?')} "
-                  f"symbols; top rows: symbol-periodic but not stable; bottom rows: found patterns longer than L")
+                  f"symbols; top rows: symbol-periodic but no sink (word 2: P2 rotation); bottom rows: found patterns longer than L")
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     tmp = out + ".tmp.png"
@@ -91,10 +91,12 @@ def draw(ax, rows, intervals, detected, found_words, x0, x1):
         i = rows.index(w)
         r = float(row["r"])
         ok = row["status"] in ("stable in atlas", "longer than L: stable (verdict)")
-        key = "agree" if ok else "disagree"
-        ax.plot(r, i, marker="o" if ok else "x", color="#2ca02c" if ok else "#d62728", ms=5, ls="none",
-                label=None if key in label_done else ("iterator: periodic, stable in analysis" if ok else
-                                                      "iterator: symbol-periodic, NOT stable in analysis"))
+        quasi = row["status"].startswith("quasi-periodic")
+        key = "agree" if ok else ("quasi" if quasi else "disagree")
+        style = {"agree": ("o", "#2ca02c", "iterator: periodic, stable in analysis"),
+                 "quasi": ("s", "#17becf", "iterator: symbol-periodic on invariant curves (neutral, e.g. word 2)"),
+                 "disagree": ("x", "#d62728", "iterator: symbol-periodic, NOT stable in analysis")}[key]
+        ax.plot(r, i, marker=style[0], color=style[1], ms=5, ls="none", label=None if key in label_done else style[2])
         label_done.add(key)
     ax.set_yticks(range(len(rows)))
     ax.set_yticklabels(rows, fontsize=7)
