@@ -1,6 +1,7 @@
 // Lyapunov exponents: periodic orbits against eigenvalues of period matrices, quasi-periodic orbits, the two QR
 // routes against each other, the batched TangentRecorder against the QR route, finite differences, errors.
 #include "core/map.hpp"
+#include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
@@ -181,6 +182,43 @@ TEST(Lyapunov, ChaoticBetweenWindowsIsPositiveAndPrecisionIndependent) {
   const auto q = lyapunov::projective_exponents<long double>(Eigen::Matrix<long double, 3, 1>(1, -0.9L, -0.2L), 0.11L, o);
   EXPECT_GT(d.lambda[0].value, 10 * d.lambda[0].error);
   EXPECT_NEAR(d.lambda[0].value, q.lambda[0].value, 5 * (d.lambda[0].error + q.lambda[0].error));
+}
+
+TEST(Lyapunov, EveryPrecisionOnTheSink1133) {
+  // Issue 9: the cocycle runs in float, double, long double, float128 and MPFR.  On the sink 1133 at r = 0.15
+  // the weighted averages of 2e4 steps (after a 2000-step transient) must give the period matrix's exponents:
+  // float to 1e-5 (measured 2.9e-7: float's eps 1.2e-7 times the O(1) condition of the step), the others to
+  // 1e-12 (the weighted average converges super-polynomially; what remains is the double of the reference and
+  // of the reported value, ~1e-15).
+  const double r = 0.15;
+  lyapunov::Options o;
+  o.transient = 2000;
+  o.iterations = 20000;
+  o.blocks = 10;
+  const auto d = lyapunov::projective_exponents<double>(V3(1, -0.9, -0.2), r, o);
+  const int p = lyapunov::detect_period(d.symbols_tail, 64, 512);
+  ASSERT_EQ(p, 4);
+  const std::vector<int> period(d.symbols_tail.end() - p, d.symbols_tail.end());
+  const auto ref = lyapunov::periodic_exponents(period, r);
+  const auto f = lyapunov::projective_exponents<float>(Eigen::Vector3f(1, -0.9f, -0.2f), float(r), o);
+  EXPECT_NEAR(f.weighted[0], ref[0], 1e-5);
+  EXPECT_NEAR(f.weighted[1], ref[1], 1e-5);
+  EXPECT_NEAR(d.weighted[0], ref[0], 1e-12);
+  using core::float128;
+  using core::mpfr_float;
+  const auto q = lyapunov::projective_exponents<float128>(Eigen::Matrix<float128, 3, 1>(1, float128(-0.9), float128(-0.2)),
+                                                          float128(r), o);
+  EXPECT_NEAR(q.weighted[0], ref[0], 1e-12);
+  EXPECT_NEAR(q.weighted[1], ref[1], 1e-12);
+  mpfr_float::default_precision(50);
+  const auto m = lyapunov::projective_exponents<mpfr_float>(
+      Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.9), mpfr_float(-0.2)), mpfr_float(r), o);
+  EXPECT_NEAR(m.weighted[0], ref[0], 1e-12);
+  EXPECT_NEAR(m.weighted[1], ref[1], 1e-12);
+  // The linear route in MPFR: chi2 - chi1 is the same exponent (the two routes of issue 6, in high precision).
+  const auto lin = lyapunov::linear_exponents<mpfr_float>(
+      Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.9), mpfr_float(-0.2)), mpfr_float(r), o);
+  EXPECT_NEAR(lin.weighted[1] - lin.weighted[0], ref[0], 1e-12);
 }
 
 TEST(Lyapunov, FiniteDifferencesStraddleBoundaries) {

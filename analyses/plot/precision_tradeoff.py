@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Speed against accuracy of each precision and algorithm, from results/precision/tradeoff.csv.
 
-Left: iterations per second against how long the symbol sequence agrees with a 256-digit run (median
-over orbits) at each r.  Right: iterations per second against the largest window (ab)^n(cb)^n resolved.
+Four panels, each against iterations per second: how long the symbol sequence agrees with a 256-digit run
+(median over orbits) at each r; the final-state error; the Lyapunov exponent's error on periodic sinks; the
+largest window (ab)^n(cb)^n resolved.
 Usage: precision_tradeoff.py tradeoff.csv OUT.png
 """
 import csv
@@ -23,7 +24,8 @@ def main(src, dst):
         header = [l[2:].strip() for l in f if l.startswith("#")]
     rs = [k[len("agree_median_r"):] for k in rows[0].keys() if k.startswith("agree_median_r")]
     iters = next((h.split("iterations=")[1].split()[0] for h in header if "iterations=" in h), "?")
-    fig, (ax, cx, bx) = plt.subplots(1, 3, figsize=(17, 5.8), dpi=130, gridspec_kw={"width_ratios": [1.3, 1.3, 1]})
+    fig, axes = plt.subplots(2, 2, figsize=(15, 10.5), dpi=120)
+    (ax, cx), (lx, bx) = axes
     markers = "os^Dv<>"
     for i, r in enumerate(rs):
         x = [float(row["iterations_per_second"]) for row in rows]
@@ -55,20 +57,38 @@ def main(src, dst):
     cx.set_ylabel("angle between final state and 256-digit run (rad, median)\n(1e-20: below double resolution)")
     cx.set_title(f"state error after {iters} iterations", fontsize=9)
     cx.legend(fontsize=8)
+    # Lyapunov exponent error on the sinks 1133, 111333, 132312 (linear methods only).
+    ly = [row for row in rows if row.get("lyapunov_error")]
+    floor = 1e-17
+    lx.scatter([float(row["iterations_per_second"]) for row in ly],
+               [max(floor, float(row["lyapunov_error"])) for row in ly], color="#9467bd", s=40)
+    for k, row in enumerate(ly):
+        lx.annotate(row["method"], (float(row["iterations_per_second"]), max(floor, float(row["lyapunov_error"]))),
+                    textcoords="offset points", xytext=(5, 4 + 9 * (k % 3)), fontsize=7)
+    lx.axhline(1.1e-16, color="#999999", ls=":", lw=1)
+    lx.text(min(float(row["iterations_per_second"]) for row in ly), 1.4e-16, "double resolution of the reported value",
+            fontsize=7, color="#666666")
+    lx.set_xscale("log")
+    lx.set_yscale("log")
+    lx.set_ylim(floor / 3, 1e-4)
+    lx.set_xlabel("map iterations per second (2 threads)")
+    lx.set_ylabel("largest |lambda1 - exact| per iteration on the sinks\n(1e-17: below double resolution)")
+    lx.set_title("Lyapunov exponent on 1133 (r=0.15), 111333 (r=0.1), 132312 (r=0.5): 1e5 steps, weighted average",
+                 fontsize=9)
     lin = [row for row in rows if row["window_n_max"]]
     bx.scatter([float(row["iterations_per_second"]) for row in lin], [int(row["window_n_max"]) for row in lin], color="#1f4fd6")
-    for row in lin:
+    for k, row in enumerate(lin):
         bx.annotate(row["method"], (float(row["iterations_per_second"]), int(row["window_n_max"])),
-                    textcoords="offset points", xytext=(5, 4), fontsize=7)
+                    textcoords="offset points", xytext=(4, -14 - 10 * (k % 3)), fontsize=7)
     nmax = max([int(v) for row in rows for v in [row["window_n_max"]] if v] + [1])
     bx.axhline(nmax, color="#999999", ls=":", lw=1)
-    bx.text(bx.get_xlim()[0] if False else min(float(row["iterations_per_second"]) for row in lin), nmax * 1.02,
+    bx.text(min(float(row["iterations_per_second"]) for row in lin), nmax * 1.02,
             "largest n tested", fontsize=7, color="#666666")
     bx.set_ylim(0, nmax * 1.15)
     bx.set_xscale("log")
     bx.set_xlabel("map iterations per second (2 threads)")
     bx.set_ylabel("largest n whose window (ab)^n(cb)^n is resolved")
-    bx.set_title("windows near 7-4*sqrt(3) (middle of window n)", fontsize=9)
+    bx.set_title("windows near 7-4*sqrt(3) (8 orbits at the middle of window n)", fontsize=9)
     fig.suptitle("btob: speed against accuracy, per precision and algorithm", fontsize=11)
     fig.tight_layout()
     save_atomic(fig, dst)

@@ -72,11 +72,24 @@ void lyapunov_orbit(const OrbitArgs& a) {
   o.transient = a.transient;
   o.reorthonormalise = a.reorth;
   o.blocks = a.blocks;
+  // Every precision of the lab (issue 9); the orbit and the tangent frame are iterated in T, the sums of
+  // log R_ii accumulated in long double and the exponents reported in double.
+  const core::Precision prec = core::parse_precision(a.precision, "precision");
+  const auto in = [&]<class T>(T*) {
+    const core::Vec3<T> ut(T(u(0)), T(u(1)), T(u(2)));
+    return lyapunov::projective_exponents<T>(ut, T(a.r), o);
+  };
   lyapunov::ProjectiveResult res;
-  if (a.precision == "double") res = lyapunov::projective_exponents<double>(u, a.r, o);
-  else if (a.precision == "long-double")
-    res = lyapunov::projective_exponents<long double>(u.cast<long double>(), static_cast<long double>(a.r), o);
-  else throw UsageError(fmt::format("precision: got '{}', expected double or long-double", a.precision));
+  switch (prec.kind) {
+    case core::Precision::Kind::f32: res = in(static_cast<float*>(nullptr)); break;
+    case core::Precision::Kind::f64: res = in(static_cast<double*>(nullptr)); break;
+    case core::Precision::Kind::f80: res = in(static_cast<long double*>(nullptr)); break;
+    case core::Precision::Kind::f128: res = in(static_cast<core::float128*>(nullptr)); break;
+    case core::Precision::Kind::mpfr:
+      core::mpfr_float::default_precision(static_cast<unsigned>(prec.mpfr_digits));
+      res = in(static_cast<core::mpfr_float*>(nullptr));
+      break;
+  }
   std::cout << "lambda1,err1,lambda2,err2,iterations\n"
             << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", res.lambda[0].value, res.lambda[0].error,
                            res.lambda[1].value, res.lambda[1].error, res.iterations);
@@ -267,7 +280,8 @@ Register reg([](CLI::App& app) {
   c->add_option("--transient", a->transient, "iterations discarded first (orbit and tangent frame)")->capture_default_str();
   c->add_option("--reorthonormalise", a->reorth, "QR every this many steps")->capture_default_str();
   c->add_option("--blocks", a->blocks, "batch-means blocks for the error bars")->capture_default_str();
-  c->add_option("--precision", a->precision, "double or long-double")->capture_default_str();
+  c->add_option("--precision", a->precision, "float, double, long-double, float128 or mpfr:D (D digits, 10..10000)")
+      ->capture_default_str();
   c->add_option("--convergence", a->convergence, "also write exponent against n to this CSV file");
   c->callback([a] { lyapunov_orbit(*a); });
 

@@ -15,12 +15,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <chrono>
+#include <complex>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -115,6 +117,49 @@ int window_n_max(const std::function<std::vector<std::uint8_t>(const Ensemble&, 
   return best;
 }
 
+// The exact lambda1 = log|l2/l1| / p of a periodic word at r (r the double value, converted exactly), in MPFR
+// with 60 digits: the period matrix M, its dominant eigenvalue l1 by Newton on det(t - M) from the double
+// estimate, and l2, l3 from t^2 - (tr M - l1) t + det M / l1 (a complex pair when the discriminant is
+// negative, then |l2| = sqrt(det M / l1)).  The reference of the Lyapunov error column (double's own
+// periodic_exponents is good to ~1e-15 only, too coarse for long double and beyond).
+double exact_lambda1(const std::vector<int>& period, double r_double) {
+  using core::Mat3;
+  using core::mpfr_float;
+  const unsigned saved = mpfr_float::default_precision();
+  mpfr_float::default_precision(60);
+  const mpfr_float r(r_double);
+  Mat3<mpfr_float> M = Mat3<mpfr_float>::Identity();
+  for (int s : period) M = Mat3<mpfr_float>(core::P<mpfr_float>(s, r) * M);
+  const mpfr_float tr = M(0, 0) + M(1, 1) + M(2, 2);
+  const mpfr_float c2 = M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) + M(0, 0) * M(2, 2) - M(0, 2) * M(2, 0) +
+                        M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1);
+  const mpfr_float det = M(0, 0) * (M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1)) -
+                         M(0, 1) * (M(1, 0) * M(2, 2) - M(1, 2) * M(2, 0)) +
+                         M(0, 2) * (M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0));
+  Mat3<double> Md;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Md(i, j) = static_cast<double>(M(i, j));
+  const Eigen::EigenSolver<Mat3<double>> es(Md, false);
+  std::complex<double> best = es.eigenvalues()(0);
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(es.eigenvalues()(i)) > std::abs(best)) best = es.eigenvalues()(i);
+  mpfr_float l1(best.real());  // a sink's dominant eigenvalue is real (its eigenvector is the periodic point)
+  for (int it = 0; it < 60; ++it) {
+    const mpfr_float f = ((l1 - tr) * l1 + c2) * l1 - det, df = (3 * l1 - 2 * tr) * l1 + c2;
+    l1 -= f / df;
+  }
+  const mpfr_float b = tr - l1, c = det / l1, disc = b * b - 4 * c;
+  mpfr_float l2abs;
+  if (disc < 0) l2abs = sqrt(abs(c));
+  else {
+    const mpfr_float sq = sqrt(disc), up = abs((b + sq) / 2), down = abs((b - sq) / 2);
+    l2abs = up > down ? up : down;
+  }
+  const double res = static_cast<double>(log(l2abs / abs(l1)) / static_cast<int>(period.size()));
+  mpfr_float::default_precision(saved);
+  return res;
+}
+
 // Largest error of lambda1 (weighted Birkhoff average of the projective cocycle, 1e5 steps after a 2000-step
 // transient) against the eigenvalues of the period matrix, on the sinks 1133 (r = 0.15), 111333 (r = 0.1)
 // and 132312 (r = 0.5), started from the Section 4 grid's first point (0.1, 0.15) or a random point (0.5).
@@ -134,8 +179,7 @@ template <class T> double lyapunov_error() {
     const int p = lyapunov::detect_period(res.symbols_tail, 64, 512);
     if (p == 0) return std::numeric_limits<double>::quiet_NaN();  // not on a sink: no exact value
     const std::vector<int> period(res.symbols_tail.end() - p, res.symbols_tail.end());
-    const auto exact = lyapunov::periodic_exponents(period, c.r);
-    worst = std::max(worst, std::fabs(res.weighted[0] - exact[0]));
+    worst = std::max(worst, std::fabs(res.weighted[0] - exact_lambda1(period, c.r)));
   }
   return worst;
 }
@@ -146,7 +190,7 @@ struct Row {
   double rate = 0;
   std::vector<long> agree_min, agree_median;
   std::vector<double> error_median;  // median angle (rad) between the final state and the reference's
-  double lyapunov_error = std::numeric_limits<double>::quiet_NaN();  // only double and long double
+  double lyapunov_error = std::numeric_limits<double>::quiet_NaN();  // linear methods (not trig)
   int n_max = 0;
 };
 
@@ -249,8 +293,14 @@ void precision_study(const PrecisionArgs& a) {
     w.initial = random_points(n_orbits, a.seed + 1);
     row.rate = m.rate(w, m.digits > 34 ? 200 : 2000);
     row.n_max = m.name.starts_with("trig") ? -1 : window_n_max(m.sym, a.window_n);
+    if (m.name == "linear/float") row.lyapunov_error = lyapunov_error<float>();
     if (m.name == "linear/double") row.lyapunov_error = lyapunov_error<double>();
     if (m.name == "linear/long-double") row.lyapunov_error = lyapunov_error<long double>();
+    if (m.name == "linear/float128") row.lyapunov_error = lyapunov_error<core::float128>();
+    if (m.name.starts_with("linear/mpfr:")) {
+      mpfr_float::default_precision(static_cast<unsigned>(m.digits));
+      row.lyapunov_error = lyapunov_error<mpfr_float>();
+    }
     rows.push_back(row);
   }
   progress.update(methods.size(), methods.size());
@@ -258,8 +308,8 @@ void precision_study(const PrecisionArgs& a) {
   std::ostringstream csv;
   csv << "# btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
          "between the final states (median over orbits); lyapunov_error: largest |lambda1 - exact| on the sinks 1133 "
-         "(r=0.15), 111333 (r=0.1), 132312 (r=0.5), weighted average of 1e5 steps (double and long double only: "
-         "the Lyapunov module is instantiated for those)\n";
+         "(r=0.15), 111333 (r=0.1), 132312 (r=0.5), weighted average of 1e5 steps, against log|l2/l1|/p of the period "
+         "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16)\n";
   csv << fmt::format("# orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
                      "the middle of window n, 20000+400n iterations, n in [{}]; version {} ({})\n",
                      a.orbits, a.orbits, a.seed, N, fmt::join(a.window_n, " "), build::version, build::git_commit);

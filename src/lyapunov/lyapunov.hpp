@@ -106,5 +106,8 @@ extern template ProjectiveResult projective_exponents<long double>(const Vec3<lo
 extern template LinearResult linear_exponents<double>(const Vec3<double>&, const double&, const Options&);
 extern template LinearResult linear_exponents<long double>(const Vec3<long double>&, const long double&,
                                                            const Options&);
+// float, float128 and MPFR: lyapunov_mp.cpp (include core/scalar.hpp for the latter two).
+extern template ProjectiveResult projective_exponents<float>(const Vec3<float>&, const float&, const Options&);
+extern template LinearResult linear_exponents<float>(const Vec3<float>&, const float&, const Options&);
 
 }  // namespace btob::lyapunov
