@@ -37,7 +37,8 @@ struct PatternArgs {
 };
 
 template <class T> std::string str(const T& v, int digits) {
-  if constexpr (std::is_same_v<T, double>) return fmt::format("{:.{}g}", v, std::min(digits, 17));
+  if constexpr (std::is_same_v<T, float>) return fmt::format("{:.{}g}", v, std::min(digits, 9));
+  else if constexpr (std::is_same_v<T, double>) return fmt::format("{:.{}g}", v, std::min(digits, 17));
   else if constexpr (std::is_same_v<T, long double>) return fmt::format("{:.{}g}", v, std::min(digits, 21));
   else return v.str(digits);
 }
@@ -213,8 +214,6 @@ void pattern(const PatternArgs& a, const std::string& command_line) {
   if (a.window == !a.r_text.empty())
     throw UsageError("r: expected exactly one of --r R (verdict at one r) or --window (stability set)");
   const core::Precision prec = core::parse_precision(a.precision, "precision");
-  if (prec.kind == core::Precision::Kind::f32)
-    throw UsageError("precision: got 'float', expected double, long-double, float128 or mpfr:D");
   if (a.window) {
     if (a.digits != 0 && (a.digits < 5 || a.digits > 1000))
       throw UsageError(fmt::format("digits: got {}, expected 5..1000", a.digits));
@@ -239,6 +238,7 @@ void pattern(const PatternArgs& a, const std::string& command_line) {
   if (!(r_check > 0 && r_check < 1))
     throw UsageError(fmt::format("r: got {}, expected a restitution coefficient in the open interval (0, 1)", a.r_text));
   switch (prec.kind) {
+    case core::Precision::Kind::f32: print_verdict<float>(w, std::stof(a.r_text), 9); break;
     case core::Precision::Kind::f80: print_verdict<long double>(w, std::stold(a.r_text), 21); break;
     case core::Precision::Kind::f128: print_verdict<core::float128>(w, core::float128(a.r_text), 34); break;
     case core::Precision::Kind::mpfr: {
@@ -256,7 +256,8 @@ Register reg([](CLI::App& app) {
       "pattern", "Periodic patterns: verdict of a word at r, its stability windows, or the atlas (Sections 5.3, 6)");
   c->add_option("word", a->word, "a word over 1,2,3 (132312, 132^3312^3, (ab)(cb)(acb)), or 'atlas'")->required();
   c->add_option("--r", a->r_text, "restitution coefficient in (0,1) (verdict mode)");
-  c->add_option("--precision", a->precision, "double, long-double, float128 or mpfr:D")->capture_default_str();
+  c->add_option("--precision", a->precision, "verdict mode: float, double, long-double, float128 or mpfr:D; window mode: mpfr:D")
+      ->capture_default_str();
   c->add_flag("--window", a->window, "print the stability set as CSV word,r_low,r_high,low_reason,high_reason");
   c->add_option("--digits", a->digits, "window mode: digits of the endpoints (> 15 computes in MPFR)");
   c->add_option("--max-length", a->max_length, "atlas: longest word, in symbols")->capture_default_str();

@@ -25,6 +25,7 @@ std::vector<double> default_grid() {
   template T quantity<T>(const Word&, const T&, Track, Quantity);                                              \
   template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
 
+BTOB_PATTERNS_INSTANTIATE(float)
 BTOB_PATTERNS_INSTANTIATE(double)
 BTOB_PATTERNS_INSTANTIATE(long double)
 BTOB_PATTERNS_INSTANTIATE(core::float128)

@@ -121,6 +121,7 @@ namespace btob::patterns {
   extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&); \
   extern template T quantity<T>(const Word&, const T&, Track, Quantity);                                       \
   extern template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
+BTOB_PATTERNS_EXTERN(float)
 BTOB_PATTERNS_EXTERN(double)
 BTOB_PATTERNS_EXTERN(long double)
 BTOB_PATTERNS_EXTERN(core::float128)
