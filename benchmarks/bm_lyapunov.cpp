@@ -1,10 +1,13 @@
 // Throughput of the Lyapunov exponents in map iterations per second: the scalar QR route (Eigen, one orbit,
 // the baseline) against the TangentRecorder on the batched SIMD kernel, 1 and 2 threads.
+#include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 
 #include <benchmark/benchmark.h>
+
+#include <type_traits>
 
 namespace {
 
@@ -19,15 +22,18 @@ iterate::Ensemble workload(long r_count) {
   return e;
 }
 
-// Scalar baseline: projective QR route (two tangent vectors, Gram-Schmidt every step) on one orbit.
-void BM_qr_route(benchmark::State& st) {
+// Scalar baseline: projective QR route (two tangent vectors, Gram-Schmidt every step) on one orbit, in every
+// precision of the lab (issue 9); the MPFR digits are the benchmark's second argument.
+template <class T> void BM_qr_route(benchmark::State& st) {
+  if constexpr (std::is_same_v<T, core::mpfr_float>) core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
   const long n = st.range(0);
   lyapunov::Options o;
   o.transient = n / 10;
   o.iterations = n;
   o.blocks = 10;
+  const Eigen::Matrix<T, 3, 1> u0(T(1), T(-0.9), T(-0.2));
   for (auto _ : st) {
-    auto res = lyapunov::projective_exponents<double>(Eigen::Vector3d(1, -0.9, -0.2), 0.3, o);
+    auto res = lyapunov::projective_exponents<T>(u0, T(0.3), o);
     benchmark::DoNotOptimize(res.lambda[0].value);
   }
   st.SetItemsProcessed(st.iterations() * (o.transient + o.iterations));
@@ -48,9 +54,14 @@ template <bool Float> void BM_map(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * (o.transient + o.iterations));
 }
 
-BENCHMARK(BM_qr_route)->Name("smoke_qr_route")->Arg(2000);
+BENCHMARK(BM_qr_route<double>)->Name("smoke_qr_route")->Args({2000, 0});
 BENCHMARK(BM_map<false>)->Name("smoke_map_double")->Args({4, 500, 1})->UseRealTime();
-BENCHMARK(BM_qr_route)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<float>)->Name("qr_route/float")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<double>)->Name("qr_route/double")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<long double>)->Name("qr_route/long-double")->Args({200000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<core::float128>)->Name("qr_route/float128")->Args({20000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<core::mpfr_float>)->Name("qr_route/mpfr")->Args({5000, 50})->Args({5000, 100})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_map<false>)->Name("map_double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_map<true>)->Name("map_float")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
