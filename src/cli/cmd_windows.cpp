@@ -28,9 +28,9 @@ struct Range {
   int first = 1, last = 1;
 };
 
-// "A..B" or "A" with 1 <= A <= B <= 100000 (min_n raises the lower limit).
+// "A..B" or "A" with 1 <= A <= B <= 5000 (min_n raises the lower limit).
 Range parse_range(const std::string& text, int min_n, const char* field = "n") {
-  const std::string expected = fmt::format("expected A..B or A with {} <= A <= B <= 100000", min_n);
+  const std::string expected = fmt::format("expected A..B or A with {} <= A <= B <= 5000", min_n);
   auto number = [&](const std::string& s) {
     std::size_t used = 0;
     long v = 0;
@@ -45,7 +45,7 @@ Range parse_range(const std::string& text, int min_n, const char* field = "n") {
   const auto dots = text.find("..");
   const long a = number(dots == std::string::npos ? text : text.substr(0, dots));
   const long b = dots == std::string::npos ? a : number(text.substr(dots + 2));
-  if (a < min_n || b < a || b > 100000) throw UsageError(fmt::format("{}: got '{}', {}", field, text, expected));
+  if (a < min_n || b < a || b > 5000) throw UsageError(fmt::format("{}: got '{}', {}", field, text, expected));
   return {static_cast<int>(a), static_cast<int>(b)};
 }
 

@@ -14,8 +14,8 @@ namespace btob::windows {
 struct VerifyOptions {
   long base_iterations = 60000, per_n = 400;
   // Below a window the orbit leaves the pattern intermittently, after laminar phases of many periods:
-  // with a 10000-step tail 6 of the 124 points below windows n = 2..125 still looked periodic; with
-  // 40000 none does (measured, see notes/issue-4).
+  // with a 10000-step tail 11 of the 124 points below windows n = 2..125 still looked periodic (6 on
+  // an earlier build: chaotic orbits differ with the instruction set); with 40000 none does.
   long tail = 40000;
   bool long_double = false;  // run the kernel in long double instead of double
   int threads = 0;

@@ -14,9 +14,11 @@
 namespace btob::windows {
 
 void validate_n(long n, long min_n, const char* field) {
-  if (n < min_n || n > 100000)
+  // 5000: the exact Q_n has degree 4n and coefficients of ~n digits; one bound costs ~0.4 s at n = 400,
+  // ~2.3 s at n = 800 (growing like n^2.4), so a few minutes at n = 5000 and hours beyond.
+  if (n < min_n || n > 5000)
     throw std::invalid_argument(std::string(field) + ": got " + std::to_string(n) + ", expected an integer in " +
-                                std::to_string(min_n) + "..100000");
+                                std::to_string(min_n) + "..5000 (Q_n costs minutes at n = 5000)");
 }
 
 void validate_digits(long digits, const char* field) {
@@ -245,7 +247,8 @@ mpfr_float window_lower_bound(int n, int decimals) {
     const Eval el = horner(c, x - delta), er = horner(c, x + delta);
     if (abs(el.value) > el.error && abs(er.value) > er.error && sign(el.value) * sign(er.value) < 0) return x;
   }
-  throw std::runtime_error("window_lower_bound: no reliable root of Q_" + std::to_string(n) + " after raising the precision");
+  throw std::domain_error("digits: no reliable root of Q_" + std::to_string(n) + " at " + std::to_string(decimals) +
+                          " digits after raising the working precision; ask for fewer digits or a smaller n");
 }
 
 Certificate certify_lower_bound(int n, int decimals) {
