@@ -385,8 +385,9 @@ TEST(WindowErrors, MessagesNameTheField) {
     }
     return std::string("no throw");
   };
-  EXPECT_EQ(message([] { window_polynomial(0); }), "n: got 0, expected an integer in 1..100000");
-  EXPECT_EQ(message([] { r_crit2(1, 20); }), "n: got 1, expected an integer in 2..100000");
+  EXPECT_EQ(message([] { window_polynomial(0); }), "n: got 0, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
+  EXPECT_EQ(message([] { window_polynomial(5001); }), "n: got 5001, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
+  EXPECT_EQ(message([] { r_crit2(1, 20); }), "n: got 1, expected an integer in 2..5000 (Q_n costs minutes at n = 5000)");
   EXPECT_EQ(message([] { window_lower_bound(3, 9); }), "digits: got 9, expected 10..10000");
   EXPECT_EQ(message([] { window_lower_bound(3, 10001); }), "digits: got 10001, expected 10..10000");
   EXPECT_EQ(message([] { thin_stripes(0, 20); }), "m: got 0, expected an integer in 1..100000");
