@@ -53,7 +53,7 @@ expect_error "orbits" precision --orbits 0 --out "$out/p"
 expect_error "n-max" correlate --r 0.2 --n-max 200 --iterations 200 --out "$out/p"
 expect_error "observable" correlate --r 0.2 --observable psi --out "$out/p"
 expect_error "bins" measure --r 0.2 --bins 0 --out "$out/p"
-expect_error "chart" measure --r 0.2 --chart polar --out "$out/p"
+expect_error "coords" measure --r 0.2 --coords polar --out "$out/p"
 expect_error "r" measure --r 1 --out "$out/p"
 expect_error "precision" bifurcation --out "$out/b" --precision mpfr:20000 --no-plot
 [ -e "$out/w" ] || [ -e "$out/p" ] && { echo "FAIL: output written despite errors"; fail=1; }

@@ -5,9 +5,6 @@
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
 
-// core/coords.hpp calls Vec3::cross (to_particles, from_particles) but includes only <Eigen/Core>;
-// cross() is declared there and defined in <Eigen/Geometry>, so a unit that includes coords.hpp alone
-// fails to link.  The fix belongs in coords.hpp (#include <Eigen/Geometry>); until then:
 #include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
 

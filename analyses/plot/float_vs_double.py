@@ -31,8 +31,13 @@ def main(fpath, dpath, out):
     occ_f, occ_d = (df > 0).sum(axis=1), (dd > 0).sum(axis=1)
     tmp = os.path.join(out, f"distance.csv.tmp-{os.getpid()}")
     with open(tmp, "w") as f:
-        f.write("# binned KS distance between float and double tails of Figure 4.1 (700 bins on [0, pi/2]); "
-                f"iterations {ad.get('iterations')}, tail {ad.get('tail')}, grid {ad.get('grid')}\n")
+        def text(v):
+            return v.decode() if isinstance(v, bytes) else v
+        lo_, hi_ = float(ad.get("range_lo", 0)), float(ad.get("range_hi", np.pi / 2))
+        f.write(f"# binned KS distance between float and double tails of the Figure 4.1 workload: "
+                f"{int(ad.get('bins', df.shape[1]))} bins of {text(ad.get('coord', 'theta'))}"
+                f" on [{lo_:g}, {hi_:g}], over the points inside the range; "
+                f"iterations {ad.get('iterations')}, tail {ad.get('tail')}, grid {text(ad.get('grid'))}\n")
         f.write("r,ks_distance,occupied_bins_float,occupied_bins_double\n")
         for i in range(len(r)):
             f.write(f"{r[i]:.8f},{ks[i]:.4f},{occ_f[i]},{occ_d[i]}\n")

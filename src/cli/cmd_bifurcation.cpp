@@ -144,8 +144,32 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
   attrs["scalar_type"] = prec.name();
   attrs["algorithm"] = a.algorithm;
   attrs["threads"] = static_cast<long>(threads);
-  attrs["renormalisation_interval"] = static_cast<long>(
-      prec.kind == core::Precision::Kind::f32 ? renormalisation_interval<float>(ens.r) : renormalisation_interval<double>(ens.r));
+  {
+    long k = 0;
+    switch (prec.kind) {
+      case core::Precision::Kind::f32: k = renormalisation_interval<float>(ens.r); break;
+      case core::Precision::Kind::f80: k = renormalisation_interval<long double>(ens.r); break;
+      case core::Precision::Kind::f128: k = renormalisation_interval<core::float128>(ens.r); break;
+      case core::Precision::Kind::mpfr: k = renormalisation_interval<core::mpfr_float>(ens.r); break;
+      default: k = renormalisation_interval<double>(ens.r); break;
+    }
+    attrs["renormalisation_interval"] = a.algorithm == "trig" ? 0L : k;  // trig normalises every collision
+  }
+  // Tail values outside the range.  On a log scale -inf means theta underflowed to 0: the small component of
+  // the state fell below the precision's smallest number (float near 7-4*sqrt(3), Figures 4.3-4.6); the
+  // diagram then lacks those points, which the user must be told.
+  std::uint64_t under = 0, over = 0;
+  for (auto v : dens.under) under += v;
+  for (auto v : dens.over) over += v;
+  const double tail_points = static_cast<double>(ens.orbits()) * static_cast<double>(a.tail);
+  attrs["points_below_range"] = static_cast<long>(under);
+  attrs["points_above_range"] = static_cast<long>(over);
+  if (under + over > 0 && static_cast<double>(under + over) > 1e-3 * tail_points)
+    std::cerr << fmt::format("btob: warning: {:.1f}% of the tail points fall outside [{}, {}] ({} below, {} above){}\n",
+                             100.0 * static_cast<double>(under + over) / tail_points, lo, hi, under, over,
+                             a.log && prec.kind == core::Precision::Kind::f32
+                                 ? "; in float, theta underflows to 0 where double still resolves it: use double"
+                                 : "; widen --range to see them");
   attrs["degenerate_orbits"] = static_cast<long>(degenerate);
   if (degenerate > 0)
     std::cerr << fmt::format("btob: warning: {} of {} orbits ended in a non-finite or zero state in {}: this precision "

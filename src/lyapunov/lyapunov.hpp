@@ -25,7 +25,9 @@ using core::Vec3;
 //    tangent frame rotates (complex eigenvalues) the plain average converges like 1/n, the weighted one
 //    faster than any power of 1/n.
 //  * Error bars: batch means.  The averaged steps are cut into `blocks` consecutive blocks (sizes differ
-//    by at most one step); error = standard deviation of the block means / sqrt(blocks).
+//    by at most one step); error = standard deviation of the block means / sqrt(blocks), but at least
+//    4 eps |lambda| (eps of T or of double, whichever is larger): the arithmetic's own floor, which batch
+//    means cannot see on a sink.
 struct Options {
   long transient = 1000;     // steps discarded before averaging (orbit and frame converge), >= 0
   long iterations = 100000;  // averaged steps, >= blocks
