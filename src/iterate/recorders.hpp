@@ -122,7 +122,7 @@ struct FinalRecorder {
 };
 
 // The density image of a bifurcation diagram: counts[col * bins + bin] of the tail values of one
-// coordinate, one column per r value, `bins` equal bins over [lo, hi].  Values outside (and -inf of
+// coordinate, one column per r value, `bins` equal bins over [lo, hi] (hi in the last bin).  Values outside (and -inf of
 // log10(0)) go to the under/overflow counters.  Each thread counts into its own image; merge() adds
 // them in thread order (integer sums, so the result is independent of the thread count).
 struct DensityRecorder {
@@ -149,10 +149,12 @@ struct DensityRecorder {
       const int n = std::min(64, lanes - l0);
       values(coord, n, x + l0, y + l0, z + l0, v);
       for (int l = 0; l < n; ++l) {
+        // Bins are [lo + i h, lo + (i+1) h); the last one also holds hi itself (theta = pi/2 exactly is the
+        // three-particle collapse x = 0, a value of the diagram, not an overflow).
         const double f = (v[l] - lo) * scale;
         if (!(f >= 0)) ++under_t[t][col];
-        else if (f >= static_cast<double>(bins)) ++over_t[t][col];
-        else ++img[col * bins + static_cast<std::size_t>(f)];
+        else if (f > static_cast<double>(bins)) ++over_t[t][col];
+        else ++img[col * bins + std::min(static_cast<std::size_t>(f), bins - 1)];
         if (++in_col == n_ic) {
           in_col = 0;
           ++col;
