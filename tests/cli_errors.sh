@@ -45,6 +45,7 @@ expect_error "n" windows verify --n 1..3 --out "$out/w"
 expect_error "word" pattern 14 --r 0.3
 expect_error "word" pattern "" --r 0.3
 expect_error "r" pattern 132 --r 1.2
+expect_error "charpoly" pattern 1133 --charpoly --r 0.2
 expect_error "iterations" lyapunov --r 0.3 --point 1,0.1,-1 --iterations 0
 expect_error "transient" lyapunov --r 0.3 --point 1,0.1,-1 --iterations 100 --transient 200
 expect_error "r" lyapunov --r 0 --point 1,0.1,-1 --iterations 100 --transient 10

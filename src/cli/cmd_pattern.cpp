@@ -5,6 +5,7 @@
 #include "core/scalar.hpp"
 #include "io/io.hpp"
 #include "patterns/atlas.hpp"
+#include "patterns/exact.hpp"
 #include "patterns/patterns.hpp"
 
 #include <fmt/format.h>
@@ -25,7 +26,7 @@ struct PatternArgs {
   std::string word;
   std::string r_text;
   std::string precision = "double";
-  bool window = false;
+  bool window = false, charpoly = false;
   int digits = 0;
   int max_length = 12;
   std::string out = "results/patterns";
@@ -211,6 +212,21 @@ void atlas(const PatternArgs& a, const std::string& command_line) {
 void pattern(const PatternArgs& a, const std::string& command_line) {
   if (a.word == "atlas") return atlas(a, command_line);
   const Word w = parse_word(a.word, "word");
+  if (a.charpoly) {
+    // Exact characteristic polynomial of the (reduced) period matrix and its discriminant (Theorems 6.1, 6.2).
+    if (a.window || !a.r_text.empty()) throw UsageError("charpoly: expected no --r and no --window with --charpoly");
+    const CharPoly chi = characteristic_polynomial(w);
+    const bool reduced = is_J_square(primitive_root(w));  // the same test characteristic_polynomial applies
+    std::cout << fmt::format("word          {} ({} symbols); matrix {}\n", to_paper(w), w.size(),
+                             reduced ? "A = J M_h, M_w = A^2 (w = h J(h))" : "A = M_w");
+    std::cout << "chi(lambda) = det(lambda I - A) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r:\n";
+    std::cout << "c2            " << chi.c2.to_string() << "\n";
+    std::cout << "c1            " << chi.c1.to_string() << "\n";
+    std::cout << "c0            " << chi.c0.to_string() << "\n";
+    std::cout << "discriminant  " << discriminant(chi).to_string()
+              << "\n              (the paper's sign: (q/2)^2 + (p/3)^3 of the depressed cubic; < 0: three real roots)\n";
+    return;
+  }
   if (a.window == !a.r_text.empty())
     throw UsageError("r: expected exactly one of --r R (verdict at one r) or --window (stability set)");
   const core::Precision prec = core::parse_precision(a.precision, "precision");
@@ -259,6 +275,7 @@ Register reg([](CLI::App& app) {
   c->add_option("--precision", a->precision, "verdict mode: float, double, long-double, float128 or mpfr:D; window mode: mpfr:D")
       ->capture_default_str();
   c->add_flag("--window", a->window, "print the stability set as CSV word,r_low,r_high,low_reason,high_reason");
+  c->add_flag("--charpoly", a->charpoly, "print the exact characteristic polynomial of the period matrix and its discriminant");
   c->add_option("--digits", a->digits, "window mode: digits of the endpoints (> 15 computes in MPFR)");
   c->add_option("--max-length", a->max_length, "atlas: longest word, in symbols")->capture_default_str();
   c->add_option("--out", a->out, "atlas: output directory")->capture_default_str();
