@@ -30,8 +30,10 @@ std::string now_utc() {
   return buf;
 }
 std::string git_dirty() {
-  // Whether the source tree had uncommitted changes when the result was made (best effort).
-  FILE* p = popen("git -C " BTOB_SOURCE_DIR " status --porcelain --untracked-files=no 2>/dev/null", "r");
+  // Whether the source tree had uncommitted changes when the result was made (best effort).  results/ is
+  // left out: a regeneration rewrites it, and would otherwise mark every later result of the same run dirty.
+  FILE* p = popen("git -C " BTOB_SOURCE_DIR " status --porcelain --untracked-files=no -- . ':(exclude)results' 2>/dev/null",
+                  "r");
   if (!p) return "unknown";
   char buf[256];
   bool dirty = false;
