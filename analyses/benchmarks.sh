@@ -8,11 +8,16 @@ btob="${1:-build/release/btob}"
 bdir="$(dirname "$btob")/benchmarks"
 out=results/benchmarks
 mkdir -p "$out"
-for bm in "$bdir"/bm_iterate; do
-  name=$(basename "$bm")
+# bm_iterate: the iterator against the scalar loop of Appendix A.2 (plotted below); the others: Lyapunov
+# exponents (scalar QR route in every precision, batched map), C_N (FFT against the direct sum, N = 1e6,
+# n_max = 1e5) and attractor classification (points per second).  Smoke cases are left out.
+for name in bm_iterate bm_lyapunov bm_stats bm_attractors; do
+  bm="$bdir/$name"
+  [ -x "$bm" ] || { echo "benchmarks: $bm not built" >&2; exit 2; }
+  filter='^[^s]'  # everything but the smoke/... cases
+  [ "$name" = bm_iterate ] && filter='^(core_clock|scalar_loop|batched|fig41_density)'
   tmp="$out/$name.json.tmp-$$"
-  "$bm" --benchmark_filter='^(core_clock|scalar_loop|batched|fig41_density)' --benchmark_min_time=1 \
-        --benchmark_out="$tmp" --benchmark_out_format=json >/dev/null
+  "$bm" --benchmark_filter="$filter" --benchmark_min_time=1 --benchmark_out="$tmp" --benchmark_out_format=json >/dev/null
   mv "$tmp" "$out/$name.json"
 done
 /usr/bin/python3 analyses/plot/benchmarks.py "$out/bm_iterate.json" "$out/bm_iterate.png"
