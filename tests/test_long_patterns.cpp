@@ -16,7 +16,7 @@ using namespace btob::patterns;
 using btob::core::mpfr_float;
 
 TEST(LongPatterns, TableB1WindowsN2To7) {
-  std::ifstream f("/work/shared/reference/windows_paper_table_B1.csv");
+  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
   if (!f) GTEST_SKIP() << "reference table not available";
   std::string line;
   std::getline(f, line);

@@ -49,7 +49,7 @@ Eigen::Matrix3d ab_cb(int n, double r) {
 
 // Table B.1 (reference CSV): lower and upper bounds of the window of (ab)^n(cb)^n.
 std::pair<double, double> window(int n) {
-  std::ifstream f("/work/shared/reference/windows_paper_table_B1.csv");
+  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
   std::string line;
   std::getline(f, line);
   while (std::getline(f, line)) {

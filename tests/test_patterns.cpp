@@ -78,7 +78,7 @@ TEST(Words, PaperNotationRoundTrips) {
 
 TEST(Words, CollisionCountsMatchTable51) {
   // Every pattern of Table 5.1 has the length printed in its last column (a, b, c collisions).
-  std::ifstream f("/work/shared/reference/patterns_paper_table_5_1.csv");
+  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_5_1.csv");
   if (!f) GTEST_SKIP() << "reference table not available";
   std::string line;
   std::getline(f, line);

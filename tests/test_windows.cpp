@@ -144,7 +144,7 @@ struct TableB1Row {
   std::string lower, upper;
 };
 std::vector<TableB1Row> read_table_b1() {
-  std::ifstream in("/work/shared/reference/windows_paper_table_B1.csv");
+  std::ifstream in(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
   if (!in) in.open("reference/windows_paper_table_B1.csv");
   std::vector<TableB1Row> rows;
   std::string line;

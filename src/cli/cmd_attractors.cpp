@@ -215,7 +215,7 @@ struct BasinsRArgs {
   std::string grid = "random:2000";
   std::uint64_t seed = 1;
   std::string out = "results/attractors/basins_r";
-  std::string reference = "/work/shared/reference/patterns_paper_table_5_1.csv";
+  std::string reference = BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_5_1.csv";
   bool no_plot = false, quiet = false;
   attractors::Options opt;
 };
