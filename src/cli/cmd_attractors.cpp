@@ -1,6 +1,7 @@
 // `btob classify` (one orbit), `btob basins` (one r over a grid: basin image and fractions), `btob basins-r`
 // (basin fractions across r, compared to Table 5.1): the attractors of Section 7.1 (1).
 #include "attractors/attractors.hpp"
+#include "patterns/patterns.hpp"
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/coords.hpp"
@@ -89,10 +90,15 @@ void classify_cmd(const ClassifyArgs& a) {
   const core::Vec3<double> u = parse_point(a.point);
   attractors::validate(a.opt);
   const attractors::OrbitVerdict v = attractors::classify_point(u, a.r, a.opt);
+  std::string detail = v.detail + fmt::format("; {} iterations", v.iterations);
+  if (v.type == attractors::Type::periodic && !v.word.s.empty()) {
+    // The pattern tool's verdict at this r: stability and the collision letters (acb / cab resolved).
+    const patterns::Verdict<double> pv = patterns::analyse<double>(v.word, a.r);
+    detail += fmt::format("; pattern tool: {}; letters {}", patterns::outcome_name(pv.outcome), pv.letters);
+  }
   std::cout << "type,pattern,period,lambda1,err,detail\n";
   std::cout << fmt::format("{},{},{},{:.6g},{:.2g},{}\n", attractors::type_name(v.type), csv_quote(pattern_of(v, a.r)),
-                           v.period, v.lambda1, v.err1,
-                           csv_quote(v.detail + fmt::format("; {} iterations", v.iterations)));
+                           v.period, v.lambda1, v.err1, csv_quote(detail));
 }
 
 // ---- btob basins ----
@@ -123,7 +129,7 @@ void basins_cmd(const BasinsArgs& a, const std::string& command_line) {
   // fractions.csv: the requested columns first, then counts, replicate spread and evidence.
   std::string csv =
       "attractor,type,pattern,fraction,ci_low,ci_high,count,replicate_mean,replicate_sd,canonical,period,collisions,"
-      "stability,lyapunov2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2\n";
+      "stability,lyapunov2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters\n";
   const auto spread = [&](std::size_t i) {
     const auto& v = b.replicate_fractions[i];
     double m = 0, s = 0;
@@ -136,11 +142,11 @@ void basins_cmd(const BasinsArgs& a, const std::string& command_line) {
     const auto& at = b.attractors[i];
     const auto [m, sd] = spread(i);
     const auto w = core::strip<double>(at.point);
-    csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{},{:.6f},{:.6f},{},{},{},{},{:.6g},{:.10g},{:.10g},{:.8g},{:.8g},{:.12g},{:.12g}\n",
+    csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{},{:.6f},{:.6f},{},{},{},{},{:.6g},{:.10g},{:.10g},{:.8g},{:.8g},{:.12g},{:.12g},{}\n",
                        at.id, attractors::type_name(at.type), csv_quote(at.pattern), b.fractions[i].value,
                        b.fractions[i].low, b.fractions[i].high, at.count, m, sd, csv_quote(at.canonical), at.period,
                        at.collisions, csv_quote(at.stability), at.lyapunov2, at.rotation_min, at.rotation_max,
-                       at.invariant_min, at.invariant_max, w.first, w.second);
+                       at.invariant_min, at.invariant_max, w.first, w.second, csv_quote(at.letters));
   }
   {
     const auto [m, sd] = spread(b.attractors.size());
