@@ -194,12 +194,7 @@ void hyperbolicity_orbits(const OrbitsArgs& a) {
     }
     frac[ir] = f / static_cast<double>(I);
     fdeg[ir] = static_cast<double>(deg) / static_cast<double>(I);
-    {  // the median as lyapunov-map computes it (mean of the middle pair for an even count), so the two
-       // lambda1 median columns are comparable
-      std::sort(l1s.begin(), l1s.end());
-      const std::size_t n = l1s.size();
-      l1qr[ir] = n == 0 ? std::nan("") : (n % 2 ? l1s[n / 2] : 0.5 * (l1s[n / 2 - 1] + l1s[n / 2]));
-    }
+    l1qr[ir] = lyapunov::median(l1s);  // as lyapunov-map's median column
     if (!pooled.empty()) {
       med[ir] = lyapunov::quantile(pooled, 0.5);
       q05[ir] = lyapunov::quantile(pooled, 0.05);

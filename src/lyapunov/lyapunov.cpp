@@ -85,6 +85,13 @@ std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols,
   return {(l2 - l1) / p, (l3 - l1) / p};
 }
 
+double median(std::vector<double> v) {
+  const std::size_t n = v.size();
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 int detect_period(const std::vector<int>& s, int max_period, int check) {
   const long n = static_cast<long>(s.size());
   for (int p = 1; p <= max_period; ++p) {

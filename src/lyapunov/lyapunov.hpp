@@ -96,6 +96,10 @@ FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, do
 // eigenvalue only to eps |l1|, far too coarse when |l3/l1| ~ 1e-13.
 std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r);
 
+// Median of a sample (mean of the middle pair for an even size); NaN for an empty sample.  The per-r medians
+// of lyapunov-map and hyperbolicity-orbits both use it, so their columns are comparable.
+double median(std::vector<double> sample);
+
 // The shortest period p of the tail of a symbol sequence (the last `check` symbols repeat with period p),
 // or 0 when none up to max_period.
 int detect_period(const std::vector<int>& symbols, int max_period, int check);

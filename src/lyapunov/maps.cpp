@@ -74,7 +74,7 @@ RSummary summarise(const OrbitExponents& e, std::size_t r_count, std::size_t n_i
     std::sort(col.begin(), col.end());
     s.min[i] = col.front();
     s.max[i] = col.back();
-    s.median[i] = n_ic % 2 ? col[n_ic / 2] : 0.5 * (col[n_ic / 2 - 1] + col[n_ic / 2]);
+    s.median[i] = median(col);
     const double n = static_cast<double>(n_ic);
     s.frac_positive[i] = pos / n, s.frac_zero[i] = zero / n, s.frac_negative[i] = neg / n;
   }
