@@ -47,6 +47,16 @@ def close(a, b, rel):
     return abs(a - b) <= rel * max(abs(a), abs(b), 1e-300)
 
 
+def rerun(btob, args, new_file, committed, what, unit):
+    """Runs btob with args, reads new_file and the committed CSV (path under the repository root); reports a
+    different row count.  Returns (new rows, committed rows)."""
+    run(btob, *args)
+    new, old = rows(new_file), rows(committed)
+    if len(new) != len(old):
+        fail(f"{what}: {len(new)} {unit}, committed {len(old)}")
+    return new, old
+
+
 def symbols(btob, word):
     """Length in symbols of a word in the paper's notation, as btob's own parser reads it (132^3312^3 = 10)."""
     first = run(btob, "pattern", word, "--r", "0.5").splitlines()[0]
@@ -74,7 +84,7 @@ def check_window_verify(btob, root, tmp):
     out = os.path.join(tmp, "verify")
     run(btob, "windows", "verify", "--n", "2..20", "--out", out, "--quiet")
     new = rows(os.path.join(out, "verify_2-20.csv"))
-    old = [r for r in rows(os.path.join(root, "results/windows/verify.csv")) if int(r["n"]) <= 20]
+    old = [r for r in rows(os.path.join(root, "results/windows/verify.csv")) if int(r["n"]) <= 20]  # a subset
     if len(new) != len(old):
         fail(f"windows verify: {len(new)} rows, committed {len(old)}")
     for a, b in zip(new, old):
@@ -109,11 +119,9 @@ def check_atlas(btob, root, tmp):
 
 def check_correlation(btob, root, tmp):
     out = os.path.join(tmp, "stats")
-    run(btob, "run", os.path.join(root, "analyses/scenes/stats_correlation_periodic.toml"), "--out", out)
-    new = rows(os.path.join(out, "correlation_periodic_r0.15.csv"))
-    old = rows(os.path.join(root, "results/stats/correlation_periodic_r0.15.csv"))
-    if len(new) != len(old):
-        fail(f"C_N periodic: {len(new)} lags, committed {len(old)}")
+    new, old = rerun(btob, ["run", os.path.join(root, "analyses/scenes/stats_correlation_periodic.toml"), "--out", out],
+                     os.path.join(out, "correlation_periodic_r0.15.csv"),
+                     os.path.join(root, "results/stats/correlation_periodic_r0.15.csv"), "C_N periodic", "lags")
     bad = [(b["lag"], a["C_N"], b["C_N"]) for a, b in zip(new, old) if not close(a["C_N"], b["C_N"], 1e-9)]
     for lag, x, y in bad[:5]:
         fail(f"C_N periodic lag {lag}: {x} != committed {y}")
@@ -122,11 +130,10 @@ def check_correlation(btob, root, tmp):
 
 def check_basins_r(btob, root, tmp):
     out = os.path.join(tmp, "basins_r")
-    run(btob, "basins-r", "--table", "--grid", "random:2000", "--seed", "1", "--out", out, "--quiet", "--no-plot")
-    new = rows(os.path.join(out, "table_5_1_comparison.csv"))
-    old = rows(os.path.join(root, "results/attractors/basins_r/table_5_1_comparison.csv"))
-    if len(new) != len(old):
-        fail(f"basins-r: {len(new)} r values, committed {len(old)}")
+    new, old = rerun(btob, ["basins-r", "--table", "--grid", "random:2000", "--seed", "1", "--out", out, "--quiet",
+                            "--no-plot"],
+                     os.path.join(out, "table_5_1_comparison.csv"),
+                     os.path.join(root, "results/attractors/basins_r/table_5_1_comparison.csv"), "basins-r", "r values")
     for a, b in zip(new, old):
         if abs(float(a["periodic_fraction"]) - float(b["periodic_fraction"])) > 0.035:
             fail(f"basins-r r={b['r']}: periodic fraction {a['periodic_fraction']} vs committed {b['periodic_fraction']}")
@@ -138,11 +145,10 @@ def check_basins_r(btob, root, tmp):
 
 def check_lyapunov_map(btob, root, tmp):
     out = os.path.join(tmp, "lyapunov")
-    run(btob, "run", os.path.join(root, "analyses/scenes/lyapunov_map.toml"), "--out", out)
-    new = rows(os.path.join(out, "lyapunov_map_summary.csv"))
-    old = rows(os.path.join(root, "results/lyapunov/lyapunov_map_summary.csv"))
+    new, old = rerun(btob, ["run", os.path.join(root, "analyses/scenes/lyapunov_map.toml"), "--out", out],
+                     os.path.join(out, "lyapunov_map_summary.csv"),
+                     os.path.join(root, "results/lyapunov/lyapunov_map_summary.csv"), "lyapunov map", "r values")
     if len(new) != len(old):
-        fail(f"lyapunov map: {len(new)} r values, committed {len(old)}")
         return
     off = sum(abs(float(a["lambda1_median"]) - float(b["lambda1_median"])) > 0.02 for a, b in zip(new, old))
     if off > 0.02 * len(old):
