@@ -1,0 +1,62 @@
+// The contract every analysis follows: a plain Request struct validated once, run(request, RunControl) -> Result.
+//
+//   struct Request {                        // in the analysis module, e.g. btob::lyapunov::OrbitRequest
+//     double r = 0.15;                      // inputs with their defaults and units, nothing else
+//     ...
+//     void validate() const;                // throws core::InvalidField naming the field, the value, the range
+//     template <class V> void fields(V&& v) // every field once: v("name", member, "help (units, range)")
+//   };
+//   Result run(const Request&, const core::RunControl& = {});
+//
+// `fields` is the one list of a request's inputs: the command line, scene files, manifests and the Python
+// binding all read and write a request through it, with the flag's long name (dashes) as the field name.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace btob::core {
+
+// The one error type of request validation.  what() is "<field>: got <got>, expected <expected>"; the
+// command line prints it as one line and exits 2, Python raises ValueError with the same text.
+struct InvalidField : std::invalid_argument {
+  InvalidField(std::string field_, const std::string& got, const std::string& expected)
+      : std::invalid_argument(field_ + ": got " + got + ", expected " + expected), field(std::move(field_)) {}
+  std::string field;
+};
+
+// Thrown by a run whose CancelToken was set; no partial result escapes.
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("cancelled") {}
+};
+
+// Set from another thread (a signal handler, Python's KeyboardInterrupt) to stop a run between batches.
+struct CancelToken {
+  std::atomic<bool> requested{false};
+  void cancel() { requested.store(true, std::memory_order_relaxed); }
+  bool cancelled() const { return requested.load(std::memory_order_relaxed); }
+};
+
+// Receives progress (done out of total work units) from any thread of a run; called between batches.
+struct ProgressSink {
+  virtual void update(std::size_t done, std::size_t total) = 0;
+  virtual ~ProgressSink() = default;
+};
+
+// How to run, never what to compute: results do not depend on any of these.
+struct RunControl {
+  static constexpr int max_threads = 1024;  // a stated bound; the command line refuses values outside 1..this
+  int threads = 0;                          // 0: OpenMP's default (all cores); else 1..max_threads
+  ProgressSink* progress = nullptr;
+  const CancelToken* cancel = nullptr;
+
+  bool cancelled() const { return cancel && cancel->cancelled(); }
+  void check_cancelled() const {
+    if (cancelled()) throw Cancelled();
+  }
+};
+
+}  // namespace btob::core
