@@ -9,6 +9,7 @@ packages=(
   libfftw3-dev                                # correlation functions C_N by FFT
   libhdf5-dev                                 # result files with their provenance attributes
   libcli11-dev libtomlplusplus-dev libfmt-dev # command line, scene files, formatting
+  nlohmann-json3-dev                          # manifests: a result records its request, `btob run NAME.json` reads it back
   libgtest-dev libbenchmark-dev               # tests and benchmarks
   python3 python3-matplotlib python3-numpy python3-h5py  # plots
 )

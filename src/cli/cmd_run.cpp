@@ -1,17 +1,48 @@
-// `btob run SCENE.toml`: runs the subcommand a scene names with the flags it lists.
+// `btob run SCENE.toml` and `btob run results/NAME/NAME.json`: a scene, or the request a result's manifest
+// recorded, run again.  Request-based commands (cli/command.hpp) set their fields by name; the others still
+// replay their flags through the argument parser.
 #include "cli/app.hpp"
+#include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "io/scene.hpp"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
 
 namespace btob::cli {
 namespace {
 
-void run_scene(const std::string& path, const std::string& out_override) {
-  if (!std::filesystem::is_regular_file(path))
-    throw UsageError(fmt::format("scene: got '{}', expected an existing TOML scene file", path));
-  const io::Scene s = io::read_scene(path);
+// A manifest's {"request": {"command": ..., "args": {...}}} as a scene (name: the manifest's file stem).
+io::Scene read_manifest(const std::string& path) {
+  std::ifstream f(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(f);
+  } catch (const nlohmann::json::exception& e) {
+    throw UsageError(fmt::format("manifest {}: not valid JSON ({})", path, e.what()));
+  }
+  if (!j.contains("request") || !j["request"].is_object() || !j["request"].contains("command"))
+    throw UsageError(fmt::format("manifest {}: key 'request': missing; expected a manifest written by btob 0.2 or later "
+                                 "(older manifests record only the command line, under 'command')",
+                                 path));
+  io::Scene s;
+  s.name = std::filesystem::path(path).stem().string();
+  s.command = j["request"]["command"].get<std::string>();
+  for (const auto& [k, v] : j["request"]["args"].items()) {
+    std::vector<std::string> vals;
+    if (v.is_array())
+      for (const auto& e : v) vals.push_back(e.get<std::string>());
+    else
+      vals.push_back(v.get<std::string>());
+    s.args.push_back({k, vals, false});
+  }
+  return s;
+}
+
+// The older route: the scene's flags through the argument parser of a fresh command line.
+void replay_flags(const io::Scene& s, const std::string& path, Args args) {
   CLI::App fresh{"btob"};
   fresh.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (auto& reg : registry()) reg(fresh);
@@ -21,35 +52,19 @@ void run_scene(const std::string& path, const std::string& out_override) {
   if (!sub || s.command == "run")
     throw UsageError(fmt::format("scene {}: key 'command': got '{}', expected a btob subcommand", path, s.command));
   std::vector<std::string> argv{s.command};
-  bool has_out = false, has_name = false, has_title = false;
-  for (const auto& [k, vals] : s.args) {
+  for (const auto& [k, vals] : args) {
     if (!sub->get_option_no_throw("--" + k)) {
       std::string known;
       for (const CLI::Option* o : sub->get_options())
         if (!o->get_lnames().empty() && o->get_lnames()[0] != "help") known += (known.empty() ? "" : ", ") + o->get_lnames()[0];
       throw UsageError(fmt::format("scene {}: key 'args.{}': not a flag of '{}'; expected one of {}", path, k, s.command, known));
     }
-    has_out |= k == "out";
-    has_name |= k == "name";
-    has_title |= k == "title";
-    if (k == "out" && !out_override.empty()) continue;
+    if (vals.size() == 1 && (vals[0] == "true" || vals[0] == "false") && sub->get_option("--" + k)->get_expected_max() == 0) {
+      if (vals[0] == "true") argv.push_back("--" + k);  // a flag
+      continue;
+    }
     argv.push_back("--" + k);
     for (const auto& v : vals) argv.push_back(v);
-  }
-  if (!out_override.empty()) {
-    argv.push_back("--out");
-    argv.push_back(out_override);
-  } else if (!has_out && sub->get_option_no_throw("--out")) {
-    argv.push_back("--out");
-    argv.push_back("results/" + s.name);
-  }
-  if (!has_name && sub->get_option_no_throw("--name")) {
-    argv.push_back("--name");
-    argv.push_back(s.name);
-  }
-  if (!has_title && !s.title.empty() && sub->get_option_no_throw("--title")) {
-    argv.push_back("--title");
-    argv.push_back(s.title);
   }
   invocation() += " -> btob";
   for (const auto& a : argv) invocation() += " " + a;
@@ -57,13 +72,65 @@ void run_scene(const std::string& path, const std::string& out_override) {
   fresh.parse(argv);
 }
 
+struct RunFlags {
+  std::string path, out;
+  int threads = 0;
+  bool quiet = false, no_plot = false;
+};
+
+void run_scene(const RunFlags& f) {
+  const std::string& path = f.path;
+  const std::string& out_override = f.out;
+  if (!std::filesystem::is_regular_file(path))
+    throw UsageError(fmt::format("scene: got '{}', expected an existing scene (.toml) or manifest (.json) file", path));
+  const bool manifest = std::filesystem::path(path).extension() == ".json";
+  const io::Scene s = manifest ? read_manifest(path) : io::read_scene(path);
+  // The request's keys, then the run's own: --out overrides the scene's folder; a scene without one writes to
+  // results/<scene name> (a manifest re-runs where it lies); the name defaults to the scene's.
+  Args args;
+  bool has_out = false, has_name = false, has_title = false;
+  for (const auto& a : s.args) {
+    has_out |= a.key == "out";
+    has_name |= a.key == "name";
+    has_title |= a.key == "title";
+    if (a.key == "out" && !out_override.empty()) continue;
+    args.emplace_back(a.key, a.values);
+  }
+  const auto it = scene_commands().find(s.command);
+  const bool writes = it == scene_commands().end() || it->second.files;
+  if (!out_override.empty()) args.emplace_back("out", std::vector<std::string>{out_override});
+  else if (!has_out && writes)
+    args.emplace_back("out", std::vector<std::string>{manifest ? std::filesystem::path(path).parent_path().string()
+                                                               : "results/" + s.name});
+  if (!has_name && writes) args.emplace_back("name", std::vector<std::string>{s.name});
+  if (!has_title && !s.title.empty()) args.emplace_back("title", std::vector<std::string>{s.title});
+  if (f.threads != 0) args.emplace_back("threads", std::vector<std::string>{std::to_string(f.threads)});
+  if (f.quiet) args.emplace_back("quiet", std::vector<std::string>{"true"});
+  if (f.no_plot && writes) args.emplace_back("no-plot", std::vector<std::string>{"true"});
+  if (it == scene_commands().end()) return replay_flags(s, path, args);
+  std::string inv = invocation() + " -> btob " + s.command;
+  for (const auto& [k, vals] : args) {
+    inv += " --" + k;
+    for (const auto& v : vals) inv += " '" + v + "'";
+  }
+  try {
+    it->second.run(args, inv);
+  } catch (const core::InvalidField& e) {
+    throw UsageError(fmt::format("{} {}: {}", manifest ? "manifest" : "scene", path, e.what()));
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("{} {}: {}", manifest ? "manifest" : "scene", path, e.what()));
+  }
+}
+
 Register reg([](CLI::App& app) {
-  auto path = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  CLI::App* c = app.add_subcommand("run", "Run a scene file (analyses/scenes/*.toml)");
-  c->add_option("scene", *path, "scene file")->required();
-  c->add_option("--out", *out, "output directory (default: the scene's, or results/<scene name>)");
-  c->callback([path, out] { run_scene(*path, *out); });
+  auto f = std::make_shared<RunFlags>();
+  CLI::App* c = app.add_subcommand("run", "Run a scene file (analyses/scenes/*.toml) or re-run a result's manifest (NAME.json)");
+  c->add_option("scene", f->path, "scene file, or a manifest written with a result")->required();
+  c->add_option("--out", f->out, "output directory (default: the scene's; a manifest's own folder; else results/<scene name>)");
+  c->add_option("--threads", f->threads, "OpenMP threads (default: all cores)");
+  c->add_flag("--quiet", f->quiet, "no progress or summary on stderr");
+  c->add_flag("--no-plot", f->no_plot, "write data only");
+  c->callback([f] { run_scene(*f); });
 });
 
 }  // namespace

@@ -1,10 +1,12 @@
 // Entry point of `btob`: builds the subcommands and maps errors to exit codes (2 usage, 1 otherwise).
 #include "cli/app.hpp"
+#include "cli/command.hpp"
 #include "cli/common.hpp"
 
 #include <btob/build_info.hpp>
 
 #include <boost/throw_exception.hpp>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -14,6 +16,15 @@ std::vector<Registrar>& registry() {
   static std::vector<Registrar> r;
   return r;
 }
+
+namespace {
+// SIGINT/SIGTERM: the first asks the running computation to stop at its next batch (its temporary files are
+// removed, nothing is written); a second one ends the process at once.
+extern "C" void on_signal(int sig) {
+  cancel_token().cancel();
+  std::signal(sig, SIG_DFL);
+}
+}  // namespace
 }  // namespace btob::cli
 
 int main(int argc, char** argv) {
@@ -24,13 +35,18 @@ int main(int argc, char** argv) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + std::string(argv[i]);
   for (auto& reg : btob::cli::registry()) reg(app);
+  std::signal(SIGINT, btob::cli::on_signal);
+  std::signal(SIGTERM, btob::cli::on_signal);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::cerr << "btob: error: " << e.what() << " (see --help)\n";
     return 2;
-  } catch (const std::invalid_argument& e) {  // includes UsageError and validation errors
+  } catch (const btob::core::Cancelled&) {
+    std::cerr << "btob: interrupted; nothing was written\n";
+    return 130;
+  } catch (const std::invalid_argument& e) {  // includes UsageError and core::InvalidField
     std::cerr << "btob: error: " << e.what() << "\n";
     return 2;
   } catch (const std::domain_error& e) {

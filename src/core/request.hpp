@@ -60,3 +60,9 @@ struct RunControl {
 };
 
 }  // namespace btob::core
+
+namespace btob::core {
+// Marks a field that has no sensible default: v("r", r, "help", core::required).
+struct Required {};
+inline constexpr Required required{};
+}  // namespace btob::core

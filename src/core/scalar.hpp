@@ -22,6 +22,21 @@ struct Precision {
 // Parses a precision name; throws std::invalid_argument naming the field and the accepted names.
 Precision parse_precision(std::string_view text, const char* field = "precision");
 
+// MPFR's default precision set to `digits` decimal digits for the guard's lifetime, the previous one restored on
+// every exit path (two runs at different precisions in one process see no state of each other).
+class MpfrDigits {
+ public:
+  explicit MpfrDigits(int digits) : previous_(mpfr_float::default_precision()) {
+    mpfr_float::default_precision(static_cast<unsigned>(digits));
+  }
+  ~MpfrDigits() { mpfr_float::default_precision(previous_); }
+  MpfrDigits(const MpfrDigits&) = delete;
+  MpfrDigits& operator=(const MpfrDigits&) = delete;
+
+ private:
+  unsigned previous_;
+};
+
 template <class T> constexpr const char* scalar_name() {
   if constexpr (std::is_same_v<T, float>) return "float";
   else if constexpr (std::is_same_v<T, double>) return "double";

@@ -1,6 +1,8 @@
 // Output with provenance: HDF5 arrays with attributes, CSV tables, manifests; atomic (temp + rename).
 #pragma once
 
+#include "core/result.hpp"
+
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -13,8 +15,8 @@ namespace btob::io {
 namespace fs = std::filesystem;
 
 // Attribute values recorded with every result.
-using Attr = std::variant<std::string, double, long>;
-using Attrs = std::map<std::string, Attr>;
+using Attr = core::AttrValue;
+using Attrs = core::Attrs;
 
 // The provenance every result carries: version, git commit, compiler, kernel flags, date, command line.
 Attrs provenance(const std::string& command);

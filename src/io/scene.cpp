@@ -48,15 +48,17 @@ Scene read_scene(const std::filesystem::path& path) {
         const std::string a(ak.str());
         const std::string w = fmt::format("scene {}: key 'args.{}'", path.string(), a);
         std::vector<std::string> vals;
+        bool boolean = false;
         if (an.is_boolean()) {
-          if (!*an.value<bool>()) continue;  // false: flag not set
+          vals.push_back(*an.value<bool>() ? "true" : "false");
+          boolean = true;
         } else if (an.is_array()) {
           for (const auto& e : *an.as_array()) vals.push_back(scalar_text(e, w));
           if (vals.empty()) continue;
         } else {
           vals.push_back(scalar_text(an, w));
         }
-        s.args.emplace_back(a, std::move(vals));
+        s.args.push_back({a, std::move(vals), boolean});
       }
     } else {
       throw std::invalid_argument(where + ": unknown key, expected command, title or [args]");

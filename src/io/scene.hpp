@@ -20,7 +20,12 @@ struct Scene {
   std::string name;     // file stem
   std::string command;  // subcommand
   std::string title;
-  std::vector<std::pair<std::string, std::vector<std::string>>> args;  // flag -> values ({} for a set flag)
+  struct Arg {
+    std::string key;                  // the flag's long name without dashes
+    std::vector<std::string> values;  // text forms; a boolean is "true" or "false"
+    bool boolean = false;
+  };
+  std::vector<Arg> args;
 };
 
 // Parses a scene file; throws std::invalid_argument naming the file, the key and what was expected.

@@ -1,6 +1,7 @@
 // The batched iterator of P_r: structure-of-arrays SIMD kernel, OpenMP driver, and its scalar reference.
 #pragma once
 
+#include "core/request.hpp"
 #include "iterate/ensemble.hpp"
 
 #include <cstdint>
@@ -18,13 +19,11 @@ namespace btob::iterate {
 //     long first_step() const;
 
 // Run options.  threads <= 0 means OpenMP's default.  Results never depend on `threads`.
-struct ProgressSink {
-  virtual void update(std::size_t done, std::size_t total) = 0;
-  virtual ~ProgressSink() = default;
-};
+using core::ProgressSink;
 struct RunOptions {
   int threads = 0;
   ProgressSink* progress = nullptr;
+  const core::CancelToken* cancel = nullptr;  // checked before every batch; a cancelled run throws core::Cancelled
   // When set, receives the number of orbits whose final state is not a finite non-zero vector (the
   // precision could not cope, e.g. float at extreme r); 0 on healthy runs.
   std::size_t* degenerate = nullptr;

@@ -237,6 +237,7 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
+    if (opt.cancel && opt.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
     alignas(64) T x[B], y[B], z[B], r[B], a[B], k[B];
     alignas(64) std::uint8_t sym[B];
     const std::size_t o0 = b * B;
@@ -291,6 +292,7 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
       if (omp_get_thread_num() == 0) opt.progress->update(d, n_batches);
     }
   }
+  if (opt.cancel && opt.cancel->cancelled()) throw core::Cancelled();
   if (opt.progress) opt.progress->update(n_batches, n_batches);
   if (opt.degenerate) *opt.degenerate = degenerate.load();
 }

@@ -1,0 +1,65 @@
+// The request-based subcommands' shared parts: cancellation, terminal progress, output validation.
+#include "cli/command.hpp"
+#include "io/io.hpp"
+
+#include <omp.h>
+
+namespace btob::cli {
+
+core::CancelToken& cancel_token() {
+  static core::CancelToken t;
+  return t;
+}
+
+std::map<std::string, SceneCommand>& scene_commands() {
+  static std::map<std::string, SceneCommand> m;
+  return m;
+}
+
+namespace {
+struct TerminalProgress : core::ProgressSink {
+  io::Progress bar;
+  explicit TerminalProgress(const std::string& label) : bar(label) {}
+  void update(std::size_t done, std::size_t total) override { bar.update(done, total); }
+};
+}  // namespace
+
+std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label) {
+  return std::make_unique<TerminalProgress>(label);
+}
+
+io::Attrs Context::attrs(const Output& o, const core::Contents& c, const std::string& kind,
+                         const std::string& scalar) const {
+  io::Attrs a = io::provenance(command_line);
+  for (const auto& [k, v] : c.attrs) a[k] = v;
+  a["kind"] = kind;
+  a["name"] = o.name;
+  a["title"] = o.title;
+  a["scalar_type"] = scalar;
+  a["threads"] = static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads());
+  return a;
+}
+
+namespace detail {
+void validate_output(const Output& o, bool threads_given) {
+  if (threads_given && (o.threads < 1 || o.threads > core::RunControl::max_threads))
+    throw core::InvalidField("threads", std::to_string(o.threads),
+                             fmt::format("1..{} (omit the flag for all cores)", core::RunControl::max_threads));
+  if (!o.files) return;
+  if (o.out.empty()) throw core::InvalidField("out", "''", "an output folder");
+  if (o.name.empty() || o.name.find('/') != std::string::npos)
+    throw core::InvalidField("name", "'" + o.name + "'", "a file stem without '/'");
+}
+
+Context make_context(const std::string& command, const Output& o, const std::string& inv, Args request_args) {
+  Context c;
+  c.control.threads = o.threads;
+  c.control.cancel = &cancel_token();
+  c.command_line = inv;
+  c.request_args = std::move(request_args);
+  c.command = command;
+  return c;
+}
+}  // namespace detail
+
+}  // namespace btob::cli

@@ -1,0 +1,222 @@
+// One mechanism for every subcommand built on a request (core/request.hpp): its flags, its scene keys and its
+// manifest's "request" object are the request's fields(), read and written by the same code.
+//
+//   command<lyapunov::OrbitRequest>("lyapunov", "help", Output{...}, [](const auto& req, const Output& o,
+//                                                                        const Context& ctx) { ... });
+//
+// registers `btob lyapunov` with one flag per field, and the same command for `btob run SCENE.toml` and
+// `btob run results/NAME/NAME.json`, which set the fields by name (an unknown key is an error naming it).
+#pragma once
+
+#include "cli/app.hpp"
+#include "cli/common.hpp"
+#include "core/fields.hpp"
+#include "core/request.hpp"
+#include "io/result_files.hpp"
+
+#include <fmt/format.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace btob::cli {
+
+// A request's fields as (name, text values), in declaration order: what a manifest records and a scene holds.
+using Args = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+// How and where a result is written: not part of what is computed, and no result depends on it.
+struct Output {
+  std::string out;    // output folder
+  std::string name;   // file stem of the outputs
+  std::string title;  // figure title
+  int threads = 0;    // 0: all cores
+  bool no_plot = false, quiet = false;
+  bool files = true;  // false: the command prints its result on stdout and has no out/name/title/no-plot
+  static Output to_stdout() {
+    Output o;
+    o.files = false;
+    return o;
+  }
+  template <class V> void fields(V&& v) {
+    if (files) {
+      v("out", out, "output folder (created when the result is complete)");
+      v("name", name, "file stem of the outputs");
+      v("title", title, "figure title (r range, grid and iterations are added)");
+    }
+    v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
+    if (files) v("no-plot", no_plot, "write data only");
+    v("quiet", quiet, "no progress or summary on stderr");
+  }
+};
+
+// What a command's body receives besides the request.
+struct Context {
+  core::RunControl control;  // threads, progress (unless --quiet), the process's cancellation token (SIGINT)
+  std::string command_line;  // for provenance
+  Args request_args;         // the request as recorded in the manifest
+  std::string command;       // the subcommand
+  // The manifest's request record: {"command": command, "args": request_args}.
+  void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
+    files.manifest(attrs, command, request_args);
+  }
+  // Provenance, the result's own attributes, and kind, name, title, scalar_type, threads.
+  io::Attrs attrs(const Output& o, const core::Contents& c, const std::string& kind, const std::string& scalar) const;
+};
+
+// "a, b, c": the files a command wrote, for its closing line.
+inline std::string listing(const std::vector<io::fs::path>& files) {
+  std::string s;
+  for (const auto& f : files) s += (s.empty() ? "" : ", ") + f.string();
+  return s;
+}
+
+// The process-wide cancellation token, set by SIGINT/SIGTERM (main installs the handler).
+core::CancelToken& cancel_token();
+// The progress sink of the terminal (a bar on stderr when it is a terminal, else nothing), for one run.
+std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label);
+
+// A command runnable from a scene or a manifest: sets fields by name and runs.
+struct SceneCommand {
+  std::function<void(const Args& args, const std::string& invocation)> run;  // later keys override earlier ones
+  bool files = true;                                                         // has out and name
+};
+std::map<std::string, SceneCommand>& scene_commands();
+
+namespace detail {
+template <class T> std::string joined(const T& v) {
+  std::string s;
+  for (const auto& t : core::field_text(v)) s += (s.empty() ? "" : " ") + t;
+  return s;
+}
+
+// Adds one CLI11 option per field, collecting the raw text; apply() then parses it with the field parsers.
+struct FlagBinder {
+  CLI::App* app;
+  std::map<std::string, std::shared_ptr<std::vector<std::string>>>* raw;
+  std::map<std::string, CLI::Option*>* opts;
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help) {
+    add(name, member, help, false);
+  }
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Required) {
+    add(name, member, help, true);
+  }
+  template <class T> void add(const std::string& name, T& member, const std::string& help, bool required) {
+    static_assert(core::is_field_type_v<T>, "request fields must be of a type core/fields.hpp parses");
+    auto store = std::make_shared<std::vector<std::string>>();
+    (*raw)[name] = store;
+    CLI::Option* o = nullptr;
+    if constexpr (std::is_same_v<T, bool>) {
+      o = app->add_flag("--" + name, help);
+    } else {
+      o = app->add_option("--" + name, *store, help);
+      if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>)
+        o->expected(1, -1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      else
+        o->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+      const std::string d = joined(member);
+      if (!d.empty()) o->default_str(d);
+    }
+    if (required) o->required();
+    (*opts)[name] = o;
+  }
+};
+
+// Sets the fields given on the command line.
+struct FlagApplier {
+  std::map<std::string, std::shared_ptr<std::vector<std::string>>>* raw;
+  std::map<std::string, CLI::Option*>* opts;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    CLI::Option* o = (*opts)[name];
+    if (o->count() == 0) return;
+    if constexpr (std::is_same_v<T, bool>) member = true;
+    else core::set_field(member, *(*raw)[name], name);
+  }
+};
+
+// Sets fields from (key, values) pairs; records which keys were used.
+struct ArgsApplier {
+  const Args* args;
+  std::vector<bool>* used;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    for (std::size_t i = 0; i < args->size(); ++i)
+      if ((*args)[i].first == name) {
+        core::set_field(member, (*args)[i].second, name);
+        (*used)[i] = true;
+      }
+  }
+};
+
+// Lists the fields as Args (the manifest's record) and their names.
+struct ArgsWriter {
+  Args* out;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    out->emplace_back(name, core::field_text(member));
+  }
+};
+struct NameLister {
+  std::string* names;
+  template <class T, class... Tag> void operator()(const std::string& name, T&, const std::string&, Tag...) {
+    *names += (names->empty() ? "" : ", ") + name;
+  }
+};
+
+void validate_output(const Output& o, bool threads_given);
+Context make_context(const std::string& command, const Output& o, const std::string& invocation, Args request_args);
+}  // namespace detail
+
+// Registers subcommand `name` for a request type Req (fields(), validate()) and its body.
+template <class Req>
+void command(const std::string& name, const std::string& help, Output output_defaults,
+             std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
+  const auto execute = [name, body](Req req, Output out, bool threads_given, const std::string& invocation) {
+    req.validate();
+    detail::validate_output(out, threads_given);
+    Args recorded;
+    req.fields(detail::ArgsWriter{&recorded});
+    if (out.files) {  // what the figure says belongs to the record; where it went and how fast does not
+      recorded.emplace_back("name", std::vector<std::string>{out.name});
+      recorded.emplace_back("title", std::vector<std::string>{out.title});
+    }
+    body(req, out, detail::make_context(name, out, invocation, std::move(recorded)));
+  };
+  registry().push_back([=](CLI::App& app) {
+    struct State {
+      Req req;
+      Output out;
+      std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
+      std::map<std::string, CLI::Option*> opts;
+    };
+    auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
+    CLI::App* c = app.add_subcommand(name, help);
+    s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
+    s->out.fields(detail::FlagBinder{c, &s->raw, &s->opts});
+    c->callback([s, execute] {
+      s->req.fields(detail::FlagApplier{&s->raw, &s->opts});
+      s->out.fields(detail::FlagApplier{&s->raw, &s->opts});
+      execute(s->req, s->out, s->opts["threads"]->count() > 0, invocation());
+    });
+  });
+  scene_commands()[name] = SceneCommand{[=](const Args& args, const std::string& inv) {
+    Req req = request_defaults;
+    Output out = output_defaults;
+    std::vector<bool> used(args.size(), false);
+    req.fields(detail::ArgsApplier{&args, &used});
+    out.fields(detail::ArgsApplier{&args, &used});
+    for (std::size_t i = 0; i < args.size(); ++i)
+      if (!used[i]) {
+        std::string known;
+        req.fields(detail::NameLister{&known});
+        out.fields(detail::NameLister{&known});
+        throw UsageError(fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, name, known));
+      }
+    bool threads_given = false;
+    for (const auto& a : args) threads_given |= a.first == "threads";
+    execute(req, out, threads_given, inv);
+  }, output_defaults.files};
+}
+
+}  // namespace btob::cli

@@ -1,0 +1,158 @@
+// Field parsers of requests (core/fields.hpp).
+#include "core/fields.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace btob::core {
+
+namespace {
+std::string quoted(std::string_view t) { return fmt::format("'{}'", t); }
+
+std::string_view trim(std::string_view t) {
+  while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
+  return t;
+}
+
+std::vector<std::string> split_items(const std::vector<std::string>& items) {
+  std::vector<std::string> out;
+  for (const auto& it : items) {
+    std::string cur;
+    for (char c : it) {
+      if (c == ',' || c == ' ' || c == ';') {
+        if (!cur.empty()) out.push_back(cur);
+        cur.clear();
+      } else {
+        cur += c;
+      }
+    }
+    if (!cur.empty()) out.push_back(cur);
+  }
+  return out;
+}
+
+const std::string& single(const std::vector<std::string>& items, const std::string& field) {
+  if (items.size() != 1) throw InvalidField(field, fmt::format("{} values", items.size()), "exactly one value");
+  return items[0];
+}
+}  // namespace
+
+bool parse_bool(std::string_view text, const std::string& field) {
+  const std::string_view t = trim(text);
+  if (t == "true" || t == "1" || t == "yes" || t == "on") return true;
+  if (t == "false" || t == "0" || t == "no" || t == "off") return false;
+  throw InvalidField(field, quoted(text), "true or false");
+}
+
+long parse_long(std::string_view text, const std::string& field) {
+  const std::string s(trim(text));
+  errno = 0;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE) throw InvalidField(field, quoted(text), "an integer");
+  return v;
+}
+
+std::uint64_t parse_u64(std::string_view text, const std::string& field) {
+  const std::string s(trim(text));
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
+  if (s.empty() || s.front() == '-' || end != s.c_str() + s.size() || errno == ERANGE)
+    throw InvalidField(field, quoted(text), "a non-negative integer below 2^64");
+  return v;
+}
+
+double parse_double(std::string_view text, const std::string& field) {
+  const std::string s(trim(text));
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  // strtod sets ERANGE on underflow too: a subnormal (or a tiny value rounded to 0) is a number, an overflow
+  // to infinity is not.
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+    throw InvalidField(field, quoted(text), "a finite number");
+  return v;
+}
+
+template <class T> void set_field(T& value, const std::vector<std::string>& items, const std::string& field) {
+  if constexpr (std::is_same_v<T, bool>) {
+    value = items.empty() ? true : parse_bool(single(items, field), field);  // a flag given alone means true
+  } else if constexpr (std::is_same_v<T, int>) {
+    const long v = parse_long(single(items, field), field);
+    if (v < -2147483647L || v > 2147483647L) throw InvalidField(field, std::to_string(v), "an integer below 2^31");
+    value = static_cast<int>(v);
+  } else if constexpr (std::is_same_v<T, long>) {
+    value = parse_long(single(items, field), field);
+  } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+    value = parse_u64(single(items, field), field);
+  } else if constexpr (std::is_same_v<T, double>) {
+    value = parse_double(single(items, field), field);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    value = single(items, field);
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    value.clear();
+    for (const auto& s : split_items(items)) value.push_back(parse_double(s, field));
+  } else {
+    static_assert(std::is_same_v<T, std::vector<std::string>>);
+    value = items;
+  }
+}
+
+template <class T> std::vector<std::string> field_text(const T& value) {
+  if constexpr (std::is_same_v<T, bool>) return {value ? "true" : "false"};
+  else if constexpr (std::is_same_v<T, double>) return {fmt::format("{}", value)};  // shortest round-trip form
+  else if constexpr (std::is_same_v<T, std::string>) return {value};
+  else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    std::vector<std::string> out;
+    for (double v : value) out.push_back(fmt::format("{}", v));
+    return out;
+  } else if constexpr (std::is_same_v<T, std::vector<std::string>>) return value;
+  else return {std::to_string(value)};
+}
+
+#define BTOB_FIELD_TYPE(T)                                                                  \
+  template void set_field<T>(T&, const std::vector<std::string>&, const std::string&); \
+  template std::vector<std::string> field_text<T>(const T&);
+BTOB_FIELD_TYPE(bool)
+BTOB_FIELD_TYPE(int)
+BTOB_FIELD_TYPE(long)
+BTOB_FIELD_TYPE(std::uint64_t)
+BTOB_FIELD_TYPE(double)
+BTOB_FIELD_TYPE(std::string)
+BTOB_FIELD_TYPE(std::vector<double>)
+BTOB_FIELD_TYPE(std::vector<std::string>)
+#undef BTOB_FIELD_TYPE
+
+Vec3<double> parse_point(std::string_view text, const std::string& field) {
+  std::vector<double> v;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string_view item = text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    try {
+      v.push_back(parse_double(item, field));
+    } catch (const InvalidField&) {
+      throw InvalidField(field, quoted(text), "three finite numbers x,y,z");
+    }
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (v.size() != 3) throw InvalidField(field, quoted(text), "three finite numbers x,y,z");
+  validate_point(v[0], v[1], v[2], field.c_str());
+  // Exact rescaling by a power of two (ldexp of a double by an integer is exact unless it under- or overflows,
+  // which the target range [1, 2) for the largest component rules out).
+  int e = 0;
+  std::frexp(std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])}), &e);
+  return {std::ldexp(v[0], 1 - e), std::ldexp(v[1], 1 - e), std::ldexp(v[2], 1 - e)};
+}
+
+void require_r(double r, const std::string& field) {
+  if (!(r > 0 && r < 1)) throw InvalidField(field, fmt::format("{}", r), "a value in the open interval (0, 1)");
+}
+
+}  // namespace btob::core

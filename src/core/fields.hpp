@@ -1,0 +1,44 @@
+// Text <-> value for the fields of a request (core/request.hpp): one parser per field type, shared by the command
+// line, scene files, manifests and the Python binding, each failure a core::InvalidField naming the field.
+#pragma once
+
+#include "core/map.hpp"
+#include "core/request.hpp"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace btob::core {
+
+// The field types a request may have.
+template <class T>
+inline constexpr bool is_field_type_v =
+    std::is_same_v<T, bool> || std::is_same_v<T, int> || std::is_same_v<T, long> || std::is_same_v<T, std::uint64_t> ||
+    std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::vector<double>> ||
+    std::is_same_v<T, std::vector<std::string>>;
+
+// Parses one scalar: the whole text must be consumed.  Doubles accept subnormals and must be finite.
+bool parse_bool(std::string_view text, const std::string& field);
+long parse_long(std::string_view text, const std::string& field);
+std::uint64_t parse_u64(std::string_view text, const std::string& field);
+double parse_double(std::string_view text, const std::string& field);
+
+// Sets `value` from its text form(s): one item for scalars, one or more for vectors (a single item holding
+// commas or spaces is split too, so "0.1,0.2" and "0.1 0.2" both give two numbers).
+template <class T> void set_field(T& value, const std::vector<std::string>& items, const std::string& field);
+
+// The text form of a value, exact for doubles (shortest representation that reads back bitwise).
+template <class T> std::vector<std::string> field_text(const T& value);
+
+// An initial direction "x,y,z": three finite numbers (subnormals and 1e308 included), non-zero, not x = z = 0,
+// in the domain x*z <= 0.  Returned scaled by an exact power of two so that its largest component lies in
+// [1, 2): the same direction to the last bit, safe to normalise in any precision.
+Vec3<double> parse_point(std::string_view text, const std::string& field = "point");
+
+// r in the open interval (0, 1), else InvalidField naming `field`.
+void require_r(double r, const std::string& field);
+
+}  // namespace btob::core

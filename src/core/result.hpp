@@ -1,0 +1,51 @@
+// What a result holds, as named arrays and attributes: the one view through which the writers (HDF5, manifest),
+// the Python binding and the MPI gather read every result type.  A result type provides
+//     void describe(core::Contents& c) const;   // c.array(...) for every array, c.attr(...) for every summary value
+// The arrays are views of the result's own vectors (no copy); the result must outlive its Contents.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace btob::core {
+
+using AttrValue = std::variant<std::string, double, long>;
+using Attrs = std::map<std::string, AttrValue>;
+
+struct ArrayView {
+  std::string name;                 // HDF5 dataset name, CSV column, Python attribute
+  std::vector<std::size_t> dims;    // row-major shape; the product is the number of elements
+  std::string axes;                 // what each dimension runs over, e.g. "r, initial condition"
+  std::string units;                // e.g. "1/iteration (natural log)", "count", "rad", "1"
+  std::string description;          // one line
+  std::variant<const std::vector<double>*, const std::vector<std::uint32_t>*, const std::vector<std::uint64_t>*,
+               const std::vector<std::uint8_t>*>
+      data;
+
+  std::size_t size() const {
+    return std::visit([](const auto* v) { return v->size(); }, data);
+  }
+};
+
+struct Contents {
+  std::vector<ArrayView> arrays;
+  Attrs attrs;
+
+  template <class V>
+  void array(std::string name, const std::vector<V>& v, std::vector<std::size_t> dims, std::string axes,
+             std::string units, std::string description) {
+    arrays.push_back({std::move(name), std::move(dims), std::move(axes), std::move(units), std::move(description), &v});
+  }
+  void attr(const std::string& name, AttrValue v) { attrs[name] = std::move(v); }
+  const ArrayView* find(const std::string& name) const {
+    for (const auto& a : arrays)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
+};
+
+}  // namespace btob::core

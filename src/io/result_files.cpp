@@ -1,0 +1,174 @@
+// ResultFiles: stage every file of a result in a temporary folder, move them into place together.
+#include "io/result_files.hpp"
+
+#include <H5Cpp.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+#include <fstream>
+
+namespace btob::io {
+
+[[noreturn]] void throw_file_error(const std::string& what, const fs::path& path, const std::error_code& ec) {
+  throw std::runtime_error(fmt::format("{} '{}': {}", what, path.string(), ec ? ec.message() : std::strerror(errno)));
+}
+
+namespace {
+// The nearest existing ancestor of `p` (the temporary folder lives there, on the same file system as the
+// output, so that commit() is a rename).
+fs::path existing_ancestor(fs::path p) {
+  p = fs::absolute(p);
+  std::error_code ec;
+  while (!p.empty() && !fs::is_directory(p, ec)) {
+    if (p == p.parent_path()) break;
+    p = p.parent_path();
+  }
+  return p;
+}
+std::atomic<int> counter{0};
+}  // namespace
+
+ResultFiles::ResultFiles(fs::path out, std::string name) : out_(std::move(out)), name_(std::move(name)) {
+  if (name_.empty() || name_.find('/') != std::string::npos)
+    throw std::invalid_argument(fmt::format("name: got '{}', expected a file stem without '/'", name_));
+  std::error_code ec;
+  if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
+    throw std::invalid_argument(fmt::format("out: got '{}', expected a folder (it is a file)", out_.string()));
+  const fs::path base = existing_ancestor(out_);
+  tmp_ = base / fmt::format(".btob-tmp-{}-{}-{}", name_, getpid(), counter.fetch_add(1));
+  if (!fs::create_directory(tmp_, ec) || ec) throw_file_error("out: cannot write in", base, ec);
+}
+
+ResultFiles::~ResultFiles() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(tmp_, ec);
+  }
+}
+
+fs::path ResultFiles::staged(const std::string& filename) {
+  if (std::find(files_.begin(), files_.end(), filename) == files_.end()) files_.push_back(filename);
+  return tmp_ / filename;
+}
+
+void ResultFiles::text(const std::string& filename, const std::string& content) {
+  const fs::path p = staged(filename);
+  std::ofstream f(p, std::ios::binary);
+  if (f) f << content;
+  if (f) f.close();
+  if (!f) throw_file_error("cannot write", final_path(filename), {});
+}
+
+namespace {
+template <class V> const H5::PredType& h5_type() {
+  if constexpr (std::is_same_v<V, double>) return H5::PredType::NATIVE_DOUBLE;
+  else if constexpr (std::is_same_v<V, std::uint32_t>) return H5::PredType::NATIVE_UINT32;
+  else if constexpr (std::is_same_v<V, std::uint64_t>) return H5::PredType::NATIVE_UINT64;
+  else return H5::PredType::NATIVE_UINT8;
+}
+void string_attr(H5::H5Object& o, const std::string& k, const std::string& v) {
+  // Variable-length UTF-8 strings: h5py reads them as str, not bytes.
+  H5::StrType t(H5::PredType::C_S1, H5T_VARIABLE);
+  t.setCset(H5T_CSET_UTF8);
+  H5::DataSpace scalar(H5S_SCALAR);
+  o.createAttribute(k, t, scalar).write(t, v);
+}
+}  // namespace
+
+void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
+  const std::string filename = name_ + ".h5";
+  const fs::path p = staged(filename);
+  H5::Exception::dontPrint();
+  try {
+    H5::H5File file(p.string(), H5F_ACC_TRUNC);
+    H5::Group root = file.openGroup("/");
+    for (const auto& [k, v] : attrs) {
+      H5::DataSpace scalar(H5S_SCALAR);
+      if (const auto* s = std::get_if<std::string>(&v)) string_attr(root, k, *s);
+      else if (const auto* d = std::get_if<double>(&v))
+        root.createAttribute(k, H5::PredType::NATIVE_DOUBLE, scalar).write(H5::PredType::NATIVE_DOUBLE, d);
+      else {
+        const long l = std::get<long>(v);
+        root.createAttribute(k, H5::PredType::NATIVE_LONG, scalar).write(H5::PredType::NATIVE_LONG, &l);
+      }
+    }
+    for (const auto& a : c.arrays) {
+      std::visit(
+          [&](const auto* vec) {
+            using V = typename std::decay_t<decltype(*vec)>::value_type;
+            std::vector<hsize_t> d(a.dims.begin(), a.dims.end());
+            std::size_t total = 1;
+            for (auto x : a.dims) total *= x;
+            if (total != vec->size())
+              throw std::logic_error(fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
+            H5::DataSpace space(static_cast<int>(d.size()), d.data());
+            H5::DSetCreatPropList plist;
+            if (total >= 4096) {  // chunked + deflate: density images are mostly empty
+              std::vector<hsize_t> chunk = d;
+              std::size_t n = total;
+              for (auto& x : chunk)
+                while (n > (1u << 18) && x > 1) {
+                  n /= 2;
+                  x = (x + 1) / 2;
+                }
+              plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
+              plist.setDeflate(4);
+            }
+            H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, plist);
+            if (total > 0) ds.write(vec->data(), h5_type<V>());
+            string_attr(ds, "units", a.units);
+            string_attr(ds, "axes", a.axes);
+            string_attr(ds, "description", a.description);
+          },
+          a.data);
+    }
+    file.close();
+  } catch (const H5::Exception& e) {
+    // Disk full, permission denied, a vanished folder: one line naming the file (the detail is HDF5's).
+    std::error_code ec;
+    const auto space = fs::space(tmp_, ec);
+    const std::string cause = !ec && space.available < (1u << 20) ? "no space left on the device" : e.getDetailMsg();
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", final_path(filename).string(), cause));
+  }
+}
+
+void ResultFiles::manifest(const Attrs& attrs, const std::string& command,
+                           const std::vector<std::pair<std::string, std::vector<std::string>>>& args) {
+  nlohmann::ordered_json j;
+  for (const auto& [k, v] : attrs) std::visit([&](const auto& x) { j[k] = x; }, v);
+  nlohmann::ordered_json req;
+  req["command"] = command;
+  nlohmann::ordered_json a = nlohmann::ordered_json::object();
+  for (const auto& [k, vals] : args) a[k] = vals.size() == 1 ? nlohmann::ordered_json(vals[0]) : nlohmann::ordered_json(vals);
+  req["args"] = a;
+  j["request"] = req;
+  text(name_ + ".json", j.dump(2) + "\n");
+}
+
+void ResultFiles::plot(const std::string& script) {
+  run_plot(script, {staged(name_ + ".h5").string(), staged(name_ + ".png").string()});
+  std::error_code ec;
+  if (!fs::exists(tmp_ / (name_ + ".png"), ec)) files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
+}
+
+std::vector<fs::path> ResultFiles::commit() {
+  std::error_code ec;
+  fs::create_directories(out_, ec);
+  if (ec || !fs::is_directory(out_)) throw_file_error("out: cannot create folder", out_, ec);
+  // The manifest last: a folder whose manifest names a result holds all of that result's files.
+  std::stable_partition(files_.begin(), files_.end(), [&](const std::string& f) { return f != name_ + ".json"; });
+  std::vector<fs::path> done;
+  for (const auto& f : files_) {
+    fs::rename(tmp_ / f, out_ / f, ec);
+    if (ec) throw_file_error("cannot move into place", out_ / f, ec);
+    done.push_back(out_ / f);
+  }
+  committed_ = true;
+  fs::remove_all(tmp_, ec);
+  return done;
+}
+
+}  // namespace btob::io

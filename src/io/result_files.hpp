@@ -1,0 +1,56 @@
+// The files of one result, written together or not at all: every file goes to a private temporary folder, and
+// commit() moves them into the output folder (created only then), the manifest last.  A run that fails or is
+// cancelled leaves nothing behind: no partial file, no empty folder, and an existing result stays intact.
+#pragma once
+
+#include "core/result.hpp"
+#include "io/io.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace btob::io {
+
+class ResultFiles {
+ public:
+  // `out`: the output folder (need not exist); `name`: the file stem of the result (NAME.h5, NAME.json, ...).
+  ResultFiles(fs::path out, std::string name);
+  ~ResultFiles();  // without commit(): removes the temporary folder and everything in it
+  ResultFiles(const ResultFiles&) = delete;
+  ResultFiles& operator=(const ResultFiles&) = delete;
+
+  const std::string& name() const { return name_; }
+  const fs::path& out() const { return out_; }
+  // Where to write `filename` now (inside the temporary folder); it lands at out/filename on commit().
+  fs::path staged(const std::string& filename);
+  // Where `filename` will be after commit() (for messages and manifests).
+  fs::path final_path(const std::string& filename) const { return out_ / filename; }
+
+  // NAME.h5: every array of `c` with its dims, and on each dataset the string attributes units, axes and
+  // description; `attrs` (provenance and summary) as file attributes.
+  void h5(const core::Contents& c, const Attrs& attrs);
+  // A text file (CSV, ...).
+  void text(const std::string& filename, const std::string& content);
+  // NAME.json: the attributes, and the request that made the result as {"command": ..., "args": {...}}.
+  void manifest(const Attrs& attrs, const std::string& command,
+                const std::vector<std::pair<std::string, std::vector<std::string>>>& args);
+  // Runs analyses/plot/<script> on the staged NAME.h5 writing the staged NAME.png (a warning, not an error, when
+  // matplotlib is missing).
+  void plot(const std::string& script);
+
+  // Moves every staged file into out/ (creating it), the manifest last; returns the final paths.  Throws with
+  // the file and the cause when the output folder cannot be made or written.
+  std::vector<fs::path> commit();
+
+ private:
+  fs::path out_, tmp_;
+  std::string name_;
+  std::vector<std::string> files_;
+  bool committed_ = false;
+};
+
+// A file-system error as one line naming the file and the cause (disk full, permission denied, ...).
+[[noreturn]] void throw_file_error(const std::string& what, const fs::path& path, const std::error_code& ec);
+
+}  // namespace btob::io

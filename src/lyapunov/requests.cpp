@@ -1,0 +1,220 @@
+// The Lyapunov requests: validation, the runs, and the description of their results.
+#include "lyapunov/requests.hpp"
+
+#include "core/fields.hpp"
+#include "core/scalar.hpp"
+#include "core/coords.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace btob::lyapunov {
+
+namespace {
+void check_lengths(long iterations, long transient, int blocks) {
+  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
+  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
+  if (transient > iterations)
+    throw core::InvalidField("transient", std::to_string(transient), fmt::format("at most iterations = {}", iterations));
+  if (blocks < 2 || blocks > iterations)
+    throw core::InvalidField("blocks", std::to_string(blocks), fmt::format("2 <= blocks <= iterations = {}", iterations));
+}
+
+void check_kernel_precision(const std::string& p) {
+  if (p != "float" && p != "double")
+    throw core::InvalidField("precision", "'" + p + "'", "float or double (the batched tangent kernel)");
+}
+
+// The smallest r whose exponents precision p resolves.  One step of the derivative cocycle contracts the tangent
+// plane by about r^2 relative to the orbit direction, and D(u) V = (P V - w (w . P V)) / |P u| recovers that
+// part by cancellation from vectors of size ~1: its relative error is ~eps / r^2, so the per-step log-stretch
+// errs by that much.  Asking eps / r^2 <= 1e-3 (exponents to about 1e-3 absolute) gives r >= sqrt(1e3 eps):
+// 0.011 in float, 4.7e-7 in double, 1.0e-8 in long double, 4.4e-16 in float128, 10^-(D-3)/2 in mpfr:D.
+// Below it the cancellation leaves nothing (r = 1e-20 in double gives lambda2 = NaN), so it is refused.
+double smallest_r(const core::Precision& p) {
+  double eps = 0;
+  switch (p.kind) {
+    case core::Precision::Kind::f32: eps = std::numeric_limits<float>::epsilon(); break;
+    case core::Precision::Kind::f64: eps = std::numeric_limits<double>::epsilon(); break;
+    case core::Precision::Kind::f80: eps = static_cast<double>(std::numeric_limits<long double>::epsilon()); break;
+    case core::Precision::Kind::f128: eps = 0x1p-112; break;
+    case core::Precision::Kind::mpfr: eps = std::pow(10.0, -p.mpfr_digits); break;
+  }
+  return std::sqrt(1e3 * eps);
+}
+
+void check_range(double r, const core::Precision& p, const std::string& field) {
+  const double lo = smallest_r(p);
+  if (r < lo) {
+    // The narrowest precision that resolves this r.
+    std::string fix = "mpfr:" + std::to_string(static_cast<int>(std::ceil(3 - 2 * std::log10(r))) + 1);
+    for (const char* name : {"double", "long-double", "float128"})
+      if (r >= smallest_r(core::parse_precision(name))) {
+        fix = name;
+        break;
+      }
+    throw core::InvalidField(field, fmt::format("{}", r),
+                             fmt::format("r >= {:.2g} in {} (the tangent plane's contraction r^2 is lost in rounding "
+                                         "below); use --precision {}",
+                                         lo, p.name(), fix));
+  }
+}
+
+template <class T> void all_finite(const T& values, const std::string& what) {
+  for (double v : values)
+    if (!std::isfinite(v))
+      throw std::domain_error(fmt::format("{}: a non-finite exponent; this precision cannot represent the run "
+                                          "(use a wider --precision)",
+                                          what));
+}
+}  // namespace
+
+void OrbitRequest::validate() const {
+  core::require_r(r, "r");
+  check_lengths(iterations, transient, blocks);
+  if (reorthonormalise < 1) throw core::InvalidField("reorthonormalise", std::to_string(reorthonormalise), "at least 1");
+  (void)core::parse_point(point, "point");
+  check_range(r, core::parse_precision(precision, "precision"), "r");
+}
+
+ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  const core::Vec3<double> u = core::parse_point(req.point, "point");
+  Options o;
+  o.iterations = req.iterations;
+  o.transient = req.transient;
+  o.reorthonormalise = req.reorthonormalise;
+  o.blocks = req.blocks;
+  // The orbit and the tangent frame are iterated in T, r is T's own value of the request's r (a float128 run
+  // at r = 0.1 uses float128's 0.1 when the request came as text), the sums of log R_ii accumulated in long
+  // double and the exponents reported in double.
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  const auto in = [&]<class T>(T*) {
+    const core::Vec3<T> ut(T(u(0)), T(u(1)), T(u(2)));
+    return projective_exponents<T>(ut, T(req.r), o);
+  };
+  ProjectiveResult res;
+  switch (prec.kind) {
+    case core::Precision::Kind::f32: res = in(static_cast<float*>(nullptr)); break;
+    case core::Precision::Kind::f64: res = in(static_cast<double*>(nullptr)); break;
+    case core::Precision::Kind::f80: res = in(static_cast<long double*>(nullptr)); break;
+    case core::Precision::Kind::f128: res = in(static_cast<core::float128*>(nullptr)); break;
+    case core::Precision::Kind::mpfr: {
+      core::MpfrDigits digits(prec.mpfr_digits);  // restored on every exit path
+      res = in(static_cast<core::mpfr_float*>(nullptr));
+      break;
+    }
+  }
+  all_finite(std::vector<double>{res.lambda[0].value, res.lambda[0].error, res.lambda[1].value, res.lambda[1].error,
+                                 res.weighted[0], res.weighted[1]},
+             fmt::format("r = {} in {}", req.r, prec.name()));
+  return res;
+}
+
+void MapRequest::validate() const {
+  core::require_r(r_min, "r-min");
+  core::require_r(r_max, "r-max");
+  if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
+  check_lengths(iterations, transient, blocks);
+  check_kernel_precision(precision);
+  check_range(std::min(r_min, r_max), core::parse_precision("double"), r_min <= r_max ? "r-min" : "r-max");
+  (void)iterate::parse_grid(grid, seed, "grid");
+}
+
+void StripRequest::validate() const {
+  core::require_r(r, "r");
+  if (n1 < 1 || n2 < 1)
+    throw core::InvalidField("size", fmt::format("{}x{}", n1, n2), "positive numbers of cells n1 x n2");
+  if (!(w1_min < w1_max))
+    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_min, w1_max), "w1-min < w1-max");
+  check_lengths(iterations, transient, blocks);
+  check_kernel_precision(precision);
+  check_range(r, core::parse_precision("double"), "r");  // the tangent arithmetic is double
+  iterate::checked_bytes(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 200, "n1 x n2");
+}
+
+namespace {
+MapResult run_ensemble(iterate::Ensemble ens, long iterations, long transient, int blocks, const std::string& precision,
+                       const core::RunControl& control) {
+  MapOptions o;
+  o.iterations = iterations;
+  o.transient = transient;
+  o.blocks = blocks;
+  o.single_precision = precision == "float";
+  o.run.threads = control.threads;
+  o.run.progress = control.progress;
+  o.run.cancel = control.cancel;
+  MapResult res;
+  const auto t0 = std::chrono::steady_clock::now();
+  res.exponents = map_exponents(ens, o);
+  res.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.ensemble = std::move(ens);
+  return res;
+}
+}  // namespace
+
+MapResult run(const MapRequest& req, const core::RunControl& control) {
+  req.validate();
+  iterate::Ensemble ens;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  ens.grid_description = req.grid;
+  ens.seed = req.seed;
+  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
+  res.summary = summarise(res.exponents, res.ensemble.r.size(), res.ensemble.initial.size());
+  return res;
+}
+
+MapResult run(const StripRequest& req, const core::RunControl& control) {
+  req.validate();
+  iterate::Ensemble ens;
+  ens.r = {req.r};
+  ens.initial = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);
+  ens.grid_description = fmt::format("strip:{}x{}:{}:{}", req.n1, req.n2, req.w1_min, req.w1_max);
+  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
+  res.n1 = static_cast<std::size_t>(req.n1);
+  res.n2 = static_cast<std::size_t>(req.n2);
+  res.w1.resize(res.ensemble.initial.size());
+  res.w2.resize(res.ensemble.initial.size());
+  for (std::size_t i = 0; i < res.ensemble.initial.size(); ++i)
+    std::tie(res.w1[i], res.w2[i]) = core::strip<double>(res.ensemble.initial[i]);
+  return res;
+}
+
+void MapResult::describe(core::Contents& c) const {
+  const std::size_t R = ensemble.r.size(), I = ensemble.initial.size();
+  const bool strip = n1 > 0;
+  const std::vector<std::size_t> dims = strip ? std::vector<std::size_t>{n1, n2} : std::vector<std::size_t>{R, I};
+  const std::string axes = strip ? "w1 cell, w2 cell" : "r, initial condition";
+  const std::string per = "1/iteration (natural log)";
+  c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients");
+  const auto& e = exponents;
+  c.array("lambda1", e.lambda1, dims, axes, per, "first projective exponent (plain average over the iterations)");
+  c.array("err1", e.err1, dims, axes, per, "batch-means standard error of lambda1");
+  c.array("lambda2", e.lambda2, dims, axes, per, "second projective exponent (plain average over the iterations)");
+  c.array("err2", e.err2, dims, axes, per, "batch-means standard error of lambda2");
+  c.array("chi1", e.chi1, dims, axes, per, "growth rate of the orbit vector under the linear cocycle P_i (not P_i/r)");
+  if (strip) {
+    c.array("w1", w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
+    c.array("w2", w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
+  } else {
+    const std::string s = "of lambda1 over the initial conditions at each r";
+    c.array("min", summary.min, {R}, "r", per, "minimum " + s);
+    c.array("median", summary.median, {R}, "r", per, "median " + s);
+    c.array("max", summary.max, {R}, "r", per, "maximum " + s);
+    c.array("frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
+    c.array("frac_zero", summary.frac_zero, {R}, "r", "1", "fraction of orbits with |lambda1| <= 3 err1 + 10/n");
+    c.array("frac_negative", summary.frac_negative, {R}, "r", "1", "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
+  }
+  c.attr("iterations", e.iterations);
+  c.attr("blocks", static_cast<long>(e.blocks));
+  c.attr("grid", ensemble.grid_description);
+  c.attr("initial_conditions", static_cast<long>(I));
+  c.attr("seed", static_cast<long>(ensemble.seed));
+  c.attr("iteration_seconds", iteration_seconds);
+}
+
+}  // namespace btob::lyapunov

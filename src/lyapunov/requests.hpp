@@ -1,0 +1,113 @@
+// The Lyapunov analyses as requests and results (core/request.hpp): one orbit in any precision, a map over
+// r values x initial conditions, and a strip image at one r.  Exponents are per map iteration, natural log;
+// the projective exponents lambda1, lambda2 of the 2-D map (lyapunov.hpp states the conventions).
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "lyapunov/maps.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::lyapunov {
+
+// ---- one orbit (`btob lyapunov`) --------------------------------------------------------------------------
+struct OrbitRequest {
+  double r = 0;               // restitution coefficient, in (0, 1)
+  std::string point;          // initial direction x,y,z (x*z <= 0)
+  long iterations = 100000;   // averaged map iterations, >= blocks
+  long transient = 1000;      // iterations discarded first, 0..iterations
+  int reorthonormalise = 1;   // QR every this many steps, >= 1
+  int blocks = 20;            // batch-means blocks, 2..iterations
+  std::string precision = "double";  // float, double, long-double, float128 or mpfr:D
+  std::string convergence;    // also write exponent against n to this CSV file (command line only)
+  bool weighted = false;      // also report the weighted Birkhoff averages
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient, in (0,1)", core::required);
+    v("point", point, "initial point x,y,z (x*z <= 0)", core::required);
+    v("iterations", iterations, "averaged map iterations");
+    v("transient", transient, "iterations discarded first (orbit and tangent frame)");
+    v("reorthonormalise", reorthonormalise, "QR every this many steps");
+    v("blocks", blocks, "batch-means blocks for the error bars");
+    v("precision", precision, "float, double, long-double, float128 or mpfr:D (D digits, 10..10000)");
+    v("convergence", convergence, "also write exponent against n to this CSV file");
+    v("weighted", weighted,
+      "also print the weighted Birkhoff averages (first columns): 1e-8 or better on periodic and quasi-periodic "
+      "orbits where the plain average converges like 1/n");
+  }
+};
+
+// The exponents of one orbit, every value finite (a precision that cannot represent the run is refused).
+ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control = {});
+
+// ---- maps over r x initial conditions (`btob lyapunov-map`) and a strip at one r (`btob lyapunov-strip`) ----
+struct MapRequest {
+  double r_min = 0.0717, r_max = 0.6;  // r range, each in (0, 1)
+  long r_count = 5000;                 // evenly spaced r values, >= 1
+  std::string grid = "paper";          // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
+  std::uint64_t seed = 1;              // seed of random grids
+  long iterations = 10000, transient = 1000;
+  int blocks = 10;
+  std::string precision = "double";    // float or double (the tangent arithmetic is double)
+  std::vector<std::string> overlay;    // named r overlays drawn on the figure (not part of the computation)
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r-min", r_min, "smallest r, in (0,1)");
+    v("r-max", r_max, "largest r, in (0,1)");
+    v("r-count", r_count, "number of evenly spaced r values");
+    v("grid", grid, "initial conditions: paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...");
+    v("seed", seed, "seed of random grids");
+    v("iterations", iterations, "averaged map iterations per orbit");
+    v("transient", transient, "iterations discarded first (orbit and tangent vector)");
+    v("blocks", blocks, "batch-means blocks for the error bars");
+    v("precision", precision, "kernel precision: float or double (tangent arithmetic in double)");
+    v("overlay", overlay, "named r overlays (default: thresholds, windows)");
+  }
+};
+
+struct StripRequest {
+  double r = 0.3;                      // restitution coefficient, in (0, 1)
+  long n1 = 200, n2 = 100;             // cells along w1 and w2
+  double w1_min = -2, w1_max = 2;      // w1 range of the strip (w2 runs over [-1, 1])
+  long iterations = 5000, transient = 500;
+  int blocks = 10;
+  std::string precision = "double";
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient, in (0,1)");
+    v("n1", n1, "cells along w1");
+    v("n2", n2, "cells along w2");
+    v("w1-min", w1_min, "smallest w1");
+    v("w1-max", w1_max, "largest w1");
+    v("iterations", iterations, "averaged map iterations per orbit");
+    v("transient", transient, "iterations discarded first (orbit and tangent vector)");
+    v("blocks", blocks, "batch-means blocks for the error bars");
+    v("precision", precision, "kernel precision: float or double (tangent arithmetic in double)");
+  }
+};
+
+// Exponents of every orbit (orbit o = r index * initial conditions + initial condition index) and, for a map,
+// their summary per r.
+struct MapResult {
+  iterate::Ensemble ensemble;
+  OrbitExponents exponents;
+  RSummary summary;                  // lyapunov-map only
+  std::vector<double> w1, w2;        // lyapunov-strip only: the cell centres, n1 x n2
+  std::size_t n1 = 0, n2 = 0;        // lyapunov-strip only
+  double iteration_seconds = 0;
+
+  // Arrays: r [R]; lambda1, err1, lambda2, err2, chi1 [R, I] (map) or [n1, n2] (strip); summary [R].
+  void describe(core::Contents& c) const;
+};
+
+MapResult run(const MapRequest& req, const core::RunControl& control = {});
+MapResult run(const StripRequest& req, const core::RunControl& control = {});
+
+}  // namespace btob::lyapunov
