@@ -1,5 +1,5 @@
 // `btob lyapunov` (one orbit), `btob lyapunov-map` (exponents over r x a grid), `btob lyapunov-strip` (one r, a
-// strip grid drawn as an image): Lyapunov exponents of the projective derivative cocycle (Section 7 (3)).
+// strip grid drawn as an image): Lyapunov exponents of the projective derivative cocycle (Section 8.1 (3)).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/coords.hpp"
