@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates results/attractors/** (issue 8): basin maps at the r values of Section 5.3 / Table 5.1 and the basin
-# fractions across r compared with Table 5.1.  Usage: analyses/attractors.sh path/to/btob [threads]
+# Regenerates results/attractors/** (issue 8): basin maps at the r values of Section 6.2 / Table 6.1 and the basin
+# fractions across r compared with Table 6.1.  Usage: analyses/attractors.sh path/to/btob [threads]
 set -euo pipefail
 BTOB=${1:?usage: analyses/attractors.sh path/to/btob [threads]}
 THREADS=${2:-2}
@@ -9,11 +9,11 @@ OUT=results/attractors
 mkdir -p "$OUT"
 # The issue's target: 1000 x 1000 at r = 0.2 (two replicate grids shifted by random fractions of a cell).
 "$BTOB" basins --r 0.2 --grid strip:1000x1000 --replicates 2 --seed 1 --threads "$THREADS" --out "$OUT/basins_r0.2"
-# Coexistence and single-basin cases of Table 5.1 (400 x 400, two replicates).
+# Coexistence and single-basin cases of Table 6.1 (400 x 400, two replicates).
 for r in 0.05 0.1 0.15 0.172 0.21 0.24 0.3 0.58; do
   "$BTOB" basins --r "$r" --grid strip:400x400 --replicates 2 --seed 1 --threads "$THREADS" --out "$OUT/basins_r$r"
 done
-# Wider strip at r = 0.2: the two far points per period of 132^3312^3 (Figure 5.11 rescaled).
+# Wider strip at r = 0.2: the two far points per period of 132^3312^3 (Figure 6.10 rescaled).
 "$BTOB" basins --r 0.2 --grid strip:600x300 --w1-range -30,30 --replicates 0 --threads "$THREADS" --out "$OUT/basins_r0.2_wide"
-# Basin fractions at the r values of Table 5.1 in [0.1, 0.6], 2000 random orbits each (the paper: 10).
+# Basin fractions at the r values of Table 6.1 in [0.1, 0.6], 2000 random orbits each (the paper: 10).
 "$BTOB" basins-r --table --grid random:2000 --seed 1 --threads "$THREADS" --out "$OUT/basins_r"

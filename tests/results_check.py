@@ -132,15 +132,15 @@ def check_basins_r(btob, root, tmp):
     out = os.path.join(tmp, "basins_r")
     new, old = rerun(btob, ["basins-r", "--table", "--grid", "random:2000", "--seed", "1", "--out", out, "--quiet",
                             "--no-plot"],
-                     os.path.join(out, "table_5_1_comparison.csv"),
-                     os.path.join(root, "results/attractors/basins_r/table_5_1_comparison.csv"), "basins-r", "r values")
+                     os.path.join(out, "table_6_1_comparison.csv"),
+                     os.path.join(root, "results/attractors/basins_r/table_6_1_comparison.csv"), "basins-r", "r values")
     for a, b in zip(new, old):
         if abs(float(a["periodic_fraction"]) - float(b["periodic_fraction"])) > 0.035:
             fail(f"basins-r r={b['r']}: periodic fraction {a['periodic_fraction']} vs committed {b['periodic_fraction']}")
         if a["paper_patterns_found"] != b["paper_patterns_found"]:
-            fail(f"basins-r r={b['r']}: Table 5.1 patterns found {a['paper_patterns_found']} vs committed "
+            fail(f"basins-r r={b['r']}: Table 6.1 patterns found {a['paper_patterns_found']} vs committed "
                  f"{b['paper_patterns_found']}")
-    print(f"ok: basin fractions at the {len(new)} r values of Table 5.1")
+    print(f"ok: basin fractions at the {len(new)} r values of Table 6.1")
 
 
 def check_lyapunov_map(btob, root, tmp):

@@ -1,4 +1,4 @@
-// Tests of src/attractors: classification (Table 5.1 patterns, collapse, quasi-periodic, chaotic), identity,
+// Tests of src/attractors: classification (Table 6.1 patterns, collapse, quasi-periodic, chaotic), identity,
 // basins, fractions with intervals, determinism across thread counts, errors.
 #include "attractors/attractors.hpp"
 #include "core/coords.hpp"
@@ -46,7 +46,7 @@ TEST(Attractors, PaperGridOneBasin1133AtR015) {
   ASSERT_EQ(m.size(), 1u);
   ASSERT_TRUE(m.count("1133"));
   EXPECT_EQ(m.at("1133").count, 32u);
-  EXPECT_EQ(m.at("1133").collisions, 8);  // Table 5.1: length 8
+  EXPECT_EQ(m.at("1133").collisions, 8);  // Table 6.1: length 8
   expect_stable(m, 0.15);
 }
 
@@ -84,7 +84,7 @@ TEST(Attractors, R02PeriodicCoexistsWithQuasiPeriodicCurves) {
   EXPECT_EQ(m.at("132^3312^3").period, 10);
   EXPECT_EQ(m.at("132^3312^3").collisions, 26);
   expect_stable(m, r);
-  // The rotation number of every P2 curve is beta / 2 pi with cos(beta) = -(1-r)^2/(4r) (Section 5.2), up to
+  // The rotation number of every P2 curve is beta / 2 pi with cos(beta) = -(1-r)^2/(4r) (Section 6.1), up to
   // the weighted average's accuracy (1e-9: Das-Yorke convergence at 4000 steps is far below).
   const auto& q = m.at("P2 invariant curves");
   const double beta = std::acos(-(1 - r) * (1 - r) / (4 * r)) / (2 * std::numbers::pi);
@@ -115,7 +115,7 @@ TEST(Attractors, Pattern132312From03To06) {
 }
 
 TEST(Attractors, ChaoticBetweenWindows) {
-  // r = 0.102: Table 5.1 finds no periodic orbit; the exponent is positive beyond its error bar.
+  // r = 0.102: Table 6.1 finds no periodic orbit; the exponent is positive beyond its error bar.
   const auto v = classify(ensemble(0.102, iterate::paper_grid()), {});
   for (const auto& x : v) {
     EXPECT_EQ(x.type, Type::chaotic) << x.detail;

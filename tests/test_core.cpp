@@ -27,7 +27,7 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 
 const std::vector<double> kR = {0.01, 0.07, 0.0718, 0.1, 0.17, 0.2, 0.5, 0.9, 0.99};
 
-// S = -J: (x, y, z) -> (-z, -y, -x), the symmetry of the proof of Theorem 3.1; it maps Q onto Q.
+// S = -J: (x, y, z) -> (-z, -y, -x), the symmetry of the proof of Theorem 3.3; it maps Q onto Q.
 V S(const V& u) { return V(-u(2), -u(1), -u(0)); }
 
 // Expects `what()` of the exception thrown by f to contain every string of `parts`.
@@ -55,7 +55,7 @@ TEST(Map, QuadrantIsInvariant) {
 }
 
 TEST(Map, OddExtension) {
-  // P(u) = -P(-u) on the other quadrant (Theorem 3.1): step(-u) and step(u) give the same vector of Q.
+  // P(u) = -P(-u) on the other quadrant (Theorem 3.3): step(-u) and step(u) give the same vector of Q.
   const auto pts = btob::iterate::random_points(20000, 12);
   for (double r : kR)
     for (const V& u : pts) {
@@ -95,7 +95,7 @@ TEST(Map, Determinants) {
   }
 }
 
-TEST(Map, EigenvectorsOfPropositions51And52) {
+TEST(Map, EigenvectorsOfPropositions51And53) {
   for (double r : kR) {
     const double a = btob::core::alpha(r);
     // Prop. 5.2: P2 (1, 0, -1) = r (1, 0, -1); every product is exact (entries times 0 or 1).
@@ -151,7 +151,7 @@ TEST(Map, BranchConventionsOnExactTies) {
   // r = 0.5: alpha = 0.75, so the ties below are exact in binary floating point.
   const double r = 0.5;
   ASSERT_EQ(btob::core::alpha(r), 0.75);
-  EXPECT_EQ(btob::core::branch(V(0.75, 1, -1), r), 2);     // alpha y - x == 0 -> P2 (Remark 3.4)
+  EXPECT_EQ(btob::core::branch(V(0.75, 1, -1), r), 2);     // alpha y - x == 0 -> P2 (Remark 3.6)
   EXPECT_EQ(btob::core::branch(V(1, -1, -0.75), r), 2);    // alpha y - z == 0 -> P2
   EXPECT_EQ(btob::core::branch(V(1, 0, -1), r), 2);        // y == 0 -> P2
   EXPECT_EQ(btob::core::branch(V(0, 0, -1), r), 2);        // x == y == 0 (alpha y - x == 0) -> P2
@@ -204,7 +204,7 @@ TEST(Coords, StripRoundTrip) {
 }
 
 TEST(Coords, StripBoundariesSeparateTheBranches) {
-  // Section 5.3: w2 = 2 alpha w1 - 1 is alpha y - x = 0, w2 = 2 alpha w1 + 1 is alpha y - z = 0.
+  // Section 6.2: w2 = 2 alpha w1 - 1 is alpha y - x = 0, w2 = 2 alpha w1 + 1 is alpha y - z = 0.
   const double d = 1e-9;  // far above rounding (1e-16) and far below the grid spacing
   for (double r : kR) {
     const double a = btob::core::alpha(r);

@@ -83,7 +83,7 @@ TEST(Extremes, LongDoubleNeverNanNeverZeroQuadrantInvariant) {
 TEST(Extremes, ExactTiesFollowTheDocumentedConvention) {
   // r = 0.5: alpha = 0.75 exactly, so the ties below are exact in binary floating point.
   const double r = 0.5;
-  EXPECT_EQ(core::step<double>({0.75, 1, -1}, r).symbol, 2);   // alpha*y - x = 0 -> P2 (Remark 3.4)
+  EXPECT_EQ(core::step<double>({0.75, 1, -1}, r).symbol, 2);   // alpha*y - x = 0 -> P2 (Remark 3.6)
   EXPECT_EQ(core::step<double>({1, -1, -0.75}, r).symbol, 2);  // alpha*y - z = 0 -> P2
   EXPECT_EQ(core::step<double>({1, 0, -1}, r).symbol, 2);      // y = 0 -> P2
   EXPECT_EQ(core::step<double>({std::nextafter(0.75, 0.0), 1, -1}, r).symbol, 1);
@@ -100,7 +100,7 @@ TEST(Extremes, ExactTiesFollowTheDocumentedConvention) {
   EXPECT_EQ(s.out[0], 2);
   EXPECT_EQ(s.out[1], 2);
   EXPECT_EQ(s.out[2], 2);
-  // (1, 0, -1) is the P2 eigenvector of eigenvalue r (Proposition 5.2): a fixed point, symbol 2 forever.
+  // (1, 0, -1) is the P2 eigenvector of eigenvalue r (Proposition 5.3): a fixed point, symbol 2 forever.
   Ensemble f;
   f.r = {0.3};
   f.initial = {{1, 0, -1}};

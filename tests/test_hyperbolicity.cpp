@@ -233,7 +233,7 @@ TEST(Hyperbolicity, StripImage) {
     EXPECT_EQ(sv.symbol, img.symbol[i]);
     EXPECT_GE(img.s1[i], img.s2[i]);
   }
-  // Branch 1 lies below w2 = 2 alpha w1 - 1, branch 3 above w2 = 2 alpha w1 + 1 (Section 5.3).
+  // Branch 1 lies below w2 = 2 alpha w1 - 1, branch 3 above w2 = 2 alpha w1 + 1 (Section 6.2).
   const double a = core::alpha(0.3);
   for (std::size_t i = 0; i < img.s1.size(); ++i) {
     if (img.w2[i] < 2 * a * img.w1[i] - 1 - 1e-12) EXPECT_EQ(img.symbol[i], 1);

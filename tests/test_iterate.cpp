@@ -154,7 +154,7 @@ TEST(Kernel, OneThreadEqualsTwoThreadsBitwise) {
 
 TEST(Kernel, PaperSection4Sinks) {
   // At r = 0.15 all 32 orbits end on the cycle 1133 (four b-collisions per period); at r = 0.1 on
-  // 111333 (Section 4, Table 5.1).
+  // 111333 (Section 4, Table 6.1).
   for (const auto& [r, word] : std::vector<std::pair<double, std::string>>{{0.15, "1133"}, {0.1, "111333"}}) {
     const Ensemble e = make({r}, paper_grid());
     SymbolRecorder s(e.orbits(), 20001, 20120);

@@ -1,4 +1,4 @@
-// Long checks of src/attractors (label long): the 1000 x 1000 grid at r = 0.2 and Table 5.1 with 2000 orbits per r.
+// Long checks of src/attractors (label long): the 1000 x 1000 grid at r = 0.2 and Table 6.1 with 2000 orbits per r.
 #include "attractors/attractors.hpp"
 #include "iterate/ensemble.hpp"
 #include "patterns/patterns.hpp"
@@ -25,9 +25,9 @@ TEST(LongAttractors, Grid1000AtR02FewUnresolvedUnderAMinute) {
   EXPECT_TRUE(p.count("P2 invariant curves"));
 }
 
-// Every pattern of Table 5.1 in [0.1, 0.6] is found among 2000 random initial conditions, and every periodic
+// Every pattern of Table 6.1 in [0.1, 0.6] is found among 2000 random initial conditions, and every periodic
 // attractor found is stable for the pattern tool.
-TEST(LongAttractors, Table51With2000Orbits) {
+TEST(LongAttractors, Table61With2000Orbits) {
   const std::vector<std::pair<double, std::vector<std::string>>> table = {
       {0.1, {"111333"}}, {0.101, {"111333"}}, {0.15, {"1133"}}, {0.16, {"1133"}}, {0.17, {"1133"}},
       {0.172, {"132^36", "312^36"}}, {0.174, {"132^14", "312^14"}}, {0.176, {"132^10", "312^10"}},

@@ -1,5 +1,5 @@
 // Long checks of btob::patterns (label long): Table B.1 windows n = 2..7, the iterator against the analysis
-// at every r of Table 5.1, and the 30-digit endpoint of 132312 stable under a change of MPFR precision.
+// at every r of Table 6.1, and the 30-digit endpoint of 132312 stable under a change of MPFR precision.
 #include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
 
@@ -42,10 +42,10 @@ TEST(LongPatterns, TableB1WindowsN2To7) {
   EXPECT_EQ(checked, 6);
 }
 
-TEST(LongPatterns, IteratorAgreesWithTheAnalysisAtTable51) {
+TEST(LongPatterns, IteratorAgreesWithTheAnalysisAtTable61) {
   // Every eventually symbol-periodic orbit either sits on a stable orbit of the analysis, or is a neutral
   // rotation (the dominant modulus is shared with a complex pair: |l2|/|l1| = 1 up to 1e-9).
-  const DetectionRun d = detect_patterns(table_5_1_r(), 200, 5000, 2000, 5, 500, 0);
+  const DetectionRun d = detect_patterns(table_6_1_r(), 200, 5000, 2000, 5, 500, 0);
   ASSERT_FALSE(d.found.empty());
   for (const auto& f : d.found) {
     const auto v = analyse<double>(f.word, f.r);

@@ -1,4 +1,4 @@
-// Tests of btob::patterns: word algebra, Theorems 6.1 and 6.2, windows of Table B.1, Table 5.1, errors.
+// Tests of btob::patterns: word algebra, Theorems 7.1 and 7.3, windows of Table B.1, Table 6.1, errors.
 #include "patterns/atlas.hpp"
 #include "patterns/exact.hpp"
 #include "patterns/patterns.hpp"
@@ -50,11 +50,11 @@ TEST(Words, ParsesThePapersNotations) {
   EXPECT_EQ(to_digits(W("132^3312^3")), "1322231222");
   EXPECT_EQ(to_digits(W("132^{3}312^{3}")), "1322231222");
   EXPECT_EQ(to_digits(W("131312^3313132^3")), "1313122231313222");
-  EXPECT_EQ(W("132^67312^67").size(), 138u);  // Section 5.3: 138 b-collisions
+  EXPECT_EQ(W("132^67312^67").size(), 138u);  // Section 6.2: 138 b-collisions
   EXPECT_EQ(collisions(W("132^67312^67")), 410);  // ... and 410 collisions in total
   EXPECT_EQ(to_digits(W("(ab)(cb)(acb)")), "132");
   EXPECT_EQ(to_digits(W("(ab)(cb)(cab)")), "132");
-  EXPECT_EQ(to_digits(W("abcbacbcbabacb")), "132312");  // Section 6.3's spelling of 132312
+  EXPECT_EQ(to_digits(W("abcbacbcbabacb")), "132312");  // Section 7.3's spelling of 132312
   EXPECT_EQ(to_digits(W("(ab)^2(cb)^2")), "1133");
   EXPECT_EQ(to_digits(W("(13)^3")), "131313");
   EXPECT_EQ(to_letters(W("132312")), "abcbacbcbabacb");
@@ -76,9 +76,9 @@ TEST(Words, PaperNotationRoundTrips) {
   EXPECT_EQ(to_paper(W("12222222222223")), "12^{12}3");
 }
 
-TEST(Words, CollisionCountsMatchTable51) {
-  // Every pattern of Table 5.1 has the length printed in its last column (a, b, c collisions).
-  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_5_1.csv");
+TEST(Words, CollisionCountsMatchTable61) {
+  // Every pattern of Table 6.1 has the length printed in its last column (a, b, c collisions).
+  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_6_1.csv");
   if (!f) GTEST_SKIP() << "reference table not available";
   std::string line;
   std::getline(f, line);
@@ -159,8 +159,8 @@ TEST(Words, BadInputNamesTheField) {
   }
 }
 
-// ---------------------------------------------------------------- Theorem 6.1
-TEST(Theorem61, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
+// ---------------------------------------------------------------- Theorem 7.1
+TEST(Theorem71, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   const CharPoly chi = characteristic_polynomial(W("132312"));  // of J P2 P3 P1
   EXPECT_EQ(chi.c2, poly_hi({7, -24, -29, 0, 21, -8, 1}, 32));
   EXPECT_EQ(chi.c1, poly_hi({1, -8, 21, 0, -29, -24, 7, 0, 0, 0, 0, 0}, 32));
@@ -172,7 +172,7 @@ TEST(Theorem61, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   EXPECT_EQ(discriminant(chi), expected);
 }
 
-TEST(Theorem61, CriticalValuesTo20Digits) {
+TEST(Theorem71, CriticalValuesTo20Digits) {
   MpfrDigits d(50);
   const mpfr_float tol("1e-40");  // bisection width, far below the 20 digits compared
   const auto set = stability_set<mpfr_float>(W("132312"), default_grid(), tol);
@@ -190,13 +190,13 @@ TEST(Theorem61, CriticalValuesTo20Digits) {
   EXPECT_NEAR(sd[0].lo, 0.22006978614631047521, 1e-14);
 }
 
-TEST(Theorem61, StableOrbitMatchesTheIteratedMap) {
+TEST(Theorem71, StableOrbitMatchesTheIteratedMap) {
   // The periodic point of 132312 at r = 0.3, iterated with core::step, follows the word and returns.
   for (double r : {0.25, 0.3, 0.6, 0.9}) {
     const Verdict<double> v = analyse<double>(W("132312"), r);
     ASSERT_EQ(v.outcome, Outcome::stable) << r;
     EXPECT_TRUE(v.reduced);
-    EXPECT_LT(v.spectrum[0].re, 0);  // Section 6.1: feasible reduced eigenvalues are negative
+    EXPECT_LT(v.spectrum[0].re, 0);  // Section 7.1: feasible reduced eigenvalues are negative
     btob::core::Vec3<double> u = v.orbit[0];
     for (std::size_t k = 0; k < 6; ++k) {
       const auto st = btob::core::step(u, r);
@@ -211,8 +211,8 @@ TEST(Theorem61, StableOrbitMatchesTheIteratedMap) {
   EXPECT_NE(analyse<double>(W("132312"), 0.2).outcome, Outcome::stable);
 }
 
-// ---------------------------------------------------------------- Theorem 6.2
-TEST(Theorem62, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
+// ---------------------------------------------------------------- Theorem 7.3
+TEST(Theorem73, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   const CharPoly chi = characteristic_polynomial(W("13223122"));  // of J P2 P2 P3 P1
   EXPECT_EQ(chi.c2, poly_hi({-7, 42, -18, -58, 24, 38, -30, 10, -1}, 64));
   EXPECT_EQ(chi.c1, poly_hi({-1, 10, -30, 38, 24, -58, -18, 42, -7, 0, 0, 0, 0, 0, 0}, 64));
@@ -225,7 +225,7 @@ TEST(Theorem62, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   EXPECT_EQ(discriminant(chi), expected);
 }
 
-TEST(Theorem62, CriticalValuesTo20Digits) {
+TEST(Theorem73, CriticalValuesTo20Digits) {
   MpfrDigits d(50);
   const mpfr_float tol("1e-40");
   const Word w = W("13223122");
@@ -240,7 +240,7 @@ TEST(Theorem62, CriticalValuesTo20Digits) {
   EXPECT_LT(abs(root("0.165", "0.2", Quantity::alpha_y_minus_x) - s), mpfr_float("1e-30")) << "r_crit,1322J,5 = 3 - 2 sqrt 2";
 }
 
-TEST(Theorem62, NeverStableOnAFineGrid) {
+TEST(Theorem73, NeverStableOnAFineGrid) {
   const Word w = W("13223122");
   for (int i = 1; i < 100000; ++i) ASSERT_FALSE(is_stable<double>(w, i / 100000.0)) << "r = " << i / 100000.0;
   EXPECT_TRUE(stability_set<double>(w, default_grid(), 1e-15).empty());
@@ -284,8 +284,8 @@ TEST(Windows, PrecisionsAgree) {
   }
 }
 
-// ---------------------------------------------------------------- Table 5.1
-TEST(Table51, EveryPatternIsStableWhereThePaperSawIt) {
+// ---------------------------------------------------------------- Table 6.1
+TEST(Table61, EveryPatternIsStableWhereThePaperSawIt) {
   const std::vector<std::pair<const char*, double>> seen = {
       {"111333", 0.1},   {"111333", 0.101}, {"1133", 0.15},       {"1133", 0.16},         {"1133", 0.17},
       {"132^36", 0.172}, {"312^36", 0.172}, {"132^14", 0.174},    {"132^10", 0.176},      {"132^8", 0.178},
@@ -313,7 +313,7 @@ TEST(Iterator, EventualPeriod) {
 }
 
 TEST(Iterator, FindsOnly1133At016) {
-  // Table 5.1: 100% of orbits end on 1133 at r = 0.16; every detected pattern must be stable there.
+  // Table 6.1: 100% of orbits end on 1133 at r = 0.16; every detected pattern must be stable there.
   const DetectionRun d = detect_patterns({0.16}, 40, 3000, 600, 11, 100, 1);
   ASSERT_FALSE(d.found.empty());
   EXPECT_EQ(to_digits(d.found[0].word), "1133");

@@ -1,5 +1,5 @@
 // Tests of btob::reference: Definition 2.1, the particle simulation and the trigonometric algorithm
-// (Appendix A.1) against the piecewise-linear map core::step (Theorem 3.1), and the Figure 4.7 driver.
+// (Appendix A.1) against the piecewise-linear map core::step (Theorem 3.3), and the Figure 4.7 driver.
 #include "reference/reference.hpp"
 
 #include "iterate/kernel.hpp"
@@ -75,7 +75,7 @@ TEST(CollisionMatrices, Equation25) {
   }
 }
 
-// Definition 2.1 against Theorem 3.1 on 1e5 random points per r.
+// Definition 2.1 against Theorem 3.3 on 1e5 random points per r.
 TEST(CrossProduct, AgreesWithLinearMap) {
   const auto pts = btob::iterate::random_points(100000, kSeed);
   for (double r : kR) {

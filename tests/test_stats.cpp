@@ -70,7 +70,7 @@ TEST(Correlation, FftEqualsDirectOnRandomSeries) {
 }
 
 TEST(Correlation, DirectSumIsThePaperFormula) {
-  // Small case against the formula of Section 7 (2) written out in long double with no rearrangement.
+  // Small case against the formula of Section 8.1 (2) written out in long double with no rearrangement.
   const auto x = random_series(300, 7), y = random_series(300, 8);
   const long N = 200, n_max = 60;
   const auto c = correlation_direct(x, y, N, n_max);
@@ -153,7 +153,7 @@ TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
 }
 
 TEST(Correlation, QuasiPeriodicDoesNotDecay) {
-  // r = 0.2 from (1, 0.02, -1): an invariant curve of the P2 rotation (Section 7.1).
+  // r = 0.2 from (1, 0.02, -1): an invariant curve of the P2 rotation (Section 8.1).
   const auto q = observe(orbit_series(0.2, kRotation, 1000, 101000), Observable::phi);
   Correlator<double> c(100000, 1000);
   const auto cq = c(q, q);
@@ -216,7 +216,7 @@ TEST(Measures, OneBasinGivesOneMeasure) {
 }
 
 TEST(Measures, DistinctInvariantCurvesGiveDistinctMeasures) {
-  // r = 0.2: orbits on different invariant curves of the P2 rotation have different measures (Section 7.1).
+  // r = 0.2: orbits on different invariant curves of the P2 rotation have different measures (Section 8.1).
   const auto s = orbit_series(0.2, std::vector<iterate::Vec3<double>>{{1, 0.01, -1}, {1, 0.06, -1}}, 1000, 100000);
   const Measure a = empirical_measure(s[0], Chart::strip, 200, 200), b = empirical_measure(s[1], Chart::strip, 200, 200);
   EXPECT_GT(total_variation(a, b), 0.5);  // nested curves: nearly disjoint supports

@@ -246,7 +246,7 @@ TEST(WindowBounds, LowerBoundsEqualTableB1) {
   }
 }
 
-// Known erratum of Table B.1: r_crit,2(52) = 0.0718724765988266... (eq. 4.3; also mpmath at 40 digits),
+// Known erratum of Table B.1: r_crit,2(52) = 0.0718724765988266... (eq. 4.6; also mpmath at 40 digits),
 // which rounds to ...599 and truncates to ...598; the paper prints ...597.
 bool is_erratum_b1_upper(int n) { return n == 52; }
 
@@ -356,7 +356,7 @@ TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {
 }
 
 TEST(ThinStripes, RotationAngleIsTwoPiLOverM) {
-  // eq. (5.6) inverts cos(beta) = -(1-r)^2/(4r) (Section 5.2): check cos(2 pi l/m) = -(1-r)^2/(4r).
+  // eq. (6.3) inverts cos(beta) = -(1-r)^2/(4r) (Section 6.1): check cos(2 pi l/m) = -(1-r)^2/(4r).
   const auto stripes = thin_stripes(40, 50);
   mpfr_float::default_precision(60);
   const mpfr_float pi = boost::math::constants::pi<mpfr_float>();

@@ -30,7 +30,7 @@ def main(h5_path, csv_path, png_path):
     if strip:
         al = (1 + r) / 2
         w1 = np.linspace(a["axis1_lo"], a["axis1_hi"], 200)
-        for s in (-1, 1):  # the P2 parallelogram w2 = 2 alpha w1 -+ 1 (Section 5.3)
+        for s in (-1, 1):  # the P2 parallelogram w2 = 2 alpha w1 -+ 1 (Section 6.2)
             ax.plot(w1, 2 * al * w1 + s, color="white", lw=0.6, ls="--")
         ax.set_ylim(a["axis2_lo"], a["axis2_hi"])
     ax.set_xlabel("$w_1$" if strip else r"$\theta$")

@@ -16,7 +16,7 @@ def main(h5_path, png_path):
     names = [a[f"column_{i}"] for i in range(int(a["columns"]))]
     order = np.argsort(r)
     r, frac = r[order], frac[order]
-    x = np.arange(len(r))  # r values of Table 5.1 are uneven: equal spacing, labelled by r
+    x = np.arange(len(r))  # r values of Table 6.1 are uneven: equal spacing, labelled by r
     fig, ax = plt.subplots(figsize=(11, 5), constrained_layout=True)
     # Colours by type: periodic patterns from tab20, quasi-periodic teal, chaotic dark red, collapse grey,
     # unresolved black; one stacked bar per r (the r values are uneven, so no areas across gaps).
@@ -43,9 +43,9 @@ def main(h5_path, png_path):
     ax.set_xticklabels([f"{v:g}" for v in r], rotation=60, fontsize=8)
     ax.set_xlim(x[0] - 0.6, x[-1] + 0.6)
     ax.set_ylim(0, 1)
-    ax.set_xlabel("r (Table 5.1 values, equally spaced)")
+    ax.set_xlabel("r (Table 6.1 values, equally spaced)")
     ax.set_ylabel("basin fraction")
-    ax.set_title(f"Basin fractions across r (Table 5.1 values): {a['points']} initial conditions per r "
+    ax.set_title(f"Basin fractions across r (Table 6.1 values): {a['points']} initial conditions per r "
                  f"({a['grid']}, seed {a['seed']}), transient {a['transient']}, window {a.get('window', a.get('iterations', '?'))}",
                  fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=7)

@@ -3,7 +3,7 @@
 from a `btob hyperbolicity` file.
 
 Usage: hyperbolicity_strip.py DATA.h5 OUT.png
-Overlays the partition boundaries of the strip (eq. 5.5: w2 = 2 alpha w1 -+ 1, w1 = 0) and the contour s1 = 1
+Overlays the partition boundaries of the strip (eq. (6.4): w2 = 2 alpha w1 -+ 1, w1 = 0) and the contour s1 = 1
 (expanding where s1 >= 1).  Reads only the HDF5 file; writes OUT.png atomically.
 """
 import os

@@ -2,7 +2,7 @@
 """Draws the largest Lyapunov exponent at one r over a strip grid (w1, w2) from a `btob lyapunov-strip` file.
 
 Usage: lyapunov_strip.py DATA.h5 OUT.png
-The partition boundaries of the strip (eq. 5.5) are overlaid: w2 = 2 alpha w1 - 1 (alpha y = x: branch 1
+The partition boundaries of the strip (eq. (6.4)) are overlaid: w2 = 2 alpha w1 - 1 (alpha y = x: branch 1
 below it), w2 = 2 alpha w1 + 1 (alpha y = z: branch 3 above it) and w1 = 0.
 Reads only the HDF5 file; writes OUT.png atomically.
 """

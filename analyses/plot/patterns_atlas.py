@@ -70,7 +70,7 @@ def main():
     title += ")"
     if detected:
         title += (f"\niterator: {meta.get('check_ics', '?')} random points x {meta.get('check_r_values', '?')} r values "
-                  f"(Table 5.1), {meta.get('check_iterations', '?')} iterations, last {meta.get('check_tail', '?')} "
+                  f"(Table 6.1), {meta.get('check_iterations', '?')} iterations, last {meta.get('check_tail', '?')} "
                   f"symbols; top rows: symbol-periodic but no sink (word 2: P2 rotation); bottom rows: found patterns longer than L")
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()

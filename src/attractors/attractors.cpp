@@ -1,4 +1,4 @@
-// Attractor classification, identity and basins (Section 7.1 (1)) on the batched kernel.
+// Attractor classification, identity and basins (Section 8.1 (1)) on the batched kernel.
 #include "attractors/attractors.hpp"
 
 #include "core/coords.hpp"

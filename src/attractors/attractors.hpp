@@ -1,5 +1,5 @@
-// Attractors of P_r-hat (Section 7.1 (1)): per-orbit classification, attractor identity, basins over grids
-// with frequencies and confidence intervals, basin fractions across r (Table 5.1 with many orbits).
+// Attractors of P_r-hat (Section 8.1 (1)): per-orbit classification, attractor identity, basins over grids
+// with frequencies and confidence intervals, basin fractions across r (Table 6.1 with many orbits).
 #pragma once
 
 #include "core/map.hpp"
@@ -17,7 +17,7 @@ using core::Vec3;
 
 // Conventions.
 //  * Iterations are map iterations of P_r (one symbol 1, 2 or 3 each).  Points are unit vectors in
-//    Q = {x >= 0, z <= 0}; strip coordinates (w1, w2) are those of eq. (5.5).
+//    Q = {x >= 0, z <= 0}; strip coordinates (w1, w2) are those of eq. (6.4).
 //  * Pass 1 (every orbit, batched kernel, no tangent): `transient` steps, then a window of `window`
 //    steps in which the return to the window's first point (period <= max_period), the symbols and
 //    the counts of symbols 1 / 3 are recorded.  Pass 2 (orbits without a period): Lyapunov exponent
@@ -99,7 +99,7 @@ struct Attractor {
   std::string pattern;          // paper notation (132^3312^3; 312^2 for the J-mirror of 132^2; "1" / "3" collapse)
   std::string canonical;        // patterns::canonical in paper notation (mirrors share it)
   int period = 0;
-  int collisions = 0;           // letters a, b, c per period (Table 5.1's last column)
+  int collisions = 0;           // letters a, b, c per period (Table 6.1's last column)
   std::string letters;          // collision letters from the exact periodic point (acb / cab resolved)
   std::string stability;        // periodic: the pattern tool's outcome at r, and its reason if not stable
   double lyapunov2 = 0;         // periodic: the pattern tool's projective exponent log|l2/l1|/p

@@ -1,5 +1,5 @@
 // `btob classify` (one orbit), `btob basins` (one r over a grid: basin image and fractions), `btob basins-r`
-// (basin fractions across r, compared to Table 5.1): the attractors of Section 7.1 (1).
+// (basin fractions across r, compared to Table 6.1): the attractors of Section 8.1 (1).
 #include "attractors/attractors.hpp"
 #include "patterns/patterns.hpp"
 #include "cli/app.hpp"
@@ -221,12 +221,12 @@ struct BasinsRArgs {
   std::string grid = "random:2000";
   std::uint64_t seed = 1;
   std::string out = "results/attractors/basins_r";
-  std::string reference = BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_5_1.csv";
+  std::string reference = BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_6_1.csv";
   bool no_plot = false, quiet = false;
   attractors::Options opt;
 };
 
-// Table 5.1's r values, percentages and patterns (read from the reference CSV when given).
+// Table 6.1's r values, percentages and patterns (read from the reference CSV when given).
 struct TableRow {
   double r;
   std::string percent, patterns;
@@ -302,7 +302,7 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
   }
   io::write_text_atomic(out / "fractions_r.csv", csv);
 
-  // Comparison with Table 5.1: periodic fraction (paper: % of 10 orbits) and the patterns found.
+  // Comparison with Table 6.1: periodic fraction (paper: % of 10 orbits) and the patterns found.
   std::string cmp =
       "r,paper_percent_periodic,paper_ci_low,paper_ci_high,consistent,paper_patterns,periodic_fraction,ci_low,ci_high,"
       "patterns_found,paper_patterns_found,extra_patterns,other_types\n";
@@ -352,7 +352,7 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
                        consistent, csv_quote(t ? t->patterns : ""), f.value, f.low, f.high, csv_quote(found_s),
                        paper_found, csv_quote(extra), csv_quote(other));
   }
-  io::write_text_atomic(out / "table_5_1_comparison.csv", cmp);
+  io::write_text_atomic(out / "table_6_1_comparison.csv", cmp);
 
   // HDF5: fraction matrix [r x key] for the stacked areas.
   std::vector<double> frac(rows.size() * (keys.size() + 1), 0.0), rv;
@@ -421,12 +421,12 @@ Register reg([](CLI::App& app) {
   }
   {
     auto a = std::make_shared<BasinsRArgs>();
-    CLI::App* c = app.add_subcommand("basins-r", "Basin fractions across r (Table 5.1 with many orbits), stacked areas");
+    CLI::App* c = app.add_subcommand("basins-r", "Basin fractions across r (Table 6.1 with many orbits), stacked areas");
     c->add_option("--r-values", a->r_values, "r values r1,r2,... in (0, 1)")->delimiter(',');
-    c->add_flag("--table", a->table, "add the r values of Table 5.1 in [0.1, 0.6]");
+    c->add_flag("--table", a->table, "add the r values of Table 6.1 in [0.1, 0.6]");
     c->add_option("--grid", a->grid, "initial conditions: random:N, paper, strip:NxM or x,y,z;...")->capture_default_str();
     c->add_option("--seed", a->seed, "seed of random grids")->capture_default_str();
-    c->add_option("--reference", a->reference, "Table 5.1 as CSV")->capture_default_str();
+    c->add_option("--reference", a->reference, "Table 6.1 as CSV")->capture_default_str();
     c->add_option("--out", a->out, "output directory")->capture_default_str();
     c->add_flag("--no-plot", a->no_plot, "write data only");
     c->add_flag("--quiet", a->quiet, "no progress on stderr");

@@ -77,7 +77,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
     hi = a.range[1];
   }
   if (a.algorithm != "linear" && a.algorithm != "trig")
-    throw UsageError(fmt::format("algorithm: got '{}', expected linear (Theorem 3.1) or trig (Appendix A.1)", a.algorithm));
+    throw UsageError(fmt::format("algorithm: got '{}', expected linear (Theorem 3.3) or trig (Appendix A.1)", a.algorithm));
   if (a.algorithm == "trig" && (a.raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
     throw UsageError("algorithm: trig runs in double or long-double and keeps no raw tails");
   for (double v : a.vlines)
@@ -206,7 +206,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
 
 Register reg([](CLI::App& app) {
   auto a = std::make_shared<BifurcationArgs>();
-  CLI::App* c = app.add_subcommand("bifurcation", "Tails of theta or phi against r, as a density image (Figures 4.x, 5.x)");
+  CLI::App* c = app.add_subcommand("bifurcation", "Tails of theta or phi against r, as a density image (Figures 4.x, 6.x)");
   c->add_option("--r-min", a->r_min, "smallest r, in (0,1)")->capture_default_str();
   c->add_option("--r-max", a->r_max, "largest r, in (0,1)")->capture_default_str();
   c->add_option("--r-count", a->r_count, "number of evenly spaced r values")->capture_default_str();
@@ -227,7 +227,7 @@ Register reg([](CLI::App& app) {
   c->add_option("--range", a->range, "lo hi of the coordinate axis (log10 units with --log)")->expected(2);
   c->add_option("--vline", a->vlines, "r values drawn as vertical lines")->expected(1, -1);
   c->add_option("--overlay", a->overlays, "named overlays: " + overlay_names())->expected(1, -1);
-  c->add_option("--algorithm", a->algorithm, "linear (Theorem 3.1, batched kernel) or trig (Appendix A.1, per collision)")
+  c->add_option("--algorithm", a->algorithm, "linear (Theorem 3.3, batched kernel) or trig (Appendix A.1, per collision)")
       ->capture_default_str();
   c->add_flag("--raw", a->raw, "also store the raw tails in the HDF5 file");
   c->add_flag("--no-plot", a->no_plot, "write data only");

@@ -1,6 +1,6 @@
 // `btob hyperbolicity` (singular values of the one-step derivative over a strip grid, as an image) and
 // `btob hyperbolicity-orbits` (per r: fraction of expanding steps and CLV angles along orbits, beside lambda1):
-// the (non-)hyperbolicity of Section 7 (3).
+// the (non-)hyperbolicity of Section 8.1 (3).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/map.hpp"

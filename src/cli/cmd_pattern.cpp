@@ -1,4 +1,4 @@
-// `btob pattern`: verdict of one word at r, its stability windows, or the atlas of stable patterns (Sections 5.3, 6).
+// `btob pattern`: verdict of one word at r, its stability windows, or the atlas of stable patterns (Sections 6.2, 7).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/coords.hpp"
@@ -53,7 +53,7 @@ template <class T> void print_verdict(const Word& w, const T& r, int digits) {
   std::cout << fmt::format("r           {}\n", str(r, digits));
   if (v.reduced) {
     Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
-    std::cout << fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 6.1)\n", to_digits(h));
+    std::cout << fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
   } else {
     std::cout << fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()), int(u.s.front()));
   }
@@ -125,8 +125,8 @@ void atlas(const PatternArgs& a, const std::string& command_line) {
   attrs["atlas_seconds"] = std::chrono::duration<double>(t1 - t0).count();
 
   if (!a.no_check) {
-    // Item 6: the iterator at Table 5.1's r values, patterns detected against the atlas.
-    const std::vector<double> rs = table_5_1_r();
+    // Item 6: the iterator at Table 6.1's r values, patterns detected against the atlas.
+    const std::vector<double> rs = table_6_1_r();
     const DetectionRun d = detect_patterns(rs, a.ics, a.iterations, a.tail, a.seed, a.max_period, a.threads);
     const auto t2 = std::chrono::steady_clock::now();
     std::string det = "r,word,symbols,collisions,count,ics,periodic_fraction,status\n";
@@ -213,7 +213,7 @@ void pattern(const PatternArgs& a, const std::string& command_line) {
   if (a.word == "atlas") return atlas(a, command_line);
   const Word w = parse_word(a.word, "word");
   if (a.charpoly) {
-    // Exact characteristic polynomial of the (reduced) period matrix and its discriminant (Theorems 6.1, 6.2).
+    // Exact characteristic polynomial of the (reduced) period matrix and its discriminant (Theorems 7.1, 7.3).
     if (a.window || !a.r_text.empty()) throw UsageError("charpoly: expected no --r and no --window with --charpoly");
     const CharPoly chi = characteristic_polynomial(w);
     const bool reduced = is_J_square(primitive_root(w));  // the same test characteristic_polynomial applies
@@ -269,7 +269,7 @@ void pattern(const PatternArgs& a, const std::string& command_line) {
 Register reg([](CLI::App& app) {
   auto a = std::make_shared<PatternArgs>();
   CLI::App* c = app.add_subcommand(
-      "pattern", "Periodic patterns: verdict of a word at r, its stability windows, or the atlas (Sections 5.3, 6)");
+      "pattern", "Periodic patterns: verdict of a word at r, its stability windows, or the atlas (Sections 6.2, 7)");
   c->add_option("word", a->word, "a word over 1,2,3 (132312, 132^3312^3, (ab)(cb)(acb)), or 'atlas'")->required();
   c->add_option("--r", a->r_text, "restitution coefficient in (0,1) (verdict mode)");
   c->add_option("--precision", a->precision, "verdict mode: float, double, long-double, float128 or mpfr:D; window mode: mpfr:D")

@@ -1,5 +1,5 @@
 // `btob correlate` (C_N along one orbit) and `btob measure` (empirical measures of many initial
-// conditions, their distances and convergence), Section 7 (2).
+// conditions, their distances and convergence), Section 8.1 (2).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "io/io.hpp"
@@ -318,7 +318,7 @@ Register reg([](CLI::App& app) {
   auto c = std::make_shared<CorrelateArgs>();
   CLI::App* cc = app.add_subcommand(
       "correlate", "C_N(phi, psi; n) = (1/N) sum_{k<N} phi(x_k) psi(x_{k+n}) - mean(phi) mean(psi), n = 0..n-max, along "
-                   "one orbit (Section 7 (2)); writes NAME.csv (lag,C_N), NAME.h5 (C_N, envelope, power spectrum), "
+                   "one orbit (Section 8.1 (2)); writes NAME.csv (lag,C_N), NAME.h5 (C_N, envelope, power spectrum), "
                    "NAME.json, NAME.png");
   cc->add_option("--r", c->r, "restitution coefficient, in (0,1)")->capture_default_str();
   cc->add_option("--point", c->point, "initial point x,y,z (domain x*z <= 0; any scale)")->capture_default_str();
@@ -342,7 +342,7 @@ Register reg([](CLI::App& app) {
   auto m = std::make_shared<MeasureArgs>();
   CLI::App* mc = app.add_subcommand(
       "measure", "Empirical measures mu_{N,x} = (1/N) sum_{k<N} delta_{x_k} of many initial conditions at one r "
-                 "(Section 7 (2)): 2-D histograms, marginals, total variation and 1-D Wasserstein distances, groups "
+                 "(Section 8.1 (2)): 2-D histograms, marginals, total variation and 1-D Wasserstein distances, groups "
                  "of coinciding measures, convergence against N; writes NAME.h5, NAME_report.csv, NAME.json, NAME.png");
   mc->add_option("--r", m->r, "restitution coefficient, in (0,1)")->capture_default_str();
   mc->add_option("--grid", m->grid, "initial conditions: paper (Section 4, 32 points), strip:NxM, random:N, x,y,z;...")

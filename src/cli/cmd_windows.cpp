@@ -155,7 +155,7 @@ RegisterOverlay windows_overlay("windows", [](double r_min, double r_max) {
 RegisterOverlay stripes_overlay("stripes", [](double r_min, double r_max) {
   static const std::vector<std::pair<double, int>> all = [] {
     std::vector<std::pair<double, int>> v;
-    for (const auto& s : windows::thin_stripes(120, 20)) v.push_back({static_cast<double>(s.value), 1});  // Figure 5.x: m <= 120
+    for (const auto& s : windows::thin_stripes(120, 20)) v.push_back({static_cast<double>(s.value), 1});  // Figure 6.8: m <= 120
     return v;
   }();
   std::vector<std::pair<double, int>> out;
@@ -318,7 +318,7 @@ Register reg([](CLI::App& app) {
 
   auto s_m = std::make_shared<int>(120);
   auto s_digits = std::make_shared<int>(20);
-  CLI::App* s = w->add_subcommand("stripes", "thin stripes r(l/m), eq. (5.6), 1/4 < l/m <= 1/2, m <= max-m");
+  CLI::App* s = w->add_subcommand("stripes", "thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max-m");
   s->add_option("--max-m", *s_m, "largest denominator m")->capture_default_str();
   s->add_option("--digits", *s_digits, "decimals, 10..10000")->capture_default_str();
   s->callback([=] { cmd_stripes(*s_m, *s_digits); });

@@ -1,4 +1,4 @@
-// Coordinates of a direction u: angles (theta, phi), the strip (w1, w2) of eq. (5.5), particles (p, q).
+// Coordinates of a direction u: angles (theta, phi), the strip (w1, w2) of eq. (6.4), particles (p, q).
 #pragma once
 
 #include "core/map.hpp"
@@ -18,7 +18,7 @@ template <class T> T theta(const Vec3<T>& u) {
   return atan2(-q(2), q(0));
 }
 
-// phi in [0, pi]: cos(phi) = -y/|u| (Section 5.1), computed in the quadrant Q.
+// phi in [0, pi]: cos(phi) = -y/|u| (eq. (6.1)), computed in the quadrant Q.
 template <class T> T phi(const Vec3<T>& u) {
   using std::atan2;
   using std::sqrt;
@@ -27,7 +27,7 @@ template <class T> T phi(const Vec3<T>& u) {
   return atan2(sqrt(q(0) * q(0) + q(2) * q(2)), -q(1));
 }
 
-// The strip of eq. (5.5): w = (y, x + z) / (x - z), w1 in R, w2 in [-1, 1].  Needs x - z > 0.
+// The strip of eq. (6.4): w = (y, x + z) / (x - z), w1 in R, w2 in [-1, 1].  Needs x - z > 0.
 template <class T> std::pair<T, T> strip(const Vec3<T>& u) {
   const Vec3<T> q = to_quadrant(u);
   const T d = q(0) - q(2);
@@ -39,7 +39,7 @@ template <class T> Vec3<T> from_strip(const T& w1, const T& w2) {
   return Vec3<T>((1 + w2) / 2, w1, (w2 - 1) / 2);
 }
 
-// u from the angles of eq. (2.14): p0 = (sin th, 0, cos th), q0 = (cos ph cos th, sin ph, -cos ph sin th);
+// u from the angles of eq. (2.18): p0 = (sin th, 0, cos th), q0 = (cos ph cos th, sin ph, -cos ph sin th);
 // u = -(p0 x q0) = (cos th sin ph, -cos ph, -sin th sin ph), a unit vector in Q.
 template <class T> Vec3<T> from_angles(const T& th, const T& ph) {
   using std::cos;

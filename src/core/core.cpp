@@ -20,7 +20,7 @@ void validate_point(double x, double y, double z, const char* field) {
         field, x, y, z));
   if (x * z > 0 || (x != 0 && z != 0 && std::signbit(x) == std::signbit(z)))
     throw std::domain_error(
-        fmt::format("{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.2)", field, x, y, z));
+        fmt::format("{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.4)", field, x, y, z));
 }
 
 std::string Precision::name() const {

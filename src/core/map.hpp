@@ -1,4 +1,4 @@
-// The b-to-b map P_r of Theorem 3.1: matrices P1, P2, P3, the branch choice, symbols and collision letters.
+// The b-to-b map P_r of Theorem 3.3: matrices P1, P2, P3, the branch choice, symbols and collision letters.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,15 +10,15 @@
 
 namespace btob::core {
 
-// Conventions (paper, Sections 3 and 5.3):
+// Conventions (paper, Sections 3 and 6.2):
 //  * u = (x, y, z) is a normal vector to the plane Span[p, q] right after a b-collision; only its
 //    direction matters (P(-u) = -P(u)).
 //  * The domain is the double quadrant x*z <= 0.  Every map evaluation first brings u into the
 //    quadrant Q = {x >= 0, z <= 0} (u -> -u when x < 0, or x == 0 and z > 0), which P keeps invariant.
 //  * In Q the branch (symbol) is 1 (collisions ab, matrix P1) when alpha*y - x > 0, 3 (cb, P3) when
 //    alpha*y - z < 0, and 2 (acb or cab, P2) otherwise.  In Q these tests imply the sign of y used in
-//    Theorem 3.1 (alpha*y > x >= 0 forces y > 0, alpha*y < z <= 0 forces y < 0), and the two cannot hold
-//    together.  Ties alpha*y - x = 0 or alpha*y - z = 0 go to P2 (Remark 3.4), and so does y = 0.
+//    Theorem 3.3 (alpha*y > x >= 0 forces y > 0, alpha*y < z <= 0 forces y < 0), and the two cannot hold
+//    together.  Ties alpha*y - x = 0 or alpha*y - z = 0 go to P2 (Remark 3.6), and so does y = 0.
 //  * On x = 0 (p3 = 0: particles 3 and 4 touch at the b-collision) or z = 0 (p1 = 0) the physical
 //    system has a triple collision; the map is extended by the same formulas.  z = 0 is invariant under
 //    P1 (three-particle collapse of particles 1-2-3, theta -> 0), x = 0 under P3 (theta -> pi/2).
@@ -27,12 +27,12 @@ namespace btob::core {
 template <class T> using Vec3 = Eigen::Matrix<T, 3, 1>;
 template <class T> using Mat3 = Eigen::Matrix<T, 3, 3>;
 
-// The symbols of Section 5.3: 1 = ab, 2 = acb or cab, 3 = cb.
+// The symbols of Section 6.2: 1 = ab, 2 = acb or cab, 3 = cb.
 enum class Symbol : std::uint8_t { ab = 1, acb_or_cab = 2, cb = 3 };
 
 template <class T> T alpha(const T& r) { return (1 + r) / 2; }  // eq. (2.8)
 
-// Theorem 3.1, eq. (3.3).
+// Theorem 3.3, eqs. (3.5)-(3.6).
 template <class T> Mat3<T> P1(const T& r) {
   const T a = alpha(r);
   Mat3<T> m;
@@ -66,7 +66,7 @@ template <class T> Mat3<T> P(int i, const T& r) {
     default: throw std::invalid_argument("symbol: got " + std::to_string(i) + ", expected 1, 2 or 3");
   }
 }
-// J of eq. (4.2): swaps x and z.  P3 = J P1 J.
+// J of eq. (4.4): swaps x and z.  P3 = J P1 J.
 template <class T> Mat3<T> J() {
   Mat3<T> m;
   m << T(0), T(0), T(1), T(0), T(1), T(0), T(1), T(0), T(0);

@@ -30,7 +30,7 @@ std::vector<double> linspace_r(double a, double b, long n);
 // (y = -9/(2+g); README explains the choice).  Ordered g-major.
 std::vector<Vec3<double>> paper_grid();
 
-// An n1 x n2 grid of cell centres on the strip (eq. 5.5): w1 in [w1_min, w1_max], w2 in [-1, 1].
+// An n1 x n2 grid of cell centres on the strip (eq. (6.4)): w1 in [w1_min, w1_max], w2 in [-1, 1].
 std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min = -2, double w1_max = 2);
 
 // n points uniform on the quarter sphere {x >= 0, z <= 0} (the projective uniform measure), from a

@@ -1,4 +1,4 @@
-// SeriesRecorder: the unit states and symbols of a window of consecutive steps of every orbit (Section 7 (2)).
+// SeriesRecorder: the unit states and symbols of a window of consecutive steps of every orbit (Section 8.1 (2)).
 #pragma once
 
 #include "iterate/ensemble.hpp"
@@ -12,7 +12,7 @@ namespace btob::iterate {
 // Keeps, for steps from..from+count-1 of every orbit, the state normalised to a unit vector (in double,
 // whatever the kernel's T) and the symbol 1/2/3 of the step that produced it:
 //     x[o * count + j], y[...], z[...], symbol[...]  for state k = from + j  (k >= 1: steps done).
-// Every observable of Section 7 (theta, phi, the strip, cos phi, symbol indicators, user functions of
+// Every observable of Section 8.1 (theta, phi, the strip, cos phi, symbol indicators, user functions of
 // the state) is a function of these, so one run serves them all.  Storage: 25 bytes per point.
 struct SeriesRecorder {
   static constexpr bool needs_symbols = true;

@@ -1,4 +1,4 @@
-// TangentRecorder: the projective derivative cocycle carried along every orbit of a batched run (Section 7 (3)).
+// TangentRecorder: the projective derivative cocycle carried along every orbit of a batched run (Section 8.1 (3)).
 #pragma once
 
 #include "iterate/lanes.hpp"

@@ -1,4 +1,4 @@
-// (Non-)hyperbolicity of the projective map (paper, Section 7 (3)): singular values of the one-step derivative
+// (Non-)hyperbolicity of the projective map (paper, Section 8.1 (3)): singular values of the one-step derivative
 // D P-hat(u) on the tangent plane, the fraction of expanding steps along an orbit, and the covariant Lyapunov
 // vectors (Ginelli's forward-backward method) with the angle between the two Oseledets directions.
 #pragma once
@@ -32,7 +32,7 @@ struct StepSingularValues {
 };
 StepSingularValues step_singular_values(const Vec3<double>& u, double r);
 
-// s1, s2 and the branch over the n1 x n2 cell centres of the strip (eq. 5.5), w1 in [w1_min, w1_max],
+// s1, s2 and the branch over the n1 x n2 cell centres of the strip (eq. (6.4)), w1 in [w1_min, w1_max],
 // w2 in [-1, 1]; arrays in iterate::strip_grid order (w1-major: index i1 * n2 + i2).
 struct StripSingularValues {
   long n1 = 0, n2 = 0;

@@ -67,7 +67,7 @@ template <class T> ClvResult covariant_vectors(const Vec3<T>& u0, const T& r, co
         frames.push_back(V);
       }
     }
-    // D_k V_k = (P V - w (w . P V)) / |P u| (Section 7 (3)), then D_k V_k = V_{k+1} R_k by Gram-Schmidt.
+    // D_k V_k = (P V - w (w . P V)) / |P u| (Section 8.1 (3)), then D_k V_k = V_{k+1} R_k by Gram-Schmidt.
     Eigen::Matrix<T, 3, 2> W = Pm[s - 1] * V;
     W -= w * (w.transpose() * W);
     W /= g;

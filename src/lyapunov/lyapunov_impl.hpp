@@ -14,7 +14,7 @@
 namespace btob::lyapunov {
 namespace detail {
 
-// One step of the map from u in Q with the branch s already chosen, in the form of eq. (3.2) (Theorem 3.1):
+// One step of the map from u in Q with the branch s already chosen, in the form of eq. (3.5) (Theorem 3.3):
 // written with c1 = alpha y - x and c3 = alpha y - z so that the image stays in Q exactly (x' = -r c1 >= 0
 // on branch 2, etc.), which the plain matrix product does not guarantee under rounding near boundaries.
 template <class T> Vec3<T> apply(int s, const Vec3<T>& u, const T& r) {
@@ -152,7 +152,7 @@ template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, cons
     const Vec3<T> pu = detail::apply(s, u, r);
     const T g = pu.norm();
     const Vec3<T> w = pu / g;
-    // D(u) V = (P V - w (w . P V)) / |P u| (Section 7 (3): the derivative cocycle on tangent planes).
+    // D(u) V = (P V - w (w . P V)) / |P u| (Section 8.1 (3): the derivative cocycle on tangent planes).
     Eigen::Matrix<T, 3, 2> W = Pm[s - 1] * V;
     W -= w * (w.transpose() * W);
     V = W / g;

@@ -35,7 +35,7 @@ OrbitExponents exponents_from(const iterate::TangentRecorder& rec) {
   for (std::size_t o = 0; o < N; ++o) {
     const double* c = rec.cum.data() + o * (B + 1) * 3;
     const double logr = std::log(rec.rr[o]);
-    // Cumulative sums over averaged steps at each block end (Section 7 (3); identities in tangent.hpp).
+    // Cumulative sums over averaged steps at each block end (Section 8.1 (3); identities in tangent.hpp).
     for (std::size_t j = 0; j < B; ++j) {
       const double* e = c + (j + 1) * 3;
       const double dL = e[0] - c[0], dG = e[1] - c[1], dn = e[2] - c[2];

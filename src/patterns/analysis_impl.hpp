@@ -1,4 +1,4 @@
-// Template bodies of the periodic-orbit analysis (Section 6): products, cubic spectrum, feasibility, windows.
+// Template bodies of the periodic-orbit analysis (Section 7): products, cubic spectrum, feasibility, windows.
 #pragma once
 
 #include "patterns/patterns.hpp"
@@ -153,7 +153,7 @@ template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool red
 // margins (if non-null) receives the p + 1 margins (domain, then one per symbol), sign-invariant.
 template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
   const T a = core::alpha(r);
-  const T dom = -v(0) * v(2);  // > 0 strictly inside the domain (eq. 3.2)
+  const T dom = -v(0) * v(2);  // > 0 strictly inside the domain (eq. 3.4)
   if (margins) margins->assign(1, dom);
   int fail = dom > 0 ? -1 : 0;
   v = core::to_quadrant(v);

@@ -84,7 +84,7 @@ DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterat
   return d;
 }
 
-std::vector<double> table_5_1_r() {
+std::vector<double> table_6_1_r() {
   return {0.1,  0.101, 0.102, 0.103, 0.15, 0.16, 0.17, 0.172, 0.174, 0.176, 0.178, 0.18, 0.19, 0.2,  0.21, 0.22, 0.23,
           0.24, 0.25,  0.3,   0.31,  0.32, 0.33, 0.34, 0.5,   0.51,  0.52,  0.53,  0.54, 0.57, 0.58, 0.59, 0.6};
 }

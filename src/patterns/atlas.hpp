@@ -1,4 +1,4 @@
-// The atlas of stable periodic patterns over r, and its check against the batched iterator (Table 5.1).
+// The atlas of stable periodic patterns over r, and its check against the batched iterator (Table 6.1).
 #pragma once
 
 #include "patterns/patterns.hpp"
@@ -42,7 +42,7 @@ DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterat
 // The eventual period of one symbol stream (0 when not periodic with period <= max_period).
 int eventual_period(const std::uint8_t* s, long n, int max_period);
 
-// Table 5.1's r values.
-std::vector<double> table_5_1_r();
+// Table 6.1's r values.
+std::vector<double> table_6_1_r();
 
 }  // namespace btob::patterns

@@ -1,4 +1,4 @@
-// Exact polynomial arithmetic in r and characteristic polynomials of word matrices (Theorems 6.1, 6.2).
+// Exact polynomial arithmetic in r and characteristic polynomials of word matrices (Theorems 7.1, 7.3).
 #include "patterns/exact.hpp"
 
 #include <fmt/format.h>
@@ -86,7 +86,7 @@ PMat mul(const PMat& a, const PMat& b) {
   return m;
 }
 
-// P1, P2, P3 of eq. (3.3) with alpha = (1 + r)/2 (eq. 2.8), entries exact polynomials in r.
+// P1, P2, P3 of eq. (3.6) with alpha = (1 + r)/2 (eq. 2.8), entries exact polynomials in r.
 PMat P(int s) {
   const RationalPoly r{0, 1}, a = rational(1, 2) * RationalPoly{1, 1}, zero;
   const RationalPoly one = RationalPoly::constant(1);

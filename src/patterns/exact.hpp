@@ -32,7 +32,7 @@ RationalPoly operator*(const rational& s, const RationalPoly& a);
 RationalPoly pow(const RationalPoly& a, int n);
 
 // chi(lambda) = det(lambda I - A) = lambda^3 + c2 lambda^2 + c1 lambda + c0 of A = J M_h when w = h J(h)
-// (and reduce), else A = M_w (Theorem 6.1 proof: chi of J P2 P3 P1 for 132312).
+// (and reduce), else A = M_w (Theorem 7.1 proof: chi of J P2 P3 P1 for 132312).
 struct CharPoly {
   RationalPoly c2, c1, c0;
 };

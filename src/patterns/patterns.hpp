@@ -1,4 +1,4 @@
-// Periodic patterns of P_r (Sections 5.3 and 6): words over {1,2,3}, feasibility and stability of periodic
+// Periodic patterns of P_r (Sections 6.2 and 7): words over {1,2,3}, feasibility and stability of periodic
 // orbits, stability windows in r.
 #pragma once
 
@@ -16,13 +16,13 @@ using core::Mat3;
 using core::Vec3;
 
 // Conventions.
-//  * A word w = w_1 ... w_p over {1, 2, 3} (Section 5.3): 1 = ab (P1), 3 = cb (P3), 2 = acb or cab (P2).
+//  * A word w = w_1 ... w_p over {1, 2, 3} (Section 6.2): 1 = ab (P1), 3 = cb (P3), 2 = acb or cab (P2).
 //    Its matrix is M_w = P_{w_p} ... P_{w_1}: the first symbol is applied first.
-//  * J (eq. 4.2) swaps the symbols 1 <-> 3 (P3 = J P1 J, P2 = J P2 J).
+//  * J (eq. 4.4) swaps the symbols 1 <-> 3 (P3 = J P1 J, P2 = J P2 J).
 //  * Canonical form: the smallest rotation of w and of J(w) in the symbol order 1 < 3 < 2 (this order
 //    gives the paper's spellings: 132312, 1133, 132^3312^3, 131312^3313132^3).
 //  * Lengths: |w| in symbols (iterations of P_r); collisions(w) counts letters a, b, c (1, 3 -> 2, 2 -> 3),
-//    as the last column of Table 5.1.
+//    as the last column of Table 6.1.
 struct Word {
   std::vector<std::uint8_t> s;  // symbols 1, 2, 3
   std::size_t size() const { return s.size(); }
@@ -36,14 +36,14 @@ struct Word {
 Word parse_word(std::string_view text, const char* field = "word");
 std::string to_digits(const Word& w);   // "1322231222"
 std::string to_paper(const Word& w);    // "132^3312^3" (runs of 2 of length >= 2 and of 1, 3 of length >= 4)
-std::string to_letters(const Word& w);  // "abcbacb...": symbol 2 written acb (Section 6.3)
+std::string to_letters(const Word& w);  // "abcbacb...": symbol 2 written acb (Section 7.3)
 int collisions(const Word& w);          // number of collisions a, b, c in one period
 Word apply_J(const Word& w);            // 1 <-> 3
 Word rotate(const Word& w, std::size_t k);  // w_{k+1} ... w_p w_1 ... w_k
 Word primitive_root(const Word& w);     // shortest u with w = u^m
 bool is_primitive(const Word& w);
 Word canonical(const Word& w);          // smallest rotation of w and J(w), order 1 < 3 < 2
-// w = h J(h) (Section 6.1): then M_w = (J M_h)^2 and the reduced matrix J M_h is studied instead.
+// w = h J(h) (Section 7.1): then M_w = (J M_h)^2 and the reduced matrix J M_h is studied instead.
 bool is_J_square(const Word& w);
 // Every primitive canonical word of length 1..max_length (sorted by length, then canonical order).
 std::vector<Word> enumerate_canonical(int max_length);
@@ -66,7 +66,7 @@ template <class T> struct EigenInfo {
 template <class T> struct Verdict {
   Word word;                       // the primitive root of the input word, which is what is analysed
   T r{};
-  bool reduced = false;            // analysed through J M_h (Section 6.1)
+  bool reduced = false;            // analysed through J M_h (Section 7.1)
   std::vector<EigenInfo<T>> spectrum;  // 3 entries, by decreasing modulus
   Outcome outcome = Outcome::none;
   int orbit_eigen = -1;            // index in spectrum of the reported periodic point (-1: none)
@@ -78,7 +78,7 @@ template <class T> struct Verdict {
   std::string reason;              // why not stable: "complex", "dominance", "domain", "feasN"
 };
 
-// The analysis of Section 6 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.
+// The analysis of Section 7 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.
 // Throws std::invalid_argument (field "word") on an empty word, std::domain_error (field "r") outside (0,1).
 template <class T> Verdict<T> analyse(const Word& w, const T& r);
 // True when analyse(w, r).outcome == stable, without building the orbit (the atlas's inner loop).
@@ -97,7 +97,7 @@ std::vector<double> default_grid();  // 7500 points, denser on [0.07, 0.26) wher
 template <class T>
 std::vector<Interval<T>> stability_set(const Word& w, const std::vector<double>& grid, const T& tol);
 
-// Quantities of Section 6 as functions of r, for the real eigenvalue picked by Track of the analysed matrix
+// Quantities of Section 7 as functions of r, for the real eigenvalue picked by Track of the analysed matrix
 // (J M_h if w = h J(h), else M_w).  Signs are those of the paper's normalisation x = 1 (z = 1 for x_component).
 enum class Track { dominant_real, negative_real };
 enum class Quantity {

@@ -29,7 +29,7 @@ namespace btob::reference {
 using core::Mat3;
 using core::Vec3;
 
-// The collision matrices A, B, C of eq. (2.5), for letter 'a', 'b' or 'c' (throws on another).
+// The collision matrices A, B, C of eq. (2.7), for letter 'a', 'b' or 'c' (throws on another).
 template <class T> Mat3<T> collision_matrix(char letter, const T& r);
 
 // ---- Definition 2.1: the cross-product algorithm ------------------------------------------------
@@ -67,10 +67,10 @@ template <class T> struct ParticleCycle {
   ParticleStatus status;
 };
 
-// From (p, q) right after a b-collision (p2 = 0, q2 > 0, p1, p3 >= 0), free flight p += t q (eq. 2.2)
+// From (p, q) right after a b-collision (p2 = 0, q2 > 0, p1, p3 >= 0), free flight p += t q (eq. 2.5b)
 // and binary collisions q -> K q (eqs. 2.4-2.5) until the next b-collision.  The velocities are
 // first shifted to q - lambda p: this keeps the plane Span[p, q] and so the order of collisions
-// (Theorem 4.1 of DoHR025, used in the proof of Theorem 3.1), and makes the pairs approach.  The run
+// (Theorem 4.1 of DoHR025, used in the proof of Theorem 3.3), and makes the pairs approach.  The run
 // is tried with lambda = 0, then lambda = 4^k |q| / |p| (k = 0, 1, ..., 40) from the same start
 // until the particles reach a b-collision; each try is a genuine trajectory of the 4 particles.
 template <class T> ParticleCycle<T> simulate_b_to_b(const core::Particles<T>& start, const T& r);
@@ -98,7 +98,7 @@ template <class T> struct TrigState {
 };
 
 // The initial b-state of Appendix A.1 for angles theta0 in (0, pi/2), phi0 in (0, pi), phi0 != pi/2:
-// X = (sin th, 0, cos th), V = cos ph (cos th, 0, -sin th) + sin ph (0, 1, 0)  (eq. 2.14).
+// X = (sin th, 0, cos th), V = cos ph (cos th, 0, -sin th) + sin ph (0, 1, 0)  (eq. 2.18).
 template <class T> TrigState<T> trig_start(const T& theta0, const T& phi0);
 
 // One pass of the MATLAB while-loop: one collision.  Writes the local angles theta, phi of the state
@@ -113,7 +113,7 @@ template <class T> struct TrigCycle {
 };
 
 // From a b-state (contact == 2) to the next b-state: 2 or 3 calls of trig_collision.  theta and phi
-// are those of eq. (2.14) at the new b-collision, so core::from_angles(theta, phi) is P-hat(u).
+// are those of eq. (2.18) at the new b-collision, so core::from_angles(theta, phi) is P-hat(u).
 template <class T> TrigCycle<T> trig_b_to_b(TrigState<T>& s, const T& r);
 
 // ---- Figure 4.7: a bifurcation diagram with the trigonometric algorithm -------------------------

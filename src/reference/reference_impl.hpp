@@ -37,7 +37,7 @@ template <class T> bool finite3(const Vec3<T>& v) {
 template <class T> Mat3<T> collision_matrix(char letter, const T& r) {
   const T a = core::alpha(r);
   Mat3<T> m = Mat3<T>::Identity();
-  switch (letter) {  // eq. (2.5): column i carries the collision of pair i
+  switch (letter) {  // eq. (2.7): column i carries the collision of pair i
     case 'a': m(0, 0) = -r; m(1, 0) = a; break;
     case 'b': m(0, 1) = a; m(1, 1) = -r; m(2, 1) = a; break;
     case 'c': m(1, 2) = a; m(2, 2) = -r; break;
@@ -107,11 +107,11 @@ template <class T> ParticleCycle<T> particle_attempt(const core::Particles<T>& s
       break;
     }
     const T before = p.norm() + t_first * q.norm();
-    p += t_first * q;  // free flight (eq. 2.2)
+    p += t_first * q;  // free flight (eq. 2.5b)
     out.condition += before / p.norm();
     p(first) = T(0);   // exactly in contact
     for (int j = 0; j < 3; ++j) p(j) = std::max(p(j), T(0));  // rounding must not cross another wall
-    q = K[first] * q;  // eq. (2.4)
+    q = K[first] * q;  // eq. (2.6)
     out.time += t_first;
     out.letters += static_cast<char>('a' + first);
     if (first == 1) {

@@ -1,4 +1,4 @@
-// C_N(phi, psi; n) by the direct sum and by FFT (FFTW), and the periodogram (Section 7 (2)); T = float,
+// C_N(phi, psi; n) by the direct sum and by FFT (FFTW), and the periodogram (Section 8.1 (2)); T = float,
 // double, long double.
 #include "stats/stats.hpp"
 

@@ -1,4 +1,4 @@
-// Orbit series, observables, empirical measures, distances and the decay fit (Section 7 (2)).
+// Orbit series, observables, empirical measures, distances and the decay fit (Section 8.1 (2)).
 #include "stats/stats.hpp"
 
 #include "core/coords.hpp"
@@ -76,9 +76,9 @@ double value(Observable o, const iterate::Vec3<double>& u, int symbol) {
   const double x = u(0), y = u(1), z = u(2);  // a unit vector in Q: x >= 0, z <= 0
   switch (o) {
     case Observable::theta: return std::atan2(-z, x);                          // Section 4
-    case Observable::phi: return std::atan2(std::sqrt(x * x + z * z), -y);    // Section 5.1, cos phi = -y
-    case Observable::w1: return y / (x - z);                                   // eq. (5.5)
-    case Observable::w2: return (x + z) / (x - z);                             // eq. (5.5)
+    case Observable::phi: return std::atan2(std::sqrt(x * x + z * z), -y);    // eq. (6.1), cos phi = -y/|u|
+    case Observable::w1: return y / (x - z);                                   // eq. (6.4)
+    case Observable::w2: return (x + z) / (x - z);                             // eq. (6.4)
     case Observable::cos_phi: return -y;
     case Observable::symbol1: return symbol == 1;
     case Observable::symbol2: return symbol == 2;

@@ -1,4 +1,4 @@
-// Statistics along orbits of P^_r (Section 7 (2)): observables, empirical measures and their distances,
+// Statistics along orbits of P^_r (Section 8.1 (2)): observables, empirical measures and their distances,
 // correlation functions C_N (FFTW and the direct sum), power spectra, decay of correlations.
 #pragma once
 
@@ -30,7 +30,7 @@ OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transie
 std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
                                       long length, int threads = 0);
 
-// theta in [0, pi/2], phi in [0, pi] (rad, Section 4 and 5.1), w1 in R, w2 in [-1, 1] (strip, eq. 5.5),
+// theta in [0, pi/2], phi in [0, pi] (rad, Section 4 and 5.1), w1 in R, w2 in [-1, 1] (strip, eq. (6.4)),
 // cos(phi) in [-1, 1], and the indicators 1{symbol = s} in {0, 1} of the symbols 1, 2, 3.
 enum class Observable { theta, phi, w1, w2, cos_phi, symbol1, symbol2, symbol3 };
 // Throws std::invalid_argument "<field>: got 'x', expected theta, phi, ..." for an unknown name.
@@ -45,7 +45,7 @@ std::vector<double> observe(const OrbitSeries& s, Observable o, const std::funct
 using StateFunction = std::function<double(const iterate::Vec3<double>& u, int symbol)>;
 std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
 
-// ---- Correlation functions C_N (Section 7 (2)) ---------------------------------------------------
+// ---- Correlation functions C_N (Section 8.1 (2)) ---------------------------------------------------
 //     C_N(phi, psi; n) = (1/N) sum_{k<N} phi_k psi_{k+n} - ((1/N) sum_{k<N} phi_k) ((1/N) sum_{k<N} psi_k)
 // for lags n = 0..n_max: phi needs N values, psi needs N + n_max (both means over k < N, as printed).
 // Both routes throw std::invalid_argument naming the field: "n-max: got M, expected 0 <= n-max < N = ..."
@@ -104,7 +104,7 @@ struct Decay {
 std::vector<double> envelope(const std::vector<double>& c, long window);  // windows over lags 1..
 Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor = 0);
 
-// ---- Empirical measures (Section 7 (2): mu_{N,x} = (1/N) sum_{k<N} delta_{x_k}) --------------------
+// ---- Empirical measures (Section 8.1 (2): mu_{N,x} = (1/N) sum_{k<N} delta_{x_k}) --------------------
 // 2-D histograms with weights 1/N: in the strip (u = atan(w1) = atan2(y, x - z) in (-pi/2, pi/2),
 // v = w2 in [-1, 1]) or in the angles (u = theta in [0, pi/2], v = phi in [0, pi]).  Equal bins; a value on
 // the upper edge goes to the last bin.

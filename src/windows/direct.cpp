@@ -65,7 +65,7 @@ template <class T> T r_crit2_in(int n) {
   using std::sqrt;
   const T c = cos(boost::math::constants::pi<T>() / T(2 * n));
   const T t = 2 * c - sqrt(4 * c * c - 1);
-  return t * t;  // eq. (4.3)
+  return t * t;  // eq. (4.6)
 }
 
 }  // namespace
@@ -92,7 +92,7 @@ template <class T> T window_condition(int n, const T& r) {
     p = frexp(p * rm, &e);
     ep += e + er;
   }
-  // Q_n / r^(2n) = P_n(r) P_n(1/r) - 1, eq. (4.1).
+  // Q_n / r^(2n) = P_n(r) P_n(1/r) - 1, eq. (4.3).
   return ldexp(t1 * t2 / p, static_cast<int>(e1 + e2 - ep)) - 1;
 }
 

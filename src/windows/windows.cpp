@@ -55,7 +55,7 @@ Mat mul(const Mat& x, const Mat& y) {
 }
 
 // 4 B A with integer polynomial entries: 2A = [[-2r,0,0],[1+r,2,0],[0,0,2]],
-// 2B = [[2,1+r,0],[0,-2r,0],[0,1+r,2]] (eq. 2.5 with alpha = (1+r)/2).
+// 2B = [[2,1+r,0],[0,-2r,0],[0,1+r,2]] (eq. 2.7 with alpha = (1+r)/2).
 Mat four_BA() {
   const IntPoly zero, two = IntPoly::constant(2), one_r = IntPoly::x_plus(1);
   const IntPoly m2r({mpz_class(0), mpz_class(-2)});
@@ -143,7 +143,7 @@ RationalPoly trace_polynomial(int n) {
 RationalPoly window_polynomial(int n) {
   validate_n(n);
   // P_n = T/4^n with deg T <= 2n, r^(2n) P_n(1/r) = rev_2n(T)/4^n, so
-  // Q_n = (T(r) rev_2n(T)(r) - 16^n r^(2n)) / 16^n   (eq. 4.1).
+  // Q_n = (T(r) rev_2n(T)(r) - 16^n r^(2n)) / 16^n   (eq. 4.3).
   const IntPoly t = trace_numerator(n);
   const unsigned long un = static_cast<unsigned long>(n);
   const IntPoly prod = t * t.reversed(2 * n);
@@ -193,7 +193,7 @@ mpfr_float three_particle_threshold() { return 7 - 4 * sqrt(mpfr_float(3)); }  /
 mpfr_float r_crit2_here(int n) {
   const mpfr_float c = cos(boost::math::constants::pi<mpfr_float>() / (2 * n));
   const mpfr_float t = 2 * c - sqrt(4 * c * c - 1);
-  return t * t;  // eq. (4.3)
+  return t * t;  // eq. (4.6)
 }
 
 }  // namespace
@@ -324,7 +324,7 @@ std::vector<Stripe> thin_stripes(int max_m, int digits) {
     for (int l = 1; 2 * l <= m; ++l) {
       if (std::gcd(l, m) != 1 || 4 * l <= m) continue;  // reduced, 1/4 < l/m <= 1/2
       const mpfr_float xi = cos(pi - 2 * pi * l / m);
-      out.push_back({l, m, 1 + 2 * xi - 2 * sqrt(xi + xi * xi)});  // eq. (5.6)
+      out.push_back({l, m, 1 + 2 * xi - 2 * sqrt(xi + xi * xi)});  // eq. (6.3)
     }
   std::sort(out.begin(), out.end(), [](const Stripe& a, const Stripe& b) { return a.value < b.value; });
   return out;

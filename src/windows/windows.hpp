@@ -15,7 +15,7 @@ namespace btob::windows {
 using core::mpfr_float;
 
 // Conventions.
-//  * A, B are the collision matrices of eq. (2.5) with alpha = (1 + r)/2:
+//  * A, B are the collision matrices of eq. (2.7) with alpha = (1 + r)/2:
 //      A = [[-r,0,0],[alpha,1,0],[0,0,1]],  B = [[1,alpha,0],[0,-r,0],[0,alpha,1]];  J swaps x and z (4.2).
 //  * n >= 1 (the pattern (ab)^n(cb)^n); functions throw std::invalid_argument "n: got X, expected ..."
 //    on n < 1 (n < 2 for r_crit,2) and on digits outside 10..10000.
@@ -40,7 +40,7 @@ struct Factorised {
 };
 
 RationalPoly trace_polynomial(int n);   // P_n = tr(J (BA)^n), degree 2n (Section 4)
-RationalPoly window_polynomial(int n);  // Q_n = r^(2n) P_n(r) P_n(1/r) - r^(2n), eq. (4.1), degree 4n
+RationalPoly window_polynomial(int n);  // Q_n = r^(2n) P_n(r) P_n(1/r) - r^(2n), eq. (4.3), degree 4n
 Factorised factorise(const RationalPoly& q);
 
 // The lower bound of the n-th window: the smallest positive root of Q_n.  It lies in
@@ -62,7 +62,7 @@ struct Certificate {
 };
 Certificate certify_lower_bound(int n, int decimals);
 
-// r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.3); n >= 2.  `digits` significant.
+// r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.6); n >= 2.  `digits` significant.
 mpfr_float r_crit2(int n, int digits);
 
 // The paper's threshold constants in `digits` significant digits.
@@ -72,7 +72,7 @@ struct Threshold {
 };
 std::vector<Threshold> thresholds(int digits);  // 7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1
 
-// Thin stripes, eq. (5.6): r(l/m) = 1 + 2 xi - 2 sqrt(xi + xi^2), xi = cos(pi - 2 pi l/m), for reduced
+// Thin stripes, eq. (6.3): r(l/m) = 1 + 2 xi - 2 sqrt(xi + xi^2), xi = cos(pi - 2 pi l/m), for reduced
 // l/m with 1/4 < l/m <= 1/2 and m <= max_m (l/m and 1 - l/m give the same r; l/m = 1/4 gives r = 1,
 // outside (0, 1)).  Sorted by r; all values lie in [3 - 2 sqrt 2, 1).
 struct Stripe {
