@@ -1,0 +1,199 @@
+// Bifurcation diagrams: validation, the kernel run with the density recorder, the trigonometric route.
+#include "bifurcation/bifurcation.hpp"
+
+#include "core/fields.hpp"
+#include "core/scalar.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+#include "reference/reference.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+namespace btob::bifurcation {
+
+namespace {
+struct Axis {
+  iterate::Coord coord;
+  double lo, hi;
+};
+
+// The coordinate and its default range: theta in [0, pi/2], phi in [0, pi], log10 theta in [-16, 0.25],
+// w1 in [-4, 4], w2 in [-1, 1]; a request's range replaces it.
+Axis axis_of(const Request& req) {
+  iterate::Coord c = iterate::parse_coord(req.coord, "coord");
+  if (req.log) {
+    if (c != iterate::Coord::theta) throw core::InvalidField("log", "--log with coord " + req.coord, "coord theta");
+    c = iterate::Coord::log10_theta;
+  }
+  Axis a{c, 0, std::numbers::pi / 2};
+  if (c == iterate::Coord::phi) a.hi = std::numbers::pi;
+  if (c == iterate::Coord::log10_theta) a.lo = -16, a.hi = 0.25;
+  if (c == iterate::Coord::w1) a.lo = -4, a.hi = 4;
+  if (c == iterate::Coord::w2) a.lo = -1, a.hi = 1;
+  if (!req.range.empty()) {
+    a.lo = req.range[0];
+    a.hi = req.range[1];
+  }
+  return a;
+}
+
+template <class T>
+void run_kernel(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& dens, iterate::TailRecorder* raw,
+                const iterate::RunOptions& opt) {
+  if (raw) {
+    iterate::Both<iterate::DensityRecorder, iterate::TailRecorder> both(dens, *raw);
+    iterate::run<T>(ens, iterations, both, opt);
+  } else {
+    iterate::run<T>(ens, iterations, dens, opt);
+  }
+}
+
+// Calls f with a null T* for the precision's scalar type, MPFR's digits set for the call only.
+template <class F> auto with_scalar(const core::Precision& p, F&& f) {
+  switch (p.kind) {
+    case core::Precision::Kind::f32: return f(static_cast<float*>(nullptr));
+    case core::Precision::Kind::f80: return f(static_cast<long double*>(nullptr));
+    case core::Precision::Kind::f128: return f(static_cast<core::float128*>(nullptr));
+    case core::Precision::Kind::mpfr: {
+      core::MpfrDigits digits(p.mpfr_digits);
+      return f(static_cast<core::mpfr_float*>(nullptr));
+    }
+    default: return f(static_cast<double*>(nullptr));
+  }
+}
+}  // namespace
+
+void Request::validate() const {
+  core::require_r(r_min, "r-min");
+  core::require_r(r_max, "r-max");
+  if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
+  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
+  if (tail < 1 || tail > iterations)
+    throw core::InvalidField("tail", std::to_string(tail), fmt::format("1 <= tail <= iterations = {}", iterations));
+  if (bins < 1 || bins > 100000) throw core::InvalidField("bins", std::to_string(bins), "1..100000");
+  const core::Precision prec = core::parse_precision(precision, "precision");
+  if (!range.empty() && (range.size() != 2 || !(range[0] < range[1])))
+    throw core::InvalidField("range", fmt::format("{} values", range.size()), "two numbers lo hi with lo < hi");
+  (void)axis_of(*this);
+  if (algorithm != "linear" && algorithm != "trig")
+    throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.1) or trig (Appendix A.1)");
+  if (algorithm == "trig" && (raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
+    throw core::InvalidField("algorithm", "trig with " + std::string(raw ? "--raw" : prec.name()),
+                             "trig in double or long-double, without raw tails");
+  iterate::Ensemble probe;
+  probe.initial = iterate::parse_grid(grid, seed, "grid");
+  iterate::checked_bytes(static_cast<std::size_t>(r_count) * probe.initial.size(), 64, "r-count x grid");
+  if (raw)
+    iterate::checked_bytes(static_cast<std::size_t>(r_count) * probe.initial.size() * static_cast<std::size_t>(tail), 8,
+                           "r-count x grid x tail (raw)");
+}
+
+Result run(const Request& req, const core::RunControl& control) {
+  req.validate();
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  const Axis ax = axis_of(req);
+  Result res;
+  iterate::Ensemble& ens = res.ensemble;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  ens.grid_description = req.grid;
+  ens.seed = req.seed;
+
+  iterate::RunOptions opt;
+  std::size_t degenerate = 0;
+  opt.degenerate = &degenerate;
+  opt.threads = control.threads;
+  opt.progress = control.progress;
+  opt.cancel = control.cancel;
+  const int threads = control.threads > 0 ? control.threads : omp_get_max_threads();
+  iterate::DensityRecorder dens(ax.coord, ens, req.iterations, req.tail, static_cast<std::size_t>(req.bins), ax.lo, ax.hi,
+                                threads);
+  std::unique_ptr<iterate::TailRecorder> raw;
+  if (req.raw) raw = std::make_unique<iterate::TailRecorder>(ax.coord, ens.orbits(), req.iterations, req.tail);
+
+  const auto t1 = std::chrono::steady_clock::now();
+  res.broken.assign(ens.r.size(), 0);
+  if (req.algorithm == "trig") {
+    control.check_cancelled();
+    res.broken = prec.kind == core::Precision::Kind::f80
+                     ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
+                     : reference::trig_density<double>(ens, req.iterations, dens, threads);
+  } else {
+    with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
+  }
+  res.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  res.density = dens.merge();
+  res.underflow = std::move(dens.under);
+  res.overflow = std::move(dens.over);
+  if (raw) res.tail = std::move(raw->out);
+  res.r_min = req.r_min;
+  res.r_max = req.r_max;
+  res.coord = iterate::coord_name(ax.coord);
+  res.lo = ax.lo;
+  res.hi = ax.hi;
+  res.bins = static_cast<std::size_t>(req.bins);
+  res.vlines = req.vline;
+  res.scalar_type = prec.name();
+  res.algorithm = req.algorithm;
+  res.iterations = req.iterations;
+  res.tail_length = req.tail;
+  res.degenerate = degenerate;
+  // The interval between exact power-of-two rescalings (0: the trigonometric route normalises every collision).
+  res.renormalisation_interval =
+      req.algorithm == "trig" ? 0 : with_scalar(prec, [&]<class T>(T*) { return iterate::renormalisation_interval<T>(ens.r); });
+  return res;
+}
+
+std::uint64_t Result::points_below() const {
+  std::uint64_t n = 0;
+  for (auto v : underflow) n += v;
+  return n;
+}
+std::uint64_t Result::points_above() const {
+  std::uint64_t n = 0;
+  for (auto v : overflow) n += v;
+  return n;
+}
+
+void Result::describe(core::Contents& c) const {
+  const std::size_t R = ensemble.r.size(), I = ensemble.initial.size();
+  const std::string unit = coord == "log10_theta" ? "log10(rad)" : (coord == "w1" || coord == "w2") ? "1" : "rad";
+  c.array("density", density, {R, bins}, "r, bin of " + coord, "count",
+          fmt::format("tail points per bin; bin i covers [lo + i h, lo + (i+1) h), h = (hi - lo)/bins, the last bin "
+                      "also holds hi ({} in {})",
+                      coord, unit));
+  c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients (the image's columns)");
+  c.array("underflow", underflow, {R}, "r", "count", "tail points below lo (or NaN) at each r");
+  c.array("overflow", overflow, {R}, "r", "count", "tail points above hi at each r");
+  c.array("vlines", vlines, {vlines.size()}, "line", "1", "r values drawn as vertical lines");
+  c.array("broken", broken, {R}, "r", "count", "orbits the trigonometric algorithm lost (acos out of its domain)");
+  if (!tail.empty())
+    c.array("tail", tail, {R, I, static_cast<std::size_t>(tail_length)}, "r, initial condition, step", unit,
+            "the last values of the coordinate of every orbit");
+  c.attr("r_min", r_min);
+  c.attr("r_max", r_max);
+  c.attr("r_count", static_cast<long>(R));
+  c.attr("grid", ensemble.grid_description);
+  c.attr("initial_conditions", static_cast<long>(I));
+  c.attr("seed", static_cast<long>(ensemble.seed));
+  c.attr("iterations", iterations);
+  c.attr("tail", tail_length);
+  c.attr("coord", coord);
+  c.attr("range_lo", lo);
+  c.attr("range_hi", hi);
+  c.attr("bins", static_cast<long>(bins));
+  c.attr("algorithm", algorithm);
+  c.attr("renormalisation_interval", renormalisation_interval);
+  c.attr("points_below_range", static_cast<long>(points_below()));
+  c.attr("points_above_range", static_cast<long>(points_above()));
+  c.attr("degenerate_orbits", static_cast<long>(degenerate));
+  c.attr("iteration_seconds", iteration_seconds);
+}
+
+}  // namespace btob::bifurcation

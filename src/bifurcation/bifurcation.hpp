@@ -1,0 +1,77 @@
+// Bifurcation diagrams (Figures 4.1-4.7 and 6.1-6.8 of the paper): the tails of theta, log10 theta, phi, w1 or w2
+// of every orbit of an ensemble (r values x initial conditions), binned on the fly into a density image, with the
+// points outside the range and the orbits the precision could not follow counted, never dropped silently.
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "iterate/ensemble.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::bifurcation {
+
+struct Request {
+  double r_min = 0.0717, r_max = 0.1717;  // r range, each in (0, 1)
+  long r_count = 5000;                    // evenly spaced r values
+  long iterations = 5000;                 // map iterations per orbit
+  long tail = 100;                        // last iterations binned per orbit, 1..iterations
+  std::string coord = "theta";            // theta, phi, w1 or w2 (radians for the angles)
+  bool log = false;                       // log10 theta
+  std::string grid = "paper";             // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
+  std::uint64_t seed = 1;                 // seed of random grids
+  std::string precision = "double";       // float, double, long-double, float128 or mpfr:D
+  long bins = 800;                        // bins of the coordinate axis, 1..100000
+  std::vector<double> range;              // lo hi of the coordinate axis (log10 units with log); default per coord
+  std::vector<double> vline;              // r values drawn as vertical lines (presentation)
+  std::vector<std::string> overlay;       // named overlays (presentation; the command line resolves them)
+  std::string algorithm = "linear";       // linear (Theorem 3.1, batched kernel) or trig (Appendix A.1)
+  bool raw = false;                       // also keep the raw tails (r x initial condition x tail)
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r-min", r_min, "smallest r, in (0,1)");
+    v("r-max", r_max, "largest r, in (0,1)");
+    v("r-count", r_count, "number of evenly spaced r values");
+    v("iterations", iterations, "map iterations per orbit");
+    v("tail", tail, "last iterations kept per orbit");
+    v("coord", coord, "theta, phi, w1 or w2");
+    v("log", log, "log10 scale for theta");
+    v("grid", grid, "initial conditions: paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...");
+    v("seed", seed, "seed of random grids");
+    v("precision", precision, "float, double, long-double, float128 or mpfr:<digits> (10..10000)");
+    v("bins", bins, "bins of the coordinate axis");
+    v("range", range, "lo hi of the coordinate axis (log10 units with --log)");
+    v("vline", vline, "r values drawn as vertical lines");
+    v("overlay", overlay, "named overlays (thresholds, windows, stripes)");
+    v("algorithm", algorithm, "linear (Theorem 3.1, batched kernel) or trig (Appendix A.1, per collision)");
+    v("raw", raw, "also store the raw tails in the HDF5 file");
+  }
+};
+
+struct Result {
+  iterate::Ensemble ensemble;
+  double r_min = 0, r_max = 0;         // the requested r range
+  std::string coord;                   // the binned coordinate: theta, log10_theta, phi, w1, w2
+  double lo = 0, hi = 0;               // the axis range
+  std::size_t bins = 0;
+  std::vector<std::uint32_t> density;  // [r, bin]: tail points per bin
+  std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
+  std::vector<std::uint64_t> broken;   // [r]: orbits the trigonometric algorithm lost (acos out of its domain)
+  std::vector<double> tail;            // [r, initial condition, tail] when raw
+  std::vector<double> vlines;          // the request's vertical lines
+  std::string scalar_type, algorithm;
+  long iterations = 0, tail_length = 0, renormalisation_interval = 0;
+  std::uint64_t degenerate = 0;        // orbits whose final state was not a finite non-zero vector
+  double iteration_seconds = 0;
+
+  std::uint64_t points_below() const;
+  std::uint64_t points_above() const;
+  void describe(core::Contents& c) const;
+};
+
+Result run(const Request& req, const core::RunControl& control = {});
+
+}  // namespace btob::bifurcation
