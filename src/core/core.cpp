@@ -2,7 +2,10 @@
 #include "core/map.hpp"
 #include "core/scalar.hpp"
 
+#include "core/request.hpp"
+
 #include <cmath>
+
 #include <fmt/format.h>
 
 namespace btob::core {
@@ -51,11 +54,10 @@ Precision parse_precision(std::string_view text, const char* field) {
       d = d * 10 + (c - '0');
     }
     if (!ok || d < 10 || d > 10000)
-      throw std::invalid_argument(fmt::format("{}: got '{}', expected mpfr:<digits> with 10 <= digits <= 10000", field, text));
+      throw InvalidField(field, fmt::format("'{}'", text), "mpfr:<digits> with 10 <= digits <= 10000");
     p.mpfr_digits = d;
   } else {
-    throw std::invalid_argument(
-        fmt::format("{}: got '{}', expected one of float, double, long-double, float128, mpfr:<digits>", field, text));
+    throw InvalidField(field, fmt::format("'{}'", text), "one of float, double, long-double, float128, mpfr:<digits>");
   }
   return p;
 }

@@ -1,6 +1,8 @@
 // Ensembles: r values and initial-condition grids.
 #include "iterate/ensemble.hpp"
 
+#include "core/request.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -104,8 +106,8 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 
 std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field) {
   const auto usage = [&] {
-    return std::invalid_argument(fmt::format(
-        "{}: got '{}', expected paper, strip:NxM[:w1min:w1max], random:N or a list x,y,z;x,y,z;...", field, spec));
+    return core::InvalidField(field, fmt::format("'{}'", spec),
+                              "paper, strip:NxM[:w1min:w1max], random:N or a list x,y,z;x,y,z;...");
   };
   if (spec == "paper") return paper_grid();
   if (spec.starts_with("strip:")) {
