@@ -221,7 +221,7 @@ struct BasinsRArgs {
   std::string grid = "random:2000";
   std::uint64_t seed = 1;
   std::string out = "results/attractors/basins_r";
-  std::string reference = BTOB_SOURCE_DIR "/analyses/reference/patterns_paper_table_6_1.csv";
+  std::string reference = io::data_file("reference/patterns_paper_table_6_1.csv").string();
   bool no_plot = false, quiet = false;
   attractors::Options opt;
 };

@@ -204,10 +204,38 @@ void Progress::update(std::size_t done, std::size_t total) {
             << std::flush;
 }
 
+fs::path data_file(const std::string& rel) {
+  std::vector<fs::path> places;
+  if (const char* d = std::getenv("BTOB_DATA_DIR"); d && *d) places.push_back(fs::path(d) / rel);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    places.push_back(exe.parent_path() / "share/btob" / rel);
+    places.push_back(exe.parent_path().parent_path() / "share/btob" / rel);
+  }
+  // The source tree: plot scripts live in analyses/plot, tables in analyses/reference.
+  places.push_back(fs::path(BTOB_SOURCE_DIR) / "analyses" / rel);
+  std::string tried;
+  for (const auto& p : places) {
+    if (fs::is_regular_file(p, ec)) return p;
+    tried += (tried.empty() ? "" : ", ") + p.string();
+  }
+  throw std::runtime_error(fmt::format("cannot find '{}' (looked in {}); set BTOB_DATA_DIR to the folder holding "
+                                       "plot/ and reference/",
+                                       rel, tried));
+}
+
 bool run_plot(const std::string& script, const std::vector<std::string>& args) {
   const char* env = std::getenv("BTOB_PYTHON");
   const std::string py = env && *env ? env : "/usr/bin/python3";
-  std::string cmd = py + " '" + std::string(BTOB_SOURCE_DIR) + "/analyses/plot/" + script + "'";
+  fs::path path;
+  try {
+    path = data_file("plot/" + script);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "btob: warning: " << e.what() << "; data were written without the figure\n";
+    return false;
+  }
+  std::string cmd = py + " '" + path.string() + "'";
   for (const auto& a : args) cmd += " '" + a + "'";
   const int rc = std::system(cmd.c_str());
   if (rc != 0) {

@@ -66,6 +66,12 @@ class Progress {
   double start_;
 };
 
+// The path of a file the program ships (`plot/<script>.py`, `reference/<table>.csv`), found without the source
+// tree: $BTOB_DATA_DIR/<rel>, then <executable's folder>/share/btob/<rel> (the build tree), then
+// <executable's folder>/../share/btob/<rel> (an installed prefix), then the source tree it was built from.
+// Throws std::runtime_error naming the file and the places searched when none has it.
+fs::path data_file(const std::string& rel);
+
 // Runs the matplotlib script analyses/plot/<script> on `args`; returns false (with a one-line
 // warning) when no Python with matplotlib is available.  The interpreter is $BTOB_PYTHON or the
 // system python3 (Debian's python3-matplotlib).
