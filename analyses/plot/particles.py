@@ -2,8 +2,8 @@
 """Space-time diagram and animation of four particles collapsing along a periodic pattern.
 
 Usage: particles.py DIR
-Reads DIR/events.csv (period,time_to_collapse,x1..x4,letter: the start of each period and every collision of the
-first periods, positions in the centre-of-mass frame, unit |p0|) and DIR/particles.json (written by
+Reads DIR/events.csv (period,time,time_to_collapse,x1..x4,letter: the start of each period and every collision of
+the first periods, positions in the centre-of-mass frame, unit |p0|) and DIR/particles.json (written by
 `btob particles`); writes DIR/spacetime.png and DIR/animation.gif (Pillow writer) atomically.
 Between events the particles fly freely: positions are linear in time, hence in the time to collapse tau.
 """
@@ -22,11 +22,16 @@ COLORS = ["#1f4fd6", "#2ca02c", "#d62728", "#9467bd"]
 
 def read(folder):
     with open(os.path.join(folder, "events.csv"), newline="") as f:
-        ev = [dict(period=int(r["period"]), tau=float(r["time_to_collapse"]),
+        ev = [dict(period=int(r["period"]), t=float(r["time"]), tau=float(r["time_to_collapse"]),
                    x=[float(r[f"x{i}"]) for i in range(1, 5)], letter=r["letter"]) for r in csv.DictReader(f)]
     with open(os.path.join(folder, "particles.json")) as f:
         meta = json.load(f)
-    return ev, meta
+    collapse = all(math.isfinite(e["tau"]) for e in ev)
+    if not collapse:  # no collapse: the time axis is the time before the last recorded collision
+        t_end = ev[-1]["t"]
+        for e in ev:
+            e["tau"] = t_end - e["t"]
+    return ev, meta, collapse
 
 
 def positions_at(ev, tau):
@@ -42,12 +47,18 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: particles.py DIR")
     folder = sys.argv[1]
-    ev, meta = read(folder)
+    ev, meta, collapse = read(folder)
     rho, tq = float(meta["length_contraction"]), float(meta["time_contraction"])
     gamma = math.log(rho) / math.log(tq) if 0 < tq < 1 and 0 < rho < 1 else 1.0
     title = (f"{meta['word']} at r = {meta['r']:g}: letters {meta['letters']} per period; {meta['periods_ok']} of "
-             f"{meta['periods']} periods reproduced ({meta['scalar_type']})\nper period: lengths x{rho:.6g}, "
-             f"times x{tq:.6g}; collapse after {float(meta['time_to_collapse']):.6g} |p0|/|q0|")
+             f"{meta['periods']} periods reproduced ({meta['scalar_type']})\n")
+    if collapse:
+        title += (f"per period: lengths x{rho:.6g}, times x{tq:.6g}; collapse after "
+                  f"{float(meta['time_to_collapse']):.6g} |p0|/|q0|")
+    else:
+        why = meta["failure"].split("; ")[-1]
+        title += (f"NO collapse along the pattern: the particles leave it after {meta['periods_ok']} whole periods "
+                  f"({why}); the time axis ends at the last collision drawn")
 
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
     n_periods = max(e["period"] for e in ev) + 1
@@ -63,24 +74,34 @@ def main():
                     if tau <= 0:
                         continue
                     ts.append(tau)
-                    xs.append(x / tau ** gamma if scaled else x)
+                    if scaled and not collapse:
+                        spread = (a["x"][3] - a["x"][0]) + s * ((b["x"][3] - b["x"][0]) - (a["x"][3] - a["x"][0]))
+                        xs.append(x / spread)
+                    else:
+                        xs.append(x / tau ** gamma if scaled else x)
             ax.plot(ts, xs, color=COLORS[i], lw=1.0, label=f"particle {i + 1}")
-        for e in ev:
+        for k_e, e in enumerate(ev):
             if e["letter"] == "start" or e["tau"] <= 0:
                 continue
             j = "abc".index(e["letter"])
             x = e["x"][j]
-            y = x / e["tau"] ** gamma if scaled else x
+            y = (x / (e["x"][3] - e["x"][0]) if not collapse else x / e["tau"] ** gamma) if scaled else x
             ax.plot(e["tau"], y, "k.", ms=3)
-            ax.annotate(e["letter"], (e["tau"], y), fontsize=7, xytext=(0, 4), textcoords="offset points", ha="center")
+            # Letters of one period alternate above and below their point (successive collisions are close).
+            ax.annotate(e["letter"], (e["tau"], y), fontsize=7, xytext=(0, 5 if k_e % 2 else -10),
+                        textcoords="offset points", ha="center")
         ax.set_xscale("log")
         ax.invert_xaxis()
-        ax.set_xlabel("time to collapse t* - t (units |p0|/|q0|, log scale; time runs to the right)")
-        if scaled:
+        ax.set_xlabel(("time to collapse t* - t" if collapse else "time before the last recorded collision") +
+                      " (units |p0|/|q0|, log scale; time runs to the right)")
+        if scaled and not collapse:
+            ax.set_ylabel("x_i / (x_4 - x_1): the configuration rescaled by its spread")
+            ax.set_title("rescaled configuration", fontsize=9)
+        elif scaled:
             ax.set_ylabel(f"x_i / (t* - t)^gamma, gamma = ln(rho)/ln(time ratio) = {gamma:.4f}")
             ax.set_title("self-similar coordinates: the pattern repeats every period", fontsize=9)
         else:
-            ax.set_ylabel("position x_i (units |p0|, centre-of-mass frame; collapse at 0)")
+            ax.set_ylabel("position x_i (units |p0|, centre-of-mass frame" + ("; collapse at 0)" if collapse else ")"))
             ax.set_title(f"positions, first {n_periods} periods, each collision marked with its letter", fontsize=9)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8, loc="upper left")
@@ -92,13 +113,14 @@ def main():
     # Animation: the configuration rescaled by its spread, tau log-uniform (about 24 frames per period).
     anim_periods = min(n_periods, 3)
     last = [e for e in ev if e["period"] < anim_periods]
-    tau0, tau1 = last[0]["tau"], last[-1]["tau"]
+    tau0 = last[0]["tau"]
+    tau1 = min(e["tau"] for e in last if e["tau"] > 0)
     frames = 24 * anim_periods
     taus = [tau0 * (tau1 / tau0) ** (k / (frames - 1)) for k in range(frames)]
     fig, ax = plt.subplots(figsize=(6.4, 2.4), dpi=80)
     dots = [ax.plot([], [], "o", color=COLORS[i], ms=12)[0] for i in range(4)]
     text = ax.text(0.02, 0.92, "", transform=ax.transAxes, fontsize=8, va="top")
-    ax.set_xlim(-0.75, 0.75)
+    ax.set_xlim(-0.85, 0.85)
     ax.set_ylim(-1, 1)
     ax.set_yticks([])
     ax.axhline(0, color="gray", lw=0.5)

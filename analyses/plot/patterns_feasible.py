@@ -2,7 +2,7 @@
 """Draws the number of feasible periodic words (stable and unstable) of length <= L against r.
 
 Usage: patterns_feasible.py DIR OUT.png
-Reads DIR/feasible_counts.csv (r,stable,unstable,feasible) and DIR/feasible.json (written by
+Reads DIR/feasible_counts.csv (r,stable,unstable,feasible,stable_collapse,unstable_collapse) and DIR/feasible.json (written by
 `btob pattern atlas --feasible`); writes OUT.png atomically.  Left: the counts over (0, 1) on a log scale; right:
 a zoom on 0.15 <= r <= 0.6 with r_crit ~ 0.1917 (the earlier literature's bound) and 2^(2/3) - 1 (no collapse above).
 """
@@ -29,11 +29,16 @@ def main():
     st = [int(x["stable"]) for x in rows]
     un = [int(x["unstable"]) for x in rows]
     tot = [int(x["feasible"]) for x in rows]
+    stc = [int(x["stable_collapse"]) for x in rows]
+    unc = [int(x["unstable_collapse"]) for x in rows]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     for ax, (x0, x1) in zip(axes, [(0.0, 1.0), (0.15, 0.6)]):
+        ax.axvspan(0, 0.02, color="0.9", lw=0)  # not scanned
         ax.step(r, tot, where="mid", color="black", lw=1.0, label="feasible (stable + unstable)")
         ax.step(r, un, where="mid", color="#d62728", lw=1.0, label="unstable only")
         ax.step(r, st, where="mid", color="#1f4fd6", lw=1.0, label="stable")
+        ax.step(r, unc, where="mid", color="#ff9896", lw=1.6, ls="--", label="unstable, and a collapse of four particles")
+        ax.step(r, stc, where="mid", color="#17becf", lw=1.6, ls="--", label="stable, and a collapse of four particles")
         ax.axvline(0.1917, color="gray", ls="--", lw=0.8)
         ax.text(0.1917, 0.97, " r_crit ~ 0.1917", transform=ax.get_xaxis_transform(), fontsize=7, va="top")
         ax.axvline(2 ** (2 / 3) - 1, color="gray", ls=":", lw=0.8)
@@ -49,7 +54,9 @@ def main():
     L = meta.get("max_length", "?")
     fig.suptitle(f"Periodic patterns of P_r, stable or unstable: canonical primitive words of length <= {L} "
                  f"({meta.get('words_scanned', '?')} scanned, {meta.get('feasible_words', '?')} feasible for some r); "
-                 f"counts at r = 0.001, 0.002, ..., 0.999", fontsize=9)
+                 f"counts at r = 0.001, ..., 0.999 (grey: r < 0.02, not scanned)\n"
+                 f"dashed: the periodic orbits four particles can follow in a collapse (K_w real on the orbit's plane)",
+                 fontsize=9)
     fig.tight_layout()
     save_atomic(fig, out)
 

@@ -54,13 +54,19 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
     }
   }
   io::write_text_atomic(out / "convergence.csv", c);
-  std::string e = "period,time_to_collapse,x1,x2,x3,x4,letter\n";
-  for (std::size_t i = 0; i + 7 <= s.events.size(); i += 7) {
-    const int l = static_cast<int>(s.events[i + 6]);
-    e += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", static_cast<long>(s.events[i]), s.events[i + 1],
-                     s.events[i + 2], s.events[i + 3], s.events[i + 4], s.events[i + 5], l == 0 ? "start" : std::string(1, char('a' + l - 1)));
+  std::string e = "period,time,time_to_collapse,x1,x2,x3,x4,letter\n";
+  for (std::size_t i = 0; i + 8 <= s.events.size(); i += 8) {
+    const int l = static_cast<int>(s.events[i + 7]);
+    e += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", static_cast<long>(s.events[i]), s.events[i + 1],
+                     s.events[i + 2], s.events[i + 3], s.events[i + 4], s.events[i + 5], s.events[i + 6],
+                     l == 0 ? "start" : std::string(1, char('a' + l - 1)));
   }
   io::write_text_atomic(out / "events.csv", e);
+  // JSON has no NaN or infinity: such values are recorded as the strings "nan", "inf".
+  const auto num = [](double v) -> io::Attr {
+    if (std::isfinite(v)) return v;
+    return std::string(std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
+  };
   io::Attrs at = io::provenance(command_line);
   at["kind"] = std::string("particles");
   at["word"] = s.word;
@@ -73,17 +79,17 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
   at["scalar_type"] = s.precision;
   at["start"] = a.req.start;
   at["sequence_ok"] = std::string(s.sequence_ok ? "true" : "false");
-  at["length_contraction"] = s.length_contraction;
-  at["length_predicted"] = s.length_predicted;
-  at["velocity_contraction"] = s.velocity_contraction;
-  at["velocity_predicted"] = s.velocity_predicted;
-  at["time_contraction"] = s.time_contraction;
-  at["time_predicted"] = s.time_predicted;
-  at["time_to_collapse"] = s.time_to_collapse;
+  at["length_contraction"] = num(s.length_contraction);
+  at["length_predicted"] = num(s.length_predicted);
+  at["velocity_contraction"] = num(s.velocity_contraction);
+  at["velocity_predicted"] = num(s.velocity_predicted);
+  at["time_contraction"] = num(s.time_contraction);
+  at["time_predicted"] = num(s.time_predicted);
+  at["time_to_collapse"] = num(s.time_to_collapse);
   at["time_unit"] = std::string("|p0|/|q0| (unit gaps and unit relative velocities at the start)");
   at["collisions_unrescaled"] = s.collisions_unrescaled;
   at["unrescaled_end"] = s.unrescaled_end;
-  at["collisions_limit_predicted"] = s.collisions_limit_predicted;
+  at["collisions_limit_predicted"] = num(s.collisions_limit_predicted);
   at["failure"] = s.failure;
   at["seconds"] = s.seconds;
   io::write_manifest(out / "particles.json", at);

@@ -186,16 +186,24 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   }
   if (N == 0) res.length_contraction = res.velocity_contraction = res.time_contraction = res.energy_ratio = std::nan("");
   if (!res.sequence_ok) res.time_to_collapse = std::nan("");  // the particles left the pattern: no collapse along it
-  // The events' time to collapse: the rest of their period, the later periods, and the tail.
+  // Events: time since the start and time to collapse (the rest of their period, the later periods and the
+  // geometric tail; NaN when the particles left the pattern).
   {
-    std::vector<double> after(run.duration.size() + 1, 0.0);  // after[n] = time from the end of period n - 1 on
+    std::vector<double> after(N + 1, 0.0), before(N + 1, 0.0);  // time from the end / up to the start of period n
     const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
     after[N] = N > 0 && q < 1 ? run.duration.back() * q / (1 - q) : 0.0;
     for (std::size_t n = N; n-- > 0;) after[n] = after[n + 1] + run.duration[n];
+    for (std::size_t n = 0; n < N; ++n) before[n + 1] = before[n] + run.duration[n];
+    std::vector<double> ev;
     for (std::size_t e = 0; e + 7 <= res.events.size(); e += 7) {
       const auto n = static_cast<std::size_t>(res.events[e]);
-      if (n < N) res.events[e + 1] = (run.duration[n] - res.events[e + 1]) + after[n + 1];
+      const double offset = res.events[e + 1];
+      ev.push_back(res.events[e]);
+      ev.push_back(before[std::min(n, N)] + offset);
+      ev.push_back(res.sequence_ok && n < N ? (run.duration[n] - offset) + after[n + 1] : std::nan(""));
+      for (int k = 2; k < 7; ++k) ev.push_back(res.events[e + k]);
     }
+    res.events = ev;
   }
   // Without rescaling: the same run until the gaps underflow.
   {

@@ -119,8 +119,9 @@ struct ParticlesResult {
   double collisions_limit_predicted = 0;
   // Per period (size periods_ok): |p|, |q| and duration ratios.
   std::vector<double> length_ratio, velocity_ratio, time_ratio;
-  // Events of the first diagram periods, 7 values each: period, time to collapse, x1..x4, letter (0 start,
-  // 1 a, 2 b, 3 c); positions in units |p0| (centre-of-mass frame, collapse point 0).
+  // Events of the first diagram periods, 8 values each: period, time since the start, time to collapse (NaN
+  // without a collapse), x1..x4, letter (0 start, 1 a, 2 b, 3 c); times in units |p0|/|q0|, positions in units
+  // |p0| (centre-of-mass frame, collapse point 0).
   std::vector<double> events;
   double seconds = 0;
 };
