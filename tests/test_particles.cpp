@@ -291,3 +291,45 @@ TEST(ParticlesRequestContract, ErrorsNameTheField) {
   ok.fields([&](const char* n, auto&, const char*) { names.emplace_back(n); });
   EXPECT_EQ(names, (std::vector<std::string>{"word", "r", "periods", "precision", "start", "diagram-periods"}));
 }
+
+TEST(FeasibleAtlas, UnstableOrbitsAreFollowedAsLongAsPredicted) {
+  // The map (core::step) from the periodic point of an unstable orbit repeats the word until rounding errors,
+  // ~eps, grown by Lambda = |l_1 / l_o| per period, reach the smallest branch margin m: about ln(m/eps)/ln(Lambda)
+  // periods.  Accepted: within [predicted/2 - 2, 2 predicted + 2] (the constant in front of eps and the margin's
+  // direction relative to the unstable eigenvector are not modelled); long double follows at least as long.
+  // Orbits whose instability comes from a complex dominant pair (13 at r = 0.5: Lambda = 1.058 per period) are
+  // followed far longer than this (10^5 periods and more): not covered by the prediction, left out here and, by
+  // its 2000-period cap, from the atlas's check (unstable_followed.csv).
+  struct Case { const char* word; double r; };
+  for (const Case& c : {Case{"13223122", 0.1}, Case{"13", 0.15}, Case{"12", 0.1}, Case{"132312", 0.1},
+                        Case{"1133", 0.05}, Case{"111333", 0.05}, Case{"13", 0.3}}) {
+    const auto d = patterns::follow_periodic_orbit<double>(patterns::parse_word(c.word), c.r, 100000);
+    const auto l = patterns::follow_periodic_orbit<long double>(patterns::parse_word(c.word), c.r, 100000);
+    if (!(d.expansion > 1.0001)) continue;  // neutral (the word 2 rotates on y = 0): nothing to predict
+    EXPECT_GE(d.periods, d.predicted / 2 - 2) << c.word << " r = " << c.r << " predicted " << d.predicted;
+    EXPECT_LE(d.periods, 2 * d.predicted + 2) << c.word << " r = " << c.r << " predicted " << d.predicted;
+    EXPECT_GE(l.periods, d.periods) << c.word << " r = " << c.r;
+  }
+}
+
+TEST(FeasibleAtlas, CollapsesEndAtTheLiteraturesCriticalValues) {
+  // abcb (13) is a collapse of four particles up to r_crit ~ 0.1917 (the bound of the earlier literature quoted in
+  // the Introduction); its periodic point stays feasible for the map above, without a collapse.
+  const auto w13 = patterns::parse_word("13");
+  EXPECT_TRUE(patterns::classify<double>(w13, 0.1916).collapse);
+  EXPECT_EQ(patterns::classify<double>(w13, 0.1918).outcome, patterns::Outcome::unstable);
+  EXPECT_FALSE(patterns::classify<double>(w13, 0.1918).collapse);
+  // No word of length <= 8 is a collapse above 2^(2/3) - 1 (no collapse of four particles exists there at all).
+  std::vector<double> grid;
+  for (int i = 0; i < 80; ++i) grid.push_back(0.588 + 0.41 * i / 79.0);
+  for (const auto& w : patterns::enumerate_canonical(8))
+    for (double r : grid) EXPECT_FALSE(patterns::classify<double>(w, r).collapse) << patterns::to_digits(w) << " r = " << r;
+}
+
+TEST(FeasibleAtlas, OneThreadEqualsTwoThreads) {
+  const auto grid = patterns::feasible_grid();
+  const auto a = patterns::compute_feasible_atlas(6, grid, 1e-10, 1);
+  const auto b = patterns::compute_feasible_atlas(6, grid, 1e-10, 2);
+  EXPECT_EQ(patterns::feasible_csv(a), patterns::feasible_csv(b));
+  EXPECT_GT(a.size(), 10u);
+}
