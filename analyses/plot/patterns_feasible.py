@@ -49,10 +49,10 @@ def main():
         ax.set_xlabel("restitution coefficient r (dimensionless)")
         ax.set_ylabel("number of canonical words with a feasible periodic point")
         ax.grid(alpha=0.3)
-    axes[0].legend(loc="upper right", fontsize=8)
+    axes[0].legend(loc="center right", fontsize=8)
     axes[1].set_title("zoom 0.15 <= r <= 0.6", fontsize=9)
     L = meta.get("max_length", "?")
-    fig.suptitle(f"Periodic patterns of P_r, stable or unstable: canonical primitive words of length <= {L} "
+    fig.suptitle(f"Periodic patterns of P_r, stable or unstable: canonical primitive words of length <= {L}\n"
                  f"({meta.get('words_scanned', '?')} scanned, {meta.get('feasible_words', '?')} feasible for some r); "
                  f"counts at r = 0.001, ..., 0.999 (grey: r < 0.02, not scanned)\n"
                  f"dashed: the periodic orbits four particles can follow in a collapse (K_w real on the orbit's plane)",
