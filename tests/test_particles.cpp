@@ -9,6 +9,8 @@
 #include "core/scalar.hpp"
 #include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
+#include "patterns/analysis_impl.hpp"
+#include "patterns/exact.hpp"
 #include "reference/reference.hpp"
 
 #include <boost/multiprecision/eigen.hpp>
@@ -332,4 +334,31 @@ TEST(FeasibleAtlas, OneThreadEqualsTwoThreads) {
   const auto b = patterns::compute_feasible_atlas(6, grid, 1e-10, 2);
   EXPECT_EQ(patterns::feasible_csv(a), patterns::feasible_csv(b));
   EXPECT_GT(a.size(), 10u);
+}
+
+TEST(ParticlesPatterns, ContractionFromTheExactCharacteristicPolynomial) {
+  // The exact route: chi(lambda) of A = J M_h (w = h J(h)) with rational coefficients in r (patterns/exact.hpp),
+  // evaluated at r = 3/20 and 1/10 exactly, its roots in 50 digits; M_w's eigenvalues are their squares and the
+  // length contraction is sqrt(r^n2 l_o l_b / l_a) (n2 = 0 here).  Against the double particle run: 1e3 eps (the
+  // run's own error, see IndependentRoutesAgree).
+  boost::multiprecision::mpfr_float::default_precision(50);
+  using mp = boost::multiprecision::mpfr_float;
+  struct Case { const char* word; double r; long num, den; };
+  for (const Case& c : {Case{"1133", 0.15, 3, 20}, Case{"111333", 0.1, 1, 10}}) {
+    const auto w = patterns::parse_word(c.word);
+    const patterns::CharPoly chi = patterns::characteristic_polynomial(w);
+    const patterns::rational r(c.num, c.den);
+    const auto val = [&](const patterns::RationalPoly& p) { return mp(p.eval(r)); };
+    auto roots = patterns::detail::cubic_roots<mp>(val(chi.c2), val(chi.c1), val(chi.c0));
+    std::vector<mp> l;
+    for (const auto& x : roots) {
+      ASSERT_TRUE(x.real) << c.word;
+      l.push_back(x.re * x.re);  // M_w = A^2
+    }
+    std::sort(l.begin(), l.end(), [](const mp& a, const mp& b) { return abs(a) > abs(b); });
+    const double rho = static_cast<double>(sqrt(abs(l[0] * l[2] / l[1])));  // stable: the orbit's is l[0]
+    const ParticlesResult s = run_word(c.word, c.r, 10000);
+    EXPECT_NEAR(s.length_contraction / rho, 1, 1e3 * eps) << c.word;
+    EXPECT_NEAR(s.time_contraction / static_cast<double>(abs(l[2] / l[1])), 1, 1e3 * eps) << c.word;
+  }
 }
