@@ -35,6 +35,7 @@ struct PatternArgs {
   std::uint64_t seed = 1;
   int max_period = 500;
   bool no_check = false, no_plot = false;
+  bool feasible = false;
 };
 
 template <class T> std::string str(const T& v, int digits) {
@@ -209,7 +210,58 @@ void atlas(const PatternArgs& a, const std::string& command_line) {
   if (!a.no_plot) io::run_plot("patterns_atlas.py", {out.string(), (out / "atlas.png").string()});
 }
 
+// `btob pattern atlas --feasible`: every periodic orbit, stable or unstable (issue 19, item 2).
+void feasible_atlas(const PatternArgs& a, const std::string& command_line) {
+  if (a.max_length < 1 || a.max_length > 16)
+    throw UsageError(fmt::format("max-length: got {}, expected 1..16", a.max_length));
+  if (a.threads < 0) throw UsageError(fmt::format("threads: got {}, expected at least 1", a.threads));
+  const auto t0 = std::chrono::steady_clock::now();
+  const io::fs::path out(a.out);
+  io::ensure_dir(out);
+  const double tol = 1e-13;  // bisection width in r (the transitions are reported to ~13 digits)
+  const std::vector<double> grid = feasible_grid();
+  long scanned = 0;
+  const auto entries = compute_feasible_atlas(a.max_length, grid, tol, a.threads, &scanned);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<double> rs;
+  for (int i = 1; i < 1000; ++i) rs.push_back(i / 1000.0);
+  io::write_text_atomic(out / "feasible.csv", feasible_csv(entries));
+  io::write_text_atomic(out / "feasible_counts.csv", feasible_counts_csv(entries, rs));
+  long agree = 0, checked = 0;
+  io::write_text_atomic(out / "unstable_followed.csv", followed_csv(entries, 2000, a.threads, &agree, &checked));
+  long stable = 0, unstable_only = 0;
+  for (const auto& e : entries) {
+    bool st = false;
+    for (const auto& iv : e.intervals) st = st || iv.outcome == Outcome::stable;
+    stable += st;
+    unstable_only += !st;
+  }
+  std::cerr << fmt::format("btob: feasible atlas of {} canonical primitive words of length <= {}: {} feasible for some r "
+                           "({} stable somewhere, {} only unstable) ({:.1f} s)\n",
+                           scanned, a.max_length, entries.size(), stable, unstable_only, seconds);
+  io::Attrs attrs = io::provenance(command_line);
+  attrs["kind"] = std::string("patterns-feasible-atlas");
+  attrs["max_length"] = static_cast<long>(a.max_length);
+  attrs["words_scanned"] = scanned;
+  attrs["feasible_words"] = static_cast<long>(entries.size());
+  attrs["stable_words"] = stable;
+  attrs["unstable_only_words"] = unstable_only;
+  attrs["grid_points"] = static_cast<long>(grid.size());
+  attrs["bisection_tol"] = tol;
+  attrs["scalar_type"] = std::string("double");
+  attrs["threads"] = static_cast<long>(a.threads > 0 ? a.threads : omp_get_max_threads());
+  attrs["atlas_seconds"] = seconds;
+  attrs["followed_checked"] = checked;
+  attrs["followed_agree"] = agree;
+  std::cerr << fmt::format("btob: unstable orbits followed by the map in double from their periodic point: {} of {} within a "
+                           "factor 2 (+-2 periods) of ln(margin/eps)/ln(expansion)\n", agree, checked);
+  io::write_manifest(out / "feasible.json", attrs);
+  if (!a.no_plot) io::run_plot("patterns_feasible.py", {out.string(), (out / "feasible.png").string()});
+}
+
 void pattern(const PatternArgs& a, const std::string& command_line) {
+  if (a.word == "atlas" && a.feasible) return feasible_atlas(a, command_line);
+  if (a.feasible) throw UsageError("feasible: expected the word 'atlas' with --feasible");
   if (a.word == "atlas") return atlas(a, command_line);
   const Word w = parse_word(a.word, "word");
   if (a.charpoly) {
@@ -287,6 +339,8 @@ Register reg([](CLI::App& app) {
   c->add_option("--max-period", a->max_period, "atlas check: longest period searched")->capture_default_str();
   c->add_flag("--no-check", a->no_check, "atlas: skip the iterator check");
   c->add_flag("--no-plot", a->no_plot, "atlas: write data only");
+  c->add_flag("--feasible", a->feasible,
+              "atlas: every feasible periodic orbit, stable or unstable (feasible.csv, feasible_counts.csv)");
   c->callback([a, c] { pattern(*a, command_line_of(c)); });
 });
 

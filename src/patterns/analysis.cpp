@@ -18,11 +18,18 @@ std::vector<double> default_grid() {
   return g;
 }
 
+std::string classification_name(const Classification& c) {
+  if (c.outcome == Outcome::none || c.collapse) return outcome_name(c.outcome);
+  return std::string(outcome_name(c.outcome)) + " (no collapse)";
+}
+
 #define BTOB_PATTERNS_INSTANTIATE(T)                                                                          \
   template Verdict<T> analyse<T>(const Word&, const T&);                                                       \
   template bool is_stable<T>(const Word&, const T&);                                                           \
   template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&);        \
   template T quantity<T>(const Word&, const T&, Track, Quantity);                                              \
+  template Classification classify<T>(const Word&, const T&);                                                         \
+  template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&); \
   template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
 
 BTOB_PATTERNS_INSTANTIATE(float)

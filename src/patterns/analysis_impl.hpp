@@ -367,4 +367,71 @@ std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>
   return out;
 }
 
+namespace detail {
+// The collapse condition of Classification for the eigenvalue index o of s (the spectrum of M_w, or of J M_h
+// when reduced: M_w's eigenvalues are then the squares).
+template <class T> bool collapses(const Word& w, const T& r, const Spectrum<T>& s, int o, bool reduced) {
+  const int ia = o == 0 ? 1 : 0, ib = o == 2 ? 1 : 2;
+  const Root<T>& a = s.roots[ia];
+  const Root<T>& b = s.roots[ib];
+  if (!a.real || !b.real) return false;  // (a square of a complex root is real only on a null set)
+  if (!(s.mod[ib] < s.mod[ia] * (1 - tie_tol<T>()))) return false;  // mu_l / mu_v = l_b / l_a: need < 1 in modulus
+  // sign(mu_v) = sign(l_a l_o) (-1)^collisions (the positive factors r^n2 and the normalisation drop out).
+  const T la = reduced ? T(a.re * a.re) : a.re;
+  const T lo = reduced ? T(s.roots[o].re * s.roots[o].re) : s.roots[o].re;
+  const bool odd = collisions(w) % 2 != 0;
+  return odd ? la * lo < 0 : la * lo > 0;
+}
+}  // namespace detail
+
+template <class T> Classification classify(const Word& w0, const T& r) {
+  using namespace detail;
+  const Word w = primitive_root(w0);
+  const bool reduced = is_J_square(w);
+  const Spectrum<T> s = spectrum(w, r, reduced);
+  // The same predicates as analyse: stable = real, strictly dominant and feasible; unstable = some other
+  // real eigenvector feasible (analyse's loop over the spectrum in order of decreasing modulus).
+  const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
+  for (int i = 0; i < 3; ++i) {
+    if (!s.roots[i].real) continue;
+    if (feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) < 0)
+      return {i == 0 && dominant ? Outcome::stable : Outcome::unstable, collapses(w, r, s, i, reduced)};
+  }
+  return {};
+}
+
+template <class T>
+std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+  using namespace detail;
+  if (w0.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  const Word w = primitive_root(w0);
+  std::vector<Classification> o(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]));
+  // Bisects between a (classification ca) and b (another one); returns the endpoint and b's name.
+  const auto refine = [&](T a, T b, const Classification& ca) {
+    for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
+      const T mid = (a + b) / 2;
+      if (classify<T>(w, mid) == ca) a = mid;
+      else b = mid;
+    }
+    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b))};
+  };
+  std::vector<FeasibleInterval<T>> out;
+  for (std::size_t i = 0; i < grid.size();) {
+    if (o[i].outcome == Outcome::none) { ++i; continue; }
+    std::size_t j = i;
+    while (j + 1 < grid.size() && o[j + 1] == o[i]) ++j;
+    FeasibleInterval<T> iv;
+    iv.outcome = o[i].outcome;
+    iv.collapse = o[i].collapse;
+    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
+    else std::tie(iv.lo, iv.lo_reason) = refine(T(grid[i]), T(grid[i - 1]), o[i]);
+    if (j + 1 == grid.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
+    else std::tie(iv.hi, iv.hi_reason) = refine(T(grid[j]), T(grid[j + 1]), o[i]);
+    out.push_back(iv);
+    i = j + 1;
+  }
+  return out;
+}
+
 }  // namespace btob::patterns

@@ -1,6 +1,8 @@
 // The atlas of stable patterns (OpenMP over words) and pattern detection with the batched iterator.
 #include "patterns/atlas.hpp"
 
+#include "patterns/analysis_impl.hpp"
+
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 
@@ -32,6 +34,129 @@ std::string atlas_csv(const std::vector<AtlasEntry>& atlas) {
   for (const auto& e : atlas)
     for (const auto& iv : e.intervals)
       s += fmt::format("{},{:.17g},{:.17g},{},{}\n", to_paper(e.word), iv.lo, iv.hi, iv.lo_reason, iv.hi_reason);
+  return s;
+}
+
+std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
+                                                  long* words_scanned) {
+  const std::vector<Word> words = enumerate_canonical(max_length);
+  if (words_scanned) *words_scanned = static_cast<long>(words.size());
+  std::vector<FeasibleEntry> all(words.size());
+  const long n = static_cast<long>(words.size());
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+  for (long i = 0; i < n; ++i) {
+    all[i].word = words[i];
+    all[i].intervals = feasibility_set<double>(words[i], grid, tol);
+  }
+  std::vector<FeasibleEntry> out;
+  for (auto& e : all)
+    if (!e.intervals.empty()) out.push_back(std::move(e));
+  return out;
+}
+
+std::vector<double> feasible_grid() {
+  std::vector<double> g;
+  const auto add = [&](double a, double b, int n) {
+    for (int i = 0; i < n; ++i) g.push_back(a + (b - a) * (i + 0.5) / n);
+  };
+  add(0.02, 0.07, 250);
+  add(0.07, 0.26, 950);
+  add(0.26, 1.0, 370);
+  return g;
+}
+
+std::string feasible_csv(const std::vector<FeasibleEntry>& atlas) {
+  std::string s = "word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason\n";
+  for (const auto& e : atlas)
+    for (const auto& iv : e.intervals)
+      s += fmt::format("{},{},{},{},{:.17g},{:.17g},{},{},{},{}\n", to_paper(e.word), to_digits(e.word), e.word.size(),
+                       collisions(e.word), iv.lo, iv.hi, outcome_name(iv.outcome), iv.collapse ? "true" : "false",
+                       iv.lo_reason, iv.hi_reason);
+  return s;
+}
+
+std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r) {
+  std::string s = "r,stable,unstable,feasible,stable_collapse,unstable_collapse\n";
+  for (double x : r) {
+    long st = 0, un = 0, stc = 0, unc = 0;
+    for (const auto& e : atlas) {
+      const FeasibleInterval<double>* in = nullptr;
+      for (const auto& iv : e.intervals)
+        if (iv.lo <= x && x < iv.hi) in = &iv;
+      if (!in) continue;
+      st += in->outcome == Outcome::stable;
+      un += in->outcome == Outcome::unstable;
+      stc += in->outcome == Outcome::stable && in->collapse;
+      unc += in->outcome == Outcome::unstable && in->collapse;
+    }
+    s += fmt::format("{:.6g},{},{},{},{},{}\n", x, st, un, st + un, stc, unc);
+  }
+  return s;
+}
+
+template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, long max_periods) {
+  const Verdict<T> v = analyse<T>(w0, r);
+  Followed f;
+  if (v.orbit_eigen < 0) throw std::invalid_argument("word: got a word with no feasible periodic point at this r");
+  const Word& w = v.word;
+  // Expansion per period of M_w (moduli squared when analysed through J M_h).
+  const T lo = v.spectrum[v.orbit_eigen].modulus, l1 = v.spectrum[0].modulus;
+  f.expansion = static_cast<double>(v.reduced ? T((l1 / lo) * (l1 / lo)) : T(l1 / lo));
+  std::vector<T> margins;
+  (void)detail::feasibility(w, r, v.orbit.front(), &margins);
+  T m = margins.front() > 0 ? detail::sqrt_<T>(margins.front()) : T(0);  // domain margin -x z: a product, its square root
+  for (std::size_t k = 1; k < margins.size(); ++k) m = std::min<T>(m, margins[k]);
+  f.margin = static_cast<double>(m);
+  const double eps = static_cast<double>(std::numeric_limits<T>::epsilon());
+  f.predicted = f.expansion > 1 ? std::log(f.margin / eps) / std::log(f.expansion) : INFINITY;
+  Vec3<T> u = v.orbit.front();
+  for (long n = 0; n < max_periods; ++n) {
+    for (auto c : w.s) {
+      const core::Step<T> st = core::step<T>(u, r);
+      if (st.symbol != c) return f;
+      u = st.u / st.u.norm();
+    }
+    f.periods = n + 1;
+  }
+  return f;
+}
+template Followed follow_periodic_orbit<double>(const Word&, const double&, long);
+template Followed follow_periodic_orbit<long double>(const Word&, const long double&, long);
+
+std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked) {
+  struct Row {
+    const Word* w;
+    double r;
+    Followed f;
+  };
+  std::vector<Row> rows;
+  for (const auto& e : atlas)
+    for (const auto& iv : e.intervals)
+      if (iv.outcome == Outcome::unstable) rows.push_back({&e.word, (iv.lo + iv.hi) / 2, {}});
+  const long n = static_cast<long>(rows.size());
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+  for (long i = 0; i < n; ++i) {
+    try {
+      rows[i].f = follow_periodic_orbit<double>(*rows[i].w, rows[i].r, max_periods);
+    } catch (const std::invalid_argument&) {
+      rows[i].f.periods = -1;  // not feasible at the midpoint (an interval narrower than the bisection noise)
+    }
+  }
+  long a = 0, c = 0;
+  std::string s = "word,r,expansion,margin,predicted,followed\n";
+  for (const auto& row : rows) {
+    const Followed& f = row.f;
+    if (f.expansion > 1 && f.periods >= 0 && 2 * f.predicted + 2 < static_cast<double>(max_periods)) {
+      ++c;
+      a += f.periods >= f.predicted / 2 - 2 && f.periods <= 2 * f.predicted + 2;
+    }
+    s += fmt::format("{},{:.17g},{:.10g},{:.6g},{:.6g},{}\n", to_paper(*row.w), row.r, f.expansion, f.margin, f.predicted,
+                     f.periods);
+  }
+  if (agree) *agree = a;
+  if (checked) *checked = c;
   return s;
 }
 

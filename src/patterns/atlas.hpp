@@ -22,6 +22,45 @@ std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>&
 // CSV word,r_low,r_high,low_reason,high_reason: one row per interval, words in paper notation, 17 digits.
 std::string atlas_csv(const std::vector<AtlasEntry>& atlas);
 
+// The feasible atlas: every canonical primitive word of length 1..max_length with the intervals of r on
+// which it has a feasible periodic point, each marked stable or unstable (feasibility_set on `grid`, changes
+// bisected to `tol`; OpenMP over words, static interleaved schedule, independent of the thread count).
+// Words never feasible on the grid are left out.
+struct FeasibleEntry {
+  Word word;  // canonical, primitive
+  std::vector<FeasibleInterval<double>> intervals;
+};
+std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
+                                                  long* words_scanned = nullptr);
+// The scan grid of the feasible atlas: 1570 points on [0.02, 1), step 2e-4 on [0.02, 0.26) where the windows
+// are thin (1^7 3^7 is 3.6e-4 wide), 2e-3 on [0.26, 1).  Below 0.02 the subdominant eigenvalues of long words
+// fall below double's resolution relative to the dominant one (their eigenvectors are then unreliable).
+std::vector<double> feasible_grid();
+// CSV word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason: one row per interval.
+std::string feasible_csv(const std::vector<FeasibleEntry>& atlas);
+// CSV r,stable,unstable,feasible,stable_collapse,unstable_collapse: at each r of `r`, the number of words of the
+// atlas with a stable / an unstable feasible periodic point (classify's choice), their sum, and those of them
+// that four particles can follow in a collapse (Classification::collapse).
+std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r);
+
+// An unstable periodic orbit followed by the map: core::step in T (double or long double) from the periodic
+// point of analyse<T>(w, r) (which must be feasible), the number of whole periods whose symbols are w's before
+// the first wrong symbol (at most max_periods).  Rounding errors (~eps) grow by Lambda = |l_1| / |l_o| per
+// period (l_o the orbit's eigenvalue of M_w, l_1 the dominant), and the orbit leaves the pattern when they
+// reach the smallest branch margin m along the orbit (unit vectors): after about ln(m / eps) / ln(Lambda)
+// periods, which followed_prediction returns (infinity when Lambda <= 1).
+struct Followed {
+  long periods = 0;         // measured
+  double predicted = 0;     // ln(m / eps) / ln(Lambda)
+  double expansion = 0;     // Lambda per period
+  double margin = 0;        // m
+};
+template <class T> Followed follow_periodic_orbit(const Word& w, const T& r, long max_periods);
+// follow_periodic_orbit<double> at the middle of every unstable interval of the atlas (OpenMP over rows):
+// CSV word,r,expansion,margin,predicted,followed.  `checked` receives the number of rows with an expansion > 1
+// and 2 predicted + 2 < max_periods, `agree` those of them followed within [predicted / 2 - 2, 2 predicted + 2].
+std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked);
+
 // Periodic symbol sequences seen by the iterator.  For each r: `ics` random initial points (seeded),
 // `iterations` steps of the batched kernel (double), symbols of the last `tail` steps; the eventual period
 // is the smallest p <= max_period with s_k = s_{k+p} over the whole tail (0: none).

@@ -97,6 +97,38 @@ std::vector<double> default_grid();  // 7500 points, denser on [0.07, 0.26) wher
 template <class T>
 std::vector<Interval<T>> stability_set(const Word& w, const std::vector<double>& grid, const T& tol);
 
+// analyse(w, r).outcome without the orbit and the exponents (the inner loop of the feasible atlas): stable
+// when the dominant eigenvector is feasible and strictly dominant, unstable when another real eigenvector
+// (or a non-dominant one) is feasible, none otherwise.  No input checks (callers validate).
+//
+// `collapse`: whether four particles can follow that periodic orbit for ever.  Velocities change only at
+// collisions, so after n periods they are K_w^n q (K_w the product of the collision matrices of eq. 2.5 over one
+// period; K_w does not depend on acb / cab since AC = CA).  The plane normal to the orbit's u is invariant
+// under K_w, and cof(K_w) = r^n2 M_w (n2 = number of symbols 2).  A collapse repeating w needs K_w to have on
+// that plane two real eigenvalues mu_v, mu_l with mu_v > |mu_l| (q2 > 0 after every b-collision: a complex pair
+// would turn q through every direction).  From M_w's eigenvalues l_o (the orbit's), l_a, l_b (|l_a| >= |l_b|):
+// mu_v mu_l = r^n2 l_o, and mu_v / mu_l = l_a / l_b, so the condition is: l_a and l_b real, |l_a| > |l_b|, and
+// mu_v = r^n2 l_a / mu_j > 0 with mu_j = (-r)^collisions / (r^n2 l_o) (det K_w = (-r)^collisions).
+struct Classification {
+  Outcome outcome = Outcome::none;
+  bool collapse = false;  // meaningful when outcome != none
+  bool operator==(const Classification&) const = default;
+};
+std::string classification_name(const Classification& c);  // "none", "stable", "unstable", "stable (no collapse)", ...
+template <class T> Classification classify(const Word& w, const T& r);
+// One interval of r on which w has a feasible periodic point with a constant classification; lo_reason /
+// hi_reason name the classification just beyond the endpoint (classification_name) or "end".
+template <class T> struct FeasibleInterval {
+  T lo{}, hi{};
+  Outcome outcome = Outcome::none;
+  bool collapse = false;
+  std::string lo_reason, hi_reason;
+};
+// classify on `grid`, each change bisected in T down to `tol`.  Intervals narrower than the grid step can be
+// missed; the grid is the caller's resolution.
+template <class T>
+std::vector<FeasibleInterval<T>> feasibility_set(const Word& w, const std::vector<double>& grid, const T& tol);
+
 // Quantities of Section 7 as functions of r, for the real eigenvalue picked by Track of the analysed matrix
 // (J M_h if w = h J(h), else M_w).  Signs are those of the paper's normalisation x = 1 (z = 1 for x_component).
 enum class Track { dominant_real, negative_real };
@@ -120,6 +152,8 @@ namespace btob::patterns {
   extern template bool is_stable<T>(const Word&, const T&);                                                    \
   extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&); \
   extern template T quantity<T>(const Word&, const T&, Track, Quantity);                                       \
+  extern template Classification classify<T>(const Word&, const T&);                                                  \
+  extern template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&); \
   extern template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
 BTOB_PATTERNS_EXTERN(float)
 BTOB_PATTERNS_EXTERN(double)

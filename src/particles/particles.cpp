@@ -1,0 +1,269 @@
+// The particle check of a periodic pattern: request validation, the start from the periodic point, the
+// predictions from the period matrix, and explicit instantiations of the simulator.
+#include "particles/particles_impl.hpp"
+
+#include "core/scalar.hpp"
+#include "patterns/atlas.hpp"
+#include "patterns/patterns.hpp"
+#include "reference/reference_impl.hpp"
+
+#include <boost/multiprecision/eigen.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace btob::particles {
+
+#define BTOB_PARTICLES_INSTANTIATE_G(T, G)                                \
+  template void collide<T, G>(Vec<T, G>&, int, const T&);                 \
+  template int next_collision<T, G>(const Gaps<T, G>&, T&);               \
+  template void advance<T, G>(Gaps<T, G>&, const T&, int, const T&);      \
+  template Eigen::Matrix<T, G + 1, 1> absolute<T, G>(const Vec<T, G>&);   \
+  template T kinetic_energy<T, G>(const Vec<T, G>&);
+#define BTOB_PARTICLES_INSTANTIATE(T)  \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 1)   \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 2)   \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 3)   \
+  template PatternRun<T> simulate_pattern<T>(const Gaps<T, 3>&, const std::string&, const T&, long, bool, long);
+BTOB_PARTICLES_INSTANTIATE(double)
+BTOB_PARTICLES_INSTANTIATE(long double)
+BTOB_PARTICLES_INSTANTIATE(core::float128)
+BTOB_PARTICLES_INSTANTIATE(core::mpfr_float)
+#undef BTOB_PARTICLES_INSTANTIATE
+#undef BTOB_PARTICLES_INSTANTIATE_G
+
+namespace {
+
+using core::InvalidField;
+
+std::string shortest(double v) { return fmt::format("{}", v); }
+
+// The feasible intervals of w on the atlas grid, for the error message of a word not feasible at r.
+std::string feasible_where(const patterns::Word& w) {
+  const auto set = patterns::feasibility_set<double>(w, patterns::feasible_grid(), 1e-6);
+  if (set.empty()) return "never feasible on the atlas grid of (0, 1)";
+  std::string s = "feasible for r in";
+  for (std::size_t i = 0; i < set.size() && i < 4; ++i)
+    s += fmt::format("{} ({:.6f}, {:.6f}) {}", i ? "," : "", set[i].lo, set[i].hi, outcome_name(set[i].outcome));
+  if (set.size() > 4) s += ", ...";
+  return s;
+}
+
+template <class T> T sqrt_(const T& x) {
+  using std::sqrt;
+  return sqrt(x);
+}
+
+}  // namespace
+
+// The restriction of K_w to the plane normal to u (invariant: u is a left eigenvector of K_w, since
+// cof(K_w) u = r^n2 M_w u is parallel to u), in the orthonormal basis e1 = p/|p|, e2 = u x e1.
+template <class T> bool self_similar_start(const core::Vec3<T>& u, const std::string& letters, const T& r, Gaps<T, 3>& out) {
+  const core::Particles<T> normal = core::to_particles<T>(u);
+  out = {normal.p, normal.q};
+  const Vec<T, 3>& p = normal.p;
+  Vec<T, 3>& q = out.q;
+  core::Mat3<T> K = core::Mat3<T>::Identity();
+  for (char c : letters) K = reference::collision_matrix<T>(c, r) * K;
+  const Vec<T, 3> e1 = p / detail::norm3(p);
+  Vec<T, 3> e2 = u.cross(e1);
+  e2 /= detail::norm3(e2);
+  const T a = e1.dot(K * e1), b = e1.dot(K * e2), c = e2.dot(K * e1), d = e2.dot(K * e2);
+  const T tr = a + d, det = a * d - b * c, disc = tr * tr / 4 - det;
+  if (!(disc >= 0)) return false;
+  const T s = sqrt_<T>(disc);
+  const T mu = tr >= 0 ? T(tr / 2 + s) : T(tr / 2 - s);  // largest modulus
+  if (!(mu > 0)) return false;
+  // (K - mu) restricted: rows (a - mu, b), (c, d - mu); the eigenvector from the larger row.
+  Vec<T, 3> v;
+  using std::abs;
+  if (abs(a - mu) + abs(b) >= abs(c) + abs(d - mu)) v = b * e1 - (a - mu) * e2;
+  else v = (d - mu) * e1 - c * e2;
+  v /= detail::norm3(v);
+  if (v(1) < 0) v = -v;
+  q = v;
+  return true;
+}
+
+template bool self_similar_start<double>(const core::Vec3<double>&, const std::string&, const double&, Gaps<double, 3>&);
+template bool self_similar_start<long double>(const core::Vec3<long double>&, const std::string&, const long double&,
+                                              Gaps<long double, 3>&);
+template bool self_similar_start<core::float128>(const core::Vec3<core::float128>&, const std::string&, const core::float128&,
+                                                 Gaps<core::float128, 3>&);
+template bool self_similar_start<core::mpfr_float>(const core::Vec3<core::mpfr_float>&, const std::string&,
+                                                   const core::mpfr_float&, Gaps<core::mpfr_float, 3>&);
+
+namespace {
+
+template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const core::RunControl& control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const T r = T(req.r);
+  const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r);
+  ParticlesResult res;
+  res.word = patterns::to_paper(v.word);
+  res.digits = patterns::to_digits(v.word);
+  res.letters = v.letters;
+  res.outcome = patterns::outcome_name(v.outcome);
+  res.r = req.r;
+  res.periods = req.periods;
+  res.precision = req.precision;
+  // Moduli of M_w (squares of those of J M_h when w = h J(h)).
+  std::vector<T> mod;
+  for (const auto& e : v.spectrum) mod.push_back(v.reduced ? T(e.modulus * e.modulus) : e.modulus);
+  for (const auto& m : mod) res.moduli.push_back(static_cast<double>(m));
+  res.orbit_eigen = v.orbit_eigen;
+  res.collapse = patterns::classify<T>(v.word, r).collapse;
+  if (res.collapse) {
+    const int o = v.orbit_eigen, ia = o == 0 ? 1 : 0, ib = o == 2 ? 1 : 2;
+    long n2 = 0;
+    for (auto c : v.word.s) n2 += c == 2;
+    using std::pow;
+    const T rn2 = pow(r, static_cast<int>(n2));
+    res.length_predicted = static_cast<double>(sqrt_(T(rn2 * mod[o] * mod[ib] / mod[ia])));
+    res.velocity_predicted = static_cast<double>(sqrt_(T(rn2 * mod[o] * mod[ia] / mod[ib])));
+    res.time_predicted = static_cast<double>(T(mod[ib] / mod[ia]));
+  } else {
+    res.length_predicted = res.velocity_predicted = res.time_predicted = std::nan("");
+    res.failure = "no collapse: the eigenvalues of K_w on the orbit's plane are not real with a positive dominant one "
+                  "(M_w's other two eigenvalues are not real, or tie); started normal";
+  }
+  // The start right after the b-collision of the periodic point u (in Q): p = u x e_y = (-z, 0, x).
+  const Vec<T, 3> u = v.orbit.front();
+  const core::Particles<T> normal = core::to_particles<T>(u);
+  Gaps<T, 3> start{normal.p, normal.q};
+  if (req.start == "self-similar" && res.collapse && self_similar_start<T>(u, v.letters, r, start)) {
+    // the exact self-similar collapse
+  } else {
+    // q - lambda p for lambda = 0, then 4^k |q| / |p| (k = 0..40): the first that reproduces three periods (or
+    // fewer if asked), else the one that reproduces the most collisions.
+    const long probe = std::min<long>(3, req.periods);
+    T lambda = T(0);
+    long best = -1;
+    for (int k = 0; k <= 41; ++k) {
+      Gaps<T, 3> s{normal.p, Vec<T, 3>(normal.q - lambda * normal.p)};
+      const PatternRun<T> pr = simulate_pattern<T>(s, v.letters, r, probe, true);
+      if (pr.collisions > best) {
+        best = pr.collisions;
+        start = s;
+      }
+      if (pr.periods_ok == probe) break;
+      lambda = k == 0 ? T(1) : T(lambda * 4);
+    }
+  }
+  start.p /= detail::norm3(start.p);
+  start.q /= detail::norm3(start.q);
+
+  // The rescaled run, in blocks so that a cancellation is seen between them.
+  PatternRun<T> run = simulate_pattern<T>(start, v.letters, r, std::min<long>(req.periods, req.diagram_periods), true,
+                                          req.diagram_periods);
+  res.events = run.events;
+  if (req.periods > req.diagram_periods && run.failure.empty()) {
+    // The rest continues from scratch over all periods (the first diagram_periods are recomputed identically;
+    // the cost is negligible) so that the run is one trajectory.
+    control.check_cancelled();
+    run = simulate_pattern<T>(start, v.letters, r, req.periods, true, 0);
+  }
+  if (control.progress) control.progress->update(1, 1);
+  res.periods_ok = run.periods_ok;
+  res.sequence_ok = run.periods_ok == req.periods;
+  if (!run.failure.empty()) res.failure = res.failure.empty() ? run.failure : res.failure + "; " + run.failure;
+  res.length_ratio = run.length_ratio;
+  res.velocity_ratio = run.velocity_ratio;
+  res.time_ratio = run.time_ratio;
+  const std::size_t N = run.length_ratio.size();
+  if (N > 0) {
+    res.length_contraction = run.length_ratio.back();
+    res.velocity_contraction = run.velocity_ratio.back();
+    res.energy_ratio = res.velocity_contraction * res.velocity_contraction;
+    res.time_contraction = N > 1 ? res.time_ratio.back() : std::nan("");
+    for (std::size_t n = N / 2; n < N; ++n)
+      res.length_spread = std::max(res.length_spread, std::abs(run.length_ratio[n] / res.length_contraction - 1));
+    // Time to collapse: the simulated periods, plus the geometric tail with the last ratio.
+    const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
+    res.time_to_collapse = static_cast<double>(run.total_time) + (q < 1 ? run.duration.back() * q / (1 - q) : INFINITY);
+  }
+  if (N == 0) res.length_contraction = res.velocity_contraction = res.time_contraction = res.energy_ratio = std::nan("");
+  if (!res.sequence_ok) res.time_to_collapse = std::nan("");  // the particles left the pattern: no collapse along it
+  // Events: time since the start and time to collapse (the rest of their period, the later periods and the
+  // geometric tail; NaN when the particles left the pattern).
+  {
+    std::vector<double> after(N + 1, 0.0), before(N + 1, 0.0);  // time from the end / up to the start of period n
+    const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
+    after[N] = N > 0 && q < 1 ? run.duration.back() * q / (1 - q) : 0.0;
+    for (std::size_t n = N; n-- > 0;) after[n] = after[n + 1] + run.duration[n];
+    for (std::size_t n = 0; n < N; ++n) before[n + 1] = before[n] + run.duration[n];
+    std::vector<double> ev;
+    for (std::size_t e = 0; e + 7 <= res.events.size(); e += 7) {
+      const auto n = static_cast<std::size_t>(res.events[e]);
+      const double offset = res.events[e + 1];
+      ev.push_back(res.events[e]);
+      ev.push_back(before[std::min(n, N)] + offset);
+      ev.push_back(res.sequence_ok && n < N ? (run.duration[n] - offset) + after[n + 1] : std::nan(""));
+      for (int k = 2; k < 7; ++k) ev.push_back(res.events[e + k]);
+    }
+    res.events = ev;
+  }
+  // Without rescaling: the same run until the gaps underflow.
+  {
+    const PatternRun<T> raw = simulate_pattern<T>(start, v.letters, r, req.periods, false, 0);
+    res.collisions_unrescaled = raw.collisions;
+    res.unrescaled_end = raw.failure.empty() ? fmt::format("all {} periods reproduced", req.periods) : raw.failure;
+    using std::log;
+    const double lmin = static_cast<double>(T(log(std::numeric_limits<T>::min())));
+    res.collisions_limit_predicted =
+        res.length_predicted > 0 && res.length_predicted < 1
+            ? lmin / std::log(res.length_predicted) * static_cast<double>(v.letters.size())
+            : INFINITY;
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace
+
+void ParticlesRequest::validate() const {
+  patterns::Word w;
+  try {
+    w = patterns::parse_word(word, "word");
+  } catch (const std::exception&) {
+    throw InvalidField("word", "'" + word + "'", "a word over 1, 2, 3 such as 132312, 132^3312^3 or (ab)(cb)(acb)");
+  }
+  if (!(r > 0 && r < 1) || !std::isfinite(r))
+    throw InvalidField("r", shortest(r), "a restitution coefficient in the open interval (0, 1)");
+  if (periods < 1 || periods > 100000000) throw InvalidField("periods", std::to_string(periods), "1..100000000");
+  core::Precision prec;
+  try {
+    prec = core::parse_precision(precision, "precision");
+  } catch (const std::exception&) {
+    throw InvalidField("precision", "'" + precision + "'", "double, long-double, float128 or mpfr:D (10 <= D <= 10000)");
+  }
+  if (prec.kind == core::Precision::Kind::f32)
+    throw InvalidField("precision", "'float'", "double, long-double, float128 or mpfr:D (float is too short for the check)");
+  if (start != "self-similar" && start != "normal")
+    throw InvalidField("start", "'" + start + "'", "self-similar or normal");
+  if (diagram_periods < 1 || diagram_periods > 50)
+    throw InvalidField("diagram-periods", std::to_string(diagram_periods), "1..50");
+  if (patterns::analyse<double>(w, r).outcome == patterns::Outcome::none)
+    throw InvalidField("word", "'" + word + "'",
+                       fmt::format("a word with a feasible periodic point at r = {} ({} {})", shortest(r),
+                                   patterns::to_paper(patterns::primitive_root(w)), feasible_where(w)));
+}
+
+ParticlesResult run(const ParticlesRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  switch (prec.kind) {
+    case core::Precision::Kind::f80: return run_impl<long double>(req, control);
+    case core::Precision::Kind::f128: return run_impl<core::float128>(req, control);
+    case core::Precision::Kind::mpfr: {
+      core::mpfr_float::default_precision(static_cast<unsigned>(prec.mpfr_digits));
+      return run_impl<core::mpfr_float>(req, control);
+    }
+    default: return run_impl<double>(req, control);
+  }
+}
+
+}  // namespace btob::particles
