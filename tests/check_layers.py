@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""The floors of docs/ARCHITECTURE.md: a module of src/ includes only modules on a lower floor (or itself).
+
+Usage: check_layers.py SOURCE_DIR.  Prints every offending include and exits 1; prints one line per module
+and exits 0 when the layering holds.  A folder not named below (a new analysis without its own CMakeLists.txt)
+is on floor 4.
+"""
+import os
+import re
+import sys
+
+FLOORS = {"core": 0, "iterate": 1, "reference": 2,
+          "bifurcation": 3, "windows": 3, "patterns": 3, "lyapunov": 3, "stats": 3,
+          "attractors": 4, "particles": 4,
+          "io": 5, "cli": 6}
+# io depends on core only: results reach it as core::Contents.
+ONLY = {"io": {"core"}}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_0-9]+)/')
+
+
+def main(root):
+    src = os.path.join(root, "src")
+    bad = []
+    summary = []
+    for module in sorted(os.listdir(src)):
+        d = os.path.join(src, module)
+        if not os.path.isdir(d):
+            continue
+        floor = FLOORS.get(module, 4)
+        used = set()
+        for dirpath, _, files in os.walk(d):
+            for f in files:
+                if not f.endswith((".hpp", ".cpp", ".h", ".in")):
+                    continue
+                path = os.path.join(dirpath, f)
+                with open(path, encoding="utf-8") as fh:
+                    for n, line in enumerate(fh, 1):
+                        m = INCLUDE.match(line)
+                        if not m or m.group(1) == module or m.group(1) == "btob":
+                            continue
+                        other = m.group(1)
+                        if not os.path.isdir(os.path.join(src, other)):
+                            continue
+                        used.add(other)
+                        allowed = ONLY.get(module)
+                        if FLOORS.get(other, 4) >= floor or (allowed is not None and other not in allowed):
+                            bad.append(f"{os.path.relpath(path, root)}:{n}: {module} (floor {floor}) includes "
+                                       f"{other} (floor {FLOORS.get(other, 4)})")
+        summary.append(f"{module} (floor {floor}) -> {', '.join(sorted(used)) or 'nothing'}")
+    if bad:
+        print("layering violated:")
+        print("\n".join(bad))
+        return 1
+    print("\n".join(summary))
+    print("layering holds")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1]))
