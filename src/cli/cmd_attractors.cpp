@@ -5,6 +5,7 @@
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/coords.hpp"
+#include "core/fields.hpp"
 #include "io/io.hpp"
 #include "iterate/ensemble.hpp"
 
@@ -21,11 +22,6 @@
 
 namespace btob::cli {
 namespace {
-
-void check_r(double r, const char* field) {
-  if (!(r > 0 && r < 1) || !std::isfinite(r))
-    throw UsageError(fmt::format("{}: got {}, expected a value in the open interval (0, 1)", field, r));
-}
 
 std::string csv_quote(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -50,25 +46,8 @@ void add_options(CLI::App* c, attractors::Options& o) {
       ->capture_default_str();
   c->add_option("--refine-factor", o.refine_factor, "transient factor of the refinement pass (0 = off)")
       ->capture_default_str();
-  c->add_option("--threads", o.run.threads, "OpenMP threads (results do not depend on it)");
-}
-
-core::Vec3<double> parse_point(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw UsageError(fmt::format("point: got '{}', expected three numbers x,y,z", s));
-    }
-  }
-  if (v.size() != 3) throw UsageError(fmt::format("point: got '{}', expected three numbers x,y,z", s));
-  core::validate_point(v[0], v[1], v[2], "point");
-  return {v[0], v[1], v[2]};
+  c->add_option("--threads", o.run.threads, "OpenMP threads, 1..1024 (default: all cores; results do not depend on it)")
+      ->check(CLI::Range(1, core::RunControl::max_threads));
 }
 
 std::string pattern_of(const attractors::OrbitVerdict& v, double r) {
@@ -86,8 +65,8 @@ struct ClassifyArgs {
 };
 
 void classify_cmd(const ClassifyArgs& a) {
-  check_r(a.r, "r");
-  const core::Vec3<double> u = parse_point(a.point);
+  core::require_r(a.r, "r");
+  const core::Vec3<double> u = core::parse_point(a.point, "point");
   attractors::validate(a.opt);
   const attractors::OrbitVerdict v = attractors::classify_point(u, a.r, a.opt);
   std::string detail = v.detail + fmt::format("; {} iterations", v.iterations);
@@ -115,7 +94,7 @@ struct BasinsArgs {
 };
 
 void basins_cmd(const BasinsArgs& a, const std::string& command_line) {
-  check_r(a.r, "r");
+  core::require_r(a.r, "r");
   if (a.w1_range.size() != 2) throw UsageError("w1-range: expected two numbers a,b");
   attractors::validate(a.opt);
   const attractors::Grid g = attractors::parse_grid(a.grid, a.w1_range[0], a.w1_range[1], "grid");
@@ -258,7 +237,7 @@ void basins_r_cmd(const BasinsRArgs& a, const std::string& command_line) {
       if (t.r >= 0.1 - 1e-12 && t.r <= 0.6 + 1e-12) rs.push_back(t.r);
   }
   if (rs.empty()) throw UsageError("r-values: got none, expected a list of r in (0, 1) or --table");
-  for (double r : rs) check_r(r, "r-values");
+  for (double r : rs) core::require_r(r, "r-values");
   const std::vector<core::Vec3<double>> pts = iterate::parse_grid(a.grid, a.seed, "grid");
   if (pts.empty()) throw UsageError(fmt::format("grid: got '{}' with no points, expected at least one", a.grid));
   iterate::checked_bytes(pts.size(), 800, "grid");

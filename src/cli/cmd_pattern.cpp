@@ -1,6 +1,7 @@
 // `btob pattern`: verdict of one word at r, its stability windows, or the atlas of stable patterns (Sections 6.2, 7).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "core/request.hpp"
 #include "core/coords.hpp"
 #include "core/scalar.hpp"
 #include "io/io.hpp"
@@ -331,7 +332,8 @@ Register reg([](CLI::App& app) {
   c->add_option("--digits", a->digits, "window mode: digits of the endpoints (> 15 computes in MPFR)");
   c->add_option("--max-length", a->max_length, "atlas: longest word, in symbols")->capture_default_str();
   c->add_option("--out", a->out, "atlas: output directory")->capture_default_str();
-  c->add_option("--threads", a->threads, "OpenMP threads (default: all cores)");
+  c->add_option("--threads", a->threads, "OpenMP threads, 1..1024 (default: all cores)")
+      ->check(CLI::Range(1, core::RunControl::max_threads));
   c->add_option("--ics", a->ics, "atlas check: random initial points per r")->capture_default_str();
   c->add_option("--iterations", a->iterations, "atlas check: iterations per orbit")->capture_default_str();
   c->add_option("--tail", a->tail, "atlas check: symbols kept at the end of each orbit")->capture_default_str();

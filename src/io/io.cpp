@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -87,7 +89,25 @@ H5Writer::~H5Writer() {
   }
 }
 
+namespace {
+// Runs f, turning an HDF5 exception (disk full, permission denied, a vanished folder) into one line naming the file.
+template <class F> void h5_guard(const fs::path& path, F&& f) {
+  try {
+    f();
+  } catch (const H5::Exception& e) {
+    std::error_code ec;
+    const auto space = fs::space(path.parent_path().empty() ? fs::path(".") : path.parent_path(), ec);
+    const std::string cause = !ec && space.available < (1u << 20) ? "no space left on the device" : e.getDetailMsg();
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path.string(), cause));
+  }
+}
+}  // namespace
+
 void H5Writer::attrs(const Attrs& a) {
+  h5_guard(path_, [&] { write_attrs(a); });
+}
+
+void H5Writer::write_attrs(const Attrs& a) {
   H5::Group root = impl_->file.openGroup("/");
   for (const auto& [k, v] : a) {
     H5::DataSpace scalar(H5S_SCALAR);
@@ -129,23 +149,25 @@ void write_ds(H5::H5File& f, const std::string& name, const V& data, const std::
 }  // namespace
 
 void H5Writer::dataset(const std::string& n, const std::vector<double>& v, const std::vector<std::size_t>& d) {
-  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_DOUBLE);
+  h5_guard(path_, [&] { write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_DOUBLE); });
 }
 void H5Writer::dataset(const std::string& n, const std::vector<std::uint32_t>& v, const std::vector<std::size_t>& d) {
-  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT32);
+  h5_guard(path_, [&] { write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT32); });
 }
 void H5Writer::dataset(const std::string& n, const std::vector<std::uint8_t>& v, const std::vector<std::size_t>& d) {
-  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT8);
+  h5_guard(path_, [&] { write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT8); });
 }
 void H5Writer::dataset(const std::string& n, const std::vector<std::uint64_t>& v, const std::vector<std::size_t>& d) {
-  write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT64);
+  h5_guard(path_, [&] { write_ds(impl_->file, n, v, d, H5::PredType::NATIVE_UINT64); });
 }
 
 void H5Writer::commit() {
-  impl_->file.close();
+  h5_guard(path_, [&] { impl_->file.close(); });
   delete impl_;
   impl_ = nullptr;
-  fs::rename(tmp_, path_);
+  std::error_code ec;
+  fs::rename(tmp_, path_, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot move '{}' into place: {}", path_.string(), ec.message()));
   committed_ = true;
 }
 
@@ -154,11 +176,17 @@ void write_text_atomic(const fs::path& path, const std::string& text) {
   tmp += fmt::format(".tmp-{}", getpid());
   {
     std::ofstream f(tmp);
-    if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", tmp.string()));
-    f << text;
-    if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", tmp.string()));
+    if (f) f << text;
+    if (f) f.close();
+    if (!f) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw std::runtime_error(fmt::format("cannot write '{}': {}", path.string(), std::strerror(errno)));
+    }
   }
-  fs::rename(tmp, path);
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot move '{}' into place: {}", path.string(), ec.message()));
 }
 
 namespace {

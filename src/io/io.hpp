@@ -40,6 +40,7 @@ class H5Writer {
   void commit();
 
  private:
+  void write_attrs(const Attrs& a);
   struct Impl;
   Impl* impl_;
   fs::path path_, tmp_;
