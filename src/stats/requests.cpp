@@ -94,7 +94,11 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   res.request = req;
   std::tie(res.phi, res.psi) = observables(req.observable);
   const long N = req.iterations, M = req.n_max;
-  const OrbitSeries s = orbit_series(req.r, core::parse_point(req.point, "point"), req.transient, N + M);
+  iterate::RunOptions opt;  // one orbit: one thread, cancellable between batches
+  opt.threads = 1;
+  opt.cancel = control.cancel;
+  const OrbitSeries s =
+      std::move(orbit_series(req.r, {core::parse_point(req.point, "point")}, req.transient, N + M, opt)[0]);
   const auto x = observe(s, res.phi), y = observe(s, res.psi);
   control.check_cancelled();
   auto t0 = std::chrono::steady_clock::now();
