@@ -4,6 +4,8 @@
 #include "core/coords.hpp"
 #include "core/map.hpp"
 #include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/hyperbolicity_requests.hpp"
+#include "lyapunov/maps.hpp"
 #include "lyapunov/lyapunov.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <numbers>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 
@@ -269,6 +272,159 @@ TEST(Hyperbolicity, Errors) {
   EXPECT_THROW(lyapunov::strip_singular_values(1.5, 4, 4, -1, 1), std::domain_error);
   EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 0, 4, -1, 1); }).find("grid"), std::string::npos);
   EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 4, 4, 1, -1); }).find("w1"), std::string::npos);
+}
+
+// ---- the requests (`btob hyperbolicity`, `btob hyperbolicity-orbits`) -----------------------------------------
+
+// The field a request's validation names, or "" when it passes (core::InvalidField's field; the grid and point
+// parsers still throw std::invalid_argument / std::domain_error whose message starts with the field).
+template <class Req> std::string invalid_field(const Req& req) {
+  try {
+    req.validate();
+  } catch (const core::InvalidField& e) {
+    return e.field;
+  } catch (const std::exception& e) {  // the grid and point checks of core/iterate: "<field>: got ..."
+    const std::string w = e.what();
+    return w.substr(0, w.find(':'));
+  }
+  return "";
+}
+
+TEST(HyperbolicityRequest, ValidationNamesTheField) {
+  lyapunov::HyperbolicityRequest q;
+  q.r = 0.3;
+  EXPECT_EQ(invalid_field(q), "");
+  const auto with = [&](auto set) {
+    lyapunov::HyperbolicityRequest b = q;
+    set(b);
+    return invalid_field(b);
+  };
+  EXPECT_EQ(with([](auto& b) { b.r = 0; }), "r");
+  EXPECT_EQ(with([](auto& b) { b.r = 1; }), "r");
+  EXPECT_EQ(with([](auto& b) { b.grid = "paper"; }), "grid");
+  EXPECT_EQ(with([](auto& b) { b.grid = "strip:0x4"; }), "grid");
+  EXPECT_EQ(with([](auto& b) { b.grid = "strip:4x4:-1:1"; }), "grid");  // the range is w1-range's
+  EXPECT_EQ(with([](auto& b) { b.w1_range = "1,-1"; }), "w1-range");
+  EXPECT_EQ(with([](auto& b) { b.w1_range = "1"; }), "w1-range");
+  EXPECT_EQ(with([](auto& b) { b.w1_range = "a,b"; }), "w1-range");
+  EXPECT_EQ(with([](auto& b) { b.w1_range = "0,inf"; }), "w1-range");
+  EXPECT_EQ(q.default_name(), "hyperbolicity_strip_r0.3");
+}
+
+TEST(HyperbolicityRequest, RunIsTheStripImage) {
+  lyapunov::HyperbolicityRequest q;
+  q.r = 0.11;
+  q.grid = "strip:30x12";
+  q.w1_range = "-1.5,2.5";
+  const auto res = lyapunov::run(q);
+  const auto img = lyapunov::strip_singular_values(0.11, 30, 12, -1.5, 2.5);
+  EXPECT_EQ(res.image.s1, img.s1);  // the same computation: bitwise
+  EXPECT_EQ(res.image.s2, img.s2);
+  EXPECT_EQ(res.image.symbol, img.symbol);
+  EXPECT_EQ(res.image.w1, img.w1);
+  EXPECT_EQ(res.image.expanding_fraction, img.expanding_fraction);
+  core::Contents c;
+  res.describe(c);
+  ASSERT_NE(c.find("s1"), nullptr);
+  EXPECT_EQ(c.find("s1")->dims, (std::vector<std::size_t>{30, 12}));
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("grid")), "strip:30x12:-1.5:2.5");
+}
+
+TEST(HyperbolicityOrbitsRequest, ValidationNamesTheField) {
+  lyapunov::HyperbolicityOrbitsRequest q;
+  q.r_count = 2;
+  EXPECT_EQ(invalid_field(q), "");
+  const auto with = [&](auto set) {
+    lyapunov::HyperbolicityOrbitsRequest b = q;
+    set(b);
+    return invalid_field(b);
+  };
+  EXPECT_EQ(with([](auto& b) { b.r_min = 0; }), "r-min");
+  EXPECT_EQ(with([](auto& b) { b.r_max = 1.5; }), "r-max");
+  EXPECT_EQ(with([](auto& b) { b.r_count = 0; }), "r-count");
+  EXPECT_EQ(with([](auto& b) { b.iterations = 9; }), "iterations");
+  EXPECT_EQ(with([](auto& b) { b.transient = -1; }), "transient");
+  EXPECT_EQ(with([](auto& b) { b.backward = 0; }), "backward");
+  EXPECT_EQ(with([](auto& b) { b.bins = 0; }), "bins");
+  EXPECT_EQ(with([](auto& b) { b.grid = "1,1,1"; }), "grid");
+  EXPECT_EQ(with([](auto& b) { b.grid = "strip:0x3"; }), "grid");
+}
+
+TEST(HyperbolicityOrbitsRequest, RunPoolsTheClvsOfEachOrbit) {
+  lyapunov::HyperbolicityOrbitsRequest q;
+  q.r_min = 0.11;
+  q.r_max = 0.3;
+  q.r_count = 2;
+  q.grid = "1,-3,-1.1;1,0.1,-1;1,0.4,-1";
+  q.iterations = 400;
+  q.transient = 200;
+  q.backward = 200;
+  q.bins = 9;
+  core::RunControl one;
+  one.threads = 1;
+  core::RunControl two;
+  two.threads = 2;
+  const auto res = lyapunov::run(q, one);
+  const auto res2 = lyapunov::run(q, two);
+  // 1 thread and 2 threads: bitwise the same (NaN where an orbit is degenerate, so compare the bytes).
+  const auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  EXPECT_TRUE(same_bits(res.orbit_angle_median, res2.orbit_angle_median));
+  EXPECT_TRUE(same_bits(res.angle_median, res2.angle_median));
+  const std::size_t R = 2, I = 3;
+  ASSERT_EQ(res.orbit_lambda1_qr.size(), R * I);
+  EXPECT_EQ(res.orbit_lambda1_qr, res2.orbit_lambda1_qr);
+  EXPECT_EQ(res.angle_histogram, res2.angle_histogram);
+  EXPECT_EQ(res.exponents.lambda1, res2.exponents.lambda1);
+  // Against the functions it wraps, orbit by orbit.
+  lyapunov::ClvOptions co;
+  co.transient = q.transient;
+  co.window = q.iterations;
+  co.backward_transient = q.backward;
+  co.bins = q.bins;
+  const auto grid = iterate::parse_grid(q.grid, 1);
+  for (std::size_t ir = 0; ir < R; ++ir) {
+    std::vector<double> l1, pooled;
+    std::vector<double> hist(static_cast<std::size_t>(q.bins), 0.0);
+    for (std::size_t i = 0; i < I; ++i) {
+      const auto c = lyapunov::covariant_vectors<double>(grid[i], res.ensemble.r[ir], co);
+      const std::size_t o = ir * I + i;
+      EXPECT_EQ(res.orbit_lambda1_qr[o], c.lambda[0]);
+      EXPECT_EQ(res.orbit_lambda2_qr[o], c.lambda[1]);
+      EXPECT_EQ(res.orbit_frac_expanding[o], c.expanding_fraction);
+      EXPECT_EQ(res.orbit_degenerate[o], c.degenerate ? 1 : 0);
+      if (!c.degenerate) {
+        EXPECT_EQ(res.orbit_angle_median[o], c.median_angle);
+        pooled.insert(pooled.end(), c.angle.begin(), c.angle.end());
+        for (std::size_t b = 0; b < hist.size(); ++b) hist[b] += c.histogram[b];
+      } else {
+        EXPECT_TRUE(std::isnan(res.orbit_angle_median[o]));
+      }
+      l1.push_back(c.lambda[0]);
+    }
+    EXPECT_EQ(res.lambda1_qr_median[ir], lyapunov::median(l1));
+    if (!pooled.empty()) {
+      EXPECT_EQ(res.angle_median[ir], lyapunov::quantile(pooled, 0.5));
+      EXPECT_EQ(res.angle_q05[ir], lyapunov::quantile(pooled, 0.05));
+      EXPECT_EQ(res.angle_min[ir], *std::min_element(pooled.begin(), pooled.end()));
+    }
+    EXPECT_EQ(std::vector<double>(res.angle_histogram.begin() + static_cast<long>(ir * hist.size()),
+                                  res.angle_histogram.begin() + static_cast<long>((ir + 1) * hist.size())),
+              hist);
+  }
+  // lambda1 beside them: the batched recorder on the same ensemble.
+  lyapunov::MapOptions mo;
+  mo.transient = q.transient;
+  mo.iterations = q.iterations;
+  mo.blocks = 10;
+  EXPECT_EQ(res.exponents.lambda1, lyapunov::map_exponents(res.ensemble, mo).lambda1);
+  // A cancelled run throws and returns nothing.
+  core::CancelToken token;
+  token.cancel();
+  core::RunControl cancelled;
+  cancelled.cancel = &token;
+  EXPECT_THROW(lyapunov::run(q, cancelled), core::Cancelled);
 }
 
 }  // namespace

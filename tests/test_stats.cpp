@@ -4,6 +4,8 @@
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 #include "stats/stats.hpp"
+#include "stats/requests.hpp"
+#include "core/fields.hpp"
 
 #include <gtest/gtest.h>
 
@@ -253,6 +255,169 @@ TEST(Stats, BadInputNamesTheField) {
   expect_message([] { orbit_series(0.3, kGrid0, -1, 100); }, "transient");
   expect_message([] { fit_decay(std::vector<double>(10), 20, 2); }, "n-fit");
   EXPECT_THROW(orbit_series(1.5, kGrid0, 10, 100), std::domain_error);
+}
+
+// ---- the requests (`btob correlate`, `btob measure`) -----------------------------------------------------------
+
+namespace {
+// The field a request's validation names, or "" when it passes (core::InvalidField's field; the grid and point
+// parsers still throw std::invalid_argument / std::domain_error whose message starts with the field).
+template <class Req> std::string invalid_field(const Req& req) {
+  try {
+    req.validate();
+  } catch (const core::InvalidField& e) {
+    return e.field;
+  } catch (const std::exception& e) {  // the grid and point checks of core/iterate: "<field>: got ..."
+    const std::string w = e.what();
+    return w.substr(0, w.find(':'));
+  }
+  return "";
+}
+template <class Req, class F> std::string invalid_with(const Req& base, F set) {
+  Req b = base;
+  set(b);
+  return invalid_field(b);
+}
+// The names fields() lists, in order.
+template <class Req> std::vector<std::string> field_names(Req req) {
+  std::vector<std::string> names;
+  req.fields([&](const std::string& name, auto&, const std::string&, auto...) { names.push_back(name); });
+  return names;
+}
+}  // namespace
+
+TEST(CorrelateRequest, ValidationNamesTheField) {
+  const CorrelateRequest q;
+  EXPECT_EQ(invalid_field(q), "");
+  EXPECT_EQ(field_names(q), (std::vector<std::string>{"r", "point", "observable", "n-max", "iterations", "transient",
+                                                      "method", "precision", "window", "fit-lags"}));
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.r = 1.2; }), "r");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.point = "1,0,1"; }), "point");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.point = "1,2"; }), "point");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.observable = "psi"; }), "observable");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.observable = "phi,chi"; }), "observable");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.iterations = 1; }), "iterations");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.n_max = b.iterations; }), "n-max");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.n_max = -1; }), "n-max");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.transient = -1; }), "transient");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.method = "fast"; }), "method");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.precision = "half"; }), "precision");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.window = 0; }), "window");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.fit_lags = 5; }), "fit-lags");
+}
+
+TEST(CorrelateRequest, RunIsTheCorrelatorOnTheOrbit) {
+  CorrelateRequest q;
+  q.r = 0.15;
+  q.point = "2,-6,-2.2";  // kGrid0 scaled by 2: the same direction
+  q.observable = "phi,w2";
+  q.iterations = 4096;
+  q.n_max = 64;
+  q.transient = 100;
+  q.method = "both";
+  q.window = 4;
+  q.fit_lags = 40;
+  const CorrelateResult res = run(q);
+  // The route it wraps: the orbit series, the observables, FFTW's C_N, the direct sum.
+  const OrbitSeries s = orbit_series(0.15, kGrid0, 100, 4096 + 64);
+  const auto x = observe(s, Observable::phi), y = observe(s, Observable::w2);
+  Correlator<double> corr(4096, 64);
+  EXPECT_EQ(res.c, corr(x, y));  // bitwise: the point's scale by 2 is exact and the orbit is projective
+  EXPECT_EQ(res.c_direct, correlation_direct(x, y, 4096, 64));
+  EXPECT_LT(res.max_rel_diff, 1e-12);  // FFT vs direct: ~ eps log N relative to max |C_N|
+  EXPECT_LT(max_rel_diff(res.c, res.c_direct), 1e-12);
+  EXPECT_EQ(res.envelope, envelope(res.c, 4));
+  EXPECT_EQ(res.noise_floor, 4 * std::fabs(res.c[0]) / 64.0);  // sqrt(4096) = 64 exactly
+  EXPECT_TRUE(res.fitted);
+  const Decay d = fit_decay(res.c, 40, 4, res.noise_floor);
+  EXPECT_EQ(res.decay.rate, d.rate);
+  // The sink 1133 has period 4: the periodogram of phi peaks at a multiple of 1/4 cycles per iteration.
+  EXPECT_NEAR(std::fmod(res.peak_frequency * 4, 1.0), 0.0, 1e-12);
+  core::Contents c;
+  res.describe(c);
+  for (const char* name : {"C_N", "C_N_direct", "envelope", "spectrum_frequency", "power_spectrum"})
+    EXPECT_NE(c.find(name), nullptr) << name;
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("observables")), "phi,w2");
+  // Float arithmetic follows the request.
+  q.precision = "float";
+  q.method = "fft";
+  const CorrelateResult f = run(q);
+  const std::vector<float> xf(x.begin(), x.end()), yf(y.begin(), y.end());
+  Correlator<float> cf(4096, 64);
+  const auto ref = cf(xf, yf);
+  EXPECT_EQ(f.c, std::vector<double>(ref.begin(), ref.end()));
+  EXPECT_TRUE(f.c_direct.empty());
+}
+
+TEST(MeasureRequest, ValidationNamesTheField) {
+  const MeasureRequest q;
+  EXPECT_EQ(invalid_field(q), "");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.r = 1; }), "r");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.iterations = 15; }), "iterations");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.transient = -1; }), "transient");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.bins = 0; }), "bins");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.bins = 4001; }), "bins");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.tv_same = 0; }), "tv-same");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.coords = "polar"; }), "coords");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.extent = {0, 1, 0}; }), "extent");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.extent = {1, 0, 0, 1}; }), "extent");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.grid = "1,2,3"; }), "grid");
+  EXPECT_EQ(invalid_with(q, [](auto& b) { b.grid = "random:0"; }), "grid");
+  MeasureRequest g = q;
+  // A scene's extent "a,b,c,d" is four numbers.
+  core::set_field(g.extent, {"-0.9,0.9,-0.9,0.9"}, "extent");
+  EXPECT_EQ(g.extent, (std::vector<double>{-0.9, 0.9, -0.9, 0.9}));
+}
+
+TEST(MeasureRequest, RunGroupsTheMeasuresOfTheOrbits) {
+  MeasureRequest q;
+  q.r = 0.2;
+  q.grid = "1,0.01,-1;1,0.06,-1;1,0.01,-1";  // two invariant curves; the third orbit repeats the first
+  q.iterations = 4000;
+  q.transient = 100;
+  q.bins = 40;
+  core::RunControl one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const MeasureResult res = run(q, one), res2 = run(q, two);
+  EXPECT_EQ(res.group, (std::vector<int>{0, 1, 0}));
+  EXPECT_EQ(res.head, (std::vector<std::uint64_t>{0, 1}));
+  EXPECT_EQ(res.size, (std::vector<std::uint64_t>{2, 1}));
+  EXPECT_EQ(res.tv, res2.tv);  // any thread count: bitwise the same
+  EXPECT_EQ(res.counts, res2.counts);
+  EXPECT_EQ(res.conv_within, res2.conv_within);
+  // Against the functions it wraps.
+  const auto series = orbit_series(0.2, iterate::parse_grid(q.grid, 1), 100, 4000);
+  std::vector<Measure> ms;
+  for (const auto& s : series) ms.push_back(empirical_measure(s, Chart::strip, 40, 40));
+  EXPECT_EQ(res.group, group_measures(ms, 0.05));
+  EXPECT_EQ(res.tv[1], 0.0);  // the head of its own group
+  EXPECT_EQ(res.tv[2], 0.0);  // the same orbit as its head
+  EXPECT_EQ(res.tv_max_group[1], 0.0);
+  EXPECT_EQ(res.w1_u[0], 0.0);
+  EXPECT_GT(total_variation(ms[0], ms[1]), 0.3);  // nested curves, 4000 points in 40x40 bins: far apart
+  // Convergence checkpoints 16, 32, ..., 2048, 4000; at the full length the head equals its own measure.
+  EXPECT_EQ(res.conv_n.front(), 16);
+  EXPECT_EQ(res.conv_n.back(), 4000);
+  EXPECT_EQ(res.conv_n.size(), 9u);
+  EXPECT_EQ(res.conv_to_full[res.conv_to_full.size() - 1], 0.0);
+  EXPECT_EQ(res.conv_to_full[res.conv_to_full.size() - 2], 0.0);
+  // Counts: every point of the head lands in a bin (no extent), N per group.
+  for (std::size_t g = 0; g < 2; ++g) {
+    std::uint64_t n = 0;
+    for (std::size_t k = 0; k < 1600; ++k) n += res.counts[g * 1600 + k];
+    EXPECT_EQ(n, 4000u);
+  }
+  core::Contents c;
+  res.describe(c);
+  EXPECT_EQ(c.find("group_counts")->dims, (std::vector<std::size_t>{2, 40, 40}));
+  EXPECT_EQ(c.find("convergence_tv_within_group")->dims, (std::vector<std::size_t>{9, 2}));
+  // A cancelled run throws and returns nothing.
+  core::CancelToken token;
+  token.cancel();
+  core::RunControl cancelled;
+  cancelled.cancel = &token;
+  EXPECT_THROW(run(q, cancelled), core::Cancelled);
 }
 
 namespace {

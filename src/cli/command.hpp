@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include <concepts>
 #include <functional>
 #include <map>
 #include <memory>
@@ -174,6 +175,9 @@ void command(const std::string& name, const std::string& help, Output output_def
              std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
   const auto execute = [name, body](Req req, Output out, bool threads_given, const std::string& invocation) {
     req.validate();
+    // A request may name its own file stem for when none is given (e.g. hyperbolicity_strip_r<r>).
+    if constexpr (requires { { req.default_name() } -> std::convertible_to<std::string>; })
+      if (out.files && out.name.empty()) out.name = req.default_name();
     detail::validate_output(out, threads_given);
     Args recorded;
     req.fields(detail::ArgsWriter{&recorded});

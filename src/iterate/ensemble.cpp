@@ -104,20 +104,35 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 }
 }  // namespace
 
+namespace {
+core::InvalidField grid_usage(std::string_view spec, const char* field) {
+  return core::InvalidField(field, fmt::format("'{}'", spec),
+                            "paper, strip:NxM[:w1min:w1max], random:N or a list x,y,z;x,y,z;...");
+}
+}  // namespace
+
+StripSpec parse_strip(std::string_view spec, const char* field) {
+  if (!spec.starts_with("strip:")) throw grid_usage(spec, field);
+  const auto parts = split(spec.substr(6), ':');
+  const auto dims = split(parts[0], 'x');
+  if (dims.size() != 2 || (parts.size() != 1 && parts.size() != 3)) throw grid_usage(spec, field);
+  StripSpec s;
+  s.n1 = parse_long(dims[0], field, spec);
+  s.n2 = parse_long(dims[1], field, spec);
+  if (parts.size() == 3) {
+    s.w1_min = parse_double(parts[1], field, spec);
+    s.w1_max = parse_double(parts[2], field, spec);
+    s.has_range = true;
+  }
+  return s;
+}
+
 std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field) {
-  const auto usage = [&] {
-    return core::InvalidField(field, fmt::format("'{}'", spec),
-                              "paper, strip:NxM[:w1min:w1max], random:N or a list x,y,z;x,y,z;...");
-  };
+  const auto usage = [&] { return grid_usage(spec, field); };
   if (spec == "paper") return paper_grid();
   if (spec.starts_with("strip:")) {
-    const auto parts = split(spec.substr(6), ':');
-    const auto dims = split(parts[0], 'x');
-    if (dims.size() != 2 || (parts.size() != 1 && parts.size() != 3)) throw usage();
-    const long n1 = parse_long(dims[0], field, spec), n2 = parse_long(dims[1], field, spec);
-    if (parts.size() == 3)
-      return strip_grid(n1, n2, parse_double(parts[1], field, spec), parse_double(parts[2], field, spec));
-    return strip_grid(n1, n2);
+    const StripSpec s = parse_strip(spec, field);
+    return strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
   }
   if (spec.starts_with("random:")) return random_points(parse_long(spec.substr(7), field, spec), seed);
   if (spec.find(',') != std::string_view::npos) {

@@ -37,6 +37,16 @@ std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min = -2, doubl
 // counter-based generator seeded by (seed, index): the same seed gives the same points on any thread count.
 std::vector<Vec3<double>> random_points(long n, std::uint64_t seed);
 
+// A strip grid's spec "strip:NxM[:w1min:w1max]" read without building the grid: the one reader of that grammar
+// (parse_grid uses it).  has_range is false when the range is omitted (then w1 in [-2, 2]).  Sizes and ranges
+// are not checked here (strip_grid does); a spec of another form throws std::invalid_argument naming `field`.
+struct StripSpec {
+  long n1 = 0, n2 = 0;
+  double w1_min = -2, w1_max = 2;
+  bool has_range = false;
+};
+StripSpec parse_strip(std::string_view spec, const char* field = "grid");
+
 // Parses a grid spec: "paper", "strip:NxM[:w1min:w1max]", "random:N", or a list "x,y,z;x,y,z;...".
 // Throws std::invalid_argument naming `field` and the accepted forms.
 std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field = "grid");

@@ -18,6 +18,13 @@ namespace btob::stats {
 
 std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
                                       long length, int threads) {
+  iterate::RunOptions opt;
+  opt.threads = threads;
+  return orbit_series(r, u0, transient, length, opt);
+}
+
+std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
+                                      long length, const iterate::RunOptions& opt) {
   core::validate_r(r, "r");
   for (const auto& u : u0) core::validate_point(u(0), u(1), u(2), "point");
   if (transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected >= 0", transient));
@@ -29,8 +36,6 @@ std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<
   // Twice the series (recorder, then the per-orbit copies) must fit.
   iterate::checked_bytes(2 * u0.size() * static_cast<std::size_t>(length), 3 * sizeof(double) + 1, "iterations");
   iterate::SeriesRecorder rec(u0.size(), transient + 1, length);
-  iterate::RunOptions opt;
-  opt.threads = threads;
   iterate::run<double>(e, transient + length, rec, opt);
   std::vector<OrbitSeries> out(u0.size());
   for (std::size_t o = 0; o < u0.size(); ++o) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "iterate/ensemble.hpp"
+#include "iterate/kernel.hpp"
 #include "stats/fft.hpp"
 
 #include <complex>
@@ -29,6 +30,9 @@ OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transie
 // depend on it).
 std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
                                       long length, int threads = 0);
+// The same with the kernel's run options (threads, progress, cancellation between batches).
+std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<double>>& u0, long transient,
+                                      long length, const iterate::RunOptions& run);
 
 // theta in [0, pi/2], phi in [0, pi] (rad, Section 4 and 5.1), w1 in R, w2 in [-1, 1] (strip, eq. (6.4)),
 // cos(phi) in [-1, 1], and the indicators 1{symbol = s} in {0, 1} of the symbols 1, 2, 3.

@@ -1,0 +1,91 @@
+// The (non-)hyperbolicity analyses of Section 8.1 (3) as requests and results (core/request.hpp): singular values
+// of the one-step derivative over a strip grid (`btob hyperbolicity`), and per r the fraction of expanding steps
+// and the angles between covariant Lyapunov vectors along orbits, beside lambda1 (`btob hyperbolicity-orbits`).
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "iterate/ensemble.hpp"
+#include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/maps.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::lyapunov {
+
+// ---- singular values over a strip grid (`btob hyperbolicity`) -----------------------------------------------
+struct HyperbolicityRequest {
+  double r = 0;                       // restitution coefficient, in (0, 1)
+  std::string grid = "strip:400x200"; // strip:NxM, cells along w1 x w2 (iterate::parse_strip; no range here)
+  std::string w1_range = "-2,2";      // w1 range a,b of the image, finite, a < b (w2 runs over [-1, 1])
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient, in (0,1)", core::required);
+    v("grid", grid, "strip:NxM cells along w1 x w2");
+    v("w1-range", w1_range, "w1 range a,b of the image");
+  }
+  // The file stem when none is given: hyperbolicity_strip_r<r>.
+  std::string default_name() const;
+  iterate::StripSpec strip() const;  // the grid with the range of w1-range (validated)
+};
+
+struct HyperbolicityResult {
+  HyperbolicityRequest request;
+  StripSingularValues image;  // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
+  double seconds = 0;
+
+  // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.
+  void describe(core::Contents& c) const;
+};
+
+HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control = {});
+
+// ---- CLV angles and expanding steps along orbits over r (`btob hyperbolicity-orbits`) ------------------------
+struct HyperbolicityOrbitsRequest {
+  double r_min = 0.0717, r_max = 0.6;  // r range, each in (0, 1)
+  long r_count = 100;                  // evenly spaced r values, 1..1000000
+  std::string grid = "paper";          // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
+  std::uint64_t seed = 1;              // seed of random grids
+  long iterations = 10000;             // window: steps with CLV angles and expanding flags, >= 10 (10 blocks)
+  long transient = 10000;              // forward steps before the window, >= 0
+  long backward = 10000;               // forward steps after the window, iterated back first, >= 1
+  int bins = 90;                       // angle histogram bins over [0, pi/2], >= 1
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r-min", r_min, "smallest r, in (0,1)");
+    v("r-max", r_max, "largest r, in (0,1)");
+    v("r-count", r_count, "number of evenly spaced r values");
+    v("grid", grid, "initial conditions: paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...");
+    v("seed", seed, "seed of random grids");
+    v("iterations", iterations, "window: steps with CLV angles and expanding flags");
+    v("transient", transient, "forward steps before the window");
+    v("backward", backward, "forward steps after the window, iterated back first");
+    v("bins", bins, "angle histogram bins over [0, pi/2]");
+  }
+};
+
+struct HyperbolicityOrbitsResult {
+  HyperbolicityOrbitsRequest request;
+  iterate::Ensemble ensemble;
+  std::size_t bins = 0;
+  // Per r [R]: pooled over the orbits (angles only from non-degenerate ones), NaN when no orbit contributes.
+  std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;
+  std::vector<double> angle_histogram;  // [R, bins]
+  // Per orbit [R, I].
+  std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr;
+  std::vector<std::uint8_t> orbit_degenerate;
+  OrbitExponents exponents;  // lambda1 from the batched tangent recorder on the same orbits, 10 blocks
+  RSummary summary;          // its summary per r
+  int threads = 0;           // threads of the CLV loop
+  double clv_seconds = 0;
+
+  void describe(core::Contents& c) const;
+};
+
+HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control = {});
+
+}  // namespace btob::lyapunov

@@ -1,0 +1,322 @@
+// The statistics requests: validation, the runs, and the description of their results.
+#include "stats/requests.hpp"
+
+#include "core/fields.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace btob::stats {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Observable observable_field(const std::string& name) {
+  try {
+    return parse_observable(name, "observable");
+  } catch (const std::invalid_argument&) {
+    throw core::InvalidField("observable", "'" + name + "'", "one of " + observable_names() + " (phi[,psi])");
+  }
+}
+
+std::pair<Observable, Observable> observables(const std::string& spec) {
+  const auto comma = spec.find(',');
+  const Observable phi = observable_field(spec.substr(0, comma));
+  return {phi, comma == std::string::npos ? phi : observable_field(spec.substr(comma + 1))};
+}
+
+// C_N in precision T by the chosen route; the result in double.
+template <class T>
+std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft) {
+  const std::vector<T> a(x.begin(), x.end()), b(y.begin(), y.end());
+  std::vector<T> c;
+  if (fft) {
+    Correlator<T> corr(N, n_max);
+    c = corr(a, b);
+  } else {
+    c = correlation_direct(a, b, N, n_max);
+  }
+  return {c.begin(), c.end()};
+}
+std::vector<double> correlate_as(const std::string& precision, const std::vector<double>& x, const std::vector<double>& y,
+                                 long N, long n_max, bool fft) {
+  if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft);
+  if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft);
+  return correlate_in<double>(x, y, N, n_max, fft);
+}
+
+// The periodogram of x (first N values), averaged over blocks of consecutive frequencies to at most 8192 points
+// so that the stored file stays small; returns the frequency of the unaveraged peak.
+double spectrum(const std::vector<double>& x, long N, std::vector<double>& freq, std::vector<double>& power) {
+  Periodogram<double> pg(N);
+  const std::vector<double> spec = pg(x);
+  const std::size_t per = (spec.size() + 8191) / 8192;
+  for (std::size_t j = 1; j < spec.size(); j += per) {  // j = 0 (the mean) is zero after centring
+    const std::size_t e = std::min(spec.size(), j + per);
+    double sum = 0;
+    for (std::size_t i = j; i < e; ++i) sum += spec[i];
+    freq.push_back(0.5 * static_cast<double>(j + e - 1) / static_cast<double>(N));
+    power.push_back(sum / static_cast<double>(e - j));
+  }
+  const auto peak = std::max_element(spec.begin() + 1, spec.end()) - spec.begin();
+  return static_cast<double>(peak) / static_cast<double>(N);
+}
+}  // namespace
+
+void CorrelateRequest::validate() const {
+  core::require_r(r, "r");
+  (void)core::parse_point(point, "point");
+  (void)observables(observable);
+  if (iterations < 2) throw core::InvalidField("iterations", std::to_string(iterations), "at least 2");
+  if (n_max < 0 || n_max >= iterations)
+    throw core::InvalidField("n-max", std::to_string(n_max), fmt::format("0 <= n-max < iterations = {}", iterations));
+  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
+  if (method != "fft" && method != "direct" && method != "both")
+    throw core::InvalidField("method", "'" + method + "'", "fft, direct or both");
+  if (precision != "float" && precision != "double" && precision != "long-double")
+    throw core::InvalidField("precision", "'" + precision + "'", "float, double or long-double");
+  if (window < 1) throw core::InvalidField("window", std::to_string(window), "at least 1");
+  if (fit_lags < window)
+    throw core::InvalidField("fit-lags", std::to_string(fit_lags), fmt::format("at least window = {}", window));
+  iterate::checked_bytes(static_cast<std::size_t>(iterations + n_max), 3 * sizeof(double) + 1 + 4 * sizeof(double),
+                         "iterations");
+}
+
+CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  CorrelateResult res;
+  res.request = req;
+  std::tie(res.phi, res.psi) = observables(req.observable);
+  const long N = req.iterations, M = req.n_max;
+  iterate::RunOptions opt;  // one orbit: one thread, cancellable between batches
+  opt.threads = 1;
+  opt.cancel = control.cancel;
+  const OrbitSeries s =
+      std::move(orbit_series(req.r, {core::parse_point(req.point, "point")}, req.transient, N + M, opt)[0]);
+  const auto x = observe(s, res.phi), y = observe(s, res.psi);
+  control.check_cancelled();
+  auto t0 = std::chrono::steady_clock::now();
+  res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct");
+  res.seconds = seconds_since(t0);
+  if (req.method == "both") {
+    control.check_cancelled();
+    t0 = std::chrono::steady_clock::now();
+    res.c_direct = correlate_as(req.precision, x, y, N, M, false);
+    res.seconds_direct = seconds_since(t0);
+    double scale = 0;
+    for (std::size_t n = 0; n < res.c.size(); ++n) {
+      scale = std::max(scale, std::fabs(res.c_direct[n]));
+      res.max_rel_diff = std::max(res.max_rel_diff, std::fabs(res.c[n] - res.c_direct[n]));
+    }
+    res.max_rel_diff = scale > 0 ? res.max_rel_diff / scale : res.max_rel_diff;
+  }
+  res.peak_frequency = spectrum(x, N, res.frequency, res.power);
+  // Noise floor of C_N(n) for uncorrelated values: ~|C_N(0)| / sqrt(N); the fit stops at 4 times that.
+  res.noise_floor = 4 * std::fabs(res.c[0]) / std::sqrt(static_cast<double>(N));
+  res.envelope = envelope(res.c, req.window);
+  res.fitted = M >= req.fit_lags && req.fit_lags >= 3 * req.window;
+  if (res.fitted) res.decay = fit_decay(res.c, req.fit_lags, req.window, res.noise_floor);
+  return res;
+}
+
+void CorrelateResult::describe(core::Contents& c) const {
+  const std::string lags = "lag n = 0..n-max", cn = "observable units squared (rad^2 for angles)";
+  c.array("C_N", this->c, {this->c.size()}, lags, cn, "C_N(phi, psi; n), the centred correlation along the orbit");
+  if (!c_direct.empty())
+    c.array("C_N_direct", c_direct, {c_direct.size()}, lags, cn, "C_N by the direct sum (method both)");
+  c.array("envelope", envelope, {envelope.size()}, "window of lags from lag 1", cn,
+          fmt::format("max |C_N| over consecutive windows of {} lags", request.window));
+  c.array("spectrum_frequency", frequency, {frequency.size()}, "frequency block", "cycles per iteration",
+          "centre of each block of periodogram frequencies");
+  c.array("power_spectrum", power, {power.size()}, "frequency block", "observable units squared",
+          "periodogram of phi over the first N values, averaged over each block");
+  c.attr("r", request.r);
+  c.attr("point", request.point);
+  c.attr("observables", observable_name(phi) + "," + observable_name(psi));
+  c.attr("N", N());
+  c.attr("n_max", request.n_max);
+  c.attr("transient", request.transient);
+  c.attr("method", request.method);
+  c.attr("seconds", seconds);
+  if (!c_direct.empty()) {
+    c.attr("seconds_direct", seconds_direct);
+    c.attr("max_rel_diff_fft_direct", max_rel_diff);
+  }
+  c.attr("spectrum_peak_frequency", peak_frequency);
+  c.attr("noise_floor", noise_floor);
+  if (fitted) {
+    c.attr("decay_rate", decay.rate);
+    c.attr("decay_rate_error", decay.rate_error);
+    c.attr("decay_windows", decay.windows);
+    c.attr("decays", std::string(decay.decays ? "yes" : "no"));
+    c.attr("envelope_first", decay.envelope_first);
+    c.attr("envelope_last", decay.envelope_last);
+  }
+  if (!envelope.empty()) {
+    c.attr("envelope_min", *std::min_element(envelope.begin(), envelope.end()));
+    c.attr("envelope_max", *std::max_element(envelope.begin(), envelope.end()));
+  }
+}
+
+// ---- measure --------------------------------------------------------------------------------------------------
+
+void MeasureRequest::validate() const {
+  core::require_r(r, "r");
+  if (iterations < 16) throw core::InvalidField("iterations", std::to_string(iterations), "at least 16");
+  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
+  if (bins < 1 || bins > 4000) throw core::InvalidField("bins", std::to_string(bins), "1..4000");
+  if (!(tv_same > 0 && tv_same <= 1)) throw core::InvalidField("tv-same", fmt::format("{}", tv_same), "in (0, 1]");
+  try {
+    (void)parse_chart(coords, "coords");
+  } catch (const std::invalid_argument&) {
+    throw core::InvalidField("coords", "'" + coords + "'", "strip or angles");
+  }
+  if (!extent.empty() && (extent.size() != 4 || !(extent[0] < extent[1]) || !(extent[2] < extent[3])))
+    throw core::InvalidField("extent", fmt::format("{} values", extent.size()),
+                             "u_lo,u_hi,v_lo,v_hi with u_lo < u_hi, v_lo < v_hi");
+  const auto ics = iterate::parse_grid(grid, seed, "grid");
+  iterate::checked_bytes(ics.size() * static_cast<std::size_t>(bins) * bins, 2 * sizeof(double), "grid x bins^2");
+  iterate::checked_bytes(2 * ics.size() * static_cast<std::size_t>(iterations), 3 * sizeof(double) + 1,
+                         "grid x iterations");
+}
+
+namespace {
+// Groups of coinciding measures: each group's head (first member) and size.
+void group_heads(MeasureResult& res, std::size_t count) {
+  const int G = *std::max_element(res.group.begin(), res.group.end()) + 1;
+  res.head.assign(static_cast<std::size_t>(G), count);
+  res.size.assign(static_cast<std::size_t>(G), 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (res.head[res.group[i]] == count) res.head[res.group[i]] = i;
+    ++res.size[res.group[i]];
+  }
+  res.group_index.assign(res.group.begin(), res.group.end());
+}
+
+// Per initial condition: distances to the first member of its group (the paper's test: measures of orbits in one
+// basin coincide), and the largest distance within each group.
+void distances(MeasureResult& res, const std::vector<Measure>& ms) {
+  const std::size_t n = ms.size();
+  res.tv.resize(n);
+  res.w1_u.resize(n);
+  res.w1_v.resize(n);
+  res.tv_max_group.assign(res.groups(), 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int g = res.group[i];
+    const auto& h = ms[res.head[g]];
+    res.tv[i] = total_variation(ms[i], h);
+    res.w1_u[i] = wasserstein_1d(ms[i].marginal_u(), h.marginal_u(), h.u_lo, h.u_hi);
+    res.w1_v[i] = wasserstein_1d(ms[i].marginal_v(), h.marginal_v(), h.v_lo, h.v_hi);
+    for (std::size_t j = 0; j < i; ++j)
+      if (res.group[j] == g) res.tv_max_group[g] = std::max(res.tv_max_group[g], total_variation(ms[i], ms[j]));
+  }
+}
+
+// Convergence against N: at N = 16, 32, ..., the largest TV within each group between mu_N of its members and
+// mu_N of its first member, and the TV between mu_N of the first member and its mu at the full length.
+void convergence(MeasureResult& res, const std::vector<OrbitSeries>& series, const std::vector<Measure>& ms,
+                 Chart chart, const core::RunControl& control) {
+  const MeasureRequest& a = res.request;
+  const std::size_t G = res.groups();
+  std::vector<long> checkpoints;
+  for (long n = 16; n < a.iterations; n *= 2) checkpoints.push_back(n);
+  checkpoints.push_back(a.iterations);
+  const auto measure = [&](std::size_t i, long n) {
+    return empirical_measure(series[i], chart, a.bins, a.bins, 0, n, a.extent);
+  };
+  for (const long n : checkpoints) {
+    control.check_cancelled();
+    res.conv_n.push_back(static_cast<double>(n));
+    std::vector<Measure> heads;
+    for (std::size_t g = 0; g < G; ++g) heads.push_back(measure(res.head[g], n));
+    std::vector<double> within(G, 0);
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const int g = res.group[i];
+      if (i != res.head[g]) within[g] = std::max(within[g], total_variation(measure(i, n), heads[g]));
+    }
+    for (std::size_t g = 0; g < G; ++g) {
+      res.conv_within.push_back(within[g]);
+      res.conv_to_full.push_back(total_variation(heads[g], ms[res.head[g]]));
+    }
+  }
+}
+}  // namespace
+
+MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  MeasureResult res;
+  res.request = req;
+  const Chart chart = parse_chart(req.coords, "coords");
+  res.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  iterate::RunOptions opt;
+  opt.threads = control.threads;
+  opt.progress = control.progress;
+  opt.cancel = control.cancel;
+  const auto series = orbit_series(req.r, res.initial, req.transient, req.iterations, opt);
+  control.check_cancelled();
+  std::vector<Measure> ms;
+  for (const auto& s : series) ms.push_back(empirical_measure(s, chart, req.bins, req.bins, 0, -1, req.extent));
+  res.group = group_measures(ms, req.tv_same);
+  group_heads(res, ms.size());
+  distances(res, ms);
+  convergence(res, series, ms, chart, control);
+  for (std::size_t g = 0; g < res.groups(); ++g) {
+    const auto& m = ms[res.head[g]];
+    for (double v : m.mass) res.counts.push_back(static_cast<std::uint32_t>(std::llround(v * static_cast<double>(m.points))));
+    const auto mu = m.marginal_u(), mv = m.marginal_v();
+    res.outside.push_back(m.outside);
+    res.marginal_u.insert(res.marginal_u.end(), mu.begin(), mu.end());
+    res.marginal_v.insert(res.marginal_v.end(), mv.begin(), mv.end());
+  }
+  res.extent = {ms[0].u_lo, ms[0].u_hi, ms[0].v_lo, ms[0].v_hi};
+  return res;
+}
+
+double MeasureResult::tv_max_within_groups() const {
+  return *std::max_element(tv_max_group.begin(), tv_max_group.end());
+}
+
+void MeasureResult::describe(core::Contents& c) const {
+  const std::size_t G = groups(), B = static_cast<std::size_t>(request.bins), I = group.size(), C = conv_n.size();
+  const std::string chart = request.coords == "angles" ? "theta, phi (rad)" : "atan w1 (rad), w2";
+  c.array("group_counts", counts, {G, B, B}, "group, u bin, v bin (" + chart + ")", "count",
+          "points of the group's first orbit in each bin");
+  c.array("group_marginal_u", marginal_u, {G, B}, "group, u bin", "1", "marginal mass of the group's measure in u");
+  c.array("group_marginal_v", marginal_v, {G, B}, "group, v bin", "1", "marginal mass of the group's measure in v");
+  c.array("group_head", head, {G}, "group", "index", "first initial condition of each group");
+  c.array("group_size", size, {G}, "group", "count", "initial conditions in each group");
+  c.array("group_outside", outside, {G}, "group", "1", "mass of the group's measure outside the extent");
+  c.array("group_tv_max", tv_max_group, {G}, "group", "1", "largest total variation between two members");
+  c.array("group", group_index, {I}, "initial condition", "index", "group of each initial condition");
+  c.array("tv_to_group_head", tv, {I}, "initial condition", "1", "total variation to the group's first measure");
+  c.array("w1_u_to_group_head", w1_u, {I}, "initial condition", "u units",
+          "1-D Wasserstein distance of the u marginals to the group's first measure");
+  c.array("w1_v_to_group_head", w1_v, {I}, "initial condition", "v units",
+          "1-D Wasserstein distance of the v marginals to the group's first measure");
+  c.array("convergence_n", conv_n, {C}, "checkpoint", "iterations", "N = 16, 32, ..., iterations");
+  c.array("convergence_tv_within_group", conv_within, {C, G}, "checkpoint, group", "1",
+          "largest TV between mu_N of a member and mu_N of the group's first orbit");
+  c.array("convergence_tv_to_full", conv_to_full, {C, G}, "checkpoint, group", "1",
+          "TV between mu_N of the group's first orbit and its measure at the full length");
+  c.array("extent", extent, {4}, "u_lo, u_hi, v_lo, v_hi", chart, "the histogram's window in the chart");
+  c.attr("r", request.r);
+  c.attr("grid", request.grid);
+  c.attr("seed", static_cast<long>(request.seed));
+  c.attr("iterations", request.iterations);
+  c.attr("transient", request.transient);
+  c.attr("bins", static_cast<long>(request.bins));
+  c.attr("coords", request.coords);
+  c.attr("tv_same", request.tv_same);
+  c.attr("initial_conditions", static_cast<long>(I));
+  c.attr("groups", static_cast<long>(G));
+  c.attr("tv_max_within_groups", tv_max_within_groups());
+}
+
+}  // namespace btob::stats
