@@ -1,15 +1,21 @@
 // Tests of src/windows: Q_n against Table B.2, lower/upper bounds against Table B.1, certificates,
 // precision agreement, thin stripes and thresholds against closed forms, the matrix route, errors.
 #include "windows/direct.hpp"
+#include "windows/overlays.hpp"
 #include "windows/polynomial.hpp"
+#include "windows/requests.hpp"
 #include "windows/verify.hpp"
 #include "windows/windows.hpp"
 
 #include <gtest/gtest.h>
 
+#include "core/scalar.hpp"
+
 #include <boost/math/constants/constants.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <numeric>
 #include <fstream>
 #include <map>
@@ -412,6 +418,205 @@ TEST(WindowVerify, PatternDetector) {
   EXPECT_TRUE(on_pattern(wrong.data(), 10, 1));
   EXPECT_FALSE(on_pattern(broken.data(), 10, 2));  // one symbol 2 breaks it
   EXPECT_FALSE(on_pattern(good.data(), 7, 2));     // shorter than two periods
+}
+
+// ---- the request API (windows/requests.hpp) ----------------------------------------------------------------
+
+// The message of the InvalidField a callable throws ("no throw" otherwise), and its field.
+template <class F> std::pair<std::string, std::string> invalid(F&& f) {
+  try {
+    f();
+  } catch (const btob::core::InvalidField& e) {
+    return {e.field, e.what()};
+  }
+  return {"", "no throw"};
+}
+
+TEST(WindowRequests, RangesParseAndRefuseWithTheField) {
+  EXPECT_EQ(parse_n_range("7").first, 7);
+  EXPECT_EQ(parse_n_range("7").last, 7);
+  EXPECT_EQ(parse_n_range("1..150").count(), 150);
+  EXPECT_EQ(parse_n_range("2..5000", 2).last, 5000);
+  EXPECT_EQ(invalid([] { parse_n_range("0"); }).second, "n: got '0', expected A..B or A with 1 <= A <= B <= 5000");
+  EXPECT_EQ(invalid([] { parse_n_range("1..3", 2); }).second,
+            "n: got '1..3', expected A..B or A with 2 <= A <= B <= 5000");
+  for (const char* bad : {"", "..", "1..", "..3", "3..2", "5001", "1..5001", "a", "1..3x", " 1", "+1", "1...3",
+                          "99999999999999999999", "-1..3", "1.5"})
+    EXPECT_EQ(invalid([&] { parse_n_range(bad, 1, "range"); }).first, "range") << bad;
+}
+
+TEST(WindowRequests, ValidationNamesTheField) {
+  EXPECT_EQ(invalid([] { BoundsRequest{"1..3", 5}.validate(); }).second, "digits: got 5, expected 10..10000");
+  EXPECT_EQ(invalid([] { BoundsRequest{"1..3", 20000}.validate(); }).first, "digits");
+  EXPECT_EQ(invalid([] { BoundsRequest{"0"}.validate(); }).first, "n");
+  EXPECT_EQ(invalid([] { PolyRequest{"1", "latex"}.validate(); }).first, "form");
+  EXPECT_EQ(invalid([] { ThresholdsRequest{9}.validate(); }).first, "digits");
+  EXPECT_EQ(invalid([] { StripesRequest{0}.validate(); }).second, "max-m: got 0, expected 1..100000");
+  EXPECT_EQ(invalid([] { VerifyRequest{"1..3"}.validate(); }).first, "n");
+  EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 50}.validate(); }).first, "iterations");
+  EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, -1}.validate(); }).first, "per-n");
+  EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, 0, 1000}.validate(); }).first, "tail");
+  EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, 0, 10, "float"}.validate(); }).first, "precision");
+  EXPECT_EQ(invalid([] { BoundPrecisionRequest{"1..3", 9}.validate(); }).second, "mpfr-digits: got 9, expected 10..1000");
+  EXPECT_EQ(invalid([] { run(BoundsRequest{"5..4"}); }).first, "n");  // run validates too
+}
+
+TEST(WindowRequests, PolyTextIsTheExactPolynomials) {
+  const PolyResult both = run(PolyRequest{"1..4", "both"});
+  std::string want;
+  for (int n = 1; n <= 4; ++n) {
+    const RationalPoly q = window_polynomial(n);
+    want += "Q_" + std::to_string(n) + " = " + q.developed() + "\n";
+    want += "Q_" + std::to_string(n) + " = " + factorise(q).to_string() + "\n";
+    EXPECT_EQ(both.degree[static_cast<std::size_t>(n - 1)], static_cast<std::uint32_t>(4 * n));
+  }
+  EXPECT_EQ(both.text(), want);
+  const PolyResult dev = run(PolyRequest{"2", "developed"});
+  EXPECT_EQ(dev.text(), "Q_2 = " + window_polynomial(2).developed() + "\n");
+}
+
+TEST(WindowRequests, BoundsEqualTableB1AndTheCertificatesHold) {
+  const auto table = read_table_b1();
+  ASSERT_GE(table.size(), 20u);
+  const unsigned ambient = btob::core::mpfr_float::default_precision();
+  const BoundsResult res = run(BoundsRequest{"1..20", 12, true});
+  EXPECT_EQ(btob::core::mpfr_float::default_precision(), ambient);  // the decimals of a, b printed under a guard
+  ASSERT_EQ(res.n.size(), 20u);
+  for (std::size_t i = 0; i < 20; ++i) {
+    EXPECT_EQ(res.lower_text[i], table[i].lower) << "n = " << res.n[i];
+    if (res.n[i] >= 2) EXPECT_EQ(res.upper_text[i], table[i].upper) << "n = " << res.n[i];
+    EXPECT_TRUE(res.certificates[i].valid()) << "n = " << res.n[i];
+    // The printed a, b are the exact certificate fractions k/10^12, (k+1)/10^12 and bracket the lower bound.
+    const mpq_class scaled = res.certificates[i].a * mpq_class(mpz_class("1000000000000"));
+    ASSERT_EQ(scaled.get_den(), 1);
+    const std::string k = scaled.get_num().get_str();
+    EXPECT_EQ(res.a_text[i], "0." + std::string(12 - k.size(), '0') + k);
+    EXPECT_LE(std::stod(res.a_text[i]), res.lower_bound[i]);
+    EXPECT_GE(std::stod(res.b_text[i]), res.lower_bound[i]);
+    // Independent route: bisection on the sign of Q_n from 3x3 matrix powers in long double.
+    EXPECT_NEAR(static_cast<double>(window_lower_bound_in<long double>(static_cast<int>(res.n[i]), Route::matrix)),
+                res.lower_bound[i], 1e-15);
+  }
+  const std::string csv = res.csv();
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified");
+  EXPECT_NE(csv.find("\n2,0.127544097592,0.171572875254,0.127544097591,0.127544097592,1,-1,0,1,yes\n"),
+            std::string::npos);
+  btob::core::Contents c;
+  res.describe(c);
+  ASSERT_NE(c.find("lower_bound"), nullptr);
+  EXPECT_EQ(c.find("lower_bound")->size(), 20u);
+  EXPECT_EQ(c.find("certified")->size(), 20u);
+}
+
+TEST(WindowRequests, ThresholdsAndStripesAgainstClosedForms) {
+  const ThresholdsResult t = run(ThresholdsRequest{30});
+  ASSERT_EQ(t.value.size(), 4u);
+  // Python's decimal module, 60 digits, rounded to 30 decimals (an independent arbitrary-precision route).
+  EXPECT_EQ(t.text[0], "0.071796769724490825890214633977");  // 7 - 4 sqrt 3
+  EXPECT_EQ(t.text[1], "0.171572875253809902396622551581");  // 3 - 2 sqrt 2
+  EXPECT_EQ(t.text[2], "0.101020514433643803605431850588");  // 5 - 2 sqrt 6
+  EXPECT_EQ(t.text[3], "0.587401051968199474751705639272");  // 2^(2/3) - 1
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(t.value[i], std::stod(t.text[i]));  // both correctly rounded
+  // The closed forms in double lose to cancellation: 7 - 4 sqrt 3 errs by up to ulp(4 sqrt 3) ~ 8.9e-16 plus
+  // the final rounding, so 2e-15 absolute.
+  EXPECT_NEAR(t.value[0], 7 - 4 * std::sqrt(3.0), 2e-15);
+  EXPECT_NEAR(t.value[1], 3 - 2 * std::sqrt(2.0), 2e-15);
+  EXPECT_NEAR(t.value[2], 5 - 2 * std::sqrt(6.0), 2e-15);
+  EXPECT_NEAR(t.value[3], std::cbrt(4.0) - 1, 2e-15);
+  const StripesResult s = run(StripesRequest{40, 20});
+  std::size_t count = 0;
+  for (int m = 1; m <= 40; ++m)
+    for (int l = 1; 2 * l <= m; ++l) count += std::gcd(l, m) == 1 && 4 * l > m;
+  ASSERT_EQ(s.r.size(), count);
+  for (std::size_t i = 0; i < s.r.size(); ++i) {
+    const double xi = std::cos(M_PI - 2 * M_PI * s.l[i] / s.m[i]);
+    // eq. (6.3) in double: sqrt(xi + xi^2) loses relative accuracy only near xi = 0 (l/m = 1/4, excluded).
+    EXPECT_NEAR(s.r[i], 1 + 2 * xi - 2 * std::sqrt(xi + xi * xi), 1e-14) << s.l[i] << "/" << s.m[i];
+    EXPECT_EQ(s.mirror_l[i], s.m[i] - s.l[i]);
+    if (i > 0) EXPECT_LT(s.r[i - 1], s.r[i]);
+  }
+}
+
+TEST(WindowRequests, VerifyIsDeterministicAcrossThreads) {
+  VerifyRequest req{"2..6"};
+  btob::core::RunControl one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const VerifyResult a = run(req, one), b = run(req, two);
+  EXPECT_EQ(a.csv(), b.csv());
+  EXPECT_EQ(a.total, 20);
+  EXPECT_EQ(a.passed, 20);
+  EXPECT_EQ(verify_stem(a.range), "verify_2-6");
+  EXPECT_EQ(verify_stem({2, 125}), "verify");
+  // The rows are those of verify_windows itself.
+  const auto rows = verify_windows(2, 6);
+  ASSERT_EQ(rows.size(), a.rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].on_pattern, a.rows[i].on_pattern);
+}
+
+TEST(WindowRequests, CancelledRunThrows) {
+  btob::core::CancelToken token;
+  token.cancel();
+  btob::core::RunControl control;
+  control.cancel = &token;
+  EXPECT_THROW(run(BoundsRequest{"1..3"}, control), btob::core::Cancelled);
+  EXPECT_THROW(run(VerifyRequest{"2..3"}, control), btob::core::Cancelled);
+}
+
+// MPFR's default precision is process state: the precision study holds its rows' digits with guards, so two runs
+// at different precisions in one process give what each gives alone, and the ambient precision is left as it was.
+TEST(WindowRequests, PrecisionStudyRunsAtTwoPrecisionsInOneProcess) {
+  using btob::core::mpfr_float;
+  const unsigned ambient = mpfr_float::default_precision();
+  const BoundPrecisionResult a = run(BoundPrecisionRequest{"1..12", 20});
+  EXPECT_EQ(mpfr_float::default_precision(), ambient);
+  const BoundPrecisionResult b = run(BoundPrecisionRequest{"1..12", 60});
+  EXPECT_EQ(mpfr_float::default_precision(), ambient);
+  const BoundPrecisionResult a2 = run(BoundPrecisionRequest{"1..12", 20});
+  ASSERT_EQ(a.rows.size(), a2.rows.size());
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    EXPECT_EQ(a.rows[i].value, a2.rows[i].value) << a.rows[i].precision << " n = " << a.rows[i].n;
+    EXPECT_TRUE(a.rows[i].abs_error == a2.rows[i].abs_error ||
+                (std::isnan(a.rows[i].abs_error) && std::isnan(a2.rows[i].abs_error)));
+  }
+  // Each MPFR row equals the bound computed alone under its own digits (a separate route through the same
+  // bisection), whatever ran before.
+  for (const auto* res : {&a, &b}) {
+    const int digits = res == &a ? 20 : 60;
+    for (const auto& row : res->rows) {
+      if (row.precision.rfind("mpfr:", 0) != 0) continue;
+      btob::core::MpfrDigits guard(digits);
+      const mpfr_float alone = window_lower_bound_in<mpfr_float>(row.n, row.route == "matrix" ? Route::matrix : Route::polynomial);
+      EXPECT_EQ(row.value, static_cast<double>(alone)) << row.precision << " " << row.route << " n = " << row.n;
+    }
+  }
+  // 60 digits resolve every bound to 12 decimals by both routes; the summary says so.
+  for (const auto& m : b.summary)
+    if (m.precision == "mpfr:60") EXPECT_EQ(m.largest_all, 12) << m.route;
+  btob::core::Contents c;
+  b.describe(c);
+  EXPECT_EQ(c.find("value")->dims, (std::vector<std::size_t>{10, 12}));
+}
+
+TEST(WindowOverlays, LinesAreTheBoundsInTheRange) {
+  const auto lines = window_overlay(0.09, 0.2);
+  // n = 2: lower 0.12754..., r_crit,2 = 3 - 2 sqrt 2; n = 3: lower 0.09452, r_crit,2 = 5 - 2 sqrt 6; n = 1's lower
+  // 3 - 2 sqrt 2 too.
+  std::vector<std::pair<double, int>> want = {
+      {static_cast<double>(r_crit2(2, 20)), 0}, {static_cast<double>(window_lower_bound(1, 20)), 1},
+      {static_cast<double>(window_lower_bound(2, 20)), 1}, {static_cast<double>(r_crit2(3, 20)), 0},
+      {static_cast<double>(window_lower_bound(3, 20)), 1}};
+  auto sorted = [](std::vector<std::pair<double, int>> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  EXPECT_EQ(sorted(lines), sorted(want));
+  for (const auto& [r, colour] : stripes_overlay(0.2, 0.3)) {
+    EXPECT_GE(r, 0.2);
+    EXPECT_LE(r, 0.3);
+    EXPECT_EQ(colour, 1);
+  }
 }
 
 }  // namespace

@@ -51,6 +51,20 @@ void validate_output(const Output& o, bool threads_given) {
     throw core::InvalidField("name", "'" + o.name + "'", "a file stem without '/'");
 }
 
+CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& help) {
+  CLI::App* parent = &app;
+  std::string leaf = name;
+  for (auto sp = leaf.find(' '); sp != std::string::npos; sp = leaf.find(' ')) {
+    const std::string word = leaf.substr(0, sp);
+    CLI::App* found = nullptr;
+    for (CLI::App* sub : parent->get_subcommands([](CLI::App*) { return true; }))
+      if (sub->get_name() == word) found = sub;
+    parent = found ? found : parent->add_subcommand(word);
+    leaf = leaf.substr(sp + 1);
+  }
+  return parent->add_subcommand(leaf, help);
+}
+
 Context make_context(const std::string& command, const Output& o, const std::string& inv, Args request_args) {
   Context c;
   c.control.threads = o.threads;

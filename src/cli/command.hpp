@@ -166,10 +166,15 @@ struct NameLister {
 };
 
 void validate_output(const Output& o, bool threads_given);
+// Adds subcommand `name` to `app`; a name of several words ("windows bounds") goes under the subcommands named by
+// the words before the last, each found or else created (a parent registered earlier keeps its help and settings).
+CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& help);
 Context make_context(const std::string& command, const Output& o, const std::string& invocation, Args request_args);
 }  // namespace detail
 
-// Registers subcommand `name` for a request type Req (fields(), validate()) and its body.
+// Registers subcommand `name` for a request type Req (fields(), validate()) and its body.  `name` may be a
+// subcommand of a subcommand, "windows bounds": the command line then reads `btob windows bounds ...`, and scenes
+// and manifests name it in full (command = "windows bounds").
 template <class Req>
 void command(const std::string& name, const std::string& help, Output output_defaults,
              std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
@@ -195,7 +200,7 @@ void command(const std::string& name, const std::string& help, Output output_def
       std::map<std::string, CLI::Option*> opts;
     };
     auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
-    CLI::App* c = app.add_subcommand(name, help);
+    CLI::App* c = detail::add_nested(app, name, help);
     s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
     s->out.fields(detail::FlagBinder{c, &s->raw, &s->opts});
     c->callback([s, execute] {

@@ -148,8 +148,10 @@ void ResultFiles::manifest(const Attrs& attrs, const std::string& command,
   text(name_ + ".json", j.dump(2) + "\n");
 }
 
-void ResultFiles::plot(const std::string& script) {
-  run_plot(script, {staged(name_ + ".h5").string(), staged(name_ + ".png").string()});
+void ResultFiles::plot(const std::string& script) { plot(script, name_ + ".h5"); }
+
+void ResultFiles::plot(const std::string& script, const std::string& input) {
+  run_plot(script, {staged(input).string(), staged(name_ + ".png").string()});
   std::error_code ec;
   if (!fs::exists(tmp_ / (name_ + ".png"), ec)) files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
 }

@@ -38,6 +38,8 @@ class ResultFiles {
   // Runs analyses/plot/<script> on the staged NAME.h5 writing the staged NAME.png (a warning, not an error, when
   // matplotlib is missing).
   void plot(const std::string& script);
+  // The same on the staged file `input` of this result (a CSV, say) instead of NAME.h5.
+  void plot(const std::string& script, const std::string& input);
 
   // Moves every staged file into out/ (creating it), the manifest last; returns the final paths.  Throws with
   // the file and the cause when the output folder cannot be made or written.

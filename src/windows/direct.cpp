@@ -49,11 +49,12 @@ template <class T> T scaled_trace_power(const M3<T>& base, int n, long& exponent
 
 template <class T> T from_rational(const mpz_class& num, const mpz_class& den) {
   // Through MPFR with 60 digits (more than float128's 34), then to T by its decimal string.
-  const unsigned old = mpfr_float::default_precision();
-  mpfr_float::default_precision(60);
-  const mpfr_float q = mpfr_float(num.get_mpz_t()) / mpfr_float(den.get_mpz_t());
-  const std::string s = q.str(40, std::ios_base::scientific);
-  mpfr_float::default_precision(old);
+  std::string s;
+  {
+    core::MpfrDigits sixty(60);
+    const mpfr_float q = mpfr_float(num.get_mpz_t()) / mpfr_float(den.get_mpz_t());
+    s = q.str(40, std::ios_base::scientific);
+  }
   if constexpr (std::is_same_v<T, float>) return std::strtof(s.c_str(), nullptr);
   else if constexpr (std::is_same_v<T, double>) return std::strtod(s.c_str(), nullptr);
   else if constexpr (std::is_same_v<T, long double>) return std::strtold(s.c_str(), nullptr);

@@ -35,11 +35,7 @@ void validate_digits(long digits, const char* field) {
 namespace {
 
 // MPFR working precision for the scope of an object (boost's default precision is thread-local).
-struct ScopedDigits {
-  unsigned old;
-  explicit ScopedDigits(unsigned d) : old(mpfr_float::default_precision()) { mpfr_float::default_precision(d); }
-  ~ScopedDigits() { mpfr_float::default_precision(old); }
-};
+using ScopedDigits = core::MpfrDigits;
 
 using Mat = std::array<IntPoly, 9>;  // row-major 3x3 matrix of integer polynomials
 
@@ -201,7 +197,7 @@ mpfr_float r_crit2_here(int n) {
 mpfr_float r_crit2(int n, int digits) {
   validate_n(n, 2);
   validate_digits(digits);
-  ScopedDigits sd(static_cast<unsigned>(digits) + 10);  // 10 guard digits: cos/sqrt of well-conditioned arguments
+  ScopedDigits sd(digits + 10);  // 10 guard digits: cos/sqrt of well-conditioned arguments
   mpfr_float v = r_crit2_here(n);
   v.precision(static_cast<unsigned>(digits) + 10);
   return v;
@@ -217,7 +213,7 @@ mpfr_float window_lower_bound(int n, int decimals) {
   unsigned guard = 20;
   for (int attempt = 0; attempt < 12; ++attempt, guard *= 2) {
     const unsigned work = static_cast<unsigned>(decimals) + guard;
-    ScopedDigits sd(work);
+    ScopedDigits sd(static_cast<int>(work));
     const std::vector<mpfr_float> c = to_mpfr(q);
     auto f = [&](const mpfr_float& x) { return horner(c, x).value; };
     // Bracket: Q_n > 0 at the three-particle threshold 7 - 4 sqrt(3) (there BA has a double eigenvalue)
@@ -266,7 +262,7 @@ Certificate certify_lower_bound(int n, int decimals) {
   // k = floor(x 10^D): the D-decimal truncation of x.
   mpz_class k;
   {
-    ScopedDigits sd(x.precision());
+    ScopedDigits sd(static_cast<int>(x.precision()));
     const mpfr_float t = floor(x * mpfr_float(scale.get_mpz_t()));
     mpfr_get_z(k.get_mpz_t(), t.backend().data(), MPFR_RNDN);
   }
@@ -304,7 +300,7 @@ Certificate certify_lower_bound(int n, int decimals) {
 
 std::vector<Threshold> thresholds(int digits) {
   validate_digits(digits);
-  ScopedDigits sd(static_cast<unsigned>(digits) + 10);  // 10 guard digits for the subtractions below
+  ScopedDigits sd(digits + 10);  // 10 guard digits for the subtractions below
   const mpfr_float three(3), two(2), six(6), four(4);
   return {
       {"three_particle_collapse", "7-4*sqrt(3)", 7 - 4 * sqrt(three)},
@@ -317,7 +313,7 @@ std::vector<Threshold> thresholds(int digits) {
 std::vector<Stripe> thin_stripes(int max_m, int digits) {
   validate_n(max_m, 1, "m");
   validate_digits(digits);
-  ScopedDigits sd(static_cast<unsigned>(digits) + 10);  // 10 guard digits: sqrt(xi + xi^2) near xi = 0 loses few
+  ScopedDigits sd(digits + 10);  // 10 guard digits: sqrt(xi + xi^2) near xi = 0 loses few
   const mpfr_float pi = boost::math::constants::pi<mpfr_float>();
   std::vector<Stripe> out;
   for (int m = 1; m <= max_m; ++m)

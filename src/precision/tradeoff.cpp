@@ -1,0 +1,345 @@
+// The precision study (precision/tradeoff.hpp): every method against a 256-digit MPFR run of the same orbits.
+#include "precision/tradeoff.hpp"
+
+#include "core/fields.hpp"
+#include "core/map.hpp"
+#include "core/scalar.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "reference/reference.hpp"
+#include "windows/verify.hpp"
+#include "windows/windows.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <limits>
+
+namespace btob::precision {
+
+using namespace btob::iterate;
+using core::mpfr_float;
+using Clock = std::chrono::steady_clock;
+
+void TradeoffRequest::validate() const {
+  if (orbits < 1 || orbits > 4096) throw core::InvalidField("orbits", std::to_string(orbits), "1..4096");
+  if (iterations < 10 || iterations > 1000000)
+    throw core::InvalidField("iterations", std::to_string(iterations), "10..1000000");
+  if (r.empty()) throw core::InvalidField("r", "no value", "one or more r values in (0, 1)");
+  for (double v : r) core::require_r(v, "r");
+  if (window_n.empty()) throw core::InvalidField("window-n", "no value", "one or more integers 2..400");
+  for (double n : window_n)
+    if (!(n >= 2 && n <= 400 && n == std::floor(n))) throw core::InvalidField("window-n", fmt::format("{}", n), "2..400");
+}
+
+namespace {
+
+// Symbols 1/2/3 of `iterations` steps of each orbit of e, and the final unit states, in precision T.
+struct Trace {
+  std::vector<std::uint8_t> symbols;
+  std::vector<Vec3<double>> final;
+};
+template <class T> Trace trace(const Ensemble& e, long iterations, const RunOptions& ro) {
+  FinalRecorder f(e.orbits(), iterations);
+  SymbolRecorder s(e.orbits(), 1, iterations);
+  Both<FinalRecorder, SymbolRecorder> both(f, s);
+  run<T>(e, iterations, both, ro);
+  return {std::move(s.out), std::move(f.out)};
+}
+template <class T> std::vector<std::uint8_t> symbols(const Ensemble& e, long iterations, const RunOptions& ro) {
+  SymbolRecorder s(e.orbits(), 1, iterations);
+  run<T>(e, iterations, s, ro);
+  return s.out;
+}
+
+// The same with the trigonometric algorithm of Appendix A.1 (double); a broken orbit's remaining symbols are 0
+// (never equal to the reference).
+Trace trig_trace(const Ensemble& e, long iterations, const RunOptions&) {
+  Trace t;
+  t.symbols.assign(e.orbits() * static_cast<std::size_t>(iterations), 0);
+  t.final.assign(e.orbits(), Vec3<double>::Constant(std::numeric_limits<double>::quiet_NaN()));
+  auto& out = t.symbols;
+  const std::size_t n_ic = e.initial.size();
+  for (std::size_t o = 0; o < e.orbits(); ++o) {
+    const double r = e.r[o / n_ic];
+    const Vec3<double> u = core::to_quadrant<double>(e.initial[o % n_ic] / e.initial[o % n_ic].norm());
+    auto s = reference::trig_start<double>(std::atan2(-u(2), u(0)), std::atan2(std::hypot(u(0), u(2)), -u(1)));
+    for (long k = 0; k < iterations; ++k) {
+      const auto c = reference::trig_b_to_b<double>(s, r);
+      if (c.status != reference::TrigStatus::ok) break;
+      out[o * iterations + k] = c.letters == "ab" ? 1 : (c.letters == "cb" ? 3 : 2);
+      if (k == iterations - 1) t.final[o] = core::from_angles<double>(c.theta, c.phi);
+    }
+  }
+  return t;
+}
+std::vector<std::uint8_t> trig_symbols(const Ensemble& e, long iterations, const RunOptions& ro) {
+  return trig_trace(e, iterations, ro).symbols;
+}
+
+// Iterations per second of precision T on e (FinalRecorder, the run's threads), timed over >= 0.3 s.
+template <class T> double throughput(const Ensemble& e, long iterations, const RunOptions& ro) {
+  double items = 0, secs = 0;
+  while (secs < 0.3) {
+    FinalRecorder f(e.orbits(), iterations);
+    const auto t0 = Clock::now();
+    run<T>(e, iterations, f, ro);
+    secs += std::chrono::duration<double>(Clock::now() - t0).count();
+    items += static_cast<double>(e.orbits()) * static_cast<double>(iterations);
+  }
+  return items / secs;
+}
+double trig_throughput(const Ensemble& e, long iterations, const RunOptions& ro) {
+  const auto t0 = Clock::now();
+  trig_symbols(e, iterations, ro);
+  return static_cast<double>(e.orbits()) * static_cast<double>(iterations) /
+         std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+using SymFn = std::function<std::vector<std::uint8_t>(const Ensemble&, long, const RunOptions&)>;
+
+// Largest n of the list such that, for it and every smaller listed n, the 8 first orbits of the Section 4 grid end
+// on (ab)^n(cb)^n at the middle of the window (lower bound + r_crit,2)/2.
+int window_n_max(const SymFn& sym, const std::vector<int>& ns, const RunOptions& ro) {
+  int best = 0;
+  for (int n : ns) {
+    const double lo = static_cast<double>(windows::window_lower_bound(n, 20));
+    const double hi = static_cast<double>(windows::r_crit2(n, 20));
+    Ensemble e;
+    e.r = {0.5 * (lo + hi)};
+    const auto g = paper_grid();
+    e.initial.assign(g.begin(), g.begin() + 8);
+    const long iters = 20000 + 400L * n;  // transients grow with n near 7-4 sqrt(3) (see windows verify)
+    const std::vector<std::uint8_t> s = sym(e, iters, ro);
+    const long tail = 8L * n;
+    for (std::size_t o = 0; o < e.orbits(); ++o)
+      if (!windows::on_pattern(&s[o * iters + (iters - tail)], tail, n)) return best;
+    best = n;
+  }
+  return best;
+}
+
+// Largest error of lambda1 (weighted Birkhoff average of the projective cocycle, 1e5 steps after a 2000-step
+// transient) against the eigenvalues of the period matrix, on the sinks 1133 (r = 0.15), 111333 (r = 0.1) and
+// 132312 (r = 0.5), started from the Section 4 grid's first point (0.1, 0.15) or a random point (0.5).
+template <class T> double lyapunov_error() {
+  struct Case {
+    double r;
+    Vec3<double> u;
+  };
+  const std::vector<Case> cases = {{0.15, paper_grid()[0]}, {0.1, paper_grid()[0]}, {0.5, random_points(1, 3)[0]}};
+  double worst = 0;
+  for (const Case& c : cases) {
+    lyapunov::Options opt;
+    opt.transient = 2000;
+    opt.iterations = 100000;
+    const Vec3<T> u(T(c.u(0)), T(c.u(1)), T(c.u(2)));
+    const lyapunov::ProjectiveResult res = lyapunov::projective_exponents<T>(u, T(c.r), opt);
+    const int p = lyapunov::detect_period(res.symbols_tail, 64, 512);
+    if (p == 0) return std::numeric_limits<double>::quiet_NaN();  // not on a sink: no exact value
+    const std::vector<int> period(res.symbols_tail.end() - p, res.symbols_tail.end());
+    worst = std::max(worst, std::fabs(res.weighted[0] - exact_lambda1(period, c.r)));
+  }
+  return worst;
+}
+
+// A method: its name and digits, and its symbols, throughput, trace and Lyapunov error, each run in its own
+// arithmetic (an MPFR method holds its digits with a guard for each call).
+struct Method {
+  std::string name;
+  int digits;
+  SymFn sym;
+  std::function<double(const Ensemble&, long, const RunOptions&)> rate;
+  std::function<Trace(const Ensemble&, long, const RunOptions&)> tr;
+  std::function<double()> lyapunov;  // empty for trig
+};
+
+template <class T> Method linear(const std::string& name, int digits) {
+  return {name, digits, symbols<T>, throughput<T>, trace<T>, lyapunov_error<T>};
+}
+
+Method mpfr_method(int d) {
+  const auto at = [d](auto f) {
+    return [d, f](auto&&... args) {
+      core::MpfrDigits guard(d);
+      return f(args...);
+    };
+  };
+  return {fmt::format("linear/mpfr:{}", d), d, at(symbols<mpfr_float>), at(throughput<mpfr_float>),
+          at(trace<mpfr_float>), at(lyapunov_error<mpfr_float>)};
+}
+
+// The row of one method: agreement with the reference per r, throughput, window test, Lyapunov error.
+TradeoffRow measure(const Method& m, const TradeoffRequest& req, const Ensemble& e, const Trace& reference,
+                    const std::vector<int>& window_n, const RunOptions& ro) {
+  TradeoffRow row;
+  row.method = m.name;
+  row.digits = m.digits;
+  const long N = req.iterations;
+  const Trace tr = m.tr(e, N, ro);
+  const std::vector<std::uint8_t>& s = tr.symbols;
+  const std::vector<std::uint8_t>& ref = reference.symbols;
+  const std::size_t n_ic = e.initial.size();
+  for (std::size_t ir = 0; ir < e.r.size(); ++ir) {
+    std::vector<long> agree;
+    std::vector<double> err;
+    for (std::size_t ic = 0; ic < n_ic; ++ic) {
+      const std::size_t o = ir * n_ic + ic;
+      long k = 0;
+      while (k < N && s[o * N + k] == ref[o * N + k]) ++k;
+      agree.push_back(k);
+      const Vec3<double>& a = tr.final[o];
+      const Vec3<double>& b = reference.final[o];
+      err.push_back(std::isfinite(a.sum()) ? std::atan2(a.cross(b).norm(), a.dot(b)) : M_PI);
+    }
+    std::sort(err.begin(), err.end());
+    row.error_median.push_back(err[err.size() / 2]);
+    std::sort(agree.begin(), agree.end());
+    row.agree_min.push_back(agree.front());
+    row.agree_median.push_back(agree[agree.size() / 2]);
+  }
+  // Throughput on a workload sized to the method's speed: enough orbits to fill the SIMD batches and both threads
+  // (8192 for float/double), fewer for the slow types so that one timing takes about a second.
+  Ensemble w;
+  w.r = {0.2};
+  const long n_orbits = m.digits > 34 ? 16 : (m.digits > 16 || m.name.starts_with("trig") ? 256 : 8192);
+  w.initial = random_points(n_orbits, req.seed + 1);
+  row.rate = m.rate(w, m.digits > 34 ? 200 : 2000, ro);
+  row.n_max = m.name.starts_with("trig") ? -1 : window_n_max(m.sym, window_n, ro);
+  row.lyapunov_error = m.lyapunov ? m.lyapunov() : std::numeric_limits<double>::quiet_NaN();
+  return row;
+}
+
+}  // namespace
+
+double exact_lambda1(const std::vector<int>& period, double r_double) {
+  using core::Mat3;
+  core::MpfrDigits sixty(60);
+  const mpfr_float r(r_double);
+  Mat3<mpfr_float> M = Mat3<mpfr_float>::Identity();
+  for (int s : period) M = Mat3<mpfr_float>(core::P<mpfr_float>(s, r) * M);
+  const mpfr_float tr = M(0, 0) + M(1, 1) + M(2, 2);
+  const mpfr_float c2 = M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) + M(0, 0) * M(2, 2) - M(0, 2) * M(2, 0) +
+                        M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1);
+  const mpfr_float det = M(0, 0) * (M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1)) -
+                         M(0, 1) * (M(1, 0) * M(2, 2) - M(1, 2) * M(2, 0)) +
+                         M(0, 2) * (M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0));
+  Mat3<double> Md;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Md(i, j) = static_cast<double>(M(i, j));
+  const Eigen::EigenSolver<Mat3<double>> es(Md, false);
+  std::complex<double> best = es.eigenvalues()(0);
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(es.eigenvalues()(i)) > std::abs(best)) best = es.eigenvalues()(i);
+  mpfr_float l1(best.real());  // a sink's dominant eigenvalue is real (its eigenvector is the periodic point)
+  for (int it = 0; it < 60; ++it) {
+    const mpfr_float f = ((l1 - tr) * l1 + c2) * l1 - det, df = (3 * l1 - 2 * tr) * l1 + c2;
+    l1 -= f / df;
+  }
+  const mpfr_float b = tr - l1, c = det / l1, disc = b * b - 4 * c;
+  mpfr_float l2abs;
+  if (disc < 0) l2abs = sqrt(abs(c));
+  else {
+    const mpfr_float sq = sqrt(disc), up = abs((b + sq) / 2), down = abs((b - sq) / 2);
+    l2abs = up > down ? up : down;
+  }
+  return static_cast<double>(log(l2abs / abs(l1)) / static_cast<int>(period.size()));
+}
+
+TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) {
+  req.validate();
+  RunOptions ro;
+  ro.threads = control.threads;
+  ro.cancel = control.cancel;
+  std::vector<int> window_n;
+  for (double n : req.window_n) window_n.push_back(static_cast<int>(n));
+  Ensemble e;
+  e.r = req.r;
+  e.initial = random_points(req.orbits, req.seed);
+  const std::vector<Method> methods = {
+      linear<float>("linear/float", 7),
+      linear<double>("linear/double", 16),
+      linear<long double>("linear/long-double", 19),
+      linear<core::float128>("linear/float128", 34),
+      mpfr_method(50),
+      mpfr_method(100),
+      {"trig/double", 16, trig_symbols, trig_throughput, trig_trace, {}},
+  };
+  Trace reference;  // 256 decimal digits
+  {
+    core::MpfrDigits guard(256);
+    reference = trace<mpfr_float>(e, req.iterations, ro);
+  }
+  TradeoffResult res;
+  for (std::size_t step = 0; step < methods.size(); ++step) {
+    if (control.progress) control.progress->update(step, methods.size());
+    control.check_cancelled();
+    res.rows.push_back(measure(methods[step], req, e, reference, window_n, ro));
+  }
+  if (control.progress) control.progress->update(methods.size(), methods.size());
+  res.r = req.r;
+  for (const TradeoffRow& row : res.rows) {
+    res.digits.push_back(row.digits);
+    res.rate.push_back(row.rate);
+    res.window_n_max.push_back(row.n_max);
+    res.lyapunov_error.push_back(row.lyapunov_error);
+    for (std::size_t i = 0; i < row.agree_min.size(); ++i) {
+      res.agree_min.push_back(static_cast<double>(row.agree_min[i]));
+      res.agree_median.push_back(static_cast<double>(row.agree_median[i]));
+      res.error_median.push_back(row.error_median[i]);
+    }
+  }
+  return res;
+}
+
+std::string TradeoffResult::csv(const TradeoffRequest& req, const std::string& version) const {
+  std::string s =
+      "# btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
+      "between the final states (median over orbits); lyapunov_error: largest |lambda1 - exact| on the sinks 1133 "
+      "(r=0.15), 111333 (r=0.1), 132312 (r=0.5), weighted average of 1e5 steps, against log|l2/l1|/p of the period "
+      "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16)\n";
+  s += fmt::format("# orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
+                   "the middle of window n, 20000+400n iterations, n in [{}]; version {}\n",
+                   req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "), version);
+  s += "method,decimal_digits,iterations_per_second";
+  for (double r : req.r) s += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
+  s += ",window_n_max,lyapunov_error\n";
+  for (const TradeoffRow& row : rows) {
+    s += fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
+    for (std::size_t i = 0; i < row.agree_min.size(); ++i)
+      s += fmt::format(",{},{},{:.3g}", row.agree_min[i], row.agree_median[i], row.error_median[i]);
+    s += fmt::format(",{},{}\n", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
+                     std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error));
+  }
+  return s;
+}
+
+void TradeoffResult::describe(core::Contents& c) const {
+  const std::size_t M = rows.size(), R = r.size();
+  c.array("r", r, {R}, "r", "1", "r values of the symbol comparison");
+  c.array("decimal_digits", digits, {M}, "method", "digits", "decimal digits of the method's arithmetic");
+  c.array("iterations_per_second", rate, {M}, "method", "1/s", "map iterations per second (all threads of the run)");
+  c.array("agree_min", agree_min, {M, R}, "method, r", "iteration",
+          "fewest leading symbols equal to the 256-digit reference's, over the orbits");
+  c.array("agree_median", agree_median, {M, R}, "method, r", "iteration",
+          "median number of leading symbols equal to the reference's");
+  c.array("final_error_median", error_median, {M, R}, "method, r", "rad",
+          "median angle between the final state and the reference's");
+  c.array("window_n_max", window_n_max, {M}, "method", "1", "largest listed window n resolved (-1: not tested)");
+  c.array("lyapunov_error", lyapunov_error, {M}, "method", "1/iteration (natural log)",
+          "largest |lambda1 - exact| on the sinks 1133, 111333, 132312 (NaN: not tested)");
+  std::string names;
+  for (const auto& row : rows) names += (names.empty() ? "" : ",") + row.method;
+  c.attr("methods", names);
+  c.attr("reference", std::string("mpfr:256"));
+}
+
+}  // namespace btob::precision

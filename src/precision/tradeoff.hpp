@@ -1,0 +1,65 @@
+// The precision study (`btob precision`, issue 9): speed against accuracy of each precision and algorithm.
+// The same random orbits run in float, double, long double, float128, MPFR with 50 and 100 digits (the batched
+// linear kernel) and with the trigonometric algorithm of Appendix A.1 (double); each is compared with a 256-digit
+// MPFR run of the same orbits (how many symbols agree, the angle between the final states), timed, tested on the
+// windows (ab)^n(cb)^n near 7 - 4 sqrt 3, and its Lyapunov exponent checked on three sinks against the exact
+// eigenvalues of their period matrices.
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::precision {
+
+struct TradeoffRequest {
+  long orbits = 16;                                    // random initial conditions per r, 1..4096
+  long iterations = 3000;                              // symbols compared per orbit, 10..1000000
+  std::vector<double> r{0.11, 0.2, 0.3, 0.58};         // r values of the symbol comparison, each in (0, 1)
+  std::vector<double> window_n{2, 3, 5, 8, 12, 20, 30, 45, 60, 80, 100, 125};  // integers 2..400
+  std::uint64_t seed = 7;                              // seed of the random initial conditions
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("orbits", orbits, "random initial conditions per r");
+    v("iterations", iterations, "symbols compared per orbit");
+    v("r", r, "r values of the symbol comparison");
+    v("window-n", window_n, "window indices n tested near 7-4*sqrt(3)");
+    v("seed", seed, "seed of the random initial conditions");
+  }
+};
+
+// One method (an arithmetic and an algorithm) against the reference.
+struct TradeoffRow {
+  std::string method;    // linear/float .. linear/mpfr:100, trig/double
+  int digits = 0;        // decimal digits of the arithmetic
+  double rate = 0;       // iterations per second (all threads of the run)
+  std::vector<long> agree_min, agree_median;  // [R] leading symbols equal to the reference's (min, median over orbits)
+  std::vector<double> error_median;           // [R] median angle (rad) between the final state and the reference's
+  double lyapunov_error = 0;  // largest |lambda1 - exact| on the three sinks; NaN for trig or off a sink
+  int n_max = 0;              // largest listed window n resolved (with every smaller listed n); -1 for trig
+};
+
+struct TradeoffResult {
+  std::vector<TradeoffRow> rows;
+  // Flat views for describe(): [M] and [M, R], M methods in the order of `rows`, R r values.
+  std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, window_n_max;
+
+  // The CSV of results/precision/tradeoff.csv: two comment lines (the second ends with `version`), a header, a row
+  // per method.
+  std::string csv(const TradeoffRequest& req, const std::string& version) const;
+  void describe(core::Contents& c) const;
+};
+
+TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control = {});
+
+// lambda1 = log|l2/l1| / p of the periodic word `period` (symbols 1, 2, 3) at r (the double value, converted
+// exactly), in MPFR with 60 digits: the period matrix, its dominant eigenvalue l1 by Newton on det(t - M) from the
+// double estimate, and l2, l3 from t^2 - (tr M - l1) t + det M / l1 (a complex pair when the discriminant is
+// negative, then |l2| = sqrt(det M / l1)).  MPFR's default precision is restored on return.
+double exact_lambda1(const std::vector<int>& period, double r);
+
+}  // namespace btob::precision

@@ -1,0 +1,20 @@
+// The windows' r values drawn on bifurcation diagrams: window lower bounds and r_crit,2(n), and thin stripes.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+namespace btob::windows {
+
+// Every lower bound (colour 1, blue) and r_crit,2(n) (colour 0, red) in [r_min, r_max], n = 1..400, as
+// (r, colour) pairs.  Both decrease with n towards 7 - 4 sqrt 3 and lower(n) < r_crit,2(n), so the scan stops at
+// the first n with r_crit,2(n) < r_min (windows beyond n = 400 are 1e-9 wide, below any plot's resolution).
+// Lower bounds: n <= 150 from the 20-decimal root of Q_n (the certified route); n > 150 from the matrix route in
+// long double, which the precision study (results/windows/precision.csv) shows correct to ~20 decimals for every
+// n <= 150, while the polynomial route for n = 150..400 costs ~20 s in all.  Computed once per n (thread-safe).
+std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max);
+
+// The thin stripes r(l/m) of eq. (6.3) with m <= 120 (Figure 6.8) in [r_min, r_max], colour 1.
+std::vector<std::pair<double, int>> stripes_overlay(double r_min, double r_max);
+
+}  // namespace btob::windows

@@ -1,0 +1,430 @@
+// The windows requests: validation, the runs, their CSV text and the description of their results.
+#include "windows/requests.hpp"
+
+#include "core/scalar.hpp"
+#include "windows/direct.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace btob::windows {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void progress(const core::RunControl& control, std::size_t done, std::size_t total) {
+  if (control.progress) control.progress->update(done, total);
+}
+}  // namespace
+
+NRange parse_n_range(std::string_view text, int min_n, const std::string& field) {
+  const auto bad = [&] {
+    return core::InvalidField(field, fmt::format("'{}'", text),
+                              fmt::format("A..B or A with {} <= A <= B <= {}", min_n, max_range_n));
+  };
+  const auto number = [&](std::string_view s) {
+    long v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || ec != std::errc() || end != s.data() + s.size()) throw bad();
+    return v;
+  };
+  const auto dots = text.find("..");
+  const long a = number(dots == std::string_view::npos ? text : text.substr(0, dots));
+  const long b = dots == std::string_view::npos ? a : number(text.substr(dots + 2));
+  if (a < min_n || b < a || b > max_range_n) throw bad();
+  return {static_cast<int>(a), static_cast<int>(b)};
+}
+
+void require_digits(long digits, const std::string& field) {
+  if (digits < 10 || digits > 10000) throw core::InvalidField(field, std::to_string(digits), "10..10000");
+}
+
+// ---- poly ------------------------------------------------------------------------------------------------
+void PolyRequest::validate() const {
+  (void)parse_n_range(n, 1, "n");
+  if (form != "developed" && form != "factorised" && form != "both")
+    throw core::InvalidField("form", "'" + form + "'", "developed, factorised or both");
+}
+
+PolyResult run(const PolyRequest& req, const core::RunControl& control) {
+  req.validate();
+  const NRange r = parse_n_range(req.n, 1, "n");
+  PolyResult res;
+  for (int n = r.first; n <= r.last; ++n) {
+    control.check_cancelled();
+    const RationalPoly q = window_polynomial(n);
+    res.n.push_back(static_cast<std::uint32_t>(n));
+    res.degree.push_back(static_cast<std::uint32_t>(q.degree()));
+    res.developed.push_back(req.form != "factorised" ? q.developed() : "");
+    res.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
+    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
+  }
+  return res;
+}
+
+std::string PolyResult::text() const {
+  std::string s;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (!developed[i].empty()) s += fmt::format("Q_{} = {}\n", n[i], developed[i]);
+    if (!factorised[i].empty()) s += fmt::format("Q_{} = {}\n", n[i], factorised[i]);
+  }
+  return s;
+}
+
+void PolyResult::describe(core::Contents& c) const {
+  c.array("n", n, {n.size()}, "n", "1", "window index n of the pattern (ab)^n(cb)^n");
+  c.array("degree", degree, {n.size()}, "n", "1", "degree of Q_n (4n)");
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (!developed[i].empty()) c.attr(fmt::format("Q_{}_developed", n[i]), developed[i]);
+    if (!factorised[i].empty()) c.attr(fmt::format("Q_{}_factorised", n[i]), factorised[i]);
+  }
+}
+
+// ---- bounds ----------------------------------------------------------------------------------------------
+void BoundsRequest::validate() const {
+  (void)parse_n_range(n, 1, "n");
+  require_digits(digits);
+}
+
+BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
+  req.validate();
+  const NRange r = parse_n_range(req.n, 1, "n");
+  BoundsResult res;
+  res.digits = req.digits;
+  res.certified_run = req.certify;
+  for (int n = r.first; n <= r.last; ++n) {
+    control.check_cancelled();
+    const mpfr_float lo = window_lower_bound(n, req.digits);
+    res.n.push_back(static_cast<std::uint32_t>(n));
+    res.lower_text.push_back(fixed(lo, req.digits));
+    res.lower_bound.push_back(static_cast<double>(lo));
+    if (n >= 2) {
+      const mpfr_float up = r_crit2(n, req.digits + 5);
+      res.upper_text.push_back(fixed(up, req.digits));
+      res.upper_bound.push_back(static_cast<double>(up));
+    } else {
+      res.upper_text.emplace_back();
+      res.upper_bound.push_back(std::nan(""));
+    }
+    if (req.certify) {
+      const Certificate cert = certify_lower_bound(n, req.digits);
+      // a, b = k / 10^D exactly: their D decimals, printed from MPFR with 20 guard digits.
+      const auto dec = [&](const mpq_class& q) {
+        core::MpfrDigits guard(req.digits + 20);
+        return fixed(mpfr_float(q.get_mpq_t()), req.digits);
+      };
+      res.a_text.push_back(dec(cert.a));
+      res.b_text.push_back(dec(cert.b));
+      res.sign_a.push_back(cert.sign_a);
+      res.sign_b.push_back(cert.sign_b);
+      res.roots_0_a.push_back(static_cast<double>(cert.roots_0_a));
+      res.roots_a_b.push_back(static_cast<double>(cert.roots_a_b));
+      res.valid.push_back(cert.valid() ? 1 : 0);
+      res.certificates.push_back(cert);
+    }
+    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
+  }
+  return res;
+}
+
+std::string BoundsResult::csv() const {
+  std::string s = certified_run
+                      ? "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified\n"
+                      : "n,lower_bound,upper_bound\n";
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    s += fmt::format("{},{},{}", n[i], lower_text[i], upper_text[i]);
+    if (certified_run) {
+      const Certificate& c = certificates[i];
+      s += fmt::format(",{},{},{},{},{},{},{}", a_text[i], b_text[i], c.sign_a, c.sign_b, c.roots_0_a, c.roots_a_b,
+                       c.valid() ? "yes" : "no");
+    }
+    s += '\n';
+  }
+  return s;
+}
+
+void BoundsResult::describe(core::Contents& c) const {
+  const std::size_t N = n.size();
+  c.array("n", n, {N}, "n", "1", "window index n of the pattern (ab)^n(cb)^n");
+  c.array("lower_bound", lower_bound, {N}, "n", "1", "smallest positive root of Q_n (rounded to double)");
+  c.array("upper_bound", upper_bound, {N}, "n", "1", "r_crit,2(n), eq. (4.6), rounded to double (NaN for n = 1)");
+  if (certified_run) {
+    c.array("sign_Q_a", sign_a, {N}, "n", "1", "exact sign of Q_n at a = floor(lower 10^D) / 10^D");
+    c.array("sign_Q_b", sign_b, {N}, "n", "1", "exact sign of Q_n at b = a + 10^-D");
+    c.array("sturm_roots_0_a", roots_0_a, {N}, "n", "count", "distinct real roots of Q_n in (0, a] (Sturm)");
+    c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Sturm)");
+    c.array("certified", valid, {N}, "n", "1", "1 when the certificate proves the lower bound lies in (a, b)");
+  }
+  c.attr("digits", static_cast<long>(digits));
+  c.attr("certify", certified_run ? std::string("yes") : std::string("no"));
+}
+
+// ---- thresholds and stripes ------------------------------------------------------------------------------
+void ThresholdsRequest::validate() const { require_digits(digits); }
+
+ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  ThresholdsResult res;
+  res.thresholds = thresholds(req.digits);
+  for (const auto& t : res.thresholds) {
+    res.text.push_back(t.value.str(req.digits, std::ios_base::fixed));
+    res.value.push_back(static_cast<double>(t.value));
+  }
+  return res;
+}
+
+std::string ThresholdsResult::csv() const {
+  std::string s = "name,formula,value\n";
+  for (std::size_t i = 0; i < thresholds.size(); ++i)
+    s += fmt::format("{},{},{}\n", thresholds[i].name, thresholds[i].formula, text[i]);
+  return s;
+}
+
+void ThresholdsResult::describe(core::Contents& c) const {
+  c.array("value", value, {value.size()}, "threshold", "1", "threshold values rounded to double, in the order of names");
+  std::string names;
+  for (const auto& t : thresholds) names += (names.empty() ? "" : ",") + t.name;
+  c.attr("names", names);
+  for (std::size_t i = 0; i < thresholds.size(); ++i) c.attr(thresholds[i].name, thresholds[i].formula + " = " + text[i]);
+}
+
+void StripesRequest::validate() const {
+  if (max_m < 1 || max_m > 100000) throw core::InvalidField("max-m", std::to_string(max_m), "1..100000");
+  require_digits(digits);
+}
+
+StripesResult run(const StripesRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  StripesResult res;
+  for (const auto& s : thin_stripes(req.max_m, req.digits)) {
+    res.l.push_back(static_cast<std::uint32_t>(s.l));
+    res.m.push_back(static_cast<std::uint32_t>(s.m));
+    res.mirror_l.push_back(static_cast<std::uint32_t>(s.m - s.l));
+    res.text.push_back(fixed(s.value, req.digits));
+    res.r.push_back(static_cast<double>(s.value));
+  }
+  return res;
+}
+
+std::string StripesResult::csv() const {
+  std::string s = "l,m,mirror_l,r\n";
+  for (std::size_t i = 0; i < l.size(); ++i) s += fmt::format("{},{},{},{}\n", l[i], m[i], mirror_l[i], text[i]);
+  return s;
+}
+
+void StripesResult::describe(core::Contents& c) const {
+  const std::size_t S = l.size();
+  c.array("l", l, {S}, "stripe", "1", "numerator of the rotation number l/m (1/4 < l/m <= 1/2, reduced)");
+  c.array("m", m, {S}, "stripe", "1", "denominator of the rotation number");
+  c.array("mirror_l", mirror_l, {S}, "stripe", "1", "numerator m - l of the mirror rotation number (same r)");
+  c.array("r", r, {S}, "stripe", "1", "thin stripe r(l/m), eq. (6.3), rounded to double");
+}
+
+// ---- verify ----------------------------------------------------------------------------------------------
+void VerifyRequest::validate() const {
+  (void)parse_n_range(n, 2, "n");  // n = 1 (abcb) is never stable and has no r_crit,2
+  if (iterations < 100) throw core::InvalidField("iterations", std::to_string(iterations), "at least 100");
+  if (per_n < 0) throw core::InvalidField("per-n", std::to_string(per_n), "at least 0");
+  if (tail < 1 || tail >= iterations)
+    throw core::InvalidField("tail", std::to_string(tail), fmt::format("1..iterations-1 = {}", iterations - 1));
+  if (precision != "double" && precision != "long-double")
+    throw core::InvalidField("precision", "'" + precision + "'", "double or long-double");
+}
+
+VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  req.validate();
+  VerifyResult res;
+  res.range = parse_n_range(req.n, 2, "n");
+  res.options.base_iterations = req.iterations;
+  res.options.per_n = req.per_n;
+  res.options.tail = req.tail;
+  res.options.long_double = req.precision == "long-double";
+  res.options.threads = control.threads;
+  // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
+  for (int n = res.range.first; n <= res.range.last; ++n) {
+    control.check_cancelled();
+    for (const auto& row : verify_windows(n, n, res.options)) {
+      res.passed += row.pass();
+      ++res.total;
+      res.rows.push_back(row);
+      res.n.push_back(static_cast<std::uint32_t>(row.n));
+      res.position.push_back(static_cast<std::uint32_t>(res.rows.size() - 1) % 4);
+      res.r.push_back(row.r);
+      res.lower.push_back(row.lower);
+      res.upper.push_back(row.upper);
+      res.iterations_run.push_back(static_cast<std::uint32_t>(row.iterations));
+      res.orbits.push_back(static_cast<std::uint32_t>(row.orbits));
+      res.on_pattern.push_back(static_cast<std::uint32_t>(row.on_pattern));
+      res.expected_on.push_back(row.expected_on ? 1 : 0);
+      res.pass.push_back(row.pass() ? 1 : 0);
+    }
+    progress(control, static_cast<std::size_t>(n - res.range.first + 1), static_cast<std::size_t>(res.range.count()));
+  }
+  res.total_seconds = seconds_since(t0);
+  return res;
+}
+
+std::string VerifyResult::csv() const {
+  std::string s = "n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict\n";
+  for (const auto& row : rows)
+    s += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{}\n", row.n, row.position, row.r, row.lower, row.upper,
+                     row.iterations, row.orbits, row.on_pattern, row.expected_on ? "all" : "none",
+                     row.pass() ? "pass" : "fail");
+  return s;
+}
+
+void VerifyResult::describe(core::Contents& c) const {
+  const std::size_t R = rows.size();
+  const std::string axes = "check (n, position)";
+  c.array("n", n, {R}, axes, "1", "window index n");
+  c.array("position", position, {R}, axes, "1", "0 below, 1 inside_25, 2 inside_50, 3 inside_75");
+  c.array("r", r, {R}, axes, "1", "r of the check: lower - 0.05 w or lower + q w, w = r_crit2 - lower");
+  c.array("lower_bound", lower, {R}, axes, "1", "window lower bound (20-decimal root of Q_n, in double)");
+  c.array("upper_bound", upper, {R}, axes, "1", "r_crit,2(n) in double");
+  c.array("steps", iterations_run, {R}, axes, "iteration", "map iterations of each orbit");
+  c.array("orbits", orbits, {R}, axes, "count", "orbits of the Section 4 grid");
+  c.array("on_pattern", on_pattern, {R}, axes, "count", "orbits ending on (ab)^n(cb)^n");
+  c.array("expected_on", expected_on, {R}, axes, "1", "1: all orbits expected on the pattern (inside), 0: none (below)");
+  c.array("pass", pass, {R}, axes, "1", "1 when the check passes");
+  c.attr("n_first", static_cast<long>(range.first));
+  c.attr("n_last", static_cast<long>(range.last));
+  c.attr("grid", std::string("paper (Section 4, 32 initial conditions)"));
+  c.attr("iterations", fmt::format("{} + {} n", options.base_iterations, options.per_n));
+  c.attr("recorded", fmt::format("symbols of the last max({}, 4n) steps; on pattern = periodic with period 2n there "
+                                 "and one period a rotation of 1^n 3^n",
+                                 options.tail));
+  c.attr("positions", std::string("below = lower - 0.05 (r_crit2 - lower); inside_q = lower + q (r_crit2 - lower)"));
+  c.attr("checks", total);
+  c.attr("passed", passed);
+  c.attr("total_seconds", total_seconds);
+}
+
+std::string verify_stem(const NRange& r) {
+  return r.first == 2 && r.last == 125 ? std::string("verify") : fmt::format("verify_{}-{}", r.first, r.last);
+}
+
+// ---- precision study of the lower bound ------------------------------------------------------------------
+void BoundPrecisionRequest::validate() const {
+  (void)parse_n_range(n, 1, "n");
+  if (mpfr_digits < 10 || mpfr_digits > 1000)
+    throw core::InvalidField("mpfr-digits", std::to_string(mpfr_digits), "10..1000");
+}
+
+namespace {
+// One precision and route over n = first..last against the certified values `exact`; `mpfr_digits` > 0 for the
+// MPFR row (its working precision, held by a guard for each bound).
+template <class T>
+void study(const std::string& name, Route route, const NRange& r, const std::vector<mpfr_float>& exact, int mpfr_digits,
+           BoundPrecisionResult& res, const core::RunControl& control) {
+  int largest_all = 0, largest_any = 0;
+  bool prefix = true;
+  double total_s = 0;
+  for (int n = r.first; n <= r.last; ++n) {
+    control.check_cancelled();
+    std::optional<core::MpfrDigits> working;
+    if (mpfr_digits > 0) working.emplace(mpfr_digits);
+    const auto t0 = std::chrono::steady_clock::now();
+    const T v = window_lower_bound_in<T>(n, route);
+    const double s = seconds_since(t0);
+    working.reset();
+    total_s += s;
+    core::MpfrDigits sixty(60);  // the error against the 40-decimal reference
+    const mpfr_float err = abs(mpfr_float(v) - exact[static_cast<std::size_t>(n - r.first)]);
+    const bool finite = std::isfinite(static_cast<double>(v));
+    // Correct to 12 decimals: within half a unit of the 12th decimal of the certified value.
+    const bool ok = finite && err <= mpfr_float("5e-13");
+    if (ok) largest_any = n;
+    prefix = prefix && ok;
+    if (prefix) largest_all = n;
+    BoundPrecisionRow row;
+    row.precision = name;
+    row.route = route_name(route);
+    row.n = n;
+    row.value = static_cast<double>(v);
+    row.abs_error = finite ? static_cast<double>(err) : std::nan("");
+    row.correct_12 = ok;
+    row.seconds = s;
+    res.rows.push_back(row);
+  }
+  res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+}
+}  // namespace
+
+BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  req.validate();
+  BoundPrecisionResult res;
+  const NRange r = parse_n_range(req.n, 1, "n");
+  res.range = r;
+  std::vector<mpfr_float> exact;
+  for (int n = r.first; n <= r.last; ++n) exact.push_back(window_lower_bound(n, 40));
+  const std::string mp = fmt::format("mpfr:{}", req.mpfr_digits);
+  std::size_t step = 0;
+  for (auto route : {Route::matrix, Route::polynomial}) {
+    progress(control, step++, 10);
+    study<float>("float", route, r, exact, 0, res, control);
+    progress(control, step++, 10);
+    study<double>("double", route, r, exact, 0, res, control);
+    progress(control, step++, 10);
+    study<long double>("long-double", route, r, exact, 0, res, control);
+    progress(control, step++, 10);
+    study<core::float128>("float128", route, r, exact, 0, res, control);
+    progress(control, step++, 10);
+    study<mpfr_float>(mp, route, r, exact, req.mpfr_digits, res, control);
+  }
+  progress(control, 10, 10);
+  for (const auto& row : res.rows) {
+    res.value.push_back(row.value);
+    res.abs_error.push_back(row.abs_error);
+    res.seconds.push_back(row.seconds);
+    res.correct_12.push_back(row.correct_12 ? 1 : 0);
+  }
+  for (int n = r.first; n <= r.last; ++n) res.n.push_back(static_cast<std::uint32_t>(n));
+  res.total_seconds = seconds_since(t0);
+  return res;
+}
+
+std::string BoundPrecisionResult::csv() const {
+  std::string s = "precision,route,n,value,abs_error,correct_12,seconds\n";
+  for (const auto& row : rows)
+    s += fmt::format("{},{},{},{:.17g},{:.3e},{},{:.3e}\n", row.precision, row.route, row.n, row.value, row.abs_error,
+                     row.correct_12 ? 1 : 0, row.seconds);
+  return s;
+}
+
+std::string BoundPrecisionResult::summary_csv() const {
+  std::string s = "precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound\n";
+  for (const auto& m : summary)
+    s += fmt::format("{},{},{},{},{:.3e}\n", m.precision, m.route, m.largest_all, m.largest_any, m.seconds_per_bound);
+  return s;
+}
+
+void BoundPrecisionResult::describe(core::Contents& c) const {
+  const std::size_t P = summary.size(), N = n.size();
+  const std::string axes = "precision and route (attribute rows), n";
+  c.array("n", n, {N}, "n", "1", "window index n");
+  c.array("value", value, {P, N}, axes, "1", "lower bound found by bisection in the row's precision and route");
+  c.array("abs_error", abs_error, {P, N}, axes, "1", "|value - certified 40-decimal value| (NaN: no bound found)");
+  c.array("correct_12", correct_12, {P, N}, axes, "1", "1 when abs_error <= 5e-13 (correct to 12 decimals)");
+  c.array("seconds", seconds, {P, N}, axes, "s", "time of one bound");
+  std::string names;
+  for (const auto& m : summary) names += (names.empty() ? "" : ",") + m.precision + "/" + m.route;
+  c.attr("rows", names);
+  c.attr("n_first", static_cast<long>(range.first));
+  c.attr("n_last", static_cast<long>(range.last));
+  c.attr("reference", std::string("window_lower_bound(n, 40 decimals), certified route (Q_n in MPFR, Sturm-checked)"));
+  c.attr("criterion", std::string("|value - reference| <= 5e-13 (correct to 12 decimals)"));
+  c.attr("root_finder", std::string("toms748 on (7-4sqrt3, r_crit2(n)), tolerance all but 2 bits of T"));
+  c.attr("total_seconds", total_seconds);
+}
+
+}  // namespace btob::windows

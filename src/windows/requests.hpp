@@ -1,0 +1,197 @@
+// The windows analyses as requests and results (core/request.hpp): Q_n exactly (`btob windows poly`), certified
+// lower bounds and r_crit,2 (`windows bounds`, Table B.1), the paper's thresholds, the thin stripes of eq. (6.3),
+// the iterator's check inside and below each window (`windows verify`) and the precision study of the lower bound
+// (`windows precision`).  Every field is named as the command line's flag; every result can print its CSV.
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "windows/verify.hpp"
+#include "windows/windows.hpp"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace btob::windows {
+
+// ---- ranges of n ------------------------------------------------------------------------------------------
+struct NRange {
+  int first = 1, last = 1;
+  int count() const { return last - first + 1; }
+};
+inline constexpr int max_range_n = 5000;  // Q_n costs minutes at n = 5000 (windows.hpp, validate_n)
+
+// "A..B" or "A" (whole text, decimal integers) with min_n <= A <= B <= 5000; anything else throws
+// core::InvalidField(field, "'text'", "A..B or A with min_n <= A <= B <= 5000").
+NRange parse_n_range(std::string_view text, int min_n = 1, const std::string& field = "n");
+
+// The decimals of `digits` fields: 10..10000 (windows.hpp, validate_digits), else InvalidField naming `field`.
+void require_digits(long digits, const std::string& field = "digits");
+
+// ---- btob windows poly -------------------------------------------------------------------------------------
+struct PolyRequest {
+  std::string n = "1..3";     // n or A..B, 1 <= n <= 5000
+  std::string form = "both";  // developed, factorised or both
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("n", n, "n or A..B, n >= 1");
+    v("form", form, "developed, factorised or both");
+  }
+};
+
+struct PolyResult {
+  std::vector<std::uint32_t> n, degree;     // [N]: n and the degree 4n of Q_n
+  std::vector<std::string> developed;       // [N] Table B.2 left ("" unless asked for)
+  std::vector<std::string> factorised;      // [N] Table B.2 right ("" unless asked for)
+  // "Q_n = ..." lines, developed before factorised for each n.
+  std::string text() const;
+  void describe(core::Contents& c) const;   // arrays n, degree; attributes Q_<n>_developed / Q_<n>_factorised
+};
+PolyResult run(const PolyRequest& req, const core::RunControl& control = {});
+
+// ---- btob windows bounds -----------------------------------------------------------------------------------
+struct BoundsRequest {
+  std::string n = "1..100";  // n or A..B, 1 <= n <= 5000
+  int digits = 12;           // decimals after the point, 10..10000
+  bool certify = false;      // exact rational sign change + Sturm counts for each n
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("n", n, "n or A..B, n >= 1");
+    v("digits", digits, "decimals after the point, 10..10000");
+    v("certify", certify, "exact rational sign change + Sturm counts for each n");
+  }
+};
+
+struct BoundsResult {
+  int digits = 12;
+  bool certified_run = false;
+  std::vector<std::uint32_t> n;                 // [N]
+  std::vector<std::string> lower_text;          // [N] lower bound, `digits` decimals (correctly rounded)
+  std::vector<std::string> upper_text;          // [N] r_crit,2(n), `digits` decimals; "" for n = 1
+  std::vector<double> lower_bound, upper_bound;  // [N] the same in double (upper NaN for n = 1)
+  std::vector<Certificate> certificates;        // [N] when certify
+  std::vector<std::string> a_text, b_text;      // [N] the certificate's a, b: exact D-decimal fractions
+  std::vector<double> sign_a, sign_b, roots_0_a, roots_a_b, valid;  // [N] when certify (valid: 1 or 0)
+
+  std::string csv() const;  // n,lower_bound,upper_bound[,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified]
+  void describe(core::Contents& c) const;
+};
+BoundsResult run(const BoundsRequest& req, const core::RunControl& control = {});
+
+// ---- btob windows thresholds / stripes ---------------------------------------------------------------------
+struct ThresholdsRequest {
+  int digits = 30;  // decimals, 10..10000
+
+  void validate() const;
+  template <class V> void fields(V&& v) { v("digits", digits, "decimals, 10..10000"); }
+};
+
+struct ThresholdsResult {
+  std::vector<Threshold> thresholds;
+  std::vector<std::string> text;  // [4] the values with `digits` decimals
+  std::vector<double> value;      // [4] the values in double
+  std::string csv() const;        // name,formula,value
+  void describe(core::Contents& c) const;
+};
+ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control = {});
+
+struct StripesRequest {
+  int max_m = 120;  // largest denominator m, 1..100000
+  int digits = 20;  // decimals, 10..10000
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("max-m", max_m, "largest denominator m");
+    v("digits", digits, "decimals, 10..10000");
+  }
+};
+
+struct StripesResult {
+  std::vector<std::uint32_t> l, m, mirror_l;  // [S] l/m and its mirror (m - l)/m, sorted by r
+  std::vector<std::string> text;              // [S] r(l/m) with `digits` decimals
+  std::vector<double> r;                      // [S] r(l/m) in double
+  std::string csv() const;                    // l,m,mirror_l,r
+  void describe(core::Contents& c) const;
+};
+StripesResult run(const StripesRequest& req, const core::RunControl& control = {});
+
+// ---- btob windows verify -----------------------------------------------------------------------------------
+struct VerifyRequest {
+  std::string n = "2..20";           // A..B, 2 <= A <= B <= 5000 (n = 1, abcb, is never stable)
+  long iterations = 60000;           // iterations = this + per-n * n, >= 100
+  long per_n = 400;                  // extra iterations per unit of n, >= 0
+  long tail = 40000;                 // last steps whose symbols must follow the pattern, 1..iterations-1 (>= 4n used)
+  std::string precision = "double";  // double or long-double
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("n", n, "A..B, n >= 2");
+    v("iterations", iterations, "iterations = this + per-n * n");
+    v("per-n", per_n, "extra iterations per unit of n");
+    v("tail", tail, "last steps whose symbols must follow the pattern (at least 4n)");
+    v("precision", precision, "double or long-double");
+  }
+};
+
+struct VerifyResult {
+  NRange range;
+  VerifyOptions options;
+  std::vector<VerifyRow> rows;  // 4 per n: below, inside_25, inside_50, inside_75
+  long passed = 0, total = 0;
+  double total_seconds = 0;
+  // Flat views of the rows for describe(): [4N] each.
+  std::vector<std::uint32_t> n, position, on_pattern, orbits, iterations_run, expected_on, pass;
+  std::vector<double> r, lower, upper;
+
+  std::string csv() const;  // n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict
+  void describe(core::Contents& c) const;
+};
+VerifyResult run(const VerifyRequest& req, const core::RunControl& control = {});
+
+// The file stem of a verify result: "verify" for the committed n = 2..125, else "verify_A-B".
+std::string verify_stem(const NRange& r);
+
+// ---- btob windows precision --------------------------------------------------------------------------------
+struct BoundPrecisionRequest {
+  std::string n = "1..150";  // A..B, 1 <= A <= B <= 5000
+  int mpfr_digits = 32;      // digits of the MPFR row, 10..1000
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("n", n, "A..B, n >= 1");
+    v("mpfr-digits", mpfr_digits, "digits of the MPFR row");
+  }
+};
+
+struct BoundPrecisionRow {
+  std::string precision, route;
+  int n = 0;
+  double value = 0, abs_error = 0, seconds = 0;  // abs_error NaN when the bound is not finite
+  bool correct_12 = false;
+};
+struct BoundPrecisionSummary {
+  std::string precision, route;
+  int largest_all = 0, largest_any = 0;  // largest n with every n up to it / with this n correct to 12 decimals
+  double seconds_per_bound = 0;
+};
+struct BoundPrecisionResult {
+  NRange range;
+  std::vector<BoundPrecisionRow> rows;  // (route, precision, n) in that order of nesting
+  std::vector<BoundPrecisionSummary> summary;
+  double total_seconds = 0;
+  // Flat views for describe(): [P, N] with P = the precision x route rows of the summary.
+  std::vector<double> value, abs_error, seconds;
+  std::vector<std::uint8_t> correct_12;
+  std::vector<std::uint32_t> n;
+
+  std::string csv() const;          // precision,route,n,value,abs_error,correct_12,seconds
+  std::string summary_csv() const;  // precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound
+  void describe(core::Contents& c) const;
+};
+BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control = {});
+
+}  // namespace btob::windows
