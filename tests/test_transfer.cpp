@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 using namespace btob;
@@ -56,10 +57,11 @@ TEST(Transfer, LogisticArcsineDensityConvergesWithTheBoxes) {
       exact[static_cast<std::size_t>(i)] = 2 / std::numbers::pi *
                                            (std::asin(std::sqrt(double(i + 1) / n)) - std::asin(std::sqrt(double(i) / n)));
     const double d = tv(u, exact);
-    // Ulam's method converges in L1 for this map (Li 1976) at rate O(log n / n); with 256 samples per box the
-    // sampling error of each row is ~1/256.  Measured: see the README; the bound is 4 log(n) / n, and each
-    // refinement by 4 must shrink the distance.
-    EXPECT_LT(d, 4 * std::log(double(n)) / double(n)) << "n = " << n;
+    // Ulam's method converges in L1 for this map (Li 1976); the arcsine density's 1/sqrt singularities at 0
+    // and 1 make the boxes next to them converge like h^(1/2) (measured: TV 0.064, 0.036, 0.020 at n = 64, 256,
+    // 1024, a rate n^-0.43).  Bound 0.7 / sqrt(n), and each refinement by 4 must shrink the distance.
+    std::printf("logistic n = %ld: TV %.3g\n", n, d);
+    EXPECT_LT(d, 0.7 / std::sqrt(double(n))) << "n = " << n;
     EXPECT_LT(d, previous) << "n = " << n;
     previous = d;
   }
@@ -70,15 +72,16 @@ TEST(Transfer, BakerUniformDensityConvergesWithTheBoxes) {
   for (long n : {12L, 24L, 48L}) {  // not powers of two: the partition is not the baker map's Markov partition
     Partition p;
     p.n1 = p.n2 = n;
-    const auto P = ulam(p, 64, baker);
+    const auto P = ulam(p, static_cast<int>(4 * n), baker);
     const auto u = invariant(P);
     const std::vector<double> uniform(static_cast<std::size_t>(n * n), 1.0 / double(n * n));
     const double d = tv(u, uniform);
-    // Lebesgue is invariant, so P is doubly stochastic up to the sampling error of the rows (64 low-discrepancy
-    // samples: ~1/64 per row, and it averages out over the columns); the boxes straddling x = 1/2 and the
-    // rows y = k/n whose images straddle box edges carry the error: bound 1/n.
-    EXPECT_LT(d, 1.0 / double(n)) << "n = " << n;
-    EXPECT_LT(d, previous * 1.01) << "n = " << n;
+    // Lebesgue is invariant, so P is doubly stochastic up to the sampling error of the rows (S = 4n
+    // low-discrepancy samples per box: ~1/S per transition probability); bound 1/(2n), and each refinement by 2
+    // (with twice the samples) must shrink the distance (measured: 0.027, 0.012, 0.0097 at n = 12, 24, 48).
+    std::printf("baker n = %ld: TV %.3g\n", n, d);
+    EXPECT_LT(d, 0.6 / double(n)) << "n = " << n;
+    EXPECT_LT(d, previous) << "n = " << n;
     previous = d;
   }
 }
@@ -158,8 +161,8 @@ TEST(Transfer, RoutesAgreeAndThreadsDoNotMatter) {
 TEST(Transfer, SinkAtR015HoldsTheDensity) {
   TransferRequest q;
   q.r = 0.15;
-  q.boxes = "64x64";
-  q.samples = 16;
+  q.boxes = "128x128";
+  q.samples = 64;
   q.eigenvalues = 8;
   q.measure_orbits = 0;
   q.tv_bins = 16;
@@ -167,12 +170,14 @@ TEST(Transfer, SinkAtR015HoldsTheDensity) {
   const auto res = run(q);
   EXPECT_EQ(res.closed_classes, 1);
   ASSERT_EQ(res.cycles.size(), 1u);
-  EXPECT_EQ(res.cycles[0].outcome, "stable");
-  // The 3x3 neighbourhoods of the cycle's four boxes hold the invariant density (the 99%).
-  EXPECT_GE(res.cycles[0].mass_neighbourhood, 0.99);
+  EXPECT_EQ(res.cycles[0].outcome, "stable orbit");
+  // 99% of the invariant density lies within a few boxes of the cycle's four boxes (Ulam's smearing of a sink
+  // spans a number of boxes independent of h: 4 to 6 at 128^2 to 512^2, see the README).
+  EXPECT_LE(res.cycles[0].radius99, 8);
+  EXPECT_GE(res.cycles[0].radius99, 0);
   double total = 0;
   for (const auto& c : res.components) total += c.lebesgue;
-  EXPECT_NEAR(total + res.unabsorbed, 1.0, 1e-9);  // mass conservation of the projection, rounding of 4096 sums
+  EXPECT_NEAR(total + res.unabsorbed, 1.0, 1e-9);  // mass conservation of the projection, rounding of 16384 sums
 }
 
 TEST(Transfer, RequestErrorsNameTheirField) {
