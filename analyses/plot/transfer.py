@@ -19,6 +19,7 @@ def main(h5path, spec_path, png):
         second = f["second"][...]
         comp = f["component"][...]
         leb = f["lebesgue"][...]
+        cyc = f["cycle_points"][...] if "cycle_points" in f else np.zeros((0, 2))
     rows = list(csv.DictReader(open(spec_path)))
     re = np.array([float(r["re"]) for r in rows])
     im = np.array([float(r["im"]) for r in rows])
@@ -46,7 +47,13 @@ def main(h5path, spec_path, png):
         ax[0, 1].plot([], [], "s", color=plt.cm.tab10(i % 10), label=f"component {i + 1}: Lebesgue {leb[i]:.3f}")
     if k:
         ax[0, 1].legend(loc="upper right", fontsize=8)
-    ax[0, 1].set_title(f"{a['closed_classes']} closed classes + almost-invariant components (grey: transient)")
+    ax[0, 1].set_title(f"components ({a['closed_classes']} closed class(es); grey: transient)")
+    for axx in (ax[0, 0], ax[0, 1]):
+        if len(cyc):
+            axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:cyan", ms=9, mew=1.2,
+                     label="exact cycle points (--cycle)")
+    if len(cyc):
+        ax[0, 0].legend(loc="lower right", fontsize=8)
     # (c) sign structure of the next eigenvector
     s = second
     v = np.abs(s).max() or 1
@@ -61,7 +68,7 @@ def main(h5path, spec_path, png):
     # (d) spectrum
     t = np.linspace(0, 2 * np.pi, 400)
     ax[1, 1].plot(np.cos(t), np.sin(t), color="0.6", lw=0.8, label="unit circle")
-    beta = a.get("p2_beta", float("nan"))
+    beta = float(a.get("p2_beta", float("nan")))
     if np.isfinite(beta):
         kk = np.arange(-12, 13)
         ax[1, 1].plot(np.cos(kk * beta), np.sin(kk * beta), "x", color="tab:green", ms=7,

@@ -135,7 +135,8 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
   at["tv_boxes"] = res.tv_boxes;
   at["tv_coarse"] = res.tv_coarse;
   at["measure_points"] = res.measure_points;
-  at["p2_beta"] = transfer::p2_rotation_angle(q.r);
+  // JSON has no NaN: the P2 angle is recorded only where the P2 curves exist (r >= 3 - 2 sqrt 2).
+  if (std::isfinite(transfer::p2_rotation_angle(q.r))) at["p2_beta"] = transfer::p2_rotation_angle(q.r);
   at["seconds_matrix"] = res.seconds_matrix;
   at["seconds_spectrum"] = res.seconds_spectrum;
   at["seconds"] = res.seconds_total;
@@ -159,6 +160,10 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
     std::vector<double> leb;
     for (const auto& c : res.components) leb.push_back(c.lebesgue);
     w.dataset("lebesgue", leb, {leb.size()});
+    std::vector<double> pts;  // (a, b) of every cycle point, all cycles in order
+    for (const auto& c : res.cycles)
+      for (std::size_t k = 0; k < c.a.size(); ++k) pts.push_back(c.a[k]), pts.push_back(c.b[k]);
+    w.dataset("cycle_points", pts, {pts.size() / 2, 2});
     w.commit();
   }
   io::write_manifest(out / (a.name + ".json"), at);

@@ -179,36 +179,51 @@ std::vector<LocalPair> block_eigenpairs(const ColMat& A, int k, bool vectors, lo
   const long m = A.rows();
   std::vector<LocalPair> out;
   if (m == 0) return out;
-  if (m <= dense_max || m < k + 3) {
+  bool dense = m <= dense_max || m < k + 3;
+  if (!dense) {
+    Spectra::SparseGenMatProd<double> op(A);
+    const int nev = static_cast<int>(std::min<long>(k, m - 3));
+    // Spectra's restarted Arnoldi can fail in its small Schur decomposition (clustered eigenvalues on the unit
+    // circle); the attempt is repeated with a larger subspace, up to three times.
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int ncv = static_cast<int>(std::min<long>(m, std::max(2 * nev + 1, nev + 40) + 16 * attempt));
+      Spectra::GenEigsSolver<Spectra::SparseGenMatProd<double>> eigs(op, nev, ncv);
+      eigs.init();
+      const auto tt = std::chrono::steady_clock::now();
+      try {
+        // tol: Spectra's relative accuracy of the Ritz values; 1e-9 resolves eigenvalues 1e-6 apart (the smallest
+        // distances this analysis reports are ~1e-4, the near-one and peripheral thresholds 1e-2).
+        eigs.compute(rule, 1000, 1e-9);
+      } catch (const std::runtime_error& e) {
+        if (std::getenv("BTOB_TRANSFER_DEBUG")) fmt::print(stderr, "spectra: m {} ncv {}: {}\n", m, ncv, e.what());
+        continue;
+      }
+      if (std::getenv("BTOB_TRANSFER_DEBUG"))
+        fmt::print(stderr, "spectra: m {} nev {} ncv {} iterations {} matvecs {} nconv {} {:.2f} s\n", m, nev, ncv,
+                   eigs.num_iterations(), eigs.num_operations(), eigs.eigenvalues().size(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - tt).count());
+      const Eigen::VectorXcd v = eigs.eigenvalues();
+      Eigen::MatrixXcd V;
+      if (vectors && v.size() > 0) V = eigs.eigenvectors();
+      for (long i = 0; i < v.size(); ++i) {
+        LocalPair p;
+        p.value = v(i);
+        if (vectors) p.vector = V.col(i);
+        out.push_back(std::move(p));
+      }
+      break;
+    }
+    // Every attempt failed: blocks small enough for a dense solve (4000 boxes: 128 MB) go to Eigen instead;
+    // larger ones report no eigenvalue.
+    if (out.empty() && m <= 4000) dense = true;
+  }
+  if (dense) {
     const Eigen::MatrixXd D(A);
     Eigen::EigenSolver<Eigen::MatrixXd> es(D, vectors);
     for (long i = 0; i < m; ++i) {
       LocalPair p;
       p.value = es.eigenvalues()(i);
       if (vectors) p.vector = es.eigenvectors().col(i);
-      out.push_back(std::move(p));
-    }
-  } else {
-    Spectra::SparseGenMatProd<double> op(A);
-    const int nev = static_cast<int>(std::min<long>(k, m - 3));
-    const int ncv = static_cast<int>(std::min<long>(m, std::max(2 * nev + 1, nev + 40)));
-    Spectra::GenEigsSolver<Spectra::SparseGenMatProd<double>> eigs(op, nev, ncv);
-    eigs.init();
-    const auto tt = std::chrono::steady_clock::now();
-    // tol: Spectra's relative accuracy of the Ritz values; 1e-9 resolves eigenvalues 1e-6 apart (the smallest
-    // distances this analysis reports are ~1e-4, the near-one and peripheral thresholds 1e-2).
-    eigs.compute(rule, 1000, 1e-9);
-    if (std::getenv("BTOB_TRANSFER_DEBUG"))
-      fmt::print(stderr, "spectra: m {} nev {} ncv {} iterations {} matvecs {} nconv {} {:.2f} s\n", m, nev, ncv,
-                 eigs.num_iterations(), eigs.num_operations(), eigs.eigenvalues().size(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - tt).count());
-    const Eigen::VectorXcd v = eigs.eigenvalues();
-    Eigen::MatrixXcd V;
-    if (vectors && v.size() > 0) V = eigs.eigenvectors();
-    for (long i = 0; i < v.size(); ++i) {
-      LocalPair p;
-      p.value = v(i);
-      if (vectors) p.vector = V.col(i);
       out.push_back(std::move(p));
     }
   }
@@ -666,7 +681,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     for (long part = 0; part < chi.cols(); ++part) {
       ComponentInfo ci;
       ci.block = ab.block;
-      ci.rho = ab.block > 0 ? (part < static_cast<long>(values.size()) ? values[static_cast<std::size_t>(part)] : 1.0) : ab.rho;
+      ci.rho = ab.rho;
       ci.period = ab.block > 0 && chi.cols() == 1 ? d.classes[static_cast<std::size_t>(ab.block - 1)].period : 1;
       double frac = 0, t = 0;
       std::vector<double> w(ab.boxes.size());
@@ -676,6 +691,22 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
         t += w[j] = ab.density[j] * x;
       }
       ci.lebesgue = frac;
+      if (chi.cols() > 1) {
+        // Metastability of the part: the chance of staying in it for one step, averaged over its density
+        // (sum_i w_i sum_j P_ij chi_j / sum_i w_i, chi extended by 0 outside the class).
+        std::vector<double> chi_full(static_cast<std::size_t>(n), 0);
+        for (std::size_t j = 0; j < ab.boxes.size(); ++j)
+          chi_full[static_cast<std::size_t>(ab.boxes[j])] = std::clamp(chi(static_cast<long>(j), part), 0.0, 1.0);
+        double stay = 0;
+        for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
+          const long i = ab.boxes[j];
+          double pc = 0;
+          for (int e = P.row_ptr[static_cast<std::size_t>(i)]; e < P.row_ptr[static_cast<std::size_t>(i + 1)]; ++e)
+            pc += P.val[static_cast<std::size_t>(e)] * chi_full[static_cast<std::size_t>(P.col[static_cast<std::size_t>(e)])];
+          stay += w[j] * pc;
+        }
+        ci.rho = t > 0 ? stay / t : 0;
+      }
       double ca = 0, cb = 0;
       std::vector<double> full(static_cast<std::size_t>(n), 0);
       for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
@@ -726,6 +757,8 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
       vector_to_chart(dom, u(0), u(1), u(2), a, b);
       const long box = res.part.locate(a, b);
       cc.boxes.push_back(box);
+      cc.a.push_back(a);
+      cc.b.push_back(b);
       if (box < 0) continue;
       in[static_cast<std::size_t>(box)] = 1;
       const long i1 = box / n2, i2 = box % n2;

@@ -142,7 +142,9 @@ struct ComponentInfo {
   int block = 0;                   // closed class c >= 1, or -s - 1 for an almost-invariant transient component s
   long boxes = 0;
   int period = 1;
-  double rho = 1;                  // 1 for closed classes; the mass kept per step for almost-invariant ones
+  // Mass kept per step: 1 for a whole closed class; the eigenvalue (quasi-stationary rate) of an almost-invariant
+  // transient component; for a PCCA+ part of a class, its metastability sum_i w_i (P chi)_i / sum_i w_i.
+  double rho = 1;
   double lebesgue = 0;             // projection of Lebesgue measure: fraction of it that ends in this component
   std::vector<double> centre;      // mass-weighted chart centre (a, b)
 };
@@ -151,6 +153,7 @@ struct CycleCheck {
   std::string word;                // as given
   std::string outcome;             // patterns::analyse at r: stable, unstable or none
   std::vector<long> boxes;         // the boxes of its points (one per point of the cycle)
+  std::vector<double> a, b;        // chart coordinates of its points
   double mass_boxes = 0;           // density mass on those boxes (a box counted once)
   double mass_neighbourhood = 0;   // on their 3x3 neighbourhoods
   // Smallest R such that the boxes within Chebyshev distance R (in boxes) of the cycle's boxes hold 99% of the
