@@ -28,4 +28,4 @@ for b in 32 64 128; do
   "$BTOB" transfer-r --r-min 0.07 --r-max 0.6 --r-count 107 --boxes "${b}x${b}" --samples 16 --eigenvalues 24 \
     --peripheral 0.01 --threads "$THREADS" --out "$OUT/r_scan_${b}"
 done
-python3 analyses/transfer_summary.py "$OUT"
+"${BTOB_PYTHON:-/usr/bin/python3}" analyses/transfer_summary.py "$OUT"
