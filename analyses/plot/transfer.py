@@ -60,8 +60,11 @@ def main(h5path, spec_path, png):
     im2 = ax[1, 0].imshow(np.sign(s).T * np.abs(s).T ** 0.25, origin="lower", extent=ext, aspect="auto", cmap="RdBu_r",
                           vmin=-1, vmax=1, interpolation="nearest")
     fig.colorbar(im2, ax=ax[1, 0], label="sign(v) |v|^(1/4), v scaled to max |v| = 1")
-    ax[1, 0].set_title(f"eigenvector of lambda = {a['second_value']:.6f}: + mass {a['second_positive_mass']:.3f}, "
-                       f"- mass {a['second_negative_mass']:.3f}")
+    if a["second_value"] > 0:
+        ax[1, 0].set_title(f"eigenvector of lambda = {a['second_value']:.6f}: + mass {a['second_positive_mass']:.3f}, "
+                           f"- mass {a['second_negative_mass']:.3f}")
+    else:
+        ax[1, 0].set_title("no real eigenvalue in (0, 1) among the leading ones")
     for axx in (ax[0, 0], ax[0, 1], ax[1, 0]):
         axx.set_xlabel(xl)
         axx.set_ylabel(yl)
