@@ -7,6 +7,7 @@ packages=(
   libboost-dev                                # Multiprecision (gmp_rational, mpfr_float, float128), Math (root finders, intervals)
   libgmp-dev libmpfr-dev                      # exact rationals and arbitrary precision behind Boost.Multiprecision
   libfftw3-dev                                # correlation functions C_N by FFT
+  libspectra-dev                              # sparse eigensolvers (Arnoldi) on Eigen for the transfer operator
   libhdf5-dev                                 # result files with their provenance attributes
   libcli11-dev libtomlplusplus-dev libfmt-dev # command line, scene files, formatting
   nlohmann-json3-dev                          # manifests: a result records its request, `btob run NAME.json` reads it back

@@ -1,0 +1,96 @@
+"""Ulam's transfer operator at one r: invariant density (Lebesgue projection), components, the sign structure of
+the leading real eigenvector below 1, and the spectrum in the complex plane.  Usage: transfer.py H5 SPECTRUM.csv PNG"""
+import csv
+import sys
+
+import h5py
+import numpy as np
+
+from plotlib import attrs, save_atomic
+
+import matplotlib.pyplot as plt
+from matplotlib.colors import LogNorm, ListedColormap
+
+
+def main(h5path, spec_path, png):
+    with h5py.File(h5path, "r") as f:
+        a = attrs(f)
+        dens = f["density"][...]
+        second = f["second"][...]
+        comp = f["component"][...]
+        leb = f["lebesgue"][...]
+        cyc = f["cycle_points"][...] if "cycle_points" in f else np.zeros((0, 2))
+    rows = list(csv.DictReader(open(spec_path)))
+    re = np.array([float(r["re"]) for r in rows])
+    im = np.array([float(r["im"]) for r in rows])
+    block = np.array([int(r["block"]) for r in rows])
+    n1, n2 = int(a["n1"]), int(a["n2"])
+    ext = [a["lo1"], a["hi1"], a["lo2"], a["hi2"]]
+    strip = a["domain"] == "strip"
+    xl = "atan(w1) (rad)" if strip else "theta (rad)"
+    yl = "w2" if strip else "phi (rad)"
+    area = (a["hi1"] - a["lo1"]) * (a["hi2"] - a["lo2"]) / (n1 * n2)
+    fig, ax = plt.subplots(2, 2, figsize=(12, 10.5))
+    # (a) density (mass per unit chart area), log scale
+    d = dens / area
+    pos = d[d > 0]
+    im0 = ax[0, 0].imshow(np.where(d > 0, d, np.nan).T, origin="lower", extent=ext, aspect="auto", cmap="magma",
+                          norm=LogNorm(vmin=max(pos.min(), pos.max() * 1e-8), vmax=pos.max()), interpolation="nearest")
+    fig.colorbar(im0, ax=ax[0, 0], label="density (mass per unit chart area)")
+    ax[0, 0].set_title("invariant density: Lebesgue projected on the components")
+    # (b) components
+    k = int(comp.max())
+    cmap = ListedColormap(["#f0f0f0"] + [plt.cm.tab10(i % 10) for i in range(max(k, 1))])
+    ax[0, 1].imshow(comp.T, origin="lower", extent=ext, aspect="auto", cmap=cmap, vmin=-0.5, vmax=k + 0.5,
+                    interpolation="nearest")
+    for i in range(k):
+        ax[0, 1].plot([], [], "s", color=plt.cm.tab10(i % 10), label=f"component {i + 1}: Lebesgue {leb[i]:.3f}")
+    if k:
+        ax[0, 1].legend(loc="upper right", fontsize=8)
+    ax[0, 1].set_title(f"components ({a['closed_classes']} closed class(es); grey: transient)")
+    for axx in (ax[0, 0], ax[0, 1]):
+        if len(cyc):
+            axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:cyan", ms=9, mew=1.2,
+                     label="exact cycle points (--cycle)")
+    if len(cyc):
+        ax[0, 0].legend(loc="lower right", fontsize=8)
+    # (c) sign structure of the next eigenvector
+    s = second
+    v = np.abs(s).max() or 1
+    im2 = ax[1, 0].imshow(np.sign(s).T * np.abs(s).T ** 0.25, origin="lower", extent=ext, aspect="auto", cmap="RdBu_r",
+                          vmin=-1, vmax=1, interpolation="nearest")
+    fig.colorbar(im2, ax=ax[1, 0], label="sign(v) |v|^(1/4), v scaled to max |v| = 1")
+    if a["second_value"] > 0:
+        ax[1, 0].set_title(f"eigenvector of lambda = {a['second_value']:.6f}: + mass {a['second_positive_mass']:.3f}, "
+                           f"- mass {a['second_negative_mass']:.3f}")
+    else:
+        ax[1, 0].set_title("no real eigenvalue in (0, 1) among the leading ones")
+    for axx in (ax[0, 0], ax[0, 1], ax[1, 0]):
+        axx.set_xlabel(xl)
+        axx.set_ylabel(yl)
+    # (d) spectrum
+    t = np.linspace(0, 2 * np.pi, 400)
+    ax[1, 1].plot(np.cos(t), np.sin(t), color="0.6", lw=0.8, label="unit circle")
+    beta = float(a.get("p2_beta", float("nan")))
+    if np.isfinite(beta):
+        kk = np.arange(-12, 13)
+        ax[1, 1].plot(np.cos(kk * beta), np.sin(kk * beta), "x", color="tab:green", ms=7,
+                      label="exp(i k beta), |k| <= 12, cos beta = -(1-r)^2/(4r)")
+    ax[1, 1].scatter(re[block == 0], im[block == 0], s=18, color="tab:blue", label="transient block")
+    ax[1, 1].scatter(re[block > 0], im[block > 0], s=30, color="tab:red", marker="D", label="closed classes")
+    ax[1, 1].set_aspect("equal")
+    ax[1, 1].set_xlim(-1.1, 1.1)
+    ax[1, 1].set_ylim(-1.1, 1.1)
+    ax[1, 1].set_xlabel("Re lambda")
+    ax[1, 1].set_ylabel("Im lambda")
+    ax[1, 1].legend(loc="lower left", fontsize=8)
+    ax[1, 1].set_title(f"{len(re)} leading eigenvalues; {a['near_one_count']} within {a['near-one']} of 1")
+    fig.suptitle(f"Ulam transfer operator of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} samples "
+                 f"per box, TV to empirical measure {a['tv_boxes']:.3f} ({n1}x{n2}) / {a['tv_coarse']:.3f} "
+                 f"({a['tv-bins']}x{a['tv-bins']})")
+    fig.tight_layout()
+    save_atomic(fig, png)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:4])

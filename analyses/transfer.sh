@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Regenerates results/transfer/** (issue 20, Section 8): Ulam's transfer operator of P_r at the r values of the
+# issue, each at three resolutions, and the peripheral spectrum across [0.07, 0.6] at three resolutions; then the
+# convergence table.  Usage: analyses/transfer.sh path/to/btob [threads]
+set -euo pipefail
+BTOB=${1:?usage: analyses/transfer.sh path/to/btob [threads]}
+THREADS=${2:-2}
+cd "$(dirname "$0")/.."
+OUT=results/transfer
+mkdir -p "$OUT"
+run() {  # run NAME R BOXES TV_BINS CYCLES [extra flags...]
+  local name=$1 r=$2 boxes=$3 tv=$4 cycles=$5
+  shift 5
+  "$BTOB" transfer --r "$r" --boxes "$boxes" --samples 64 --eigenvalues 24 --tv-bins "$tv" ${cycles:+--cycle "$cycles"} \
+    --threads "$THREADS" --out "$OUT/$name" "$@"
+}
+# Sinks: r = 0.15 (1133; 512 x 512 is the timing target) and r = 0.1 (111333, inside the window n = 3).
+for b in 128 256 512; do run "r0.15_${b}" 0.15 "${b}x${b}" 32 1133; done
+for b in 128 256 512; do run "r0.1_${b}" 0.1 "${b}x${b}" 32 111333; done
+# Coexistence: r = 0.21 (132^2, 312^2, 132^3312^3 and the P2 invariant curves).
+for b in 64 128 256; do run "r0.21_${b}" 0.21 "${b}x${b}" 32 "1322,3122,132^3312^3"; done
+# The P2 region: r = 0.3 (132312 and the P2 curves; rotation eigenvalues exp(i k beta)).
+for b in 64 128 256; do run "r0.3_${b}" 0.3 "${b}x${b}" 32 132312; done
+# Chaos: r = 0.11 (the Ulam density against the empirical measure of 256 orbits).
+for b in 64 128 256; do run "r0.11_${b}" 0.11 "${b}x${b}" 32 ""; done
+# The peripheral spectrum across r at three resolutions.
+for b in 32 64 128; do
+  "$BTOB" transfer-r --r-min 0.07 --r-max 0.6 --r-count 107 --boxes "${b}x${b}" --samples 16 --eigenvalues 24 \
+    --peripheral 0.01 --threads "$THREADS" --out "$OUT/r_scan_${b}"
+done
+"${BTOB_PYTHON:-/usr/bin/python3}" analyses/transfer_summary.py "$OUT"

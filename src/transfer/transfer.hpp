@@ -1,0 +1,236 @@
+// The transfer operator of P^_r by Ulam's method (Section 8): a box partition of the strip or the angles,
+// the sparse matrix of transition probabilities, its ergodic decomposition (closed classes = the ergodic
+// components the resolution sees), its leading spectrum (Spectra), the invariant densities and the projection
+// of Lebesgue measure on them (basin fractions), and the peripheral spectrum across r.
+#pragma once
+
+#include "core/request.hpp"
+
+#include <complex>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::transfer {
+
+// Conventions.
+//  * Charts (the ones of stats::empirical_measure, so that both measures live on the same bins):
+//      strip:  (a, b) = (atan(w1), w2) = (atan2(y, x - z), (x + z) / (x - z)) in [-pi/2, pi/2] x [-1, 1]
+//              (eq. 5.5 with the unbounded w1 folded by atan);
+//      angles: (a, b) = (theta, phi) in [0, pi/2] x [0, pi]  (Sections 4 and 5.1).
+//  * Boxes: n1 columns in a times n2 rows in b, box index i1 * n2 + i2 (stats::Measure::mass's layout).
+//  * Ulam's matrix P is row-stochastic: P(i, j) = (samples of box i whose image lies in box j) / (samples of
+//    box i whose image is a finite point of the chart).  A density (mass per box, a row vector) evolves as
+//    m -> m P; invariant densities are eigenvectors of P^T for the eigenvalue 1.
+//  * Samples: S points per box on the R2 low-discrepancy sequence (Roberts 2018; any S, deterministic).
+
+// A box partition of the rectangle [lo1, hi1] x [lo2, hi2].
+struct Partition {
+  long n1 = 0, n2 = 0;
+  double lo1 = 0, hi1 = 1, lo2 = 0, hi2 = 1;
+  long size() const { return n1 * n2; }
+  // Box of the point (a, b), or -1 when it is outside the rectangle or not finite (hi edges: last box).
+  long locate(double a, double b) const;
+  double area() const { return (hi1 - lo1) * (hi2 - lo2) / static_cast<double>(size()); }  // of one box
+};
+
+// The sample offsets (in [0, 1)^2, fractions of a box) shared by every box.
+std::vector<std::pair<double, double>> sample_offsets(int samples);
+
+// Ulam's matrix in compressed rows (Eigen::Map-able as a RowMajor SparseMatrix<double, int>).
+struct UlamMatrix {
+  long n = 0;
+  std::vector<int> row_ptr, col;  // row_ptr has n + 1 entries
+  std::vector<double> val;
+  std::uint64_t lost = 0;         // samples whose image was outside the chart or not finite
+  long nnz() const { return static_cast<long>(col.size()); }
+};
+
+// Ulam's matrix of the map f on the partition: f(a, b, n) replaces the n points (a[k], b[k]) by their images
+// in place (it may run OpenMP itself).  The generic route: the same code serves the b-to-b map and the
+// validation maps with known invariant densities (transfer_impl.hpp).
+//   template <class BatchMap> UlamMatrix ulam(const Partition&, int samples, BatchMap&& f, const core::RunControl&);
+
+// Closed classes of P (the strongly connected components that no transition leaves): each carries exactly
+// one invariant density (eigenvalue 1 is as many-fold as there are classes) and, if its period is d, the
+// d-th roots of unity.
+struct ClassInfo {
+  long boxes = 0;
+  int period = 1;
+};
+struct Decomposition {
+  std::vector<int> scc;                   // strongly connected component of each box, 0-based
+  int components = 0;
+  std::vector<std::uint32_t> class_of_box;  // 0: transient, c >= 1: closed class c
+  std::vector<ClassInfo> classes;         // classes[c - 1]
+};
+Decomposition decompose(const UlamMatrix& P);
+
+// The spectrum of P: P is block triangular in its strongly connected components, so its spectrum is the union
+// of the spectra of the closed classes (each one block) and of the transient block (every other box).  Each
+// block goes to Eigen's dense solver when small (<= dense_max boxes), else to Spectra::GenEigsSolver
+// (implicitly restarted Arnoldi, SparseGenMatProd, largest magnitude).  Eigenvectors are those of P^T
+// (densities), on the boxes of their block, zero elsewhere.
+struct Eigenpair {
+  std::complex<double> value;
+  int block = 0;                          // 0: transient block, c >= 1: closed class c
+  std::vector<std::complex<double>> vector;  // n entries
+};
+std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decomposition& d, int k, bool vectors,
+                                          long dense_max = 600);
+// Spectra on the whole matrix (the cross-check of the block route; unreliable on repeated eigenvalues).
+std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k);
+
+// The invariant density of closed class c (mass per box, sum 1, zero outside the class).
+std::vector<double> class_density(const UlamMatrix& P, const Decomposition& d, int c);
+
+// ---- The b-to-b map --------------------------------------------------------------------------------------
+enum class Domain { strip, angles };
+Partition domain_partition(Domain d, long n1, long n2);
+// Chart point -> unit vector in Q, and back (the formulas of the conventions).
+void chart_to_vector(Domain d, double a, double b, double& x, double& y, double& z);
+void vector_to_chart(Domain d, double x, double y, double z, double& a, double& b);
+// Ulam's matrix of P^_r: route "direct" (core::step per sample, OpenMP over samples) or "kernel"
+// (iterate::run with a recorder of the state after one step, the batched SIMD kernel).
+UlamMatrix ulam_btob(double r, Domain d, const Partition& p, int samples, const std::string& route,
+                     const core::RunControl& c = {});
+
+// The P2 rotation angle beta of the invariant curves of Section 5: cos(beta) = -(1 - r)^2 / (4 r), defined when
+// that is >= -1 (r >= 3 - 2 sqrt 2); NaN below.
+double p2_rotation_angle(double r);
+
+// ---- btob transfer ----------------------------------------------------------------------------------------
+struct TransferRequest {
+  double r = 0.15;                  // restitution coefficient, (0, 1)
+  std::string boxes = "256x256";    // NxM boxes (N in the first chart coordinate), N, M >= 1
+  std::string domain = "strip";     // strip | angles
+  int samples = 64;                 // sample points per box, 1..65536
+  int eigenvalues = 16;             // K leading eigenvalues reported, 1 .. number of boxes
+  std::string route = "direct";     // direct | kernel (how sample images are computed)
+  double near_one = 1e-2;           // distance to 1 of the eigenvalues counted as ergodic components
+  // Lebesgue measure projected on the eigenvectors: the rectangle w1 in [a, b] x w2 in [-1, 1] of the strip
+  // (the measure of `btob basins --grid strip`); the whole chart for angles.
+  std::vector<double> w1_range{-2, 2};
+  int measure_orbits = 16;          // empirical measure: an NxN strip grid of initial conditions (0: skip)
+  long measure_iterations = 20000;  // points per orbit after the transient
+  long measure_transient = 1000;
+  int tv_bins = 64;                 // TV distance also on a coarser tv_bins x tv_bins grid (divides N and M)
+  // Periodic words whose exact cycles (patterns::analyse) are located in the boxes: the density's mass on
+  // their boxes and on the 3x3 neighbourhoods of those boxes, and the component hosting each.
+  std::vector<std::string> cycles;
+  bool check_whole = false;         // also run Spectra on the whole matrix (cross-check; doubles the time)
+  void validate() const;            // throws core::InvalidField
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient in (0, 1)");
+    v("boxes", boxes, "NxM boxes of the chart, N, M >= 1");
+    v("domain", domain, "strip (atan w1, w2) or angles (theta, phi)");
+    v("samples", samples, "sample points per box, 1..65536");
+    v("eigenvalues", eigenvalues, "K leading eigenvalues, 1..boxes");
+    v("route", route, "direct (core step) or kernel (batched SIMD kernel)");
+    v("near-one", near_one, "eigenvalues within this distance of 1 count as components, (0, 1)");
+    v("w1-range", w1_range, "w1 range a,b of the Lebesgue rectangle projected on the eigenvectors");
+    v("measure-orbits", measure_orbits, "NxN strip grid of orbits for the empirical measure, 0..64 (0: skip)");
+    v("measure-iterations", measure_iterations, "points per orbit of the empirical measure, >= 100");
+    v("measure-transient", measure_transient, "transient of the empirical measure, >= 0");
+    v("tv-bins", tv_bins, "coarse grid of the TV distance, divides N and M");
+    v("cycle", cycles, "periodic words (e.g. 1133) whose exact cycles are located in the boxes");
+    v("check-whole", check_whole, "also run Spectra on the whole matrix (cross-check of the block route)");
+  }
+};
+
+struct ComponentInfo {
+  int block = 0;                   // closed class c >= 1, or -s - 1 for an almost-invariant transient component s
+  long boxes = 0;
+  int period = 1;
+  // Mass kept per step: 1 for a whole closed class; the eigenvalue (quasi-stationary rate) of an almost-invariant
+  // transient component; for a PCCA+ part of a class, its metastability sum_i w_i (P chi)_i / sum_i w_i.
+  double rho = 1;
+  double lebesgue = 0;             // projection of Lebesgue measure: fraction of it that ends in this component
+  std::vector<double> centre;      // mass-weighted chart centre (a, b)
+};
+
+struct CycleCheck {
+  std::string word;                // as given
+  std::string outcome;             // patterns::analyse at r: stable, unstable or none
+  std::vector<long> boxes;         // the boxes of its points (one per point of the cycle)
+  std::vector<double> a, b;        // chart coordinates of its points
+  double mass_boxes = 0;           // density mass on those boxes (a box counted once)
+  double mass_neighbourhood = 0;   // on their 3x3 neighbourhoods
+  // Smallest R such that the boxes within Chebyshev distance R (in boxes) of the cycle's boxes hold 99% of the
+  // density (of the whole density, and of the hosting component's density): for a sink, Ulam's smearing spreads
+  // its mass over a number of boxes that does not shrink with h, so R stays bounded and R h -> 0.
+  long radius99 = -1, radius99_component = -1;
+  int component = 0;               // component (1-based) whose density puts most mass on the neighbourhoods
+  double component_share = 0;      // that component's own density mass on the neighbourhoods
+};
+
+struct TransferResult {
+  TransferRequest request;
+  Partition part;
+  long nnz = 0;
+  std::uint64_t lost = 0;
+  std::vector<double> eig_re, eig_im;  // K leading eigenvalues by decreasing modulus (block route)
+  std::vector<int> eig_block;          // their blocks (0 transient, c closed class)
+  std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
+  int closed_classes = 0;
+  int near_one_count = 0;              // eigenvalues with |lambda - 1| <= near_one
+  std::vector<ComponentInfo> components;  // closed classes, then almost-invariant transient components
+  std::vector<std::uint32_t> component_of_box;  // n1 x n2 row-major, 0 none, k = components[k - 1]
+  std::vector<double> density;         // n1 x n2: sum_k lebesgue_k * (invariant density of k), mass per box
+  double unabsorbed = 0;               // Lebesgue mass left unresolved by the projection
+  // Sign structure of the leading real eigenvector with 0 < lambda < 1 - 1e-9 (almost-invariant sets).
+  double second_value = 0;
+  int second_block = 0;
+  std::vector<double> second;          // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block)
+  double second_positive_mass = 0, second_negative_mass = 0;  // L1 mass of the two signs, sum 1
+  long second_positive_boxes = 0, second_negative_boxes = 0;
+  // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
+  std::vector<CycleCheck> cycles;
+  double tv_boxes = -1, tv_coarse = -1;
+  long measure_points = 0;
+  double seconds_matrix = 0, seconds_spectrum = 0, seconds_total = 0;
+  std::size_t matrix_bytes = 0;
+};
+TransferResult run(const TransferRequest& q, const core::RunControl& c = {});
+
+// ---- btob transfer-r: the peripheral spectrum across r ------------------------------------------------
+struct TransferRRequest {
+  double r_min = 0.07, r_max = 0.6;  // in (0, 1), r_min < r_max
+  long r_count = 107;                // >= 1
+  std::string boxes = "128x128";
+  std::string domain = "strip";
+  int samples = 16;
+  int eigenvalues = 24;
+  double peripheral = 1e-2;          // 1 - |lambda| below this: peripheral, (0, 1)
+  std::string route = "direct";
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r-min", r_min, "lowest r, in (0, 1)");
+    v("r-max", r_max, "highest r, in (r-min, 1)");
+    v("r-count", r_count, "number of r values, 1..100000");
+    v("boxes", boxes, "NxM boxes of the chart, N, M >= 1");
+    v("domain", domain, "strip or angles");
+    v("samples", samples, "sample points per box, 1..65536");
+    v("eigenvalues", eigenvalues, "K leading eigenvalues per r, 1..boxes");
+    v("peripheral", peripheral, "1 - |lambda| below this counts as peripheral, (0, 1)");
+    v("route", route, "direct or kernel");
+  }
+};
+struct TransferRResult {
+  TransferRRequest request;
+  std::vector<double> r;
+  long K = 0;
+  std::vector<double> re, im;          // r.size() x K row-major (NaN where fewer converged)
+  std::vector<int> peripheral_count;   // per r
+  std::vector<int> closed_classes;     // per r
+  std::vector<double> gap;             // min |peripheral| - max |rest| (NaN when no rest within K)
+  std::vector<double> rest_modulus;    // max |lambda| outside the peripheral set
+  double seconds = 0;
+};
+TransferRResult run(const TransferRRequest& q, const core::RunControl& c = {});
+
+// Parses "NxM" (field named in errors); throws core::InvalidField.
+std::pair<long, long> parse_boxes(const std::string& s, const char* field = "boxes");
+Domain parse_domain(const std::string& s, const char* field = "domain");
+
+}  // namespace btob::transfer
