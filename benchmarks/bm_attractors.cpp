@@ -2,7 +2,7 @@
 // P2 curves) and r = 0.102 (chaotic: every point goes through pass 2), 1 and 2 threads; the scalar
 // reference of pass 1 (one orbit at a time, Appendix A.2 normalisation) as the baseline.
 #include "attractors/attractors.hpp"
-#include "iterate/attractor_recorder.hpp"
+#include "attractors/recorders.hpp"
 #include "iterate/kernel.hpp"
 
 #include <benchmark/benchmark.h>
@@ -35,7 +35,7 @@ template <bool Scalar> void BM_pass1(benchmark::State& st) {
   iterate::RunOptions run;
   run.threads = 1;
   for (auto _ : st) {
-    iterate::ReturnRecorder rec(e.orbits(), o.transient, o.window, o.max_period, o.return_tol);
+    attractors::ReturnRecorder rec(e.orbits(), o.transient, o.window, o.max_period, o.return_tol);
     if constexpr (Scalar) iterate::run_scalar<double>(e, rec.total_steps(), rec);
     else iterate::run<double>(e, rec.total_steps(), rec, run);
     benchmark::DoNotOptimize(rec.period.data());

@@ -2,7 +2,7 @@
 // basins, fractions with intervals, determinism across thread counts, errors.
 #include "attractors/attractors.hpp"
 #include "core/coords.hpp"
-#include "iterate/attractor_recorder.hpp"
+#include "attractors/recorders.hpp"
 #include "iterate/kernel.hpp"
 #include "patterns/patterns.hpp"
 
@@ -153,7 +153,7 @@ TEST(Attractors, PeriodicIdentityUpToPhase) {
 
 TEST(Attractors, ScalarReferenceGivesTheSameReturns) {
   const auto e = ensemble(0.21, grid_points(parse_grid("strip:6x6", -2, 2)));
-  iterate::ReturnRecorder a(e.orbits(), 3000, 300, 64, 1e-9), b(e.orbits(), 3000, 300, 64, 1e-9);
+  attractors::ReturnRecorder a(e.orbits(), 3000, 300, 64, 1e-9), b(e.orbits(), 3000, 300, 64, 1e-9);
   iterate::run<double>(e, a.total_steps(), a);
   iterate::run_scalar<double>(e, b.total_steps(), b);
   for (std::size_t o = 0; o < e.orbits(); ++o) {

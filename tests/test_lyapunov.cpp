@@ -3,7 +3,7 @@
 #include "core/map.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
-#include "iterate/tangent.hpp"
+#include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 
@@ -287,7 +287,7 @@ TEST(Lyapunov, BatchedRecorderMatchesQrRoute) {
     EXPECT_NEAR(m.lambda2[k], p.lambda[1].value, r == 0.11 ? 5 * (p.lambda[1].error + m.err2[k]) : 1e-9) << "orbit " << k;
   }
   // The scalar reference kernel (one orbit at a time, normalised every step) with the same recorder.
-  iterate::TangentRecorder rec(e, mo.transient, mo.iterations, mo.blocks);
+  lyapunov::TangentRecorder rec(e, mo.transient, mo.iterations, mo.blocks);
   iterate::run_scalar<double>(e, rec.total_steps(), rec);
   const auto s = lyapunov::exponents_from(rec);
   for (std::size_t k = 0; k < 8; ++k) EXPECT_NEAR(s.lambda1[k], m.lambda1[k], 1e-9);  // r = 0.0717: periodic

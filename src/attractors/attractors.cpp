@@ -2,9 +2,9 @@
 #include "attractors/attractors.hpp"
 
 #include "core/coords.hpp"
-#include "iterate/attractor_recorder.hpp"
+#include "attractors/recorders.hpp"
 #include "iterate/recorders.hpp"
-#include "iterate/tangent.hpp"
+#include "lyapunov/tangent.hpp"
 #include "lyapunov/maps.hpp"
 
 #include <boost/math/distributions/binomial.hpp>
@@ -62,7 +62,7 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
   const std::size_t N = ens.orbits();
   out.assign(N, OrbitVerdict{});
   latest.assign(N, Vec3<double>::Zero());
-  iterate::ReturnRecorder rec(N, transient, opt.window, opt.max_period, opt.return_tol);
+  attractors::ReturnRecorder rec(N, transient, opt.window, opt.max_period, opt.return_tol);
   iterate::run<double>(ens, rec.total_steps(), rec, opt.run);
 
   std::vector<std::size_t> rest;
@@ -139,9 +139,9 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
   iterate::Ensemble e2;
   e2.r = {r};
   for (std::size_t o : rest) e2.initial.push_back(latest[o]);
-  iterate::TangentRecorder tan(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
-  iterate::RotationRecorder rot(rest.size(), r, opt.lyap_transient, opt.lyap_iterations);
-  iterate::Both<iterate::TangentRecorder, iterate::RotationRecorder> both(tan, rot);
+  lyapunov::TangentRecorder tan(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
+  attractors::RotationRecorder rot(rest.size(), r, opt.lyap_transient, opt.lyap_iterations);
+  iterate::Both<lyapunov::TangentRecorder, attractors::RotationRecorder> both(tan, rot);
   iterate::run<double>(e2, tan.total_steps(), both, opt.run);
   const lyapunov::OrbitExponents ex = lyapunov::exponents_from(tan);
   for (std::size_t i = 0; i < rest.size(); ++i) {

@@ -22,7 +22,7 @@ using core::Vec3;
 //    steps in which the return to the window's first point (period <= max_period), the symbols and
 //    the counts of symbols 1 / 3 are recorded.  Pass 2 (orbits without a period): Lyapunov exponent
 //    lambda1 (TangentRecorder, batch means) and the weighted Birkhoff rotation number about the P2
-//    centre (1, 0, -1) with the P2 invariant I (iterate/attractor_recorder.hpp).  Refinement: orbits
+//    centre (1, 0, -1) with the P2 invariant I (attractors/recorders.hpp).  Refinement: orbits
 //    still unresolved are continued from where they stopped with `refine_factor` times the transient.
 //  * Types: periodic (a stable periodic orbit, the pattern tool's verdict attached), collapse
 //    (three-particle collapse, z -> 0 with symbol 1 or x -> 0 with symbol 3; r <= 7 - 4 sqrt(3)),

@@ -4,6 +4,8 @@
 #include "core/request.hpp"
 #include "iterate/ensemble.hpp"
 
+#include <concepts>
+#include <cstddef>
 #include <cstdint>
 
 namespace btob::iterate {
@@ -17,6 +19,16 @@ namespace btob::iterate {
 // (or a per-thread buffer indexed by thread).  Required members:
 //     static constexpr bool needs_symbols;
 //     long first_step() const;
+
+// The recorder concept: what the kernel needs of any recorder, which the analysis that owns it defines (in its own
+// folder) and instantiates in the kernel in its own kernel_*.cpp (docs/ARCHITECTURE.md, "Adding an analysis").
+template <class R>
+concept Recorder = requires(R& rec, const R& crec, std::size_t orbit0, int lanes, long k, const double* v,
+                            const std::uint8_t* symbols) {
+  { R::needs_symbols } -> std::convertible_to<bool>;
+  { crec.first_step() } -> std::convertible_to<long>;
+  rec.record(orbit0, lanes, k, v, v, v, symbols);
+};
 
 // Run options.  threads <= 0 means OpenMP's default.  Results never depend on `threads`.
 using core::ProgressSink;
@@ -36,10 +48,10 @@ template <class T> int renormalisation_interval(const std::vector<double>& r);
 // Iterates every orbit of the ensemble `iterations` times with the batched kernel (T = float or
 // double with SIMD; long double, float128, MPFR per lane).  Each orbit starts from its initial vector
 // scaled by a power of two (exact), in the quadrant Q.
-template <class T, class Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
+template <class T, Recorder Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
 
 // The scalar reference: one orbit at a time, the paper's matrices P1/P2/P3 chosen with branches and
 // the vector normalised every step (Appendix A.2).  Same recorder interface, lanes = 1.
-template <class T, class Rec> void run_scalar(const Ensemble& ensemble, long iterations, Rec& rec);
+template <class T, Recorder Rec> void run_scalar(const Ensemble& ensemble, long iterations, Rec& rec);
 
 }  // namespace btob::iterate

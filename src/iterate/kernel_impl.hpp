@@ -224,7 +224,7 @@ template <class T> int renormalisation_interval(const std::vector<double>& r) {
   return static_cast<int>(std::clamp(std::floor(k), 1.0, 1024.0));
 }
 
-template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
   constexpr int B = detail::batch_lanes<T>();
   const std::size_t n_orbits = ens.orbits();
   const std::size_t n_ic = ens.initial.size();
@@ -297,7 +297,7 @@ template <class T, class Rec> void run(const Ensemble& ens, long iterations, Rec
   if (opt.degenerate) *opt.degenerate = degenerate.load();
 }
 
-template <class T, class Rec> void run_scalar(const Ensemble& ens, long iterations, Rec& rec) {
+template <class T, Recorder Rec> void run_scalar(const Ensemble& ens, long iterations, Rec& rec) {
   const std::size_t n_ic = ens.initial.size();
   const long first = std::max<long>(rec.first_step(), 1);
   for (std::size_t o = 0; o < ens.orbits(); ++o) {

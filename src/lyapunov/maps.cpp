@@ -1,7 +1,7 @@
 // Lyapunov maps on the batched kernel: run the TangentRecorder, turn its cumulative sums into exponents.
 #include "lyapunov/maps.hpp"
 
-#include "iterate/tangent.hpp"
+#include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
 
@@ -19,13 +19,13 @@ OrbitExponents map_exponents(const iterate::Ensemble& ens, const MapOptions& opt
   o.blocks = opt.blocks;
   validate(o);
   for (double r : ens.r) core::validate_r(r);
-  iterate::TangentRecorder rec(ens, opt.transient, opt.iterations, opt.blocks);
+  lyapunov::TangentRecorder rec(ens, opt.transient, opt.iterations, opt.blocks);
   if (opt.single_precision) iterate::run<float>(ens, rec.total_steps(), rec, opt.run);
   else iterate::run<double>(ens, rec.total_steps(), rec, opt.run);
   return exponents_from(rec);
 }
 
-OrbitExponents exponents_from(const iterate::TangentRecorder& rec) {
+OrbitExponents exponents_from(const lyapunov::TangentRecorder& rec) {
   const std::size_t N = rec.ens->orbits(), B = static_cast<std::size_t>(rec.blocks);
   OrbitExponents out;
   out.iterations = rec.n;

@@ -1,5 +1,5 @@
 // Lyapunov maps: the projective exponents of every orbit of an ensemble (r values x initial conditions),
-// computed on the batched SIMD kernel (iterate::TangentRecorder), and their summary per r value.
+// computed on the batched SIMD kernel (lyapunov::TangentRecorder), and their summary per r value.
 #pragma once
 
 #include "iterate/ensemble.hpp"
@@ -7,11 +7,9 @@
 
 #include <vector>
 
-namespace btob::iterate {
-struct TangentRecorder;
-}
-
 namespace btob::lyapunov {
+
+struct TangentRecorder;
 
 struct MapOptions {
   long transient = 1000;     // steps before averaging (orbit and tangent vector together), >= 0
@@ -33,7 +31,7 @@ struct OrbitExponents {
 OrbitExponents map_exponents(const iterate::Ensemble& ensemble, const MapOptions& opt);
 
 // The exponents from a finished run of a TangentRecorder (batch means over its blocks).
-OrbitExponents exponents_from(const iterate::TangentRecorder& rec);
+OrbitExponents exponents_from(const TangentRecorder& rec);
 
 // Sign of an exponent given its error bar: +1 when lambda > k err + b, -1 when lambda < -(k err + b), else 0,
 // with k = 3 (three standard errors) and b = 10 / n (finite-time bias floor: for a bounded cocycle

@@ -3,7 +3,7 @@
 
 #include "core/coords.hpp"
 #include "iterate/kernel.hpp"
-#include "iterate/series.hpp"
+#include "stats/series.hpp"
 
 #include <fmt/format.h>
 
@@ -35,7 +35,7 @@ std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<
   e.initial = u0;
   // Twice the series (recorder, then the per-orbit copies) must fit.
   iterate::checked_bytes(2 * u0.size() * static_cast<std::size_t>(length), 3 * sizeof(double) + 1, "iterations");
-  iterate::SeriesRecorder rec(u0.size(), transient + 1, length);
+  stats::SeriesRecorder rec(u0.size(), transient + 1, length);
   iterate::run<double>(e, transient + length, rec, opt);
   std::vector<OrbitSeries> out(u0.size());
   for (std::size_t o = 0; o < u0.size(); ++o) {

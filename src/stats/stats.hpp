@@ -16,7 +16,7 @@ namespace btob::stats {
 
 // ---- Orbits and observables -------------------------------------------------------------------------
 // The states x_k = P^_r^{transient+1+k}(u0), k = 0..length-1, as unit vectors in the quadrant Q (double),
-// with the symbol 1/2/3 of the step that produced each (one batched run, iterate::SeriesRecorder).
+// with the symbol 1/2/3 of the step that produced each (one batched run, stats::SeriesRecorder).
 struct OrbitSeries {
   std::vector<double> x, y, z;
   std::vector<std::uint8_t> symbol;

@@ -7,7 +7,12 @@
 #include <cstdint>
 #include <vector>
 
-namespace btob::iterate {
+namespace btob::stats {
+
+using iterate::checked_bytes;
+using iterate::Ensemble;
+using iterate::Vec3;
+
 
 // Keeps, for steps from..from+count-1 of every orbit, the state normalised to a unit vector (in double,
 // whatever the kernel's T) and the symbol 1/2/3 of the step that produced it:
@@ -42,4 +47,4 @@ struct SeriesRecorder {
   }
 };
 
-}  // namespace btob::iterate
+}  // namespace btob::stats

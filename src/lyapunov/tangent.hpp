@@ -12,7 +12,12 @@
 
 #include "iterate/ensemble.hpp"
 
-namespace btob::iterate {
+namespace btob::lyapunov {
+
+using iterate::checked_bytes;
+using iterate::Ensemble;
+using iterate::Vec3;
+
 
 // For every orbit, one tangent vector v of the sphere is pushed through the derivative of
 // u -> M u / |M u| (M = P_s / r, the kernel's matrices: same projective map, same derivative), from the
@@ -59,7 +64,7 @@ struct TangentRecorder {
   long first_step() const { return 1; }
   // Lanes per kernel batch (iterate/lanes.hpp: detail::batch_lanes).
   template <class T>
-  static constexpr int kLanes = detail::batch_lanes<T>();
+  static constexpr int kLanes = iterate::detail::batch_lanes<T>();
   long total_steps() const { return transient + n; }  // the run's `iterations`
 
   template <class T>
@@ -175,4 +180,4 @@ struct TangentRecorder {
   }
 };
 
-}  // namespace btob::iterate
+}  // namespace btob::lyapunov

@@ -10,7 +10,12 @@
 #include <numbers>
 #include <vector>
 
-namespace btob::iterate {
+namespace btob::attractors {
+
+using iterate::checked_bytes;
+using iterate::Ensemble;
+using iterate::Vec3;
+
 
 // First pass of the classification.  For every orbit, over the window of steps transient+1 .. transient+window:
 //   * s0: the unit state after `transient` steps (the reference point of the return test);
@@ -75,7 +80,7 @@ struct ReturnRecorder {
 
 // atan2(a, b) on the whole circle, in (-pi, pi], from the vectorisable atan_pos.
 template <class T> inline T atan2_full(T a, T b) {
-  const T t = atan_pos<T>(std::fabs(a), std::fabs(b));  // in [0, pi/2]
+  const T t = iterate::atan_pos<T>(std::fabs(a), std::fabs(b));  // in [0, pi/2]
   const T q = b >= T(0) ? t : T(std::numbers::pi) - t;
   return a >= T(0) ? q : -q;
 }
@@ -159,4 +164,4 @@ struct RotationRecorder {
   }
 };
 
-}  // namespace btob::iterate
+}  // namespace btob::attractors

@@ -1,0 +1,12 @@
+// The batched kernel instantiated with the recorders of the attractor classification (kernel flags).
+#include "attractors/recorders.hpp"
+#include "iterate/kernel_impl.hpp"
+#include "lyapunov/tangent.hpp"
+
+namespace btob::iterate {
+template void run<double, attractors::ReturnRecorder>(const Ensemble&, long, attractors::ReturnRecorder&, const RunOptions&);
+template void run_scalar<double, attractors::ReturnRecorder>(const Ensemble&, long, attractors::ReturnRecorder&);
+template void run<double, Both<lyapunov::TangentRecorder, attractors::RotationRecorder>>(const Ensemble&, long,
+                                                                   Both<lyapunov::TangentRecorder, attractors::RotationRecorder>&,
+                                                                   const RunOptions&);
+}  // namespace btob::iterate
