@@ -1,4 +1,4 @@
-// `btob bifurcation`: tails of theta or phi against r (Figures 4.1-4.7, 5.1-5.8) as a density image.
+// `btob bifurcation`: tails of theta or phi against r (Figures 4.1-4.7, 6.1-6.8) as a density image.
 #include "cli/app.hpp"
 #include "cli/common.hpp"
 #include "core/map.hpp"
