@@ -106,10 +106,15 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
 
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<std::uint64_t> broken(ens.r.size(), 0);  // trig algorithm: orbits that broke down, per r
+  // trig: also what the paper's MATLAB code draws (complex continuation past acos's domain, Figure 4.7).
+  reference::MatlabTrigImage matlab;
   if (a.algorithm == "trig") {
     broken = prec.kind == core::Precision::Kind::f80
                  ? reference::trig_density<long double>(ens, a.iterations, dens, threads)
                  : reference::trig_density<double>(ens, a.iterations, dens, threads);
+    // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
+    matlab = reference::trig_density_matlab(ens, a.iterations, a.tail, coord == Coord::phi, a.bins, 0.0,
+                                            std::numbers::pi, threads);
   } else {
     switch (prec.kind) {
       case core::Precision::Kind::f32: run_kernel<float>(ens, a.iterations, dens, raw.get(), opt); break;
@@ -188,6 +193,12 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
     w.dataset("vlines", a.vlines, {a.vlines.size()});
     w.dataset("broken", broken, {broken.size()});
     w.dataset("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2});
+    if (!matlab.counts.empty()) {
+      w.dataset("density_matlab", matlab.counts, {ens.r.size(), static_cast<std::size_t>(a.bins)});
+      w.dataset("complex_orbits", matlab.complex_orbits, {matlab.complex_orbits.size()});
+      w.dataset("nan_points_matlab", matlab.nan_points, {matlab.nan_points.size()});
+      w.dataset("outside_matlab", matlab.outside, {matlab.outside.size()});
+    }
     if (raw) w.dataset("tail", raw->out, {ens.r.size(), ens.initial.size(), static_cast<std::size_t>(a.tail)});
     w.commit();
   }

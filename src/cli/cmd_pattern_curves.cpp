@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <iostream>
 #include <sstream>
 
@@ -22,7 +23,9 @@ struct CurvesArgs {
 void curves(const CurvesArgs& a, const std::string& command_line) {
   core::RunControl control;
   control.threads = a.threads;
+  const auto t0 = std::chrono::steady_clock::now();
   const patterns::CurvesResult res = patterns::run(a.q, control);  // validates first: nothing written on error
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const io::fs::path out(a.out);
   io::ensure_dir(out);
   io::Attrs attrs = io::provenance(command_line);
@@ -36,7 +39,8 @@ void curves(const CurvesArgs& a, const std::string& command_line) {
   attrs["r_min"] = a.q.r_min;
   attrs["r_max"] = a.q.r_max;
   attrs["r_count"] = a.q.r_count;
-  attrs["scalar_type"] = std::string("double");
+  attrs["scalar_type"] = std::string("double (spectrum in long double)");
+  attrs["total_seconds"] = seconds;  // plot excluded
   std::string names;
   for (const auto& s : res.feas_names) names += (names.empty() ? "" : ",") + s;
   attrs["feas_names"] = names;

@@ -49,7 +49,7 @@ void strip_orbits(const StripOrbitsArgs& a, const std::string& command_line) {
   attrs["periodic"] = static_cast<long>(res.periodic);
   attrs["quasi_periodic"] = static_cast<long>(res.quasi_periodic);
   attrs["other"] = static_cast<long>(res.other);
-  attrs["compute_seconds"] = res.seconds;
+  attrs["total_seconds"] = res.seconds;  // iteration and classification, plot excluded
   // One line per orbit: where it started and what the classifier says (the panel titles).
   std::ostringstream csv;
   csv << "orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail\n";
