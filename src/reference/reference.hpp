@@ -142,6 +142,7 @@ struct MatlabTrigImage {
   std::vector<std::uint64_t> complex_orbits;  // per r: orbits that took a complex acos at some step
   std::vector<std::uint64_t> nan_points;      // per r: tail values that were NaN (not counted in the image)
   std::vector<std::uint64_t> outside;         // per r: tail values outside [lo, hi]
+  std::vector<std::uint64_t> stalled;         // per r: tail states never reached (no b-collision any more)
 };
 MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ensemble, long iterations, long tail, bool phi, int bins,
                                     double lo, double hi, int threads = 0);

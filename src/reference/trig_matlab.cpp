@@ -4,6 +4,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <stdexcept>
@@ -81,6 +82,7 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
   img.complex_orbits.assign(n_r, 0);
   img.nan_points.assign(n_r, 0);
   img.outside.assign(n_r, 0);
+  img.stalled.assign(n_r, 0);
   const long first = std::max<long>(iterations - tail + 1, 1);
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   const double scale = bins / (hi - lo);
@@ -152,6 +154,9 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
         if (k >= first) count(want_phi ? ph.real() : th.real());
       }
       img.complex_orbits[ir] += s.complex ? 1 : 0;
+      // Orbits that stop producing b-collisions (a tie, or a complex state cycling among a and c) within the
+      // 4 x iterations collisions: the tail states they never reached.
+      img.stalled[ir] += static_cast<std::uint64_t>(tail - std::clamp<long>(k - first + 1, 0, tail));
     }
   }
   return img;
