@@ -198,6 +198,7 @@ void bifurcation(const BifurcationArgs& a, const std::string& command_line) {
       w.dataset("complex_orbits", matlab.complex_orbits, {matlab.complex_orbits.size()});
       w.dataset("nan_points_matlab", matlab.nan_points, {matlab.nan_points.size()});
       w.dataset("outside_matlab", matlab.outside, {matlab.outside.size()});
+      w.dataset("stalled_matlab", matlab.stalled, {matlab.stalled.size()});
     }
     if (raw) w.dataset("tail", raw->out, {ens.r.size(), ens.initial.size(), static_cast<std::size_t>(a.tail)});
     w.commit();
