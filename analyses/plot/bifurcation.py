@@ -27,7 +27,7 @@ AXIS = {
     "w2": r"$w_2$ (strip, dimensionless)",
 }
 AXIS_PX = 1350   # approximate width of the data area in pixels (figure 11 in at 150 dpi)
-MIN_GAP_PX = 3   # overlay lines closer than this would merge into a solid block
+MIN_GAP_PX = 5   # overlay lines closer than this would merge into a solid block
 
 
 def attr(f, key, default=None):
@@ -103,6 +103,7 @@ def main(src, dst):
         dm = f["density_matlab"][...].astype(np.float32) if "density_matlab" in f else None
         complex_orbits = f["complex_orbits"][...] if "complex_orbits" in f else None
         nan_m = f["nan_points_matlab"][...] if "nan_points_matlab" in f else None
+        stalled_m = f["stalled_matlab"][...] if "stalled_matlab" in f else None
         r = f["r"][...]
         vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
         over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
@@ -161,10 +162,12 @@ def main(src, dst):
         axes[0].text(r1, hi, f" {AXIS.get(coord, coord).split(' (')[0]} = {hi:.4g}: above, outside the physical range",
                      fontsize=7, color="#1f4fd6", ha="right", va="bottom")
         n_nan = int(nan_m.sum()) if nan_m is not None else 0
-        axes[0].text(0.005, 0.01, "past acos's domain the picture is the algorithm's failure, not the dynamics: "
-                     f"compare Figure 4.1 (linear algorithm); {n_nan} tail values NaN (overflow), not drawn",
-                     transform=axes[0].transAxes, fontsize=8, color="#b00000",
-                     bbox=dict(facecolor="white", alpha=0.85, lw=0))
+        stalled_note = (f"; {int(stalled_m.sum())} tail states never reached (no more b-collisions)"
+                        if stalled_m is not None and stalled_m.sum() else "")
+        # The warning goes under the panel, not over the data.
+        axes[0].text(0.0, -0.13, "past acos's domain this is the algorithm's failure, not the dynamics (compare Figure 4.1); "
+                     f"{n_nan} NaN values not drawn{stalled_note}",
+                     transform=axes[0].transAxes, fontsize=8, color="#b00000", va="top")
         ax = axes[2]
         ax.plot(r, 100 * complex_orbits / n_ic, color=COLOURS[0], lw=0.8, label="left acos's domain (complex)")
         ax.plot(r, 100 * broken / n_ic, color="k", lw=0.6, ls=":", label="stopped in (b) (any failure status)")
