@@ -19,4 +19,6 @@ for script in analyses/*.sh; do
   echo "run_all: $script"
   bash "$script" "$btob"
 done
+# The gallery of every figure (results/README.md), last: it reads the manifests written above.
+/usr/bin/python3 analyses/gallery.py .
 echo "run_all: done in $(( $(date +%s) - start )) s"

@@ -12,7 +12,8 @@ import sys
 FLOORS = {"core": 0, "iterate": 1, "reference": 2,
           "bifurcation": 3, "windows": 3, "patterns": 3, "lyapunov": 3, "stats": 3,
           "attractors": 4, "particles": 4, "precision": 4, "transfer": 4,
-          "io": 5, "cli": 6}
+          "orbits": 5,
+          "io": 6, "cli": 7}
 # io depends on core only: results reach it as core::Contents.
 ONLY = {"io": {"core"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_0-9]+)/')

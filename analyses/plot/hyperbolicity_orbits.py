@@ -48,9 +48,27 @@ def main(src, dst):
     ax.semilogy(r, deg(d["angle_q05"]), "C1.-", ms=3, lw=0.7, label="5% quantile")
     ax.semilogy(r, deg(d["angle_min"]), "C4.", ms=2, label="minimum")
     ax.set_ylabel("angle between CLVs (degrees)")
+    # A few labelled ticks only (labelling every minor tick piled them up).
+    ax.yaxis.set_major_locator(matplotlib.ticker.FixedLocator([1, 2, 5, 10, 20, 45, 90]))
     ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-    ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.legend(fontsize=8, loc="lower right")
+    # Where every orbit has lambda1 = lambda2 (within 10/n) the CLV angle is undefined: say so instead of
+    # leaving the panels blank.
+    undefined = d["frac_degenerate"] >= 0.999
+    if undefined.any():
+        dr_ = (r[-1] - r[0]) / max(1, len(r) - 1)
+        starts = np.nonzero(undefined & ~np.r_[False, undefined[:-1]])[0]
+        ends = np.nonzero(undefined & ~np.r_[undefined[1:], False])[0]
+        for k, (i0, i1) in enumerate(zip(starts, ends)):
+            for axx in (axs[2], axs[3]):
+                axx.axvspan(r[i0] - dr_ / 2, r[i1] + dr_ / 2, color="#eeeeee", hatch="//", ec="#cccccc", lw=0, zorder=0)
+            if r[i1] - r[i0] > 0.1 * (r[-1] - r[0]):
+                for axx in (axs[2], axs[3]):
+                    axx.text(0.5 * (r[i0] + r[i1]), 0.5, "CLV angle undefined here: every orbit has "
+                             r"$\lambda_1 = \lambda_2$ within 10/n" + "\n(a rotation: complex-conjugate multipliers, on the invariant curves and on the sinks of this range)",
+                             transform=axx.get_xaxis_transform(), ha="center", va="center", fontsize=8,
+                             bbox=dict(facecolor="white", alpha=0.9, lw=0))
     ax = axs[3]
     h = d["angle_histogram"].astype(float)
     tot = h.sum(axis=1, keepdims=True)

@@ -104,8 +104,13 @@ def draw(ax, rows, intervals, detected, found_words, x0, x1):
     ax.set_xlim(x0, x1)
     ax.set_ylim(-1, len(rows))
     ax.grid(axis="x", alpha=0.3)
-    if label_done and x0 > 0:  # one legend, in the zoom panel's empty lower-right corner
-        ax.legend(loc="lower right", fontsize=8)
+    if x0 > 0:  # one legend, in the zoom panel's empty lower-left corner; the bars' two shades explained too
+        from matplotlib.patches import Patch
+        handles, _ = ax.get_legend_handles_labels()
+        handles = [Patch(color="#1f4fd6", label="stability window (analysis) of a pattern the iterator found"),
+                   Patch(color="#9ab0e6", label="stability window of a pattern the iterator did not find\n"
+                                                "(no Table 6.1 r inside it, or a basin missed by the random points)")] + handles
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=2, fontsize=7, frameon=False)
 
 
 if __name__ == "__main__":

@@ -75,20 +75,40 @@ def main(src, dst):
     lx.set_ylabel("largest |lambda1 - exact| per iteration on the sinks\n(1e-17: below double resolution)")
     lx.set_title("Lyapunov exponent on 1133 (r=0.15), 111333 (r=0.1), 132312 (r=0.5): 1e5 steps, weighted average",
                  fontsize=9)
-    lin = [row for row in rows if row["window_n_max"]]
-    bx.scatter([float(row["iterations_per_second"]) for row in lin], [int(row["window_n_max"]) for row in lin], color="#1f4fd6")
-    for k, row in enumerate(lin):
-        bx.annotate(row["method"], (float(row["iterations_per_second"]), int(row["window_n_max"])),
-                    textcoords="offset points", xytext=(4, -14 - 10 * (k % 3)), fontsize=7)
-    nmax = max([int(v) for row in rows for v in [row["window_n_max"]] if v] + [1])
-    bx.axhline(nmax, color="#999999", ls=":", lw=1)
-    bx.text(min(float(row["iterations_per_second"]) for row in lin), nmax * 1.02,
-            "largest n tested", fontsize=7, color="#666666")
-    bx.set_ylim(0, nmax * 1.15)
-    bx.set_xscale("log")
-    bx.set_xlabel("map iterations per second (2 threads; trig/double: 1 thread)")
-    bx.set_ylabel("largest n whose window (ab)^n(cb)^n is resolved")
-    bx.set_title("windows near 7-4*sqrt(3) (8 orbits at the middle of window n)", fontsize=9)
+    # Windows: every method resolved every n tested, so a "largest n resolved" plot says nothing.  Instead: the
+    # width of window n (Table B.1, 12 decimals, extrapolated ~ n^-3 beyond n = 100) against the spacing of
+    # representable r near 7 - 4 sqrt(3) in each precision: where a precision must fail, and how far the test went.
+    import numpy as np
+    ref = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", "windows_paper_table_B1.csv")
+    with open(ref) as f:
+        tb = [row for row in csv.DictReader(f) if row["upper_bound"]]
+    nn = np.array([int(row["n"]) for row in tb])
+    width = np.array([float(row["upper_bound"]) - float(row["lower_bound"]) for row in tb])
+    good = (nn >= 20) & (width > 0)
+    slope, icpt = np.polyfit(np.log(nn[good]), np.log(width[good]), 1)
+    ne = np.logspace(np.log10(100), np.log10(5000), 60)
+    bx.loglog(nn, width, "o", ms=3, color="#1f4fd6", label="window width, Table B.1 (12 decimals)")
+    bx.loglog(ne, np.exp(icpt) * ne ** slope, "--", color="#1f4fd6", lw=1,
+              label=f"fit n^{slope:.2f} on n >= 20, extrapolated")
+    rc = 7 - 4 * np.sqrt(3)
+    for name, eps, col in (("float", 2.0 ** -23, "#d62728"), ("double", 2.0 ** -52, "#2ca02c"),
+                           ("long double", 2.0 ** -63, "#9467bd")):
+        ulp = rc * eps
+        bx.axhline(ulp, color=col, lw=1, ls=":")
+        ncross = (ulp / np.exp(icpt)) ** (1 / slope)
+        bx.text(2.2, ulp * 1.5, f"spacing of {name} numbers near r = 7-4*sqrt(3): {ulp:.1e}"
+                + (f" (window narrower beyond n ~ {ncross:.0f})" if ncross < 5000 else ""), fontsize=7, color=col)
+    ntest = max([int(v) for row in rows for v in [row["window_n_max"]] if v] + [1])
+    passed = [row["method"] for row in rows if row["window_n_max"] and int(row["window_n_max"]) >= ntest]
+    bx.axvspan(2, ntest, color="#dddddd", alpha=0.6, lw=0)
+    bx.text(2.2, 1e-14, f"n <= {ntest} tested (8 orbits at the middle of each window):\n"
+            f"resolved by all {len(passed)} linear methods (trig: not tested)", fontsize=7, va="bottom")
+    bx.set_xlim(1.8, 5000)
+    bx.set_ylim(1e-21, 1)
+    bx.set_xlabel("n of the window (ab)^n(cb)^n")
+    bx.set_ylabel("width of window n (dimensionless r)")
+    bx.set_title("windows near 7-4*sqrt(3): width against the spacing of representable r", fontsize=9)
+    bx.legend(fontsize=7, loc="upper right")
     fig.suptitle("btob: speed against accuracy, per precision and algorithm", fontsize=11)
     fig.tight_layout()
     save_atomic(fig, dst)

@@ -124,6 +124,10 @@ Result run(const Request& req, const core::RunControl& control) {
     res.broken = prec.kind == core::Precision::Kind::f80
                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
                      : reference::trig_density<double>(ens, req.iterations, dens, threads);
+    // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
+    control.check_cancelled();
+    res.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
+                                                static_cast<int>(req.bins), 0.0, std::numbers::pi, threads);
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }
@@ -173,6 +177,14 @@ void Result::describe(core::Contents& c) const {
   c.array("overflow", overflow, {R}, "r", "count", "tail points above hi at each r");
   c.array("vlines", vlines, {vlines.size()}, "line", "1", "r values drawn as vertical lines");
   c.array("broken", broken, {R}, "r", "count", "orbits the trigonometric algorithm lost (acos out of its domain)");
+  if (!matlab.counts.empty()) {
+    c.array("density_matlab", matlab.counts, {R, bins}, "r, bin of " + coord + " over [0, pi]", "count",
+            "what the paper's MATLAB code draws: Re acos of the complex continuation past acos's domain");
+    c.array("complex_orbits", matlab.complex_orbits, {R}, "r", "count", "orbits that took a complex acos at some step");
+    c.array("nan_points_matlab", matlab.nan_points, {R}, "r", "count", "tail values that were NaN (not in the image)");
+    c.array("outside_matlab", matlab.outside, {R}, "r", "count", "tail values outside [0, pi]");
+    c.array("stalled_matlab", matlab.stalled, {R}, "r", "count", "tail states never reached (no b-collision any more)");
+  }
   if (!tail.empty())
     c.array("tail", tail, {R, I, static_cast<std::size_t>(tail_length)}, "r, initial condition, step", unit,
             "the last values of the coordinate of every orbit");

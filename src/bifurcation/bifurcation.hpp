@@ -6,6 +6,7 @@
 #include "core/request.hpp"
 #include "core/result.hpp"
 #include "iterate/ensemble.hpp"
+#include "reference/reference.hpp"
 
 #include <cstdint>
 #include <string>
@@ -61,6 +62,8 @@ struct Result {
   std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
   std::vector<std::uint64_t> broken;   // [r]: orbits the trigonometric algorithm lost (acos out of its domain)
   std::vector<double> tail;            // [r, initial condition, tail] when raw
+  reference::MatlabTrigImage matlab;   // trig only: what the paper's MATLAB code draws (complex continuation past
+                                       // acos's domain, Figure 4.7), over [0, pi]
   std::vector<double> vlines;          // the request's vertical lines
   std::string scalar_type, algorithm;
   long iterations = 0, tail_length = 0, renormalisation_interval = 0;

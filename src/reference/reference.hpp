@@ -131,6 +131,22 @@ template <class T>
 std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ensemble, long iterations, iterate::DensityRecorder& rec,
                                         int threads = 0);
 
+// The same orbits with MATLAB's semantics, i.e. what the paper's code draws: acos of an argument outside
+// [-1, 1] returns a complex number (acos z = -i log(z + i sqrt(1 - z^2)), principal branches, as MATLAB) and
+// the loop goes on in complex arithmetic (norm = sqrt(sum |x_i|^2), dot(V, X) = sum conj(V_i) X_i, the tests
+// phi < pi/2 compare real parts); no orbit is stopped.  The real part of theta (or phi) of every tail b-state,
+// as MATLAB's plot shows it, is counted into `bins` equal bins over [lo, hi] (Re acos lies in [0, pi]); NaN
+// values (overflowing complex states) are counted apart.  OpenMP over r values (static), deterministic.
+struct MatlabTrigImage {
+  std::vector<std::uint32_t> counts;          // [r values x bins], row-major
+  std::vector<std::uint64_t> complex_orbits;  // per r: orbits that took a complex acos at some step
+  std::vector<std::uint64_t> nan_points;      // per r: tail values that were NaN (not counted in the image)
+  std::vector<std::uint64_t> outside;         // per r: tail values outside [lo, hi]
+  std::vector<std::uint64_t> stalled;         // per r: tail states never reached (no b-collision any more)
+};
+MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ensemble, long iterations, long tail, bool phi, int bins,
+                                    double lo, double hi, int threads = 0);
+
 #define BTOB_REFERENCE_EXTERN(T)                                                                                 \
   extern template Mat3<T> collision_matrix<T>(char, const T&);                                                    \
   extern template CrossProductImage<T> cross_product_map<T>(const Vec3<T>&, const T&);                            \

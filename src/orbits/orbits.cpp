@@ -1,0 +1,94 @@
+// Individual orbits at fixed r in the strip (Figures 6.9-6.11): seeded initial points, tails, verdicts.
+#include "orbits/orbits.hpp"
+
+#include "core/coords.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace btob::orbits {
+namespace {
+
+std::uint64_t splitmix(std::uint64_t x) {  // SplitMix64 finaliser (Steele, Lea, Flood 2014)
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+double unit_open(std::uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) * 0x1.0p-53; }  // (0, 1)
+
+}  // namespace
+
+void StripOrbitsRequest::validate() const {
+  if (!(r > 0 && r < 1)) throw core::InvalidField("r", fmt::format("{}", r), "a number in the open interval (0, 1)");
+  if (orbits < 1 || orbits > 1000) throw core::InvalidField("orbits", fmt::format("{}", orbits), "1..1000");
+  if (tail < 1) throw core::InvalidField("tail", fmt::format("{}", tail), "at least 1");
+  if (iterations < tail || iterations > 10000000)
+    throw core::InvalidField("iterations", fmt::format("{}", iterations), fmt::format("tail ({})..1e7", tail));
+  if (static_cast<double>(orbits) * static_cast<double>(tail) > 1e8)
+    throw core::InvalidField("tail", fmt::format("{}", tail), "orbits * tail <= 1e8 (memory)");
+  if (!(std::abs(w1_min) <= 1e6)) throw core::InvalidField("w1-min", fmt::format("{}", w1_min), "|w1-min| <= 1e6");
+  if (!(std::abs(w1_max) <= 1e6) || !(w1_max > w1_min))
+    throw core::InvalidField("w1-max", fmt::format("{}", w1_max), fmt::format("w1-min ({}) < w1-max <= 1e6", w1_min));
+}
+
+const char* panel_word(attractors::Type t) {
+  switch (t) {
+    case attractors::Type::periodic: return "periodic";
+    case attractors::Type::quasi_periodic: return "quasi-periodic";
+    case attractors::Type::chaotic: return "chaotic";
+    case attractors::Type::collapse: return "collapse";
+    default: return "unresolved";
+  }
+}
+
+StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& control) {
+  q.validate();
+  control.check_cancelled();
+  const auto t0 = std::chrono::steady_clock::now();
+  StripOrbitsResult res;
+  res.request = q;
+  iterate::Ensemble ens;
+  ens.r = {q.r};
+  ens.seed = q.seed;
+  ens.grid_description = fmt::format("random strip points: w1 uniform in [{}, {}], w2 uniform in (-1, 1), seed {}",
+                                     q.w1_min, q.w1_max, q.seed);
+  for (long i = 0; i < q.orbits; ++i) {
+    const std::uint64_t base = splitmix(q.seed ^ splitmix(static_cast<std::uint64_t>(i)));
+    const double w1 = q.w1_min + (q.w1_max - q.w1_min) * unit_open(splitmix(base + 1));
+    const double w2 = 2 * unit_open(splitmix(base + 2)) - 1;
+    res.start_w1.push_back(w1);
+    res.start_w2.push_back(w2);
+    ens.initial.push_back(core::from_strip(w1, w2));
+  }
+  iterate::RunOptions ro;
+  ro.threads = control.threads;
+  iterate::TailRecorder t1(iterate::Coord::w1, ens.orbits(), q.iterations, q.tail);
+  iterate::TailRecorder t2(iterate::Coord::w2, ens.orbits(), q.iterations, q.tail);
+  iterate::Both<iterate::TailRecorder, iterate::TailRecorder> both(t1, t2);
+  iterate::run<double>(ens, q.iterations, both, ro);
+  if (control.progress) control.progress->update(1, 2);
+  control.check_cancelled();
+  res.w1 = std::move(t1.out);
+  res.w2 = std::move(t2.out);
+  // The verdicts: the classifier continues each orbit from its start with the same transient as the figure.
+  attractors::Options opt;
+  opt.transient = q.iterations;
+  opt.run.threads = control.threads;
+  res.verdicts = attractors::classify(ens, opt);
+  for (const auto& v : res.verdicts) {
+    res.pattern.push_back(v.type == attractors::Type::periodic ? patterns::to_paper(patterns::canonical(v.word)) : "");
+    if (v.type == attractors::Type::periodic) ++res.periodic;
+    else if (v.type == attractors::Type::quasi_periodic) ++res.quasi_periodic;
+    else ++res.other;
+  }
+  if (control.progress) control.progress->update(2, 2);
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace btob::orbits

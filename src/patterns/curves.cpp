@@ -1,0 +1,155 @@
+// Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
+#include "patterns/curves.hpp"
+
+#include "patterns/analysis_impl.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <omp.h>
+
+namespace btob::patterns {
+namespace {
+
+// The spectrum is computed in long double: the smallest eigenvalues of these products are ~1e-13 of the
+// largest at r ~ 0.005 (det = -r^11 or -r^14), below what the cubic formula resolves in double.
+using L = long double;
+struct Point {
+  std::array<detail::Root<L>, 3> roots;  // real ascending, then complex
+  int tracked = -1;
+  double dominance = std::numeric_limits<double>::quiet_NaN();
+  Vec3<L> u;  // tracked eigenvector, unit
+};
+
+Mat3<L> analysed(const Word& h, bool reduced, L r) {
+  const std::array<Mat3<L>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  Mat3<L> M = Mat3<L>::Identity();
+  for (auto s : h.s) M = P[s - 1] * M;
+  return reduced ? Mat3<L>(core::J<L>() * M) : M;
+}
+
+Point at(const Word& h, bool reduced, double r_, bool negative) {
+  Point p;
+  const L r = r_;
+  const Mat3<L> A = analysed(h, reduced, r);
+  const L tr = A.trace();
+  const L minors = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0) + A(0, 0) * A(2, 2) - A(0, 2) * A(2, 0) +
+                   A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
+  p.roots = detail::cubic_roots<L>(-tr, minors, -detail::det3<L>(A));
+  std::sort(p.roots.begin(), p.roots.end(), [](const auto& a, const auto& b) {
+    if (a.real != b.real) return a.real;
+    return a.real ? a.re < b.re : a.im < b.im;
+  });
+  L best = -1;
+  for (int i = 0; i < 3; ++i)
+    if (p.roots[i].real && (!negative || p.roots[i].re < 0) && std::abs(p.roots[i].re) > best)
+      best = std::abs(p.roots[i].re), p.tracked = i;
+  if (p.tracked < 0) return p;
+  L other = 0;
+  for (int i = 0; i < 3; ++i)
+    if (i != p.tracked) other = std::max(other, detail::modulus(p.roots[i]));
+  p.dominance = static_cast<double>((best - other) / best);
+  p.u = detail::eigenvector<L>(A, p.roots[p.tracked].re);
+  return p;
+}
+
+}  // namespace
+
+void CurvesRequest::validate() const {
+  try {
+    (void)parse_word(word, "word");
+  } catch (const std::invalid_argument& e) {
+    throw core::InvalidField("word", "'" + word + "'", "a word over 1,2,3 such as 132312 or 132^2312^2");
+  }
+  if (!(r_min > 0 && r_min < 1)) throw core::InvalidField("r-min", fmt::format("{}", r_min), "a number in (0, 1)");
+  if (!(r_max > r_min && r_max < 1))
+    throw core::InvalidField("r-max", fmt::format("{}", r_max), fmt::format("a number in (r-min = {}, 1)", r_min));
+  if (r_count < 2 || r_count > 1000000) throw core::InvalidField("r-count", fmt::format("{}", r_count), "2..1000000");
+  if (track != "dominant" && track != "negative")
+    throw core::InvalidField("track", "'" + track + "'", "dominant or negative");
+}
+
+CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
+  q.validate();
+  control.check_cancelled();
+  CurvesResult res;
+  res.request = q;
+  const Word w = primitive_root(parse_word(q.word, "word"));
+  res.word = to_paper(w);
+  res.reduced = is_J_square(w);
+  Word h;
+  h.s.assign(w.s.begin(), w.s.begin() + static_cast<long>(res.reduced ? w.size() / 2 : w.size()));
+  res.analysed = to_digits(h);
+  const bool negative = q.track == "negative";
+  const std::size_t n = static_cast<std::size_t>(q.r_count), p = h.size(), nf = 1 + 3 * p;
+  res.feas_names.push_back("u_z");
+  for (std::size_t k = 0; k < p; ++k)
+    for (const char* s : {"y", "ay-x", "ay-z"}) res.feas_names.push_back(fmt::format("{}(v{})", s, k));
+  res.r.resize(n);
+  res.eig_re.assign(3 * n, 0);
+  res.eig_im.assign(3 * n, 0);
+  res.modulus.assign(3 * n, 0);
+  res.tracked.assign(n, std::numeric_limits<double>::quiet_NaN());
+  res.dominance.assign(n, std::numeric_limits<double>::quiet_NaN());
+  res.feas.assign(n * nf, std::numeric_limits<double>::quiet_NaN());
+#pragma omp parallel for schedule(static) num_threads(control.threads > 0 ? control.threads : omp_get_max_threads())
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
+    res.r[i] = r;
+    const Point pt = at(h, res.reduced, r, negative);
+    for (int j = 0; j < 3; ++j) {
+      res.eig_re[3 * i + j] = static_cast<double>(pt.roots[j].re);
+      res.eig_im[3 * i + j] = pt.roots[j].real ? 0.0 : static_cast<double>(pt.roots[j].im);
+      res.modulus[3 * i + j] = static_cast<double>(detail::modulus(pt.roots[j]));
+    }
+    if (pt.tracked < 0) continue;
+    res.tracked[i] = static_cast<double>(pt.roots[pt.tracked].re);
+    res.dominance[i] = pt.dominance;
+    if (pt.u(0) == 0) continue;
+    Vec3<L> v = pt.u / pt.u(0);  // the paper's normalisation u_x = 1
+    const L rl = r, a = core::alpha(rl);
+    const std::array<Mat3<L>, 3> P = {core::P1(rl), core::P2(rl), core::P3(rl)};
+    double* f = &res.feas[i * nf];
+    f[0] = static_cast<double>(v(2));
+    for (std::size_t k = 0; k < p; ++k) {
+      f[1 + 3 * k] = static_cast<double>(v(1));
+      f[2 + 3 * k] = static_cast<double>(a * v(1) - v(0));
+      f[3 + 3 * k] = static_cast<double>(a * v(1) - v(2));
+      v = P[h.s[k] - 1] * v;
+    }
+  }
+  control.check_cancelled();
+  // Critical r: sign changes of -u_x u_z (sign-free: u_x = 0 or u_z = 0, where u leaves the domain)
+  // and of the dominance margin, bisected on the same functions down to 1e-15 (a few ulps of r).
+  auto crit = [&](const char* what, auto f) {
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      double a = res.r[i], b = res.r[i + 1], fa = f(a), fb = f(b);
+      if (!(std::isfinite(fa) && std::isfinite(fb)) || (fa > 0) == (fb > 0)) continue;
+      while (b - a > 1e-15) {
+        const double m = 0.5 * (a + b), fm = f(m);
+        if (!std::isfinite(fm)) break;
+        if ((fm > 0) == (fa > 0)) a = m, fa = fm;
+        else b = m;
+      }
+      const double rc = 0.5 * (a + b);
+      std::string name = what;
+      if (name == "domain") {  // which component vanishes: u_x (the x = 1 normalisation blows up) or u_z
+        const Point pt = at(h, res.reduced, rc, negative);
+        name = std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0";
+      }
+      res.critical.push_back({name, rc});
+    }
+  };
+  crit("domain", [&](double r) {
+    const Point pt = at(h, res.reduced, r, negative);
+    return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
+  });
+  crit("dominance", [&](double r) { return at(h, res.reduced, r, negative).dominance; });
+  if (control.progress) control.progress->update(1, 1);
+  return res;
+}
+
+}  // namespace btob::patterns

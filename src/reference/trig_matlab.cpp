@@ -1,0 +1,165 @@
+// Appendix A.1 with MATLAB's complex semantics: the paper's trigonometric code as it actually runs once acos
+// leaves [-1, 1] (Figure 4.7 shows what it draws).
+#include "reference/reference.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+namespace btob::reference {
+namespace {
+
+using C = std::complex<double>;
+using CVec = Eigen::Matrix<C, 3, 1>;
+const C I(0, 1);
+
+C acos_matlab(const C& z) { return -I * std::log(z + I * std::sqrt(C(1) - z * z)); }  // MATLAB's acos
+double norm_matlab(const CVec& v) { return std::sqrt(std::norm(v(0)) + std::norm(v(1)) + std::norm(v(2))); }
+C dot_matlab(const CVec& a, const CVec& b) {  // dot(a, b) = sum conj(a_i) b_i
+  return std::conj(a(0)) * b(0) + std::conj(a(1)) * b(1) + std::conj(a(2)) * b(2);
+}
+bool finite(const CVec& v) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(v(i).real()) || !std::isfinite(v(i).imag())) return false;
+  return true;
+}
+
+struct State {
+  CVec X, V;
+  int contact = 2;
+  bool complex = false;  // some acos argument left [-1, 1] (or was already complex)
+};
+
+// One pass of the MATLAB while-loop; theta, phi are those read before the collision (as the code records).
+void collision(State& s, double r, C& theta, C& phi) {
+  const int c = s.contact;
+  const int ix = c == 1 ? 1 : (c == 2 ? 2 : 0), iv = c == 1 ? 2 : (c == 2 ? 0 : 1);
+  const C xa = s.X(ix);
+  if (xa.imag() != 0 || std::abs(xa.real()) > 1) s.complex = true;
+  theta = acos_matlab(xa);
+  const C cphi = s.V(iv) / std::cos(theta);
+  if (cphi.imag() != 0 || std::abs(cphi.real()) > 1) s.complex = true;
+  phi = acos_matlab(cphi);
+  const double half_pi = std::acos(0.0);
+  if (phi.real() == half_pi) return;  // neither branch of the MATLAB code: nothing changes
+  const bool low = phi.real() < half_pi;
+  const C st = std::sin(theta), ct = std::cos(theta), sp = std::sin(phi), cp = std::cos(phi);
+  CVec X;
+  char letter;
+  switch (c) {
+    case 1:
+      if (low) X << ct * sp, 0.0, cp, letter = 'b';
+      else X << st * sp, -cp, 0.0, letter = 'c';
+      break;
+    case 2:
+      if (low) X << cp, ct * sp, 0.0, letter = 'c';
+      else X << 0.0, st * sp, -cp, letter = 'a';
+      break;
+    default:
+      if (low) X << 0.0, cp, ct * sp, letter = 'a';
+      else X << -cp, 0.0, st * sp, letter = 'b';
+      break;
+  }
+  X /= norm_matlab(X);
+  CVec V = collision_matrix<double>(letter, r).cast<C>() * s.V;
+  V = V - dot_matlab(V, X) * X;
+  V /= norm_matlab(V);
+  s.X = X;
+  s.V = V;
+  s.contact = letter - 'a' + 1;
+}
+
+}  // namespace
+
+MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iterations, long tail, bool want_phi, int bins,
+                                    double lo, double hi, int threads) {
+  const std::size_t n_r = ens.r.size(), n_ic = ens.initial.size();
+  MatlabTrigImage img;
+  img.counts.assign(n_r * static_cast<std::size_t>(bins), 0);
+  img.complex_orbits.assign(n_r, 0);
+  img.nan_points.assign(n_r, 0);
+  img.outside.assign(n_r, 0);
+  img.stalled.assign(n_r, 0);
+  const long first = std::max<long>(iterations - tail + 1, 1);
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const double scale = bins / (hi - lo);
+#pragma omp parallel for schedule(static) num_threads(nt)
+  for (std::size_t ir = 0; ir < n_r; ++ir) {
+    const double r = ens.r[ir];
+    std::uint32_t* col = &img.counts[ir * static_cast<std::size_t>(bins)];
+    auto count = [&](double v) {
+      if (!std::isfinite(v)) {
+        ++img.nan_points[ir];
+        return;
+      }
+      if (v < lo || v > hi) {
+        ++img.outside[ir];
+        return;
+      }
+      ++col[std::min(bins - 1, static_cast<int>((v - lo) * scale))];
+    };
+    for (std::size_t ic = 0; ic < n_ic; ++ic) {
+      Vec3<double> u = ens.initial[ic];
+      u = core::to_quadrant<double>(u / u.norm());
+      const TrigState<double> s0 = trig_start<double>(core::theta<double>(u), core::phi<double>(u));
+      // Fast path: while the state is real and every acos argument lies in (-1, 1), MATLAB's arithmetic is the
+      // real one, i.e. trig_collision; the first time it reports anything but ok, the orbit moves to complex.
+      TrigState<double> real = s0;
+      bool is_real = true;
+      State s;
+      // NN = 4 x iterations collisions at most (a b-to-b step takes 2 or 3; the cap ends orbits stuck on a tie).
+      long k = 0;
+      C theta, phi;
+      for (long pass = 0; pass < 4 * iterations && k < iterations; ++pass) {
+        if (is_real) {
+          TrigState<double> next = real;
+          if (trig_collision<double>(next, r) == TrigStatus::ok) {
+            real = next;
+            s.contact = real.contact;
+          } else {
+            is_real = false;
+            s.X = real.X.cast<C>();
+            s.V = real.V.cast<C>();
+            s.contact = real.contact;
+            collision(s, r, theta, phi);
+          }
+        } else {
+          collision(s, r, theta, phi);
+        }
+        if (s.contact != 2) continue;
+        if (is_real) {  // the angles the next pass reads, real and in the domain
+          const double x3 = real.X(2);
+          if (x3 > -1 && x3 < 1) {
+            const double th = std::acos(x3), cp = real.V(0) / std::cos(th);
+            if (cp > -1 && cp < 1) {
+              ++k;
+              if (k >= first) count(want_phi ? std::acos(cp) : th);
+              continue;
+            }
+          }
+          // The next pass will leave the domain: continue in complex arithmetic from here.
+          is_real = false;
+          s.X = real.X.cast<C>();
+          s.V = real.V.cast<C>();
+          s.contact = real.contact;
+        }
+        ++k;
+        // The angles the next pass reads (contact 2), as MATLAB computes them.
+        const C th = acos_matlab(s.X(2));
+        const C ph = acos_matlab(s.V(0) / std::cos(th));
+        if (th.imag() != 0 || ph.imag() != 0) s.complex = true;
+        if (k >= first) count(want_phi ? ph.real() : th.real());
+      }
+      img.complex_orbits[ir] += s.complex ? 1 : 0;
+      // Orbits that stop producing b-collisions (a tie, or a complex state cycling among a and c) within the
+      // 4 x iterations collisions: the tail states they never reached.
+      img.stalled[ir] += static_cast<std::uint64_t>(tail - std::clamp<long>(k - first + 1, 0, tail));
+    }
+  }
+  return img;
+}
+
+}  // namespace btob::reference

@@ -1,0 +1,63 @@
+// Tests of reference::trig_density_matlab (Figure 4.7, panel a): where no acos argument leaves [-1, 1] it draws
+// exactly what trig_density draws; below 7 - 4 sqrt(3) orbits leave the domain and are continued, not stopped;
+// one thread and two threads give the same image.
+#include "reference/reference.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace btob::reference {
+namespace {
+
+iterate::Ensemble ensemble(std::vector<double> r) {
+  iterate::Ensemble e;
+  e.r = std::move(r);
+  e.initial = iterate::paper_grid();
+  return e;
+}
+
+TEST(TrigMatlab, EqualsTheRealAlgorithmWhereItStaysInTheDomain) {
+  // r = 0.15 and 0.3: the 32 orbits of the Section 4 grid never leave acos's domain in 300 steps.
+  const auto e = ensemble({0.15, 0.3});
+  const long iterations = 300, tail = 50;
+  const int bins = 90;
+  iterate::DensityRecorder rec(iterate::Coord::theta, e, iterations, tail, bins, 0.0, std::numbers::pi, 1);
+  const auto broken = trig_density<double>(e, iterations, rec, 1);
+  ASSERT_EQ(broken[0] + broken[1], 0u);
+  const auto real = rec.merge();
+  const MatlabTrigImage m = trig_density_matlab(e, iterations, tail, false, bins, 0.0, std::numbers::pi, 1);
+  EXPECT_EQ(m.complex_orbits[0] + m.complex_orbits[1], 0u);
+  EXPECT_EQ(m.nan_points[0] + m.nan_points[1], 0u);
+  // The same theta, computed by the same real code path, binned the same way (the recorder gets theta back from
+  // the unit vector core::from_angles(theta, phi), exact to a few ulps: a value on a bin edge could move, which
+  // these r values do not have).
+  ASSERT_EQ(m.counts.size(), real.size());
+  for (std::size_t i = 0; i < real.size(); ++i) EXPECT_EQ(m.counts[i], real[i]) << "bin " << i;
+}
+
+TEST(TrigMatlab, OrbitsBelowTheThresholdAreContinuedNotStopped) {
+  const auto e = ensemble({0.072});  // below every window the orbits collapse and acos leaves its domain
+  const long iterations = 2000, tail = 100;
+  const MatlabTrigImage m = trig_density_matlab(e, iterations, tail, false, 100, 0.0, std::numbers::pi, 1);
+  EXPECT_GT(m.complex_orbits[0], 0u);
+  std::uint64_t drawn = 0;
+  for (auto c : m.counts) drawn += c;
+  // Every tail state is drawn, NaN, outside [0, pi] (Re acos lies in [0, pi]) or never reached (the orbit
+  // stopped producing b-collisions): nothing is dropped silently.
+  EXPECT_EQ(drawn + m.nan_points[0] + m.outside[0] + m.stalled[0], static_cast<std::uint64_t>(32 * tail));
+  EXPECT_EQ(m.outside[0], 0u);
+}
+
+TEST(TrigMatlab, OneAndTwoThreadsAgree) {
+  const auto e = ensemble({0.075, 0.09, 0.12});
+  const auto a = trig_density_matlab(e, 500, 50, false, 60, 0.0, std::numbers::pi, 1);
+  const auto b = trig_density_matlab(e, 500, 50, false, 60, 0.0, std::numbers::pi, 2);
+  EXPECT_EQ(a.counts, b.counts);
+  EXPECT_EQ(a.complex_orbits, b.complex_orbits);
+  EXPECT_EQ(a.nan_points, b.nan_points);
+}
+
+}  // namespace
+}  // namespace btob::reference
