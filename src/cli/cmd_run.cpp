@@ -42,7 +42,7 @@ io::Scene read_manifest(const std::string& path) {
 }
 
 // The older route: the scene's flags through the argument parser of a fresh command line.
-void replay_flags(const io::Scene& s, const std::string& path, Args args) {
+void replay_flags(const io::Scene& s, const std::string& path, Args args, std::size_t injected_from) {
   CLI::App fresh{"btob"};
   fresh.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (auto& reg : registry()) reg(fresh);
@@ -52,7 +52,9 @@ void replay_flags(const io::Scene& s, const std::string& path, Args args) {
   if (!sub || s.command == "run")
     throw UsageError(fmt::format("scene {}: key 'command': got '{}', expected a btob subcommand", path, s.command));
   std::vector<std::string> argv{s.command};
-  for (const auto& [k, vals] : args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const auto& [k, vals] = args[i];
+    if (i >= injected_from && !sub->get_option_no_throw("--" + k)) continue;  // `btob run --quiet` etc. where unsupported
     if (!sub->get_option_no_throw("--" + k)) {
       std::string known;
       for (const CLI::Option* o : sub->get_options())
@@ -104,10 +106,11 @@ void run_scene(const RunFlags& f) {
                                                                : "results/" + s.name});
   if (!has_name && writes) args.emplace_back("name", std::vector<std::string>{s.name});
   if (!has_title && !s.title.empty()) args.emplace_back("title", std::vector<std::string>{s.title});
+  const std::size_t injected_from = args.size();  // the run's own flags, below
   if (f.threads != 0) args.emplace_back("threads", std::vector<std::string>{std::to_string(f.threads)});
   if (f.quiet) args.emplace_back("quiet", std::vector<std::string>{"true"});
   if (f.no_plot && writes) args.emplace_back("no-plot", std::vector<std::string>{"true"});
-  if (it == scene_commands().end()) return replay_flags(s, path, args);
+  if (it == scene_commands().end()) return replay_flags(s, path, args, injected_from);
   std::string inv = invocation() + " -> btob " + s.command;
   for (const auto& [k, vals] : args) {
     inv += " --" + k;
