@@ -76,6 +76,9 @@ TEST(Ensemble, ErrorsNameTheField) {
   EXPECT_THROW(parse_grid("0,0,0", 1), std::domain_error);
   EXPECT_THROW(parse_grid("nan,1,-1", 1), std::domain_error);
   EXPECT_THROW(parse_grid("strip:100000000x100000000", 1), std::length_error);
+  // 2^32 x 2^32 = 2^64 points: the product wrapped to 0 in size_t and passed the memory check (found writing the grid fuzz harness).
+  EXPECT_THROW(parse_grid("strip:4294967296x4294967296", 1), std::length_error);
+  EXPECT_THROW(parse_grid("strip:4294967297x4294967295", 1), std::length_error);
   try {
     linspace_r(0.5, 1.5, 10);
     FAIL();
