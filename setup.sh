@@ -11,6 +11,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev libfmt-dev # command line, scene files, formatting
   libgtest-dev libbenchmark-dev               # tests and benchmarks
   python3 python3-matplotlib python3-numpy python3-h5py  # plots
+  clang-14 libfuzzer-14-dev                   # fuzzing the parsers of user input (tests/fuzz, libFuzzer; .ci/run)
 )
 missing=()
 for p in "${packages[@]}"; do
