@@ -351,10 +351,10 @@ TEST(WindowCertificates, CertificateRejectsWrongInterval) {
   }
   EXPECT_GE(larger, 1) << "Q_5 has no other sign change in (0.081, 1): the Sturm rejection above was not exercised";
   // The certificate of n = 5 brackets the same root as the one above.
-  const Certificate c = certify_lower_bound(5, 7);
+  const Certificate c = certify_lower_bound(5, 12);
   EXPECT_TRUE(c.valid());
-  EXPECT_EQ(c.a, a);
-  EXPECT_EQ(c.decimals, 7);
+  EXPECT_TRUE(c.a > a && c.b < b) << c.a.get_str() << " " << c.b.get_str();
+  EXPECT_EQ(c.decimals, 12);
 }
 
 TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {
