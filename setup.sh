@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev                          # manifests: a result records its request, `btob run NAME.json` reads it back
   libgtest-dev libbenchmark-dev               # tests and benchmarks
   python3 python3-matplotlib python3-numpy python3-h5py  # plots
+  clang-14 libfuzzer-14-dev                   # fuzzing the parsers of user input (tests/fuzz, libFuzzer; .ci/run)
 )
 missing=()
 for p in "${packages[@]}"; do

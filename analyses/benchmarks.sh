@@ -21,3 +21,6 @@ for name in bm_iterate bm_lyapunov bm_stats bm_attractors; do
   mv "$tmp" "$out/$name.json"
 done
 /usr/bin/python3 analyses/plot/benchmarks.py "$out/bm_iterate.json" "$out/bm_iterate.png"
+# One manifest for the run (the benchmark programs link the same libraries as btob, built from the same tree).
+"$(dirname "$btob")/btob_manifest" "$out/manifest.json" "analyses/benchmarks.sh $btob" \
+  bm_iterate.json bm_lyapunov.json bm_stats.json bm_attractors.json bm_iterate.png

@@ -232,6 +232,8 @@ TEST(Errors, NameTheField) {
   EXPECT_NE(msg([] { parse_grid("strip:0x10", -2, 2); }).find("grid: got 0 x 10"), std::string::npos);
   EXPECT_THROW(parse_grid("strip:10", -2, 2), std::invalid_argument);
   EXPECT_THROW(parse_grid("disk:10x10", -2, 2), std::invalid_argument);
+  // 2^32 x 2^32 cells: the point count wrapped to 0 in size_t, passed the memory check and wrote past the end.
+  EXPECT_THROW(grid_points(parse_grid("strip:4294967296x4294967296", -2, 2)), std::length_error);
   EXPECT_NE(msg([] { parse_grid("strip:4x4", 2, -2); }).find("w1-range"), std::string::npos);
   Options o;
   o.return_tol = 0.5;

@@ -76,6 +76,9 @@ TEST(Ensemble, ErrorsNameTheField) {
   EXPECT_THROW(parse_grid("0,0,0", 1), std::domain_error);
   EXPECT_THROW(parse_grid("nan,1,-1", 1), std::domain_error);
   EXPECT_THROW(parse_grid("strip:100000000x100000000", 1), std::length_error);
+  // 2^32 x 2^32 = 2^64 points: the product wrapped to 0 in size_t and passed the memory check (found writing the grid fuzz harness).
+  EXPECT_THROW(parse_grid("strip:4294967296x4294967296", 1), std::length_error);
+  EXPECT_THROW(parse_grid("strip:4294967297x4294967295", 1), std::length_error);
   try {
     linspace_r(0.5, 1.5, 10);
     FAIL();
@@ -225,8 +228,9 @@ TEST(Kernel, TailHistogramsAgreeWithScalarLoopAtEveryR) {
   // 5%.  Measured: worst 0.033, mean 0.008 (Zen 4, 2026-11-22); worst 0.070 on Zen 5 (2026-11-23).  The bounds below leave room for noise but
   // fail on any systematic difference (a wrong branch, a lost rescale, a skipped step).
   std::printf("binned KS distance batched vs scalar: worst %.3f, mean %.3f over %zu r values\n", worst, mean, e.r.size());
-  EXPECT_LT(worst, 0.15) << "mean KS distance " << mean;
-  EXPECT_LT(mean, 0.04);
+  // About twice the largest measured (worst 0.070, mean 0.010, Zen 5, 2026-11-23; the bounds were 0.15 and 0.04).
+  EXPECT_LT(worst, 0.14) << "mean KS distance " << mean;
+  EXPECT_LT(mean, 0.02);
 }
 
 TEST(Kernel, RenormalisationAtTheExtremes) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reference_tables.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,17 +18,9 @@ using namespace btob::patterns;
 using btob::core::mpfr_float;
 
 TEST(LongPatterns, TableB1WindowsN2To7) {
-  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
-  if (!f) GTEST_SKIP() << "reference table not available";
-  std::string line;
-  std::getline(f, line);
   int checked = 0;
-  while (std::getline(f, line)) {
-    std::stringstream ss(line);
-    std::string n_s, lo_s, hi_s;
-    std::getline(ss, n_s, ',');
-    std::getline(ss, lo_s, ',');
-    std::getline(ss, hi_s, ',');
+  for (const auto& row : btob::testing::table_b1().rows) {  // throws when the table is missing or short
+    const std::string &n_s = row[0], &lo_s = row[1], &hi_s = row[2];
     const int n = std::stoi(n_s);
     if (n < 2 || n > 7) continue;
     Word w;

@@ -10,6 +10,8 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "reference_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -48,19 +50,11 @@ Eigen::Matrix3d ab_cb(int n, double r) {
 }
 
 // Table B.1 (reference CSV): lower and upper bounds of the window of (ab)^n(cb)^n.
+// Throws when the table is missing or short, or has no row n (a test must not run on a made-up window).
 std::pair<double, double> window(int n) {
-  std::ifstream f(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
-  std::string line;
-  std::getline(f, line);
-  while (std::getline(f, line)) {
-    std::stringstream ss(line);
-    std::string a, b, c;
-    std::getline(ss, a, ',');
-    std::getline(ss, b, ',');
-    std::getline(ss, c, ',');
-    if (std::stoi(a) == n) return {std::stod(b), c.empty() ? 3 - 2 * std::sqrt(2.0) : std::stod(c)};
-  }
-  return {0, 0};
+  for (const auto& row : btob::testing::table_b1().rows)
+    if (std::stoi(row[0]) == n) return {std::stod(row[1]), row[2].empty() ? 3 - 2 * std::sqrt(2.0) : std::stod(row[2])};
+  throw std::runtime_error("Table B.1 has no row n = " + std::to_string(n));
 }
 
 // Runs the projective route from u0, checks the detected period is `expected` (up to rotation) and that the

@@ -181,9 +181,24 @@ TEST(Correlation, ChaoticDecays) {
   std::printf("chaotic r = 0.11: C_N(0) = %.4g, rate %.4g +- %.2g per iteration over %ld windows of 4 lags, envelope "
               "%.3g -> %.3g (floor %.2g)\n",
               cx[0], d.rate, d.rate_error, d.windows, d.envelope_first, d.envelope_last, floor);
-  EXPECT_TRUE(d.decays);
+  // The README's claim: |C_N| falls by two decades within about 30 lags: max |C_N| over lags 30..60 (the decay,
+  // not the noise of 370 further lags) and the first lag after which |C_N| stays below C_0/100.
+  const double after30 = max_abs(std::vector<double>(cx.begin() + 30, cx.begin() + 61)) / cx[0];
+  const double after200 = max_abs(std::vector<double>(cx.begin() + 200, cx.end())) / cx[0];
+  long below = 400;
+  while (below > 0 && std::fabs(cx[below - 1]) < 0.01 * cx[0]) --below;
+  std::printf("chaotic r = 0.11: max |C_N|/C_0 over N = 30..60: %.4g, over N >= 200: %.4g; below C_0/100 from lag %ld\n",
+              after30, after200, below);
+  // A significant exponential decay (not d.decays: its tenfold fall must happen before the envelope meets the noise
+  // floor, which one chaotic realisation does (0.25 -> 0.016, release) and another does not (0.25 -> 0.036 in 4
+  // windows, the unoptimised sanitizer build)); the two decades are checked directly below.
+  EXPECT_GT(d.rate, 3 * d.rate_error);
   EXPECT_GT(d.rate, 0.01);  // faster than 1% per iteration (fitted ~0.1, see notes)
-  EXPECT_LT(max_abs(std::vector<double>(cx.begin() + 200, cx.end())), 0.05 * cx[0]);
+  EXPECT_LT(after30, 0.01);  // two decades by lag 30 (README); measured 0.0049, below C_0/100 from lag 20
+  // Beyond 200 lags only noise is left: |C_N|/C_0 ~ 1/sqrt(N) = 0.0022 per lag; measured max 0.0065 (release) and
+  // 0.0106 (sanitizer build: another chaotic realisation); 0.02 is about twice the larger (was 0.05, which a
+  // correlation stuck at a few percent would pass).
+  EXPECT_LT(after200, 0.02);
 }
 
 TEST(Spectrum, PeriodogramFindsThePeriod) {
@@ -422,9 +437,7 @@ TEST(MeasureRequest, RunGroupsTheMeasuresOfTheOrbits) {
 
 namespace {
 // The btob binary beside this test's build directory (tests/test_stats -> ../btob).
-std::filesystem::path btob_binary() {
-  return std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path() / "btob";
-}
+std::filesystem::path btob_binary() { return BTOB_BINARY; }  // tests/CMakeLists.txt: this build's btob
 struct CliRun {
   int status;
   std::string err;
@@ -441,7 +454,7 @@ CliRun run_btob(const std::string& args) {
 }  // namespace
 
 TEST(Cli, BadInputIsOneLineNamingTheFieldExit2) {
-  if (!std::filesystem::exists(btob_binary())) GTEST_SKIP() << "btob not built at " << btob_binary();
+  ASSERT_TRUE(std::filesystem::exists(btob_binary())) << "btob not built at " << btob_binary();
   const auto out = std::filesystem::temp_directory_path() / ("btob_stats_cli_" + std::to_string(getpid()));
   const std::string o = " --out " + out.string() + " --no-plot";
   const std::vector<std::pair<std::string, std::string>> cases = {

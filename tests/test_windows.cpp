@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/scalar.hpp"
+#include "reference_tables.hpp"
 
 #include <boost/math/constants/constants.hpp>
 
@@ -149,20 +150,10 @@ struct TableB1Row {
   int n;
   std::string lower, upper;
 };
+// All 100 rows of Table B.1; throws when the file is missing, short or malformed (btob::testing::table_b1).
 std::vector<TableB1Row> read_table_b1() {
-  std::ifstream in(BTOB_SOURCE_DIR "/analyses/reference/windows_paper_table_B1.csv");
-  if (!in) in.open("reference/windows_paper_table_B1.csv");
   std::vector<TableB1Row> rows;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string n, lo, up;
-    std::getline(ss, n, ',');
-    std::getline(ss, lo, ',');
-    std::getline(ss, up, ',');
-    rows.push_back({std::stoi(n), lo, up});
-  }
+  for (const auto& f : btob::testing::table_b1().rows) rows.push_back({std::stoi(f[0]), f[1], f[2]});
   return rows;
 }
 
@@ -337,12 +328,38 @@ TEST(WindowCertificates, SturmCountsKnownPolynomials) {
 }
 
 TEST(WindowCertificates, CertificateRejectsWrongInterval) {
-  // The certificate machinery must fail on a bracket that does not hold the root.
+  // The certifier itself must reject brackets that do not prove the smallest positive root of Q_5 (0.07964890975):
+  const mpq_class a(796489, 10000000), b(796490, 10000000);  // 0.0796489 < root < 0.0796490
+  const Certificate good = certify_interval(5, a, b);
+  EXPECT_TRUE(good.valid()) << good.sign_a << "," << good.sign_b << " " << good.roots_0_a << " " << good.roots_a_b;
+  // the next bracket up: no sign change
+  const Certificate above = certify_interval(5, mpq_class(796490, 10000000), mpq_class(796491, 10000000));
+  EXPECT_GT(above.sign_a * above.sign_b, 0);
+  EXPECT_FALSE(above.valid());
+  // A wide bracket that still holds only this root is a proof too.
+  EXPECT_TRUE(certify_interval(5, mpq_class(7, 100), mpq_class(8, 100)).valid());
+  // Reversed and non-positive brackets.
+  EXPECT_FALSE(certify_interval(5, b, a).valid());
+  EXPECT_FALSE(certify_interval(5, mpq_class(0), b).valid());
+  // A sign change of Q_5 around a larger root: the signs alone would "prove" it, Sturm's count of roots in
+  // (0, a] must reject it.  The larger roots are found by scanning Q_5's sign on a grid of 1/1000.
   const RationalPoly q = window_polynomial(5);
-  const mpq_class a(796489, 10000000), b(796490, 10000000);  // 0.0796489 < root 0.07964890975 < 0.0796490
-  EXPECT_LT(q.numerator.sign_at(a) * q.numerator.sign_at(b), 0);
-  const mpq_class c(796490, 10000000), d(796491, 10000000);
-  EXPECT_GT(q.numerator.sign_at(c) * q.numerator.sign_at(d), 0);
+  int larger = 0;
+  for (int k = 81; k < 1000; ++k) {
+    const mpq_class lo(k, 1000), hi(k + 1, 1000);
+    if (q.numerator.sign_at(lo) * q.numerator.sign_at(hi) >= 0) continue;
+    const Certificate wrong = certify_interval(5, lo, hi);
+    EXPECT_NE(wrong.sign_a * wrong.sign_b, 0);
+    EXPECT_GE(wrong.roots_0_a, 1) << "bracket (" << k << ", " << k + 1 << ")/1000";
+    EXPECT_FALSE(wrong.valid()) << "bracket (" << k << ", " << k + 1 << ")/1000";
+    ++larger;
+  }
+  EXPECT_GE(larger, 1) << "Q_5 has no other sign change in (0.081, 1): the Sturm rejection above was not exercised";
+  // The certificate of n = 5 brackets the same root as the one above.
+  const Certificate c = certify_lower_bound(5, 12);
+  EXPECT_TRUE(c.valid());
+  EXPECT_TRUE(c.a > a && c.b < b) << c.a.get_str() << " " << c.b.get_str();
+  EXPECT_EQ(c.decimals, 12);
 }
 
 TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {

@@ -387,8 +387,8 @@ Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const cha
 }
 
 std::vector<Vec3<double>> grid_points(const Grid& g, double du, double dv) {
-  const std::size_t n = static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2);
-  iterate::checked_bytes(n, sizeof(Vec3<double>), "grid");
+  const std::size_t n = iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2),
+                                               sizeof(Vec3<double>), "grid") / sizeof(Vec3<double>);
   std::vector<Vec3<double>> pts(n);
   for (long j = 0; j < g.n2; ++j)
     for (long i = 0; i < g.n1; ++i) {

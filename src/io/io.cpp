@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -31,17 +32,15 @@ std::string now_utc() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
   return buf;
 }
-std::string git_dirty() {
-  // Whether the source tree had uncommitted changes when the result was made (best effort).  results/ is
-  // left out: a regeneration rewrites it, and would otherwise mark every later result of the same run dirty.
-  FILE* p = popen("git -C " BTOB_SOURCE_DIR " status --porcelain --untracked-files=no -- . ':(exclude)results' 2>/dev/null",
-                  "r");
+std::string run_dirty() {
+  // Whether analyses/ (scenes, plot scripts, reference tables: read when a result is made, not compiled in) had
+  // uncommitted changes when the result was made.  The binary's own state is build::git_dirty, fixed at build time.
+  FILE* p = popen("git -C " BTOB_SOURCE_DIR " status --porcelain --untracked-files=no -- analyses 2>/dev/null", "r");
   if (!p) return "unknown";
   char buf[256];
   bool dirty = false;
   while (fgets(buf, sizeof buf, p)) dirty = true;
-  pclose(p);
-  return dirty ? "yes" : "no";
+  return pclose(p) == 0 ? (dirty ? "yes" : "no") : "unknown";
 }
 double seconds_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -51,7 +50,8 @@ double seconds_now() {
 Attrs provenance(const std::string& command) {
   return {{"btob_version", std::string(build::version)},
           {"git_commit", std::string(build::git_commit)},
-          {"git_dirty", git_dirty()},
+          {"git_dirty", std::string(build::git_dirty)},
+          {"run_dirty", run_dirty()},
           {"compiler", std::string(build::compiler)},
           {"build_type", std::string(build::build_type)},
           {"kernel_flags", std::string(build::kernel_flags)},
@@ -208,7 +208,7 @@ void write_manifest(const fs::path& path, const Attrs& a) {
   for (const auto& [k, v] : a) {
     s << "  \"" << json_escape(k) << "\": ";
     if (const auto* str = std::get_if<std::string>(&v)) s << '"' << json_escape(*str) << '"';
-    else if (const auto* d = std::get_if<double>(&v)) s << fmt::format("{}", *d);
+    else if (const auto* d = std::get_if<double>(&v)) s << (std::isfinite(*d) ? fmt::format("{}", *d) : "null");  // JSON has no nan/inf
     else s << std::get<long>(v);
     s << (++i < a.size() ? ",\n" : "\n");
   }

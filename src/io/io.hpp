@@ -18,7 +18,9 @@ namespace fs = std::filesystem;
 using Attr = core::AttrValue;
 using Attrs = core::Attrs;
 
-// The provenance every result carries: version, git commit, compiler, kernel flags, date, command line.
+// The provenance every result carries: version, git commit and git_dirty of the build (recorded when the binary was
+// built, cmake/GitCommit.cmake), run_dirty (analyses/ had uncommitted changes when the result was made), compiler,
+// kernel flags, date, command line.
 Attrs provenance(const std::string& command);
 
 // Creates `dir` (and parents) or throws std::runtime_error naming it.

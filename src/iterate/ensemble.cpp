@@ -37,9 +37,10 @@ std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_
     throw std::invalid_argument(fmt::format("grid: got strip:{}x{}, expected at least 1x1 points", n1, n2));
   if (!(w1_min < w1_max) || !std::isfinite(w1_min) || !std::isfinite(w1_max))
     throw std::invalid_argument(fmt::format("grid: got w1 range [{}, {}], expected finite w1-min < w1-max", w1_min, w1_max));
-  checked_bytes(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), sizeof(Vec3<double>), "grid");
+  const std::size_t n = checked_bytes(static_cast<std::size_t>(n1), static_cast<std::size_t>(n2), sizeof(Vec3<double>),
+                                      "grid") / sizeof(Vec3<double>);
   std::vector<Vec3<double>> g;
-  g.reserve(static_cast<std::size_t>(n1 * n2));
+  g.reserve(n);
   for (long i = 0; i < n1; ++i)
     for (long j = 0; j < n2; ++j) {
       const double w1 = w1_min + (w1_max - w1_min) * (i + 0.5) / n1;
@@ -161,6 +162,12 @@ std::size_t checked_bytes(std::size_t count, std::size_t item_bytes, const char*
                                         "(3/4 of physical memory); ask for fewer points or iterations",
                                         field, need / 1e9, budget / 1e9));
   return static_cast<std::size_t>(need);
+}
+
+std::size_t checked_bytes(std::size_t count1, std::size_t count2, std::size_t item_bytes, const char* field) {
+  const double n = static_cast<double>(count1) * static_cast<double>(count2);  // exact enough: compared to a budget
+  if (n > 1e18) checked_bytes(std::size_t(1) << 62, item_bytes, field);         // throws, naming the field
+  return checked_bytes(count1 * count2, item_bytes, field);
 }
 
 }  // namespace btob::iterate

@@ -54,5 +54,8 @@ std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, 
 // Bytes needed to hold `count` items of `item_bytes`; throws std::length_error naming `field` and the
 // size when it exceeds the memory budget (default: 3/4 of physical memory).
 std::size_t checked_bytes(std::size_t count, std::size_t item_bytes, const char* field);
+// The same for a grid of count1 x count2 items, the product taken without overflow (strip:4294967296x4294967296
+// is 2^64 points, not 0).
+std::size_t checked_bytes(std::size_t count1, std::size_t count2, std::size_t item_bytes, const char* field);
 
 }  // namespace btob::iterate

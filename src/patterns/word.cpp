@@ -112,6 +112,7 @@ Word parse_word(std::string_view text, const char* field) {
     for (long t = 0; t < times; ++t) w.s.insert(w.s.end(), unit.begin(), unit.end());
     if (w.size() > 100000) bad(field, text, "a word longer than 100000 symbols");
   }
+  if (w.s.empty()) bad(field, text, "no symbol (only spaces or dots); " + expected);  // " " gave an empty word
   return w;
 }
 

@@ -53,6 +53,15 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u_in, c
   Vec3<T> u = u_in;
   if (u(0) < 0) u = -u;  // step 1
   out.degenerate = u(0) == 0 || u(1) == 0 || u(2) == 0;
+  {
+    // Scale by an exact power of two to max |coordinate| in [1, 2) before normalising: |u| of a subnormal or a
+    // 1e300-scaled input under- or overflows (the direction came out NaN; tests/test_properties.cpp).
+    using std::frexp;
+    using std::ldexp;
+    int e = 0;
+    frexp(u.cwiseAbs().maxCoeff(), &e);
+    for (int i = 0; i < 3; ++i) u(i) = ldexp(u(i), 1 - e);
+  }
   u /= u.norm();
   const Mat3<T> K[3] = {collision_matrix<T>('a', r), collision_matrix<T>('b', r), collision_matrix<T>('c', r)};
   // At contact e, the sign of q.v chooses the next contact: "next_if_positive" when q.v > 0, else

@@ -251,25 +251,15 @@ mpfr_float window_lower_bound(int n, int decimals) {
                           " digits after raising the working precision; ask for fewer digits or a smaller n");
 }
 
-Certificate certify_lower_bound(int n, int decimals) {
+Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in) {
   Certificate cert;
   cert.n = n;
-  cert.decimals = decimals;
-  const mpfr_float x = window_lower_bound(n, decimals);
-  const RationalPoly q = window_polynomial(n);
-  mpz_class scale;
-  mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(decimals));
-  // k = floor(x 10^D): the D-decimal truncation of x.
-  mpz_class k;
-  {
-    ScopedDigits sd(static_cast<int>(x.precision()));
-    const mpfr_float t = floor(x * mpfr_float(scale.get_mpz_t()));
-    mpfr_get_z(k.get_mpz_t(), t.backend().data(), MPFR_RNDN);
-  }
-  cert.a = mpq_class(k, scale);
-  cert.b = mpq_class(k + 1, scale);
+  cert.a = a_in;
+  cert.b = b_in;
   cert.a.canonicalize();
   cert.b.canonicalize();
+  if (!(cert.a > 0 && cert.a < cert.b)) return cert;  // invalid, counts stay -1
+  const RationalPoly q = window_polynomial(n);
   cert.sign_a = q.numerator.sign_at(cert.a);
   cert.sign_b = q.numerator.sign_at(cert.b);
   // The Sturm counts run on the palindromic cofactor reduced to s = r + 1/r (degree about 2n instead of
@@ -295,6 +285,22 @@ Certificate certify_lower_bound(int n, int decimals) {
     cert.roots_0_a = sturm_count(seq, mpq_class(0), cert.a);
     cert.roots_a_b = sturm_count(seq, cert.a, cert.b);
   }
+  return cert;
+}
+
+Certificate certify_lower_bound(int n, int decimals) {
+  const mpfr_float x = window_lower_bound(n, decimals);
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(decimals));
+  // k = floor(x 10^D): the D-decimal truncation of x.
+  mpz_class k;
+  {
+    ScopedDigits sd(static_cast<int>(x.precision()));
+    const mpfr_float t = floor(x * mpfr_float(scale.get_mpz_t()));
+    mpfr_get_z(k.get_mpz_t(), t.backend().data(), MPFR_RNDN);
+  }
+  Certificate cert = certify_interval(n, mpq_class(k, scale), mpq_class(k + 1, scale));
+  cert.decimals = decimals;
   return cert;
 }
 

@@ -61,6 +61,9 @@ struct Certificate {
   bool valid() const { return sign_a * sign_b < 0 && roots_0_a == 0 && roots_a_b == 1 && a < b && a > 0; }
 };
 Certificate certify_lower_bound(int n, int decimals);
+// The same checks on a given bracket (a, b) (decimals = 0): valid() only if it proves that the smallest positive
+// root of Q_n lies in (a, b).  certify_lower_bound runs it on the D-decimal truncation of window_lower_bound(n).
+Certificate certify_interval(int n, const mpq_class& a, const mpq_class& b);
 
 // r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.6); n >= 2.  `digits` significant.
 mpfr_float r_crit2(int n, int digits);
