@@ -2,13 +2,16 @@
 // basins, fractions with intervals, determinism across thread counts, errors.
 #include "attractors/attractors.hpp"
 #include "core/coords.hpp"
+#include "core/fields.hpp"
 #include "attractors/recorders.hpp"
+#include "attractors/requests.hpp"
 #include "iterate/kernel.hpp"
 #include "patterns/patterns.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -216,6 +219,121 @@ TEST(Basins, IdsDoNotDependOnProcessingOrder) {
     EXPECT_EQ(a1[i].key, a2[i].key);
     EXPECT_EQ(a1[i].id, a2[i].id);
     EXPECT_EQ(a1[i].count, a2[i].count);
+  }
+}
+
+// ---- the requests (attractors/requests.hpp), run as a program would run them ----
+
+// classify: the first point of the Section 4 grid at r = 0.15 falls on 1133 (Table 6.1, 100%); the request's
+// verdict is the one classify_point gives directly, and the pattern tool confirms a stable orbit.
+TEST(Requests, ClassifyMatchesTheDirectRoute) {
+  ClassifyRequest q;
+  q.r = 0.15;
+  q.point = "1,-3,-1.1";
+  const ClassifyResult res = run(q);
+  const OrbitVerdict direct = classify_point(core::parse_point(q.point), q.r, Options{});
+  EXPECT_EQ(res.verdict.type, Type::periodic);
+  EXPECT_EQ(res.pattern, "1133");
+  EXPECT_EQ(res.verdict.period, 4);
+  EXPECT_EQ(res.verdict.lambda1, direct.lambda1);  // same orbit, same arithmetic: bitwise
+  EXPECT_NE(res.detail.find("pattern tool: stable"), std::string::npos) << res.detail;
+  core::Contents c;
+  res.describe(c);
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("type")), "periodic");
+  EXPECT_EQ(std::get<long>(c.attrs.at("period")), 4);
+}
+
+// basins: the request's labels and fractions are those of attractors::basins on the same grid, and the replicate
+// spread is the mean and sample sd of replicate_fractions (recomputed here).
+TEST(Requests, BasinsMatchTheDirectRoute) {
+  BasinsRequest q;
+  q.r = 0.21;
+  q.grid = "strip:16x10";
+  q.replicates = 2;
+  q.seed = 7;
+  core::RunControl one;
+  one.threads = 1;
+  const BasinsResult res = run(q, one);
+  const Basins b = basins(q.r, parse_grid(q.grid, -2, 2), q.replicates, q.seed, {});
+  EXPECT_EQ(res.basins.labels, b.labels);
+  ASSERT_EQ(res.fraction.size(), b.attractors.size());
+  ASSERT_EQ(res.replicate_mean.size(), b.attractors.size() + 1);
+  double sum = b.unresolved.value;
+  for (std::size_t i = 0; i < res.fraction.size(); ++i) {
+    EXPECT_EQ(res.fraction[i], b.fractions[i].value);
+    sum += res.fraction[i];
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-12);  // fractions of integer counts over one total
+  for (std::size_t i = 0; i < res.replicate_mean.size(); ++i) {
+    const auto& v = b.replicate_fractions[i];
+    ASSERT_EQ(v.size(), 3u);
+    const double m = (v[0] + v[1] + v[2]) / 3;
+    const double sd = std::sqrt(((v[0] - m) * (v[0] - m) + (v[1] - m) * (v[1] - m) + (v[2] - m) * (v[2] - m)) / 2);
+    EXPECT_NEAR(res.replicate_mean[i], m, 4 * std::numeric_limits<double>::epsilon());  // sums of 3 terms <= 1
+    EXPECT_NEAR(res.replicate_sd[i], sd, 16 * std::numeric_limits<double>::epsilon());   // a square root of those
+  }
+  core::Contents c;
+  res.describe(c);
+  ASSERT_NE(c.find("labels"), nullptr);
+  EXPECT_EQ(c.find("labels")->dims, (std::vector<std::size_t>{10, 16}));
+  // Refused requests name the field.
+  const auto field_of = [](BasinsRequest bad) {
+    try {
+      bad.validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what()).substr(0, std::string(e.what()).find(':'));
+    }
+    return std::string("accepted");
+  };
+  BasinsRequest bad = q;
+  bad.replicates = 101;
+  EXPECT_EQ(field_of(bad), "replicates");
+  bad = q, bad.w1_range = {1};
+  EXPECT_EQ(field_of(bad), "w1-range");
+  bad = q, bad.grid = "strip:0x4";
+  EXPECT_EQ(field_of(bad), "grid");
+  bad = q, bad.r = 1;
+  EXPECT_EQ(field_of(bad), "r");
+}
+
+// basins-r: Table 6.1's rows given as text; at r = 0.15 every orbit of the grid falls on 1133 (the paper: 100%,
+// pattern 1133), so the comparison reads 1/1 found and consistent; each row of the fraction matrix sums to one.
+TEST(Requests, BasinsRComparesWithTheTable) {
+  BasinsRRequest q;
+  q.r_values = {0.15};
+  q.table = true;
+  q.grid = "random:12";
+  q.reference_csv = "r,percent,patterns\n0.15,100,1133\n0.21,70,132^3312^3;132^3312^4\n0.7,0,\n";
+  EXPECT_EQ(q.all_r(), (std::vector<double>{0.15, 0.15, 0.21}));  // Table rows in [0.1, 0.6] are added
+  q.table = false;
+  q.r_values = {0.15, 0.21};
+  const BasinsRResult res = run(q);
+  ASSERT_EQ(res.comparison.size(), 2u);
+  const Comparison& c = res.comparison[0];
+  EXPECT_TRUE(c.in_table && c.has_percent && c.consistent);
+  EXPECT_EQ(c.paper_found, 1);
+  EXPECT_EQ(c.paper_total, 1);
+  EXPECT_EQ(c.periodic.value, 1.0);
+  EXPECT_EQ(res.comparison[1].paper_total, 2);
+  const std::size_t cols = res.columns.size();
+  ASSERT_EQ(res.fraction.size(), 2 * cols);
+  for (std::size_t i = 0; i < 2; ++i) {
+    double s = 0;
+    for (std::size_t j = 0; j < cols; ++j) s += res.fraction[i * cols + j];
+    EXPECT_NEAR(s, 1.0, 1e-12);  // integer counts over one total
+  }
+  // No r at all, and a table asked for without its text, are refused naming the field.
+  BasinsRRequest none;
+  none.grid = "random:4";
+  EXPECT_THROW(none.validate(), core::InvalidField);
+  none.table = true;
+  none.reference = "missing.csv";
+  EXPECT_NO_THROW(none.validate());  // the caller reads the file afterwards
+  try {
+    run(none);
+    ADD_FAILURE() << "accepted";
+  } catch (const core::InvalidField& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("reference:", 0), 0u) << e.what();
   }
 }
 

@@ -150,8 +150,13 @@ void ResultFiles::manifest(const Attrs& attrs, const std::string& command,
 
 void ResultFiles::plot(const std::string& script) { plot(script, name_ + ".h5"); }
 
-void ResultFiles::plot(const std::string& script, const std::string& input) {
-  run_plot(script, {staged(input).string(), staged(name_ + ".png").string()});
+void ResultFiles::plot(const std::string& script, const std::string& input) { plot_inputs(script, {input}); }
+
+void ResultFiles::plot_inputs(const std::string& script, const std::vector<std::string>& inputs) {
+  std::vector<std::string> args;
+  for (const auto& f : inputs) args.push_back(staged(f).string());
+  args.push_back(staged(name_ + ".png").string());
+  run_plot(script, args);
   std::error_code ec;
   if (!fs::exists(tmp_ / (name_ + ".png"), ec)) files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
 }

@@ -40,6 +40,8 @@ class ResultFiles {
   void plot(const std::string& script);
   // The same on the staged file `input` of this result (a CSV, say) instead of NAME.h5.
   void plot(const std::string& script, const std::string& input);
+  // The same on several staged files of this result, passed in this order before NAME.png.
+  void plot_inputs(const std::string& script, const std::vector<std::string>& inputs);
 
   // Moves every staged file into out/ (creating it), the manifest last; returns the final paths.  Throws with
   // the file and the cause when the output folder cannot be made or written.

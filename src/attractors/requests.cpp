@@ -1,0 +1,321 @@
+#include "attractors/requests.hpp"
+
+#include "core/fields.hpp"
+#include "iterate/ensemble.hpp"
+#include "patterns/patterns.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace btob::attractors {
+
+Options run_options(const Options& thresholds, const core::RunControl& control) {
+  Options o = thresholds;
+  o.run.threads = control.threads;
+  o.run.progress = control.progress;
+  o.run.cancel = control.cancel;
+  return o;
+}
+
+namespace {
+int threads_of(const core::RunControl& control) { return control.threads > 0 ? control.threads : omp_get_max_threads(); }
+
+// The attractor's own spelling (mirror-aware) from a one-verdict collection.
+std::string pattern_of(const OrbitVerdict& v, double r) {
+  if (v.type == Type::unresolved) return "";
+  const auto a = collect({v}, r, nullptr);
+  return a.empty() ? "" : a[0].pattern;
+}
+
+void threshold_attrs(core::Contents& c, const Options& o) {
+  c.attr("transient", o.transient);
+  c.attr("window", o.window);
+  c.attr("max_period", static_cast<long>(o.max_period));
+  c.attr("return_tol", o.return_tol);
+  c.attr("point_tol", o.point_tol);
+  c.attr("collapse_theta", o.collapse_theta);
+  c.attr("lyap_transient", o.lyap_transient);
+  c.attr("lyap_iterations", o.lyap_iterations);
+  c.attr("lyap_blocks", static_cast<long>(o.lyap_blocks));
+  c.attr("rotation_tol", o.rotation_tol);
+  c.attr("refine_factor", static_cast<long>(o.refine_factor));
+}
+}  // namespace
+
+// ---- classify ----
+void ClassifyRequest::validate() const {
+  core::require_r(r, "r");
+  core::parse_point(point, "point");
+  attractors::validate(thresholds);
+}
+
+ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control) {
+  req.validate();
+  ClassifyResult res;
+  res.request = req;
+  const core::Vec3<double> u = core::parse_point(req.point, "point");
+  res.verdict = classify_point(u, req.r, run_options(req.thresholds, control));
+  const OrbitVerdict& v = res.verdict;
+  res.detail = v.detail + fmt::format("; {} iterations", v.iterations);
+  if (v.type == Type::periodic && !v.word.s.empty()) {
+    // The pattern tool's verdict at this r: stability and the collision letters (acb / cab resolved).
+    const patterns::Verdict<double> pv = patterns::analyse<double>(v.word, req.r);
+    res.detail += fmt::format("; pattern tool: {}; letters {}", patterns::outcome_name(pv.outcome), pv.letters);
+  }
+  res.pattern = pattern_of(v, req.r);
+  return res;
+}
+
+void ClassifyResult::describe(core::Contents& c) const {
+  c.attr("r", request.r);
+  c.attr("point", request.point);
+  c.attr("type", std::string(type_name(verdict.type)));
+  c.attr("pattern", pattern);
+  c.attr("period", static_cast<long>(verdict.period));
+  c.attr("lambda1", verdict.lambda1);
+  c.attr("err", verdict.err1);
+  c.attr("detail", detail);
+  c.attr("iterations", verdict.iterations);
+  threshold_attrs(c, request.thresholds);
+}
+
+// ---- basins ----
+Grid BasinsRequest::parsed_grid() const {
+  if (w1_range.size() != 2)
+    throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
+  return parse_grid(grid, w1_range[0], w1_range[1], "grid");
+}
+
+void BasinsRequest::validate() const {
+  core::require_r(r, "r");
+  if (w1_range.size() != 2)
+    throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
+  attractors::validate(thresholds);
+  if (replicates < 0 || replicates > 100)
+    throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
+  const Grid g = parsed_grid();
+  iterate::checked_bytes(static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2), 800, "grid");
+}
+
+BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
+  req.validate();
+  BasinsResult res;
+  res.request = req;
+  res.threads = threads_of(control);
+  const Grid g = req.parsed_grid();
+  res.basins = basins(req.r, g, req.replicates, req.seed, run_options(req.thresholds, control));
+  const Basins& b = res.basins;
+  for (const auto& f : b.fractions) {
+    res.fraction.push_back(f.value);
+    res.ci_low.push_back(f.low);
+    res.ci_high.push_back(f.high);
+  }
+  // The spread of each fraction over the main and replicate grids (unresolved last).
+  for (const auto& v : b.replicate_fractions) {
+    double m = 0, s = 0;
+    for (double x : v) m += x;
+    m /= static_cast<double>(v.size());
+    for (double x : v) s += (x - m) * (x - m);
+    res.replicate_mean.push_back(m);
+    res.replicate_sd.push_back(v.size() > 1 ? std::sqrt(s / static_cast<double>(v.size() - 1)) : 0.0);
+  }
+  for (auto l : b.labels) res.unresolved_count += l == 0;
+  return res;
+}
+
+void BasinsResult::describe(core::Contents& c) const {
+  const Basins& b = basins;
+  const Grid& g = b.grid;
+  c.array("labels", b.labels, {static_cast<std::size_t>(g.n2), static_cast<std::size_t>(g.n1)}, "axis 2, axis 1",
+          "attractor id", "attractor of each grid point (0 = unresolved; legend_<id>)");
+  c.array("fraction", fraction, {fraction.size()}, "attractor", "1", "fraction of the main grid in each basin");
+  c.array("ci_low", ci_low, {ci_low.size()}, "attractor", "1", "lower end of the 95% interval of the fraction");
+  c.array("ci_high", ci_high, {ci_high.size()}, "attractor", "1", "upper end of the 95% interval of the fraction");
+  const std::size_t n = points();
+  c.attr("r", request.r);
+  c.attr("grid", request.grid);
+  c.attr("n1", static_cast<long>(g.n1));
+  c.attr("n2", static_cast<long>(g.n2));
+  c.attr("axis1_lo", g.lo1);
+  c.attr("axis1_hi", g.hi1);
+  c.attr("axis2_lo", g.lo2);
+  c.attr("axis2_hi", g.hi2);
+  c.attr("grid_kind", g.kind);
+  c.attr("replicates", static_cast<long>(request.replicates));
+  c.attr("seed", static_cast<long>(request.seed));
+  threshold_attrs(c, request.thresholds);
+  c.attr("attractors", static_cast<long>(b.attractors.size()));
+  c.attr("unresolved_fraction", b.unresolved.value);
+  c.attr("unresolved_first_pass", static_cast<long>(b.unresolved_first_pass));
+  c.attr("map_iterations", b.iterations_total);
+  c.attr("seconds", b.seconds);
+  c.attr("points_per_second", static_cast<double>(n * static_cast<std::size_t>(request.replicates + 1)) / b.seconds);
+  for (const auto& x : b.attractors)
+    c.attr(fmt::format("legend_{}", x.id), fmt::format("{} ({})", x.pattern, type_name(x.type)));
+}
+
+// ---- basins-r ----
+std::vector<TableRow> parse_table(const std::string& csv) {
+  std::vector<TableRow> rows;
+  std::stringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string item;
+    while (std::getline(ss, item, ',')) f.push_back(item);
+    if (f.size() < 2) continue;
+    rows.push_back({std::stod(f[0]), f[1], f.size() > 2 ? f[2] : ""});
+  }
+  return rows;
+}
+
+std::vector<double> BasinsRRequest::all_r() const {
+  std::vector<double> rs = r_values;
+  if (table)
+    for (const auto& t : parse_table(reference_csv))
+      if (t.r >= 0.1 - 1e-12 && t.r <= 0.6 + 1e-12) rs.push_back(t.r);
+  return rs;
+}
+
+namespace {
+void require_table(const BasinsRRequest& q) {
+  if (q.table && parse_table(q.reference_csv).empty())
+    throw core::InvalidField("reference", q.reference.empty() ? "the lab's Table 6.1" : "'" + q.reference + "'",
+                             "a readable CSV of Table 6.1 (r,percent,patterns)");
+}
+}  // namespace
+
+void BasinsRRequest::validate() const {
+  attractors::validate(thresholds);
+  // With `table` the r values come from reference_csv, which the caller may fill after this first check (the
+  // command line reads the file named by `reference`); run() checks the table itself.
+  const bool table_pending = table && reference_csv.empty();
+  if (!table_pending) require_table(*this);
+  const std::vector<double> rs = all_r();
+  if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1) or --table");
+  for (double r : rs) core::require_r(r, "r-values");
+  const auto pts = iterate::parse_grid(grid, seed, "grid");
+  if (pts.empty()) throw core::InvalidField("grid", "'" + grid + "' with no points", "at least one");
+  iterate::checked_bytes(pts.size(), 800, "grid");
+}
+
+BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
+  req.validate();
+  require_table(req);
+  const auto t0 = std::chrono::steady_clock::now();
+  BasinsRResult res;
+  res.request = req;
+  res.threads = threads_of(control);
+  const std::vector<TableRow> table = parse_table(req.reference_csv);
+  const std::vector<core::Vec3<double>> pts = iterate::parse_grid(req.grid, req.seed, "grid");
+  res.points = pts.size();
+  const Options opt = run_options(req.thresholds, control);
+
+  // Per r: the attractors (matched across r by key), fractions and intervals.
+  for (double r : req.all_r()) {
+    control.check_cancelled();
+    iterate::Ensemble e;
+    e.r = {r};
+    e.initial = pts;
+    const auto v = classify(e, opt);
+    BasinsRRow row{r, collect(v, r, nullptr), {}, {}};
+    std::size_t unres = 0;
+    for (const auto& x : v) unres += x.type == Type::unresolved;
+    for (const auto& x : row.attractors) row.fractions.push_back(fraction(x.count, v.size()));
+    row.unresolved = fraction(unres, v.size());
+    res.rows.push_back(std::move(row));
+  }
+
+  // Comparison with Table 6.1.
+  for (const auto& row : res.rows) {
+    Comparison cmp;
+    cmp.r = row.r;
+    const TableRow* t = nullptr;
+    for (const auto& x : table)
+      if (std::fabs(x.r - row.r) < 1e-9) t = &x;
+    std::size_t periodic = 0;
+    std::set<std::string> found;
+    for (std::size_t i = 0; i < row.attractors.size(); ++i) {
+      const auto& x = row.attractors[i];
+      if (x.type == Type::periodic) {
+        periodic += x.count;
+        found.insert(x.pattern);
+        cmp.found += fmt::format("{}{} ({:.3f})", cmp.found.empty() ? "" : "; ", x.pattern, row.fractions[i].value);
+      } else {
+        const std::string type = type_name(x.type);
+        const std::string label = x.pattern.empty() || x.pattern == type ? type : type + " " + x.pattern;
+        cmp.other += fmt::format("{}{} ({:.3f})", cmp.other.empty() ? "" : "; ", label, row.fractions[i].value);
+      }
+    }
+    cmp.other += fmt::format("{}unresolved ({:.3f})", cmp.other.empty() ? "" : "; ", row.unresolved.value);
+    std::set<std::string> paper;
+    if (t) {
+      cmp.in_table = true;
+      cmp.paper_percent = t->percent;
+      cmp.paper_patterns = t->patterns;
+      std::stringstream ss(t->patterns);
+      std::string p;
+      while (std::getline(ss, p, ';'))
+        if (!p.empty()) paper.insert(p);
+    }
+    for (const auto& p : paper) cmp.paper_found += found.count(p) ? 1 : 0;
+    cmp.paper_total = static_cast<int>(paper.size());
+    for (const auto& p : found)
+      if (!paper.count(p)) cmp.extra += (cmp.extra.empty() ? "" : "; ") + p;
+    cmp.periodic = fraction(periodic, pts.size());
+    // The paper's percentage is k of 10 orbits: its own 95% interval, and whether our fraction lies inside.
+    if (t && !t->percent.empty()) {
+      cmp.has_percent = true;
+      const auto k = static_cast<std::size_t>(std::llround(std::stod(t->percent) / 10));
+      cmp.paper = fraction(k, 10);
+      cmp.consistent = cmp.periodic.value >= cmp.paper.low && cmp.periodic.value <= cmp.paper.high;
+    }
+    res.comparison.push_back(std::move(cmp));
+  }
+
+  // The fraction matrix [r x key] for the stacked areas: keys across r sorted (type, key), unresolved last.
+  std::map<std::pair<int, std::string>, std::string> keys;
+  for (const auto& row : res.rows)
+    for (const auto& x : row.attractors) keys[{static_cast<int>(x.type), x.key}] = x.pattern;
+  const std::size_t cols = keys.size() + 1, nr = res.rows.size();
+  res.fraction.assign(nr * cols, 0.0);
+  std::size_t col = 0;
+  for (const auto& [k, pat] : keys) {
+    for (std::size_t i = 0; i < nr; ++i)
+      for (std::size_t j = 0; j < res.rows[i].attractors.size(); ++j)
+        if (res.rows[i].attractors[j].key == k.second) res.fraction[i * cols + col] = res.rows[i].fractions[j].value;
+    const std::string type = type_name(static_cast<Type>(k.first));
+    res.columns.push_back(pat.empty() || pat == type ? type : fmt::format("{} ({})", pat, type));
+    ++col;
+  }
+  for (std::size_t i = 0; i < nr; ++i) {
+    res.fraction[i * cols + col] = res.rows[i].unresolved.value;
+    res.r.push_back(res.rows[i].r);
+  }
+  res.columns.push_back("unresolved");
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+void BasinsRResult::describe(core::Contents& c) const {
+  c.array("r", r, {r.size()}, "r value", "1", "restitution coefficients");
+  c.array("fraction", fraction, {r.size(), columns.size()}, "r value, attractor (column_<j>; unresolved last)", "1",
+          "fraction of the initial conditions in each basin");
+  for (std::size_t j = 0; j < columns.size(); ++j) c.attr(fmt::format("column_{}", j), columns[j]);
+  c.attr("grid", request.grid);
+  c.attr("seed", static_cast<long>(request.seed));
+  c.attr("points", static_cast<long>(points));
+  c.attr("columns", static_cast<long>(columns.size()));
+  threshold_attrs(c, request.thresholds);
+  c.attr("seconds", seconds);
+}
+
+}  // namespace btob::attractors

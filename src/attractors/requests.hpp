@@ -1,0 +1,165 @@
+// The attractors of Section 8.1 (1) as requests and results (core/request.hpp): one orbit classified
+// (`btob classify`), the basins at one r over a grid (`btob basins`) and the basin fractions across r compared
+// with Table 6.1 (`btob basins-r`).
+#pragma once
+
+#include "attractors/attractors.hpp"
+#include "core/request.hpp"
+#include "core/result.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::attractors {
+
+// The classification thresholds shared by the three requests (Options without its run settings): each
+// request's fields() calls this once.
+template <class V> void threshold_fields(V& v, Options& o) {
+  v("transient", o.transient, "steps before the window (>= 1)");
+  v("iterations", o.window, "window of the period / collapse test (>= max-period)");
+  v("max-period", o.max_period, "longest period searched, 1..1024");
+  v("return-tol", o.return_tol, "return distance counted as a period, (0, 1e-3]");
+  v("point-tol", o.point_tol, "distance to the exact cycle, (0, 1e-2]");
+  v("collapse-theta", o.collapse_theta, "theta (pi/2 - theta) of a collapse, (0, 0.1]");
+  v("lyap-transient", o.lyap_transient, "tangent alignment steps of pass 2");
+  v("lyap-iterations", o.lyap_iterations, "averaged steps of pass 2");
+  v("lyap-blocks", o.lyap_blocks, "batch-means blocks, 2..1000");
+  v("rotation-tol", o.rotation_tol, "convergence of the weighted rotation number (turns), (0, 0.1]");
+  v("refine-factor", o.refine_factor, "transient factor of the refinement pass (0 = off)");
+}
+
+// The options of a run: the thresholds with the run control's threads, progress and cancellation.
+Options run_options(const Options& thresholds, const core::RunControl& control);
+
+// ---- one orbit (`btob classify`) ------------------------------------------------------------------------------
+struct ClassifyRequest {
+  double r = 0;        // restitution coefficient, in (0, 1)
+  std::string point;   // initial direction x,y,z with x z <= 0
+  Options thresholds;  // classification thresholds (threshold_fields)
+
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient in (0, 1)", core::Required{});
+    v("point", point, "initial direction x,y,z with x z <= 0", core::Required{});
+    threshold_fields(v, thresholds);
+  }
+};
+
+struct ClassifyResult {
+  ClassifyRequest request;
+  OrbitVerdict verdict;
+  std::string pattern;  // the attractor's own spelling (mirror-aware); empty when unresolved
+  std::string detail;   // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
+  // Attributes only: type, pattern, period, lambda1, err, detail, iterations.
+  void describe(core::Contents& c) const;
+};
+
+ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control = {});
+
+// ---- basins at one r (`btob basins`) --------------------------------------------------------------------------
+struct BasinsRequest {
+  double r = 0;                          // restitution coefficient, in (0, 1)
+  std::string grid = "strip:200x200";    // strip:NxM (w1 x w2) or angles:NxM (theta x phi, rad)
+  std::vector<double> w1_range{-2, 2};   // w1 range a < b of a strip grid
+  int replicates = 2;                    // randomly shifted replicate grids, 0..100
+  std::uint64_t seed = 1;                // seed of the replicate shifts
+  Options thresholds;                    // classification thresholds (threshold_fields)
+
+  void validate() const;
+  Grid parsed_grid() const;  // the grid (validated)
+  template <class V> void fields(V&& v) {
+    v("r", r, "restitution coefficient in (0, 1)", core::Required{});
+    v("grid", grid, "strip:NxM (w1 x w2) or angles:NxM (theta x phi)");
+    v("w1-range", w1_range, "w1 range a,b of a strip grid");
+    v("replicates", replicates, "randomly shifted replicate grids, 0..100");
+    v("seed", seed, "seed of the replicate shifts");
+    threshold_fields(v, thresholds);
+  }
+};
+
+struct BasinsResult {
+  BasinsRequest request;
+  Basins basins;
+  std::vector<double> fraction, ci_low, ci_high;  // [attractors]: main-grid fractions and their 95% intervals
+  std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; unresolved last
+  std::size_t unresolved_count = 0;                  // unresolved points of the main grid
+  int threads = 0;                                   // threads used
+  std::size_t points() const { return basins.labels.size(); }
+  // Arrays: labels [n2, n1] (attractor id per grid point, 0 = unresolved), fraction, ci_low, ci_high
+  // [attractors]; attributes: the request, the grid, counts, timings and legend_<id>.
+  void describe(core::Contents& c) const;
+};
+
+BasinsResult run(const BasinsRequest& req, const core::RunControl& control = {});
+
+// ---- basin fractions across r (`btob basins-r`) ---------------------------------------------------------------
+// One row of Table 6.1: r, the paper's percentage of periodic orbits (of 10) and its patterns (';'-separated).
+struct TableRow {
+  double r = 0;
+  std::string percent, patterns;
+};
+// Table 6.1 from its CSV text (header r,percent,patterns); empty rows are skipped.
+std::vector<TableRow> parse_table(const std::string& csv);
+
+struct BasinsRRequest {
+  std::vector<double> r_values;       // r values in (0, 1)
+  bool table = false;                 // add the r values of Table 6.1 in [0.1, 0.6]
+  std::string grid = "random:2000";   // initial conditions: random:N, paper, strip:NxM or x,y,z;...
+  std::uint64_t seed = 1;             // seed of random grids
+  std::string reference;              // Table 6.1 as CSV (a path; empty: the lab's own copy, read by the caller)
+  Options thresholds;                 // classification thresholds (threshold_fields)
+  // Not a field: the text of the reference CSV, set by the caller (the command line reads `reference`).
+  std::string reference_csv;
+
+  void validate() const;
+  std::vector<double> all_r() const;  // r_values, then Table 6.1's when `table`
+  template <class V> void fields(V&& v) {
+    v("r-values", r_values, "r values r1,r2,... in (0, 1)");
+    v("table", table, "add the r values of Table 6.1 in [0.1, 0.6]");
+    v("grid", grid, "initial conditions: random:N, paper, strip:NxM or x,y,z;...");
+    v("seed", seed, "seed of random grids");
+    v("reference", reference, "Table 6.1 as CSV (default: the lab's copy)");
+    threshold_fields(v, thresholds);
+  }
+};
+
+struct BasinsRRow {
+  double r = 0;
+  std::vector<Attractor> attractors;
+  std::vector<Fraction> fractions;  // per attractor
+  Fraction unresolved;
+};
+
+// The comparison with Table 6.1 at one r: the periodic fraction (paper: % of 10 orbits) and the patterns found.
+struct Comparison {
+  double r = 0;
+  bool in_table = false;
+  std::string paper_percent, paper_patterns;
+  bool has_percent = false;
+  Fraction paper;          // k of 10 with its 95% interval (has_percent)
+  bool consistent = false; // our periodic fraction within the paper's interval (has_percent)
+  Fraction periodic;       // ours
+  std::string found;       // "pattern (fraction); ..."
+  int paper_found = 0, paper_total = 0;
+  std::string extra;       // periodic patterns found that the paper does not list
+  std::string other;       // other types and unresolved with their fractions
+};
+
+struct BasinsRResult {
+  BasinsRRequest request;
+  std::size_t points = 0;
+  std::vector<BasinsRRow> rows;
+  std::vector<Comparison> comparison;  // per row
+  std::vector<double> r;               // [rows]
+  std::vector<double> fraction;        // [rows, columns]: per attractor key (sorted by type, key), unresolved last
+  std::vector<std::string> columns;    // column labels
+  int threads = 0;
+  double seconds = 0;
+  // Arrays: r [rows], fraction [rows, columns]; attributes: column_<j>, the request and timings.
+  void describe(core::Contents& c) const;
+};
+
+BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control = {});
+
+}  // namespace btob::attractors
