@@ -210,7 +210,9 @@ def manifests_and_files(root):
     its "files" list when it has one, else the files of its folder whose name starts with the manifest's stem,
     and files that match no stem belong to every manifest of the folder.  Returns (groups, orphans): orphans are
     files of folders without any manifest."""
-    tracked = [f for f in git(root, "ls-files", "results").stdout.splitlines() if f]
+    # results/README.md (the gallery, written from the manifests) and results/STALE are about results, not results.
+    tracked = [f for f in git(root, "ls-files", "results").stdout.splitlines()
+               if f and f not in ("results/README.md", "results/STALE")]
     by_dir = {}
     for f in tracked:
         by_dir.setdefault(os.path.dirname(f), []).append(f)
@@ -267,39 +269,65 @@ def check_provenance(root):
     if git(root, "rev-parse", "--is-shallow-repository").stdout.strip() == "true":
         fail("provenance: shallow clone: the recorded commits cannot be checked (clone with full history)")
         return
+    # results/STALE: results known to need regeneration, one path prefix per line with the reason (the debt is
+    # written down, not hidden).  A listed result's provenance failures are reported, not counted; a listed prefix
+    # that no longer fails is itself a failure (remove it from the list), and any unlisted failure fails.
+    stale = {}
+    stale_path = os.path.join(root, "results", "STALE")
+    if os.path.exists(stale_path):
+        with open(stale_path) as fh:
+            for line in fh:
+                line = line.strip()
+                if line and not line.startswith("#"):
+                    stale[line.split()[0]] = 0
+
+    def pfail(path, msg):
+        for prefix in stale:
+            if path.startswith(prefix):
+                stale[prefix] += 1
+                print("stale (listed in results/STALE):", msg)
+                return
+        fail(msg)
+
     groups, orphans = manifests_and_files(root)
     for f in orphans:
-        fail(f"provenance: {f} has no manifest (a JSON with git_commit in its folder)")
+        pfail(f, f"provenance: {f} has no manifest (a JSON with git_commit in its folder)")
     for mf, (m, files) in sorted(groups.items()):
         commit = str(m.get("git_commit", ""))
         if git(root, "rev-parse", "--verify", "--quiet", commit + "^{commit}", check=False).returncode != 0:
-            fail(f"provenance: {mf}: git_commit '{commit}' is not a commit of this repository")
+            pfail(mf, f"provenance: {mf}: git_commit '{commit}' is not a commit of this repository")
             continue
         if not is_ancestor(root, commit, "HEAD"):
-            fail(f"provenance: {mf}: git_commit {commit} is not an ancestor of HEAD")
+            pfail(mf, f"provenance: {mf}: git_commit {commit} is not an ancestor of HEAD")
             continue
         if m.get("git_dirty") != "no":
-            fail(f"provenance: {mf}: built from a tree with uncommitted changes (git_dirty: {m.get('git_dirty')})")
+            pfail(mf, f"provenance: {mf}: built from a tree with uncommitted changes (git_dirty: {m.get('git_dirty')})")
         if m.get("run_dirty", "no") != "no":
-            fail(f"provenance: {mf}: scripts or scenes had uncommitted changes at run time (run_dirty: {m.get('run_dirty')})")
+            pfail(mf, f"provenance: {mf}: scripts or scenes had uncommitted changes at run time (run_dirty: {m.get('run_dirty')})")
         c = last_commit(root, mf)
         diff = ["diff", "--name-only", commit] + ([c] if c else []) + ["--"] + CODE_PATHS
         changed = [x for x in git(root, *diff).stdout.splitlines() if x]
         if changed:
-            fail(f"provenance: {mf}: recorded commit {commit[:12]} but the code changed before the result was "
+            pfail(mf, f"provenance: {mf}: recorded commit {commit[:12]} but the code changed before the result was "
                  f"committed ({c[:12] if c else 'working tree'}): {', '.join(changed[:4])}"
                  f"{' ...' if len(changed) > 4 else ''}; regenerate it from a clean build")
         for f in files:
             if not os.path.exists(os.path.join(root, f)):
-                fail(f"provenance: {mf} lists {f}, which is missing")
+                pfail(mf, f"provenance: {mf} lists {f}, which is missing")
                 continue
             fc = last_commit(root, f)
             if c is None:
                 continue  # the manifest itself is being regenerated: its files may change with it
             if fc is None:
-                fail(f"provenance: {f} has uncommitted changes but its manifest {mf} does not")
+                pfail(f, f"provenance: {f} has uncommitted changes but its manifest {mf} does not")
             elif not is_ancestor(root, fc, c):
-                fail(f"provenance: {f} changed in {fc[:12]}, after its manifest {mf} ({c[:12]})")
+                pfail(f, f"provenance: {f} changed in {fc[:12]}, after its manifest {mf} ({c[:12]})")
+    for prefix, hits in stale.items():
+        if hits == 0:
+            fail(f"provenance: results/STALE lists {prefix}, whose provenance now holds: remove it from the list")
+    listed = sum(stale.values())
+    if listed:
+        print(f"provenance: {listed} failure(s) of results listed in results/STALE (to regenerate)")
     ok(before, f"provenance of {len(groups)} manifests in results/")
 
 

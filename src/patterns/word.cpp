@@ -133,7 +133,7 @@ std::string to_paper(const Word& w) {
       const std::size_t run = j - i;
       const char c = static_cast<char>('0' + w.s[i]);
       const bool power = (w.s[i] == 2 && run >= 2) || run >= 4;
-      if (power) out += (braces && j < w.size()) ? fmt::format("{}^{{{}}}", c, run) : fmt::format("{}^{}", c, run);
+      if (power) out += braces ? fmt::format("{}^{{{}}}", c, run) : fmt::format("{}^{}", c, run);
       else out.append(run, c);
       i = j;
     }
@@ -141,11 +141,15 @@ std::string to_paper(const Word& w) {
   };
   std::string plain = render(false);
   if (w.s.empty()) return plain;
-  try {
-    if (parse_word(plain) == w) return plain;
-  } catch (const std::invalid_argument&) {
+  // Each form is returned only if it reads back as w (the fuzz harness found exponent sequences where the plain
+  // form does not); the digits themselves always do.
+  for (const std::string& form : {plain, render(true)}) {
+    try {
+      if (parse_word(form) == w) return form;
+    } catch (const std::invalid_argument&) {
+    }
   }
-  return render(true);
+  return to_digits(w);
 }
 
 std::string to_letters(const Word& w) {
