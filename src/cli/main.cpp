@@ -2,12 +2,14 @@
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "io/io.hpp"
 
 #include <btob/build_info.hpp>
 
 #include <boost/throw_exception.hpp>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 
@@ -27,7 +29,18 @@ extern "C" void on_signal(int sig) {
 }  // namespace
 }  // namespace btob::cli
 
+namespace {
+// An error was reported: end now, without the libraries' exit-time cleanup (HDF5's would crash on a file whose
+// close failed, e.g. on a full disk); every file btob wrote is closed or removed by then.
+int failed(int code) {
+  std::cout.flush();
+  std::cerr.flush();
+  std::_Exit(code);
+}
+}  // namespace
+
 int main(int argc, char** argv) {
+  btob::io::init_hdf5();
   CLI::App app{"btob: statistics lab for the b-to-b map P_r of four 1-D inelastic hard spheres"};
   app.set_version_flag("--version", std::string("btob ") + btob::build::version + " (" + btob::build::git_commit + ")");
   app.require_subcommand(1);
@@ -42,28 +55,28 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::cerr << "btob: error: " << e.what() << " (see --help)\n";
-    return 2;
+    return failed(2);
   } catch (const btob::core::Cancelled&) {
     std::cerr << "btob: interrupted; nothing was written\n";
-    return 130;
+    return failed(130);
   } catch (const std::invalid_argument& e) {  // includes UsageError and core::InvalidField
     std::cerr << "btob: error: " << e.what() << "\n";
-    return 2;
+    return failed(2);
   } catch (const std::domain_error& e) {
     std::cerr << "btob: error: " << e.what() << "\n";
-    return 2;
+    return failed(2);
   } catch (const std::length_error& e) {
     std::cerr << "btob: error: " << e.what() << "\n";
-    return 2;
+    return failed(2);
   } catch (const std::out_of_range& e) {
     std::cerr << "btob: error: " << e.what() << "\n";
-    return 2;
+    return failed(2);
   } catch (const std::bad_alloc&) {
     std::cerr << "btob: error: out of memory\n";
-    return 1;
+    return failed(1);
   } catch (const std::exception& e) {
     std::cerr << "btob: error: " << e.what() << "\n";
-    return 1;
+    return failed(1);
   }
   return 0;
 }

@@ -81,8 +81,21 @@ H5Writer::H5Writer(fs::path path) : impl_(nullptr), path_(std::move(path)) {
   }
 }
 
+void init_hdf5() { H5dont_atexit(); }
+
+namespace {
+// Destroys an HDF5 object without the C++ API's destructor message on stderr when its close fails (the failure
+// has already been reported as one line).
+template <class T> void quiet_destroy(T*& object) {
+  std::streambuf* old = std::cerr.rdbuf(nullptr);
+  delete object;
+  object = nullptr;
+  std::cerr.rdbuf(old);
+}
+}  // namespace
+
 H5Writer::~H5Writer() {
-  delete impl_;
+  quiet_destroy(impl_);
   if (!committed_) {
     std::error_code ec;
     fs::remove(tmp_, ec);

@@ -18,6 +18,10 @@ namespace fs = std::filesystem;
 using Attr = core::AttrValue;
 using Attrs = core::Attrs;
 
+// Call first in main(): HDF5 then installs no exit-time cleanup, which would crash on a file whose close failed
+// (disk full) after the error has been reported; every file btob writes is closed explicitly.
+void init_hdf5();
+
 // The provenance every result carries: version, git commit and git_dirty of the build (recorded when the binary was
 // built, cmake/GitCommit.cmake), run_dirty (analyses/ had uncommitted changes when the result was made), compiler,
 // kernel flags, date, command line.

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 
 namespace btob::io {
 
@@ -83,7 +84,18 @@ void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
   const fs::path p = staged(filename);
   H5::Exception::dontPrint();
   try {
-    H5::H5File file(p.string(), H5F_ACC_TRUNC);
+    // Owned by a guard that destroys it quietly: after a failed write (disk full) its destructor's close fails too,
+    // and the error is reported once, below.
+    struct Guard {
+      H5::H5File* f = nullptr;
+      ~Guard() {
+        std::streambuf* old = std::cerr.rdbuf(nullptr);
+        delete f;
+        std::cerr.rdbuf(old);
+      }
+    } guard;
+    guard.f = new H5::H5File(p.string(), H5F_ACC_TRUNC);
+    H5::H5File& file = *guard.f;
     H5::Group root = file.openGroup("/");
     for (const auto& [k, v] : attrs) {
       H5::DataSpace scalar(H5S_SCALAR);
