@@ -13,7 +13,7 @@ import matplotlib
 from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 
-# The independent estimate of ../shared/perf-notes.md (2-core Zen 5, double kernel).
+# An independent estimate from prototype measurements outside this repository (2-core Zen 5, double kernel).
 LIMIT_DOUBLE_2T = 1.2e10
 # Our estimate (README, "Ceiling"): one map step of an 8-lane double vector is 12 vector instructions, 5 of
 # them multiply-class.  Zen 5 (AMD family 26) has 4 full-width 512-bit FP pipes, 2 of which multiply:
