@@ -51,16 +51,34 @@ void collision(State& s, double r, C& theta, C& phi) {
   char letter;
   switch (c) {
     case 1:
-      if (low) X << ct * sp, 0.0, cp, letter = 'b';
-      else X << st * sp, -cp, 0.0, letter = 'c';
+      if (low) {
+        X << ct * sp, 0.0, cp;
+        letter = 'b';
+      }
+      else {
+        X << st * sp, -cp, 0.0;
+        letter = 'c';
+      }
       break;
     case 2:
-      if (low) X << cp, ct * sp, 0.0, letter = 'c';
-      else X << 0.0, st * sp, -cp, letter = 'a';
+      if (low) {
+        X << cp, ct * sp, 0.0;
+        letter = 'c';
+      }
+      else {
+        X << 0.0, st * sp, -cp;
+        letter = 'a';
+      }
       break;
     default:
-      if (low) X << 0.0, cp, ct * sp, letter = 'a';
-      else X << -cp, 0.0, st * sp, letter = 'b';
+      if (low) {
+        X << 0.0, cp, ct * sp;
+        letter = 'a';
+      }
+      else {
+        X << -cp, 0.0, st * sp;
+        letter = 'b';
+      }
       break;
   }
   X /= norm_matlab(X);
