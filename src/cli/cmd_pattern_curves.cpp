@@ -2,6 +2,7 @@
 // 7.1-7.8); a thin adapter over patterns::run(CurvesRequest).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "patterns/curves.hpp"
 
 #include <fmt/format.h>
@@ -44,10 +45,9 @@ void curves(const CurvesArgs& a, const std::string& command_line) {
   std::string names;
   for (const auto& s : res.feas_names) names += (names.empty() ? "" : ",") + s;
   attrs["feas_names"] = names;
-  std::ostringstream csv;
-  csv << "what,r\n";
-  for (const auto& c : res.critical) csv << fmt::format("{},{:.16f}\n", c.what, c.r);
-  io::write_text_atomic(out / (a.name + "_critical.csv"), csv.str());
+  core::CsvTable csv("what,r");
+  for (const auto& c : res.critical) csv.row({c.what, fmt::format("{:.16f}", c.r)});
+  io::write_text_atomic(out / (a.name + "_critical.csv"), csv.text());
   const io::fs::path h5 = out / (a.name + ".h5");
   const std::size_t n = res.r.size();
   {

@@ -2,9 +2,9 @@
 // distances and convergence), Section 8.1 (2): flags -> stats::*Request -> run -> files.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "stats/requests.hpp"
 
-#include <btob/build_info.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
@@ -12,20 +12,13 @@
 namespace btob::cli {
 namespace {
 
-// NAME.csv: lag,C_N[,C_N_direct] under a comment line naming the run.
-std::string correlation_csv(const stats::CorrelateRequest& a, const stats::CorrelateResult& res) {
+// NAME.csv: lag,C_N[,C_N_direct] (what the run was is in NAME.json and NAME.h5).
+std::string correlation_csv(const stats::CorrelateResult& res) {
   const bool both = !res.c_direct.empty();
-  std::string csv = fmt::format(
-      "# C_N({}, {}; n), r = {}, point {}, N = {}, transient {}, method {}, precision {}, btob {}\n",
-      stats::observable_name(res.phi), stats::observable_name(res.psi), a.r, a.point, res.N(), a.transient, a.method,
-      a.precision, build::git_commit);
-  csv += both ? "lag,C_N,C_N_direct\n" : "lag,C_N\n";
-  for (std::size_t n = 0; n < res.c.size(); ++n) {
-    csv += fmt::format("{},{:.17g}", n, res.c[n]);
-    if (both) csv += fmt::format(",{:.17g}", res.c_direct[n]);
-    csv += "\n";
-  }
-  return csv;
+  core::CsvTable t(both ? "lag,C_N,C_N_direct" : "lag,C_N");
+  for (std::size_t n = 0; n < res.c.size(); ++n)
+    t.line(both ? fmt::format("{},{:.17g},{:.17g}", n, res.c[n], res.c_direct[n]) : fmt::format("{},{:.17g}", n, res.c[n]));
+  return t.text();
 }
 
 void correlate(const stats::CorrelateRequest& req, const Output& o, const Context& ctx) {
@@ -34,7 +27,7 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "correlate", req.precision);
   io::ResultFiles files(o.out, o.name);
-  files.text(o.name + ".csv", correlation_csv(req, res));
+  files.text(o.name + ".csv", correlation_csv(res));
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_correlation.py");
@@ -53,19 +46,16 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   std::cerr << "; wrote " << listing(written) << "\n";
 }
 
-// NAME_report.csv: per initial condition its group and distances to the group's first member.
-std::string measure_report(const stats::MeasureRequest& a, const stats::MeasureResult& res) {
-  std::string csv = fmt::format(
-      "# empirical measures at r = {}, grid {} ({} initial conditions), {} iterations after {} transient, "
-      "{}x{} bins in the {} chart; groups: total variation < {}\n",
-      a.r, a.grid, res.initial.size(), a.iterations, a.transient, a.bins, a.bins, a.coords, a.tv_same);
-  csv += "ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head\n";
+// NAME_report.csv: per initial condition its group and distances to the group's first member (the run's r, grid,
+// iterations, bins and chart are in NAME.json and NAME.h5).
+std::string measure_report(const stats::MeasureResult& res) {
+  core::CsvTable t("ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head");
   for (std::size_t i = 0; i < res.initial.size(); ++i) {
     const auto& u = res.initial[i];
-    csv += fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}\n", i, u(0), u(1), u(2), res.group[i], res.tv[i],
-                       res.w1_u[i], res.w1_v[i]);
+    t.line(fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}", i, u(0), u(1), u(2), res.group[i], res.tv[i], res.w1_u[i],
+                       res.w1_v[i]));
   }
-  return csv;
+  return t.text();
 }
 
 void measure(const stats::MeasureRequest& req, const Output& o, const Context& ctx) {
@@ -78,7 +68,7 @@ void measure(const stats::MeasureRequest& req, const Output& o, const Context& c
   const io::Attrs at = ctx.attrs(o, c, "measure", "double");
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  files.text(o.name + "_report.csv", measure_report(req, res));
+  files.text(o.name + "_report.csv", measure_report(res));
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_measure.py");
   const auto written = files.commit();

@@ -2,6 +2,7 @@
 // verdict (Figures 6.9-6.11); a thin adapter over orbits::run.
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "orbits/orbits.hpp"
 
 #include <fmt/format.h>
@@ -51,15 +52,15 @@ void strip_orbits(const StripOrbitsArgs& a, const std::string& command_line) {
   attrs["other"] = static_cast<long>(res.other);
   attrs["total_seconds"] = res.seconds;  // iteration and classification, plot excluded
   // One line per orbit: where it started and what the classifier says (the panel titles).
-  std::ostringstream csv;
-  csv << "orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail\n";
+  core::CsvTable csv("orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail");
   for (std::size_t o = 0; o < res.verdicts.size(); ++o) {
     const auto& v = res.verdicts[o];
-    csv << fmt::format("{},{:.17g},{:.17g},{},{},{},{:.6g},{:.3g},{:.12g},{:.3g},\"{}\"\n", o + 1, res.start_w1[o],
-                       res.start_w2[o], orbits::panel_word(v.type), res.pattern[o], v.period, v.lambda1, v.err1,
-                       v.rotation, v.residual, v.detail);
+    csv.row({fmt::format("{}", o + 1), fmt::format("{:.17g}", res.start_w1[o]), fmt::format("{:.17g}", res.start_w2[o]),
+             orbits::panel_word(v.type), res.pattern[o], fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
+             fmt::format("{:.3g}", v.err1), fmt::format("{:.12g}", v.rotation), fmt::format("{:.3g}", v.residual),
+             v.detail});
   }
-  io::write_text_atomic(out / (a.name + ".csv"), csv.str());
+  io::write_text_atomic(out / (a.name + ".csv"), csv.text());
   const io::fs::path h5 = out / (a.name + ".h5");
   {
     io::H5Writer w(h5);
