@@ -33,14 +33,26 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   if (!o.no_plot) files.plot("stats_correlation.py");
   const auto written = files.commit();
   if (o.quiet) return;
-  const auto env = [&](const char* k) { return c.attrs.count(k) ? std::get<double>(c.attrs.at(k)) : 0.0; };
-  std::cerr << fmt::format("btob: C_N({}, {}; 0..{}) over N = {} in {:.3g} s ({}, {}); |C_N| window envelope {:.3g} .. {:.3g}",
+  // Everything below is read from the attributes NAME.json and NAME.h5 carry, so the terminal and the files agree.
+  const auto num = [&](const char* k) {
+    const auto& v = c.attrs.at(k);
+    return std::holds_alternative<long>(v) ? fmt::format("{}", std::get<long>(v)) : fmt::format("{:.4g}", std::get<double>(v));
+  };
+  const auto has = [&](const char* k) { return c.attrs.count(k) > 0; };
+  std::cerr << fmt::format("btob: C_N({}, {}; 0..{}) over N = {} in {:.3g} s ({}, {}); noise floor {}",
                            stats::observable_name(res.phi), stats::observable_name(res.psi), req.n_max, res.N(),
-                           res.seconds, req.method, req.precision, env("envelope_min"), env("envelope_max"));
-  if (res.fitted)
-    std::cerr << fmt::format("; fitted decay rate {:.4g} +- {:.2g} per iteration over {} windows of {} lags ({}decaying)",
-                             res.decay.rate, res.decay.rate_error, res.decay.windows, req.window,
-                             res.decay.decays ? "" : "not ");
+                           res.seconds, req.method, req.precision, num("noise_floor"));
+  if (res.fitted) {
+    std::cerr << fmt::format("; {}: {} window(s) of {} lags above the floor", std::get<std::string>(c.attrs.at("decay_verdict")),
+                             num("decay_windows"), req.window);
+    if (has("envelope_first")) std::cerr << fmt::format(", envelope {} .. {}", num("envelope_first"), num("envelope_last"));
+    std::cerr << (has("decay_floor_lag") ? fmt::format(", floor reached at lag {}", num("decay_floor_lag"))
+                                         : fmt::format(", floor not reached by lag {}", req.fit_lags));
+    if (has("decay_rate"))
+      std::cerr << fmt::format(", rate {} +- {} per iteration (95%: {} .. {})", num("decay_rate"),
+                               num("decay_rate_error"), num("decay_rate_low"), num("decay_rate_high"));
+    std::cerr << " (" << std::get<std::string>(c.attrs.at("decay_reason")) << ")";
+  }
   if (!res.c_direct.empty())
     std::cerr << fmt::format("; fft vs direct {:.2g} relative, direct {:.3g} s", res.max_rel_diff, res.seconds_direct);
   std::cerr << "; wrote " << listing(written) << "\n";
