@@ -26,7 +26,7 @@ def main(src, dst):
     manifest = os.path.splitext(src)[0] + ".json"
     if os.path.exists(manifest):
         with open(manifest) as f:
-            iters = json.load(f).get("iterations", "?")
+            iters = str(json.load(f).get("iterations", "?"))
     fig, axes = plt.subplots(2, 2, figsize=(15, 10.5), dpi=120)
     (ax, cx), (lx, bx) = axes
     markers = "os^Dv<>"

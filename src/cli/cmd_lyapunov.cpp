@@ -69,10 +69,14 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   files.h5(c, at);
   if constexpr (std::is_same_v<Req, lyapunov::MapRequest>) {
     const auto& s = res.summary;
-    core::CsvTable csv("r,lambda1_min,lambda1_median,lambda1_max,frac_positive,frac_zero,frac_negative");
+    // Each statistic of lambda1 with its error bar (maps.hpp, RSummary); the classification adds the floor 10/n.
+    core::CsvTable csv(
+        "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
+        "frac_zero,frac_negative");
     for (std::size_t i = 0; i < res.ensemble.r.size(); ++i)
-      csv.line(fmt::format("{:.9f},{:.6g},{:.6g},{:.6g},{:.4f},{:.4f},{:.4f}", res.ensemble.r[i], s.min[i], s.median[i],
-                           s.max[i], s.frac_positive[i], s.frac_zero[i], s.frac_negative[i]));
+      csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", res.ensemble.r[i],
+                           s.min[i], s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i],
+                           s.frac_positive[i], s.frac_zero[i], s.frac_negative[i]));
     files.text(o.name + "_summary.csv", csv.text());
   }
   ctx.manifest(files, at);
