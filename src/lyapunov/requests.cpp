@@ -211,10 +211,10 @@ void MapResult::describe(core::Contents& c) const {
     c.array("min", summary.min, {R}, "r", per, "minimum " + s);
     c.array("median", summary.median, {R}, "r", per, "median " + s);
     c.array("max", summary.max, {R}, "r", per, "maximum " + s);
-    c.array("err_min", summary.err_min, {R}, "r", per, "batch-means error of the orbit realising min");
-    c.array("err_median", summary.err_median, {R}, "r", per,
+    c.array("min_err", summary.err_min, {R}, "r", per, "batch-means error of the orbit realising min");
+    c.array("median_err", summary.err_median, {R}, "r", per,
             "batch-means error of the median (middle orbit, or half the RSS of the two middle orbits)");
-    c.array("err_max", summary.err_max, {R}, "r", per, "batch-means error of the orbit realising max");
+    c.array("max_err", summary.err_max, {R}, "r", per, "batch-means error of the orbit realising max");
     c.array("frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
     c.array("frac_zero", summary.frac_zero, {R}, "r", "1", "fraction of orbits with |lambda1| <= 3 err1 + 10/n");
     c.array("frac_negative", summary.frac_negative, {R}, "r", "1", "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
