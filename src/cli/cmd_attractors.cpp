@@ -35,7 +35,7 @@ std::string fractions_csv(const attractors::BasinsResult& res) {
   const attractors::Basins& b = res.basins;
   core::CsvTable t(
       "attractor,type,pattern,fraction,ci_low,ci_high,count,replicate_mean,replicate_sd,canonical,period,collisions,"
-      "stability,lyapunov2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters");
+      "stability,lambda2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters");
   const auto f = [](double v) { return fmt::format("{:.6f}", v); };
   for (std::size_t i = 0; i < b.attractors.size(); ++i) {
     const auto& at = b.attractors[i];
@@ -58,7 +58,10 @@ std::string fractions_csv(const attractors::BasinsResult& res) {
 }
 
 void basins(const attractors::BasinsRequest& req, const Output& o, const Context& ctx) {
-  const attractors::BasinsResult res = attractors::run(req, ctx.control);
+  Context run_ctx = ctx;
+  const auto progress = terminal_progress("basins");
+  if (!o.quiet) run_ctx.control.progress = progress.get();
+  const attractors::BasinsResult res = attractors::run(req, run_ctx.control);
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins", "double");
@@ -77,6 +80,14 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
                              static_cast<double>(n * static_cast<std::size_t>(req.replicates + 1)) / b.seconds,
                              res.threads, b.attractors.size(), b.unresolved.value, b.unresolved_first_pass,
                              listing(written));
+  if (o.quiet) return;
+  // Each attractor's fraction with its 95% interval (sampling only: a fraction of the grid's points).
+  for (std::size_t i = 0; i < b.attractors.size(); ++i)
+    std::cerr << fmt::format("  {} {} {}: {:.4f} [{:.4f}, {:.4f}]\n", b.attractors[i].id,
+                             attractors::type_name(b.attractors[i].type), b.attractors[i].pattern, b.fractions[i].value,
+                             b.fractions[i].low, b.fractions[i].high);
+  std::cerr << fmt::format("  0 unresolved: {:.4f} [{:.4f}, {:.4f}]\n", b.unresolved.value, b.unresolved.low,
+                           b.unresolved.high);
 }
 
 // ---- btob basins-r ----
@@ -125,7 +136,10 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
     ss << in.rdbuf();
     req.reference_csv = ss.str();
   }
-  const attractors::BasinsRResult res = attractors::run(req, ctx.control);
+  Context run_ctx = ctx;
+  const auto progress = terminal_progress("basins-r");
+  if (!o.quiet) run_ctx.control.progress = progress.get();
+  const attractors::BasinsRResult res = attractors::run(req, run_ctx.control);
   if (!o.quiet)
     for (const auto& row : res.rows)
       std::cerr << fmt::format("btob: basins-r r = {}: {} attractors\n", row.r, row.attractors.size());

@@ -33,6 +33,7 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
   const particles::ParticlesResult s = particles::run(a.req);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   if (a.header) std::cout << csv_header() << "\n";
   std::cout << csv_row(s) << std::endl;
 
@@ -104,6 +105,9 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
                            s.seconds);
   if (!s.failure.empty()) std::cerr << "btob: warning: " << s.failure << "\n";
   if (!a.no_plot) io::run_plot("particles.py", {out.string()});
+  print_written({out / "particles.csv", out / "convergence.csv", out / "events.csv", out / "particles.json",
+                 out / "spacetime.png", out / "animation.gif"},
+                since);
 }
 
 Register reg([](CLI::App& app) {

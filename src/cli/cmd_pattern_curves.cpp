@@ -29,6 +29,7 @@ void curves(const CurvesArgs& a, const std::string& command_line) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   io::Attrs attrs = io::provenance(command_line);
   attrs["kind"] = std::string("pattern-curves");
   attrs["name"] = a.name;
@@ -66,10 +67,14 @@ void curves(const CurvesArgs& a, const std::string& command_line) {
     w.commit();
   }
   io::write_manifest(out / (a.name + ".json"), attrs);
-  std::cerr << fmt::format("btob: {} ({}analysed as {}) at {} r values; {} critical r; wrote {}\n", res.word,
-                           res.reduced ? "J-square, " : "", res.analysed, n, res.critical.size(), h5.string());
+  std::cerr << fmt::format("btob: {} ({}analysed as {}) at {} r values; {} critical r\n", res.word,
+                           res.reduced ? "J-square, " : "", res.analysed, n, res.critical.size());
   if (!a.no_plot)
     io::run_plot("pattern_curves.py", {h5.string(), (out / (a.name + "_critical.csv")).string(), out.string()});
+  std::vector<io::fs::path> files{out / (a.name + "_critical.csv"), h5, out / (a.name + ".json")};
+  for (const auto& f : io::fs::directory_iterator(out))  // the plot's figures (one or several PNGs)
+    if (f.path().extension() == ".png") files.push_back(f.path());
+  print_written(files, since);
 }
 
 Register reg([](CLI::App& app) {

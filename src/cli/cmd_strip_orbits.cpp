@@ -31,6 +31,7 @@ void strip_orbits(const StripOrbitsArgs& a, const std::string& command_line) {
   const orbits::StripOrbitsResult res = orbits::run(a.q, control);  // validates first: nothing written on error
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   io::Attrs attrs = io::provenance(command_line);
   attrs["kind"] = std::string("strip-orbits");
   attrs["name"] = a.name;
@@ -74,11 +75,11 @@ void strip_orbits(const StripOrbitsArgs& a, const std::string& command_line) {
   }
   io::write_manifest(out / (a.name + ".json"), attrs);
   std::cerr << fmt::format("btob: r = {}: {} orbits x {} iterations, {} periodic, {} quasi-periodic, {} other ({:.2f} s); "
-                           "wrote {}\n",
-                           a.q.r, a.q.orbits, a.q.iterations, res.periodic, res.quasi_periodic, res.other, res.seconds,
-                           h5.string());
+                           "plotting\n",
+                           a.q.r, a.q.orbits, a.q.iterations, res.periodic, res.quasi_periodic, res.other, res.seconds);
   if (!a.no_plot)
     io::run_plot("strip_orbits.py", {h5.string(), (out / (a.name + ".csv")).string(), (out / (a.name + ".png")).string()});
+  print_written({out / (a.name + ".csv"), h5, out / (a.name + ".json"), out / (a.name + ".png")}, since);
 }
 
 Register reg([](CLI::App& app) {

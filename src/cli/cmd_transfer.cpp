@@ -61,6 +61,7 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
   check_threads(a.threads);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   Progress progress("transfer");
   core::RunControl control;
   control.threads = a.threads;
@@ -172,10 +173,10 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
     std::cerr << fmt::format(
         "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, total "
         "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
-        "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{}); wrote {}\n",
+        "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
         q.r, p.size(), q.samples, res.nnz, res.matrix_bytes / 1e6, res.seconds_matrix, res.seconds_spectrum,
         res.seconds_total, res.closed_classes, res.near_one_count, q.near_one, res.second_value, res.tv_boxes, p.n1, p.n2,
-        res.tv_coarse, q.tv_bins, q.tv_bins, out.string());
+        res.tv_coarse, q.tv_bins, q.tv_bins);
     for (std::size_t k = 0; k < res.components.size(); ++k)
       std::cerr << fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,
                                res.components[k].boxes, res.components[k].period, res.components[k].rho,
@@ -187,6 +188,10 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
                                c.radius99_component);
   }
   if (!a.no_plot) io::run_plot("transfer.py", {h5.string(), (out / "spectrum.csv").string(), (out / (a.name + ".png")).string()});
+  if (!a.quiet)
+    print_written({out / "spectrum.csv", out / "components.csv", out / "cycles.csv", h5, out / (a.name + ".json"),
+                   out / (a.name + ".png")},
+                  since);
 }
 
 // ---- btob transfer-r ----
@@ -195,6 +200,7 @@ void transfer_r_cmd(const transfer::TransferRRequest& q, const Common& a) {
   check_threads(a.threads);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   Progress progress("transfer-r");
   core::RunControl control;
   control.threads = a.threads;
@@ -241,12 +247,16 @@ void transfer_r_cmd(const transfer::TransferRRequest& q, const Common& a) {
   at["scalar_type"] = std::string("double");
   io::write_manifest(out / (a.name + ".json"), at);
   if (!a.quiet)
-    std::cerr << fmt::format("btob: transfer-r: {} r values in [{}, {}], {} boxes x {} samples, {:.1f} s; wrote {}\n",
-                             res.r.size(), q.r_min, q.r_max, q.boxes, q.samples, res.seconds, out.string());
+    std::cerr << fmt::format("btob: transfer-r: {} r values in [{}, {}], {} boxes x {} samples, {:.1f} s\n",
+                             res.r.size(), q.r_min, q.r_max, q.boxes, q.samples, res.seconds);
   if (!a.no_plot)
     io::run_plot("transfer_r.py", {(out / "spectrum_r.csv").string(), (out / "peripheral_r.csv").string(),
                                    (out / "windows.csv").string(), (out / (a.name + ".png")).string(), q.boxes,
                                    std::to_string(q.samples), fmt::format("{}", q.peripheral)});
+  if (!a.quiet)
+    print_written({out / "spectrum_r.csv", out / "peripheral_r.csv", out / "windows.csv", out / (a.name + ".json"),
+                   out / (a.name + ".png")},
+                  since);
 }
 
 void add_common(CLI::App* c, Common& a) {
