@@ -35,7 +35,8 @@ std::string fractions_csv(const attractors::BasinsResult& res) {
   const attractors::Basins& b = res.basins;
   core::CsvTable t(
       "attractor,type,pattern,fraction,ci_low,ci_high,count,replicate_mean,replicate_sd,canonical,period,collisions,"
-      "stability,lambda2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters");
+      "stability,lambda2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters,measure");
+  const std::string measure = attractors::measure_name(b.grid);
   const auto f = [](double v) { return fmt::format("{:.6f}", v); };
   for (std::size_t i = 0; i < b.attractors.size(); ++i) {
     const auto& at = b.attractors[i];
@@ -46,13 +47,14 @@ std::string fractions_csv(const attractors::BasinsResult& res) {
            at.stability, fmt::format("{:.6g}", at.lyapunov2), fmt::format("{:.10g}", at.rotation_min),
            fmt::format("{:.10g}", at.rotation_max), fmt::format("{:.8g}", at.invariant_min),
            fmt::format("{:.8g}", at.invariant_max), fmt::format("{:.12g}", w.first), fmt::format("{:.12g}", w.second),
-           at.letters});
+           at.letters, measure});
   }
   const std::size_t u = b.attractors.size();
   std::vector<std::string> row = {"0", "unresolved", "", f(b.unresolved.value), f(b.unresolved.low),
                                   f(b.unresolved.high), fmt::format("{}", res.unresolved_count), f(res.replicate_mean[u]),
                                   f(res.replicate_sd[u])};
   row.resize(t.columns().size());
+  row.back() = measure;
   t.row(row);
   return t.text();
 }
@@ -81,7 +83,12 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
                              res.threads, b.attractors.size(), b.unresolved.value, b.unresolved_first_pass,
                              listing(written));
   if (o.quiet) return;
-  // Each attractor's fraction with its 95% interval (sampling only: a fraction of the grid's points).
+  // Each attractor's fraction with its 95% interval (sampling only), of the measure the grid samples.
+  std::cerr << "  fractions of the measure: " << attractors::measure_name(b.grid) << "\n";
+  if (b.grid.kind == "strip")
+    std::cerr << fmt::format("  the rectangle leaves out {:.4f} of the uniform measure on the sphere of directions "
+                             "(sphere:NxM counts that measure)\n",
+                             1 - attractors::sphere_share(b.grid));
   for (std::size_t i = 0; i < b.attractors.size(); ++i)
     std::cerr << fmt::format("  {} {} {}: {:.4f} [{:.4f}, {:.4f}]\n", b.attractors[i].id,
                              attractors::type_name(b.attractors[i].type), b.attractors[i].pattern, b.fractions[i].value,
@@ -92,16 +99,18 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
 
 // ---- btob basins-r ----
 std::string fractions_r_csv(const attractors::BasinsRResult& res) {
-  core::CsvTable t("r,attractor_key,type,pattern,fraction,ci_low,ci_high,count,stability");
+  core::CsvTable t("r,attractor_key,type,pattern,fraction,ci_low,ci_high,count,stability,measure");
+  const std::string measure = core::csv_text(attractors::grid_measure(res.request.grid));
   for (const auto& row : res.rows) {
     for (std::size_t i = 0; i < row.attractors.size(); ++i)
-      t.line(fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{},{}", row.r, core::csv_text(row.attractors[i].key),
+      t.line(fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{},{},{}", row.r, core::csv_text(row.attractors[i].key),
                          attractors::type_name(row.attractors[i].type), core::csv_text(row.attractors[i].pattern),
                          row.fractions[i].value, row.fractions[i].low, row.fractions[i].high, row.attractors[i].count,
-                         core::csv_text(row.attractors[i].stability)));
-    t.line(fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},", row.r, row.unresolved.value, row.unresolved.low,
+                         core::csv_text(row.attractors[i].stability), measure));
+    t.line(fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.unresolved.value, row.unresolved.low,
                        row.unresolved.high,
-                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(res.points)))));
+                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(res.points))),
+                       measure));
   }
   return t.text();
 }
@@ -110,7 +119,8 @@ std::string fractions_r_csv(const attractors::BasinsRResult& res) {
 std::string comparison_csv(const attractors::BasinsRResult& res) {
   core::CsvTable cmp(
       "r,paper_percent_periodic,paper_ci_low,paper_ci_high,consistent,paper_patterns,periodic_fraction,ci_low,ci_high,"
-      "patterns_found,paper_patterns_found,extra_patterns,other_types");
+      "patterns_found,paper_patterns_found,extra_patterns,other_types,measure");
+  const std::string measure = core::csv_text(attractors::grid_measure(res.request.grid));
   for (const auto& c : res.comparison) {
     std::string pci_lo, pci_hi, consistent;
     if (c.has_percent) {
@@ -118,9 +128,9 @@ std::string comparison_csv(const attractors::BasinsRResult& res) {
       consistent = c.consistent ? "yes" : "no";
     }
     const std::string paper_found = c.in_table ? fmt::format("{}/{}", c.paper_found, c.paper_total) : "";
-    cmp.line(fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{}", c.r, c.paper_percent, pci_lo, pci_hi,
+    cmp.line(fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", c.r, c.paper_percent, pci_lo, pci_hi,
                          consistent, core::csv_text(c.paper_patterns), c.periodic.value, c.periodic.low, c.periodic.high,
-                         core::csv_text(c.found), paper_found, core::csv_text(c.extra), core::csv_text(c.other)));
+                         core::csv_text(c.found), paper_found, core::csv_text(c.extra), core::csv_text(c.other), measure));
   }
   return cmp.text();
 }
@@ -153,7 +163,9 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("attractors_fractions_r.py");
   const auto written = files.commit();
-  if (!o.quiet) std::cerr << fmt::format("btob: basins-r in {:.2f} s; wrote {}\n", res.seconds, listing(written));
+  if (!o.quiet)
+    std::cerr << fmt::format("btob: basins-r in {:.2f} s; fractions of the measure: {}; wrote {}\n", res.seconds,
+                             attractors::grid_measure(req.grid), listing(written));
 }
 
 struct Registration {
