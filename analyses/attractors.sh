@@ -7,6 +7,12 @@ THREADS=${2:-2}
 cd "$(dirname "$0")/.."
 OUT=results/attractors
 mkdir -p "$OUT"
+# Fractions are of a measure, named in every output (issue 21).  The default, sphere:NxM, is the uniform measure on
+# the sphere of directions of the domain (an equal-area grid); strip:NxM grids count Lebesgue measure on their
+# rectangle of the plane x - z = 1 (an explicit choice: they print the share of the sphere measure they leave out).
+for r in 0.05 0.1 0.15 0.172 0.2 0.21 0.24 0.3 0.58; do
+  "$BTOB" basins --r "$r" --grid sphere:300x300 --replicates 1 --seed 1 --threads "$THREADS" --out "$OUT/basins_sphere_r$r"
+done
 # The issue's target: 1000 x 1000 at r = 0.2 (two replicate grids shifted by random fractions of a cell).
 "$BTOB" basins --r 0.2 --grid strip:1000x1000 --replicates 2 --seed 1 --threads "$THREADS" --out "$OUT/basins_r0.2"
 # Coexistence and single-basin cases of Table 6.1 (400 x 400, two replicates).
@@ -15,5 +21,6 @@ for r in 0.05 0.1 0.15 0.172 0.21 0.24 0.3 0.58; do
 done
 # Wider strip at r = 0.2: the two far points per period of 132^3312^3 (Figure 6.10 rescaled).
 "$BTOB" basins --r 0.2 --grid strip:600x300 --w1-range -30,30 --replicates 0 --threads "$THREADS" --out "$OUT/basins_r0.2_wide"
-# Basin fractions at the r values of Table 6.1 in [0.1, 0.6], 2000 random orbits each (the paper: 10).
+# Basin fractions at the r values of Table 6.1 in [0.1, 0.6], 2000 random orbits each (the paper: 10): random:N is
+# uniform on the sphere of directions of the domain, the same measure as sphere:NxM.
 "$BTOB" basins-r --table --grid random:2000 --seed 1 --threads "$THREADS" --out "$OUT/basins_r"

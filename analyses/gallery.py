@@ -120,10 +120,16 @@ LAB = [
      "stability windows (analysis) of every stable word up to 12 symbols, with the iterator's detections at the "
      "Table 6.1 r values."),
     ("attractors/basins_r/fractions_r.png", "attractors/basins_r/fractions_r.json", "Basin fractions across r",
-     "share of 2000 random initial conditions reaching each attractor at the Table 6.1 r values."),
-] + [(f"attractors/basins_r{r}/basins.png", f"attractors/basins_r{r}/basins.json", f"Basins at r = {r.replace('_wide', ' (wide strip)')}",
-      "basin map on a strip grid: which attractor each initial point reaches.")
-     for r in ("0.05", "0.1", "0.15", "0.172", "0.2", "0.2_wide", "0.21", "0.24", "0.3", "0.58")] + [
+     "share of 2000 random initial conditions (uniform on the sphere of directions) reaching each attractor at the "
+     "Table 6.1 r values."),
+] + [(f"attractors/basins_sphere_r{r}/basins.png", f"attractors/basins_sphere_r{r}/basins.json", f"Basins at r = {r}",
+      "basin map on the equal-area grid (theta, y): fractions of the uniform measure on the sphere of directions.")
+     for r in ("0.05", "0.1", "0.15", "0.172", "0.2", "0.21", "0.24", "0.3", "0.58")] + [
+    (f"attractors/basins_r{r}/basins.png", f"attractors/basins_r{r}/basins.json",
+     f"Basins at r = {r.replace('_wide', ' (wide strip)')}, strip rectangle",
+     "basin map on a strip grid: fractions of Lebesgue measure on the rectangle (its share of the sphere measure in "
+     "the title).")
+    for r in ("0.05", "0.1", "0.15", "0.172", "0.2", "0.2_wide", "0.21", "0.24", "0.3", "0.58")] + [
     ("lyapunov/lyapunov_map.png", "lyapunov/lyapunov_map.json", "Lyapunov map",
      "largest Lyapunov exponent of the 32 paper-grid orbits against r, and the share of positive/zero/negative."),
     ("lyapunov/lyapunov_strip_r0.3.png", "lyapunov/lyapunov_strip_r0.3.json", "Lyapunov exponents over the strip, r = 0.3",

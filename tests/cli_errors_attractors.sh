@@ -39,7 +39,7 @@ expect_error "r-values" basins-r --grid random:10 --out "$out/br" --no-plot
 
 # A valid small run writes its files and no temporaries.
 "$btob" "${b[@]}" --r 0.15 --grid strip:8x8 --replicates 0 >/dev/null 2>&1 || { echo "FAIL: a valid basins run failed"; fail=1; }
-[ -s "$out/b/fractions.csv" ] || { echo "FAIL: $out/b/fractions.csv missing"; fail=1; }
+[ -s "$out/b/basins_fractions.csv" ] || { echo "FAIL: $out/b/basins_fractions.csv missing"; fail=1; }
 [ -n "$(find "$out/b" -name "*tmp*")" ] && { echo "FAIL: temporary files left behind"; fail=1; }
 
 if [ "$fail" -eq 0 ]; then echo "cli_errors_attractors: all checks passed"; fi

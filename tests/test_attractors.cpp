@@ -5,6 +5,7 @@
 #include "core/fields.hpp"
 #include "attractors/recorders.hpp"
 #include "attractors/requests.hpp"
+#include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 #include "patterns/patterns.hpp"
 
@@ -372,6 +373,85 @@ TEST(Errors, NameTheField) {
   EXPECT_THROW(classify_point(Vec3<double>(1, 0, 1), 0.2, {}), std::domain_error);  // x z > 0
   // A grid that cannot fit is refused before any work, with the size it needs.
   EXPECT_THROW(basins(0.2, parse_grid("strip:4000000x4000000", -2, 2), 0, 1, {}), std::length_error);
+}
+
+}  // namespace
+}  // namespace btob::attractors
+
+namespace btob::attractors {
+namespace {
+
+// Issue 21, item 2: the measure of the basin fractions.  The sphere grid is equal-area, so the share of its points in
+// a region is the region's solid angle over pi (the domain Q); checked on regions whose solid angle is known in
+// closed form, and the strip's closed-form share against random points uniform on the sphere (iterate::random_points,
+// Archimedes' sampling: an independent route).
+TEST(Measure, SphereGridCountsSolidAngle) {
+  const Grid g = parse_grid("sphere:400x400", -2, 2);
+  const auto pts = grid_points(g);
+  const double n = static_cast<double>(pts.size());
+  // A cap of angular radius 0.5 about (1, 0, -1)/sqrt(2) (inside Q: pi/4 from its edges): solid angle
+  // 2 pi (1 - cos 0.5), i.e. 2 (1 - cos 0.5) = 0.2448 of Q.
+  const Vec3<double> e = Vec3<double>(1, 0, -1).normalized();
+  double cap = 0, band = 0;
+  for (const auto& u : pts) {
+    cap += u.normalized().dot(e) > std::cos(0.5);
+    band += core::theta(u) < std::numbers::pi / 6 && u(1) > 0.3;  // theta < pi/6, y > 0.3: (1/3) (0.7 / 2) of Q
+  }
+  // A region's count on a grid of h x h cells is off by at most its boundary cells: perimeter / h cells of area
+  // h^2 each, in the (theta, y) chart (cap perimeter ~2 pi 0.5 / cell widths pi/800, 2/400): ~ 3e-3 at most.
+  EXPECT_NEAR(cap / n, 2 * (1 - std::cos(0.5)), 3e-3);
+  EXPECT_NEAR(band / n, 0.7 / 6, 1e-12 + 2.0 / 400);  // aligned with the cells: off by at most one row and column
+  EXPECT_EQ(sphere_share(g), 1.0);
+  // The strip rectangle's share of the sphere measure: (2/pi)(F(b) - F(a)), F(w) = asin(w / sqrt(1 + 2 w^2)).
+  EXPECT_NEAR(strip_sphere_share(-2, 2), 4 / std::numbers::pi * std::asin(2.0 / 3), 1e-15);
+  EXPECT_NEAR(strip_sphere_share(-1e9, 1e9), 1.0, 1e-15);  // the whole strip is the whole domain
+  const auto rnd = iterate::random_points(1000000, 5);
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-2, 2}, {-0.5, 0.5}, {-32, 32}, {-1, 3}}) {
+    double in = 0, in_grid = 0;
+    for (const auto& u : rnd) in += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
+    for (const auto& u : pts) in_grid += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
+    const double p = strip_sphere_share(a, b), sd = std::sqrt(p * (1 - p) / 1e6);
+    EXPECT_NEAR(in / 1e6, p, 5 * sd + 1e-12) << "[" << a << ", " << b << "]";  // 5 sigma of a binomial count
+    EXPECT_NEAR(in_grid / n, p, 2e-3) << "[" << a << ", " << b << "]";         // boundary cells, as above
+  }
+}
+
+// The default measure does not depend on how it is sampled: at r = 0.21 the equal-area grid (btob basins) and random
+// points (btob basins-r) give the same fractions within their sampling errors, while the rectangle w1 in [-2, 2]
+// (Lebesgue on the plane x - z = 1) gives another measure's fractions: the P2 invariant curves hold 0.344 of the
+// sphere measure (300 x 300 grid) but 0.217 of the rectangle.
+TEST(Measure, SphereGridAndRandomPointsAgreeTheRectangleDoesNot) {
+  BasinsRequest q;
+  q.r = 0.21;
+  q.grid = "sphere:60x60";
+  q.replicates = 0;
+  const BasinsResult s = run(q);
+  q.grid = "strip:60x60";
+  const BasinsResult t = run(q);
+  const auto rnd = iterate::random_points(3600, 3);
+  std::vector<Vec3<double>> tail(rnd.begin(), rnd.end());
+  const auto v = classify(ensemble(q.r, tail), {});
+  std::map<std::string, double> random_fraction, sphere_fraction, strip_fraction;
+  for (const auto& a : collect(v, q.r, nullptr)) random_fraction[a.pattern] = static_cast<double>(a.count) / 3600;
+  for (std::size_t i = 0; i < s.basins.attractors.size(); ++i) sphere_fraction[s.basins.attractors[i].pattern] = s.fraction[i];
+  for (std::size_t i = 0; i < t.basins.attractors.size(); ++i) strip_fraction[t.basins.attractors[i].pattern] = t.fraction[i];
+  ASSERT_EQ(sphere_fraction.size(), 4u);  // 312^2, 132^2, 132^3312^3 and the P2 curves
+  for (const auto& [pattern, p] : sphere_fraction) {
+    // Two estimates of one p from 3600 points each: their difference has sd sqrt(2 p (1 - p) / 3600); 4 sd.
+    EXPECT_NEAR(random_fraction[pattern], p, 4 * std::sqrt(2 * p * (1 - p) / 3600)) << pattern;
+  }
+  const double curves = sphere_fraction["P2 invariant curves"], rect = strip_fraction["P2 invariant curves"];
+  std::printf("r = 0.21, P2 invariant curves: sphere grid %.4f, random %.4f, strip rectangle %.4f\n", curves,
+              random_fraction["P2 invariant curves"], rect);
+  EXPECT_GT(curves - rect, 8 * std::sqrt(2 * curves * (1 - curves) / 3600));  // another measure, not noise
+  core::Contents c;
+  s.describe(c);
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("measure")), measure_name(s.basins.grid));
+  EXPECT_NE(measure_name(s.basins.grid).find("sphere"), std::string::npos);
+  core::Contents ct;
+  t.describe(ct);
+  EXPECT_NEAR(std::get<double>(ct.attrs.at("measure_sphere_share")), strip_sphere_share(-2, 2), 1e-15);
+  EXPECT_EQ(BasinsRequest{}.grid.rfind("sphere:", 0), 0u);  // the default measure is the sphere's
 }
 
 }  // namespace

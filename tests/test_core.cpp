@@ -1,6 +1,7 @@
 // Tests of btob::core: invariants of P_r (quadrant, symmetries, spectra), branch conventions on exact
 // ties, coordinates (theta, phi, strip, particles) and the validation errors.
 #include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "core/map.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
@@ -295,3 +296,21 @@ TEST(Validation, PrecisionNames) {
 }
 
 }  // namespace
+
+// The lab's CSV writer (core/csv.hpp): one header, a field per column on every row, nothing that needs quoting.
+TEST(Csv, RowsMatchTheHeaderAndTextNeedsNoQuoting) {
+  btob::core::CsvTable t("attractor,pattern,fraction");
+  t.row({"1", "132^3312^3", "0.5"});
+  t.row({"0", "a, \"b\" #2\nc", ""});  // text with every character genfromtxt would misread
+  t.line("2,132312,0.25");
+  EXPECT_EQ(t.text(), "attractor,pattern,fraction\n1,132^3312^3,0.5\n0,a; 'b' no.2 c,\n2,132312,0.25\n");
+  EXPECT_EQ(t.rows(), 3u);
+  EXPECT_THROW(t.row({"0", "unresolved"}), std::logic_error);  // the old fractions.csv's short row
+  EXPECT_THROW(t.line("1,2"), std::logic_error);
+  EXPECT_THROW(t.line("1,\"a,b\",3"), std::logic_error);      // quoted fields are not read by genfromtxt
+  EXPECT_THROW(t.line("1,a#b,3"), std::logic_error);
+  EXPECT_THROW(btob::core::CsvTable("# comment,a"), std::logic_error);
+  EXPECT_THROW(btob::core::CsvTable("a,b,a"), std::logic_error);
+  EXPECT_THROW(btob::core::CsvTable("a,,b"), std::logic_error);
+  EXPECT_EQ(btob::core::CsvTable("r,agree_min_r0.11").text(), "r,agree_min_r0.11\n");
+}

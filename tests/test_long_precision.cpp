@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -37,8 +38,11 @@ TEST(Tradeoff, SmallStudy) {
     // The final state of the wider arithmetics is the reference's to their precision (angle in rad).
     if (row.digits >= 19 && row.method != "trig/double") EXPECT_LT(row.error_median[0], 1e-15) << row.method;
   }
-  const std::string csv = res.csv(req, "test");
-  EXPECT_NE(csv.find("n in [2 3]; version test\n"), std::string::npos);
+  // One header line, then a row per method (what was run is in notes(), the manifest's description).
+  const std::string csv = res.csv(req);
+  EXPECT_EQ(csv.rfind("method,decimal_digits,iterations_per_second,", 0), 0u);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), res.rows.size() + 1);
+  EXPECT_NE(btob::precision::TradeoffResult::notes(req).find("n in [2 3]"), std::string::npos);
   btob::core::Contents c;
   res.describe(c);
   EXPECT_EQ(c.find("agree_min")->dims, (std::vector<std::size_t>{7, 2}));

@@ -146,7 +146,8 @@ TEST(LyapunovRequest, MapDescribesEveryArrayWithItsShape) {
   const auto res = lyapunov::run(m);
   core::Contents c;
   res.describe(c);
-  for (const char* n : {"r", "lambda1", "err1", "lambda2", "err2", "chi1", "median", "frac_zero"}) {
+  for (const char* n : {"r", "lambda1", "err1", "lambda2", "err2", "lambda_max", "err_max", "lambda_min", "err_min", "chi1",
+                        "median", "median_err", "min_err", "max_err", "frac_zero"}) {
     const core::ArrayView* a = c.find(n);
     ASSERT_NE(a, nullptr) << n;
     std::size_t total = 1;
@@ -156,6 +157,8 @@ TEST(LyapunovRequest, MapDescribesEveryArrayWithItsShape) {
     EXPECT_FALSE(a->description.empty()) << n;
   }
   EXPECT_EQ(c.find("lambda1")->dims, (std::vector<std::size_t>{3, 32}));
+  for (std::size_t i = 0; i < c.arrays.size(); ++i)  // one HDF5 dataset per name (a repeated name fails to write)
+    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(c.arrays[i].name, c.arrays[j].name);
 }
 
 TEST(LyapunovRequest, CancelledRunThrows) {

@@ -7,12 +7,15 @@
 #include "stats/requests.hpp"
 #include "core/fields.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <random>
 #include <string>
@@ -165,6 +168,7 @@ TEST(Correlation, QuasiPeriodicDoesNotDecay) {
   std::printf("quasi-periodic r = 0.2: C_N(0) = %.4g, envelope over windows of 50 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
               cq[0], lo, hi, d.rate, d.rate_error);
   EXPECT_FALSE(d.decays);
+  EXPECT_EQ(d.verdict, "not decaying") << d.reason;
   EXPECT_EQ(d.windows, 20);  // every window stays above the noise floor
   EXPECT_LT(std::fabs(d.rate), 1e-4);  // no decay: 1e-4 per iteration would be a 10% fall over 1000 lags
   EXPECT_GT(lo, 0.9 * hi);  // the envelope is flat to 10% (oscillation without decay)
@@ -477,4 +481,81 @@ TEST(Cli, BadInputIsOneLineNamingTheFieldExit2) {
     EXPECT_NE(r.err.find(word), std::string::npos) << args << " -> " << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(out)) << "bad input must not create the output directory";
+}
+
+// Issue 21, item 1: at r = 0.11 with the default N = 1e5, |C_N| reaches the noise floor 4 C_N(0)/sqrt(N) = 0.0145 at
+// lag 21, after two windows of 10 lags: no line with an error can be fitted, so the verdict is "undecided" (it was
+// "not decaying, rate 0 +- 0"), with the lag and the windows reported.  With N = 1e6 the floor is 0.0046, three
+// windows are above it and the verdict is "decaying"; its 95% interval contains the rate of an independent fit (N =
+// 2e6, windows of 2 lags: 12 points, a different set of lags).
+TEST(CorrelateRequest, VerdictAtTheChaoticRIsUndecidedWithTheDefaultN) {
+  CorrelateRequest q;  // r = 0.11, the first point of the Section 4 grid, N = 1e5, windows of 10 lags, 200 fit lags
+  const CorrelateResult a = run(q);
+  ASSERT_TRUE(a.fitted);
+  EXPECT_EQ(a.decay.verdict, "undecided") << a.decay.reason;
+  EXPECT_FALSE(a.decay.decays);
+  EXPECT_LT(a.decay.windows, 3);
+  EXPECT_GE(a.decay.floor_lag, 11);  // the first window (lags 1..10) holds C_N(4) = -0.25, far above the floor
+  EXPECT_LE(a.decay.floor_lag, 41);
+  EXPECT_NE(a.decay.reason.find(fmt::format("lag {}", a.decay.floor_lag)), std::string::npos);
+  core::Contents c;
+  a.describe(c);
+  EXPECT_EQ(c.attrs.count("decay_rate"), 0u);  // no rate is reported that was not measured (was 0 +- 0)
+  EXPECT_EQ(std::get<double>(c.attrs.at("envelope_first")), a.envelope[0]);  // was 0 in the JSON
+  EXPECT_EQ(std::get<long>(c.attrs.at("decay_floor_lag")), a.decay.floor_lag);
+
+  q.iterations = 1000000;
+  const CorrelateResult b = run(q);
+  EXPECT_EQ(b.decay.verdict, "decaying") << b.decay.reason;
+  q.iterations = 2000000, q.window = 2, q.fit_lags = 100;
+  const CorrelateResult f = run(q);
+  EXPECT_EQ(f.decay.verdict, "decaying") << f.decay.reason;
+  EXPECT_GE(f.decay.windows, 8);
+  std::printf("r = 0.11: N = 1e6, windows of 10: rate %.4g in [%.4g, %.4g]; N = 2e6, windows of 2: %.4g +- %.2g\n",
+              b.decay.rate, b.decay.rate_low, b.decay.rate_high, f.decay.rate, f.decay.rate_error);
+  EXPECT_LT(b.decay.rate_low, f.decay.rate);
+  EXPECT_GT(b.decay.rate_high, f.decay.rate);
+  EXPECT_GT(b.decay.rate_low, 0);
+}
+
+// The verdict's other branches on exact envelopes: a flat one is "not decaying", a slow fall that neither reaches the
+// floor nor falls tenfold is "undecided", and a clean exponential is "decaying" with its exact rate.
+TEST(Correlation, DecayVerdictBranches) {
+  std::vector<double> flat(201, 1.0), slow(201), fast(201);
+  for (long n = 0; n <= 200; ++n) {
+    slow[n] = std::exp(-0.005 * n) * (1 + 0.01 * std::sin(n));  // falls 2.7-fold over 200 lags
+    fast[n] = std::exp(-0.05 * n);
+  }
+  EXPECT_EQ(fit_decay(flat, 200, 10, 1e-3).verdict, "not decaying");
+  const Decay s = fit_decay(slow, 200, 10, 1e-3);
+  EXPECT_EQ(s.verdict, "undecided") << s.reason;
+  EXPECT_GT(s.rate_low, 0);
+  // Window i holds lags 1+10i..10+10i, its maximum exp(-0.05 (1+10i)) is above 1e-3 up to the window starting at
+  // lag 131 (1.4e-3); the one starting at 141 (8.7e-4) ends the fit: 14 windows.
+  const Decay d = fit_decay(fast, 200, 10, 1e-3);
+  EXPECT_EQ(d.verdict, "decaying");
+  EXPECT_NEAR(d.rate, 0.05, 1e-12);  // the log of the window maxima is exactly linear up to rounding (~1e-16)
+  EXPECT_EQ(d.floor_lag, 141);
+  EXPECT_EQ(d.windows, 14);
+}
+
+// The terminal and the files say the same: btob correlate's closing line is read from the attributes of NAME.json.
+TEST(Cli, CorrelateVerdictOnTheTerminalIsTheManifests) {
+  const auto out = std::filesystem::temp_directory_path() / ("btob_stats_verdict_" + std::to_string(getpid()));
+  const CliRun r = run_btob("correlate --r 0.11 --no-plot --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(out / "correlation.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove_all(out);
+  EXPECT_NE(json.find("\"decay_verdict\": \"undecided\""), std::string::npos) << json;
+  EXPECT_NE(r.err.find("undecided: 2 window(s)"), std::string::npos) << r.err;
+  const auto value = [&](const std::string& key) {  // the number after "key": in the manifest
+    const std::size_t p = json.find("\"" + key + "\": ");
+    return p == std::string::npos ? std::string() : json.substr(p + key.size() + 4, json.find_first_of(",\n", p) - p - key.size() - 4);
+  };
+  const std::string lag = value("decay_floor_lag"), first = value("envelope_first");
+  ASSERT_FALSE(lag.empty());
+  EXPECT_NE(r.err.find("floor reached at lag " + lag), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(fmt::format("envelope {:.4g}", std::stod(first))), std::string::npos) << r.err;
+  EXPECT_EQ(value("decay_rate"), "");  // not measured, not reported (the JSON had 0 while stderr had a range)
 }

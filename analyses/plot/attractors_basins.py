@@ -33,11 +33,13 @@ def main(h5_path, csv_path, png_path):
         for s in (-1, 1):  # the P2 parallelogram w2 = 2 alpha w1 -+ 1 (Section 6.2)
             ax.plot(w1, 2 * al * w1 + s, color="white", lw=0.6, ls="--")
         ax.set_ylim(a["axis2_lo"], a["axis2_hi"])
-    ax.set_xlabel("$w_1$" if strip else r"$\theta$")
-    ax.set_ylabel("$w_2$" if strip else r"$\varphi$")
+    sphere = a["grid_kind"] == "sphere"  # equal-area chart: theta against the height y = -cos(phi)
+    ax.set_xlabel("$w_1$" if strip else r"$\theta$ (rad)")
+    ax.set_ylabel("$w_2$" if strip else (r"$y = -\cos\varphi$ (equal area)" if sphere else r"$\varphi$ (rad)"))
     n = int(a["n1"]) * int(a["n2"])
+    measure = a.get("measure", "")
     ax.set_title(f"basins at r = {r:g}: {a['n1']} x {a['n2']} {a['grid_kind']} grid, transient {a['transient']}, "
-                 f"window {a['window']}", fontsize=9)
+                 f"window {a['window']}\nfractions of the measure: {measure}", fontsize=9)
     handles = []
     for row in rows:
         i = int(row["attractor"])
@@ -45,7 +47,7 @@ def main(h5_path, csv_path, png_path):
         lab = (f"{row['pattern'] or row['type']} [{row['type']}] "
                f"{100 * frac:.2f}% ({100 * float(row['ci_low']):.2f}-{100 * float(row['ci_high']):.2f})")
         handles.append(Patch(color=cols[i], label=lab))
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, 95% CI")
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, 95% CI (sampling)")
     save_atomic(fig, png_path)
 
 

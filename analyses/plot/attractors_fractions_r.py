@@ -62,9 +62,10 @@ def main(h5_path, png_path):
     ax.set_xlim(x[0] - 0.6, x[-1] + 0.6)
     ax.set_ylim(0, 1)
     ax.set_xlabel("r (Table 6.1 values, equally spaced)")
-    ax.set_ylabel("basin fraction")
+    ax.set_ylabel("basin fraction of the measure" if a.get("measure") else "basin fraction")
     ax.set_title(f"Basin fractions across r (Table 6.1 values): {a['points']} initial conditions per r "
-                 f"({a['grid']}, seed {a['seed']}), transient {a['transient']}, window {a.get('window', a.get('iterations', '?'))}",
+                 f"({a['grid']}, seed {a['seed']}), transient {a['transient']}, window {a.get('window', a.get('iterations', '?'))}"
+                 + (f"\nmeasure: {a['measure']}" if a.get("measure") else ""),
                  fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=7,
               title="dotted: J-mirror (312^n of 132^n)\nQ2 on the bars: P2 invariant curves", title_fontsize=7)

@@ -5,6 +5,7 @@ Per r: the Kolmogorov-Smirnov distance between the two binned theta distribution
 number of occupied bins (1 to a few on sinks, hundreds on chaotic r).  Writes distance.csv and
 float_vs_double.png to OUTDIR.  Usage: float_vs_double.py FLOAT.h5 DOUBLE.h5 OUTDIR
 """
+import json
 import os
 import sys
 
@@ -29,19 +30,27 @@ def main(fpath, dpath, out):
     cd = np.cumsum(dd, axis=1) / np.maximum(dd.sum(axis=1, keepdims=True), 1)
     ks = np.abs(cf - cd).max(axis=1)
     occ_f, occ_d = (df > 0).sum(axis=1), (dd > 0).sum(axis=1)
-    tmp = os.path.join(out, f"distance.csv.tmp-{os.getpid()}")
-    with open(tmp, "w") as f:
-        def text(v):
-            return v.decode() if isinstance(v, bytes) else v
-        lo_, hi_ = float(ad.get("range_lo", 0)), float(ad.get("range_hi", np.pi / 2))
-        f.write(f"# binned KS distance between float and double tails of the Figure 4.1 workload: "
-                f"{int(ad.get('bins', df.shape[1]))} bins of {text(ad.get('coord', 'theta'))}"
-                f" on [{lo_:g}, {hi_:g}], over the points inside the range; "
-                f"iterations {ad.get('iterations')}, tail {ad.get('tail')}, grid {text(ad.get('grid'))}\n")
-        f.write("r,ks_distance,occupied_bins_float,occupied_bins_double\n")
-        for i in range(len(r)):
-            f.write(f"{r[i]:.8f},{ks[i]:.4f},{occ_f[i]},{occ_d[i]}\n")
-    os.replace(tmp, os.path.join(out, "distance.csv"))
+    # distance.csv has one header line (numpy.genfromtxt(names=True) and the csv module read it as it is); what it
+    # measures goes to distance.json beside it.
+    def text(v):
+        return v.decode() if isinstance(v, bytes) else v
+    lo_, hi_ = float(ad.get("range_lo", 0)), float(ad.get("range_hi", np.pi / 2))
+    about = {
+        "description": "binned KS distance between float and double tails of the Figure 4.1 workload, over the "
+                       "points inside the range",
+        "bins": int(ad.get("bins", df.shape[1])), "coord": text(ad.get("coord", "theta")), "range": [lo_, hi_],
+        "iterations": int(ad.get("iterations")), "tail": int(ad.get("tail")), "grid": text(ad.get("grid")),
+        "columns": {"r": "restitution coefficient", "ks_distance": "max |CDF_float - CDF_double| over the bins",
+                    "occupied_bins_float": "bins holding a float tail point",
+                    "occupied_bins_double": "bins holding a double tail point"},
+    }
+    for name, content in (("distance.json", json.dumps(about, indent=2) + "\n"),
+                          ("distance.csv", "r,ks_distance,occupied_bins_float,occupied_bins_double\n" + "".join(
+                              f"{r[i]:.8f},{ks[i]:.4f},{occ_f[i]},{occ_d[i]}\n" for i in range(len(r))))):
+        tmp = os.path.join(out, f"{name}.tmp-{os.getpid()}")
+        with open(tmp, "w") as f:
+            f.write(content)
+        os.replace(tmp, os.path.join(out, name))
 
     import matplotlib.colors as mcolors
     lo, hi = float(ad.get("range_lo", 0)), float(ad.get("range_hi", np.pi / 2))

@@ -7,6 +7,7 @@ largest window (ab)^n(cb)^n resolved.
 Usage: precision_tradeoff.py tradeoff.csv OUT.png
 """
 import csv
+import json
 import os
 import sys
 
@@ -18,12 +19,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main(src, dst):
     with open(src) as f:
-        lines = [l for l in f if not l.startswith("#")]
-    rows = list(csv.DictReader(lines))
-    with open(src) as f:
-        header = [l[2:].strip() for l in f if l.startswith("#")]
+        rows = list(csv.DictReader(f))
     rs = [k[len("agree_median_r"):] for k in rows[0].keys() if k.startswith("agree_median_r")]
-    iters = next((h.split("iterations=")[1].split()[0] for h in header if "iterations=" in h), "?")
+    # The run's iterations: in the manifest beside the CSV (NAME.json), or in the comment line of older CSVs.
+    iters = "?"
+    manifest = os.path.splitext(src)[0] + ".json"
+    if os.path.exists(manifest):
+        with open(manifest) as f:
+            iters = str(json.load(f).get("iterations", "?"))
     fig, axes = plt.subplots(2, 2, figsize=(15, 10.5), dpi=120)
     (ax, cx), (lx, bx) = axes
     markers = "os^Dv<>"

@@ -46,14 +46,19 @@ def main(src, dst):
         nfit = np.linspace(1, 1 + w * a["decay_windows"], 50)
         bx.semilogy(nfit, a["envelope_first"] * np.exp(-a["decay_rate"] * (nfit - nfit[0])), "k:", lw=1.2,
                     label=f"fit: rate {a['decay_rate']:.3g} ± {a['decay_rate_error']:.2g} /iteration "
-                          f"({'decays' if a['decays'] == 'yes' else 'no decay'})")
+                          f"({a.get('decay_verdict', 'decaying' if a['decays'] == 'yes' else 'no decay')})")
     bx.set_ylim(bottom=floor_draw / 2)
     if hidden:
         bx.text(0.99, 0.02, f"{hidden} of {len(ac)} lags have |C_N| < noise floor / 1000 (rounding level): not drawn",
                 transform=bx.transAxes, ha="right", va="bottom", fontsize=7)
     bx.set_xlabel("lag n (map iterations)")
     bx.set_ylabel(r"$|C_N(n)|$")
-    bx.set_title(f"log |C_N|: envelope {a['envelope_min']:.3g} .. {a['envelope_max']:.3g}", fontsize=9)
+    title = f"log |C_N|: envelope {a['envelope_min']:.3g} .. {a['envelope_max']:.3g}"
+    if "decay_verdict" in a:  # the fit's verdict and where |C_N| met the noise floor (btob correlate)
+        title += f"; {a['decay_verdict']}"
+        title += (f", floor at lag {a['decay_floor_lag']}" if "decay_floor_lag" in a
+                  else f", floor not reached by lag {a['decay_fit_lags']}")
+    bx.set_title(title, fontsize=9)
     bx.legend(fontsize=7, loc="center left", framealpha=0.9, markerscale=3)
 
     cx.semilogy(freq, ps + 1e-300, lw=0.6)

@@ -357,11 +357,12 @@ Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const cha
   Grid g;
   const auto colon = spec.find(':');
   const auto bad = [&] {
-    return std::invalid_argument(fmt::format("{}: got '{}', expected strip:NxM or angles:NxM with N, M >= 1", field, spec));
+    return std::invalid_argument(
+        fmt::format("{}: got '{}', expected sphere:NxM, strip:NxM or angles:NxM with N, M >= 1", field, spec));
   };
   if (colon == std::string::npos) throw bad();
   g.kind = spec.substr(0, colon);
-  if (g.kind != "strip" && g.kind != "angles") throw bad();
+  if (g.kind != "sphere" && g.kind != "strip" && g.kind != "angles") throw bad();
   const std::string dims = spec.substr(colon + 1);
   const auto x = dims.find('x');
   if (x == std::string::npos) throw bad();
@@ -380,6 +381,8 @@ Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const cha
       throw std::invalid_argument(
           fmt::format("w1-range: got [{}, {}], expected finite a < b", w1_min, w1_max));
     g.lo1 = w1_min, g.hi1 = w1_max, g.lo2 = -1, g.hi2 = 1;
+  } else if (g.kind == "sphere") {
+    g.lo1 = 0, g.hi1 = std::numbers::pi / 2, g.lo2 = -1, g.hi2 = 1;
   } else {
     g.lo1 = 0, g.hi1 = std::numbers::pi / 2, g.lo2 = 0, g.hi2 = std::numbers::pi;
   }
@@ -395,9 +398,26 @@ std::vector<Vec3<double>> grid_points(const Grid& g, double du, double dv) {
       const double a = g.lo1 + (static_cast<double>(i) + 0.5 + du) * (g.hi1 - g.lo1) / static_cast<double>(g.n1);
       const double b = g.lo2 + (static_cast<double>(j) + 0.5 + dv) * (g.hi2 - g.lo2) / static_cast<double>(g.n2);
       pts[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.n1) + static_cast<std::size_t>(i)] =
-          g.kind == "strip" ? core::from_strip<double>(a, b) : core::from_angles<double>(a, b);
+          g.kind == "strip"    ? core::from_strip<double>(a, b)
+          : g.kind == "sphere" ? core::from_height<double>(a, b)
+                               : core::from_angles<double>(a, b);
     }
   return pts;
+}
+
+double strip_sphere_share(double a, double b) {
+  const auto F = [](double w) { return std::asin(w / std::sqrt(1 + 2 * w * w)); };
+  return 2 / std::numbers::pi * (F(b) - F(a));
+}
+
+double sphere_share(const Grid& g) { return g.kind == "strip" ? strip_sphere_share(g.lo1, g.hi1) : 1.0; }
+
+std::string measure_name(const Grid& g) {
+  if (g.kind == "sphere") return "uniform on the sphere of directions of the domain (equal-area grid)";
+  if (g.kind == "strip")
+    return fmt::format("Lebesgue on the strip rectangle w1 in [{}, {}] x w2 in [-1, 1] ({:.4f} of the sphere measure)",
+                       g.lo1, g.hi1, sphere_share(g));
+  return "uniform in the angles (theta, phi), not the sphere's area";
 }
 
 Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt) {

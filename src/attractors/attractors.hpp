@@ -119,14 +119,27 @@ struct Fraction {
 };
 Fraction fraction(std::size_t successes, std::size_t trials, double confidence = 0.95);
 
-// A grid of initial conditions: "strip:NxM" (cell centres, w1 in [w1_min, w1_max], w2 in [-1, 1]) or
-// "angles:NxM" (theta in [0, pi/2] x phi in [0, pi], cell centres), shifted by (du, dv) cells (|du|, |dv| <=
-// 1/2; replicate grids).  Throws std::invalid_argument naming `field` for an empty or malformed grid.
+// A grid of initial conditions, cell centres shifted by (du, dv) cells (|du|, |dv| <= 1/2; replicate grids):
+//   "sphere:NxM"  theta in [0, pi/2] x y in [-1, 1] (the equal-area chart, core::from_height): every cell holds the
+//                 same solid angle, so a fraction of the points is a fraction of the uniform measure on the sphere
+//                 of directions restricted to the domain (the quarter-sphere Q, solid angle pi);
+//   "strip:NxM"   w1 in [w1_min, w1_max] x w2 in [-1, 1]: Lebesgue measure on that rectangle of the plane x - z = 1
+//                 (its points are far from uniform on the sphere: a cell holds the solid angle dw1 dw2 / (2|u|^3));
+//   "angles:NxM"  theta in [0, pi/2] x phi in [0, pi]: the measure dtheta dphi (the sphere's is sin(phi) dtheta dphi).
+// Throws std::invalid_argument naming `field` for an empty or malformed grid.
 struct Grid {
-  std::string kind;  // "strip" or "angles"
-  long n1 = 0, n2 = 0;  // columns (w1 or theta) x rows (w2 or phi)
+  std::string kind;  // "sphere", "strip" or "angles"
+  long n1 = 0, n2 = 0;  // columns (theta or w1) x rows (y, w2 or phi)
   double lo1 = -2, hi1 = 2, lo2 = -1, hi2 = 1;
 };
+// The measure whose fractions a grid's counts estimate, in words (every output names it).
+std::string measure_name(const Grid& g);
+// The share of the sphere measure of the domain (uniform on the directions of Q) that the grid's region holds: 1 for
+// sphere and angles grids (they cover Q), for a strip w1 in [a, b] (2/pi) (F(b) - F(a)), F(w) = asin(w/sqrt(1+2w^2))
+// (the integral over theta of the height interval |y| <= w c/sqrt(1+w^2c^2), c = cos(theta) + sin(theta)).
+double sphere_share(const Grid& g);
+// The same share for a strip w1 in [a, b] x w2 in [-1, 1].
+double strip_sphere_share(double a, double b);
 Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const char* field = "grid");
 std::vector<Vec3<double>> grid_points(const Grid& g, double du = 0, double dv = 0);
 

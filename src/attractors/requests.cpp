@@ -96,6 +96,8 @@ void BasinsRequest::validate() const {
   core::require_r(r, "r");
   if (w1_range.size() != 2)
     throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
+  if (!(std::isfinite(w1_range[0]) && std::isfinite(w1_range[1]) && w1_range[0] < w1_range[1]))  // any grid kind
+    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_range[0], w1_range[1]), "finite a < b");
   attractors::validate(thresholds);
   if (replicates < 0 || replicates > 100)
     throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
@@ -147,6 +149,8 @@ void BasinsResult::describe(core::Contents& c) const {
   c.attr("axis2_lo", g.lo2);
   c.attr("axis2_hi", g.hi2);
   c.attr("grid_kind", g.kind);
+  c.attr("measure", measure_name(g));
+  c.attr("measure_sphere_share", sphere_share(g));  // share of the sphere measure of the domain the grid covers
   c.attr("replicates", static_cast<long>(request.replicates));
   c.attr("seed", static_cast<long>(request.seed));
   threshold_attrs(c, request.thresholds);
@@ -305,12 +309,24 @@ BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
   return res;
 }
 
+std::string grid_measure(const std::string& spec) {
+  if (spec.starts_with("random:")) return "uniform on the sphere of directions of the domain (random points)";
+  if (spec.starts_with("strip:")) {
+    const iterate::StripSpec s = iterate::parse_strip(spec, "grid");
+    return fmt::format("Lebesgue on the strip rectangle w1 in [{}, {}] x w2 in [-1, 1] ({:.4f} of the sphere measure)",
+                       s.w1_min, s.w1_max, strip_sphere_share(s.w1_min, s.w1_max));
+  }
+  if (spec == "paper") return "the 32 points of the Section 4 grid (fractions of orbits, no measure)";
+  return "the listed points (fractions of orbits, no measure)";
+}
+
 void BasinsRResult::describe(core::Contents& c) const {
   c.array("r", r, {r.size()}, "r value", "1", "restitution coefficients");
   c.array("fraction", fraction, {r.size(), columns.size()}, "r value, attractor (column_<j>; unresolved last)", "1",
           "fraction of the initial conditions in each basin");
   for (std::size_t j = 0; j < columns.size(); ++j) c.attr(fmt::format("column_{}", j), columns[j]);
   c.attr("grid", request.grid);
+  c.attr("measure", grid_measure(request.grid));
   c.attr("seed", static_cast<long>(request.seed));
   c.attr("points", static_cast<long>(points));
   c.attr("columns", static_cast<long>(columns.size()));

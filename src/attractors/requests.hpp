@@ -60,7 +60,7 @@ ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control =
 // ---- basins at one r (`btob basins`) --------------------------------------------------------------------------
 struct BasinsRequest {
   double r = 0;                          // restitution coefficient, in (0, 1)
-  std::string grid = "strip:200x200";    // strip:NxM (w1 x w2) or angles:NxM (theta x phi, rad)
+  std::string grid = "sphere:200x200";   // sphere:NxM (equal-area theta x y), strip:NxM (w1 x w2), angles:NxM
   std::vector<double> w1_range{-2, 2};   // w1 range a < b of a strip grid
   int replicates = 2;                    // randomly shifted replicate grids, 0..100
   std::uint64_t seed = 1;                // seed of the replicate shifts
@@ -70,7 +70,9 @@ struct BasinsRequest {
   Grid parsed_grid() const;  // the grid (validated)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)", core::Required{});
-    v("grid", grid, "strip:NxM (w1 x w2) or angles:NxM (theta x phi)");
+    v("grid", grid,
+      "sphere:NxM (equal-area grid of theta x y: fractions of the uniform measure on the sphere of directions), "
+      "strip:NxM (w1 x w2: fractions of Lebesgue measure on that rectangle) or angles:NxM (theta x phi)");
     v("w1-range", w1_range, "w1 range a,b of a strip grid");
     v("replicates", replicates, "randomly shifted replicate grids, 0..100");
     v("seed", seed, "seed of the replicate shifts");
@@ -101,6 +103,10 @@ struct TableRow {
 };
 // Table 6.1 from its CSV text (header r,percent,patterns); empty rows are skipped.
 std::vector<TableRow> parse_table(const std::string& csv);
+// The measure whose fractions the counts over an iterate grid spec estimate (random:N: the uniform measure on the
+// sphere of directions of the domain; strip: Lebesgue on its rectangle, with its share of the sphere measure; paper
+// and point lists: counts of orbits, no measure).
+std::string grid_measure(const std::string& spec);
 
 struct BasinsRRequest {
   std::vector<double> r_values;       // r values in (0, 1)

@@ -5,6 +5,7 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "io/io.hpp"
 
 #include <fmt/format.h>
@@ -17,56 +18,60 @@
 namespace btob::cli {
 namespace {
 
-std::string csv_quote(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 // ---- btob classify ----
 void classify(const attractors::ClassifyRequest& req, const Output&, const Context& ctx) {
   const attractors::ClassifyResult res = attractors::run(req, ctx.control);
   const attractors::OrbitVerdict& v = res.verdict;
-  std::cout << "type,pattern,period,lambda1,err,detail\n";
-  std::cout << fmt::format("{},{},{},{:.6g},{:.2g},{}\n", attractors::type_name(v.type), csv_quote(res.pattern),
-                           v.period, v.lambda1, v.err1, csv_quote(res.detail));
+  core::CsvTable t("type,pattern,period,lambda1,err,detail");
+  t.row({attractors::type_name(v.type), res.pattern, fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
+         fmt::format("{:.2g}", v.err1), res.detail});
+  std::cout << t.text();
 }
 
 // ---- btob basins ----
-// fractions.csv: the requested columns first, then counts, replicate spread and evidence.
+// NAME_fractions.csv: the requested columns first, then counts, replicate spread and evidence; the unresolved
+// points are the last row (attractor 0), with the columns that describe an attractor left empty.
 std::string fractions_csv(const attractors::BasinsResult& res) {
   const attractors::Basins& b = res.basins;
-  std::string csv =
+  core::CsvTable t(
       "attractor,type,pattern,fraction,ci_low,ci_high,count,replicate_mean,replicate_sd,canonical,period,collisions,"
-      "stability,lyapunov2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters\n";
+      "stability,lambda2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters,measure");
+  const std::string measure = attractors::measure_name(b.grid);
+  const auto f = [](double v) { return fmt::format("{:.6f}", v); };
   for (std::size_t i = 0; i < b.attractors.size(); ++i) {
     const auto& at = b.attractors[i];
     const auto w = core::strip<double>(at.point);
-    csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{},{:.6f},{:.6f},{},{},{},{},{:.6g},{:.10g},{:.10g},{:.8g},{:.8g},{:.12g},{:.12g},{}\n",
-                       at.id, attractors::type_name(at.type), csv_quote(at.pattern), b.fractions[i].value,
-                       b.fractions[i].low, b.fractions[i].high, at.count, res.replicate_mean[i], res.replicate_sd[i],
-                       csv_quote(at.canonical), at.period, at.collisions, csv_quote(at.stability), at.lyapunov2,
-                       at.rotation_min, at.rotation_max, at.invariant_min, at.invariant_max, w.first, w.second,
-                       csv_quote(at.letters));
+    t.row({fmt::format("{}", at.id), attractors::type_name(at.type), at.pattern, f(b.fractions[i].value),
+           f(b.fractions[i].low), f(b.fractions[i].high), fmt::format("{}", at.count), f(res.replicate_mean[i]),
+           f(res.replicate_sd[i]), at.canonical, fmt::format("{}", at.period), fmt::format("{}", at.collisions),
+           at.stability, fmt::format("{:.6g}", at.lyapunov2), fmt::format("{:.10g}", at.rotation_min),
+           fmt::format("{:.10g}", at.rotation_max), fmt::format("{:.8g}", at.invariant_min),
+           fmt::format("{:.8g}", at.invariant_max), fmt::format("{:.12g}", w.first), fmt::format("{:.12g}", w.second),
+           at.letters, measure});
   }
   const std::size_t u = b.attractors.size();
-  csv += fmt::format("0,unresolved,,{:.6f},{:.6f},{:.6f},{},{:.6f},{:.6f},,,,,,,,,,,\n", b.unresolved.value,
-                     b.unresolved.low, b.unresolved.high, res.unresolved_count, res.replicate_mean[u],
-                     res.replicate_sd[u]);
-  return csv;
+  std::vector<std::string> row = {"0", "unresolved", "", f(b.unresolved.value), f(b.unresolved.low),
+                                  f(b.unresolved.high), fmt::format("{}", res.unresolved_count), f(res.replicate_mean[u]),
+                                  f(res.replicate_sd[u])};
+  row.resize(t.columns().size());
+  row.back() = measure;
+  t.row(row);
+  return t.text();
 }
 
 void basins(const attractors::BasinsRequest& req, const Output& o, const Context& ctx) {
-  const attractors::BasinsResult res = attractors::run(req, ctx.control);
+  Context run_ctx = ctx;
+  const auto progress = terminal_progress("basins");
+  if (!o.quiet) run_ctx.control.progress = progress.get();
+  const attractors::BasinsResult res = attractors::run(req, run_ctx.control);
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins", "double");
   io::ResultFiles files(o.out, o.name);
-  files.text("fractions.csv", fractions_csv(res));
+  files.text(o.name + "_fractions.csv", fractions_csv(res));
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_inputs("attractors_basins.py", {o.name + ".h5", "fractions.csv"});
+  if (!o.no_plot) files.plot_inputs("attractors_basins.py", {o.name + ".h5", o.name + "_fractions.csv"});
   const auto written = files.commit();
   const attractors::Basins& b = res.basins;
   const std::size_t n = res.points();
@@ -77,29 +82,45 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
                              static_cast<double>(n * static_cast<std::size_t>(req.replicates + 1)) / b.seconds,
                              res.threads, b.attractors.size(), b.unresolved.value, b.unresolved_first_pass,
                              listing(written));
+  if (o.quiet) return;
+  // Each attractor's fraction with its 95% interval (sampling only), of the measure the grid samples.
+  std::cerr << "  fractions of the measure: " << attractors::measure_name(b.grid) << "\n";
+  if (b.grid.kind == "strip")
+    std::cerr << fmt::format("  the rectangle leaves out {:.4f} of the uniform measure on the sphere of directions "
+                             "(sphere:NxM counts that measure)\n",
+                             1 - attractors::sphere_share(b.grid));
+  for (std::size_t i = 0; i < b.attractors.size(); ++i)
+    std::cerr << fmt::format("  {} {} {}: {:.4f} [{:.4f}, {:.4f}]\n", b.attractors[i].id,
+                             attractors::type_name(b.attractors[i].type), b.attractors[i].pattern, b.fractions[i].value,
+                             b.fractions[i].low, b.fractions[i].high);
+  std::cerr << fmt::format("  0 unresolved: {:.4f} [{:.4f}, {:.4f}]\n", b.unresolved.value, b.unresolved.low,
+                           b.unresolved.high);
 }
 
 // ---- btob basins-r ----
 std::string fractions_r_csv(const attractors::BasinsRResult& res) {
-  std::string csv = "r,attractor_key,type,pattern,fraction,ci_low,ci_high,count,stability\n";
+  core::CsvTable t("r,attractor_key,type,pattern,fraction,ci_low,ci_high,count,stability,measure");
+  const std::string measure = core::csv_text(attractors::grid_measure(res.request.grid));
   for (const auto& row : res.rows) {
     for (std::size_t i = 0; i < row.attractors.size(); ++i)
-      csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{},{}\n", row.r, row.attractors[i].key,
-                         attractors::type_name(row.attractors[i].type), csv_quote(row.attractors[i].pattern),
+      t.line(fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{},{},{}", row.r, core::csv_text(row.attractors[i].key),
+                         attractors::type_name(row.attractors[i].type), core::csv_text(row.attractors[i].pattern),
                          row.fractions[i].value, row.fractions[i].low, row.fractions[i].high, row.attractors[i].count,
-                         csv_quote(row.attractors[i].stability));
-    csv += fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},\n", row.r, row.unresolved.value, row.unresolved.low,
+                         core::csv_text(row.attractors[i].stability), measure));
+    t.line(fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.unresolved.value, row.unresolved.low,
                        row.unresolved.high,
-                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(res.points))));
+                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(res.points))),
+                       measure));
   }
-  return csv;
+  return t.text();
 }
 
 // table_6_1_comparison.csv: periodic fraction (paper: % of 10 orbits) and the patterns found, per r.
 std::string comparison_csv(const attractors::BasinsRResult& res) {
-  std::string cmp =
+  core::CsvTable cmp(
       "r,paper_percent_periodic,paper_ci_low,paper_ci_high,consistent,paper_patterns,periodic_fraction,ci_low,ci_high,"
-      "patterns_found,paper_patterns_found,extra_patterns,other_types\n";
+      "patterns_found,paper_patterns_found,extra_patterns,other_types,measure");
+  const std::string measure = core::csv_text(attractors::grid_measure(res.request.grid));
   for (const auto& c : res.comparison) {
     std::string pci_lo, pci_hi, consistent;
     if (c.has_percent) {
@@ -107,11 +128,11 @@ std::string comparison_csv(const attractors::BasinsRResult& res) {
       consistent = c.consistent ? "yes" : "no";
     }
     const std::string paper_found = c.in_table ? fmt::format("{}/{}", c.paper_found, c.paper_total) : "";
-    cmp += fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", c.r, c.paper_percent, pci_lo, pci_hi,
-                       consistent, csv_quote(c.paper_patterns), c.periodic.value, c.periodic.low, c.periodic.high,
-                       csv_quote(c.found), paper_found, csv_quote(c.extra), csv_quote(c.other));
+    cmp.line(fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", c.r, c.paper_percent, pci_lo, pci_hi,
+                         consistent, core::csv_text(c.paper_patterns), c.periodic.value, c.periodic.low, c.periodic.high,
+                         core::csv_text(c.found), paper_found, core::csv_text(c.extra), core::csv_text(c.other), measure));
   }
-  return cmp;
+  return cmp.text();
 }
 
 void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Context& ctx) {
@@ -125,7 +146,10 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
     ss << in.rdbuf();
     req.reference_csv = ss.str();
   }
-  const attractors::BasinsRResult res = attractors::run(req, ctx.control);
+  Context run_ctx = ctx;
+  const auto progress = terminal_progress("basins-r");
+  if (!o.quiet) run_ctx.control.progress = progress.get();
+  const attractors::BasinsRResult res = attractors::run(req, run_ctx.control);
   if (!o.quiet)
     for (const auto& row : res.rows)
       std::cerr << fmt::format("btob: basins-r r = {}: {} attractors\n", row.r, row.attractors.size());
@@ -139,7 +163,9 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("attractors_fractions_r.py");
   const auto written = files.commit();
-  if (!o.quiet) std::cerr << fmt::format("btob: basins-r in {:.2f} s; wrote {}\n", res.seconds, listing(written));
+  if (!o.quiet)
+    std::cerr << fmt::format("btob: basins-r in {:.2f} s; fractions of the measure: {}; wrote {}\n", res.seconds,
+                             attractors::grid_measure(req.grid), listing(written));
 }
 
 struct Registration {
@@ -149,7 +175,7 @@ struct Registration {
         classify);
     command<attractors::BasinsRequest>(
         "basins",
-        "Basins of the attractors at one r over a grid: image and fractions; writes fractions.csv, NAME.h5, NAME.json, "
+        "Basins of the attractors at one r over a grid: image and fractions; writes NAME_fractions.csv, NAME.h5, NAME.json, "
         "NAME.png",
         Output{"results/attractors/basins", "basins", "", 0, false, false}, basins);
     command<attractors::BasinsRRequest>(

@@ -3,6 +3,7 @@
 // the (non-)hyperbolicity of Section 8.1 (3).  Flags -> lyapunov::Hyperbolicity*Request -> run -> files.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 
 #include <fmt/format.h>
@@ -32,15 +33,15 @@ void strip(const lyapunov::HyperbolicityRequest& req, const Output& o, const Con
 
 // NAME_summary.csv: the per-r columns.
 std::string orbits_summary(const lyapunov::HyperbolicityOrbitsResult& res) {
-  std::string csv =
+  core::CsvTable csv(
       "r,frac_expanding,angle_median,angle_q05,angle_min,frac_degenerate,lambda1_median,lambda1_frac_positive,"
-      "lambda1_qr_median\n";
+      "lambda1_qr_median");
   const auto& sm = res.summary;
   for (std::size_t i = 0; i < res.ensemble.r.size(); ++i)
-    csv += fmt::format("{:.9f},{:.5f},{:.6g},{:.6g},{:.6g},{:.4f},{:.6g},{:.4f},{:.6g}\n", res.ensemble.r[i],
-                       res.frac_expanding[i], res.angle_median[i], res.angle_q05[i], res.angle_min[i],
-                       res.frac_degenerate[i], sm.median[i], sm.frac_positive[i], res.lambda1_qr_median[i]);
-  return csv;
+    csv.line(fmt::format("{:.9f},{:.5f},{:.6g},{:.6g},{:.6g},{:.4f},{:.6g},{:.4f},{:.6g}", res.ensemble.r[i],
+                         res.frac_expanding[i], res.angle_median[i], res.angle_q05[i], res.angle_min[i],
+                         res.frac_degenerate[i], sm.median[i], sm.frac_positive[i], res.lambda1_qr_median[i]));
+  return csv.text();
 }
 
 void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, const Context& ctx) {

@@ -1,6 +1,7 @@
 // `btob lyapunov`, `btob lyapunov-map`, `btob lyapunov-strip`: flags -> lyapunov::*Request -> run -> files.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "lyapunov/requests.hpp"
 
 #include <fmt/format.h>
@@ -23,11 +24,11 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
               << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", l[0].value, l[0].error, l[1].value, l[1].error,
                              res.iterations);
   if (!req.convergence.empty()) {
-    std::string csv = "n,lambda1,lambda2\n";
+    core::CsvTable csv("n,lambda1,lambda2");
     const auto& c = res.convergence;
     for (std::size_t j = 0; j < c.n.size(); ++j)
-      csv += fmt::format("{},{:.12g},{:.12g}\n", c.n[j], c.exponents[0][j], c.exponents[1][j]);
-    io::write_text_atomic(req.convergence, csv);
+      csv.line(fmt::format("{},{:.12g},{:.12g}", c.n[j], c.exponents[0][j], c.exponents[1][j]));
+    io::write_text_atomic(req.convergence, csv.text());
   }
 }
 
@@ -68,11 +69,15 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   files.h5(c, at);
   if constexpr (std::is_same_v<Req, lyapunov::MapRequest>) {
     const auto& s = res.summary;
-    std::string csv = "r,lambda1_min,lambda1_median,lambda1_max,frac_positive,frac_zero,frac_negative\n";
+    // Each statistic of lambda1 with its error bar (maps.hpp, RSummary); the classification adds the floor 10/n.
+    core::CsvTable csv(
+        "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
+        "frac_zero,frac_negative");
     for (std::size_t i = 0; i < res.ensemble.r.size(); ++i)
-      csv += fmt::format("{:.9f},{:.6g},{:.6g},{:.6g},{:.4f},{:.4f},{:.4f}\n", res.ensemble.r[i], s.min[i], s.median[i],
-                         s.max[i], s.frac_positive[i], s.frac_zero[i], s.frac_negative[i]);
-    files.text(o.name + "_summary.csv", csv);
+      csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", res.ensemble.r[i],
+                           s.min[i], s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i],
+                           s.frac_positive[i], s.frac_zero[i], s.frac_negative[i]));
+    files.text(o.name + "_summary.csv", csv.text());
   }
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot(script);

@@ -1,6 +1,7 @@
 // `btob particles WORD --r R`: four particles realise the periodic pattern WORD, event by event (issue 19).
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "io/io.hpp"
 #include "particles/particles.hpp"
 
@@ -22,7 +23,7 @@ struct ParticlesArgs {
 const char* csv_header() { return "word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse"; }
 
 std::string csv_row(const particles::ParticlesResult& s) {
-  return fmt::format("{},{},{},{},{},{:.15g},{:.15g},{:.15g}", s.word, s.r, s.periods, s.letters,
+  return fmt::format("{},{},{},{},{},{:.15g},{:.15g},{:.15g}", core::csv_text(s.word), s.r, s.periods, s.letters,
                      s.sequence_ok ? "true" : "false", s.length_contraction, s.length_predicted, s.time_to_collapse);
 }
 
@@ -32,36 +33,37 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
   const particles::ParticlesResult s = particles::run(a.req);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   if (a.header) std::cout << csv_header() << "\n";
   std::cout << csv_row(s) << std::endl;
 
-  std::string t = std::string(csv_header()) +
-                  ",digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
-                  "length_spread,energy_ratio,collisions_unrescaled,collisions_limit_predicted,failure\n";
-  t += csv_row(s) + fmt::format(",{},{},{},{:.15g},{:.15g},{:.15g},{:.15g},{:.3g},{:.15g},{},{:.1f},\"{}\"\n", s.digits, s.outcome,
-                                s.periods_ok, s.velocity_contraction, s.velocity_predicted, s.time_contraction,
-                                s.time_predicted, s.length_spread, s.energy_ratio, s.collisions_unrescaled,
-                                s.collisions_limit_predicted, s.failure);
-  io::write_text_atomic(out / "particles.csv", t);
+  core::CsvTable t(std::string(csv_header()) +
+                   ",digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
+                   "length_spread,energy_ratio,collisions_unrescaled,collisions_limit_predicted,failure");
+  t.line(csv_row(s) + fmt::format(",{},{},{},{:.15g},{:.15g},{:.15g},{:.15g},{:.3g},{:.15g},{},{:.1f},{}", s.digits,
+                                  core::csv_text(s.outcome), s.periods_ok, s.velocity_contraction, s.velocity_predicted,
+                                  s.time_contraction, s.time_predicted, s.length_spread, s.energy_ratio,
+                                  s.collisions_unrescaled, s.collisions_limit_predicted, core::csv_text(s.failure)));
+  io::write_text_atomic(out / "particles.csv", t.text());
   // Convergence: every period up to 100, then about 20 per decade.
-  std::string c = "period,length_ratio,velocity_ratio,time_ratio\n";
+  core::CsvTable c("period,length_ratio,velocity_ratio,time_ratio");
   long next = 1;
   for (std::size_t n = 0; n < s.length_ratio.size(); ++n) {
     const long k = static_cast<long>(n) + 1;
     if (k < 100 || k >= next || n + 1 == s.length_ratio.size()) {
-      c += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", k, s.length_ratio[n], s.velocity_ratio[n], s.time_ratio[n]);
+      c.line(fmt::format("{},{:.17g},{:.17g},{:.17g}", k, s.length_ratio[n], s.velocity_ratio[n], s.time_ratio[n]));
       if (k >= 100) next = static_cast<long>(std::ceil(k * std::pow(10.0, 0.05)));
     }
   }
-  io::write_text_atomic(out / "convergence.csv", c);
-  std::string e = "period,time,time_to_collapse,x1,x2,x3,x4,letter\n";
+  io::write_text_atomic(out / "convergence.csv", c.text());
+  core::CsvTable e("period,time,time_to_collapse,x1,x2,x3,x4,letter");
   for (std::size_t i = 0; i + 8 <= s.events.size(); i += 8) {
     const int l = static_cast<int>(s.events[i + 7]);
-    e += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", static_cast<long>(s.events[i]), s.events[i + 1],
+    e.line(fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}", static_cast<long>(s.events[i]), s.events[i + 1],
                      s.events[i + 2], s.events[i + 3], s.events[i + 4], s.events[i + 5], s.events[i + 6],
-                     l == 0 ? "start" : std::string(1, char('a' + l - 1)));
+                     l == 0 ? "start" : std::string(1, char('a' + l - 1))));
   }
-  io::write_text_atomic(out / "events.csv", e);
+  io::write_text_atomic(out / "events.csv", e.text());
   // JSON has no NaN or infinity: such values are recorded as the strings "nan", "inf".
   const auto num = [](double v) -> io::Attr {
     if (std::isfinite(v)) return v;
@@ -103,6 +105,9 @@ void particles_cmd(const ParticlesArgs& a, const std::string& command_line) {
                            s.seconds);
   if (!s.failure.empty()) std::cerr << "btob: warning: " << s.failure << "\n";
   if (!a.no_plot) io::run_plot("particles.py", {out.string()});
+  print_written({out / "particles.csv", out / "convergence.csv", out / "events.csv", out / "particles.json",
+                 out / "spacetime.png", out / "animation.gif"},
+                since);
 }
 
 Register reg([](CLI::App& app) {

@@ -3,7 +3,6 @@
 #include "cli/common.hpp"
 #include "precision/tradeoff.hpp"
 
-#include <btob/build_info.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
@@ -18,11 +17,12 @@ void tradeoff(const precision::TradeoffRequest& req, const Output& o, const Cont
   const precision::TradeoffResult res = precision::run(req, control);
   core::Contents c;
   res.describe(c);
-  const std::string csv = res.csv(req, fmt::format("{} ({})", build::version, build::git_commit));
+  const std::string csv = res.csv(req);
   io::Attrs at = ctx.attrs(o, c, "precision_tradeoff", "float,double,long-double,float128,mpfr:50,mpfr:100,mpfr:256");
   at["orbits"] = req.orbits;
   at["iterations"] = req.iterations;
   at["seed"] = static_cast<long>(req.seed);
+  at["description"] = precision::TradeoffResult::notes(req);
   io::ResultFiles files(o.out, o.name);
   files.text(o.name + ".csv", csv);
   ctx.manifest(files, at);

@@ -2,9 +2,9 @@
 // distances and convergence), Section 8.1 (2): flags -> stats::*Request -> run -> files.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "stats/requests.hpp"
 
-#include <btob/build_info.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
@@ -12,20 +12,13 @@
 namespace btob::cli {
 namespace {
 
-// NAME.csv: lag,C_N[,C_N_direct] under a comment line naming the run.
-std::string correlation_csv(const stats::CorrelateRequest& a, const stats::CorrelateResult& res) {
+// NAME.csv: lag,C_N[,C_N_direct] (what the run was is in NAME.json and NAME.h5).
+std::string correlation_csv(const stats::CorrelateResult& res) {
   const bool both = !res.c_direct.empty();
-  std::string csv = fmt::format(
-      "# C_N({}, {}; n), r = {}, point {}, N = {}, transient {}, method {}, precision {}, btob {}\n",
-      stats::observable_name(res.phi), stats::observable_name(res.psi), a.r, a.point, res.N(), a.transient, a.method,
-      a.precision, build::git_commit);
-  csv += both ? "lag,C_N,C_N_direct\n" : "lag,C_N\n";
-  for (std::size_t n = 0; n < res.c.size(); ++n) {
-    csv += fmt::format("{},{:.17g}", n, res.c[n]);
-    if (both) csv += fmt::format(",{:.17g}", res.c_direct[n]);
-    csv += "\n";
-  }
-  return csv;
+  core::CsvTable t(both ? "lag,C_N,C_N_direct" : "lag,C_N");
+  for (std::size_t n = 0; n < res.c.size(); ++n)
+    t.line(both ? fmt::format("{},{:.17g},{:.17g}", n, res.c[n], res.c_direct[n]) : fmt::format("{},{:.17g}", n, res.c[n]));
+  return t.text();
 }
 
 void correlate(const stats::CorrelateRequest& req, const Output& o, const Context& ctx) {
@@ -34,38 +27,47 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "correlate", req.precision);
   io::ResultFiles files(o.out, o.name);
-  files.text(o.name + ".csv", correlation_csv(req, res));
+  files.text(o.name + ".csv", correlation_csv(res));
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_correlation.py");
   const auto written = files.commit();
   if (o.quiet) return;
-  const auto env = [&](const char* k) { return c.attrs.count(k) ? std::get<double>(c.attrs.at(k)) : 0.0; };
-  std::cerr << fmt::format("btob: C_N({}, {}; 0..{}) over N = {} in {:.3g} s ({}, {}); |C_N| window envelope {:.3g} .. {:.3g}",
+  // Everything below is read from the attributes NAME.json and NAME.h5 carry, so the terminal and the files agree.
+  const auto num = [&](const char* k) {
+    const auto& v = c.attrs.at(k);
+    return std::holds_alternative<long>(v) ? fmt::format("{}", std::get<long>(v)) : fmt::format("{:.4g}", std::get<double>(v));
+  };
+  const auto has = [&](const char* k) { return c.attrs.count(k) > 0; };
+  std::cerr << fmt::format("btob: C_N({}, {}; 0..{}) over N = {} in {:.3g} s ({}, {}); noise floor {}",
                            stats::observable_name(res.phi), stats::observable_name(res.psi), req.n_max, res.N(),
-                           res.seconds, req.method, req.precision, env("envelope_min"), env("envelope_max"));
-  if (res.fitted)
-    std::cerr << fmt::format("; fitted decay rate {:.4g} +- {:.2g} per iteration over {} windows of {} lags ({}decaying)",
-                             res.decay.rate, res.decay.rate_error, res.decay.windows, req.window,
-                             res.decay.decays ? "" : "not ");
+                           res.seconds, req.method, req.precision, num("noise_floor"));
+  if (res.fitted) {
+    std::cerr << fmt::format("; {}: {} window(s) of {} lags above the floor", std::get<std::string>(c.attrs.at("decay_verdict")),
+                             num("decay_windows"), req.window);
+    if (has("envelope_first")) std::cerr << fmt::format(", envelope {} .. {}", num("envelope_first"), num("envelope_last"));
+    std::cerr << (has("decay_floor_lag") ? fmt::format(", floor reached at lag {}", num("decay_floor_lag"))
+                                         : fmt::format(", floor not reached by lag {}", req.fit_lags));
+    if (has("decay_rate"))
+      std::cerr << fmt::format(", rate {} +- {} per iteration (95%: {} .. {})", num("decay_rate"),
+                               num("decay_rate_error"), num("decay_rate_low"), num("decay_rate_high"));
+    std::cerr << " (" << std::get<std::string>(c.attrs.at("decay_reason")) << ")";
+  }
   if (!res.c_direct.empty())
     std::cerr << fmt::format("; fft vs direct {:.2g} relative, direct {:.3g} s", res.max_rel_diff, res.seconds_direct);
   std::cerr << "; wrote " << listing(written) << "\n";
 }
 
-// NAME_report.csv: per initial condition its group and distances to the group's first member.
-std::string measure_report(const stats::MeasureRequest& a, const stats::MeasureResult& res) {
-  std::string csv = fmt::format(
-      "# empirical measures at r = {}, grid {} ({} initial conditions), {} iterations after {} transient, "
-      "{}x{} bins in the {} chart; groups: total variation < {}\n",
-      a.r, a.grid, res.initial.size(), a.iterations, a.transient, a.bins, a.bins, a.coords, a.tv_same);
-  csv += "ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head\n";
+// NAME_report.csv: per initial condition its group and distances to the group's first member (the run's r, grid,
+// iterations, bins and chart are in NAME.json and NAME.h5).
+std::string measure_report(const stats::MeasureResult& res) {
+  core::CsvTable t("ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head");
   for (std::size_t i = 0; i < res.initial.size(); ++i) {
     const auto& u = res.initial[i];
-    csv += fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}\n", i, u(0), u(1), u(2), res.group[i], res.tv[i],
-                       res.w1_u[i], res.w1_v[i]);
+    t.line(fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}", i, u(0), u(1), u(2), res.group[i], res.tv[i], res.w1_u[i],
+                       res.w1_v[i]));
   }
-  return csv;
+  return t.text();
 }
 
 void measure(const stats::MeasureRequest& req, const Output& o, const Context& ctx) {
@@ -78,7 +80,7 @@ void measure(const stats::MeasureRequest& req, const Output& o, const Context& c
   const io::Attrs at = ctx.attrs(o, c, "measure", "double");
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  files.text(o.name + "_report.csv", measure_report(req, res));
+  files.text(o.name + "_report.csv", measure_report(res));
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_measure.py");
   const auto written = files.commit();

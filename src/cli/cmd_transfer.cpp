@@ -2,6 +2,7 @@
 // empirical measure) and `btob transfer-r` (peripheral spectrum and gap across r): Section 8's programme.
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "core/csv.hpp"
 #include "io/io.hpp"
 #include "transfer/transfer.hpp"
 #include "windows/windows.hpp"
@@ -60,6 +61,7 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
   check_threads(a.threads);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   Progress progress("transfer");
   core::RunControl control;
   control.threads = a.threads;
@@ -68,35 +70,35 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
   const auto& p = res.part;
   const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
 
-  std::string spec = "k,re,im,modulus,block,whole_re,whole_im,whole_modulus\n";
+  core::CsvTable spec("k,re,im,modulus,block,whole_re,whole_im,whole_modulus");
   for (std::size_t k = 0; k < res.eig_re.size(); ++k) {
     const bool w = k < res.whole_re.size();
-    spec += fmt::format("{},{},{},{},{},{},{},{}\n", k + 1, csv_value(res.eig_re[k]), csv_value(res.eig_im[k]),
+    spec.line(fmt::format("{},{},{},{},{},{},{},{}", k + 1, csv_value(res.eig_re[k]), csv_value(res.eig_im[k]),
                         csv_value(std::hypot(res.eig_re[k], res.eig_im[k])), res.eig_block[k],
                         w ? csv_value(res.whole_re[k]) : "", w ? csv_value(res.whole_im[k]) : "",
-                        w ? csv_value(std::hypot(res.whole_re[k], res.whole_im[k])) : "");
+                        w ? csv_value(std::hypot(res.whole_re[k], res.whole_im[k])) : ""));
   }
-  io::write_text_atomic(out / "spectrum.csv", spec);
+  io::write_text_atomic(out / "spectrum.csv", spec.text());
 
-  std::string comp = "component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2\n";
+  core::CsvTable comp("component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2");
   for (std::size_t k = 0; k < res.components.size(); ++k) {
     const auto& c = res.components[k];
     const bool strip = q.domain == "strip";
-    comp += fmt::format("{},{},{},{},{},{:.6f},{:.6g},{:.6g},{},{}\n", k + 1, c.block > 0 ? "closed" : "almost-invariant",
+    comp.line(fmt::format("{},{},{},{},{},{:.6f},{:.6g},{:.6g},{},{}", k + 1, c.block > 0 ? "closed" : "almost-invariant",
                         c.boxes, c.period, csv_value(c.rho), c.lebesgue, c.centre[0], c.centre[1],
-                        strip ? fmt::format("{:.6g}", std::tan(c.centre[0])) : "", strip ? fmt::format("{:.6g}", c.centre[1]) : "");
+                        strip ? fmt::format("{:.6g}", std::tan(c.centre[0])) : "", strip ? fmt::format("{:.6g}", c.centre[1]) : ""));
   }
-  io::write_text_atomic(out / "components.csv", comp);
+  io::write_text_atomic(out / "components.csv", comp.text());
 
-  std::string cyc = "word,outcome,points,boxes_found,mass_boxes,mass_neighbourhood,component,component_share,radius99,"
-                    "radius99_component\n";
+  core::CsvTable cyc("word,outcome,points,boxes_found,mass_boxes,mass_neighbourhood,component,component_share,radius99,"
+                     "radius99_component");
   for (const auto& c : res.cycles) {
     long found = 0;
     for (long b : c.boxes) found += b >= 0;
-    cyc += fmt::format("{},{},{},{},{:.6f},{:.6f},{},{:.6f},{},{}\n", c.word, c.outcome, c.boxes.size(), found, c.mass_boxes,
-                       c.mass_neighbourhood, c.component, c.component_share, c.radius99, c.radius99_component);
+    cyc.line(fmt::format("{},{},{},{},{:.6f},{:.6f},{},{:.6f},{},{}", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(), found, c.mass_boxes,
+                       c.mass_neighbourhood, c.component, c.component_share, c.radius99, c.radius99_component));
   }
-  if (!res.cycles.empty()) io::write_text_atomic(out / "cycles.csv", cyc);
+  if (!res.cycles.empty()) io::write_text_atomic(out / "cycles.csv", cyc.text());
 
   io::Attrs at = io::provenance(command_line_of(nullptr));
   at["kind"] = std::string("transfer");
@@ -171,10 +173,10 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
     std::cerr << fmt::format(
         "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, total "
         "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
-        "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{}); wrote {}\n",
+        "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
         q.r, p.size(), q.samples, res.nnz, res.matrix_bytes / 1e6, res.seconds_matrix, res.seconds_spectrum,
         res.seconds_total, res.closed_classes, res.near_one_count, q.near_one, res.second_value, res.tv_boxes, p.n1, p.n2,
-        res.tv_coarse, q.tv_bins, q.tv_bins, out.string());
+        res.tv_coarse, q.tv_bins, q.tv_bins);
     for (std::size_t k = 0; k < res.components.size(); ++k)
       std::cerr << fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,
                                res.components[k].boxes, res.components[k].period, res.components[k].rho,
@@ -186,6 +188,10 @@ void transfer_cmd(const transfer::TransferRequest& q, const Common& a) {
                                c.radius99_component);
   }
   if (!a.no_plot) io::run_plot("transfer.py", {h5.string(), (out / "spectrum.csv").string(), (out / (a.name + ".png")).string()});
+  if (!a.quiet)
+    print_written({out / "spectrum.csv", out / "components.csv", out / "cycles.csv", h5, out / (a.name + ".json"),
+                   out / (a.name + ".png")},
+                  since);
 }
 
 // ---- btob transfer-r ----
@@ -194,6 +200,7 @@ void transfer_r_cmd(const transfer::TransferRRequest& q, const Common& a) {
   check_threads(a.threads);
   const io::fs::path out(a.out);
   io::ensure_dir(out);
+  const auto since = start_time();  // for the list of files written
   Progress progress("transfer-r");
   core::RunControl control;
   control.threads = a.threads;
@@ -201,28 +208,30 @@ void transfer_r_cmd(const transfer::TransferRRequest& q, const Common& a) {
   const transfer::TransferRResult res = transfer::run(q, control);
   const std::size_t K = static_cast<std::size_t>(res.K);
 
-  std::string eig = "r,k,re,im,modulus\n";
-  std::string sum = "r,peripheral_count,closed_classes,rest_modulus,gap,p2_beta\n";
+  core::CsvTable eig("r,k,re,im,modulus");
+  core::CsvTable sum("r,peripheral_count,closed_classes,rest_modulus,gap,p2_beta");
   for (std::size_t i = 0; i < res.r.size(); ++i) {
     for (std::size_t k = 0; k < K; ++k) {
       const double re = res.re[i * K + k], im = res.im[i * K + k];
       if (!std::isfinite(re)) continue;
-      eig += fmt::format("{},{},{},{},{}\n", csv_value(res.r[i]), k + 1, csv_value(re), csv_value(im), csv_value(std::hypot(re, im)));
+      eig.line(fmt::format("{},{},{},{},{}", csv_value(res.r[i]), k + 1, csv_value(re), csv_value(im),
+                           csv_value(std::hypot(re, im))));
     }
-    sum += fmt::format("{},{},{},{},{},{}\n", csv_value(res.r[i]), res.peripheral_count[i], res.closed_classes[i],
-                       csv_value(res.rest_modulus[i]), csv_value(res.gap[i]), csv_value(transfer::p2_rotation_angle(res.r[i])));
+    sum.line(fmt::format("{},{},{},{},{},{}", csv_value(res.r[i]), res.peripheral_count[i], res.closed_classes[i],
+                         csv_value(res.rest_modulus[i]), csv_value(res.gap[i]),
+                         csv_value(transfer::p2_rotation_angle(res.r[i]))));
   }
-  io::write_text_atomic(out / "spectrum_r.csv", eig);
-  io::write_text_atomic(out / "peripheral_r.csv", sum);
+  io::write_text_atomic(out / "spectrum_r.csv", eig.text());
+  io::write_text_atomic(out / "peripheral_r.csv", sum.text());
   // The windows of (ab)^n(cb)^n inside the range: [lower bound of Q_n, r_crit,2(n)] (src/windows), n = 1..12
   // (narrower windows are below the resolution of any r grid we draw).
-  std::string win = "n,lower,upper\n";
+  core::CsvTable win("n,lower,upper");
   for (int n = 1; n <= 12; ++n) {
     const double lo = static_cast<double>(windows::window_lower_bound(n, 12));
     const double hi = n >= 2 ? static_cast<double>(windows::r_crit2(n, 20)) : std::numeric_limits<double>::quiet_NaN();
-    win += fmt::format("{},{},{}\n", n, csv_value(lo), csv_value(hi));
+    win.line(fmt::format("{},{},{}", n, csv_value(lo), csv_value(hi)));
   }
-  io::write_text_atomic(out / "windows.csv", win);
+  io::write_text_atomic(out / "windows.csv", win.text());
 
   io::Attrs at = io::provenance(command_line_of(nullptr));
   at["kind"] = std::string("transfer-r");
@@ -238,12 +247,16 @@ void transfer_r_cmd(const transfer::TransferRRequest& q, const Common& a) {
   at["scalar_type"] = std::string("double");
   io::write_manifest(out / (a.name + ".json"), at);
   if (!a.quiet)
-    std::cerr << fmt::format("btob: transfer-r: {} r values in [{}, {}], {} boxes x {} samples, {:.1f} s; wrote {}\n",
-                             res.r.size(), q.r_min, q.r_max, q.boxes, q.samples, res.seconds, out.string());
+    std::cerr << fmt::format("btob: transfer-r: {} r values in [{}, {}], {} boxes x {} samples, {:.1f} s\n",
+                             res.r.size(), q.r_min, q.r_max, q.boxes, q.samples, res.seconds);
   if (!a.no_plot)
     io::run_plot("transfer_r.py", {(out / "spectrum_r.csv").string(), (out / "peripheral_r.csv").string(),
                                    (out / "windows.csv").string(), (out / (a.name + ".png")).string(), q.boxes,
                                    std::to_string(q.samples), fmt::format("{}", q.peripheral)});
+  if (!a.quiet)
+    print_written({out / "spectrum_r.csv", out / "peripheral_r.csv", out / "windows.csv", out / (a.name + ".json"),
+                   out / (a.name + ".png")},
+                  since);
 }
 
 void add_common(CLI::App* c, Common& a) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <iostream>
 #include <memory>
 
 namespace btob::cli {
@@ -18,6 +19,20 @@ ProgressAdapter& progress_adapter(io::Progress& p) {
   thread_local std::unique_ptr<ProgressAdapter> a;
   a = std::make_unique<ProgressAdapter>(&p);
   return *a;
+}
+
+io::fs::file_time_type start_time() {
+  return io::fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
+}
+
+void print_written(const std::vector<io::fs::path>& files, io::fs::file_time_type since) {
+  std::string s;
+  for (const auto& f : files) {
+    std::error_code ec;
+    const auto t = io::fs::last_write_time(f, ec);
+    if (!ec && t >= since) s += (s.empty() ? "" : ", ") + f.string();
+  }
+  if (!s.empty()) std::cerr << "btob: wrote " << s << "\n";
 }
 
 std::map<std::string, OverlayFn>& overlays() {

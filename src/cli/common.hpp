@@ -25,6 +25,12 @@ struct ProgressAdapter : iterate::ProgressSink {
 };
 ProgressAdapter& progress_adapter(io::Progress& p);
 
+// "btob: wrote a, b, c": those of `files` written (modified) since `since`, for commands that write their files one
+// by one (plots included); nothing when none was.
+void print_written(const std::vector<io::fs::path>& files, io::fs::file_time_type since);
+// A start time for print_written: now, less 50 ms (file times come from the kernel's coarse clock).
+io::fs::file_time_type start_time();
+
 // Named overlays of bifurcation diagrams: vertical lines at r values, each with a colour code
 // (0 red, 1 blue, 2 grey).  Modules register theirs (e.g. "windows", "stripes"); "thresholds" is
 // built in.  overlay_values returns the lines inside [r_min, r_max], flattened as (r, colour) pairs.

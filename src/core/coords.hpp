@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>  // cross products
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -45,6 +46,17 @@ template <class T> Vec3<T> from_angles(const T& th, const T& ph) {
   using std::cos;
   using std::sin;
   return Vec3<T>(cos(th) * sin(ph), -cos(ph), -sin(th) * sin(ph));
+}
+
+// The equal-area chart of Q (Archimedes): theta as above and the height y in [-1, 1]; the uniform measure on the
+// sphere of directions restricted to Q (solid angle pi) is (1/pi) dtheta dy.  The same point as
+// from_angles(th, acos(-y)), without the acos: u = (s cos th, y, -s sin th), s = sqrt(1 - y^2).
+template <class T> Vec3<T> from_height(const T& th, const T& y) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const T s = sqrt(std::max(T(0), 1 - y * y));
+  return Vec3<T>(s * cos(th), y, -s * sin(th));
 }
 
 // Particle configuration right after a b-collision: relative positions p = (p1, 0, p3), p1, p3 >= 0,

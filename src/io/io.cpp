@@ -231,7 +231,7 @@ void write_manifest(const fs::path& path, const Attrs& a) {
 
 Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) != 0), start_(seconds_now()) {}
 Progress::~Progress() {
-  if (tty_ && last_percent_ >= 0) std::cerr << "\n";
+  if (open_) std::cerr << "\n";
 }
 void Progress::update(std::size_t done, std::size_t total) {
   if (!tty_ || total == 0) return;
@@ -241,8 +241,9 @@ void Progress::update(std::size_t done, std::size_t total) {
   if (el < 0.5 && p < 100) return;  // short runs stay quiet
   last_percent_ = p;
   const int w = 30, f = w * p / 100;
-  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s", label_, std::string(f, '#'), std::string(w - f, '.'), p, el)
-            << std::flush;
+  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s", label_, std::string(f, '#'), std::string(w - f, '.'), p, el);
+  open_ = p < 100;  // a finished bar ends its line at once: what the command prints next starts on a new one
+  std::cerr << (open_ ? "" : "\n") << std::flush;
 }
 
 fs::path data_file(const std::string& rel) {

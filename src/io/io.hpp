@@ -70,6 +70,7 @@ class Progress {
   std::string label_;
   bool tty_;
   int last_percent_ = -1;
+  bool open_ = false;  // a bar is drawn on the current line (ended by 100% or the destructor)
   double start_;
 };
 

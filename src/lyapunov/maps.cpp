@@ -30,7 +30,9 @@ OrbitExponents exponents_from(const lyapunov::TangentRecorder& rec) {
   OrbitExponents out;
   out.iterations = rec.n;
   out.blocks = rec.blocks;
-  for (auto* v : {&out.lambda1, &out.err1, &out.lambda2, &out.err2, &out.chi1}) v->resize(N);
+  for (auto* v : {&out.lambda1, &out.err1, &out.lambda2, &out.err2, &out.chi1, &out.lambda_max, &out.err_max,
+                  &out.lambda_min, &out.err_min})
+    v->resize(N);
   std::vector<double> c1(B), c2(B), cc(B);
   for (std::size_t o = 0; o < N; ++o) {
     const double* c = rec.cum.data() + o * (B + 1) * 3;
@@ -48,6 +50,9 @@ OrbitExponents exponents_from(const lyapunov::TangentRecorder& rec) {
     out.lambda1[o] = l1.value, out.err1[o] = l1.error;
     out.lambda2[o] = l2.value, out.err2[o] = l2.error;
     out.chi1[o] = x1.value;
+    const bool swap = l2.value > l1.value;  // order them (maps.hpp: equal exponents fall either side)
+    out.lambda_max[o] = swap ? l2.value : l1.value, out.err_max[o] = swap ? l2.error : l1.error;
+    out.lambda_min[o] = swap ? l1.value : l2.value, out.err_min[o] = swap ? l1.error : l2.error;
   }
   return out;
 }
@@ -61,20 +66,29 @@ int classify(double lambda, double err, long n) {
 
 RSummary summarise(const OrbitExponents& e, std::size_t r_count, std::size_t n_ic) {
   RSummary s;
-  for (auto* v : {&s.min, &s.median, &s.max, &s.frac_positive, &s.frac_zero, &s.frac_negative}) v->resize(r_count);
-  std::vector<double> col(n_ic);
+  for (auto* v : {&s.min, &s.median, &s.max, &s.err_min, &s.err_median, &s.err_max, &s.frac_positive, &s.frac_zero,
+                  &s.frac_negative})
+    v->resize(r_count);
+  std::vector<std::size_t> idx(n_ic);
   for (std::size_t i = 0; i < r_count; ++i) {
     int pos = 0, neg = 0, zero = 0;
+    const std::size_t o0 = i * n_ic;
     for (std::size_t j = 0; j < n_ic; ++j) {
-      const std::size_t o = i * n_ic + j;
-      col[j] = e.lambda1[o];
-      const int c = classify(e.lambda1[o], e.err1[o], e.iterations);
+      idx[j] = o0 + j;
+      const int c = classify(e.lambda1[o0 + j], e.err1[o0 + j], e.iterations);
       (c > 0 ? pos : c < 0 ? neg : zero)++;
     }
-    std::sort(col.begin(), col.end());
-    s.min[i] = col.front();
-    s.max[i] = col.back();
-    s.median[i] = median(col);
+    // Stable by orbit index among equal values, so the error reported with a statistic does not depend on the sort.
+    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return e.lambda1[a] < e.lambda1[b]; });
+    s.min[i] = e.lambda1[idx.front()], s.err_min[i] = e.err1[idx.front()];
+    s.max[i] = e.lambda1[idx.back()], s.err_max[i] = e.err1[idx.back()];
+    const std::size_t m = n_ic / 2;
+    if (n_ic % 2) {
+      s.median[i] = e.lambda1[idx[m]], s.err_median[i] = e.err1[idx[m]];
+    } else {
+      s.median[i] = 0.5 * (e.lambda1[idx[m - 1]] + e.lambda1[idx[m]]);
+      s.err_median[i] = 0.5 * std::hypot(e.err1[idx[m - 1]], e.err1[idx[m]]);
+    }
     const double n = static_cast<double>(n_ic);
     s.frac_positive[i] = pos / n, s.frac_zero[i] = zero / n, s.frac_negative[i] = neg / n;
   }

@@ -192,11 +192,17 @@ void MapResult::describe(core::Contents& c) const {
   const std::string per = "1/iteration (natural log)";
   c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients");
   const auto& e = exponents;
-  c.array("lambda1", e.lambda1, dims, axes, per, "first projective exponent (plain average over the iterations)");
+  c.array("lambda1", e.lambda1, dims, axes, per,
+          "projective exponent of one tangent vector (v0 = e1; converges to the larger one), = chi2 - chi1");
   c.array("err1", e.err1, dims, axes, per, "batch-means standard error of lambda1");
-  c.array("lambda2", e.lambda2, dims, axes, per, "second projective exponent (plain average over the iterations)");
+  c.array("lambda2", e.lambda2, dims, axes, per, "log|det D^n|/n - lambda1, = chi3 - chi1 (may exceed lambda1 by O(1/n))");
   c.array("err2", e.err2, dims, axes, per, "batch-means standard error of lambda2");
-  c.array("chi1", e.chi1, dims, axes, per, "growth rate of the orbit vector under the linear cocycle P_i (not P_i/r)");
+  c.array("lambda_max", e.lambda_max, dims, axes, per, "the larger of lambda1, lambda2");
+  c.array("err_max", e.err_max, dims, axes, per, "batch-means standard error of lambda_max");
+  c.array("lambda_min", e.lambda_min, dims, axes, per, "the smaller of lambda1, lambda2");
+  c.array("err_min", e.err_min, dims, axes, per, "batch-means standard error of lambda_min");
+  c.array("chi1", e.chi1, dims, axes, per,
+          "growth rate of the orbit vector u under the linear cocycle of the P_s (not P_s/r): log|P^n u0|/n");
   if (strip) {
     c.array("w1", w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
     c.array("w2", w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
@@ -205,12 +211,21 @@ void MapResult::describe(core::Contents& c) const {
     c.array("min", summary.min, {R}, "r", per, "minimum " + s);
     c.array("median", summary.median, {R}, "r", per, "median " + s);
     c.array("max", summary.max, {R}, "r", per, "maximum " + s);
+    c.array("min_err", summary.err_min, {R}, "r", per, "batch-means error of the orbit realising min");
+    c.array("median_err", summary.err_median, {R}, "r", per,
+            "batch-means error of the median (middle orbit, or half the RSS of the two middle orbits)");
+    c.array("max_err", summary.err_max, {R}, "r", per, "batch-means error of the orbit realising max");
     c.array("frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
     c.array("frac_zero", summary.frac_zero, {R}, "r", "1", "fraction of orbits with |lambda1| <= 3 err1 + 10/n");
     c.array("frac_negative", summary.frac_negative, {R}, "r", "1", "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
   }
   c.attr("iterations", e.iterations);
   c.attr("blocks", static_cast<long>(e.blocks));
+  c.attr("convention",
+         std::string("per map iteration, natural log; lambda1: one tangent vector's growth (-> the larger projective "
+                     "exponent), lambda2 = log|det D^n|/n - lambda1; lambda_i = chi_{i+1} - chi1 with chi the linear "
+                     "cocycle's exponents in frame order (chi1: the orbit vector); equal exponents (invariant curves, "
+                     "complex pairs) fall either way by O(1/n), so lambda_max/lambda_min give them ordered"));
   c.attr("grid", ensemble.grid_description);
   c.attr("initial_conditions", static_cast<long>(I));
   c.attr("seed", static_cast<long>(ensemble.seed));

@@ -2,6 +2,7 @@
 #include "orbits/orbits.hpp"
 
 #include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 
@@ -92,13 +93,15 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
 }
 
 std::string StripOrbitsResult::csv() const {
-  std::string s = "orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail\n";
+  core::CsvTable csv("orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail");
   for (std::size_t o = 0; o < verdicts.size(); ++o) {
     const auto& v = verdicts[o];
-    s += fmt::format("{},{:.17g},{:.17g},{},{},{},{:.6g},{:.3g},{:.12g},{:.3g},\"{}\"\n", o + 1, start_w1[o], start_w2[o],
-                     panel_word(v.type), pattern[o], v.period, v.lambda1, v.err1, v.rotation, v.residual, v.detail);
+    csv.row({fmt::format("{}", o + 1), fmt::format("{:.17g}", start_w1[o]), fmt::format("{:.17g}", start_w2[o]),
+             panel_word(v.type), pattern[o], fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
+             fmt::format("{:.3g}", v.err1), fmt::format("{:.12g}", v.rotation), fmt::format("{:.3g}", v.residual),
+             v.detail});
   }
-  return s;
+  return csv.text();
 }
 
 void StripOrbitsResult::describe(core::Contents& c) const {

@@ -1,6 +1,8 @@
 // Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
 #include "patterns/curves.hpp"
 
+#include "core/csv.hpp"
+
 #include "patterns/analysis_impl.hpp"
 
 #include <fmt/format.h>
@@ -154,9 +156,9 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
 }
 
 std::string CurvesResult::critical_csv() const {
-  std::string s = "what,r\n";
-  for (const auto& c : critical) s += fmt::format("{},{:.16f}\n", c.what, c.r);
-  return s;
+  core::CsvTable csv("what,r");
+  for (const auto& c : critical) csv.row({c.what, fmt::format("{:.16f}", c.r)});
+  return csv.text();
 }
 
 void CurvesResult::describe(core::Contents& c) const {

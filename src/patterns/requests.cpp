@@ -2,6 +2,7 @@
 #include "patterns/requests.hpp"
 
 #include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "core/scalar.hpp"
 #include "patterns/exact.hpp"
 
@@ -314,14 +315,15 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, AtlasResult
   const std::vector<double> rs = table_6_1_r();
   const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
                                          static_cast<int>(req.max_period), threads);
-  std::string det = "r,word,symbols,collisions,count,ics,periodic_fraction,status\n";
+  core::CsvTable det("r,word,symbols,collisions,count,ics,periodic_fraction,status");
   std::set<std::pair<double, Word>> seen;
   for (const auto& f : d.found) {
     seen.insert({f.r, f.word});
     const std::size_t ir = static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin());
-    det += fmt::format("{},{},{},{},{},{},{:.4f},{}\n", f.r, to_paper(f.word), f.word.size(), collisions(f.word), f.count,
-                       d.ics, static_cast<double>(d.periodic[ir]) / static_cast<double>(d.ics),
-                       detection_status(req, res.entries, f, res));
+    det.row({fmt::format("{}", f.r), to_paper(f.word), fmt::format("{}", f.word.size()),
+             fmt::format("{}", collisions(f.word)), fmt::format("{}", f.count), fmt::format("{}", d.ics),
+             fmt::format("{:.4f}", static_cast<double>(d.periodic[ir]) / static_cast<double>(d.ics)),
+             detection_status(req, res.entries, f, res)});
   }
   // Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas.
   std::vector<AtlasEntry> long_entries;
@@ -329,17 +331,18 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, AtlasResult
     if (static_cast<long>(f.word.size()) > req.max_length &&
         std::none_of(long_entries.begin(), long_entries.end(), [&](const AtlasEntry& e) { return e.word == f.word; }))
       long_entries.push_back({f.word, stability_set<double>(f.word, grid, res.tol)});
-  std::string missed = "r,word,symbols,r_low,r_high\n";
+  core::CsvTable missed("r,word,symbols,r_low,r_high");
   for (double r : rs)
     for (const auto& e : res.entries)
       for (const auto& iv : e.intervals)
         if (iv.lo < r && r < iv.hi && !seen.count({r, e.word})) {
-          missed += fmt::format("{},{},{},{:.17g},{:.17g}\n", r, to_paper(e.word), e.word.size(), iv.lo, iv.hi);
+          missed.row({fmt::format("{}", r), to_paper(e.word), fmt::format("{}", e.word.size()), fmt::format("{:.17g}", iv.lo),
+                      fmt::format("{:.17g}", iv.hi)});
           ++res.missed;
         }
-  res.csv.emplace_back("detected", det);
+  res.csv.emplace_back("detected", det.text());
   res.csv.emplace_back("long_windows", atlas_csv(long_entries));
-  res.csv.emplace_back("missed", missed);
+  res.csv.emplace_back("missed", missed.text());
   res.checked = true;
   res.detected = static_cast<long>(d.found.size());
   res.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

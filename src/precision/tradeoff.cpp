@@ -1,6 +1,7 @@
 // The precision study (precision/tradeoff.hpp): every method against a 256-digit MPFR run of the same orbits.
 #include "precision/tradeoff.hpp"
 
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/map.hpp"
 #include "core/scalar.hpp"
@@ -300,26 +301,30 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
   return res;
 }
 
-std::string TradeoffResult::csv(const TradeoffRequest& req, const std::string& version) const {
+std::string TradeoffResult::notes(const TradeoffRequest& req) {
   std::string s =
-      "# btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
+      "btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
       "between the final states (median over orbits); lyapunov_error: largest |lambda1 - exact| on the sinks 1133 "
       "(r=0.15), 111333 (r=0.1), 132312 (r=0.5), weighted average of 1e5 steps, against log|l2/l1|/p of the period "
-      "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16)\n";
-  s += fmt::format("# orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
-                   "the middle of window n, 20000+400n iterations, n in [{}]; version {}\n",
-                   req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "), version);
-  s += "method,decimal_digits,iterations_per_second";
-  for (double r : req.r) s += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
-  s += ",window_n_max,lyapunov_error\n";
+      "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16). ";
+  s += fmt::format("orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
+                   "the middle of window n, 20000+400n iterations, n in [{}]",
+                   req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "));
+  return s;
+}
+
+std::string TradeoffResult::csv(const TradeoffRequest& req) const {
+  std::string h = "method,decimal_digits,iterations_per_second";
+  for (double r : req.r) h += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
+  core::CsvTable t(h + ",window_n_max,lyapunov_error");
   for (const TradeoffRow& row : rows) {
-    s += fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
+    std::string s = fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
     for (std::size_t i = 0; i < row.agree_min.size(); ++i)
       s += fmt::format(",{},{},{:.3g}", row.agree_min[i], row.agree_median[i], row.error_median[i]);
-    s += fmt::format(",{},{}\n", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
-                     std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error));
+    t.line(s + fmt::format(",{},{}", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
+                           std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error)));
   }
-  return s;
+  return t.text();
 }
 
 void TradeoffResult::describe(core::Contents& c) const {

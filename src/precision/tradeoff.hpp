@@ -48,9 +48,10 @@ struct TradeoffResult {
   // Flat views for describe(): [M] and [M, R], M methods in the order of `rows`, R r values.
   std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, window_n_max;
 
-  // The CSV of results/precision/tradeoff.csv: two comment lines (the second ends with `version`), a header, a row
-  // per method.
-  std::string csv(const TradeoffRequest& req, const std::string& version) const;
+  // The CSV of results/precision/tradeoff.csv: one header line, a row per method.
+  std::string csv(const TradeoffRequest& req) const;
+  // What the columns measure and how (the manifest's "description"; the CSV itself has only its header line).
+  static std::string notes(const TradeoffRequest& req);
   void describe(core::Contents& c) const;
 };
 

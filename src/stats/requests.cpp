@@ -150,13 +150,25 @@ void CorrelateResult::describe(core::Contents& c) const {
   }
   c.attr("spectrum_peak_frequency", peak_frequency);
   c.attr("noise_floor", noise_floor);
-  if (fitted) {
-    c.attr("decay_rate", decay.rate);
-    c.attr("decay_rate_error", decay.rate_error);
-    c.attr("decay_windows", decay.windows);
+  if (fitted) {  // what the fit measured, only what it measured (stats.hpp, Decay)
+    c.attr("decay_verdict", decay.verdict);
+    c.attr("decay_reason", decay.reason);
     c.attr("decays", std::string(decay.decays ? "yes" : "no"));
-    c.attr("envelope_first", decay.envelope_first);
-    c.attr("envelope_last", decay.envelope_last);
+    c.attr("decay_windows", decay.windows);
+    c.attr("decay_window_lags", request.window);
+    c.attr("decay_fit_lags", request.fit_lags);
+    c.attr("decay_floor_reached", std::string(decay.floor_lag >= 0 ? "yes" : "no"));
+    if (decay.floor_lag >= 0) c.attr("decay_floor_lag", decay.floor_lag);
+    if (decay.windows >= 1) {
+      c.attr("envelope_first", decay.envelope_first);
+      c.attr("envelope_last", decay.envelope_last);
+    }
+    if (decay.windows >= 3) {
+      c.attr("decay_rate", decay.rate);
+      c.attr("decay_rate_error", decay.rate_error);
+      c.attr("decay_rate_low", decay.rate_low);
+      c.attr("decay_rate_high", decay.rate_high);
+    }
   }
   if (!envelope.empty()) {
     c.attr("envelope_min", *std::min_element(envelope.begin(), envelope.end()));

@@ -5,6 +5,7 @@
 #include "iterate/kernel.hpp"
 #include "stats/series.hpp"
 
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -118,20 +119,9 @@ std::vector<double> envelope(const std::vector<double>& c, long window) {
   return e;
 }
 
-Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor) {
-  if (window < 1 || n_fit < window || n_fit >= static_cast<long>(c.size()))
-    throw std::invalid_argument(
-        fmt::format("n-fit: got {} with window {} for {} lags, expected window <= n-fit < lags", n_fit, window, c.size()));
-  const std::vector<double> env = envelope(std::vector<double>(c.begin(), c.begin() + n_fit + 1), window);
-  std::vector<double> xs, ys;
-  for (std::size_t i = 0; i < env.size(); ++i) {
-    if (!(env[i] > floor)) break;  // the first window at the noise floor ends the fit
-    xs.push_back(1.0 + static_cast<double>(i * window) + 0.5 * static_cast<double>(window - 1));
-    ys.push_back(std::log(env[i]));
-  }
-  Decay d;
-  d.windows = static_cast<long>(xs.size());
-  if (xs.size() < 3) return d;  // too few windows above the floor for a line and its error
+namespace {
+// Least-squares line through (xs, ys): d.rate = -slope, its standard error and 95% interval (>= 3 points).
+void fit_line(const std::vector<double>& xs, const std::vector<double>& ys, Decay& d) {
   const double n = static_cast<double>(xs.size());
   const double mx = std::accumulate(xs.begin(), xs.end(), 0.0) / n, my = std::accumulate(ys.begin(), ys.end(), 0.0) / n;
   double sxx = 0, sxy = 0;
@@ -144,10 +134,69 @@ Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double fl
   for (std::size_t i = 0; i < xs.size(); ++i) sse += std::pow(ys[i] - my - slope * (xs[i] - mx), 2);
   d.rate = -slope;
   d.rate_error = std::sqrt(sse / (n - 2) / sxx);
-  d.envelope_first = std::exp(ys.front());
-  d.envelope_last = std::exp(ys.back());
-  // Decay: a slope three standard errors below zero and a tenfold fall of the envelope over the fit.
-  d.decays = d.rate > 3 * d.rate_error && d.envelope_last < 0.1 * d.envelope_first;
+  const double t = boost::math::quantile(boost::math::students_t(n - 2), 0.975);
+  d.rate_low = d.rate - t * d.rate_error;
+  d.rate_high = d.rate + t * d.rate_error;
+}
+
+// The verdict of Decay (stats.hpp) from the fitted windows; `span` is the number of lags they cover.
+void decide(Decay& d, double span) {
+  if (d.windows < 3) {
+    d.verdict = "undecided";
+    d.reason = d.floor_lag >= 0 ? fmt::format("|C_N| reaches the noise floor at lag {} after {} window(s): too few to "
+                                              "fit a rate (more iterations lower the floor, a smaller window gives "
+                                              "more points)",
+                                              d.floor_lag, d.windows)
+                                : "fewer than 3 windows of lags to fit";
+    return;
+  }
+  const double fall = d.envelope_first / d.envelope_last;
+  // A decay that the fit sees: the rate's 95% interval above 0 and the fitted line falling by 10% or more over the
+  // fitted lags (a significant slope of 1e-18 on a periodic orbit is rounding, not decay).
+  const bool falls = d.rate_low > 0 && d.rate * span >= std::log(1.1);
+  if (falls && fall >= 10) {
+    d.verdict = "decaying";
+    d.reason = fmt::format("rate > 0 at 95% and the envelope fell {:.3g}-fold before the noise floor", fall);
+  } else if (falls) {
+    d.verdict = "undecided";
+    d.reason = fmt::format("rate > 0 at 95% but the envelope fell only {:.3g}-fold before the noise floor or the end "
+                           "of the fit (more fit lags or iterations)",
+                           fall);
+  } else if (d.floor_lag < 0 && d.rate_high * span < std::log(10.0)) {
+    d.verdict = "not decaying";
+    d.reason = fmt::format("above the noise floor over all {} lags, and at the 95% upper rate the envelope would fall "
+                           "less than tenfold over them",
+                           static_cast<long>(span));
+  } else {
+    d.verdict = "undecided";
+    d.reason = "no significant decay, but a tenfold fall over the fitted lags is not excluded";
+  }
+  d.decays = d.verdict == "decaying";
+}
+}  // namespace
+
+Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor) {
+  if (window < 1 || n_fit < window || n_fit >= static_cast<long>(c.size()))
+    throw std::invalid_argument(
+        fmt::format("n-fit: got {} with window {} for {} lags, expected window <= n-fit < lags", n_fit, window, c.size()));
+  const std::vector<double> env = envelope(std::vector<double>(c.begin(), c.begin() + n_fit + 1), window);
+  std::vector<double> xs, ys;
+  Decay d;
+  for (std::size_t i = 0; i < env.size(); ++i) {
+    if (!(env[i] > floor)) {  // the first window at the noise floor ends the fit
+      d.floor_lag = 1 + static_cast<long>(i) * window;
+      break;
+    }
+    xs.push_back(1.0 + static_cast<double>(i * window) + 0.5 * static_cast<double>(window - 1));
+    ys.push_back(std::log(env[i]));
+  }
+  d.windows = static_cast<long>(xs.size());
+  if (!xs.empty()) {
+    d.envelope_first = std::exp(ys.front());
+    d.envelope_last = std::exp(ys.back());
+  }
+  if (xs.size() >= 3) fit_line(xs, ys, d);
+  decide(d, static_cast<double>(d.windows * window));
   return d;
 }
 

@@ -99,11 +99,22 @@ template <class T> class Periodogram {
 // Envelope and decay of |C_N(n)|: max |C_N| over consecutive windows of `window` lags starting at lag 1;
 // the least-squares line through log(envelope) over windows up to lag n_fit whose envelope is above
 // `floor` (the statistical noise of C_N, ~C_N(0)/sqrt(N): below it a fit measures noise, not decay).
+// The verdict says only what these windows can decide (Section 8.1 (2): decay of correlations against
+// quasi-periodic oscillation without decay):
+//   decaying      the rate's 95% interval is above 0 and the fitted envelope fell tenfold;
+//   not decaying  the envelope stays above the floor over all fitted lags and even the upper end of the rate's
+//                 interval would make it fall less than tenfold over them;
+//   undecided     anything else, in particular fewer than 3 windows above the floor (no line with an error):
+//                 C_N reaches the noise floor too fast for this N and window; `reason` says which.
 struct Decay {
-  double rate = 0, rate_error = 0;                // |C_N| ~ exp(-rate n); one-sigma error of the slope
-  double envelope_first = 0, envelope_last = 0;   // first and last fitted windows
-  long windows = 0;                               // windows fitted
-  bool decays = false;                            // rate > 3 rate_error and the envelope fell tenfold
+  double rate = 0, rate_error = 0;                // |C_N| ~ exp(-rate n); one-sigma error of the slope (>= 3 windows)
+  double rate_low = 0, rate_high = 0;             // 95% interval of the rate (Student t, windows - 2 dof)
+  double envelope_first = 0, envelope_last = 0;   // first and last windows above the floor (>= 1 window)
+  long windows = 0;                               // windows above the floor, all fitted
+  long floor_lag = -1;                            // first lag of the first window at or below the floor; -1: not
+                                                  // reached up to n_fit
+  bool decays = false;                            // verdict == "decaying"
+  std::string verdict = "undecided", reason;
 };
 std::vector<double> envelope(const std::vector<double>& c, long window);  // windows over lags 1..
 Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor = 0);

@@ -1,6 +1,7 @@
 // The windows requests: validation, the runs, their CSV text and the description of their results.
 #include "windows/requests.hpp"
 
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "windows/direct.hpp"
@@ -122,19 +123,19 @@ BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
 }
 
 std::string BoundsResult::csv() const {
-  std::string s = certified_run
-                      ? "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified\n"
-                      : "n,lower_bound,upper_bound\n";
+  core::CsvTable t(certified_run
+                       ? "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified"
+                       : "n,lower_bound,upper_bound");
   for (std::size_t i = 0; i < n.size(); ++i) {
-    s += fmt::format("{},{},{}", n[i], lower_text[i], upper_text[i]);
+    std::string s = fmt::format("{},{},{}", n[i], lower_text[i], upper_text[i]);
     if (certified_run) {
       const Certificate& c = certificates[i];
       s += fmt::format(",{},{},{},{},{},{},{}", a_text[i], b_text[i], c.sign_a, c.sign_b, c.roots_0_a, c.roots_a_b,
                        c.valid() ? "yes" : "no");
     }
-    s += '\n';
+    t.line(s);
   }
-  return s;
+  return t.text();
 }
 
 void BoundsResult::describe(core::Contents& c) const {
@@ -169,10 +170,9 @@ ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& contr
 }
 
 std::string ThresholdsResult::csv() const {
-  std::string s = "name,formula,value\n";
-  for (std::size_t i = 0; i < thresholds.size(); ++i)
-    s += fmt::format("{},{},{}\n", thresholds[i].name, thresholds[i].formula, text[i]);
-  return s;
+  core::CsvTable t("name,formula,value");
+  for (std::size_t i = 0; i < thresholds.size(); ++i) t.row({thresholds[i].name, thresholds[i].formula, text[i]});
+  return t.text();
 }
 
 void ThresholdsResult::describe(core::Contents& c) const {
@@ -203,9 +203,9 @@ StripesResult run(const StripesRequest& req, const core::RunControl& control) {
 }
 
 std::string StripesResult::csv() const {
-  std::string s = "l,m,mirror_l,r\n";
-  for (std::size_t i = 0; i < l.size(); ++i) s += fmt::format("{},{},{},{}\n", l[i], m[i], mirror_l[i], text[i]);
-  return s;
+  core::CsvTable t("l,m,mirror_l,r");
+  for (std::size_t i = 0; i < l.size(); ++i) t.line(fmt::format("{},{},{},{}", l[i], m[i], mirror_l[i], text[i]));
+  return t.text();
 }
 
 void StripesResult::describe(core::Contents& c) const {
@@ -262,12 +262,12 @@ VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
 }
 
 std::string VerifyResult::csv() const {
-  std::string s = "n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict\n";
+  core::CsvTable t("n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict");
   for (const auto& row : rows)
-    s += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{}\n", row.n, row.position, row.r, row.lower, row.upper,
-                     row.iterations, row.orbits, row.on_pattern, row.expected_on ? "all" : "none",
-                     row.pass() ? "pass" : "fail");
-  return s;
+    t.line(fmt::format("{},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{}", row.n, core::csv_text(row.position), row.r,
+                       row.lower, row.upper, row.iterations, row.orbits, row.on_pattern, row.expected_on ? "all" : "none",
+                       row.pass() ? "pass" : "fail"));
+  return t.text();
 }
 
 void VerifyResult::describe(core::Contents& c) const {
@@ -382,18 +382,18 @@ BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunContro
 }
 
 std::string BoundPrecisionResult::csv() const {
-  std::string s = "precision,route,n,value,abs_error,correct_12,seconds\n";
+  core::CsvTable t("precision,route,n,value,abs_error,correct_12,seconds");
   for (const auto& row : rows)
-    s += fmt::format("{},{},{},{:.17g},{:.3e},{},{:.3e}\n", row.precision, row.route, row.n, row.value, row.abs_error,
-                     row.correct_12 ? 1 : 0, row.seconds);
-  return s;
+    t.line(fmt::format("{},{},{},{:.17g},{:.3e},{},{:.3e}", row.precision, row.route, row.n, row.value, row.abs_error,
+                       row.correct_12 ? 1 : 0, row.seconds));
+  return t.text();
 }
 
 std::string BoundPrecisionResult::summary_csv() const {
-  std::string s = "precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound\n";
+  core::CsvTable t("precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound");
   for (const auto& m : summary)
-    s += fmt::format("{},{},{},{},{:.3e}\n", m.precision, m.route, m.largest_all, m.largest_any, m.seconds_per_bound);
-  return s;
+    t.line(fmt::format("{},{},{},{},{:.3e}", m.precision, m.route, m.largest_all, m.largest_any, m.seconds_per_bound));
+  return t.text();
 }
 
 void BoundPrecisionResult::describe(core::Contents& c) const {
