@@ -10,9 +10,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 namespace btob::cli {
 namespace {
@@ -117,14 +115,7 @@ std::string comparison_csv(const attractors::BasinsRResult& res) {
 void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Context& ctx) {
   // Table 6.1 is data of the lab (io::data_file) unless --reference names another CSV.
   attractors::BasinsRRequest req = given;
-  const io::fs::path ref =
-      req.reference.empty() ? io::data_file("reference/patterns_paper_table_6_1.csv") : io::fs::path(req.reference);
-  std::ifstream in(ref);
-  if (in) {
-    std::stringstream ss;
-    ss << in.rdbuf();
-    req.reference_csv = ss.str();
-  }
+  req.reference_csv = io::data_text(req.reference, attractors::table_6_1_file);
   const attractors::BasinsRResult res = attractors::run(req, ctx.control);
   if (!o.quiet)
     for (const auto& row : res.rows)
