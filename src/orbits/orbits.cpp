@@ -91,4 +91,35 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   return res;
 }
 
+std::string StripOrbitsResult::csv() const {
+  std::string s = "orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail\n";
+  for (std::size_t o = 0; o < verdicts.size(); ++o) {
+    const auto& v = verdicts[o];
+    s += fmt::format("{},{:.17g},{:.17g},{},{},{},{:.6g},{:.3g},{:.12g},{:.3g},\"{}\"\n", o + 1, start_w1[o], start_w2[o],
+                     panel_word(v.type), pattern[o], v.period, v.lambda1, v.err1, v.rotation, v.residual, v.detail);
+  }
+  return s;
+}
+
+void StripOrbitsResult::describe(core::Contents& c) const {
+  const std::size_t n = start_w1.size(), t = static_cast<std::size_t>(request.tail);
+  c.array("w1", w1, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w1 of eq. (6.4)");
+  c.array("w2", w2, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w2 of eq. (6.4), in (-1, 1)");
+  c.array("start_w1", start_w1, {n}, "orbit", "1", "initial w1");
+  c.array("start_w2", start_w2, {n}, "orbit", "1", "initial w2");
+  c.attr("r", request.r);
+  c.attr("orbits", request.orbits);
+  c.attr("iterations", request.iterations);
+  c.attr("tail", request.tail);
+  c.attr("seed", static_cast<long>(request.seed));
+  c.attr("w1_min", request.w1_min);
+  c.attr("w1_max", request.w1_max);
+  c.attr("initial_conditions", fmt::format("random strip points: w1 uniform in [{}, {}], w2 uniform in (-1, 1), seed {}",
+                                           request.w1_min, request.w1_max, request.seed));
+  c.attr("periodic", static_cast<long>(periodic));
+  c.attr("quasi_periodic", static_cast<long>(quasi_periodic));
+  c.attr("other", static_cast<long>(other));
+  c.attr("iteration_seconds", seconds);
+}
+
 }  // namespace btob::orbits
