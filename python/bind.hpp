@@ -69,6 +69,9 @@ struct KwargsApplier {
   template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Required) {
     set(name, member, help, true);
   }
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Positional) {
+    set(name, member, help, true);  // a positional argument on the command line, a required keyword here
+  }
   template <class T> void set(const std::string& name, T& member, const std::string&, bool required) {
     static_assert(core::is_field_type_v<T>, "request fields must be of a type core/fields.hpp parses");
     const std::string k = keyword(name);
@@ -96,7 +99,7 @@ struct DocWriter {
   template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
     std::string d;
     for (const auto& t : core::field_text(member)) d += (d.empty() ? "" : " ") + t;
-    constexpr bool required = (std::is_same_v<Tag, core::Required> || ...);
+    constexpr bool required = ((std::is_same_v<Tag, core::Required> || std::is_same_v<Tag, core::Positional>) || ...);
     *doc += "    " + keyword(name) + (required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " +
             help + "\n";
   }
@@ -141,6 +144,7 @@ template <class Req, class Derived> struct RouteBase {
   static void prepare(Req&) {}
   template <class Res> static std::string scalar(const Req&, const Res&) { return "double"; }
   static std::string name_of(const Req&) { return Derived::stem; }
+  static std::string kind_of(const Req&) { return Derived::kind; }
 };
 
 // Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
@@ -176,7 +180,7 @@ template <class Req> void bind(py::module_& m) {
         holder->extras.add_to(holder->contents);
         req.fields(ArgsWriter{&holder->request});
         const long used_threads = threads > 0 ? threads : default_threads();
-        holder->attrs = io::result_attrs(call_text(R::function, holder->request), holder->contents, R::kind,
+        holder->attrs = io::result_attrs(call_text(R::function, holder->request), holder->contents, R::kind_of(req),
                                          R::name_of(req), "", R::scalar(req, holder->res), used_threads);
         holder->extras.apply(holder->attrs);
         holder->function = R::function;

@@ -5,6 +5,9 @@
 #include "bind.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
+#include "orbits/orbits.hpp"
+#include "patterns/curves.hpp"
+#include "patterns/requests.hpp"
 #include "precision/tradeoff.hpp"
 #include "stats/requests.hpp"
 #include "windows/requests.hpp"
@@ -44,6 +47,8 @@ BTOB_ROUTE(windows::BoundsRequest, "windows_bounds", "windows bounds", "windows_
            "Window lower bounds and r_crit,2(n) (Table B.1) as exact decimals; certify=True adds exact certificates")
 BTOB_ROUTE(windows::ThresholdsRequest, "windows_thresholds", "windows thresholds", "windows_thresholds", "thresholds", "",
            "7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1 in high precision")
+BTOB_ROUTE(orbits::StripOrbitsRequest, "strip_orbits", "strip-orbits", "strip-orbits", "strip_orbits", "",
+           "Tails of orbits at one r in the strip (w1, w2), each classified (Figures 6.9-6.11)")
 BTOB_ROUTE(windows::StripesRequest, "windows_stripes", "windows stripes", "windows_stripes", "stripes", "",
            "Thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max_m")
 #undef BTOB_ROUTE_BODY
@@ -68,6 +73,25 @@ BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_
   template <class Res> static std::string scalar(const auto&, const Res& res) { return res.scalar_type; }
 BTOB_ROUTE(bifurcation::Request, "bifurcation", "bifurcation", "bifurcation", "bifurcation", "bifurcation.py",
            "Tails of theta or phi against r, as a density image (Figures 4.x, 6.x)")
+#undef BTOB_ROUTE_BODY
+#define BTOB_ROUTE_BODY \
+  template <class Res> static std::string scalar(const auto&, const Res& res) { return res.scalar_type; }
+BTOB_ROUTE(patterns::WordRequest, "pattern", "pattern", "pattern", "pattern", "",
+           "Periodic pattern WORD: verdict at r (spectrum, stability, orbit), window=True its stability set, "
+           "charpoly=True its exact characteristic polynomial; numbers in the precision's digits come back as text")
+#undef BTOB_ROUTE_BODY
+#define BTOB_ROUTE_BODY \
+  static std::string name_of(const auto& req) { return req.default_name(); }                     \
+  static std::string kind_of(const auto& req) {                                                   \
+    return req.feasible ? "patterns-feasible-atlas" : "patterns-atlas";                           \
+  }
+BTOB_ROUTE(patterns::AtlasRequest, "pattern_atlas", "pattern atlas", "patterns-atlas", "", "",
+           "Every canonical primitive word up to a length: stability sets, checked against the iterator")
+#undef BTOB_ROUTE_BODY
+#define BTOB_ROUTE_BODY \
+  template <class Res> static std::string scalar(const auto&, const Res&) { return "double (spectrum in long double)"; }
+BTOB_ROUTE(patterns::CurvesRequest, "pattern_curves", "pattern-curves", "pattern-curves", "curves", "",
+           "Spectrum and feasibility quantities of a word's period matrix against r (Figures 7.1-7.8)")
 #undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \
   static std::string name_of(const auto& req) { return req.default_name(); }
@@ -124,5 +148,9 @@ PYBIND11_MODULE(_btob, m) {
   bind<windows::StripesRequest>(m);
   bind<windows::VerifyRequest>(m);
   bind<windows::BoundPrecisionRequest>(m);
+  bind<patterns::WordRequest>(m);
+  bind<patterns::AtlasRequest>(m);
+  bind<patterns::CurvesRequest>(m);
+  bind<orbits::StripOrbitsRequest>(m);
   bind_blocks(m);
 }

@@ -197,3 +197,14 @@ def test_threads_do_not_change_numbers():
     b = btob.bifurcation(threads=2, **dict(SMALL, grid="random:9"))
     assert a.density.tobytes() == b.density.tobytes()
     assert a.attrs["threads"] == 1 and b.attrs["threads"] == 2
+
+
+def test_sequences_and_numpy_values_set_vector_and_point_fields():
+    res = btob.bifurcation(vline=np.array([0.11, 0.115]), range=(0.0, 1.0), **SMALL)
+    assert res.vlines.tolist() == [0.11, 0.115] and (res.range_lo, res.range_hi) == (0.0, 1.0)
+    grid = np.array([[1.0, -0.5, -1.1], [1.0, 0.8, -1.0]])
+    a = btob.bifurcation(grid=grid, **SMALL)
+    b = btob.bifurcation(grid="1,-0.5,-1.1;1,0.8,-1", **SMALL)
+    assert a.density.tobytes() == b.density.tobytes() and a.initial_conditions == 2
+    assert btob.lyapunov(r=np.float64(0.15), point=np.array([1, -0.5, -1.1]), iterations=2000).lambda1 < 0
+    assert a.request["grid"] == ["1,-0.5,-1.1;1,0.8,-1"]  # what the manifest would record

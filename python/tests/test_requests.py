@@ -20,7 +20,7 @@ VOLATILE = {"date_utc", "command", "total_seconds", "threads"}
 
 
 def volatile(key):
-    return key in VOLATILE or "seconds" in key or key.endswith("_rate") or key in ("points_per_second",)
+    return key in VOLATILE or key in PRESENTATION or "seconds" in key or key.endswith("_rate") or key in ("points_per_second",)
 
 
 def same_array(a, b):
@@ -70,7 +70,12 @@ H5_CASES = [
                                   lyap_iterations=400, lyap_transient=100)),
     ("correlate", "correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=40, iterations=4000, method="both")),
     ("measure", "measure", dict(r=0.2, grid="random:3", iterations=2000, transient=100, bins=16)),
+    ("pattern_curves", "pattern-curves", dict(word="132312", r_min=0.2, r_max=0.6, r_count=50)),
+    ("pattern_atlas", "pattern atlas", dict(max_length=5, no_check=True)),
+    ("strip_orbits", "strip-orbits", dict(r=0.2, orbits=3, iterations=600, tail=100)),
 ]
+# Attributes only the command line's figure needs (strip-orbits: plot-w1, only).
+PRESENTATION = {"plot_w1", "only"}
 
 
 @pytest.mark.parametrize("function,command,kwargs", H5_CASES, ids=[f"{c[0]}-{i}" for i, c in enumerate(H5_CASES)])
@@ -138,6 +143,20 @@ def test_windows_thresholds_and_stripes():
     res = btob.windows_stripes(max_m=12, digits=25)
     assert [str(d) for d in res.r_decimal] == [r["r"] for r in table]
     same_array(res.m, np.array([int(r["m"]) for r in table], dtype=np.uint32))
+
+
+def test_pattern_verdict_and_charpoly_match_stdout():
+    out = cli("pattern 132312", {"r": "0.5"})
+    res = btob.pattern(word="132312", r="0.5")
+    lines = {l.split()[0]: l for l in out.splitlines() if l.strip()}
+    assert lines["mu1"].split()[1] == repr(float(res.eigen_re[0]))  # 17 significant digits, read back exactly
+    assert res.verdict in lines["verdict"] and res.letters in lines["letters"]
+    out = cli("pattern 132312", {"charpoly": True})
+    res = btob.pattern(word="132312", charpoly=True)
+    for k in ("c2", "c1", "c0", "discriminant"):
+        assert getattr(res, k) and getattr(res, k) in out, k
+    with pytest.raises(TypeError, match="missing required keyword argument 'word'"):
+        btob.pattern(r="0.5")
 
 
 def test_windows_poly_text():
