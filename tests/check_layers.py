@@ -3,7 +3,8 @@
 
 Usage: check_layers.py SOURCE_DIR.  Prints every offending include and exits 1; prints one line per module
 and exits 0 when the layering holds.  A folder not named below (a new analysis without its own CMakeLists.txt)
-is on floor 4.
+is on floor 4.  The Python binding (python/, outside src/) is on the top floor with cli, and neither includes
+the other.
 """
 import os
 import re
@@ -12,8 +13,10 @@ import sys
 FLOORS = {"core": 0, "iterate": 1, "reference": 2,
           "bifurcation": 3, "windows": 3, "patterns": 3, "lyapunov": 3, "stats": 3,
           "attractors": 4, "particles": 4, "precision": 4, "transfer": 4,
-          "orbits": 5,
-          "io": 6, "cli": 7}
+          "orbits": 5, "extras": 5,
+          "io": 6, "cli": 7, "python": 7}
+# Folders outside src/ that are modules too.
+OUTSIDE = {"python": "python"}
 # io depends on core only: results reach it as core::Contents.
 ONLY = {"io": {"core"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_0-9]+)/')
@@ -23,13 +26,15 @@ def main(root):
     src = os.path.join(root, "src")
     bad = []
     summary = []
-    for module in sorted(os.listdir(src)):
-        d = os.path.join(src, module)
+    dirs = [(m, os.path.join(src, m)) for m in sorted(os.listdir(src))]
+    dirs += [(m, os.path.join(root, rel)) for m, rel in OUTSIDE.items()]
+    for module, d in dirs:
         if not os.path.isdir(d):
             continue
         floor = FLOORS.get(module, 4)
         used = set()
-        for dirpath, _, files in os.walk(d):
+        for dirpath, subdirs, files in os.walk(d):
+            subdirs[:] = [s for s in subdirs if s not in ("tests", "btob")]  # Python files, not C++
             for f in files:
                 if not f.endswith((".hpp", ".cpp", ".h", ".in")):
                     continue

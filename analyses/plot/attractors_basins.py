@@ -11,11 +11,33 @@ from matplotlib.patches import Patch
 from plotlib import attrs, save_atomic
 
 
+def rows_of(f):
+    """The legend's rows (the columns of fractions.csv it uses) from the result itself: attractor ids 1..n with
+    fraction and 95% interval, then the unresolved points (id 0)."""
+    a = attrs(f)
+    out = []
+    for i, (fr, lo, hi) in enumerate(zip(f["fraction"][...], f["ci_low"][...], f["ci_high"][...]), start=1):
+        pattern, _, kind = a[f"legend_{i}"].rpartition(" (")
+        out.append({"attractor": i, "type": kind.rstrip(")"), "pattern": pattern, "fraction": fr, "ci_low": lo,
+                    "ci_high": hi})
+    out.append({"attractor": 0, "type": "unresolved", "pattern": "", "fraction": a["unresolved_fraction"],
+                "ci_low": a.get("unresolved_ci_low", float("nan")), "ci_high": a.get("unresolved_ci_high", float("nan"))})
+    return out
+
+
 def main(h5_path, csv_path, png_path):
     with h5py.File(h5_path, "r") as f:
-        a = attrs(f)
-        labels = f["labels"][...]
-    rows = list(csv.DictReader(open(csv_path)))
+        fig = draw(f, list(csv.DictReader(open(csv_path))))
+    save_atomic(fig, png_path)
+
+
+def draw(f, rows=None):
+    """The figure of an h5py-like f (an h5py.File or a btob Python result); the legend from `rows` (fractions.csv)
+    or, without it, from the result itself."""
+    a = attrs(f)
+    labels = f["labels"][...]
+    if rows is None:
+        rows = rows_of(f)
     n_att = int(a["attractors"])
     # Colours: unresolved black, then a qualitative palette by id (ids are sorted keys: stable across runs).
     palette = plt.get_cmap("tab20").colors
@@ -48,7 +70,7 @@ def main(h5_path, csv_path, png_path):
                f"{100 * frac:.2f}% ({100 * float(row['ci_low']):.2f}-{100 * float(row['ci_high']):.2f})")
         handles.append(Patch(color=cols[i], label=lab))
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, 95% CI (sampling)")
-    save_atomic(fig, png_path)
+    return fig
 
 
 if __name__ == "__main__":

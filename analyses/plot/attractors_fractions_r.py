@@ -8,11 +8,11 @@ from matplotlib import pyplot as plt
 from plotlib import attrs, save_atomic
 
 
-def main(h5_path, png_path):
-    with h5py.File(h5_path, "r") as f:
-        a = attrs(f)
-        r = f["r"][...]
-        frac = f["fraction"][...]
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    a = attrs(f)
+    r = f["r"][...]
+    frac = f["fraction"][...]
     names = [a[f"column_{i}"] for i in range(int(a["columns"]))]
     order = np.argsort(r)
     r, frac = r[order], frac[order]
@@ -69,6 +69,12 @@ def main(h5_path, png_path):
                  fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=7,
               title="dotted: J-mirror (312^n of 132^n)\nQ2 on the bars: P2 invariant curves", title_fontsize=7)
+    return fig
+
+
+def main(h5_path, png_path):
+    with h5py.File(h5_path, "r") as f:
+        fig = draw(f)
     save_atomic(fig, png_path)
 
 

@@ -97,18 +97,18 @@ def overlays(ax, vlines, over, r0, r1):
     return []
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        dens = f["density"][...].astype(np.float32)  # (r_count, bins)
-        dm = f["density_matlab"][...].astype(np.float32) if "density_matlab" in f else None
-        complex_orbits = f["complex_orbits"][...] if "complex_orbits" in f else None
-        nan_m = f["nan_points_matlab"][...] if "nan_points_matlab" in f else None
-        stalled_m = f["stalled_matlab"][...] if "stalled_matlab" in f else None
-        r = f["r"][...]
-        vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
-        over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
-        broken = f["broken"][...] if "broken" in f else np.zeros(0)
-        a = {k: attr(f, k) for k in f.attrs.keys()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    dens = f["density"][...].astype(np.float32)  # (r_count, bins)
+    dm = f["density_matlab"][...].astype(np.float32) if "density_matlab" in f else None
+    complex_orbits = f["complex_orbits"][...] if "complex_orbits" in f else None
+    nan_m = f["nan_points_matlab"][...] if "nan_points_matlab" in f else None
+    stalled_m = f["stalled_matlab"][...] if "stalled_matlab" in f else None
+    r = f["r"][...]
+    vlines = f["vlines"][...] if "vlines" in f else np.zeros(0)
+    over = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
+    broken = f["broken"][...] if "broken" in f else np.zeros(0)
+    a = {k: attr(f, k) for k in f.attrs.keys()}
     lo, hi = float(a["range_lo"]), float(a["range_hi"])
     coord = a["coord"]
     r0, r1 = float(r[0]), float(r[-1])
@@ -184,6 +184,12 @@ def main(src, dst):
              fontsize=6, color="#888888")
     if dm is None:
         fig.tight_layout(rect=(0, 0.045, 1, 1))
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     save_atomic(fig, dst)
 
 

@@ -11,7 +11,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
@@ -23,10 +23,10 @@ def attr(f, key, default=None):
     return v.decode() if isinstance(v, bytes) else v
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        d = {k: f[k][...] for k in f.keys()}
-        a = {k: attr(f, k) for k in f.attrs.keys()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    d = {k: f[k][...] for k in f.keys()}
+    a = {k: attr(f, k) for k in f.attrs.keys()}
     r = d["r"]
     fig, axs = plt.subplots(4, 1, figsize=(10, 11), sharex=True,
                             gridspec_kw={"height_ratios": [1, 1, 1.2, 1]})
@@ -85,6 +85,12 @@ def main(src, dst):
     axs[0].set_title(f"{title}\nr in [{float(a['r_min']):.4g}, {float(a['r_max']):.4g}] ({int(a['r_count'])} values), "
                      f"grid {a['grid']}, {int(a['iterations'])} iterations after {int(a['transient'])} transient "
                      f"(+{int(a['backward_transient'])} backward)", fontsize=10)
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + ".tmp.png"
     fig.savefig(tmp, dpi=120, bbox_inches="tight")
     os.replace(tmp, dst)

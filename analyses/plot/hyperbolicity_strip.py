@@ -12,7 +12,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -23,12 +23,12 @@ def attr(f, key, default=None):
     return v.decode() if isinstance(v, bytes) else v
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        s1 = f["s1"][...]
-        w1 = f["w1"][...]
-        w2 = f["w2"][...]
-        a = {k: attr(f, k) for k in f.attrs.keys()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    s1 = f["s1"][...]
+    w1 = f["w1"][...]
+    w2 = f["w2"][...]
+    a = {k: attr(f, k) for k in f.attrs.keys()}
     w1lo, w1hi, alpha = float(a["w1_min"]), float(a["w1_max"]), float(a["alpha"])
     ls = np.log10(s1)
     fig, ax = plt.subplots(figsize=(9, 5.5))
@@ -53,6 +53,12 @@ def main(src, dst):
     ax.set_title(f"{title}\nr = {float(a['r']):.6g}, grid {a['grid']}, expanding fraction "
                  f"{float(a['expanding_fraction']):.3f}", fontsize=10)
     fig.tight_layout()
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + ".tmp.png"
     fig.savefig(tmp, dpi=130)
     os.replace(tmp, dst)

@@ -13,7 +13,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -25,14 +25,14 @@ def attr(f, key, default=None):
     return v.decode() if isinstance(v, bytes) else v
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        r = f["r"][...]
-        lam = f["lambda1"][...]
-        mn, med, mx = f["min"][...], f["median"][...], f["max"][...]
-        fp, fz, fn = f["frac_positive"][...], f["frac_zero"][...], f["frac_negative"][...]
-        lines = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
-        a = {k: attr(f, k) for k in f.attrs.keys()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    r = f["r"][...]
+    lam = f["lambda1"][...]
+    mn, med, mx = f["min"][...], f["median"][...], f["max"][...]
+    fp, fz, fn = f["frac_positive"][...], f["frac_zero"][...], f["frac_negative"][...]
+    lines = f["overlay_lines"][...] if "overlay_lines" in f else np.zeros((0, 2))
+    a = {k: attr(f, k) for k in f.attrs.keys()}
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     rr = np.repeat(r, lam.shape[1])
     # min/max lines first and thin, the orbits' dots on top (they were hidden under the lines before).
@@ -74,6 +74,12 @@ def main(src, dst):
         fontsize=10,
     )
     fig.tight_layout()
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + ".tmp.png"
     fig.savefig(tmp, dpi=130)
     os.replace(tmp, dst)

@@ -12,7 +12,7 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -23,10 +23,10 @@ def attr(f, key, default=None):
     return v.decode() if isinstance(v, bytes) else v
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        lam = f["lambda1"][...]
-        a = {k: attr(f, k) for k in f.attrs.keys()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    lam = f["lambda1"][...]
+    a = {k: attr(f, k) for k in f.attrs.keys()}
     w1lo, w1hi, alpha = float(a["w1_min"]), float(a["w1_max"]), float(a["alpha"])
     fig, ax = plt.subplots(figsize=(9, 5.5))
     vmax = max(1e-3, float(np.max(np.abs(lam))))
@@ -46,6 +46,12 @@ def main(src, dst):
     ax.set_title(f"{title}\nr = {float(a['r']):.6g}, grid {a['grid']}, {int(a['iterations'])} iterations after "
                  f"{int(a['transient'])} transient", fontsize=10)
     fig.tight_layout()
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + ".tmp.png"
     fig.savefig(tmp, dpi=130)
     os.replace(tmp, dst)

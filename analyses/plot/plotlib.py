@@ -1,9 +1,13 @@
 """Shared helpers of the plot scripts: Agg backend, HDF5 attributes as str, atomic PNG writes."""
 import os
+import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+# Agg when a plot script runs as a program (the command line); a Python session that imports the scripts (a
+# notebook, btob.Result.plot) keeps its own backend.
+if os.path.dirname(os.path.abspath(sys.argv[0] or ".")) == os.path.dirname(os.path.abspath(__file__)):
+    matplotlib.use("Agg")
 
 
 def attrs(h5obj):

@@ -8,17 +8,17 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        c = f["C_N"][...]
-        env = f["envelope"][...]
-        freq, ps = f["spectrum_frequency"][...], f["power_spectrum"][...]
-        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    c = f["C_N"][...]
+    env = f["envelope"][...]
+    freq, ps = f["spectrum_frequency"][...], f["power_spectrum"][...]
+    a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
     n = np.arange(len(c))
     obs = a["observables"].split(",")
     label = obs[0] if obs[0] == obs[1] else f"{obs[0]}, {obs[1]}"
@@ -69,6 +69,12 @@ def main(src, dst):
     fig.suptitle(f"C_N({label}; n) at r = {a['r']}, x0 = ({a['point']}), N = {a['N']:.0e}, n ≤ {a['n_max']}, "
                  f"transient {a['transient']}, method {a['method']}, {a['scalar_type']}{extra}", fontsize=10)
     fig.tight_layout()
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + f".tmp-{os.getpid()}.png"
     fig.savefig(tmp)
     os.replace(tmp, dst)

@@ -8,23 +8,23 @@ import sys
 import h5py
 import matplotlib
 
-matplotlib.use("Agg")
+import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        counts = f["group_counts"][...].astype(float)
-        mu, mv = f["group_marginal_u"][...], f["group_marginal_v"][...]
-        size = f["group_size"][...]
-        tvmax = f["group_tv_max"][...]
-        cn = f["convergence_n"][...]
-        within, tofull = f["convergence_tv_within_group"][...], f["convergence_tv_to_full"][...]
-        tv = f["tv_to_group_head"][...]
-        ext = f["extent"][...]
-        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+def draw(f):
+    """The figure (returned, not saved) from an h5py-like f: an h5py.File, or a btob Python result (btob.plotting)."""
+    counts = f["group_counts"][...].astype(float)
+    mu, mv = f["group_marginal_u"][...], f["group_marginal_v"][...]
+    size = f["group_size"][...]
+    tvmax = f["group_tv_max"][...]
+    cn = f["convergence_n"][...]
+    within, tofull = f["convergence_tv_within_group"][...], f["convergence_tv_to_full"][...]
+    tv = f["tv_to_group_head"][...]
+    ext = f["extent"][...]
+    a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
     G, B = counts.shape[0], counts.shape[1]
     mass = counts / a["iterations"]
     strip = a["coords"] == "strip"
@@ -96,6 +96,12 @@ def main(src, dst):
                  f"{G} group(s) at TV < {a['tv_same']}), N = {a['iterations']} after transient {a['transient']}, "
                  f"{a['coords']} coordinates, double", fontsize=10)
     fig.tight_layout()
+    return fig
+
+
+def main(src, dst):
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
     tmp = dst + f".tmp-{os.getpid()}.png"
     fig.savefig(tmp)
     os.replace(tmp, dst)

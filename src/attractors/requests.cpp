@@ -156,6 +156,8 @@ void BasinsResult::describe(core::Contents& c) const {
   threshold_attrs(c, request.thresholds);
   c.attr("attractors", static_cast<long>(b.attractors.size()));
   c.attr("unresolved_fraction", b.unresolved.value);
+  c.attr("unresolved_ci_low", b.unresolved.low);
+  c.attr("unresolved_ci_high", b.unresolved.high);
   c.attr("unresolved_first_pass", static_cast<long>(b.unresolved_first_pass));
   c.attr("map_iterations", b.iterations_total);
   c.attr("seconds", b.seconds);

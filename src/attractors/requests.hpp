@@ -96,6 +96,9 @@ struct BasinsResult {
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control = {});
 
 // ---- basin fractions across r (`btob basins-r`) ---------------------------------------------------------------
+// Table 6.1 as the lab ships it (a data file, io::data_file): the default reference of basins-r.
+inline constexpr const char* table_6_1_file = "reference/patterns_paper_table_6_1.csv";
+
 // One row of Table 6.1: r, the paper's percentage of periodic orbits (of 10) and its patterns (';'-separated).
 struct TableRow {
   double r = 0;

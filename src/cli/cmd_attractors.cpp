@@ -11,9 +11,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 namespace btob::cli {
 namespace {
@@ -138,14 +136,7 @@ std::string comparison_csv(const attractors::BasinsRResult& res) {
 void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Context& ctx) {
   // Table 6.1 is data of the lab (io::data_file) unless --reference names another CSV.
   attractors::BasinsRRequest req = given;
-  const io::fs::path ref =
-      req.reference.empty() ? io::data_file("reference/patterns_paper_table_6_1.csv") : io::fs::path(req.reference);
-  std::ifstream in(ref);
-  if (in) {
-    std::stringstream ss;
-    ss << in.rdbuf();
-    req.reference_csv = ss.str();
-  }
+  req.reference_csv = io::data_text(req.reference, attractors::table_6_1_file);
   Context run_ctx = ctx;
   const auto progress = terminal_progress("basins-r");
   if (!o.quiet) run_ctx.control.progress = progress.get();

@@ -2,6 +2,7 @@
 #include "bifurcation/bifurcation.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "extras/extras.hpp"
 
 #include <fmt/format.h>
 
@@ -31,7 +32,7 @@ void warn(const bifurcation::Request& req, const bifurcation::Result& res) {
 
 void body(const bifurcation::Request& req, const Output& o, const Context& ctx) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> lines = overlay_values(req.overlay, req.r_min, req.r_max);  // unknown names fail first
+  const extras::Extras ex = extras::of(req);  // the overlays: unknown names fail first
   Context run_ctx = ctx;
   const auto progress = terminal_progress("bifurcation " + o.name);
   if (!o.quiet) run_ctx.control.progress = progress.get();
@@ -39,9 +40,9 @@ void body(const bifurcation::Request& req, const Output& o, const Context& ctx) 
   warn(req, res);
   core::Contents c;
   res.describe(c);
-  c.array("overlay_lines", lines, {lines.size() / 2, 2}, "line, (r, colour)", "1",
-          "r values of the named overlays and their colour code (0 red, 1 blue, 2 grey)");
+  ex.add_to(c);
   io::Attrs at = ctx.attrs(o, c, "bifurcation", res.scalar_type);
+  ex.apply(at);
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
   at["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -2,6 +2,7 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "core/csv.hpp"
+#include "extras/extras.hpp"
 #include "lyapunov/requests.hpp"
 
 #include <fmt/format.h>
@@ -35,36 +36,16 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
 // Runs a map or strip request and writes NAME.h5, NAME.json (and for a map NAME_summary.csv), then the plot.
 template <class Req>
 void maps(const Req& req, const Output& o, const Context& ctx, const std::string& kind, const std::string& script) {
+  const extras::Extras ex = extras::of(req);  // the overlays (maps): unknown names fail first
   Context run_ctx = ctx;
   const auto progress = terminal_progress(kind);
   if (!o.quiet) run_ctx.control.progress = progress.get();
   const lyapunov::MapResult res = lyapunov::run(req, run_ctx.control);
   core::Contents c;
   res.describe(c);
+  ex.add_to(c);
   io::Attrs at = ctx.attrs(o, c, kind, req.precision);
-  at["transient"] = req.transient;
-  at["error_estimate"] = fmt::format("batch means over {} blocks of the averaged steps", req.blocks);
-  at["classification"] = std::string("positive if lambda1 > 3 err1 + 10/n, negative if < -(3 err1 + 10/n), else zero");
-  std::vector<double> lines;
-  if constexpr (std::is_same_v<Req, lyapunov::MapRequest>) {
-    at["r_min"] = req.r_min;
-    at["r_max"] = req.r_max;
-    at["r_count"] = req.r_count;
-    std::vector<std::string> names = req.overlay;
-    if (names.empty()) {
-      names.push_back("thresholds");
-      if (overlays().count("windows")) names.push_back("windows");
-    }
-    lines = overlay_values(names, req.r_min, req.r_max);
-    at["overlays"] = fmt::format("{}", fmt::join(names, ","));
-    c.array("overlay_lines", lines, {lines.size() / 2, 2}, "line, (r, colour)", "1",
-            "r values drawn on the figure and their colour code (0 red, 1 blue, 2 grey)");
-  } else {
-    at["r"] = req.r;
-    at["w1_min"] = req.w1_min;
-    at["w1_max"] = req.w1_max;
-    at["alpha"] = core::alpha(req.r);
-  }
+  ex.apply(at);
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
   if constexpr (std::is_same_v<Req, lyapunov::MapRequest>) {

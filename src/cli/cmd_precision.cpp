@@ -1,6 +1,7 @@
 // `btob precision`: flags -> precision::TradeoffRequest -> run -> results/precision/tradeoff.csv, manifest, plot.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "extras/extras.hpp"
 #include "precision/tradeoff.hpp"
 
 #include <fmt/format.h>
@@ -19,10 +20,7 @@ void tradeoff(const precision::TradeoffRequest& req, const Output& o, const Cont
   res.describe(c);
   const std::string csv = res.csv(req);
   io::Attrs at = ctx.attrs(o, c, "precision_tradeoff", "float,double,long-double,float128,mpfr:50,mpfr:100,mpfr:256");
-  at["orbits"] = req.orbits;
-  at["iterations"] = req.iterations;
-  at["seed"] = static_cast<long>(req.seed);
-  at["description"] = precision::TradeoffResult::notes(req);
+  extras::of(req).apply(at);
   io::ResultFiles files(o.out, o.name);
   files.text(o.name + ".csv", csv);
   ctx.manifest(files, at);

@@ -1,9 +1,9 @@
 // `btob windows poly|bounds|thresholds|stripes|verify|precision`: flags -> windows::*Request -> run -> stdout or
-// files; and the bifurcation overlays "windows" and "stripes".
+// files.
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
-#include "windows/overlays.hpp"
+#include "extras/extras.hpp"
 #include "windows/requests.hpp"
 
 #include <fmt/format.h>
@@ -50,7 +50,7 @@ void precision(const windows::BoundPrecisionRequest& req, const Output& o, const
   core::Contents c;
   res.describe(c);
   io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));
-  at["threads"] = 1L;  // the study runs on one thread (its seconds column times one bound each)
+  extras::of(req).apply(at);  // threads = 1: the study runs on one thread
   io::ResultFiles files(o.out, o.name);
   files.text(o.name + ".csv", res.csv());
   files.text(o.name + "_summary.csv", res.summary_csv());
@@ -96,9 +96,6 @@ struct Registration {
         Output{"results/windows", "precision", "", 0, false, false}, precision);
   }
 } registration;
-
-RegisterOverlay windows_overlay("windows", windows::window_overlay);
-RegisterOverlay stripes_overlay("stripes", windows::stripes_overlay);
 
 }  // namespace
 }  // namespace btob::cli

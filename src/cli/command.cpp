@@ -30,14 +30,8 @@ std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label) 
 
 io::Attrs Context::attrs(const Output& o, const core::Contents& c, const std::string& kind,
                          const std::string& scalar) const {
-  io::Attrs a = io::provenance(command_line);
-  for (const auto& [k, v] : c.attrs) a[k] = v;
-  a["kind"] = kind;
-  a["name"] = o.name;
-  a["title"] = o.title;
-  a["scalar_type"] = scalar;
-  a["threads"] = static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads());
-  return a;
+  return io::result_attrs(command_line, c, kind, o.name, o.title, scalar,
+                          static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads()));
 }
 
 namespace detail {

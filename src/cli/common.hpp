@@ -1,4 +1,5 @@
-// Helpers shared by the subcommands: progress adapter, the invocation string, named r overlays.
+// Helpers shared by the subcommands: progress adapter, the invocation string (the named r overlays are in
+// src/extras, shared with the Python binding).
 #pragma once
 
 #include "io/io.hpp"
@@ -6,8 +7,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <functional>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -30,16 +29,5 @@ ProgressAdapter& progress_adapter(io::Progress& p);
 void print_written(const std::vector<io::fs::path>& files, io::fs::file_time_type since);
 // A start time for print_written: now, less 50 ms (file times come from the kernel's coarse clock).
 io::fs::file_time_type start_time();
-
-// Named overlays of bifurcation diagrams: vertical lines at r values, each with a colour code
-// (0 red, 1 blue, 2 grey).  Modules register theirs (e.g. "windows", "stripes"); "thresholds" is
-// built in.  overlay_values returns the lines inside [r_min, r_max], flattened as (r, colour) pairs.
-using OverlayFn = std::function<std::vector<std::pair<double, int>>(double r_min, double r_max)>;
-std::map<std::string, OverlayFn>& overlays();
-struct RegisterOverlay {
-  RegisterOverlay(const std::string& name, OverlayFn f) { overlays()[name] = std::move(f); }
-};
-std::string overlay_names();
-std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max);
 
 }  // namespace btob::cli

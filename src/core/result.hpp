@@ -31,14 +31,27 @@ struct ArrayView {
   }
 };
 
+// Exact decimal numbers as text (multiprecision values: window bounds, thresholds), one per element: Python
+// returns them as decimal.Decimal, never rounded to double.  The HDF5 writer does not store them (the command
+// line prints them in its CSV).
+struct DecimalView {
+  std::string name, axes, units, description;
+  const std::vector<std::string>* data;
+};
+
 struct Contents {
   std::vector<ArrayView> arrays;
+  std::vector<DecimalView> decimals;
   Attrs attrs;
 
   template <class V>
   void array(std::string name, const std::vector<V>& v, std::vector<std::size_t> dims, std::string axes,
              std::string units, std::string description) {
     arrays.push_back({std::move(name), std::move(dims), std::move(axes), std::move(units), std::move(description), &v});
+  }
+  void decimal(std::string name, const std::vector<std::string>& v, std::string axes, std::string units,
+               std::string description) {
+    decimals.push_back({std::move(name), std::move(axes), std::move(units), std::move(description), &v});
   }
   void attr(const std::string& name, AttrValue v) { attrs[name] = std::move(v); }
   const ArrayView* find(const std::string& name) const {

@@ -59,6 +59,18 @@ Attrs provenance(const std::string& command) {
           {"command", command}};
 }
 
+Attrs result_attrs(const std::string& command, const core::Contents& c, const std::string& kind,
+                   const std::string& name, const std::string& title, const std::string& scalar, long threads) {
+  Attrs a = provenance(command);
+  for (const auto& [k, v] : c.attrs) a[k] = v;
+  a["kind"] = kind;
+  a["name"] = name;
+  a["title"] = title;
+  a["scalar_type"] = scalar;
+  a["threads"] = threads;
+  return a;
+}
+
 void ensure_dir(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -265,6 +277,14 @@ fs::path data_file(const std::string& rel) {
   throw std::runtime_error(fmt::format("cannot find '{}' (looked in {}); set BTOB_DATA_DIR to the folder holding "
                                        "plot/ and reference/",
                                        rel, tried));
+}
+
+std::string data_text(const std::string& path, const std::string& default_rel) {
+  std::ifstream in(path.empty() ? data_file(default_rel) : fs::path(path));
+  if (!in) return "";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 bool run_plot(const std::string& script, const std::vector<std::string>& args) {

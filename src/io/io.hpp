@@ -27,6 +27,11 @@ void init_hdf5();
 // kernel flags, date, command line.
 Attrs provenance(const std::string& command);
 
+// The attributes of a result as the command line and Python record them: the provenance of `command`, the result's
+// own attributes (describe()), then kind, name, title, scalar_type and threads (threads actually used).
+Attrs result_attrs(const std::string& command, const core::Contents& c, const std::string& kind,
+                   const std::string& name, const std::string& title, const std::string& scalar, long threads);
+
 // Creates `dir` (and parents) or throws std::runtime_error naming it.
 void ensure_dir(const fs::path& dir);
 
@@ -79,6 +84,10 @@ class Progress {
 // <executable's folder>/../share/btob/<rel> (an installed prefix), then the source tree it was built from.
 // Throws std::runtime_error naming the file and the places searched when none has it.
 fs::path data_file(const std::string& rel);
+
+// The text of the file `path`, or of the shipped data file `default_rel` (data_file) when `path` is empty; "" when
+// the file cannot be read (the caller says what is missing).
+std::string data_text(const std::string& path, const std::string& default_rel);
 
 // Runs the matplotlib script analyses/plot/<script> on `args`; returns false (with a one-line
 // warning) when no Python with matplotlib is available.  The interpreter is $BTOB_PYTHON or the

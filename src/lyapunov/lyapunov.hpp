@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/map.hpp"
+#include "core/result.hpp"
 
 #include <array>
 #include <vector>
@@ -57,6 +58,9 @@ struct ProjectiveResult {
   Convergence convergence;
   std::vector<int> symbols_tail;  // symbols of the last min(iterations, 4096) steps (for period detection)
   Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
+  // Attributes only: lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the
+  // columns `btob lyapunov --weighted` prints).
+  void describe(core::Contents& c) const;
 };
 
 struct LinearResult {

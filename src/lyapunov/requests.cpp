@@ -12,6 +12,17 @@
 
 namespace btob::lyapunov {
 
+void ProjectiveResult::describe(core::Contents& c) const {
+  c.attr("lambda1", lambda[0].value);
+  c.attr("err1", lambda[0].error);
+  c.attr("lambda2", lambda[1].value);
+  c.attr("err2", lambda[1].error);
+  c.attr("lambda1_weighted", weighted[0]);
+  c.attr("lambda2_weighted", weighted[1]);
+  c.attr("iterations", iterations);
+  c.attr("blocks", static_cast<long>(blocks));
+}
+
 namespace {
 void check_lengths(long iterations, long transient, int blocks) {
   if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");

@@ -150,6 +150,12 @@ void BoundsResult::describe(core::Contents& c) const {
     c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Sturm)");
     c.array("certified", valid, {N}, "n", "1", "1 when the certificate proves the lower bound lies in (a, b)");
   }
+  c.decimal("lower_bound_decimal", lower_text, "n", "1", "smallest positive root of Q_n, `digits` decimals (correctly rounded)");
+  c.decimal("upper_bound_decimal", upper_text, "n", "1", "r_crit,2(n), `digits` decimals (empty for n = 1)");
+  if (certified_run) {
+    c.decimal("a_decimal", a_text, "n", "1", "the certificate's a, an exact D-decimal fraction");
+    c.decimal("b_decimal", b_text, "n", "1", "the certificate's b = a + 10^-D");
+  }
   c.attr("digits", static_cast<long>(digits));
   c.attr("certify", certified_run ? std::string("yes") : std::string("no"));
 }
@@ -180,6 +186,7 @@ void ThresholdsResult::describe(core::Contents& c) const {
   std::string names;
   for (const auto& t : thresholds) names += (names.empty() ? "" : ",") + t.name;
   c.attr("names", names);
+  c.decimal("value_decimal", text, "threshold", "1", "threshold values with `digits` decimals, in the order of names");
   for (std::size_t i = 0; i < thresholds.size(); ++i) c.attr(thresholds[i].name, thresholds[i].formula + " = " + text[i]);
 }
 
@@ -214,6 +221,7 @@ void StripesResult::describe(core::Contents& c) const {
   c.array("m", m, {S}, "stripe", "1", "denominator of the rotation number");
   c.array("mirror_l", mirror_l, {S}, "stripe", "1", "numerator m - l of the mirror rotation number (same r)");
   c.array("r", r, {S}, "stripe", "1", "thin stripe r(l/m), eq. (6.3), rounded to double");
+  c.decimal("r_decimal", text, "stripe", "1", "thin stripe r(l/m) with `digits` decimals");
 }
 
 // ---- verify ----------------------------------------------------------------------------------------------

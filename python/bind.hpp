@@ -1,0 +1,194 @@
+// The Python binding of the request/result contract (core/request.hpp, core/result.hpp): ONE template binds any
+// request type.  Keyword arguments are the request's fields() named as their flags with '-' -> '_', parsed by the
+// field parsers of core/fields.hpp (the same defaults, the same one-line errors, raised as ValueError); the run
+// happens on a worker thread with the GIL released while the caller polls for Ctrl-C and forwards progress; the
+// result is a Python object whose attributes are the Contents' arrays as numpy views of the C++ vectors (no copy),
+// its decimals (multiprecision values as decimal.Decimal) and its attributes.
+#pragma once
+
+#include "core/fields.hpp"
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "extras/extras.hpp"
+#include "io/io.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+namespace btob::python {
+
+namespace py = pybind11;
+
+// A flag name as a Python keyword: "r-min" -> "r_min".
+std::string keyword(const std::string& flag);
+
+// What Python holds of one result: its Contents (views into the derived object's members) and attributes.
+using Args = std::vector<std::pair<std::string, std::vector<std::string>>>;  // fields as a manifest records them
+struct ResultBase {
+  core::Contents contents;
+  core::Attrs attrs;
+  std::string function, command, plot;  // the Python function, the CLI command, the plot script (or "")
+  Args request;                         // the request's fields (flag names, text values)
+  virtual ~ResultBase() = default;
+};
+template <class Res> struct ResultOf : ResultBase {
+  Res res;
+  extras::Extras extras;
+};
+
+// The numpy view of one array of `owner`'s contents; its base is `owner` (no copy, read-only).
+py::array array_view(const core::ArrayView& a, py::handle owner);
+// The Python value of an attribute (str, float, int).
+py::object attr_value(const core::AttrValue& v);
+
+// Text items of a Python value for a field of type T (then parsed by core::set_field).
+std::vector<std::string> items_of(py::handle value, bool is_double, bool is_vector);
+
+// Python values -> request fields, by keyword; records which keywords were used.
+struct KwargsApplier {
+  const py::kwargs* kw;
+  std::set<std::string>* used;
+  std::set<std::string>* missing;
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help) {
+    set(name, member, help, false);
+  }
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Required) {
+    set(name, member, help, true);
+  }
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Positional) {
+    set(name, member, help, true);  // a positional argument on the command line, a required keyword here
+  }
+  template <class T> void set(const std::string& name, T& member, const std::string&, bool required) {
+    static_assert(core::is_field_type_v<T>, "request fields must be of a type core/fields.hpp parses");
+    const std::string k = keyword(name);
+    if (!kw->contains(k.c_str())) {
+      if (required) missing->insert(k);
+      return;
+    }
+    used->insert(k);
+    const py::handle v = (*kw)[k.c_str()];
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!py::isinstance<py::bool_>(v))
+        throw core::InvalidField(name, py::str(py::repr(v)).cast<std::string>(), "True or False");
+      member = v.cast<bool>();
+    } else {
+      constexpr bool is_double = std::is_same_v<T, double> || std::is_same_v<T, std::vector<double>>;
+      constexpr bool is_vector = std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>;
+      core::set_field(member, items_of(v, is_double, is_vector), name);
+    }
+  }
+};
+
+// "name: type = default  help" lines for the docstring.
+struct DocWriter {
+  std::string* doc;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
+    std::string d;
+    for (const auto& t : core::field_text(member)) d += (d.empty() ? "" : " ") + t;
+    constexpr bool required = ((std::is_same_v<Tag, core::Required> || std::is_same_v<Tag, core::Positional>) || ...);
+    *doc += "    " + keyword(name) + (required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " +
+            help + "\n";
+  }
+};
+
+// The request's fields as (flag, text values), as the command line's manifest records them.
+struct ArgsWriter {
+  Args* out;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    out->emplace_back(name, core::field_text(member));
+  }
+};
+// "btob.f(k='v', ...)": the provenance attribute `command` of a Python result.
+std::string call_text(const std::string& function, const Args& args);
+
+// Progress of a run, written by its threads and read by the waiting Python thread.
+struct AtomicProgress : core::ProgressSink {
+  std::atomic<std::size_t> done{0}, total{0};
+  void update(std::size_t d, std::size_t t) override {
+    total.store(t, std::memory_order_relaxed);
+    done.store(d, std::memory_order_relaxed);
+  }
+};
+
+// Runs `work(control)` on a worker thread with the GIL released.  The caller wakes every `slice` (<= 100 ms),
+// takes the GIL to call PyErr_CheckSignals() and the progress callback (None or callable(done, total)); on a
+// Python exception (KeyboardInterrupt) it cancels the run, joins the worker and re-raises.
+void run_released(const std::function<void(const core::RunControl&)>& work, int threads, py::object progress);
+
+long default_threads();  // omp_get_max_threads(): what threads = 0 uses
+
+// Checks threads (0 = all cores, else 1..RunControl::max_threads); ValueError otherwise.
+int threads_of(const py::kwargs& kw);
+
+// How a request type is presented in Python; specialised per request in module.cpp (names and strings only):
+//   function  the Python function (btob.<function>)          kind, stem  the attributes kind and name (as the CLI)
+//   plot      analyses/plot script drawing it ("" for none)   help        the docstring's first line
+// and, from RouteBase, defaults(), prepare(req) (before the run) and scalar(req, res) (the scalar_type attribute).
+template <class Req> struct Route;
+template <class Req, class Derived> struct RouteBase {
+  static Req defaults() { return Req{}; }
+  static void prepare(Req&) {}
+  template <class Res> static std::string scalar(const Req&, const Res&) { return "double"; }
+  static std::string name_of(const Req&) { return Derived::stem; }
+  static std::string kind_of(const Req&) { return Derived::kind; }
+};
+
+// Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
+template <class Req> void bind(py::module_& m) {
+  using R = Route<Req>;
+  using Res = std::decay_t<decltype(run(std::declval<const Req&>(), std::declval<const core::RunControl&>()))>;
+  std::string doc = std::string(R::help) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
+  Req defaults = R::defaults();
+  defaults.fields(DocWriter{&doc});
+  doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
+  m.def(
+      R::function,
+      [](py::kwargs kw) -> py::object {
+        Req req = R::defaults();
+        std::set<std::string> used{"threads", "progress"}, missing;
+        req.fields(KwargsApplier{&kw, &used, &missing});
+        for (auto item : kw) {
+          const std::string k = item.first.cast<std::string>();
+          if (!used.count(k))
+            throw py::type_error(std::string(R::function) + "() got an unexpected keyword argument '" + k + "'");
+        }
+        if (!missing.empty())
+          throw py::type_error(std::string(R::function) + "() missing required keyword argument '" + *missing.begin() +
+                               "'");
+        const int threads = threads_of(kw);
+        req.validate();
+        auto holder = std::make_shared<ResultOf<Res>>();
+        holder->extras = extras::of(req);  // overlays resolved before the run: unknown names fail first
+        R::prepare(req);
+        run_released([&](const core::RunControl& c) { holder->res = run(req, c); }, threads,
+                     kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+        holder->res.describe(holder->contents);
+        holder->extras.add_to(holder->contents);
+        req.fields(ArgsWriter{&holder->request});
+        const long used_threads = threads > 0 ? threads : default_threads();
+        holder->attrs = io::result_attrs(call_text(R::function, holder->request), holder->contents, R::kind_of(req),
+                                         R::name_of(req), "", R::scalar(req, holder->res), used_threads);
+        holder->extras.apply(holder->attrs);
+        holder->function = R::function;
+        holder->command = R::command;
+        holder->plot = R::plot;
+        return py::cast(std::static_pointer_cast<ResultBase>(holder));
+      },
+      doc.c_str());
+}
+
+}  // namespace btob::python

@@ -1,0 +1,73 @@
+"""btob in Python: the b-to-b map P_r of four one-dimensional inelastic hard spheres (Castorrini & Dolmaire).
+
+Every analysis of the command line is a function with the same inputs (keyword arguments named as the flags, '-'
+turned into '_', the same defaults and validation: bad input raises ValueError with the command line's message):
+
+    import btob
+    res = btob.bifurcation(r_min=0.0717, r_max=0.1717, r_count=500, iterations=5000, tail=100)
+    res.density          # numpy array viewing the C++ result (no copy), shape (r_count, bins)
+    res.attrs            # provenance and summary, the attributes the command line writes to HDF5
+    res.plot()           # the command line's figure (matplotlib), returned
+
+Building blocks: btob.Map(r).step(points), btob.iterate(r, points, iterations, record=...).
+Each function also takes threads= (0: all cores) and progress= (False, True for a tqdm bar, or a callable(done,
+total)); the computation runs with the GIL released and stops on Ctrl-C (KeyboardInterrupt) within 0.1 s.
+"""
+import functools
+import os
+
+# The plot scripts and reference tables travel inside the package (io::data_file reads BTOB_DATA_DIR first).
+DATA_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+os.environ.setdefault("BTOB_DATA_DIR", DATA_DIR)
+
+from . import _btob  # noqa: E402
+from ._btob import Map, Result  # noqa: E402,F401
+from . import plotting, progress as _progress  # noqa: E402
+
+__version__ = _btob.__version__
+git_commit = _btob.git_commit
+
+FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyperbolicity", "hyperbolicity_orbits",
+             "classify", "basins", "basins_r", "correlate", "measure", "precision_study", "windows_poly",
+             "windows_bounds", "windows_thresholds", "windows_stripes", "windows_verify", "windows_precision", "pattern",
+             "pattern_atlas", "pattern_curves", "strip_orbits"]
+
+
+def _wrap(name):
+    fn = getattr(_btob, name)
+
+    @functools.wraps(fn)
+    def call(**kwargs):
+        with _progress.sink(kwargs.pop("progress", False), name) as cb:
+            return fn(progress=cb, **kwargs)
+
+    return call
+
+
+for _name in FUNCTIONS:
+    globals()[_name] = _wrap(_name)
+del _name
+
+Result.plot = plotting.plot
+Result.save = plotting.save
+Result.savefig = plotting.savefig
+
+
+def iterate(r, points, iterations, record="tail", coord="theta", tail=None, precision="double", threads=0,
+            progress=False):
+    """Iterate every point at every r with the batched kernel (src/iterate) and keep what `record` says.
+
+    r: one value in (0, 1) or a sequence of them; points: (N, 3) array of directions x,y,z (x*z <= 0), or one (3,).
+    record="tail": the coordinate `coord` (theta, log10-theta, phi, w1, w2; radians) of the last `tail` states,
+      shape (N, tail) (or (R, N, tail) for a sequence of r), float64;
+    record="symbols": the branch 1/2/3 of the last `tail` steps, same shape, uint8;
+    record="final": the final direction (unit vector), shape (N, 3) (or (R, N, 3)).
+    tail defaults to min(100, iterations).  precision: float, double or long-double.  The arrays own their data
+    (no copy was made from the kernel's buffers).
+    """
+    if tail is None:
+        tail = min(100, int(iterations))
+    if not isinstance(threads, int) or isinstance(threads, bool) or not 0 <= threads <= 1024:
+        raise ValueError(f"threads: got {threads}, expected 0 (all cores) or 1..1024")
+    with _progress.sink(progress, "iterate") as cb:
+        return _btob._iterate(r, points, int(iterations), record, coord, int(tail), precision, threads, cb)

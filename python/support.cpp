@@ -1,0 +1,275 @@
+// The generic parts of the binding (bind.hpp): keyword conversion, numpy views of a result's arrays, the released
+// run with Ctrl-C and progress, and the Python class of results.
+#include "bind.hpp"
+#include "io/result_files.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <climits>
+#include <pybind11/stl.h>
+
+namespace btob::python {
+
+std::string keyword(const std::string& flag) {
+  std::string k = flag;
+  for (char& ch : k)
+    if (ch == '-') ch = '_';
+  return k;
+}
+
+namespace {
+template <class V> py::dtype dtype_of(const std::vector<V>*) { return py::dtype::of<V>(); }
+
+// The text of one Python number or string: doubles in their shortest exact form (core::field_text).
+std::string item_text(py::handle v, bool is_double) {
+  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (is_double && !py::isinstance<py::bool_>(v) && PyNumber_Check(v.ptr()))
+    return core::field_text(v.cast<double>()).front();
+  return py::str(v).cast<std::string>();
+}
+
+bool is_sequence(py::handle v) { return !py::isinstance<py::str>(v) && PySequence_Check(v.ptr()); }
+}  // namespace
+
+std::vector<std::string> items_of(py::handle value, bool is_double, bool is_vector) {
+  if (!is_sequence(value)) return {item_text(value, is_double)};
+  std::vector<std::string> out;
+  if (is_vector) {
+    for (auto e : value) out.push_back(item_text(e, is_double));
+    return out;
+  }
+  // A string field given a sequence: a point (x, y, z) -> "x,y,z"; rows of points -> "x,y,z;x,y,z".
+  std::string s;
+  for (auto e : value) {
+    if (is_sequence(e)) {
+      std::string row;
+      for (auto x : e) row += (row.empty() ? "" : ",") + item_text(x, true);
+      s += (s.empty() ? "" : ";") + row;
+    } else {
+      s += (s.empty() ? "" : ",") + item_text(e, true);
+    }
+  }
+  return {s};
+}
+
+py::array array_view(const core::ArrayView& a, py::handle owner) {
+  return std::visit(
+      [&](const auto* v) {
+        using V = typename std::decay_t<decltype(*v)>::value_type;
+        std::vector<py::ssize_t> shape(a.dims.begin(), a.dims.end()), strides(a.dims.size());
+        py::ssize_t stride = sizeof(V);
+        for (std::size_t i = a.dims.size(); i-- > 0;) {
+          strides[i] = stride;
+          stride *= static_cast<py::ssize_t>(a.dims[i]);
+        }
+        py::array arr(dtype_of(v), shape, strides, v->data(), owner);  // a base: numpy views, no copy
+        py::detail::array_proxy(arr.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+        return arr;
+      },
+      a.data);
+}
+
+py::object attr_value(const core::AttrValue& v) {
+  return std::visit([](const auto& x) -> py::object { return py::cast(x); }, v);
+}
+
+std::string call_text(const std::string& function, const Args& args) {
+  std::string s;
+  for (const auto& [name, values] : args) {
+    std::string v;
+    for (const auto& t : values) v += (v.empty() ? "" : " ") + t;
+    s += (s.empty() ? "" : ", ") + keyword(name) + "=" + py::repr(py::str(v)).cast<std::string>();
+  }
+  return "btob." + function + "(" + s + ")";
+}
+
+// Writes the result as the command line does: NAME.h5 (when it has arrays), NAME.json (attributes and the request,
+// so that `btob run NAME.json` reproduces it) and NAME.png (when `plot` and the command draws one), all together.
+std::vector<std::string> save(const ResultBase& r, const std::string& out, const std::string& name,
+                              const std::string& title, bool plot) {
+  core::Attrs at = r.attrs;
+  at["name"] = name;
+  at["title"] = title;
+  Args args = r.request;
+  args.emplace_back("name", std::vector<std::string>{name});
+  args.emplace_back("title", std::vector<std::string>{title});
+  io::ResultFiles files(out, name);
+  if (!r.contents.arrays.empty()) files.h5(r.contents, at);
+  files.manifest(at, r.command, args);
+  if (plot && !r.plot.empty() && !r.contents.arrays.empty()) files.plot(r.plot);
+  std::vector<std::string> written;
+  for (const auto& p : files.commit()) written.push_back(p.string());
+  return written;
+}
+
+long default_threads() { return static_cast<long>(omp_get_max_threads()); }
+
+int threads_of(const py::kwargs& kw) {
+  if (!kw.contains("threads")) return 0;
+  const py::handle v = kw["threads"];
+  long t = -1;
+  if (py::isinstance<py::int_>(v) && !py::isinstance<py::bool_>(v)) t = v.cast<long>();
+  if (t < 0 || t > core::RunControl::max_threads)
+    throw core::InvalidField("threads", py::str(v).cast<std::string>(),
+                             fmt::format("0 (all cores) or 1..{}", core::RunControl::max_threads));
+  return static_cast<int>(t);
+}
+
+namespace {
+// Joins the worker on every exit path, cancelling it first unless it finished (GIL released while joining).
+struct WorkerGuard {
+  std::thread& t;
+  core::CancelToken& token;
+  ~WorkerGuard() {
+    if (!t.joinable()) return;
+    token.cancel();
+    py::gil_scoped_release nogil;
+    t.join();
+  }
+};
+}  // namespace
+
+void run_released(const std::function<void(const core::RunControl&)>& work, int threads, py::object progress) {
+  core::CancelToken token;
+  AtomicProgress prog;
+  core::RunControl control;
+  control.threads = threads;
+  control.cancel = &token;
+  if (!progress.is_none()) control.progress = &prog;
+  std::mutex mu;
+  std::condition_variable cv;
+  bool finished = false;
+  std::exception_ptr error;
+  std::thread worker;
+  WorkerGuard guard{worker, token};
+  {
+    py::gil_scoped_release nogil;
+    worker = std::thread([&] {
+      try {
+        work(control);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      finished = true;
+      cv.notify_all();
+    });
+  }
+  std::size_t shown = SIZE_MAX;
+  const auto forward = [&] {
+    const std::size_t d = prog.done.load(), t = prog.total.load();
+    if (t > 0 && d != shown) {
+      shown = d;
+      progress(d, t);  // a Python exception here cancels the run (the guard) and propagates
+    }
+  };
+  for (;;) {
+    bool done = false;
+    {
+      py::gil_scoped_release nogil;
+      std::unique_lock<std::mutex> lock(mu);
+      done = cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished; });
+    }
+    if (done) break;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt: the guard cancels, joins
+    if (!progress.is_none()) forward();
+  }
+  {
+    py::gil_scoped_release nogil;
+    worker.join();
+  }
+  if (error) std::rethrow_exception(error);
+  if (!progress.is_none()) forward();
+}
+
+void bind_result(py::module_& m) {
+  py::class_<ResultBase, std::shared_ptr<ResultBase>>(
+      m, "Result",
+      "A result: its arrays (numpy views of the C++ result, read-only, no copy), exact decimals and attributes are "
+      "attributes of this object; res.attrs is the provenance the command line writes to HDF5.")
+      .def("__getattr__",
+           [](py::object self, const std::string& name) -> py::object {
+             const auto& r = self.cast<const ResultBase&>();
+             if (const core::ArrayView* a = r.contents.find(name)) return array_view(*a, self);
+             for (const auto& d : r.contents.decimals)
+               if (d.name == name) {
+                 const py::object dec = py::module_::import("decimal").attr("Decimal");
+                 py::list out;
+                 for (const auto& s : *d.data) out.append(s.empty() ? py::object(py::none()) : dec(s));
+                 return std::move(out);
+               }
+             if (auto it = r.attrs.find(name); it != r.attrs.end()) return attr_value(it->second);
+             throw py::attribute_error(fmt::format("btob.{} result has no attribute '{}'", r.function, name));
+           })
+      .def_property_readonly("attrs",
+                             [](const ResultBase& r) {
+                               py::dict d;
+                               for (const auto& [k, v] : r.attrs) d[py::str(k)] = attr_value(v);
+                               return d;
+                             })
+      .def_property_readonly("arrays",
+                             [](const ResultBase& r) {
+                               py::list l;
+                               for (const auto& a : r.contents.arrays) l.append(a.name);
+                               return l;
+                             })
+      .def_property_readonly("decimals",
+                             [](const ResultBase& r) {
+                               py::list l;
+                               for (const auto& d : r.contents.decimals) l.append(d.name);
+                               return l;
+                             })
+      .def("info",
+           [](const ResultBase& r, const std::string& name) {
+             for (const auto& a : r.contents.arrays)
+               if (a.name == name)
+                 return py::dict(py::arg("dims") = py::tuple(py::cast(a.dims)), py::arg("axes") = a.axes,
+                                 py::arg("units") = a.units, py::arg("description") = a.description);
+             for (const auto& d : r.contents.decimals)
+               if (d.name == name)
+                 return py::dict(py::arg("axes") = d.axes, py::arg("units") = d.units,
+                                 py::arg("description") = d.description);
+             throw py::key_error(name);
+           },
+           "dims, axes, units and description of an array (or decimals)")
+      .def_property_readonly("function", [](const ResultBase& r) { return r.function; })
+      .def_property_readonly("command", [](const ResultBase& r) { return r.command; })
+      .def_property_readonly("request",
+                             [](const ResultBase& r) {
+                               py::dict d;
+                               for (const auto& [k, v] : r.request) d[py::str(keyword(k))] = py::cast(v);
+                               return d;
+                             },
+                             "the request's fields as text (what the manifest records)")
+      .def("_save", [](const ResultBase& r, const std::string& out, const std::string& name, const std::string& title,
+                       bool plot) {
+        std::vector<std::string> w;
+        {
+          py::gil_scoped_release nogil;  // the plot script is a subprocess
+          w = save(r, out, name, title, plot);
+        }
+        return w;
+      })
+      .def_property_readonly("plot_script", [](const ResultBase& r) { return r.plot; })
+      .def("__dir__",
+           [](const ResultBase& r) {
+             py::list l;
+             for (const auto& a : r.contents.arrays) l.append(a.name);
+             for (const auto& d : r.contents.decimals) l.append(d.name);
+             for (const auto& [k, v] : r.attrs) l.append(k);
+             for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function"}) l.append(k);
+             return l;
+           })
+      .def("__repr__", [](const ResultBase& r) {
+        std::string s;
+        for (const auto& a : r.contents.arrays) {
+          std::string dims;
+          for (auto d : a.dims) dims += (dims.empty() ? "" : "x") + std::to_string(d);
+          s += (s.empty() ? "" : ", ") + a.name + "[" + dims + "]";
+        }
+        return fmt::format("<btob.{} result: {}>", r.function, s.empty() ? std::string("attributes only") : s);
+      });
+}
+
+}  // namespace btob::python

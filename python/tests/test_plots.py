@@ -1,0 +1,55 @@
+"""res.plot() draws the command line's figure from the result itself (the plot scripts' draw(f) on the result
+seen as an h5py file): every function with a figure returns a matplotlib Figure with the script's axes and title."""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.figure  # noqa: E402
+import pytest  # noqa: E402
+
+import btob  # noqa: E402
+
+CASES = [
+    ("bifurcation", dict(r_min=0.1, r_max=0.12, r_count=30, iterations=300, tail=30, overlay=["windows"])),
+    ("lyapunov_map", dict(r_min=0.1, r_max=0.2, r_count=6, grid="random:3", iterations=800, transient=80)),
+    ("lyapunov_strip", dict(r=0.3, n1=8, n2=5, iterations=500, transient=50)),
+    ("hyperbolicity", dict(r=0.2, grid="strip:16x8")),
+    ("hyperbolicity_orbits", dict(r_min=0.1, r_max=0.2, r_count=3, grid="random:3", iterations=300, transient=100,
+                                  backward=100)),
+    ("basins", dict(r=0.2, grid="strip:12x10", replicates=0, transient=500, iterations=300, lyap_iterations=400,
+                    lyap_transient=100)),
+    ("basins_r", dict(r_values=[0.2, 0.3], grid="random:8", transient=500, iterations=300, lyap_iterations=400,
+                      lyap_transient=100)),
+    ("correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=40, iterations=4000)),
+    ("measure", dict(r=0.2, grid="random:3", iterations=2000, transient=100, bins=16)),
+]
+
+
+@pytest.mark.parametrize("function,kwargs", CASES, ids=[c[0] for c in CASES])
+def test_plot_returns_the_scripts_figure(function, kwargs, tmp_path):
+    res = getattr(btob, function)(**kwargs)
+    fig = res.plot()
+    assert isinstance(fig, matplotlib.figure.Figure) and fig.axes
+    assert any(ax.get_title() or ax.get_xlabel() for ax in fig.axes)
+    res.savefig(tmp_path / "f.png")
+    assert (tmp_path / "f.png").stat().st_size > 10000
+
+
+def test_results_without_a_figure_say_so():
+    res = btob.windows_thresholds()
+    with pytest.raises(NotImplementedError, match="draws no figure"):
+        res.plot()
+
+
+def test_bifurcation_figure_is_the_command_lines_pixel_for_pixel(tmp_path):
+    import subprocess
+
+    import matplotlib.image as mpimg
+    import numpy as np
+    from conftest import exe, flags
+    kw = dict(r_min=0.1, r_max=0.13, r_count=120, iterations=600, tail=60, overlay=["thresholds", "windows"])
+    p = subprocess.run([exe(), "bifurcation"] + flags(kw) + ["--out", str(tmp_path), "--quiet"], capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    btob.bifurcation(**kw).savefig(tmp_path / "py.png", dpi=150)  # the script's figure dpi
+    a, b = mpimg.imread(tmp_path / "bifurcation.png"), mpimg.imread(tmp_path / "py.png")
+    assert a.shape == b.shape and np.array_equal(a, b)

@@ -1,0 +1,117 @@
+// The overlays and per-command attributes of extras.hpp.
+#include "extras/extras.hpp"
+
+#include "core/map.hpp"
+#include "core/request.hpp"
+#include "windows/overlays.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace btob::extras {
+namespace {
+
+using OverlayFn = std::function<std::vector<std::pair<double, int>>(double r_min, double r_max)>;
+
+// Constants quoted in the paper (Sections 1, 4, 5): three-particle collapse 7-4*sqrt(3), end of the
+// (ab)^2(cb)^2 window 3-2*sqrt(2), end of the (ab)^3(cb)^3 window 5-2*sqrt(6), no four-particle
+// collapse above 2^(2/3)-1.
+std::vector<std::pair<double, int>> thresholds(double, double) {
+  return {{7 - 4 * std::sqrt(3.0), 0}, {3 - 2 * std::sqrt(2.0), 0}, {5 - 2 * std::sqrt(6.0), 0}, {std::cbrt(4.0) - 1, 0}};
+}
+
+const std::map<std::string, OverlayFn>& overlays() {
+  static const std::map<std::string, OverlayFn> m{
+      {"thresholds", thresholds}, {"windows", windows::window_overlay}, {"stripes", windows::stripes_overlay}};
+  return m;
+}
+
+}  // namespace
+
+std::string overlay_names() {
+  std::string s;
+  for (const auto& [k, v] : overlays()) s += (s.empty() ? "" : ", ") + k;
+  return s;
+}
+
+std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max) {
+  std::vector<double> out;
+  for (const auto& n : names) {
+    auto it = overlays().find(n);
+    if (it == overlays().end()) throw core::InvalidField("overlay", "'" + n + "'", "one of " + overlay_names());
+    for (const auto& [r, colour] : it->second(r_min, r_max))
+      if (r >= r_min && r <= r_max) {
+        out.push_back(r);
+        out.push_back(colour);
+      }
+  }
+  return out;
+}
+
+void Extras::add_to(core::Contents& c) const {
+  if (has_overlay)
+    c.array("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2}, "line, (r, colour)", "1",
+            "r values of the named overlays and their colour code (0 red, 1 blue, 2 grey)");
+}
+
+Extras of(const bifurcation::Request& req) {
+  Extras e;
+  e.has_overlay = true;
+  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max);
+  return e;
+}
+
+namespace {
+// The attributes both Lyapunov images record.
+template <class Req> Extras lyapunov_common(const Req& req) {
+  Extras e;
+  e.attrs["transient"] = req.transient;
+  e.attrs["error_estimate"] = fmt::format("batch means over {} blocks of the averaged steps", req.blocks);
+  e.attrs["classification"] =
+      std::string("positive if lambda1 > 3 err1 + 10/n, negative if < -(3 err1 + 10/n), else zero");
+  return e;
+}
+}  // namespace
+
+Extras of(const lyapunov::MapRequest& req) {
+  Extras e = lyapunov_common(req);
+  e.attrs["r_min"] = req.r_min;
+  e.attrs["r_max"] = req.r_max;
+  e.attrs["r_count"] = req.r_count;
+  std::vector<std::string> names = req.overlay;
+  if (names.empty()) names = {"thresholds", "windows"};
+  e.has_overlay = true;
+  e.overlay_lines = overlay_values(names, req.r_min, req.r_max);
+  e.attrs["overlays"] = fmt::format("{}", fmt::join(names, ","));
+  return e;
+}
+
+Extras of(const lyapunov::StripRequest& req) {
+  Extras e = lyapunov_common(req);
+  e.attrs["r"] = req.r;
+  e.attrs["w1_min"] = req.w1_min;
+  e.attrs["w1_max"] = req.w1_max;
+  e.attrs["alpha"] = core::alpha(req.r);
+  return e;
+}
+
+Extras of(const precision::TradeoffRequest& req) {
+  Extras e;
+  e.attrs["orbits"] = req.orbits;
+  e.attrs["iterations"] = req.iterations;
+  e.attrs["seed"] = static_cast<long>(req.seed);
+  e.attrs["description"] = precision::TradeoffResult::notes(req);  // what the columns of tradeoff.csv mean
+  return e;
+}
+
+Extras of(const windows::BoundPrecisionRequest&) {
+  Extras e;
+  e.attrs["threads"] = 1L;  // the study runs on one thread (its seconds column times one bound each)
+  return e;
+}
+
+}  // namespace btob::extras
