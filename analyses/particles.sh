@@ -2,7 +2,8 @@
 # Regenerates results/particles (issue 19): periodic collapses realised by four particles, and every periodic
 # orbit of P_r, stable or not.
 #   atlas/        btob pattern atlas --feasible: every canonical word of length <= L with a feasible periodic point
-#                 (feasible.csv, feasible_counts.csv, unstable_followed.csv, feasible.json, feasible.png)
+#                 (feasible.csv, feasible_counts.csv, feasible_unstable_followed.csv, feasible.h5, feasible.json,
+#                 feasible.png)
 #   <word>_<r>/   btob particles: the three cases checked against the map and the exact period matrix, with the
 #                 space-time diagram and the animation (spacetime.png, animation.gif)
 #   realised.csv  the particle check of every stable word of the atlas (middle of each stability interval) and of
@@ -71,7 +72,7 @@ print(f"realised.csv: {len(ok)} of {len(rows)} (word, r) reproduced for every pe
       f"{worst:.2g} (relative); the others are not collapses", file=sys.stderr)
 PY
 
-# Small summaries of the atlas (feasible.csv and unstable_followed.csv are hundreds of MB at L = 14: git-ignored).
+# Small summaries of the atlas (feasible.csv and feasible_unstable_followed.csv are hundreds of MB at L = 14: git-ignored).
 /usr/bin/python3 - "$OUT/atlas" <<'PY'
 import collections, csv, os, sys
 d = sys.argv[1]
@@ -118,7 +119,7 @@ with open(os.path.join(d, "feasible_by_length.csv"), "w") as f:
 # The iterator check of the unstable orbits: rows, rows checked (expansion > 1, prediction within the 2000-period
 # cap of btob), rows followed within [predicted/2 - 2, 2 predicted + 2] periods (the rule of btob's summary).
 n = checked = agree = 0
-for r in csv.DictReader(open(os.path.join(d, "unstable_followed.csv"), newline="")):
+for r in csv.DictReader(open(os.path.join(d, "feasible_unstable_followed.csv"), newline="")):
     pred, got, lam = float(r["predicted"]), int(r["followed"]), float(r["expansion"])
     n += 1
     if lam > 1 and got >= 0 and 2 * pred + 2 < 2000:

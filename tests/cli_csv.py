@@ -99,6 +99,8 @@ def commands(d):
           "--no-plot"], None),
         (["transfer-r", "--r-min", "0.15", "--r-max", "0.2", "--r-count", "2", "--boxes", "8x8", "--samples", "4",
           "--eigenvalues", "4", "--out", f"{d}/transfer_r", "--no-plot"], None),
+        (["pattern", "atlas", "--max-length", "4", "--out", f"{d}/atlas", *q], None),
+        (["pattern", "132^2", "--window"], f"{d}/pattern_window.csv"),
         (["windows", "bounds", "--n", "1..4", "--certify"], f"{d}/bounds.csv"),
         (["windows", "thresholds"], f"{d}/thresholds.csv"),
         (["windows", "stripes", "--max-m", "8"], f"{d}/stripes.csv"),

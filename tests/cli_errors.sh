@@ -67,5 +67,21 @@ before=$(md5sum "$out/b/ok.h5")
 [ "$(md5sum "$out/b/ok.h5")" = "$before" ] || { echo "FAIL: a failed run changed an existing result"; fail=1; }
 ls "$out/b" | grep -q tmp && { echo "FAIL: temporary files left behind"; fail=1; }
 
+# A full disk, simulated with a file-size limit (RLIMIT_FSIZE: writes past 64 KiB fail with EFBIG; SIGXFSZ
+# ignored so the write returns the error instead of killing the process): one line naming the file, exit 1, no
+# output folder, no temporary folder left, and an existing result untouched.
+full() { (trap '' XFSZ; ulimit -f 64; "$btob" "$@"); }
+err=$(full bifurcation --r-count 2000 --iterations 200 --tail 100 --no-plot --quiet --out "$out/full" 2>&1 >/dev/null)
+rc=$?
+if [ $rc -ne 1 ] || [ "$(printf '%s\n' "$err" | grep -c .)" -ne 1 ] || ! grep -q "bifurcation.h5" <<<"$err"; then
+  echo "FAIL (disk full: exit $rc, expected 1 and one line naming the file): $err"; fail=1
+else
+  echo "ok: disk full -> $err"
+fi
+[ -e "$out/full" ] && { echo "FAIL: disk full left the output folder"; fail=1; }
+ls -a "$out" | grep -q "btob-tmp" && { echo "FAIL: disk full left a temporary folder"; fail=1; }
+full bifurcation --r-count 2000 --iterations 200 --tail 100 --no-plot --quiet --out "$out/b" --name ok 2>/dev/null
+[ "$(md5sum "$out/b/ok.h5")" = "$before" ] || { echo "FAIL: a run on a full disk changed an existing result"; fail=1; }
+
 if [ "$fail" -eq 0 ]; then echo "cli_errors: all checks passed"; fi
 exit $fail

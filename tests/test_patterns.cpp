@@ -328,3 +328,98 @@ TEST(Iterator, SymbolPeriodicButNeutralAt03) {
   EXPECT_NEAR(v.spectrum[0].modulus, 0.3, 1e-14);
   EXPECT_NEAR(v.spectrum[1].modulus, 0.3, 1e-14);
 }
+
+// ------------------------------------------------------------------------------------------------ requests
+#include "core/request.hpp"
+#include "patterns/requests.hpp"
+
+namespace {
+template <class F> std::string invalid_field(F&& f) {
+  try {
+    f();
+  } catch (const btob::core::InvalidField& e) {
+    return e.field;
+  }
+  return "";
+}
+}  // namespace
+
+TEST(PatternRequests, ValidationNamesTheField) {
+  using btob::patterns::WordRequest;
+  using btob::patterns::AtlasRequest;
+  EXPECT_EQ(invalid_field([] { WordRequest{"14", "0.3"}.validate(); }), "word");
+  EXPECT_EQ(invalid_field([] { WordRequest{"", "0.3"}.validate(); }), "word");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "1.2"}.validate(); }), "r");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "0.2x"}.validate(); }), "r");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132"}.validate(); }), "r");  // no mode
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "0.2", "double", false, true}.validate(); }), "charpoly");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "", "float", true}.validate(); }), "precision");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "", "double", true, false, 3}.validate(); }), "digits");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "0.2", "quad"}.validate(); }), "precision");
+  EXPECT_EQ(invalid_field([] { WordRequest{"132", "0.2"}.validate(); }), "");
+  AtlasRequest a;
+  a.max_length = 17;
+  EXPECT_EQ(invalid_field([&] { a.validate(); }), "max-length");
+  a = AtlasRequest{};
+  a.max_period = a.tail;  // a period must fit twice into the tail
+  EXPECT_EQ(invalid_field([&] { a.validate(); }), "max-period");
+  a = AtlasRequest{};
+  a.feasible = a.no_check = true;
+  EXPECT_EQ(invalid_field([&] { a.validate(); }), "no-check");
+}
+
+TEST(PatternRequests, VerdictIsTheAnalysisInText) {
+  // Theorem 7.1: 132312 is stable for r > r_crit,132J = 0.2200697...; the request's numbers are analyse<double>'s.
+  btob::patterns::WordRequest req{"132312", "0.3"};
+  const auto res = btob::patterns::run(req);
+  const auto v = btob::patterns::analyse<double>(btob::patterns::parse_word("132312"), 0.3);
+  EXPECT_EQ(res.outcome, "stable orbit");
+  ASSERT_EQ(res.eigen_re.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(res.eigen_re[i], v.spectrum[i].re);  // the same route: bitwise
+  ASSERT_EQ(res.orbit_xyz.size(), 3 * v.orbit.size());
+  EXPECT_EQ(res.orbit_xyz[0], v.orbit[0](0));
+  EXPECT_NE(res.text().find("exponents"), std::string::npos);
+  // Below the threshold the first feasibility inequality fails: no orbit, no exponents, the reason explained.
+  req.r = "0.2";
+  const auto no = btob::patterns::run(req);
+  EXPECT_EQ(no.reason, "feas1");
+  EXPECT_EQ(no.text().find("exponents"), std::string::npos);
+  EXPECT_NE(no.text().find("feasibility inequality 1 fails"), std::string::npos);
+  // In MPFR with 40 digits r is read from its text (not from a double) and printed with 40 digits.
+  req.precision = "mpfr:40";
+  req.r = "0.3";
+  const auto mp = btob::patterns::run(req);
+  EXPECT_EQ(mp.r.substr(0, 3), "0.3");  // read from the text: a double would print 0.29999999999999998889...
+  EXPECT_EQ(mp.r.find("0.2999"), std::string::npos);
+  EXPECT_EQ(mp.outcome, "stable orbit");
+}
+
+TEST(PatternRequests, WindowEndsAtTwoMinusSqrtThree) {
+  // The window of 1322 = (ab)(cb)^2 ... ends where its eigenvector leaves the domain, at r = 2 - sqrt(3)
+  // (closed form, independent of the bisection); tolerance: the bisection width 1e-15 plus a few ulps.
+  btob::patterns::WordRequest req{"1322", "", "double", true};
+  const auto res = btob::patterns::run(req);
+  ASSERT_EQ(res.r_high.size(), 1u);
+  EXPECT_NEAR(res.r_high[0], 2 - std::sqrt(3.0), 2e-15);
+  EXPECT_EQ(res.intervals[0][3], "domain");
+  req.digits = 30;  // MPFR: the same end to 30 digits
+  const auto mp = btob::patterns::run(req);
+  EXPECT_EQ(mp.intervals[0][1].substr(0, 30), "0.2679491924311227064725536584");  // 28 digits of 2 - sqrt(3)
+}
+
+TEST(PatternRequests, AtlasFilesAndCancellation) {
+  btob::patterns::AtlasRequest req;
+  req.max_length = 4;
+  req.no_check = true;
+  const auto res = btob::patterns::run(req);
+  ASSERT_EQ(res.csv.size(), 1u);  // no check: the atlas only
+  EXPECT_EQ(res.r_low.size(), res.r_high.size());
+  std::size_t rows = 0;
+  for (const auto& e : res.entries) rows += e.intervals.size();
+  EXPECT_EQ(rows, res.r_low.size());
+  btob::core::CancelToken token;
+  token.cancel();
+  btob::core::RunControl control;
+  control.cancel = &token;
+  EXPECT_THROW(btob::patterns::run(req, control), btob::core::Cancelled);
+}

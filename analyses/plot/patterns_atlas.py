@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Draws the atlas of stable periodic patterns against r, with the iterator's detections overlaid.
 
-Usage: patterns_atlas.py DIR OUT.png
-Reads DIR/atlas.csv (word,r_low,r_high,low_reason,high_reason), DIR/detected.csv and DIR/atlas.json (written by
-`btob pattern atlas`); writes OUT.png atomically (temporary file, then rename).  One horizontal bar per
+Usage: patterns_atlas.py DIR/NAME.json OUT.png
+Reads DIR/NAME.csv (word,r_low,r_high,low_reason,high_reason), DIR/NAME_long_windows.csv, DIR/NAME_detected.csv
+and the manifest DIR/NAME.json (written by `btob pattern atlas`, NAME = atlas by default); writes OUT.png atomically (temporary file, then rename).  One horizontal bar per
 pattern; when there are more than MAX_ROWS patterns, the ones with the widest windows are shown (and the title
 says so), plus every pattern the iterator found.
 """
@@ -29,14 +29,15 @@ def read_csv(path):
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit("usage: patterns_atlas.py DIR OUT.png")
-    folder, out = sys.argv[1], sys.argv[2]
-    atlas = read_csv(os.path.join(folder, "atlas.csv"))
-    long_windows = read_csv(os.path.join(folder, "long_windows.csv"))
-    detected = read_csv(os.path.join(folder, "detected.csv"))
+        sys.exit("usage: patterns_atlas.py DIR/NAME.json OUT.png")
+    manifest, out = sys.argv[1], sys.argv[2]
+    stem = manifest[:-len(".json")] if manifest.endswith(".json") else manifest
+    atlas = read_csv(stem + ".csv")
+    long_windows = read_csv(stem + "_long_windows.csv")
+    detected = read_csv(stem + "_detected.csv")
     meta = {}
-    if os.path.exists(os.path.join(folder, "atlas.json")):
-        with open(os.path.join(folder, "atlas.json")) as f:
+    if os.path.exists(stem + ".json"):
+        with open(stem + ".json") as f:
             meta = json.load(f)
     intervals = {}
     for row in atlas:

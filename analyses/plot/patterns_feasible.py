@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Draws the number of feasible periodic words (stable and unstable) of length <= L against r.
 
-Usage: patterns_feasible.py DIR OUT.png
-Reads DIR/feasible_counts.csv (r,stable,unstable,feasible,stable_collapse,unstable_collapse) and DIR/feasible.json (written by
-`btob pattern atlas --feasible`); writes OUT.png atomically.  Left: the counts over (0, 1) on a log scale; right:
+Usage: patterns_feasible.py DIR/NAME.json OUT.png
+Reads DIR/NAME_counts.csv (r,stable,unstable,feasible,stable_collapse,unstable_collapse) and the manifest DIR/NAME.json
+(written by `btob pattern atlas --feasible`, NAME = feasible by default); writes OUT.png atomically.  Left: the counts over (0, 1) on a log scale; right:
 a zoom on 0.15 <= r <= 0.6 with r_crit ~ 0.1917 (the earlier literature's bound) and 2^(2/3) - 1 (no collapse above).
 """
 import csv
@@ -17,13 +17,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit("usage: patterns_feasible.py DIR OUT.png")
-    folder, out = sys.argv[1], sys.argv[2]
-    with open(os.path.join(folder, "feasible_counts.csv"), newline="") as f:
+        sys.exit("usage: patterns_feasible.py DIR/NAME.json OUT.png")
+    manifest, out = sys.argv[1], sys.argv[2]
+    stem = manifest[:-len(".json")] if manifest.endswith(".json") else manifest
+    with open(stem + "_counts.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     meta = {}
-    if os.path.exists(os.path.join(folder, "feasible.json")):
-        with open(os.path.join(folder, "feasible.json")) as f:
+    if os.path.exists(stem + ".json"):
+        with open(stem + ".json") as f:
             meta = json.load(f)
     r = [float(x["r"]) for x in rows]
     st = [int(x["stable"]) for x in rows]

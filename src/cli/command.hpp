@@ -105,7 +105,11 @@ struct FlagBinder {
   template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Required) {
     add(name, member, help, true);
   }
-  template <class T> void add(const std::string& name, T& member, const std::string& help, bool required) {
+  template <class T> void operator()(const std::string& name, T& member, const std::string& help, core::Positional) {
+    add(name, member, help, true, true);
+  }
+  template <class T>
+  void add(const std::string& name, T& member, const std::string& help, bool required, bool positional = false) {
     static_assert(core::is_field_type_v<T>, "request fields must be of a type core/fields.hpp parses");
     auto store = std::make_shared<std::vector<std::string>>();
     (*raw)[name] = store;
@@ -113,7 +117,7 @@ struct FlagBinder {
     if constexpr (std::is_same_v<T, bool>) {
       o = app->add_flag("--" + name, help);
     } else {
-      o = app->add_option("--" + name, *store, help);
+      o = app->add_option(positional ? name : "--" + name, *store, help);
       if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>)
         o->expected(1, -1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
       else
@@ -121,7 +125,7 @@ struct FlagBinder {
       const std::string d = joined(member);
       if (!d.empty()) o->default_str(d);
     }
-    if (required) o->required();
+    if (required && !positional) o->required();  // an empty positional fails validate(), naming the field
     (*opts)[name] = o;
   }
 };
@@ -203,7 +207,8 @@ void command(const std::string& name, const std::string& help, Output output_def
     CLI::App* c = detail::add_nested(app, name, help);
     s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
     s->out.fields(detail::FlagBinder{c, &s->raw, &s->opts});
-    c->callback([s, execute] {
+    c->callback([s, execute, c] {
+      if (!c->get_subcommands().empty()) return;  // `btob pattern atlas` runs the atlas, not `pattern`
       s->req.fields(detail::FlagApplier{&s->raw, &s->opts});
       s->out.fields(detail::FlagApplier{&s->raw, &s->opts});
       execute(s->req, s->out, s->opts["threads"]->count() > 0, invocation());

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -153,6 +154,23 @@ Vec3<double> parse_point(std::string_view text, const std::string& field) {
 
 void require_r(double r, const std::string& field) {
   if (!(r > 0 && r < 1)) throw InvalidField(field, fmt::format("{}", r), "a value in the open interval (0, 1)");
+}
+
+std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field) {
+  const auto bad = [&] {
+    return InvalidField(field, fmt::format("'{}'", text), fmt::format("A..B or A with {} <= A <= B <= {}", lo, hi));
+  };
+  const auto number = [&](std::string_view s) {
+    long v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || ec != std::errc() || end != s.data() + s.size()) throw bad();
+    return v;
+  };
+  const auto dots = text.find("..");
+  const long a = number(dots == std::string_view::npos ? text : text.substr(0, dots));
+  const long b = dots == std::string_view::npos ? a : number(text.substr(dots + 2));
+  if (a < lo || b < a || b > hi) throw bad();
+  return {a, b};
 }
 
 }  // namespace btob::core

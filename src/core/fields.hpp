@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace btob::core {
@@ -37,6 +38,9 @@ template <class T> std::vector<std::string> field_text(const T& value);
 // in the domain x*z <= 0.  Returned scaled by an exact power of two so that its largest component lies in
 // [1, 2): the same direction to the last bit, safe to normalise in any precision.
 Vec3<double> parse_point(std::string_view text, const std::string& field = "point");
+// "A..B" or "A" (the whole text, decimal integers) with lo <= A <= B <= hi, as {A, B}; anything else throws
+// InvalidField(field, "'text'", "A..B or A with lo <= A <= B <= hi").  Ranges of n, of lengths, of ranks.
+std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field);
 
 // r in the open interval (0, 1), else InvalidField naming `field`.
 void require_r(double r, const std::string& field);

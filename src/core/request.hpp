@@ -65,4 +65,8 @@ namespace btob::core {
 // Marks a field that has no sensible default: v("r", r, "help", core::required).
 struct Required {};
 inline constexpr Required required{};
+// Marks a required field the command line takes as a positional argument (`btob pattern 132312 --r 0.2`);
+// scenes, manifests and Python name it like any other field.
+struct Positional {};
+inline constexpr Positional positional{};
 }  // namespace btob::core

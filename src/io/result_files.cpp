@@ -173,6 +173,19 @@ void ResultFiles::plot_inputs(const std::string& script, const std::vector<std::
   if (!fs::exists(tmp_ / (name_ + ".png"), ec)) files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
 }
 
+void ResultFiles::plot_figures(const std::string& script, const std::vector<std::string>& inputs) {
+  std::vector<std::string> args;
+  for (const auto& f : inputs) args.push_back(staged(f).string());
+  args.push_back(tmp_.string());
+  run_plot(script, args);
+  std::error_code ec;
+  std::vector<std::string> pngs;
+  for (const auto& e : fs::directory_iterator(tmp_, ec))
+    if (e.path().extension() == ".png") pngs.push_back(e.path().filename().string());
+  std::sort(pngs.begin(), pngs.end());  // a stable listing
+  for (const auto& f : pngs) staged(f);
+}
+
 std::vector<fs::path> ResultFiles::commit() {
   std::error_code ec;
   fs::create_directories(out_, ec);

@@ -1,5 +1,6 @@
 // Individual orbits at fixed r in the strip (Figures 6.9-6.11): seeded initial points, tails, verdicts.
 #include "orbits/orbits.hpp"
+#include "core/csv.hpp"
 
 #include "core/coords.hpp"
 #include "iterate/kernel.hpp"
@@ -89,6 +90,38 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   if (control.progress) control.progress->update(2, 2);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+std::string StripOrbitsResult::csv() const {
+  core::CsvTable s("orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail");
+  for (std::size_t o = 0; o < verdicts.size(); ++o) {
+    const auto& v = verdicts[o];
+    s.row({fmt::format("{}", o + 1), fmt::format("{:.17g}", start_w1[o]), fmt::format("{:.17g}", start_w2[o]),
+           panel_word(v.type), pattern[o], fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
+           fmt::format("{:.3g}", v.err1), fmt::format("{:.12g}", v.rotation), fmt::format("{:.3g}", v.residual), v.detail});
+  }
+  return s.text();
+}
+
+void StripOrbitsResult::describe(core::Contents& c) const {
+  const std::size_t n = start_w1.size(), t = static_cast<std::size_t>(request.tail);
+  c.array("w1", w1, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w1 of eq. (6.4)");
+  c.array("w2", w2, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w2 of eq. (6.4), in (-1, 1)");
+  c.array("start_w1", start_w1, {n}, "orbit", "1", "initial w1");
+  c.array("start_w2", start_w2, {n}, "orbit", "1", "initial w2");
+  c.attr("r", request.r);
+  c.attr("orbits", request.orbits);
+  c.attr("iterations", request.iterations);
+  c.attr("tail", request.tail);
+  c.attr("seed", static_cast<long>(request.seed));
+  c.attr("w1_min", request.w1_min);
+  c.attr("w1_max", request.w1_max);
+  c.attr("initial_conditions", fmt::format("random strip points: w1 uniform in [{}, {}], w2 uniform in (-1, 1), seed {}",
+                                           request.w1_min, request.w1_max, request.seed));
+  c.attr("periodic", static_cast<long>(periodic));
+  c.attr("quasi_periodic", static_cast<long>(quasi_periodic));
+  c.attr("other", static_cast<long>(other));
+  c.attr("iteration_seconds", seconds);
 }
 
 }  // namespace btob::orbits

@@ -5,6 +5,7 @@
 
 #include "attractors/attractors.hpp"
 #include "core/request.hpp"
+#include "core/result.hpp"
 
 #include <cstdint>
 #include <string>
@@ -47,6 +48,10 @@ struct StripOrbitsResult {
   std::vector<std::string> pattern;        // [orbits]: paper notation of the periodic word ("" otherwise)
   std::size_t periodic = 0, quasi_periodic = 0, other = 0;  // summary counts
   double seconds = 0;                      // wall time of iteration and classification
+
+  // One CSV line per orbit: where it started and what the classifier says (the panel titles).
+  std::string csv() const;
+  void describe(core::Contents& c) const;
 };
 
 // Throws core::InvalidField (field named as the flag) on invalid input; core::Cancelled when cancelled.

@@ -1,5 +1,6 @@
 // Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
 #include "patterns/curves.hpp"
+#include "core/csv.hpp"
 
 #include "patterns/analysis_impl.hpp"
 
@@ -148,8 +149,40 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
   });
   crit("dominance", [&](double r) { return at(h, res.reduced, r, negative).dominance; });
+  for (const auto& c : res.critical) res.critical_r.push_back(c.r);
   if (control.progress) control.progress->update(1, 1);
   return res;
+}
+
+std::string CurvesResult::critical_csv() const {
+  core::CsvTable s("what,r");
+  for (const auto& c : critical) s.row({c.what, fmt::format("{:.16f}", c.r)});
+  return s.text();
+}
+
+void CurvesResult::describe(core::Contents& c) const {
+  const std::size_t n = r.size();
+  c.array("r", r, {n}, "r", "1", "restitution coefficients, evenly spaced");
+  c.array("eig_re", eig_re, {n, 3}, "r, eigenvalue (real roots ascending, then the complex pair)", "1",
+          "real parts of the eigenvalues of the analysed matrix (not normalised)");
+  c.array("eig_im", eig_im, {n, 3}, "r, eigenvalue", "1", "imaginary parts of the eigenvalues");
+  c.array("modulus", modulus, {n, 3}, "r, eigenvalue", "1", "moduli of the eigenvalues");
+  c.array("tracked", tracked, {n}, "r", "1", "the tracked eigenvalue (NaN where it is not real or not negative)");
+  c.array("dominance", dominance, {n}, "r", "1", "(|tracked| - max |other|) / |tracked|: > 0 where it dominates");
+  c.array("feas", feas, {n, feas_names.size()}, "r, quantity (feas_names)", "1",
+          "u_z, then y, alpha y - x, alpha y - z of v_0 .. v_{p-1} (eigenvector normalised by u_x = 1)");
+  c.array("critical_r", critical_r, {critical_r.size()}, "critical value", "1",
+          "r where u_x = 0, u_z = 0 or dominance changes (bisected to 1e-15)");
+  std::string names;
+  for (const auto& f : feas_names) names += (names.empty() ? "" : ",") + f;
+  c.attr("feas_names", names);
+  c.attr("word", word);
+  c.attr("analysed", analysed);
+  c.attr("reduced", static_cast<long>(reduced));
+  c.attr("track", request.track);
+  c.attr("r_min", request.r_min);
+  c.attr("r_max", request.r_max);
+  c.attr("r_count", request.r_count);
 }
 
 }  // namespace btob::patterns

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/request.hpp"
+#include "core/result.hpp"
 #include "patterns/patterns.hpp"
 
 #include <string>
@@ -54,6 +55,10 @@ struct CurvesResult {
     double r = 0;
   };
   std::vector<Critical> critical;   // bisected to 1e-15 from the grid's sign changes
+  std::vector<double> critical_r;   // [critical]: their r
+
+  std::string critical_csv() const;  // what,r (16 decimals)
+  void describe(core::Contents& c) const;
 };
 
 // Throws core::InvalidField naming the field (word, r-min, r-max, r-count, track).

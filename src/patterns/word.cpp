@@ -1,6 +1,8 @@
 // Words over {1,2,3}: parsing the paper's notation, printing, rotations, J, canonical forms, enumeration.
 #include "patterns/patterns.hpp"
 
+#include "core/request.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -29,8 +31,14 @@ std::size_t min_rotation(const Word& w) {
   return best;
 }
 
+// core::InvalidField "<field>: got '<text>', <what is wrong>; expected <...>" (the request API's one error type).
 [[noreturn]] void bad(const char* field, std::string_view text, const std::string& what) {
-  throw std::invalid_argument(fmt::format("{}: got '{}', {}", field, text, what));
+  const auto cut = what.rfind("expected ", 0) == 0 ? 0 : what.find("; expected ");
+  const std::string got = fmt::format("'{}'", text) + (cut == 0 ? "" : ", " + what.substr(0, cut == std::string::npos ? what.size() : cut));
+  std::string trimmed = got;
+  while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == ';')) trimmed.pop_back();
+  throw core::InvalidField(field, trimmed,
+                           cut == std::string::npos ? "a word over 1, 2, 3" : what.substr(what.find("expected ", cut) + 9));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "windows/requests.hpp"
 
 #include "core/csv.hpp"
+#include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "windows/direct.hpp"
 
@@ -25,20 +26,7 @@ void progress(const core::RunControl& control, std::size_t done, std::size_t tot
 }  // namespace
 
 NRange parse_n_range(std::string_view text, int min_n, const std::string& field) {
-  const auto bad = [&] {
-    return core::InvalidField(field, fmt::format("'{}'", text),
-                              fmt::format("A..B or A with {} <= A <= B <= {}", min_n, max_range_n));
-  };
-  const auto number = [&](std::string_view s) {
-    long v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size()) throw bad();
-    return v;
-  };
-  const auto dots = text.find("..");
-  const long a = number(dots == std::string_view::npos ? text : text.substr(0, dots));
-  const long b = dots == std::string_view::npos ? a : number(text.substr(dots + 2));
-  if (a < min_n || b < a || b > max_range_n) throw bad();
+  const auto [a, b] = core::parse_int_range(text, min_n, max_range_n, field);
   return {static_cast<int>(a), static_cast<int>(b)};
 }
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#define BTOB_FUZZ_HARNESSES(X) X(words) X(grids) X(precisions) X(scenes) X(points)
+#include "fuzz_harnesses.hpp"  // BTOB_FUZZ_HARNESSES(X): X(name) for every tests/fuzz/fuzz_<name>.cpp (CMake)
 #define BTOB_DECLARE(name) extern "C" int btob_fuzz_##name(const std::uint8_t*, std::size_t);
 BTOB_FUZZ_HARNESSES(BTOB_DECLARE)
 

@@ -1,0 +1,472 @@
+// `btob pattern` as requests: WordRequest (verdict, window, charpoly) and AtlasRequest (the atlas and its check).
+#include "patterns/requests.hpp"
+#include "core/csv.hpp"
+
+#include "core/coords.hpp"
+#include "core/scalar.hpp"
+#include "patterns/exact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace btob::patterns {
+namespace {
+
+// Decimal text of a value with at most the digits its type holds.
+template <class T> std::string str(const T& v, int digits) {
+  if constexpr (std::is_same_v<T, float>) return fmt::format("{:.{}g}", v, std::min(digits, 9));
+  else if constexpr (std::is_same_v<T, double>) return fmt::format("{:.{}g}", v, std::min(digits, 17));
+  else if constexpr (std::is_same_v<T, long double>) return fmt::format("{:.{}g}", v, std::min(digits, 21));
+  else return v.str(digits);
+}
+
+template <class T> T from_text(const std::string& s) {
+  if constexpr (std::is_same_v<T, float>) return std::stof(s);
+  else if constexpr (std::is_same_v<T, double>) return std::stod(s);
+  else if constexpr (std::is_same_v<T, long double>) return std::stold(s);
+  else return T(s);
+}
+
+template <class T> void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits) {
+  const Verdict<T> v = analyse<T>(w, from_text<T>(r_text));
+  const Word& u = v.word;
+  res.scalar_type = core::scalar_name<T>();
+  res.primitive = u;
+  res.r = str(v.r, digits);
+  res.reduced = v.reduced;
+  for (const auto& e : v.spectrum) {
+    EigenText t;
+    t.re = str(e.re, digits);
+    t.im = str(T(e.im < 0 ? T(-e.im) : e.im), digits);
+    if (e.im < 0) t.im = "-" + t.im;
+    t.ratio = str(T(e.modulus / v.spectrum[0].modulus), 6);
+    t.real = e.real;
+    t.in_domain = e.in_domain;
+    t.feasible = e.feasible;
+    t.first_failure = e.first_failure;
+    if (e.first_failure > 0) t.failing_symbol = int(u.s[static_cast<std::size_t>(e.first_failure - 1)]);
+    if (e.real)
+      for (int i = 0; i < 3; ++i) t.vector[static_cast<std::size_t>(i)] = str(e.vector(i), 10);
+    res.spectrum.push_back(t);
+    res.eigen_re.push_back(static_cast<double>(e.re));
+    res.eigen_im.push_back(static_cast<double>(e.im));
+    res.eigen_modulus.push_back(static_cast<double>(e.modulus));
+  }
+  res.outcome = outcome_name(v.outcome);
+  res.reason = v.reason;
+  res.lyapunov2 = str(v.lyapunov2, 10);
+  res.lyapunov3 = str(v.lyapunov3, 10);
+  if (v.orbit_eigen < 0) return;
+  res.letters = v.letters;
+  for (std::size_t k = 0; k < v.orbit.size(); ++k) {
+    const auto& p = v.orbit[k];
+    const auto [w1, w2] = core::strip<T>(p);
+    res.orbit.push_back({std::to_string(int(u.s[k])), str(p(0), digits), str(p(1), digits), str(p(2), digits),
+                         str(core::theta<T>(p), 12), str(w1, 12), str(w2, 12)});
+    for (int i = 0; i < 3; ++i) res.orbit_xyz.push_back(static_cast<double>(p(i)));
+  }
+}
+
+template <class T> void fill_window(WordResult& res, const Word& w, const T& tol, int digits) {
+  res.scalar_type = core::scalar_name<T>();
+  for (const auto& iv : stability_set<T>(w, default_grid(), tol)) {
+    res.intervals.push_back({str(iv.lo, digits), str(iv.hi, digits), iv.lo_reason, iv.hi_reason});
+    res.r_low.push_back(static_cast<double>(iv.lo));
+    res.r_high.push_back(static_cast<double>(iv.hi));
+  }
+}
+
+void verdict(WordResult& res, const WordRequest& req, const Word& w) {
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  switch (prec.kind) {
+    case core::Precision::Kind::f32: fill_verdict<float>(res, w, req.r, 9); break;
+    case core::Precision::Kind::f80: fill_verdict<long double>(res, w, req.r, 21); break;
+    case core::Precision::Kind::f128: fill_verdict<core::float128>(res, w, req.r, 34); break;
+    case core::Precision::Kind::mpfr: {
+      const core::MpfrDigits guard(prec.mpfr_digits);
+      fill_verdict<core::mpfr_float>(res, w, req.r, prec.mpfr_digits);
+      break;
+    }
+    default: fill_verdict<double>(res, w, req.r, 17); break;
+  }
+}
+
+void window(WordResult& res, const WordRequest& req, const Word& w) {
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  const int digits = static_cast<int>(req.digits);
+  if (digits > 15 || prec.kind == core::Precision::Kind::mpfr) {
+    const int d = std::max(digits, prec.mpfr_digits);
+    const core::MpfrDigits guard(d + 15);  // guard digits for the products
+    // Bisection down to 10^-(d+3): the d printed digits are then correct up to rounding.
+    fill_window<core::mpfr_float>(res, w, core::mpfr_float(pow(core::mpfr_float(10), -(d + 3))), d);
+  } else {
+    fill_window<double>(res, w, 1e-15, digits > 0 ? digits : 17);  // 1e-15: a few ulps of r near 0.2
+  }
+}
+
+void charpoly(WordResult& res, const Word& w) {
+  const CharPoly chi = characteristic_polynomial(w);
+  res.scalar_type = "exact rational";
+  res.reduced = is_J_square(primitive_root(w));  // the same test characteristic_polynomial applies
+  res.c2 = chi.c2.to_string();
+  res.c1 = chi.c1.to_string();
+  res.c0 = chi.c0.to_string();
+  res.discriminant = discriminant(chi).to_string();
+}
+
+// What a reason code of the analysis means (Section 7's conditions, in the order analyse checks them).
+std::string reason_text(const std::string& reason) {
+  if (reason == "complex") return "the dominant eigenvalue mu1 is complex: no dominant real direction";
+  if (reason == "domain") return "the dominant eigenvector lies outside the domain x z < 0";
+  if (reason == "dominance") return "the eigenvalue with a feasible eigenvector is not the dominant one";
+  if (reason.rfind("feas", 0) == 0)
+    return fmt::format("feasibility inequality {} fails: the orbit does not see the word's symbol there", reason.substr(4));
+  if (reason == "end") return "the end of (0, 1)";
+  return reason;
+}
+
+std::string verdict_text(const WordResult& res) {
+  const Word& w = res.word;
+  const Word& u = res.primitive;
+  std::string s = fmt::format("word        {} = {} ({} symbols, {} collisions); canonical {}\n", to_paper(w), to_digits(w),
+                              w.size(), collisions(w), to_paper(canonical(w)));
+  if (!(u == w)) s += fmt::format("primitive   {} (the orbit of a power is the orbit of its root)\n", to_paper(u));
+  s += fmt::format("r           {}\n", res.r);
+  if (res.reduced) {
+    const Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
+    s += fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
+  } else {
+    s += fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()), int(u.s.front()));
+  }
+  for (std::size_t i = 0; i < res.spectrum.size(); ++i) {
+    const EigenText& e = res.spectrum[i];
+    s += fmt::format("mu{}         ", i + 1);
+    if (e.real) {
+      s += fmt::format("{} (real, |mu|/|mu1| = {}), eigenvector ({}, {}, {})", e.re, e.ratio, e.vector[0], e.vector[1],
+                       e.vector[2]);
+      if (e.feasible) s += ", in the domain, all feasibility inequalities hold";
+      else if (!e.in_domain) s += ", outside the domain x z < 0";
+      else s += fmt::format(", in the domain, feasibility inequality {} fails (symbol {})", e.first_failure, e.failing_symbol);
+    } else {
+      const bool neg = !e.im.empty() && e.im[0] == '-';
+      s += fmt::format("{} {} {} i (complex, |mu|/|mu1| = {})", e.re, neg ? "-" : "+", neg ? e.im.substr(1) : e.im, e.ratio);
+    }
+    s += "\n";
+  }
+  s += fmt::format("verdict     {}{}\n", res.outcome,
+                   res.reason.empty() ? "" : fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason)));
+  if (res.orbit.empty()) return s;  // no periodic point: the period matrix's exponents describe no orbit
+  s += fmt::format("exponents   log(|mu2|/|mu1|)/p = {}, log(|mu3|/|mu1|)/p = {} (the orbit's projective Lyapunov "
+                   "exponents, per iteration, natural log)\n",
+                   res.lyapunov2, res.lyapunov3);
+  s += fmt::format("letters     {} ({} collisions)\n", res.letters, collisions(u));
+  s += "orbit       k symbol x y z theta w1 w2\n";
+  for (std::size_t k = 0; k < res.orbit.size(); ++k) {
+    const auto& p = res.orbit[k];
+    s += fmt::format("            {} {} {} {} {} {} {} {}\n", k, p[0], p[1], p[2], p[3], p[4], p[5], p[6]);
+  }
+  return s;
+}
+
+}  // namespace
+
+void WordRequest::validate() const {
+  const Word w = parse_word(word, "word");  // throws naming the field
+  (void)w;
+  if (window && charpoly) throw core::InvalidField("charpoly", "with --window", "one of --window, --charpoly or --r R");
+  if (charpoly && !r.empty()) throw core::InvalidField("charpoly", "with --r " + r, "no --r with --charpoly (exact in r)");
+  if (window && !r.empty()) throw core::InvalidField("r", r, "no --r with --window (the window is a set of r)");
+  if (!window && !charpoly && r.empty())
+    throw core::InvalidField("r", "nothing", "one of --r R (verdict at one r), --window or --charpoly");
+  if (digits != 0 && (!window || digits < 5 || digits > 1000))
+    throw core::InvalidField("digits", std::to_string(digits), window ? "5..1000" : "only with --window");
+  const core::Precision prec = core::parse_precision(precision, "precision");
+  if (window && prec.kind != core::Precision::Kind::mpfr && prec.kind != core::Precision::Kind::f64)
+    throw core::InvalidField("precision", precision, "double or mpfr:<digits> with --window");
+  if (r.empty()) return;
+  double x = 0;
+  try {
+    std::size_t pos = 0;
+    x = std::stod(r, &pos);
+    if (pos != r.size()) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw core::InvalidField("r", "'" + r + "'", "a number in the open interval (0, 1)");
+  }
+  if (!(x > 0 && x < 1)) throw core::InvalidField("r", r, "a restitution coefficient in the open interval (0, 1)");
+}
+
+WordResult run(const WordRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  WordResult res;
+  res.mode = req.mode();
+  res.word = parse_word(req.word, "word");
+  res.primitive = primitive_root(res.word);
+  switch (res.mode) {
+    case WordRequest::Mode::verdict: verdict(res, req, res.word); break;
+    case WordRequest::Mode::window: window(res, req, res.word); break;
+    case WordRequest::Mode::charpoly: charpoly(res, res.word); break;
+  }
+  return res;
+}
+
+std::string WordResult::text() const {
+  switch (mode) {
+    case WordRequest::Mode::verdict: return verdict_text(*this);
+    case WordRequest::Mode::window: {
+      core::CsvTable s("word,r_low,r_high,low_reason,high_reason");
+      for (const auto& iv : intervals) s.row({to_paper(word), iv[0], iv[1], iv[2], iv[3]});
+      return s.text();
+    }
+    case WordRequest::Mode::charpoly:
+      return fmt::format(
+          "word          {} ({} symbols); matrix {}\n"
+          "chi(lambda) = det(lambda I - A) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r:\n"
+          "c2            {}\nc1            {}\nc0            {}\ndiscriminant  {}\n"
+          "              (the paper's sign: (q/2)^2 + (p/3)^3 of the depressed cubic; < 0: three real roots)\n",
+          to_paper(word), word.size(), reduced ? "A = J M_h, M_w = A^2 (w = h J(h))" : "A = M_w", c2, c1, c0, discriminant);
+  }
+  return {};
+}
+
+void WordResult::describe(core::Contents& c) const {
+  c.attr("word", to_paper(word));
+  c.attr("primitive", to_paper(primitive));
+  c.attr("scalar_type", scalar_type);
+  switch (mode) {
+    case WordRequest::Mode::verdict:
+      c.attr("mode", std::string("verdict"));
+      c.attr("r", r);
+      c.attr("verdict", outcome);
+      c.attr("reason", reason);
+      c.attr("lyapunov2", lyapunov2);
+      c.attr("lyapunov3", lyapunov3);
+      c.attr("letters", letters);
+      c.array("eigen_re", eigen_re, {eigen_re.size()}, "eigenvalue (decreasing modulus)", "1",
+              "real parts of the eigenvalues of the period matrix (double view of the text attributes)");
+      c.array("eigen_im", eigen_im, {eigen_im.size()}, "eigenvalue (decreasing modulus)", "1", "imaginary parts");
+      c.array("eigen_modulus", eigen_modulus, {eigen_modulus.size()}, "eigenvalue (decreasing modulus)", "1", "moduli");
+      c.array("orbit", orbit_xyz, {orbit_xyz.size() / 3, 3}, "point of the periodic orbit, (x, y, z)", "1",
+              "the periodic orbit's points u_0 .. u_{p-1}, unit vectors in Q (empty without a periodic point)");
+      break;
+    case WordRequest::Mode::window:
+      c.attr("mode", std::string("window"));
+      c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the stability intervals in r");
+      c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the stability intervals in r");
+      break;
+    case WordRequest::Mode::charpoly:
+      c.attr("mode", std::string("charpoly"));
+      c.attr("c2", c2);
+      c.attr("c1", c1);
+      c.attr("c0", c0);
+      c.attr("discriminant", discriminant);
+      break;
+  }
+}
+
+}  // namespace btob::patterns
+
+namespace btob::patterns {
+namespace {
+
+// Whether `f.r` lies inside one of the atlas's stability intervals of f.word.
+bool in_atlas(const std::vector<AtlasEntry>& entries, const Detected& f) {
+  for (const auto& e : entries)
+    if (e.word == f.word)
+      for (const auto& iv : e.intervals)
+        if (iv.lo < f.r && f.r < iv.hi) return true;
+  return false;
+}
+
+// The status column of detected.csv for one (r, pattern) pair; counts disagreements and neutral orbits.
+std::string detection_status(const AtlasRequest& req, const std::vector<AtlasEntry>& entries, const Detected& f,
+                             AtlasResult& res) {
+  if (static_cast<long>(f.word.size()) > req.max_length) {
+    const Verdict<double> v = analyse<double>(f.word, f.r);
+    res.disagreements += v.outcome != Outcome::stable;
+    return v.outcome == Outcome::stable
+               ? std::string("longer than L: stable (verdict)")
+               : fmt::format("longer than L: NOT stable (verdict: {}; {}; |l2|/|l1| = {:.6f})", outcome_name(v.outcome),
+                             v.reason, v.spectrum[1].modulus / v.spectrum[0].modulus);
+  }
+  if (in_atlas(entries, f)) return "stable in atlas";
+  // A symbol-periodic orbit that is not a stable periodic orbit: say what the analysis sees there.
+  const Verdict<double> v = analyse<double>(f.word, f.r);
+  const double ratio = v.spectrum[1].modulus / v.spectrum[0].modulus;
+  // A neutral period matrix (|l2| = |l1|, e.g. the rotation P2 of the word 2): the orbit turns on an invariant
+  // curve with a periodic symbol sequence; it is quasi-periodic, not a periodic sink, and the atlas (sinks only)
+  // rightly does not list it.  1e-9: the moduli are computed in double.
+  if (std::fabs(ratio - 1) < 1e-9) {
+    ++res.quasi_periodic;
+    return fmt::format("quasi-periodic (neutral period matrix, |l2|/|l1| = {:.6f}: invariant curves)", ratio);
+  }
+  ++res.disagreements;
+  return fmt::format("NOT stable in atlas ({}; {}; |l2|/|l1| = {:.6f})", outcome_name(v.outcome), v.reason, ratio);
+}
+
+// Item 6 of the atlas issue: the iterator at Table 6.1's r values, its patterns against the atlas.
+void check(const AtlasRequest& req, const std::vector<double>& grid, AtlasResult& res, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<double> rs = table_6_1_r();
+  const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
+                                         static_cast<int>(req.max_period), threads);
+  core::CsvTable det("r,word,symbols,collisions,count,ics,periodic_fraction,status");
+  std::set<std::pair<double, Word>> seen;
+  for (const auto& f : d.found) {
+    seen.insert({f.r, f.word});
+    const std::size_t ir = static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin());
+    det.line(fmt::format("{},{},{},{},{},{},{:.4f},{}", f.r, to_paper(f.word), f.word.size(), collisions(f.word), f.count,
+                         d.ics, static_cast<double>(d.periodic[ir]) / static_cast<double>(d.ics),
+                         core::csv_text(detection_status(req, res.entries, f, res))));
+  }
+  // Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas.
+  std::vector<AtlasEntry> long_entries;
+  for (const auto& f : d.found)
+    if (static_cast<long>(f.word.size()) > req.max_length &&
+        std::none_of(long_entries.begin(), long_entries.end(), [&](const AtlasEntry& e) { return e.word == f.word; }))
+      long_entries.push_back({f.word, stability_set<double>(f.word, grid, res.tol)});
+  core::CsvTable missed("r,word,symbols,r_low,r_high");
+  for (double r : rs)
+    for (const auto& e : res.entries)
+      for (const auto& iv : e.intervals)
+        if (iv.lo < r && r < iv.hi && !seen.count({r, e.word})) {
+          missed.line(fmt::format("{},{},{},{:.17g},{:.17g}", r, to_paper(e.word), e.word.size(), iv.lo, iv.hi));
+          ++res.missed;
+        }
+  res.csv.emplace_back("detected", det.text());
+  res.csv.emplace_back("long_windows", atlas_csv(long_entries));
+  res.csv.emplace_back("missed", missed.text());
+  res.checked = true;
+  res.detected = static_cast<long>(d.found.size());
+  res.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void stable_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
+  res.tol = 1e-15;  // bisection width in r: endpoints to ~1e-15 (double resolves r to 2.8e-17 near 0.2)
+  const std::vector<double> grid = default_grid();
+  res.grid_points = static_cast<long>(grid.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  res.entries = compute_atlas(static_cast<int>(req.max_length), grid, res.tol, threads);
+  res.atlas_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.words_scanned = static_cast<long>(res.entries.size());
+  for (const auto& e : res.entries) {
+    res.stable_words += !e.intervals.empty();
+    for (const auto& iv : e.intervals) {
+      res.r_low.push_back(iv.lo);
+      res.r_high.push_back(iv.hi);
+      res.symbols.push_back(static_cast<double>(e.word.size()));
+      res.stable.push_back(1);
+    }
+  }
+  res.csv.emplace_back("", atlas_csv(res.entries));
+  if (!req.no_check) check(req, grid, res, threads);
+}
+
+void feasible_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
+  res.tol = 1e-13;  // bisection width in r (the transitions are reported to ~13 digits)
+  const std::vector<double> grid = feasible_grid();
+  res.grid_points = static_cast<long>(grid.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  res.feasible_entries = compute_feasible_atlas(static_cast<int>(req.max_length), grid, res.tol, threads, &res.words_scanned);
+  res.atlas_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<double> rs;
+  for (int i = 1; i < 1000; ++i) rs.push_back(i / 1000.0);
+  for (const auto& e : res.feasible_entries) {
+    bool st = false;
+    for (const auto& iv : e.intervals) {
+      st = st || iv.outcome == Outcome::stable;
+      res.r_low.push_back(iv.lo);
+      res.r_high.push_back(iv.hi);
+      res.symbols.push_back(static_cast<double>(e.word.size()));
+      res.stable.push_back(iv.outcome == Outcome::stable ? 1 : 0);
+    }
+    res.stable_words += st;
+    res.unstable_only_words += !st;
+  }
+  res.csv.emplace_back("", feasible_csv(res.feasible_entries));
+  res.csv.emplace_back("counts", feasible_counts_csv(res.feasible_entries, rs));
+  res.csv.emplace_back("unstable_followed",
+                       followed_csv(res.feasible_entries, 2000, threads, &res.followed_agree, &res.followed_checked));
+}
+
+}  // namespace
+
+void AtlasRequest::validate() const {
+  if (max_length < 1 || max_length > 16) throw core::InvalidField("max-length", std::to_string(max_length), "1..16");
+  if (feasible && no_check) throw core::InvalidField("no-check", "with --feasible", "only for the stable atlas");
+  if (ics < 1 || ics > 10'000'000) throw core::InvalidField("ics", std::to_string(ics), "1..10000000");
+  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
+  if (tail < 1 || tail > iterations)
+    throw core::InvalidField("tail", std::to_string(tail), fmt::format("1..iterations ({})", iterations));
+  if (max_period < 1 || 2 * max_period > tail)
+    throw core::InvalidField("max-period", std::to_string(max_period), fmt::format("1..tail/2 ({})", tail / 2));
+}
+
+AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
+  req.validate();
+  control.check_cancelled();
+  AtlasResult res;
+  res.request = req;
+  res.feasible = req.feasible;
+  if (req.feasible) feasible_atlas(req, res, control.threads);
+  else stable_atlas(req, res, control.threads);
+  control.check_cancelled();
+  return res;
+}
+
+std::string AtlasResult::summary() const {
+  if (feasible)
+    return fmt::format("feasible atlas of {} canonical primitive words: {} feasible for some r ({} stable somewhere, {} only "
+                       "unstable) ({:.1f} s); unstable orbits followed by the map in double from their periodic point: {} "
+                       "of {} within a factor 2 (+-2 periods) of ln(margin/eps)/ln(expansion)",
+                       words_scanned, feasible_entries.size(), stable_words, unstable_only_words, atlas_seconds,
+                       followed_agree, followed_checked);
+  std::string s = fmt::format("atlas of {} canonical primitive words: {} with a stability window ({:.1f} s)", words_scanned,
+                              stable_words, atlas_seconds);
+  if (checked)
+    s += fmt::format("; iterator check at {} r values: {} (r, pattern) pairs, {} not stable in the analysis, {} "
+                     "quasi-periodic (neutral period matrix), {} stable atlas entries not reached ({:.1f} s)",
+                     table_6_1_r().size(), detected, disagreements, quasi_periodic, missed, check_seconds);
+  return s;
+}
+
+void AtlasResult::describe(core::Contents& c) const {
+  c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the intervals in r (all words, CSV order)");
+  c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the intervals in r");
+  c.array("symbols", symbols, {symbols.size()}, "interval", "symbols", "length of the interval's word");
+  c.array("stable", stable, {stable.size()}, "interval", "1", "1: a stable periodic orbit on the interval, 0: unstable");
+  c.attr("max_length", request.max_length);
+  c.attr("words", words_scanned);
+  c.attr("words_scanned", words_scanned);
+  c.attr("stable_words", stable_words);
+  c.attr("grid_points", grid_points);
+  c.attr("bisection_tol", tol);
+  c.attr("atlas_seconds", atlas_seconds);
+  if (feasible) {
+    c.attr("feasible_words", static_cast<long>(feasible_entries.size()));
+    c.attr("unstable_only_words", unstable_only_words);
+    c.attr("followed_checked", followed_checked);
+    c.attr("followed_agree", followed_agree);
+  }
+  if (checked) {
+    c.attr("check_r_values", static_cast<long>(table_6_1_r().size()));
+    c.attr("check_ics", request.ics);
+    c.attr("check_iterations", request.iterations);
+    c.attr("check_tail", request.tail);
+    c.attr("check_max_period", request.max_period);
+    c.attr("check_seed", static_cast<long>(request.seed));
+    c.attr("check_grid", std::string("random (uniform on the quarter sphere)"));
+    c.attr("check_detected_patterns", detected);
+    c.attr("check_disagreements", disagreements);
+    c.attr("check_quasi_periodic", quasi_periodic);
+    c.attr("check_missed", missed);
+    c.attr("check_seconds", check_seconds);
+  }
+}
+
+}  // namespace btob::patterns

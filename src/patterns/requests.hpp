@@ -1,0 +1,120 @@
+// The requests of `btob pattern` (Sections 6.2, 7 of the paper): what one word does at one r, its stability set,
+// its exact characteristic polynomial (WordRequest), and the atlas of every word up to a length with its check
+// against the iterator (AtlasRequest).  Values computed in a multiprecision type travel as decimal text with the
+// precision's digits, never rounded to double; the numeric arrays (for plots and Python) are doubles.
+#pragma once
+
+#include "core/request.hpp"
+#include "core/result.hpp"
+#include "patterns/atlas.hpp"
+#include "patterns/patterns.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace btob::patterns {
+
+// `btob pattern WORD --r R` (verdict), `WORD --window` (stability set), `WORD --charpoly` (exact polynomial).
+struct WordRequest {
+  std::string word;                  // over 1, 2, 3: 132312, 132^3312^3, (ab)(cb)(acb)
+  std::string r;                     // decimal text, read in the precision (exact to its digits): verdict mode
+  std::string precision = "double";  // verdict: float, double, long-double, float128, mpfr:D; window: mpfr:D
+  bool window = false, charpoly = false;
+  long digits = 0;                   // window: digits of the endpoints, 5..1000 (> 15 computes in MPFR); 0: 17
+
+  enum class Mode { verdict, window, charpoly };
+  Mode mode() const { return charpoly ? Mode::charpoly : window ? Mode::window : Mode::verdict; }
+  void validate() const;
+  template <class V> void fields(V&& v) {
+    v("word", word, "a word over 1,2,3 (132312, 132^3312^3, (ab)(cb)(acb))", core::positional);
+    v("r", r, "restitution coefficient in (0,1) (verdict mode), read in the precision");
+    v("precision", precision, "verdict: float, double, long-double, float128 or mpfr:<digits>; window: mpfr:<digits>");
+    v("window", window, "the stability set as CSV word,r_low,r_high,low_reason,high_reason");
+    v("charpoly", charpoly, "the exact characteristic polynomial of the period matrix and its discriminant");
+    v("digits", digits, "window mode: digits of the endpoints, 5..1000 (> 15 computes in MPFR)");
+  }
+};
+
+// One eigenvalue of the period matrix, as text in the precision's digits.
+struct EigenText {
+  std::string re, im, ratio;          // ratio: |l| / |l1|
+  bool real = false, in_domain = false, feasible = false;
+  int first_failure = -1;             // -1 feasible, 0 domain, k: the k-th feasibility inequality
+  int failing_symbol = 0;             // the symbol of that inequality
+  std::array<std::string, 3> vector;  // real eigenvalues: unit eigenvector in Q
+};
+
+struct WordResult {
+  WordRequest::Mode mode = WordRequest::Mode::verdict;
+  std::string scalar_type;            // the type the numbers were computed in
+  Word word, primitive;
+  // verdict
+  std::string r;                      // r as the precision holds it
+  bool reduced = false;               // analysed through J M_h (Section 7.1)
+  std::vector<EigenText> spectrum;    // by decreasing modulus
+  std::string outcome, reason;        // stable / unstable / none; why not stable
+  std::string lyapunov2, lyapunov3;   // log(|mu2|/|mu1|)/p, log(|mu3|/|mu1|)/p (natural log, per iteration); the
+                                      // orbit's exponents when it has a periodic point (orbit not empty)
+  std::string letters;                // collision letters of the periodic orbit (when there is one)
+  std::vector<std::array<std::string, 7>> orbit;  // k-th point: x y z theta w1 w2 (text) and its symbol first
+  std::vector<double> eigen_re, eigen_im, eigen_modulus, orbit_xyz;  // numeric views [3], [3], [3], [p, 3]
+  // window
+  std::vector<std::array<std::string, 4>> intervals;  // r_low, r_high, low_reason, high_reason
+  std::vector<double> r_low, r_high;
+  // charpoly: chi(lambda) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r
+  std::string c2, c1, c0, discriminant;
+
+  std::string text() const;           // what the command line prints
+  void describe(core::Contents& c) const;
+};
+
+WordResult run(const WordRequest& req, const core::RunControl& control = {});
+
+// `btob pattern atlas`: every canonical primitive word of length <= max-length with its stability set and the
+// check against the iterator at Table 6.1's r values; or, with --feasible, every feasible periodic orbit.
+struct AtlasRequest {
+  long max_length = 12;
+  bool feasible = false, no_check = false;
+  long ics = 1000, iterations = 5000, tail = 2000;  // the iterator check
+  std::uint64_t seed = 1;
+  long max_period = 500;
+
+  void validate() const;
+  std::string default_name() const { return feasible ? "feasible" : "atlas"; }
+  template <class V> void fields(V&& v) {
+    v("max-length", max_length, "longest word, in symbols, 1..16");
+    v("feasible", feasible, "every feasible periodic orbit, stable or unstable (feasible.csv, feasible_counts.csv)");
+    v("no-check", no_check, "skip the iterator check");
+    v("ics", ics, "iterator check: random initial points per r");
+    v("iterations", iterations, "iterator check: iterations per orbit");
+    v("tail", tail, "iterator check: symbols kept at the end of each orbit, 1..iterations");
+    v("seed", seed, "iterator check: seed of the initial points");
+    v("max-period", max_period, "iterator check: longest period searched, 1..tail/2");
+  }
+};
+
+struct AtlasResult {
+  AtlasRequest request;                    // what was computed (its lengths and check sizes go to the attributes)
+  bool feasible = false;
+  double tol = 0;                          // bisection width in r
+  long grid_points = 0;
+  std::vector<AtlasEntry> entries;         // stable atlas
+  std::vector<FeasibleEntry> feasible_entries;
+  long words_scanned = 0, stable_words = 0, unstable_only_words = 0;
+  long followed_checked = 0, followed_agree = 0;
+  bool checked = false;                    // the iterator check ran
+  long detected = 0, disagreements = 0, quasi_periodic = 0, missed = 0;
+  double atlas_seconds = 0, check_seconds = 0;
+  std::vector<std::pair<std::string, std::string>> csv;  // (file name, content) in writing order
+  std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
+  std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
+
+  std::string summary() const;             // the lines the command line prints
+  void describe(core::Contents& c) const;
+};
+
+AtlasResult run(const AtlasRequest& req, const core::RunControl& control = {});
+
+}  // namespace btob::patterns
