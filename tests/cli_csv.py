@@ -9,7 +9,8 @@ header (csv module), numpy reads the same number of columns and rows, and numpy'
 fraction tables (the old fractions.csv ignored --name).  `btob precision` is left out (its smallest run takes ~30 s): its
 CSV is checked by PrecisionTradeoff in tests/test_long_precision.cpp.
 
-Usage: cli_csv.py PATH/TO/btob          exit 0 when every CSV passes, 1 otherwise (each failure printed)
+Usage: cli_csv.py PATH/TO/btob [REPO_ROOT]   exit 0 when every CSV passes, 1 otherwise (each failure printed); with
+REPO_ROOT, the CSVs committed under results/ and analyses/ are checked too.
 """
 import csv
 import glob
@@ -112,6 +113,13 @@ def commands(d):
 
 def main():
     btob = sys.argv[1]
+    if len(sys.argv) > 2:  # the committed CSVs of the repository at sys.argv[2] (results/, analyses/), as they are
+        root = sys.argv[2]
+        listed = subprocess.run(["git", "-C", root, "ls-files", "results/*.csv", "analyses/*.csv"],
+                                stdout=subprocess.PIPE, text=True, check=True).stdout.split()
+        for f in listed:
+            check_csv(os.path.join(root, f))
+        print(f"{len(listed)} committed CSV files checked, {len(failures)} failure(s)")
     with tempfile.TemporaryDirectory() as d:
         for args, stdout_to in commands(d):
             run(btob, args, stdout_to)
