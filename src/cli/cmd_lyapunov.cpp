@@ -82,6 +82,12 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot(script);
   const auto written = files.commit();
+  if constexpr (std::is_same_v<Req, lyapunov::MapRequest>)
+    if (res.float_disagree > 0)
+      std::cerr << fmt::format("btob: warning: float and double give another sign of lambda1 on {} of the {} orbits "
+                               "re-run in double (first at r = {}): float rounding moves orbits off weakly contracting "
+                               "sinks; use --precision double\n",
+                               res.float_disagree, res.float_checked, res.float_disagree_r);
   const double steps = static_cast<double>(res.ensemble.orbits()) * static_cast<double>(req.transient + req.iterations);
   if (!o.quiet)
     std::cerr << fmt::format("btob: {} orbits x {} steps = {:.3g} map iterations with the tangent cocycle in {:.3f} s "
