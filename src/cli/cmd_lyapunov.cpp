@@ -23,6 +23,18 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     std::cout << "lambda1,err1,lambda2,err2,iterations\n"
               << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", l[0].value, l[0].error, l[1].value, l[1].error,
                              res.iterations);
+  if (req.precision == "float") {  // float rounding can move an orbit off a weak sink: the same orbit in double
+    lyapunov::OrbitRequest d = req;
+    d.precision = "double";
+    d.convergence.clear();
+    const lyapunov::ProjectiveResult rd = lyapunov::run(d, ctx.control);
+    if (lyapunov::classify(l[0].value, l[0].error, res.iterations) !=
+        lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations))
+      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g}, another sign than "
+                               "float's {:.6g}: float rounding moves orbits off weakly contracting sinks; use "
+                               "--precision double\n",
+                               rd.lambda[0].value, rd.lambda[0].error, l[0].value);
+  }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");
     const auto& c = res.convergence;
