@@ -28,12 +28,13 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     d.precision = "double";
     d.convergence.clear();
     const lyapunov::ProjectiveResult rd = lyapunov::run(d, ctx.control);
-    if (lyapunov::classify(l[0].value, l[0].error, res.iterations) !=
-        lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations))
-      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g}, another sign than "
-                               "float's {:.6g}: float rounding moves orbits off weakly contracting sinks; use "
-                               "--precision double\n",
-                               rd.lambda[0].value, rd.lambda[0].error, l[0].value);
+    const int cf = lyapunov::classify(l[0].value, l[0].error, res.iterations),
+              cd = lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations);
+    const auto name = [](int c) { return c > 0 ? "positive" : c < 0 ? "negative" : "zero"; };
+    if (cf != cd)
+      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g} ({}), float {:.6g} "
+                               "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
+                               rd.lambda[0].value, rd.lambda[0].error, name(cd), l[0].value, name(cf));
   }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");
