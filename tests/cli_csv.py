@@ -9,7 +9,8 @@ header (csv module), numpy reads the same number of columns and rows, and numpy'
 fraction tables (the old fractions.csv ignored --name).  `btob precision` is left out (its smallest run takes ~30 s): its
 CSV is checked by PrecisionTradeoff in tests/test_long_precision.cpp.
 
-Usage: cli_csv.py PATH/TO/btob          exit 0 when every CSV passes, 1 otherwise (each failure printed)
+Usage: cli_csv.py PATH/TO/btob [REPO_ROOT]   exit 0 when every CSV passes, 1 otherwise (each failure printed); with
+REPO_ROOT, the CSVs committed under results/ and analyses/ are checked too.
 """
 import csv
 import glob
@@ -99,6 +100,8 @@ def commands(d):
           "--no-plot"], None),
         (["transfer-r", "--r-min", "0.15", "--r-max", "0.2", "--r-count", "2", "--boxes", "8x8", "--samples", "4",
           "--eigenvalues", "4", "--out", f"{d}/transfer_r", "--no-plot"], None),
+        (["pattern", "atlas", "--max-length", "4", "--out", f"{d}/atlas", *q], None),
+        (["pattern", "132^2", "--window"], f"{d}/pattern_window.csv"),
         (["windows", "bounds", "--n", "1..4", "--certify"], f"{d}/bounds.csv"),
         (["windows", "thresholds"], f"{d}/thresholds.csv"),
         (["windows", "stripes", "--max-m", "8"], f"{d}/stripes.csv"),
@@ -110,6 +113,13 @@ def commands(d):
 
 def main():
     btob = sys.argv[1]
+    if len(sys.argv) > 2:  # the committed CSVs of the repository at sys.argv[2] (results/, analyses/), as they are
+        root = sys.argv[2]
+        listed = subprocess.run(["git", "-C", root, "ls-files", "results/*.csv", "analyses/*.csv"],
+                                stdout=subprocess.PIPE, text=True, check=True).stdout.split()
+        for f in listed:
+            check_csv(os.path.join(root, f))
+        print(f"{len(listed)} committed CSV files checked, {len(failures)} failure(s)")
     with tempfile.TemporaryDirectory() as d:
         for args, stdout_to in commands(d):
             run(btob, args, stdout_to)

@@ -72,5 +72,14 @@ for f in "$out/h/ok.h5" "$out/h/ok.json" "$out/o/ok.h5" "$out/o/ok.json" "$out/o
 done
 [ -n "$(find "$out/h" "$out/o" -name "*tmp*")" ] && { echo "FAIL: temporary files left behind"; fail=1; }
 
+# Float near the weak sink 312^150 (r = 0.171599, lambda1 = -0.0116): the orbit leaves it in float; both commands
+# check float against double and warn (issue 21, item 5); on the strong sink 1133 (r = 0.15) they stay quiet.
+err=$("$btob" lyapunov --r 0.171599 --point 1,-3,-1.1 --iterations 100000 --precision float 2>&1 >/dev/null)
+grep -q "warning: in double this orbit" <<<"$err" || { echo "FAIL: no float warning at r = 0.171599: $err"; fail=1; }
+err=$("$btob" lyapunov --r 0.15 --point 1,-3,-1.1 --iterations 100000 --precision float 2>&1 >/dev/null)
+[ -z "$err" ] || { echo "FAIL: float warning on the strong sink 1133: $err"; fail=1; }
+err=$("$btob" lyapunov-map --r-min 0.171599 --r-max 0.171599 --r-count 1 --precision float --out "$out/f" --no-plot --quiet 2>&1)
+grep -q "warning: float and double give another sign" <<<"$err" || { echo "FAIL: no lyapunov-map float warning: $err"; fail=1; }
+
 if [ "$fail" -eq 0 ]; then echo "cli_errors_lyapunov: all checks passed"; fi
 exit $fail

@@ -410,13 +410,16 @@ double strip_sphere_share(double a, double b) {
   return 2 / std::numbers::pi * (F(b) - F(a));
 }
 
+std::string strip_measure_name(double a, double b) {
+  return fmt::format("Lebesgue on the strip rectangle w1 in [{}, {}] x w2 in [-1, 1] ({:.4f} of the sphere measure)", a,
+                     b, strip_sphere_share(a, b));
+}
+
 double sphere_share(const Grid& g) { return g.kind == "strip" ? strip_sphere_share(g.lo1, g.hi1) : 1.0; }
 
 std::string measure_name(const Grid& g) {
   if (g.kind == "sphere") return "uniform on the sphere of directions of the domain (equal-area grid)";
-  if (g.kind == "strip")
-    return fmt::format("Lebesgue on the strip rectangle w1 in [{}, {}] x w2 in [-1, 1] ({:.4f} of the sphere measure)",
-                       g.lo1, g.hi1, sphere_share(g));
+  if (g.kind == "strip") return strip_measure_name(g.lo1, g.hi1);
   return "uniform in the angles (theta, phi), not the sphere's area";
 }
 

@@ -138,8 +138,9 @@ std::string measure_name(const Grid& g);
 // sphere and angles grids (they cover Q), for a strip w1 in [a, b] (2/pi) (F(b) - F(a)), F(w) = asin(w/sqrt(1+2w^2))
 // (the integral over theta of the height interval |y| <= w c/sqrt(1+w^2c^2), c = cos(theta) + sin(theta)).
 double sphere_share(const Grid& g);
-// The same share for a strip w1 in [a, b] x w2 in [-1, 1].
+// The same share for a strip w1 in [a, b] x w2 in [-1, 1], and that strip's measure in words.
 double strip_sphere_share(double a, double b);
+std::string strip_measure_name(double a, double b);
 Grid parse_grid(const std::string& spec, double w1_min, double w1_max, const char* field = "grid");
 std::vector<Vec3<double>> grid_points(const Grid& g, double du = 0, double dv = 0);
 

@@ -315,8 +315,7 @@ std::string grid_measure(const std::string& spec) {
   if (spec.starts_with("random:")) return "uniform on the sphere of directions of the domain (random points)";
   if (spec.starts_with("strip:")) {
     const iterate::StripSpec s = iterate::parse_strip(spec, "grid");
-    return fmt::format("Lebesgue on the strip rectangle w1 in [{}, {}] x w2 in [-1, 1] ({:.4f} of the sphere measure)",
-                       s.w1_min, s.w1_max, strip_sphere_share(s.w1_min, s.w1_max));
+    return strip_measure_name(s.w1_min, s.w1_max);
   }
   if (spec == "paper") return "the 32 points of the Section 4 grid (fractions of orbits, no measure)";
   return "the listed points (fractions of orbits, no measure)";

@@ -24,6 +24,19 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     std::cout << "lambda1,err1,lambda2,err2,iterations\n"
               << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", l[0].value, l[0].error, l[1].value, l[1].error,
                              res.iterations);
+  if (req.precision == "float") {  // float rounding can move an orbit off a weak sink: the same orbit in double
+    lyapunov::OrbitRequest d = req;
+    d.precision = "double";
+    d.convergence.clear();
+    const lyapunov::ProjectiveResult rd = lyapunov::run(d, ctx.control);
+    const int cf = lyapunov::classify(l[0].value, l[0].error, res.iterations),
+              cd = lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations);
+    const auto name = [](int c) { return c > 0 ? "positive" : c < 0 ? "negative" : "zero"; };
+    if (cf != cd)
+      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g} ({}), float {:.6g} "
+                               "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
+                               rd.lambda[0].value, rd.lambda[0].error, name(cd), l[0].value, name(cf));
+  }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");
     const auto& c = res.convergence;
@@ -63,6 +76,12 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot(script);
   const auto written = files.commit();
+  if constexpr (std::is_same_v<Req, lyapunov::MapRequest>)
+    if (res.float_disagree > 0)
+      std::cerr << fmt::format("btob: warning: float and double give another sign of lambda1 on {} of the {} orbits "
+                               "re-run in double (first at r = {}): float rounding moves orbits off weakly contracting "
+                               "sinks; use --precision double\n",
+                               res.float_disagree, res.float_checked, res.float_disagree_r);
   const double steps = static_cast<double>(res.ensemble.orbits()) * static_cast<double>(req.transient + req.iterations);
   if (!o.quiet)
     std::cerr << fmt::format("btob: {} orbits x {} steps = {:.3g} map iterations with the tangent cocycle in {:.3f} s "

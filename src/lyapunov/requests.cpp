@@ -167,6 +167,28 @@ MapResult run_ensemble(iterate::Ensemble ens, long iterations, long transient, i
 }
 }  // namespace
 
+namespace {
+// MapResult's float check: every k-th r value's orbits again in double, their sign classes compared.
+void check_float(MapResult& res, const MapRequest& req, const core::RunControl& control) {
+  const std::size_t R = res.ensemble.r.size(), I = res.ensemble.initial.size(), k = (R + 63) / 64;
+  iterate::Ensemble sub = res.ensemble;
+  sub.r.clear();
+  for (std::size_t i = 0; i < R; i += k) sub.r.push_back(res.ensemble.r[i]);
+  core::RunControl quiet = control;
+  quiet.progress = nullptr;
+  const MapResult d = run_ensemble(sub, req.iterations, req.transient, req.blocks, "double", quiet);
+  for (std::size_t j = 0; j < sub.r.size(); ++j)
+    for (std::size_t ic = 0; ic < I; ++ic) {
+      const std::size_t of = j * k * I + ic, od = j * I + ic;
+      ++res.float_checked;
+      if (classify(res.exponents.lambda1[of], res.exponents.err1[of], req.iterations) !=
+          classify(d.exponents.lambda1[od], d.exponents.err1[od], req.iterations)) {
+        if (res.float_disagree++ == 0) res.float_disagree_r = sub.r[j];
+      }
+    }
+}
+}  // namespace
+
 MapResult run(const MapRequest& req, const core::RunControl& control) {
   req.validate();
   iterate::Ensemble ens;
@@ -176,6 +198,7 @@ MapResult run(const MapRequest& req, const core::RunControl& control) {
   ens.seed = req.seed;
   MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
   res.summary = summarise(res.exponents, res.ensemble.r.size(), res.ensemble.initial.size());
+  if (req.precision == "float") check_float(res, req, control);
   return res;
 }
 
@@ -241,6 +264,11 @@ void MapResult::describe(core::Contents& c) const {
   c.attr("initial_conditions", static_cast<long>(I));
   c.attr("seed", static_cast<long>(ensemble.seed));
   c.attr("iteration_seconds", iteration_seconds);
+  if (float_checked > 0) {
+    c.attr("float_check_orbits", float_checked);
+    c.attr("float_check_disagree", float_disagree);
+    if (float_disagree > 0) c.attr("float_check_first_r", float_disagree_r);
+  }
 }
 
 }  // namespace btob::lyapunov

@@ -102,6 +102,11 @@ struct MapResult {
   std::vector<double> w1, w2;        // lyapunov-strip only: the cell centres, n1 x n2
   std::size_t n1 = 0, n2 = 0;        // lyapunov-strip only
   double iteration_seconds = 0;
+  // lyapunov-map --precision float only: the orbits of every k-th r value (at most 64 r values) re-run in double,
+  // and how many of them get another sign class (positive / zero / negative, maps.hpp classify).  Float rounds the
+  // orbit at 6e-8 per step: near-neutral sinks (r just above 3 - 2 sqrt(2)) lose their orbits to it.
+  long float_checked = 0, float_disagree = 0;
+  double float_disagree_r = 0;       // the first r value with a disagreement
 
   // Arrays: r [R]; lambda1, err1, lambda2, err2, chi1 [R, I] (map) or [n1, n2] (strip); summary [R].
   void describe(core::Contents& c) const;

@@ -1,6 +1,8 @@
 // The atlas of stable patterns (OpenMP over words) and pattern detection with the batched iterator.
 #include "patterns/atlas.hpp"
 
+#include "core/csv.hpp"
+
 #include "patterns/analysis_impl.hpp"
 
 #include "iterate/kernel.hpp"
@@ -30,11 +32,11 @@ std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>&
 }
 
 std::string atlas_csv(const std::vector<AtlasEntry>& atlas) {
-  std::string s = "word,r_low,r_high,low_reason,high_reason\n";
+  core::CsvTable s("word,r_low,r_high,low_reason,high_reason");
   for (const auto& e : atlas)
     for (const auto& iv : e.intervals)
-      s += fmt::format("{},{:.17g},{:.17g},{},{}\n", to_paper(e.word), iv.lo, iv.hi, iv.lo_reason, iv.hi_reason);
-  return s;
+      s.row({to_paper(e.word), fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi), iv.lo_reason, iv.hi_reason});
+  return s.text();
 }
 
 std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
@@ -67,17 +69,17 @@ std::vector<double> feasible_grid() {
 }
 
 std::string feasible_csv(const std::vector<FeasibleEntry>& atlas) {
-  std::string s = "word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason\n";
+  core::CsvTable s("word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason");
   for (const auto& e : atlas)
     for (const auto& iv : e.intervals)
-      s += fmt::format("{},{},{},{},{:.17g},{:.17g},{},{},{},{}\n", to_paper(e.word), to_digits(e.word), e.word.size(),
-                       collisions(e.word), iv.lo, iv.hi, outcome_name(iv.outcome), iv.collapse ? "true" : "false",
-                       iv.lo_reason, iv.hi_reason);
-  return s;
+      s.row({to_paper(e.word), to_digits(e.word), fmt::format("{}", e.word.size()), fmt::format("{}", collisions(e.word)),
+             fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi), outcome_name(iv.outcome),
+             iv.collapse ? "true" : "false", iv.lo_reason, iv.hi_reason});
+  return s.text();
 }
 
 std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r) {
-  std::string s = "r,stable,unstable,feasible,stable_collapse,unstable_collapse\n";
+  core::CsvTable s("r,stable,unstable,feasible,stable_collapse,unstable_collapse");
   for (double x : r) {
     long st = 0, un = 0, stc = 0, unc = 0;
     for (const auto& e : atlas) {
@@ -90,9 +92,9 @@ std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const s
       stc += in->outcome == Outcome::stable && in->collapse;
       unc += in->outcome == Outcome::unstable && in->collapse;
     }
-    s += fmt::format("{:.6g},{},{},{},{},{}\n", x, st, un, st + un, stc, unc);
+    s.line(fmt::format("{:.6g},{},{},{},{},{}", x, st, un, st + un, stc, unc));
   }
-  return s;
+  return s.text();
 }
 
 template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, long max_periods) {
@@ -145,19 +147,19 @@ std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_perio
     }
   }
   long a = 0, c = 0;
-  std::string s = "word,r,expansion,margin,predicted,followed\n";
+  core::CsvTable s("word,r,expansion,margin,predicted,followed");
   for (const auto& row : rows) {
     const Followed& f = row.f;
     if (f.expansion > 1 && f.periods >= 0 && 2 * f.predicted + 2 < static_cast<double>(max_periods)) {
       ++c;
       a += f.periods >= f.predicted / 2 - 2 && f.periods <= 2 * f.predicted + 2;
     }
-    s += fmt::format("{},{:.17g},{:.10g},{:.6g},{:.6g},{}\n", to_paper(*row.w), row.r, f.expansion, f.margin, f.predicted,
-                     f.periods);
+    s.line(fmt::format("{},{:.17g},{:.10g},{:.6g},{:.6g},{}", to_paper(*row.w), row.r, f.expansion, f.margin,
+                       f.predicted, f.periods));
   }
   if (agree) *agree = a;
   if (checked) *checked = c;
-  return s;
+  return s.text();
 }
 
 int eventual_period(const std::uint8_t* s, long n, int max_period) {

@@ -152,6 +152,25 @@ template <class T> double lyapunov_error() {
   return worst;
 }
 
+// The hard case (issue 21): the weakly contracting sink 312^150 (period 152, lambda1 = -0.0116) at r = 0.171599, just
+// above 3 - 2 sqrt(2), from the Section 4 grid's first point.  |lambda1 - exact| whatever the orbit does: an
+// arithmetic whose rounding moves the orbit off the sink is off by up to |lambda1| (the exact value needs no period
+// detection: the eigenvalues of the word's period matrix do not depend on its phase).
+template <class T> double lyapunov_error_near_neutral() {
+  constexpr double r = 0.171599;
+  std::vector<int> word = {3, 1};
+  word.insert(word.end(), 150, 2);
+  lyapunov::Options opt;
+  // The double orbit is on the sink after 6000 steps (btob classify); the weighted average of a period-152 orbit whose
+  // tangent frame rotates (a complex pair) needs ~400000 steps to reach 1e-11 (1e5 steps: 6.5e-8 in every precision).
+  opt.transient = 100000;
+  opt.iterations = 400000;
+  const Vec3<double> u0 = paper_grid()[0];
+  const lyapunov::ProjectiveResult res =
+      lyapunov::projective_exponents<T>(Vec3<T>(T(u0(0)), T(u0(1)), T(u0(2))), T(r), opt);
+  return std::fabs(res.weighted[0] - exact_lambda1(word, r));
+}
+
 // A method: its name and digits, and its symbols, throughput, trace and Lyapunov error, each run in its own
 // arithmetic (an MPFR method holds its digits with a guard for each call).
 struct Method {
@@ -161,10 +180,11 @@ struct Method {
   std::function<double(const Ensemble&, long, const RunOptions&)> rate;
   std::function<Trace(const Ensemble&, long, const RunOptions&)> tr;
   std::function<double()> lyapunov;  // empty for trig
+  std::function<double()> lyapunov_near_neutral;  // empty for trig
 };
 
 template <class T> Method linear(const std::string& name, int digits) {
-  return {name, digits, symbols<T>, throughput<T>, trace<T>, lyapunov_error<T>};
+  return {name, digits, symbols<T>, throughput<T>, trace<T>, lyapunov_error<T>, lyapunov_error_near_neutral<T>};
 }
 
 Method mpfr_method(int d) {
@@ -175,7 +195,7 @@ Method mpfr_method(int d) {
     };
   };
   return {fmt::format("linear/mpfr:{}", d), d, at(symbols<mpfr_float>), at(throughput<mpfr_float>),
-          at(trace<mpfr_float>), at(lyapunov_error<mpfr_float>)};
+          at(trace<mpfr_float>), at(lyapunov_error<mpfr_float>), at(lyapunov_error_near_neutral<mpfr_float>)};
 }
 
 // The row of one method: agreement with the reference per r, throughput, window test, Lyapunov error.
@@ -216,6 +236,7 @@ TradeoffRow measure(const Method& m, const TradeoffRequest& req, const Ensemble&
   row.rate = m.rate(w, m.digits > 34 ? 200 : 2000, ro);
   row.n_max = m.name.starts_with("trig") ? -1 : window_n_max(m.sym, window_n, ro);
   row.lyapunov_error = m.lyapunov ? m.lyapunov() : std::numeric_limits<double>::quiet_NaN();
+  row.lyapunov_near_neutral = m.lyapunov_near_neutral ? m.lyapunov_near_neutral() : std::numeric_limits<double>::quiet_NaN();
   return row;
 }
 
@@ -292,6 +313,7 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
     res.rate.push_back(row.rate);
     res.window_n_max.push_back(row.n_max);
     res.lyapunov_error.push_back(row.lyapunov_error);
+    res.lyapunov_near_neutral.push_back(row.lyapunov_near_neutral);
     for (std::size_t i = 0; i < row.agree_min.size(); ++i) {
       res.agree_min.push_back(static_cast<double>(row.agree_min[i]));
       res.agree_median.push_back(static_cast<double>(row.agree_median[i]));
@@ -306,7 +328,9 @@ std::string TradeoffResult::notes(const TradeoffRequest& req) {
       "btob precision study: symbol agreement with a 256-digit MPFR run of the same orbits, and the angle (rad) "
       "between the final states (median over orbits); lyapunov_error: largest |lambda1 - exact| on the sinks 1133 "
       "(r=0.15), 111333 (r=0.1), 132312 (r=0.5), weighted average of 1e5 steps, against log|l2/l1|/p of the period "
-      "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16). ";
+      "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16); "
+      "lyapunov_error_near_neutral: the same on the weakly contracting sink 312^150 (period 152, lambda1 = -0.0116) at "
+      "r = 0.171599 from the Section 4 grid's first point, 4e5 steps after 1e5, whatever the orbit does. ";
   s += fmt::format("orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
                    "the middle of window n, 20000+400n iterations, n in [{}]",
                    req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "));
@@ -316,13 +340,14 @@ std::string TradeoffResult::notes(const TradeoffRequest& req) {
 std::string TradeoffResult::csv(const TradeoffRequest& req) const {
   std::string h = "method,decimal_digits,iterations_per_second";
   for (double r : req.r) h += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
-  core::CsvTable t(h + ",window_n_max,lyapunov_error");
+  core::CsvTable t(h + ",window_n_max,lyapunov_error,lyapunov_error_near_neutral");
   for (const TradeoffRow& row : rows) {
     std::string s = fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
     for (std::size_t i = 0; i < row.agree_min.size(); ++i)
       s += fmt::format(",{},{},{:.3g}", row.agree_min[i], row.agree_median[i], row.error_median[i]);
     t.line(s + fmt::format(",{},{}", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
-                           std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error)));
+                           std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error)) +
+           (std::isnan(row.lyapunov_near_neutral) ? std::string(",") : fmt::format(",{:.3g}", row.lyapunov_near_neutral)));
   }
   return t.text();
 }
@@ -341,6 +366,8 @@ void TradeoffResult::describe(core::Contents& c) const {
   c.array("window_n_max", window_n_max, {M}, "method", "1", "largest listed window n resolved (-1: not tested)");
   c.array("lyapunov_error", lyapunov_error, {M}, "method", "1/iteration (natural log)",
           "largest |lambda1 - exact| on the sinks 1133, 111333, 132312 (NaN: not tested)");
+  c.array("lyapunov_error_near_neutral", lyapunov_near_neutral, {M}, "method", "1/iteration (natural log)",
+          "|lambda1 - exact| on the weakly contracting sink 312^150 at r = 0.171599 (NaN: not tested)");
   std::string names;
   for (const auto& row : rows) names += (names.empty() ? "" : ",") + row.method;
   c.attr("methods", names);

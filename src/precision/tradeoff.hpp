@@ -40,13 +40,15 @@ struct TradeoffRow {
   std::vector<long> agree_min, agree_median;  // [R] leading symbols equal to the reference's (min, median over orbits)
   std::vector<double> error_median;           // [R] median angle (rad) between the final state and the reference's
   double lyapunov_error = 0;  // largest |lambda1 - exact| on the three sinks; NaN for trig or off a sink
+  double lyapunov_near_neutral = 0;  // |lambda1 - exact| on the weak sink 312^150 at r = 0.171599; NaN for trig
   int n_max = 0;              // largest listed window n resolved (with every smaller listed n); -1 for trig
 };
 
 struct TradeoffResult {
   std::vector<TradeoffRow> rows;
   // Flat views for describe(): [M] and [M, R], M methods in the order of `rows`, R r values.
-  std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, window_n_max;
+  std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, lyapunov_near_neutral,
+      window_n_max;
 
   // The CSV of results/precision/tradeoff.csv: one header line, a row per method.
   std::string csv(const TradeoffRequest& req) const;
