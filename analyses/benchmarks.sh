@@ -10,8 +10,9 @@ out=results/benchmarks
 mkdir -p "$out"
 # bm_iterate: the iterator against the scalar loop of Appendix A.2 (plotted below); the others: Lyapunov
 # exponents (scalar QR route in every precision, batched map), C_N (FFT against the direct sum, N = 1e6,
-# n_max = 1e5) and attractor classification (points per second).  Smoke cases are left out.
-for name in bm_iterate bm_lyapunov bm_stats bm_attractors; do
+# n_max = 1e5), attractor classification (points per second) and the window certificates (Descartes against
+# Sturm on the same polynomials, bounds at 512 decimals).  Smoke cases are left out.
+for name in bm_iterate bm_lyapunov bm_stats bm_attractors bm_windows; do
   bm="$bdir/$name"
   [ -x "$bm" ] || { echo "benchmarks: $bm not built" >&2; exit 2; }
   filter='^[^s]'  # everything but the smoke/... cases
@@ -23,4 +24,4 @@ done
 /usr/bin/python3 analyses/plot/benchmarks.py "$out/bm_iterate.json" "$out/bm_iterate.png"
 # One manifest for the run (the benchmark programs link the same libraries as btob, built from the same tree).
 "$(dirname "$btob")/btob_manifest" "$out/manifest.json" "analyses/benchmarks.sh $btob" \
-  bm_iterate.json bm_lyapunov.json bm_stats.json bm_attractors.json bm_iterate.png
+  bm_iterate.json bm_lyapunov.json bm_stats.json bm_attractors.json bm_windows.json bm_iterate.png
