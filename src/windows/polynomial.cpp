@@ -238,15 +238,10 @@ void scale_and_reduce(Coeffs& c, const mpz_class& k) {
 }
 
 long sign_variations(const Coeffs& c) {
-  long v = 0;
-  int last = 0;
-  for (const auto& x : c) {
-    const int s = sgn(x);
-    if (s == 0) continue;
-    if (last != 0 && s != last) ++v;
-    last = s;
-  }
-  return v;
+  std::vector<int> s;
+  s.reserve(c.size());
+  for (const auto& x : c) s.push_back(sgn(x));
+  return variations(s);
 }
 
 // Descartes' bound for the roots of g in (0, 1): variations of (1 + t)^d g(1/(1 + t)).
