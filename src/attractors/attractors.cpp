@@ -428,6 +428,7 @@ Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const
     if (k == 0)
       for (const auto& x : v)
         b.unresolved_first_pass += x.type == Type::unresolved || x.detail.find("after refinement") != std::string::npos;
+    for (auto& x : v) std::string().swap(x.detail);  // per-orbit evidence text: not used below (~100 bytes each)
     joined.insert(joined.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
   }
   // Attractors of the union (ids by sorted key), then counts per grid.
