@@ -5,7 +5,7 @@ set -euo pipefail
 BTOB=${1:-build/release/btob}
 OUT=results/windows
 mkdir -p "$OUT"
-# Table B.1 with exact certificates (n = 1..100, 12 decimals; ~minutes, the Sturm sequences of n ~ 100).
+# Table B.1 with exact certificates (n = 1..100, 12 decimals; ~2 s: Descartes root counts, Sturm as fallback).
 "$BTOB" windows bounds --n 1..100 --digits 12 --certify > "$OUT/bounds_certified.csv.tmp"
 mv "$OUT/bounds_certified.csv.tmp" "$OUT/bounds_certified.csv"
 # Its manifest (the command prints to stdout and writes none): btob_manifest is built beside btob.

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -181,6 +182,31 @@ TEST(Basins, FractionsSumToOneWithIntervals) {
   EXPECT_EQ(b.labels.size(), 600u);
   EXPECT_EQ(b.replicate_fractions.size(), b.attractors.size() + 1);
   for (const auto& rf : b.replicate_fractions) EXPECT_EQ(rf.size(), 3u);
+}
+
+TEST(Basins, LabelsEqualClassifyAndCollectOfTheMainGrid) {
+  // basins() keeps the verdicts of all grids in one array (grid k at [k n, (k + 1) n)); the main grid's labels,
+  // counts and per-grid fractions must be those of classify + collect on that grid alone (independent route;
+  // with replicates the ids come from the union, so compare keys, not ids).  r = 0.2: a period-10 sink and the
+  // P2 invariant curves (pass 2), like the 1000 x 1000 benchmark grid.
+  const Grid g = parse_grid("strip:24x16", -2, 2);
+  const Basins b = basins(0.2, g, 2, 5, {});
+  iterate::Ensemble e;
+  e.r = {0.2};
+  e.initial = grid_points(g);
+  std::vector<std::uint32_t> labels;
+  const std::vector<Attractor> alone = collect(classify(e, {}), 0.2, &labels);
+  ASSERT_EQ(b.labels.size(), labels.size());
+  ASSERT_GE(alone.size(), 2u);
+  const auto key_of = [](const std::vector<Attractor>& as, std::uint32_t id) { return id == 0 ? std::string() : as[id - 1].key; };
+  for (std::size_t o = 0; o < labels.size(); ++o) EXPECT_EQ(key_of(b.attractors, b.labels[o]), key_of(alone, labels[o])) << o;
+  for (const Attractor& a : alone) {
+    const auto it = std::find_if(b.attractors.begin(), b.attractors.end(), [&](const Attractor& x) { return x.key == a.key; });
+    ASSERT_NE(it, b.attractors.end()) << a.key;
+    EXPECT_EQ(it->count, a.count) << a.key;
+    const std::size_t i = static_cast<std::size_t>(it - b.attractors.begin());
+    EXPECT_EQ(b.replicate_fractions[i][0], static_cast<double>(a.count) / static_cast<double>(labels.size()));
+  }
 }
 
 TEST(Basins, ClopperPearsonReferenceValues) {

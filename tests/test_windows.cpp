@@ -302,7 +302,7 @@ TEST(WindowBounds, TwoPrecisionsAgreeSubset) {
 }
 
 TEST(WindowCertificates, ValidForOneToForty) {
-  // Exact certificates for n = 1..40 (0.7 s in Release; n = 41..100 in test_long_windows).
+  // Exact certificates for n = 1..40 (0.06 s in Release; n = 41..150 in test_long_windows).
   for (int n = 1; n <= 40; ++n) {
     const Certificate c = certify_lower_bound(n, 12);
     EXPECT_TRUE(c.valid()) << "n = " << n << " a = " << c.a.get_str() << " signs " << c.sign_a << "," << c.sign_b
@@ -325,6 +325,82 @@ TEST(WindowCertificates, SturmCountsKnownPolynomials) {
   EXPECT_EQ(sturm_count_to_infinity(sturm_sequence(q), mpq_class(-6)), 3);
   // Palindromic reduction: x^2 + 3x + 1 = x (s + 3).
   EXPECT_EQ(palindromic_reduce(IntPoly({mpz_class(1), mpz_class(3), mpz_class(1)})), IntPoly({mpz_class(3), mpz_class(1)}));
+}
+
+// Descartes (VCA bisection) against Sturm on the same polynomials and intervals: products of known linear
+// factors (roots inside, at the ends, just outside, close pairs), a squared factor, and the reduced Q_n.
+IntPoly from_roots(const std::vector<mpq_class>& roots) {
+  IntPoly p = IntPoly::constant(1);
+  for (const mpq_class& r : roots) p = p * IntPoly({mpz_class(-r.get_num()), mpz_class(r.get_den())});  // den x - num
+  return p;
+}
+
+TEST(WindowCertificates, DescartesAgreesWithSturm) {
+  const std::vector<mpq_class> roots = {mpq_class(1, 3), mpq_class(1, 2), mpq_class(50001, 100000), mpq_class(2),
+                                        mpq_class(-7, 5), mpq_class(355, 113), mpq_class(3)};
+  const IntPoly p = from_roots(roots) * IntPoly({mpz_class(1), mpz_class(0), mpz_class(1)});  // and x^2 + 1
+  const auto seq = sturm_sequence(p);
+  // Brackets with dyadic/decimal ends between the roots (never a root), from very short to all of them.
+  const std::vector<mpq_class> ends = {mpq_class(-2), mpq_class(0), mpq_class(1, 4), mpq_class(4, 10),
+                                       mpq_class(500005, 1000000), mpq_class(1), mpq_class(31, 10), mpq_class(1000)};
+  int compared = 0;
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    for (std::size_t j = i + 1; j < ends.size(); ++j, ++compared)
+      EXPECT_EQ(descartes_count(p, ends[i], ends[j]), sturm_count(seq, ends[i], ends[j])) << ends[i].get_str() << " " << ends[j].get_str();
+    EXPECT_EQ(descartes_count_to_infinity(p, ends[i]), sturm_count_to_infinity(seq, ends[i])) << ends[i].get_str();
+    std::vector<IntPoly> cache;
+    EXPECT_EQ(root_count_to_infinity(p, ends[i], &cache), sturm_count_to_infinity(seq, ends[i]));
+  }
+  EXPECT_EQ(compared, 28);
+  // Roots at the ends: Descartes counts the open interval; Sturm (which refuses root ends) on a slightly
+  // smaller interval that holds the same roots (the roots are >= 1e-5 apart).
+  const mpq_class eps(1, 10000000);
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    for (std::size_t j = 0; j < roots.size(); ++j) {
+      if (!(roots[i] < roots[j])) continue;
+      EXPECT_EQ(descartes_count(p, roots[i], roots[j]), sturm_count(seq, roots[i] + eps, roots[j] - eps))
+          << roots[i].get_str() << " " << roots[j].get_str();
+    }
+  // Exact counts by construction: 6 positive roots, 2 of them in (0.49, 0.51) (one at the first midpoint),
+  // one in (3, inf) (355/113), none in (3, 355/113) nor (355/113, inf).
+  EXPECT_EQ(descartes_count_to_infinity(p, mpq_class(0)), 6);
+  EXPECT_EQ(descartes_count(p, mpq_class(49, 100), mpq_class(51, 100)), 2);
+  EXPECT_EQ(descartes_count_to_infinity(p, mpq_class(3)), 1);
+  EXPECT_EQ(descartes_count(p, mpq_class(3), mpq_class(355, 113)), 0);
+  EXPECT_EQ(descartes_count_to_infinity(p, mpq_class(355, 113)), 0);
+  // A double root: Descartes cannot separate it (-1), root_count falls back to Sturm (one distinct root).
+  const IntPoly sq = from_roots({mpq_class(1, 3), mpq_class(1, 3), mpq_class(2)});
+  EXPECT_EQ(descartes_count(sq, mpq_class(0), mpq_class(1)), -1);
+  std::vector<IntPoly> cache;
+  EXPECT_EQ(root_count(sq, mpq_class(0), mpq_class(1), &cache), 1);
+  EXPECT_FALSE(cache.empty());
+  EXPECT_EQ(root_count(sq, mpq_class(0), mpq_class(5), &cache), 2);
+  // Roots at every bisection point: counted once each.
+  const IntPoly mid = from_roots({mpq_class(1, 2), mpq_class(1, 4), mpq_class(3, 4), mpq_class(1, 8)});
+  EXPECT_EQ(descartes_count(mid, mpq_class(0), mpq_class(1)), 4);
+  EXPECT_EQ(descartes_count(mid, mpq_class(1, 8), mpq_class(3, 4)), 2);
+}
+
+TEST(WindowCertificates, DescartesAgreesWithSturmOnReducedQn) {
+  // The certificate's polynomials: the reduced cofactor of Q_n, on (s_b, s_a) around its largest root and
+  // on (s_a, inf), and on brackets around the other sign changes of Q_n in (0, 1).
+  for (int n : {2, 5, 13, 30}) {
+    const RationalPoly q = window_polynomial(n);
+    const IntPoly red = palindromic_reduce(factorise(q).cofactor);
+    const auto seq = sturm_sequence(red);
+    for (int k = 3; k <= 40; ++k) {  // s in (k/2 + 1/7, k/2 + 9/14), skipped if an end is a root
+      const mpq_class s0(7 * k + 2, 14), s1(7 * k + 9, 14);
+      if (red.sign_at(s0) == 0 || red.sign_at(s1) == 0) continue;
+      EXPECT_EQ(descartes_count(red, s0, s1), sturm_count(seq, s0, s1)) << "n = " << n << " k = " << k;
+      EXPECT_EQ(descartes_count_to_infinity(red, s0), sturm_count_to_infinity(seq, s0)) << "n = " << n << " k = " << k;
+    }
+    const Certificate c = certify_lower_bound(n, 12);
+    const mpq_class sa = c.a + 1 / c.a, sb = c.b + 1 / c.b;
+    EXPECT_EQ(descartes_count(red, sb, sa), 1);
+    EXPECT_EQ(sturm_count(seq, sb, sa), 1);
+    EXPECT_EQ(descartes_count_to_infinity(red, sa), 0);
+    EXPECT_EQ(sturm_count_to_infinity(seq, sa), 0);
+  }
 }
 
 TEST(WindowCertificates, CertificateRejectsWrongInterval) {

@@ -210,6 +210,138 @@ long sturm_count_to_infinity(const std::vector<IntPoly>& seq, const mpq_class& a
   return variations(signs_at(seq, a)) - variations(inf);
 }
 
+namespace {
+using Coeffs = std::vector<mpz_class>;
+
+// c(x) -> c(x + 1) in place (Horner-like O(d^2) additions).
+void taylor_shift_one(Coeffs& c) {
+  const std::size_t n = c.size();
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = n - 1; j-- > i;) c[j] += c[j + 1];
+}
+
+// c(x) -> c(x + u) in place, u an integer.
+void taylor_shift(Coeffs& c, const mpz_class& u) {
+  if (u == 0) return;
+  if (u == 1) return taylor_shift_one(c);
+  const std::size_t n = c.size();
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = n - 1; j-- > i;) mpz_addmul(c[j].get_mpz_t(), c[j + 1].get_mpz_t(), u.get_mpz_t());
+}
+
+// c(x) -> c(k x) for k > 0 (c_i k^i), then divided by the content.
+void scale_and_reduce(Coeffs& c, const mpz_class& k) {
+  mpz_class kp = 1;
+  for (auto& v : c) v *= kp, kp *= k;
+  IntPoly p(std::move(c));
+  c = p.primitive().coefficients();
+}
+
+long sign_variations(const Coeffs& c) {
+  std::vector<int> s;
+  s.reserve(c.size());
+  for (const auto& x : c) s.push_back(sgn(x));
+  return variations(s);
+}
+
+// Descartes' bound for the roots of g in (0, 1): variations of (1 + t)^d g(1/(1 + t)).
+long variations_on_unit(const Coeffs& g) {
+  Coeffs r(g.rbegin(), g.rend());
+  taylor_shift_one(r);
+  return sign_variations(r);
+}
+
+// Distinct roots of g in (0, 1) by bisection: g_L(y) = 2^d g(y/2) on (0, 1/2), g_R = g_L(y + 1) on (1/2, 1).
+long vca_unit(const Coeffs& g, int depth) {
+  const long v = variations_on_unit(g);
+  if (v <= 1) return v;
+  if (depth <= 0) return -1;
+  const std::size_t d = g.size() - 1;
+  Coeffs left(g);
+  for (std::size_t i = 0; i < d; ++i) mpz_mul_2exp(left[i].get_mpz_t(), left[i].get_mpz_t(), d - i);
+  Coeffs right(left);
+  taylor_shift_one(right);
+  const long at_midpoint = right[0] == 0 ? 1 : 0;  // the halves are open: a root at 1/2 is counted here
+  const long l = vca_unit(left, depth - 1);
+  if (l < 0) return -1;
+  const long r = vca_unit(right, depth - 1);
+  return r < 0 ? -1 : l + r + at_midpoint;
+}
+
+// D^d p((u + z)/D) as coefficients in z (D > 0): roots of p above u/D <-> positive roots in z.
+Coeffs shifted_to(const IntPoly& p, const mpz_class& u, const mpz_class& den) {
+  Coeffs c(p.coefficients());
+  mpz_class dp = 1;  // h(z) = D^d p(z/D): c_i D^(d-i)
+  for (std::size_t i = c.size(); i-- > 0;) c[i] *= dp, dp *= den;
+  taylor_shift(c, u);
+  return c;
+}
+
+void check_interval(const IntPoly& p, const mpq_class& a, const mpq_class& b) {
+  if (!(a < b)) throw std::invalid_argument("descartes_count: expected a < b, got a = " + a.get_str() + ", b = " + b.get_str());
+  if (p.is_zero()) throw std::invalid_argument("descartes_count: the zero polynomial");
+}
+
+// A power of two B = 2^e > |every root of p| (Fujiwara: |z| <= 2 max_k |c_(d-k) / c_d|^(1/k), each ratio
+// bounded by 2^(bits(c_(d-k)) - bits(c_d) + 1)); returns e.
+long root_bound_exponent(const IntPoly& p) {
+  const long d = p.degree();
+  const long lead_bits = static_cast<long>(mpz_sizeinbase(p.leading().get_mpz_t(), 2));
+  long e = 0;
+  for (long k = 1; k <= d; ++k) {
+    const mpz_class& c = p[static_cast<std::size_t>(d - k)];
+    if (c == 0) continue;
+    const long diff = static_cast<long>(mpz_sizeinbase(c.get_mpz_t(), 2)) - lead_bits + 1;
+    if (diff > 0) e = std::max(e, (diff + k - 1) / k);
+  }
+  return e + 2;  // 2 * 2^e, and one more so that B is strictly above the bound
+}
+}  // namespace
+
+long descartes_count(const IntPoly& p, const mpq_class& a_in, const mpq_class& b_in, int max_depth) {
+  mpq_class a = a_in, b = b_in;
+  a.canonicalize();
+  b.canonicalize();
+  check_interval(p, a, b);
+  if (p.degree() == 0) return 0;
+  // Common denominator D: a = u/D, b = v/D; g(y) = D^d p((u + (v - u) y)/D) for y in (0, 1).
+  mpz_class den;
+  mpz_lcm(den.get_mpz_t(), a.get_den().get_mpz_t(), b.get_den().get_mpz_t());
+  const mpz_class u = a.get_num() * (den / a.get_den()), v = b.get_num() * (den / b.get_den());
+  Coeffs g = shifted_to(p, u, den);
+  scale_and_reduce(g, v - u);
+  return vca_unit(g, max_depth);
+}
+
+long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a_in, int max_depth) {
+  mpq_class a = a_in;
+  a.canonicalize();
+  if (p.is_zero()) throw std::invalid_argument("descartes_count: the zero polynomial");
+  if (p.degree() == 0) return 0;
+  const long v = sign_variations(shifted_to(p, a.get_num(), a.get_den()));  // x = a + z/D, z > 0
+  if (v <= 1) return v;
+  const long e = root_bound_exponent(p);
+  mpz_class bound;
+  mpz_ui_pow_ui(bound.get_mpz_t(), 2, static_cast<unsigned long>(e));
+  return a < bound ? descartes_count(p, a, mpq_class(bound), max_depth + static_cast<int>(e)) : 0;
+}
+
+long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache) {
+  if (p.sign_at(a) == 0 || p.sign_at(b) == 0) throw std::domain_error("root_count: an endpoint is a root of the polynomial");
+  const long d = descartes_count(p, a, b);
+  if (d >= 0) return d;
+  if (seq_cache->empty()) *seq_cache = sturm_sequence(p);
+  return sturm_count(*seq_cache, a, b);
+}
+
+long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache) {
+  if (p.sign_at(a) == 0) throw std::domain_error("root_count: the endpoint is a root of the polynomial");
+  const long d = descartes_count_to_infinity(p, a);
+  if (d >= 0) return d;
+  if (seq_cache->empty()) *seq_cache = sturm_sequence(p);
+  return sturm_count_to_infinity(*seq_cache, a);
+}
+
 IntPoly palindromic_reduce(const IntPoly& p) {
   const int d = p.degree();
   if (d < 0 || d % 2 != 0) throw std::invalid_argument("palindromic_reduce: got degree " + std::to_string(d) + ", expected an even degree");

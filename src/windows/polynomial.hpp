@@ -65,6 +65,22 @@ std::vector<IntPoly> sturm_sequence(const IntPoly& p);
 long sturm_count(const std::vector<IntPoly>& seq, const mpq_class& a, const mpq_class& b);
 long sturm_count_to_infinity(const std::vector<IntPoly>& seq, const mpq_class& a);
 
+// Distinct real roots of p in the open interval (a, b), a < b, by Descartes' rule of signs after the
+// Moebius transform x = (a + b t)/(1 + t), which maps t in (0, inf) onto (a, b) (the Vincent-Collins-Akritas
+// bisection): a transformed polynomial with 0 sign variations has no root there, with 1 exactly one (simple)
+// root; otherwise the interval is halved (Taylor shifts on exact integers).  Endpoints may be roots (they
+// are not counted; a root at a bisection point is).  Returns -1 when it cannot decide within max_depth
+// halvings (a multiple root, or roots closer than (b - a) 2^-max_depth): callers then fall back to Sturm.
+long descartes_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, int max_depth = 64);
+// The same on (a, +infinity): x = a + t, then (a, B) with B a power of two above every root (Fujiwara's
+// bound) when that leaves two or more variations.
+long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a, int max_depth = 64);
+
+// Distinct real roots in (a, b) and in (a, +inf) (endpoints not roots, as sturm_count): Descartes first, the
+// Sturm sequence (computed once, on demand, in *seq_cache) when Descartes cannot decide.
+long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache);
+long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache);
+
 // For a palindromic p of even degree 2m (c_i = c_{2m-i}): the R of degree m with p(x) = x^m R(x + 1/x).
 // Throws std::invalid_argument when p is not palindromic of even degree.
 IntPoly palindromic_reduce(const IntPoly& p);

@@ -146,8 +146,8 @@ void BoundsResult::describe(core::Contents& c) const {
   if (certified_run) {
     c.array("sign_Q_a", sign_a, {N}, "n", "1", "exact sign of Q_n at a = floor(lower 10^D) / 10^D");
     c.array("sign_Q_b", sign_b, {N}, "n", "1", "exact sign of Q_n at b = a + 10^-D");
-    c.array("sturm_roots_0_a", roots_0_a, {N}, "n", "count", "distinct real roots of Q_n in (0, a] (Sturm)");
-    c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Sturm)");
+    c.array("sturm_roots_0_a", roots_0_a, {N}, "n", "count", "distinct real roots of Q_n in (0, a] (Descartes rule after Moebius transforms, Sturm fallback)");
+    c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Descartes rule after Moebius transforms, Sturm fallback)");
     c.array("certified", valid, {N}, "n", "1", "1 when the certificate proves the lower bound lies in (a, b)");
   }
   c.decimal("lower_bound_decimal", lower_text, "n", "1", "smallest positive root of Q_n, `digits` decimals (correctly rounded)");
@@ -417,7 +417,7 @@ void BoundPrecisionResult::describe(core::Contents& c) const {
   c.attr("rows", names);
   c.attr("n_first", static_cast<long>(range.first));
   c.attr("n_last", static_cast<long>(range.last));
-  c.attr("reference", std::string("window_lower_bound(n, 40 decimals), certified route (Q_n in MPFR, Sturm-checked)"));
+  c.attr("reference", std::string("window_lower_bound(n, 40 decimals), certified route (Q_n in MPFR, root counts checked exactly)"));
   c.attr("criterion", std::string("|value - reference| <= 5e-13 (correct to 12 decimals)"));
   c.attr("root_finder", std::string("toms748 on (7-4sqrt3, r_crit2(n)), tolerance all but 2 bits of T"));
   c.attr("total_seconds", total_seconds);

@@ -56,13 +56,13 @@ PolyResult run(const PolyRequest& req, const core::RunControl& control = {});
 struct BoundsRequest {
   std::string n = "1..100";  // n or A..B, 1 <= n <= 5000
   int digits = 12;           // decimals after the point, 10..10000
-  bool certify = false;      // exact rational sign change + Sturm counts for each n
+  bool certify = false;      // exact rational sign change + exact root counts (Descartes, Sturm fallback) for each n
 
   void validate() const;
   template <class V> void fields(V&& v) {
     v("n", n, "n or A..B, n >= 1");
     v("digits", digits, "decimals after the point, 10..10000");
-    v("certify", certify, "exact rational sign change + Sturm counts for each n");
+    v("certify", certify, "exact rational sign change + exact root counts (Descartes, Sturm fallback) for each n");
   }
 };
 

@@ -203,10 +203,11 @@ mpfr_float r_crit2(int n, int digits) {
   return v;
 }
 
-mpfr_float window_lower_bound(int n, int decimals) {
-  validate_n(n);
-  validate_digits(decimals, "digits");
-  const RationalPoly q = window_polynomial(n);
+namespace {
+
+// The smallest positive root of Q_n by bracketing (TOMS 748) at a working precision raised until the sign
+// change around the result is reliable.
+mpfr_float lower_bound_by_bracketing(const RationalPoly& q, int n, int decimals) {
   // Q_n's integer numerator has coefficients up to ~2^(4n) times a polynomial factor; Horner at r ~ 0.07
   // cancels up to that many digits in the worst case.  Start with 20 guard digits and double them until
   // the running error bound shows a reliable sign change across the result.
@@ -251,6 +252,68 @@ mpfr_float window_lower_bound(int n, int decimals) {
                           " digits after raising the working precision; ask for fewer digits or a smaller n");
 }
 
+// Horner for p and p' together (no error bound).
+std::pair<mpfr_float, mpfr_float> horner_with_derivative(const std::vector<mpfr_float>& c, const mpfr_float& x) {
+  mpfr_float v = c.back(), dv = 0;
+  for (std::size_t k = c.size() - 1; k-- > 0;) {
+    dv = dv * x + v;
+    v = v * x + c[k];
+  }
+  return {v, dv};
+}
+
+// True when Q_n changes sign reliably (beyond Horner's running error bound) across x -+ 10^-(D+3).
+bool reliable_root(const std::vector<mpfr_float>& c, const mpfr_float& x, int decimals) {
+  const mpfr_float delta = pow(mpfr_float(10), -(decimals + 3));
+  const Eval el = horner(c, x - delta), er = horner(c, x + delta);
+  return abs(el.value) > el.error && abs(er.value) > er.error && sign(el.value) * sign(er.value) < 0;
+}
+
+// Many decimals: Newton's iteration from the root to 30 decimals, at a working precision chosen once from
+// Horner's running error bound there (digits lost ~ log10(2 mu / |x Q'(x)|)), then the same reliability
+// check as the bracketing.  Returns false (and the caller brackets) when it does not converge near the seed.
+bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_float& out) {
+  const int seed_decimals = 30;
+  const mpfr_float seed = lower_bound_by_bracketing(q, n, seed_decimals);
+  int lost = 0;
+  {
+    ScopedDigits sd(static_cast<int>(seed.precision()));
+    const std::vector<mpfr_float> c = to_mpfr(q);
+    const Eval e = horner(c, seed);
+    const mpfr_float slope = abs(horner_with_derivative(c, seed).second * seed);
+    if (slope == 0) return false;
+    lost = std::max(0, static_cast<int>(ceil(log10(2 * e.error / std::numeric_limits<mpfr_float>::epsilon() / slope))));
+  }
+  const int work = decimals + 6 + lost + 10;  // 6 decimals beyond the request (as the bracketing), 10 guard
+  ScopedDigits sd(work);
+  const std::vector<mpfr_float> c = to_mpfr(q);
+  mpfr_float x = seed;
+  x.precision(static_cast<unsigned>(work));
+  const mpfr_float stop = pow(mpfr_float(10), -(decimals + 8)), near = pow(mpfr_float(10), -(seed_decimals - 5));
+  for (int it = 0; it < 40; ++it) {
+    const auto [v, dv] = horner_with_derivative(c, x);
+    if (dv == 0) return false;
+    const mpfr_float dx = v / dv;
+    x -= dx;
+    if (abs(x - seed) > near) return false;  // left the seed's neighbourhood
+    if (abs(dx) < stop) break;  // quadratic convergence: x is now good to ~2x as many decimals
+  }
+  if (!reliable_root(c, x, decimals)) return false;
+  out = x;
+  return true;
+}
+
+}  // namespace
+
+mpfr_float window_lower_bound(int n, int decimals) {
+  validate_n(n);
+  validate_digits(decimals, "digits");
+  const RationalPoly q = window_polynomial(n);
+  mpfr_float x;
+  if (decimals > 40 && lower_bound_by_newton(q, n, decimals, x)) return x;
+  return lower_bound_by_bracketing(q, n, decimals);
+}
+
 Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in) {
   Certificate cert;
   cert.n = n;
@@ -274,16 +337,17 @@ Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in
   } catch (const std::invalid_argument&) {
     reduced_poly = IntPoly();
   }
+  // Counts of distinct real roots: Descartes' rule after Moebius transforms (one or a few Taylor shifts), the
+  // Sturm sequence only when that cannot decide (root_count).
+  std::vector<IntPoly> seq;
   if (!reduced_poly.is_zero()) {
     const mpq_class sa = cert.a + 1 / cert.a, sb = cert.b + 1 / cert.b;
-    const std::vector<IntPoly> seq = sturm_sequence(reduced_poly);
-    cert.roots_0_a = sturm_count_to_infinity(seq, sa);
-    cert.roots_a_b = sturm_count(seq, sb, sa);
+    cert.roots_0_a = root_count_to_infinity(reduced_poly, sa, &seq);
+    cert.roots_a_b = root_count(reduced_poly, sb, sa, &seq);
   } else {
     // Not palindromic of even degree (never seen): count on Q_n itself.
-    const std::vector<IntPoly> seq = sturm_sequence(q.numerator);
-    cert.roots_0_a = sturm_count(seq, mpq_class(0), cert.a);
-    cert.roots_a_b = sturm_count(seq, cert.a, cert.b);
+    cert.roots_0_a = root_count(q.numerator, mpq_class(0), cert.a, &seq);
+    cert.roots_a_b = root_count(q.numerator, cert.a, cert.b, &seq);
   }
   return cert;
 }
