@@ -156,16 +156,45 @@ MapResult run_ensemble(iterate::Ensemble ens, long iterations, long transient, i
 }
 }  // namespace
 
-MapResult run(const MapRequest& req, const core::RunControl& control) {
+MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  iterate::Ensemble ens;
+  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  iterate::Ensemble ens;  // the part's r values with the whole request's grid
+  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
+  return MapPart{items, std::move(res.exponents), res.iteration_seconds};
+}
+
+MapResult merge(const MapRequest& req, std::vector<MapPart> parts) {
+  req.validate();
+  MapResult res;
+  iterate::Ensemble& ens = res.ensemble;
   ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   ens.grid_description = req.grid;
   ens.seed = req.seed;
-  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
-  res.summary = summarise(res.exponents, res.ensemble.r.size(), res.ensemble.initial.size());
+  const auto order = core::item_order(parts, ens.r.size());
+  const std::size_t I = ens.initial.size();
+  OrbitExponents& e = res.exponents;
+  using V = std::vector<double>;
+  const auto rows = [&](V OrbitExponents::*f) {
+    return core::merge_rows<MapPart, double>(parts, order, I, [f](const MapPart& p) -> const V& { return p.exponents.*f; });
+  };
+  e.lambda1 = rows(&OrbitExponents::lambda1);
+  e.err1 = rows(&OrbitExponents::err1);
+  e.lambda2 = rows(&OrbitExponents::lambda2);
+  e.err2 = rows(&OrbitExponents::err2);
+  e.chi1 = rows(&OrbitExponents::chi1);
+  e.iterations = req.iterations;
+  e.blocks = req.blocks;
+  for (const MapPart& p : parts) res.iteration_seconds = std::max(res.iteration_seconds, p.iteration_seconds);
+  res.summary = summarise(e, ens.r.size(), I);
   return res;
+}
+
+MapResult run(const MapRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 MapResult run(const StripRequest& req, const core::RunControl& control) {
