@@ -4,6 +4,7 @@
 #include "attractors/requests.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "core/coords.hpp"
 #include "io/io.hpp"
 
@@ -58,7 +59,9 @@ std::string fractions_csv(const attractors::BasinsResult& res) {
 }
 
 void basins(const attractors::BasinsRequest& req, const Output& o, const Context& ctx) {
-  const attractors::BasinsResult res = attractors::run(req, ctx.control);
+  const auto got = sweep(req, ctx);  // every MPI rank computes its share of the rows; rank 0 writes
+  if (!got) return;
+  const attractors::BasinsResult& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins", "double");
@@ -125,7 +128,9 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
     ss << in.rdbuf();
     req.reference_csv = ss.str();
   }
-  const attractors::BasinsRResult res = attractors::run(req, ctx.control);
+  const auto got = sweep(req, ctx);  // every MPI rank computes its share of the r values; rank 0 writes
+  if (!got) return;
+  const attractors::BasinsRResult& res = *got;
   if (!o.quiet)
     for (const auto& row : res.rows)
       std::cerr << fmt::format("btob: basins-r r = {}: {} attractors\n", row.r, row.attractors.size());

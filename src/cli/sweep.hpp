@@ -1,0 +1,48 @@
+// Runs a sweep request (core/sweep.hpp) on every rank of an MPI job and merges the parts on rank 0:
+//
+//   const auto res = sweep(req, ctx);   // std::optional<Result>: the result on rank 0, nullopt on the others
+//   if (!res) return;                   // other ranks write nothing
+//
+// Rank k computes the items of part k of a cyclic split (core::cyclic_items), with its own OpenMP threads; rank 0
+// gathers the parts (core/pack.hpp) and merges them.  One process (no MPI, or mpirun -n 1) runs run(req) itself.
+#pragma once
+
+#include "cli/command.hpp"
+#include "cli/mpi.hpp"
+#include "core/pack.hpp"
+#include "core/sweep.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace btob::cli {
+
+template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
+  using Part = decltype(run_part(req, std::vector<std::size_t>{}, ctx.control));
+  using Result = decltype(merge(req, std::vector<Part>{}));
+  if (!mpi::checked()) throw std::logic_error("cli::sweep before the checkpoint of cli::command");
+  if (mpi::size() == 1) return std::optional<Result>(run(req, ctx.control));
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto items = core::cyclic_items(req.work_items(), static_cast<std::size_t>(mpi::rank()),
+                                        static_cast<std::size_t>(mpi::size()));
+  Part mine = run_part(req, items, ctx.control);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<std::vector<char>> bytes = mpi::gather(core::pack(mine), seconds);
+  if (mpi::rank() != 0) return std::optional<Result>();
+  std::vector<Part> parts;
+  parts.push_back(std::move(mine));
+  for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<Part>(bytes[k]));
+  if (!ctx.quiet) {
+    const mpi::Stats& st = mpi::stats();
+    std::cerr << fmt::format("btob: {} ranks x {} items: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s\n",
+                             st.ranks, req.work_items(), st.compute_min, st.compute_max, st.bytes_total,
+                             st.gather_seconds);
+  }
+  return std::optional<Result>(merge(req, std::move(parts)));
+}
+
+}  // namespace btob::cli
