@@ -124,6 +124,12 @@ TEST(Sweep, LyapunovMapAnyPartitionEqualsRun) {
   expect_any_partition_equals_run(q, "lyapunov-map");
 }
 
+TEST(Sweep, LyapunovStripAnyPartitionEqualsRun) {
+  lyapunov::StripRequest q;
+  q.r = 0.3, q.n1 = 11, q.n2 = 7, q.iterations = 300, q.transient = 50, q.blocks = 3;
+  expect_any_partition_equals_run(q, "lyapunov-strip");
+}
+
 TEST(Sweep, BasinsAnyPartitionEqualsRun) {
   attractors::BasinsRequest q;
   q.r = 0.2, q.grid = "strip:13x7", q.replicates = 1;

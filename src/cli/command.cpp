@@ -46,6 +46,7 @@ io::Attrs Context::attrs(const Output& o, const core::Contents& c, const std::st
     a["mpi_wait_seconds"] = st.wait_seconds;
     a["mpi_gather_seconds"] = st.gather_seconds;
     a["mpi_gathered_bytes"] = static_cast<long>(st.bytes_total);
+    a["mpi_merge_seconds"] = st.merge_seconds;
   }
   return a;
 }

@@ -92,7 +92,7 @@ void finalize() {
 int rank() { return state().rank; }
 int size() { return state().size; }
 bool checked() { return state().checked; }
-const Stats& stats() { return state().stats; }
+Stats& stats() { return state().stats; }
 
 void checkpoint() {
   State& s = state();

@@ -45,8 +45,9 @@ struct Stats {
   double wait_seconds = 0;                  // rank 0 waiting at the barrier for the slowest rank
   double gather_seconds = 0;                // the transfer of all parts to rank 0, after the barrier
   std::uint64_t bytes_total = 0, bytes_max = 0;  // bytes of the parts sent to rank 0 (all, largest per rank)
+  double merge_seconds = 0;                 // rank 0 unpacking and merging the parts
 };
-const Stats& stats();
+Stats& stats();
 
 // Thrown on ranks other than 0 by commands that do not split (the older flag-parsing ones): main ends them quietly.
 struct RootOnly {};

@@ -31,18 +31,23 @@ template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
                                         static_cast<std::size_t>(mpi::size()));
   Part mine = run_part(req, items, ctx.control);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::vector<std::vector<char>> bytes = mpi::gather(core::pack(mine), seconds);
+  // Rank 0 keeps its own part as it is; the others send theirs as bytes.
+  std::vector<std::vector<char>> bytes = mpi::gather(mpi::rank() == 0 ? std::vector<char>{} : core::pack(mine), seconds);
   if (mpi::rank() != 0) return std::optional<Result>();
+  const auto t1 = std::chrono::steady_clock::now();
   std::vector<Part> parts;
   parts.push_back(std::move(mine));
   for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<Part>(bytes[k]));
-  if (!ctx.quiet) {
-    const mpi::Stats& st = mpi::stats();
-    std::cerr << fmt::format("btob: {} ranks x {} items: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s\n",
+  bytes.clear();
+  std::optional<Result> res(merge(req, std::move(parts)));
+  mpi::Stats& st = mpi::stats();
+  st.merge_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  if (!ctx.quiet)
+    std::cerr << fmt::format("btob: {} ranks x {} items: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s, "
+                             "merged in {:.4f} s\n",
                              st.ranks, req.work_items(), st.compute_min, st.compute_max, st.bytes_total,
-                             st.gather_seconds);
-  }
-  return std::optional<Result>(merge(req, std::move(parts)));
+                             st.gather_seconds, st.merge_seconds);
+  return res;
 }
 
 }  // namespace btob::cli

@@ -82,6 +82,7 @@ struct StripRequest {
   std::string precision = "double";
 
   void validate() const;
+  std::size_t work_items() const { return static_cast<std::size_t>(n1); }  // columns of w1 cells (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("n1", n1, "cells along w1");
@@ -124,6 +125,10 @@ MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, c
 MapResult merge(const MapRequest& req, std::vector<MapPart> parts);
 // merge(req, {run_part(req, every r)}).
 MapResult run(const MapRequest& req, const core::RunControl& control = {});
+// Some w1 columns of a strip (items: ascending indices 0..n1-1): their n2 cells each, item-major.
+MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+MapResult merge(const StripRequest& req, std::vector<MapPart> parts);
+// merge(req, {run_part(req, every column)}).
 MapResult run(const StripRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::lyapunov
