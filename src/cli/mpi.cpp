@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #ifdef BTOB_MPI
 #include <mpi.h>
@@ -159,7 +160,13 @@ std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_sec
 #ifdef BTOB_MPI
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  MPI_Barrier(MPI_COMM_WORLD);  // the slowest rank's work ends here: what follows is the transfer alone
+  // The slowest rank's work ends here: what follows is the transfer alone.  Polled with a 1 ms sleep rather than
+  // MPI_Barrier, which spins: a rank that finished early leaves its core to the others (oversubscribed or shared
+  // nodes) instead of burning it.
+  MPI_Request barrier;
+  MPI_Ibarrier(MPI_COMM_WORLD, &barrier);
+  for (int done = 0; MPI_Test(&barrier, &done, MPI_STATUS_IGNORE), !done;)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   const auto t1 = clock::now();
   if (s.rank != 0) {
     send(mine, compute_seconds);
