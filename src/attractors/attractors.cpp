@@ -2,6 +2,7 @@
 #include "attractors/attractors.hpp"
 
 #include "core/coords.hpp"
+#include "core/sweep.hpp"
 #include "attractors/recorders.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/tangent.hpp"
@@ -424,35 +425,75 @@ std::string measure_name(const Grid& g) {
   return "uniform in the angles (theta, phi), not the sphere's area";
 }
 
-Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt) {
+namespace {
+void check_basins(double r, const Grid& g, int replicates, const Options& opt) {
   validate(opt);
   core::validate_r(r, "r");
   if (replicates < 0 || replicates > 100)
     throw std::invalid_argument(fmt::format("replicates: got {}, expected 0..100", replicates));
-  const std::size_t n = static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2);
   // Per orbit: the verdict (~200 bytes with its word), pass-1 recorder (~120), pass-2 tangent (~400).
-  iterate::checked_bytes(n, 800, "grid");
+  iterate::checked_bytes(static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2), 800, "grid");
+}
+}  // namespace
+
+std::size_t basin_items(const Grid& g, int replicates) {
+  return static_cast<std::size_t>(replicates + 1) * static_cast<std::size_t>(g.n2);
+}
+
+BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
+                     const std::vector<std::size_t>& items) {
+  check_basins(r, g, replicates, opt);
   const auto t0 = std::chrono::steady_clock::now();
-  Basins b;
-  b.r = r;
-  b.grid = g;
-  // The verdicts of every grid, grid k at [k n, (k + 1) n): moved in once (no second copy for the union).
-  std::vector<OrbitVerdict> joined;
-  joined.reserve(n * static_cast<std::size_t>(replicates + 1));
+  const std::size_t n1 = static_cast<std::size_t>(g.n1), n2 = static_cast<std::size_t>(g.n2);
+  BasinRows part;
+  part.items = items;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> shift(-0.45, 0.45);  // strictly inside the cell: no boundary points
   for (int k = 0; k <= replicates; ++k) {
-    const double du = k == 0 ? 0.0 : shift(rng), dv = k == 0 ? 0.0 : shift(rng);
+    const double du = k == 0 ? 0.0 : shift(rng), dv = k == 0 ? 0.0 : shift(rng);  // every grid's shift, always
     iterate::Ensemble e;
     e.r = {r};
-    e.initial = grid_points(g, du, dv);
+    std::vector<Vec3<double>> pts;
+    for (std::size_t i : items)
+      if (i / n2 == static_cast<std::size_t>(k)) {
+        if (pts.empty()) pts = grid_points(g, du, dv);
+        const std::size_t j = i % n2;
+        e.initial.insert(e.initial.end(), pts.begin() + static_cast<std::ptrdiff_t>(j * n1),
+                         pts.begin() + static_cast<std::ptrdiff_t>((j + 1) * n1));
+      }
+    if (e.initial.empty()) continue;
     std::vector<OrbitVerdict> v = classify(e, opt);
-    for (const auto& x : v) b.iterations_total += x.iterations;
-    if (k == 0)
-      for (const auto& x : v)
-        b.unresolved_first_pass += x.type == Type::unresolved || x.detail.find("after refinement") != std::string::npos;
-    for (auto& x : v) std::string().swap(x.detail);  // per-orbit evidence text: not used below (~100 bytes each)
-    joined.insert(joined.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+    std::move(v.begin(), v.end(), std::back_inserter(part.verdicts));
+  }
+  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return part;
+}
+
+Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts) {
+  check_basins(r, g, replicates, opt);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n1 = static_cast<std::size_t>(g.n1), n2 = static_cast<std::size_t>(g.n2), n = n1 * n2;
+  const auto order = core::item_order(parts, basin_items(g, replicates));
+  Basins b;
+  b.r = r;
+  b.grid = g;
+  // The verdicts of every grid, grid k at [k n, (k + 1) n), rows placed by item (any partition gives the same).
+  std::vector<OrbitVerdict> joined(static_cast<std::size_t>(replicates + 1) * n);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    auto& src = parts[order[i].part].verdicts;
+    if (src.size() < (order[i].index + 1) * n1) throw std::logic_error("basin rows: a row is missing");
+    std::move(src.begin() + static_cast<std::ptrdiff_t>(order[i].index * n1),
+              src.begin() + static_cast<std::ptrdiff_t>((order[i].index + 1) * n1),
+              joined.begin() + static_cast<std::ptrdiff_t>((i / n2) * n + (i % n2) * n1));
+  }
+  double part_seconds = 0;
+  for (const auto& p : parts) part_seconds = std::max(part_seconds, p.seconds);
+  for (std::size_t o = 0; o < joined.size(); ++o) {
+    OrbitVerdict& v = joined[o];
+    b.iterations_total += v.iterations;
+    if (o < n)
+      b.unresolved_first_pass += v.type == Type::unresolved || v.detail.find("after refinement") != std::string::npos;
+    std::string().swap(v.detail);  // per-orbit evidence text: not used below (~100 bytes each)
   }
   // Attractors of the union (ids by sorted key), then counts per grid.
   b.attractors = collect(joined, r, nullptr);
@@ -477,8 +518,14 @@ Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const
       b.unresolved = fraction(count[A], n);
     }
   }
-  b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  b.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return b;
+}
+
+Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt) {
+  check_basins(r, g, replicates, opt);
+  return merge_basins(r, g, replicates, opt,
+                      {basin_rows(r, g, replicates, seed, opt, core::all_items(basin_items(g, replicates)))});
 }
 
 }  // namespace btob::attractors

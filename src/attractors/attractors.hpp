@@ -74,6 +74,10 @@ struct OrbitVerdict {
   long iterations = 0;       // map iterations spent on this orbit
   Vec3<double> point;        // a point on the attractor (the window's first point, unit, in Q)
   std::string detail;        // why unresolved, or extra evidence
+  template <class A> void members(A& a) {  // core/pack.hpp
+    a(type, period, word.s, key, residual, closest_return, lambda1, err1, rotation, rotation_delta, invariant,
+      invariant_spread, p2_region, iterations, point, detail);
+  }
 };
 
 // Identity of the attractor an orbit reached, as a string key that sorts deterministically:
@@ -107,6 +111,10 @@ struct Attractor {
                                 // lowest-index orbit of the basin
   std::size_t count = 0;        // basin size (orbits)
   double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;  // quasi-periodic ranges
+  template <class A> void members(A& a) {  // core/pack.hpp
+    a(id, type, key, pattern, canonical, period, collisions, letters, stability, lyapunov2, point, count, rotation_min,
+      rotation_max, invariant_min, invariant_max);
+  }
 };
 
 // Attractors of a set of verdicts: one per key, ids by sorted key, counts; `labels` (same order as the
@@ -116,6 +124,7 @@ std::vector<Attractor> collect(const std::vector<OrbitVerdict>& v, double r, std
 // A binomial proportion with its two-sided 95% Clopper-Pearson interval (boost::math::binomial_distribution).
 struct Fraction {
   double value = 0, low = 0, high = 0;
+  template <class A> void members(A& a) { a(value, low, high); }
 };
 Fraction fraction(std::size_t successes, std::size_t trials, double confidence = 0.95);
 
@@ -158,5 +167,20 @@ struct Basins {
   double seconds = 0;
 };
 Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt);
+
+// The same in parts (core/sweep.hpp): item k * n2 + j is row j (w2 or phi) of grid k (0: the main grid, then the
+// replicates).  A row's verdicts depend on the request and the row only: the replicate shifts are drawn for the
+// whole request, then the grids are sliced.  basins() = merge_basins(..., {basin_rows(every item)}).
+std::size_t basin_items(const Grid& g, int replicates);
+struct BasinRows {
+  std::vector<std::size_t> items;       // ascending
+  std::vector<OrbitVerdict> verdicts;   // n1 per item, in item order
+  double seconds = 0;
+  int threads = 0;                      // threads the part ran on (reported, not computed with)
+  template <class A> void members(A& a) { a(items, verdicts, seconds, threads); }
+};
+BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
+                     const std::vector<std::size_t>& items);
+Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts);
 
 }  // namespace btob::attractors

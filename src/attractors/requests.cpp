@@ -105,13 +105,21 @@ void BasinsRequest::validate() const {
   iterate::checked_bytes(static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2), 800, "grid");
 }
 
-BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
+std::size_t BasinsRequest::work_items() const { return basin_items(parsed_grid(), replicates); }
+
+BasinRows run_part(const BasinsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
+  req.validate();
+  BasinRows part = basin_rows(req.r, req.parsed_grid(), req.replicates, req.seed, run_options(req.thresholds, control), items);
+  part.threads = threads_of(control);
+  return part;
+}
+
+BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
   req.validate();
   BasinsResult res;
   res.request = req;
-  res.threads = threads_of(control);
-  const Grid g = req.parsed_grid();
-  res.basins = basins(req.r, g, req.replicates, req.seed, run_options(req.thresholds, control));
+  for (const auto& p : parts) res.threads = std::max(res.threads, p.threads);
+  res.basins = merge_basins(req.r, req.parsed_grid(), req.replicates, req.thresholds, std::move(parts));
   const Basins& b = res.basins;
   for (const auto& f : b.fractions) {
     res.fraction.push_back(f.value);
@@ -129,6 +137,10 @@ BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
   }
   for (auto l : b.labels) res.unresolved_count += l == 0;
   return res;
+}
+
+BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 void BasinsResult::describe(core::Contents& c) const {
@@ -213,21 +225,20 @@ void BasinsRRequest::validate() const {
   iterate::checked_bytes(pts.size(), 800, "grid");
 }
 
-BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
+BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   require_table(req);
   const auto t0 = std::chrono::steady_clock::now();
-  BasinsRResult res;
-  res.request = req;
-  res.threads = threads_of(control);
-  const std::vector<TableRow> table = parse_table(req.reference_csv);
+  BasinsRPart part;
+  part.items = items;
+  part.threads = threads_of(control);
   const std::vector<core::Vec3<double>> pts = iterate::parse_grid(req.grid, req.seed, "grid");
-  res.points = pts.size();
   const Options opt = run_options(req.thresholds, control);
-
+  const std::vector<double> all_r = req.all_r();
   // Per r: the attractors (matched across r by key), fractions and intervals.
-  for (double r : req.all_r()) {
+  for (std::size_t i : items) {
     control.check_cancelled();
+    const double r = all_r.at(i);
     iterate::Ensemble e;
     e.r = {r};
     e.initial = pts;
@@ -237,9 +248,20 @@ BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
     for (const auto& x : v) unres += x.type == Type::unresolved;
     for (const auto& x : row.attractors) row.fractions.push_back(fraction(x.count, v.size()));
     row.unresolved = fraction(unres, v.size());
-    res.rows.push_back(std::move(row));
+    part.rows.push_back(std::move(row));
   }
+  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return part;
+}
 
+BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
+}
+
+namespace {
+// Per r, the paper's periodic fraction and patterns of Table 6.1 against ours.
+void compare(BasinsRResult& res, const std::vector<TableRow>& table) {
+  const std::size_t n_points = res.points;
   // Comparison with Table 6.1.
   for (const auto& row : res.rows) {
     Comparison cmp;
@@ -276,7 +298,7 @@ BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
     cmp.paper_total = static_cast<int>(paper.size());
     for (const auto& p : found)
       if (!paper.count(p)) cmp.extra += (cmp.extra.empty() ? "" : "; ") + p;
-    cmp.periodic = fraction(periodic, pts.size());
+    cmp.periodic = fraction(periodic, n_points);
     // The paper's percentage is k of 10 orbits: its own 95% interval, and whether our fraction lies inside.
     if (t && !t->percent.empty()) {
       cmp.has_percent = true;
@@ -286,6 +308,24 @@ BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
     }
     res.comparison.push_back(std::move(cmp));
   }
+}
+}  // namespace
+
+BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts) {
+  req.validate();
+  require_table(req);
+  const auto t0 = std::chrono::steady_clock::now();
+  BasinsRResult res;
+  res.request = req;
+  res.points = iterate::parse_grid(req.grid, req.seed, "grid").size();
+  const auto order = core::item_order(parts, req.work_items());
+  for (const auto& at : order) res.rows.push_back(std::move(parts[at.part].rows.at(at.index)));
+  double part_seconds = 0;
+  for (const auto& p : parts) {
+    part_seconds = std::max(part_seconds, p.seconds);
+    res.threads = std::max(res.threads, p.threads);
+  }
+  compare(res, parse_table(req.reference_csv));
 
   // The fraction matrix [r x key] for the stacked areas: keys across r sorted (type, key), unresolved last.
   std::map<std::pair<int, std::string>, std::string> keys;
@@ -307,7 +347,7 @@ BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control) {
     res.r.push_back(res.rows[i].r);
   }
   res.columns.push_back("unresolved");
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
 

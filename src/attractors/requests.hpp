@@ -6,6 +6,7 @@
 #include "attractors/attractors.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/sweep.hpp"
 
 #include <cstdint>
 #include <string>
@@ -68,6 +69,7 @@ struct BasinsRequest {
 
   void validate() const;
   Grid parsed_grid() const;  // the grid (validated)
+  std::size_t work_items() const;  // rows of the main and replicate grids (core/sweep.hpp, attractors::basin_rows)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)", core::Required{});
     v("grid", grid,
@@ -93,6 +95,10 @@ struct BasinsResult {
   void describe(core::Contents& c) const;
 };
 
+// In parts (core/sweep.hpp): item k * n2 + j is row j of grid k (0: main, then the replicates).
+BasinRows run_part(const BasinsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts);
+// merge(req, {run_part(req, every row)}).
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control = {});
 
 // ---- basin fractions across r (`btob basins-r`) ---------------------------------------------------------------
@@ -123,6 +129,7 @@ struct BasinsRRequest {
 
   void validate() const;
   std::vector<double> all_r() const;  // r_values, then Table 6.1's when `table`
+  std::size_t work_items() const { return all_r().size(); }  // a sweep over all_r() (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-values", r_values, "r values r1,r2,... in (0, 1)");
     v("table", table, "add the r values of Table 6.1 in [0.1, 0.6]");
@@ -138,6 +145,7 @@ struct BasinsRRow {
   std::vector<Attractor> attractors;
   std::vector<Fraction> fractions;  // per attractor
   Fraction unresolved;
+  template <class A> void members(A& a) { a(r, attractors, fractions, unresolved); }  // core/pack.hpp
 };
 
 // The comparison with Table 6.1 at one r: the periodic fraction (paper: % of 10 orbits) and the patterns found.
@@ -169,6 +177,17 @@ struct BasinsRResult {
   void describe(core::Contents& c) const;
 };
 
+// Some r values (items: ascending indices into all_r()), one row each.
+struct BasinsRPart {
+  std::vector<std::size_t> items;
+  std::vector<BasinsRRow> rows;  // in item order
+  double seconds = 0;
+  int threads = 0;
+  template <class A> void members(A& a) { a(items, rows, seconds, threads); }
+};
+BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts);
+// merge(req, {run_part(req, every r)}).
 BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::attractors

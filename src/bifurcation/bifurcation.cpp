@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -94,16 +95,18 @@ void Request::validate() const {
                            "r-count x grid x tail (raw)");
 }
 
-Result run(const Request& req, const core::RunControl& control) {
+Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   const Axis ax = axis_of(req);
-  Result res;
-  iterate::Ensemble& ens = res.ensemble;
-  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  iterate::Ensemble ens;  // the part's r values with the whole request's grid
+  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   ens.grid_description = req.grid;
   ens.seed = req.seed;
+  Part part;
+  part.items = items;
 
   iterate::RunOptions opt;
   std::size_t degenerate = 0;
@@ -118,40 +121,84 @@ Result run(const Request& req, const core::RunControl& control) {
   if (req.raw) raw = std::make_unique<iterate::TailRecorder>(ax.coord, ens.orbits(), req.iterations, req.tail);
 
   const auto t1 = std::chrono::steady_clock::now();
-  res.broken.assign(ens.r.size(), 0);
-  if (req.algorithm == "trig") {
+  part.broken.assign(ens.r.size(), 0);
+  if (ens.r.empty()) {
+    // a part with no r value (more processes than r values): nothing to run
+  } else if (req.algorithm == "trig") {
     control.check_cancelled();
-    res.broken = prec.kind == core::Precision::Kind::f80
-                     ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
-                     : reference::trig_density<double>(ens, req.iterations, dens, threads);
+    part.broken = prec.kind == core::Precision::Kind::f80
+                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
+                      : reference::trig_density<double>(ens, req.iterations, dens, threads);
     // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
     control.check_cancelled();
-    res.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
-                                                static_cast<int>(req.bins), 0.0, std::numbers::pi, threads);
+    part.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
+                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads);
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }
-  res.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  res.density = dens.merge();
-  res.underflow = std::move(dens.under);
-  res.overflow = std::move(dens.over);
-  if (raw) res.tail = std::move(raw->out);
+  part.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  part.density = dens.merge();
+  part.underflow = std::move(dens.under);
+  part.overflow = std::move(dens.over);
+  if (raw) part.tail = std::move(raw->out);
+  part.degenerate = degenerate;
+  return part;
+}
+
+Result merge(const Request& req, std::vector<Part> parts) {
+  req.validate();
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  const Axis ax = axis_of(req);
+  Result res;
+  iterate::Ensemble& ens = res.ensemble;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  ens.grid_description = req.grid;
+  ens.seed = req.seed;
+  const auto order = core::item_order(parts, ens.r.size());
+  const std::size_t bins = static_cast<std::size_t>(req.bins);
+  res.density = core::merge_rows<Part, std::uint32_t>(parts, order, bins, [](const Part& p) -> auto& { return p.density; });
+  res.underflow = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.underflow; });
+  res.overflow = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.overflow; });
+  res.broken = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.broken; });
+  if (req.raw)
+    res.tail = core::merge_rows<Part, double>(parts, order, ens.initial.size() * static_cast<std::size_t>(req.tail),
+                                              [](const Part& p) -> auto& { return p.tail; });
+  if (req.algorithm == "trig") {
+    using M = reference::MatlabTrigImage;
+    const auto per_r = [&](std::vector<std::uint64_t> M::*field) {
+      return core::merge_rows<Part, std::uint64_t>(parts, order, 1, [field](const Part& p) -> auto& { return p.matlab.*field; });
+    };
+    res.matlab.counts =
+        core::merge_rows<Part, std::uint32_t>(parts, order, bins, [](const Part& p) -> auto& { return p.matlab.counts; });
+    res.matlab.complex_orbits = per_r(&M::complex_orbits);
+    res.matlab.nan_points = per_r(&M::nan_points);
+    res.matlab.outside = per_r(&M::outside);
+    res.matlab.stalled = per_r(&M::stalled);
+  }
+  for (const Part& p : parts) {
+    res.degenerate += p.degenerate;
+    res.iteration_seconds = std::max(res.iteration_seconds, p.iteration_seconds);  // the slowest part's wall time
+  }
   res.r_min = req.r_min;
   res.r_max = req.r_max;
   res.coord = iterate::coord_name(ax.coord);
   res.lo = ax.lo;
   res.hi = ax.hi;
-  res.bins = static_cast<std::size_t>(req.bins);
+  res.bins = bins;
   res.vlines = req.vline;
   res.scalar_type = prec.name();
   res.algorithm = req.algorithm;
   res.iterations = req.iterations;
   res.tail_length = req.tail;
-  res.degenerate = degenerate;
   // The interval between exact power-of-two rescalings (0: the trigonometric route normalises every collision).
   res.renormalisation_interval =
       req.algorithm == "trig" ? 0 : with_scalar(prec, [&]<class T>(T*) { return iterate::renormalisation_interval<T>(ens.r); });
   return res;
+}
+
+Result run(const Request& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::uint64_t Result::points_below() const {

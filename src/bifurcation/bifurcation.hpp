@@ -5,6 +5,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/sweep.hpp"
 #include "iterate/ensemble.hpp"
 #include "reference/reference.hpp"
 
@@ -32,6 +33,7 @@ struct Request {
   bool raw = false;                       // also keep the raw tails (r x initial condition x tail)
 
   void validate() const;
+  std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-min", r_min, "smallest r, in (0,1)");
     v("r-max", r_max, "largest r, in (0,1)");
@@ -75,6 +77,23 @@ struct Result {
   void describe(core::Contents& c) const;
 };
 
+// Some of the r values (items, ascending indices into linspace(r-min, r-max, r-count)): their rows only.
+struct Part {
+  std::vector<std::size_t> items;
+  std::vector<std::uint32_t> density;                      // [items, bins]
+  std::vector<std::uint64_t> underflow, overflow, broken;  // [items]
+  std::vector<double> tail;                                // [items, initial condition, tail] when raw
+  reference::MatlabTrigImage matlab;                       // trig only: [items, bins] and [items]
+  std::uint64_t degenerate = 0;
+  double iteration_seconds = 0;
+  template <class A> void members(A& a) {
+    a(items, density, underflow, overflow, broken, tail, matlab.counts, matlab.complex_orbits, matlab.nan_points,
+      matlab.outside, matlab.stalled, degenerate, iteration_seconds);
+  }
+};
+Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+Result merge(const Request& req, std::vector<Part> parts);
+// merge(req, {run_part(req, every item)}).
 Result run(const Request& req, const core::RunControl& control = {});
 
 }  // namespace btob::bifurcation

@@ -4,6 +4,7 @@
 #include "attractors/requests.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "io/io.hpp"
@@ -61,7 +62,9 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   Context run_ctx = ctx;
   const auto progress = terminal_progress("basins");
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const attractors::BasinsResult res = attractors::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its share of the rows; rank 0 writes
+  if (!got) return;
+  const attractors::BasinsResult& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins", "double");
@@ -140,7 +143,9 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
   Context run_ctx = ctx;
   const auto progress = terminal_progress("basins-r");
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const attractors::BasinsRResult res = attractors::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its share of the r values; rank 0 writes
+  if (!got) return;
+  const attractors::BasinsRResult& res = *got;
   if (!o.quiet)
     for (const auto& row : res.rows)
       std::cerr << fmt::format("btob: basins-r r = {}: {} attractors\n", row.r, row.attractors.size());

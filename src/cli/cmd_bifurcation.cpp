@@ -3,6 +3,7 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "extras/extras.hpp"
+#include "cli/sweep.hpp"
 
 #include <fmt/format.h>
 
@@ -36,7 +37,9 @@ void body(const bifurcation::Request& req, const Output& o, const Context& ctx) 
   Context run_ctx = ctx;
   const auto progress = terminal_progress("bifurcation " + o.name);
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const bifurcation::Result res = bifurcation::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its share; rank 0 writes
+  if (!got) return;
+  const bifurcation::Result& res = *got;
   warn(req, res);
   core::Contents c;
   res.describe(c);

@@ -1,11 +1,14 @@
 // `btob lyapunov`, `btob lyapunov-map`, `btob lyapunov-strip`: flags -> lyapunov::*Request -> run -> files.
 #include "cli/command.hpp"
+#include "cli/sweep.hpp"
 #include "cli/common.hpp"
 #include "core/csv.hpp"
 #include "extras/extras.hpp"
 #include "lyapunov/requests.hpp"
 
 #include <fmt/format.h>
+
+#include <optional>
 #include <fmt/ranges.h>
 
 #include <iostream>
@@ -53,7 +56,11 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   Context run_ctx = ctx;
   const auto progress = terminal_progress(kind);
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const lyapunov::MapResult res = lyapunov::run(req, run_ctx.control);
+  std::optional<lyapunov::MapResult> got;
+  if constexpr (core::Sweep<Req>) got = sweep(req, run_ctx);  // every MPI rank computes its share; rank 0 writes
+  else got = lyapunov::run(req, run_ctx.control);
+  if (!got) return;
+  const lyapunov::MapResult& res = *got;
   core::Contents c;
   res.describe(c);
   ex.add_to(c);

@@ -4,6 +4,7 @@
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/mpi.hpp"
 #include "io/scene.hpp"
 
 #include <fmt/format.h>
@@ -46,6 +47,7 @@ void replay_flags(const io::Scene& s, const std::string& path, Args args, std::s
   CLI::App fresh{"btob"};
   fresh.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (auto& reg : registry()) reg(fresh);
+  mpi::guard_root_only(fresh);  // an older command runs on MPI rank 0 alone
   CLI::App* sub = nullptr;
   for (CLI::App* c : fresh.get_subcommands([](CLI::App*) { return true; }))
     if (c->get_name() == s.command) sub = c;

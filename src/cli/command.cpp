@@ -1,5 +1,6 @@
 // The request-based subcommands' shared parts: cancellation, terminal progress, output validation.
 #include "cli/command.hpp"
+#include "cli/mpi.hpp"
 #include "io/io.hpp"
 
 #include <omp.h>
@@ -30,8 +31,19 @@ std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label) 
 
 io::Attrs Context::attrs(const Output& o, const core::Contents& c, const std::string& kind,
                          const std::string& scalar) const {
-  return io::result_attrs(command_line, c, kind, o.name, o.title, scalar,
-                          static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads()));
+  io::Attrs a = io::result_attrs(command_line, c, kind, o.name, o.title, scalar,
+                                 static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads()));
+  if (mpi::size() > 1) {  // threads are per rank; what the split and the gather cost (cli/mpi.hpp)
+    const mpi::Stats& st = mpi::stats();
+    a["mpi_ranks"] = static_cast<long>(st.ranks);
+    a["mpi_compute_seconds_min"] = st.compute_min;
+    a["mpi_compute_seconds_max"] = st.compute_max;
+    a["mpi_wait_seconds"] = st.wait_seconds;
+    a["mpi_gather_seconds"] = st.gather_seconds;
+    a["mpi_gathered_bytes"] = static_cast<long>(st.bytes_total);
+    a["mpi_merge_seconds"] = st.merge_seconds;
+  }
+  return a;
 }
 
 namespace detail {
@@ -66,6 +78,7 @@ Context make_context(const std::string& command, const Output& o, const std::str
   c.command_line = inv;
   c.request_args = std::move(request_args);
   c.command = command;
+  c.quiet = o.quiet;
   return c;
 }
 }  // namespace detail

@@ -10,8 +10,10 @@
 
 #include "cli/app.hpp"
 #include "cli/common.hpp"
+#include "cli/mpi.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
+#include "core/sweep.hpp"
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
@@ -60,6 +62,7 @@ struct Context {
   std::string command_line;  // for provenance
   Args request_args;         // the request as recorded in the manifest
   std::string command;       // the subcommand
+  bool quiet = false;        // --quiet (and every MPI rank but 0)
   // The manifest's request record: {"command": command, "args": request_args}.
   void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
     files.manifest(attrs, command, request_args);
@@ -194,6 +197,13 @@ void command(const std::string& name, const std::string& help, Output output_def
       recorded.emplace_back("name", std::vector<std::string>{out.name});
       recorded.emplace_back("title", std::vector<std::string>{out.title});
     }
+    // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks
+    // (its body calls cli::sweep); any other request runs on rank 0 alone.  Only rank 0 speaks.
+    mpi::checkpoint();
+    if (mpi::rank() != 0) {
+      if constexpr (!core::Sweep<Req>) return;
+      out.quiet = true;
+    }
     body(req, out, detail::make_context(name, out, invocation, std::move(recorded)));
   };
   registry().push_back([=](CLI::App& app) {
@@ -205,6 +215,7 @@ void command(const std::string& name, const std::string& help, Output output_def
     };
     auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
     CLI::App* c = detail::add_nested(app, name, help);
+    mpi::request_apps().push_back(c);
     s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
     s->out.fields(detail::FlagBinder{c, &s->raw, &s->opts});
     c->callback([s, execute, c] {

@@ -2,6 +2,7 @@
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/mpi.hpp"
 #include "io/io.hpp"
 
 #include <btob/build_info.hpp>
@@ -30,16 +31,17 @@ extern "C" void on_signal(int sig) {
 }  // namespace btob::cli
 
 namespace {
-// An error was reported: end now, without the libraries' exit-time cleanup (HDF5's would crash on a file whose
-// close failed, e.g. on a full disk); every file btob wrote is closed or removed by then.
-int failed(int code) {
-  std::cout.flush();
-  std::cerr.flush();
-  std::_Exit(code);
+// An error was reported: one line, then the end, without the libraries' exit-time cleanup (HDF5's would crash on a
+// file whose close failed, e.g. on a full disk); every file btob wrote is closed or removed by then.  Under mpirun
+// cli::mpi::fail says which rank failed and ends the job (cli/mpi.hpp).
+[[noreturn]] void failed(const std::string& cause, int code, const std::string& label = "error: ") {
+  btob::cli::mpi::fail(cause, code, label);
 }
 }  // namespace
 
 int main(int argc, char** argv) {
+  namespace mpi = btob::cli::mpi;
+  mpi::init(argc, argv);
   btob::io::init_hdf5();
   CLI::App app{"btob: statistics lab for the b-to-b map P_r of four 1-D inelastic hard spheres"};
   app.set_version_flag("--version", std::string("btob ") + btob::build::version + " (" + btob::build::git_commit + ")");
@@ -48,35 +50,36 @@ int main(int argc, char** argv) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + std::string(argv[i]);
   for (auto& reg : btob::cli::registry()) reg(app);
+  mpi::guard_root_only(app);
   std::signal(SIGINT, btob::cli::on_signal);
   std::signal(SIGTERM, btob::cli::on_signal);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    std::cerr << "btob: error: " << e.what() << " (see --help)\n";
-    return failed(2);
+    if (e.get_exit_code() == 0) {  // --help, --version: said once
+      const int code = mpi::rank() == 0 ? app.exit(e) : 0;
+      mpi::finalize();
+      return code;
+    }
+    failed(std::string(e.what()) + " (see --help)", 2);
+  } catch (const mpi::RootOnly&) {  // a command that runs on rank 0 alone, and this is another rank
+    mpi::finalize();
+    return 0;
   } catch (const btob::core::Cancelled&) {
-    std::cerr << "btob: interrupted; nothing was written\n";
-    return failed(130);
+    failed("interrupted; nothing was written", 130, "");
   } catch (const std::invalid_argument& e) {  // includes UsageError and core::InvalidField
-    std::cerr << "btob: error: " << e.what() << "\n";
-    return failed(2);
+    failed(e.what(), 2);
   } catch (const std::domain_error& e) {
-    std::cerr << "btob: error: " << e.what() << "\n";
-    return failed(2);
+    failed(e.what(), 2);
   } catch (const std::length_error& e) {
-    std::cerr << "btob: error: " << e.what() << "\n";
-    return failed(2);
+    failed(e.what(), 2);
   } catch (const std::out_of_range& e) {
-    std::cerr << "btob: error: " << e.what() << "\n";
-    return failed(2);
+    failed(e.what(), 2);
   } catch (const std::bad_alloc&) {
-    std::cerr << "btob: error: out of memory\n";
-    return failed(1);
+    failed("out of memory", 1);
   } catch (const std::exception& e) {
-    std::cerr << "btob: error: " << e.what() << "\n";
-    return failed(1);
+    failed(e.what(), 1);
   }
+  mpi::finalize();
   return 0;
 }

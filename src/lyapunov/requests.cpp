@@ -165,6 +165,27 @@ MapResult run_ensemble(iterate::Ensemble ens, long iterations, long transient, i
   res.ensemble = std::move(ens);
   return res;
 }
+
+// The exponents of some orbits (rows of `width`) merged by item, with the slowest part's time.
+MapResult merge_exponents(std::vector<MapPart>& parts, std::size_t items, std::size_t width, long iterations,
+                          int blocks) {
+  const auto order = core::item_order(parts, items);
+  MapResult res;
+  OrbitExponents& e = res.exponents;
+  using V = std::vector<double>;
+  const auto rows = [&](V OrbitExponents::*f) {
+    return core::merge_rows<MapPart, double>(parts, order, width, [f](const MapPart& p) -> const V& { return p.exponents.*f; });
+  };
+  e.lambda1 = rows(&OrbitExponents::lambda1);
+  e.err1 = rows(&OrbitExponents::err1);
+  e.lambda2 = rows(&OrbitExponents::lambda2);
+  e.err2 = rows(&OrbitExponents::err2);
+  e.chi1 = rows(&OrbitExponents::chi1);
+  e.iterations = iterations;
+  e.blocks = blocks;
+  for (const MapPart& p : parts) res.iteration_seconds = std::max(res.iteration_seconds, p.iteration_seconds);
+  return res;
+}
 }  // namespace
 
 namespace {
@@ -189,26 +210,55 @@ void check_float(MapResult& res, const MapRequest& req, const core::RunControl& 
 }
 }  // namespace
 
-MapResult run(const MapRequest& req, const core::RunControl& control) {
+MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  iterate::Ensemble ens;
-  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  iterate::Ensemble ens;  // the part's r values with the whole request's grid
+  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
+  return MapPart{items, std::move(res.exponents), res.iteration_seconds};
+}
+
+MapResult merge(const MapRequest& req, std::vector<MapPart> parts) {
+  req.validate();
+  const std::vector<core::Vec3<double>> grid = iterate::parse_grid(req.grid, req.seed, "grid");
+  MapResult res = merge_exponents(parts, req.work_items(), grid.size(), req.iterations, req.blocks);
+  iterate::Ensemble& ens = res.ensemble;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = grid;
   ens.grid_description = req.grid;
   ens.seed = req.seed;
-  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
-  res.summary = summarise(res.exponents, res.ensemble.r.size(), res.ensemble.initial.size());
-  if (req.precision == "float") check_float(res, req, control);
+  res.summary = summarise(res.exponents, ens.r.size(), grid.size());
+  // The float check re-runs some r values in double: in the merge, so that it is the same for any partition.
+  if (req.precision == "float") check_float(res, req, core::RunControl{});
   return res;
 }
 
-MapResult run(const StripRequest& req, const core::RunControl& control) {
+MapResult run(const MapRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
+}
+
+MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
+  const auto grid = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);  // cell (i, j) at i * n2 + j
+  const std::size_t n2 = static_cast<std::size_t>(req.n2);
   iterate::Ensemble ens;
+  ens.r = {req.r};
+  for (std::size_t i : items)
+    ens.initial.insert(ens.initial.end(), grid.begin() + static_cast<std::ptrdiff_t>(i * n2),
+                       grid.begin() + static_cast<std::ptrdiff_t>((i + 1) * n2));
+  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
+  return MapPart{items, std::move(res.exponents), res.iteration_seconds};
+}
+
+MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {
+  req.validate();
+  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(req.n2), req.iterations, req.blocks);
+  iterate::Ensemble& ens = res.ensemble;
   ens.r = {req.r};
   ens.initial = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);
   ens.grid_description = fmt::format("strip:{}x{}:{}:{}", req.n1, req.n2, req.w1_min, req.w1_max);
-  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
   res.n1 = static_cast<std::size_t>(req.n1);
   res.n2 = static_cast<std::size_t>(req.n2);
   res.w1.resize(res.ensemble.initial.size());
@@ -216,6 +266,10 @@ MapResult run(const StripRequest& req, const core::RunControl& control) {
   for (std::size_t i = 0; i < res.ensemble.initial.size(); ++i)
     std::tie(res.w1[i], res.w2[i]) = core::strip<double>(res.ensemble.initial[i]);
   return res;
+}
+
+MapResult run(const StripRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 void MapResult::describe(core::Contents& c) const {

@@ -5,6 +5,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/sweep.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 
@@ -57,6 +58,7 @@ struct MapRequest {
   std::vector<std::string> overlay;    // named r overlays drawn on the figure (not part of the computation)
 
   void validate() const;
+  std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-min", r_min, "smallest r, in (0,1)");
     v("r-max", r_max, "largest r, in (0,1)");
@@ -80,6 +82,7 @@ struct StripRequest {
   std::string precision = "double";
 
   void validate() const;
+  std::size_t work_items() const { return static_cast<std::size_t>(n1); }  // columns of w1 cells (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("n1", n1, "cells along w1");
@@ -112,7 +115,25 @@ struct MapResult {
   void describe(core::Contents& c) const;
 };
 
+// Some r values of a map (items: ascending indices into linspace(r-min, r-max, r-count)): the exponents of their
+// orbits, item-major ([items, initial conditions]).
+struct MapPart {
+  std::vector<std::size_t> items;
+  OrbitExponents exponents;
+  double iteration_seconds = 0;
+  template <class A> void members(A& a) {
+    a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.chi1, exponents.iterations,
+      exponents.blocks, iteration_seconds);
+  }
+};
+MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+MapResult merge(const MapRequest& req, std::vector<MapPart> parts);
+// merge(req, {run_part(req, every r)}).
 MapResult run(const MapRequest& req, const core::RunControl& control = {});
+// Some w1 columns of a strip (items: ascending indices 0..n1-1): their n2 cells each, item-major.
+MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+MapResult merge(const StripRequest& req, std::vector<MapPart> parts);
+// merge(req, {run_part(req, every column)}).
 MapResult run(const StripRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::lyapunov

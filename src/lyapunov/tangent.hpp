@@ -70,18 +70,17 @@ struct TangentRecorder {
   template <class T>
   void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t* sym) {
     if (k == 1) init<T>(o0, lanes);
-    // A full batch goes through the fixed-width loop (a compile-time trip count is what lets GCC vectorise
-    // it); partial batches and the scalar reference (lanes = 1) through the variable-width one.
-    const auto args = [&](auto width) {
-      tangent_steps<T, decltype(width)::value>(lanes, rr.data() + o0, aa.data() + o0, kk.data() + o0, x, y, z, sym,
-                                               sx.data() + o0, sy.data() + o0, sz.data() + o0, vx.data() + o0,
-                                               vy.data() + o0, vz.data() + o0, pg.data() + o0, eg.data() + o0,
-                                               ev.data() + o0, n13.data() + o0);
-    };
+    // A full batch goes through the fixed-width loop (a compile-time trip count is what lets GCC vectorise it); a
+    // partial one (the last batch of an ensemble, the scalar reference's lanes = 1) through the same loop on padded
+    // copies, so that an orbit's bits do not depend on where in a batch it falls: the vectorised and the scalar
+    // loop contract multiply-adds differently, and the exponents then depended on the ensemble's size (an MPI
+    // rank's share of the r values gave other bits than the whole run).
     if (lanes == kLanes<T>)
-      args(std::integral_constant<int, kLanes<T>>{});
+      tangent_steps<T, kLanes<T>>(rr.data() + o0, aa.data() + o0, kk.data() + o0, x, y, z, sym, sx.data() + o0,
+                                  sy.data() + o0, sz.data() + o0, vx.data() + o0, vy.data() + o0, vz.data() + o0,
+                                  pg.data() + o0, eg.data() + o0, ev.data() + o0, n13.data() + o0);
     else
-      args(std::integral_constant<int, 0>{});
+      partial_batch<T>(o0, lanes, x, y, z, sym);
     if (k == transient)
       store(o0, lanes, 0);
     else if (k > transient) {
@@ -91,28 +90,43 @@ struct TangentRecorder {
   }
 
  private:
-  // One step of the cocycle for B orbits (B = 0: `lanes` orbits); restrict-qualified parameters.
+  // `lanes` < B orbits from o0: copied into B-wide buffers padded with the last orbit, stepped, copied back.
+  template <class T>
+  void partial_batch(std::size_t o0, int lanes, const T* x, const T* y, const T* z, const std::uint8_t* sym) {
+    constexpr int B = kLanes<T>;
+    alignas(64) T px[B], py[B], pz[B];
+    alignas(64) std::uint8_t ps[B];
+    alignas(64) double buf[13][B];
+    std::vector<double>* const arrays[13] = {&rr, &aa, &kk, &sx, &sy, &sz, &vx, &vy, &vz, &pg, &eg, &ev, &n13};
+    for (int l = 0; l < B; ++l) {
+      const int s = std::min(l, lanes - 1);
+      px[l] = x[s], py[l] = y[s], pz[l] = z[s], ps[l] = sym[s];
+      for (int a = 0; a < 13; ++a) buf[a][l] = (*arrays[a])[o0 + static_cast<std::size_t>(s)];
+    }
+    tangent_steps<T, B>(buf[0], buf[1], buf[2], px, py, pz, ps, buf[3], buf[4], buf[5], buf[6], buf[7], buf[8], buf[9],
+                        buf[10], buf[11], buf[12]);
+    for (int a = 3; a < 13; ++a)  // the state, not r, alpha, alpha / r
+      for (int l = 0; l < lanes; ++l) (*arrays[a])[o0 + static_cast<std::size_t>(l)] = buf[a][l];
+  }
+
+  // One step of the cocycle for B orbits; restrict-qualified parameters.
   template <class T, int B>
-  static void tangent_steps(int lanes, const double* __restrict R, const double* __restrict A,
+  static void tangent_steps(const double* __restrict R, const double* __restrict A,
                             const double* __restrict K, const T* __restrict x, const T* __restrict y,
                             const T* __restrict z, const std::uint8_t* __restrict sym, double* __restrict SX,
                             double* __restrict SY, double* __restrict SZ, double* __restrict VX, double* __restrict VY,
                             double* __restrict VZ, double* __restrict PG, double* __restrict EG, double* __restrict EV,
                             double* __restrict N13) {
-    const int n = B > 0 ? B : lanes;
     // Symbols widened to 64 bits first: a loop mixing 8-bit and 64-bit data gets a vectorisation factor of
     // 64 lanes (one 512-bit byte vector), more than a 32-lane batch, and GCC 12 then does not vectorise it.
-    alignas(64) std::int64_t sw[B > 0 ? B : 1];
-    const std::int64_t* symw = nullptr;
-    if constexpr (B > 0) {
-      for (int l = 0; l < B; ++l) sw[l] = sym[l];
-      symw = sw;
-    }
+    alignas(64) std::int64_t sw[B];
+    for (int l = 0; l < B; ++l) sw[l] = sym[l];
+    const std::int64_t* symw = sw;
 #pragma omp simd
-    for (int l = 0; l < n; ++l) {
+    for (int l = 0; l < B; ++l) {
       const double X = SX[l], Y = SY[l], Z = SZ[l], r = R[l], a = A[l], q = K[l];
       const double ux = VX[l], uy = VY[l], uz = VZ[l];
-      const std::int64_t sl = B > 0 ? symw[l] : static_cast<std::int64_t>(sym[l]);
+      const std::int64_t sl = symw[l];
       const bool s1 = sl == 1, s3 = sl == 3;
       // m = M_s s (the kernel's formulas, kernel_impl.hpp), t = M_s v.
       const double c1 = a * Y - X, c3 = a * Y - Z;

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# MPI against OpenMP on the Lyapunov-map workload, and what the gather to rank 0 costs: writes results/mpi/.
+# Usage: analyses/mpi_scaling.sh [BTOB_BINARY] [R_COUNT]   (default build/release/btob, 5000 r values)
+#   benchmark.csv  1 rank x 2 threads against 2 ranks x 1 thread, alternated (A B A B A B): wall and CPU time of the
+#                  whole command (mpirun and its ranks), and the work's time (the kernel's; for MPI the slowest
+#                  rank's run_part).  CPU time is the steadier measure on a shared machine: wall time depends on
+#                  how many cores the other users leave.
+#   gather.csv     P = 1, 2, 3 ranks of 1 thread (3 oversubscribed on 2 cores): work per rank, wait at the
+#                  barrier, bytes gathered to rank 0 and the gather's time
+#   projection.csv the scaling model of the README (analyses/mpi_model.py), from gather.csv
+# The machine is shared: quote the ratios of one run, not absolute times.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+btob="${1:-build/release/btob}"
+r_count="${2:-5000}"
+out=results/mpi
+mkdir -p "$out"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# The workload of issue 15: r in [0.0717, 0.6] x the 32-point grid of Section 4 x 1e4 averaged steps (+1e3 transient).
+work=(lyapunov-map --r-min 0.0717 --r-max 0.6 --r-count "$r_count" --grid paper --iterations 10000 --transient 1000
+      --no-plot --quiet --name x)
+attr() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j.get(sys.argv[2], ''))" "$@"; }
+wall() { local t0 t1; t0=$(date +%s.%N); "$@"; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
+# "wall,cpu": elapsed and CPU seconds (user + system) of a command and its children (mpirun's ranks included).
+timed() { /usr/bin/time -f "%e,%U,%S" -o "$tmp/time" "$@" && awk -F, '{printf "%s,%.2f", $1, $2 + $3}' "$tmp/time"; }
+
+echo "config,ranks,threads,rep,wall_seconds,cpu_seconds,work_seconds,steps" > "$out/benchmark.csv.tmp"
+steps=$((r_count * 32 * 11000))
+for rep in 1 2 3; do
+  t=$(timed "$btob" "${work[@]}" --threads 2 --out "$tmp/a")
+  echo "openmp,1,2,$rep,$t,$(attr "$tmp/a/x.json" iteration_seconds),$steps" >> "$out/benchmark.csv.tmp"
+  t=$(timed mpirun -n 2 "$btob" "${work[@]}" --threads 1 --out "$tmp/b")
+  echo "mpi,2,1,$rep,$t,$(attr "$tmp/b/x.json" mpi_compute_seconds_max),$steps" >> "$out/benchmark.csv.tmp"
+  /usr/bin/python3 tests/h5_same_data.py "$tmp/a/x.h5" "$tmp/b/x.h5" > /dev/null  # same numbers, or stop here
+done
+mv "$out/benchmark.csv.tmp" "$out/benchmark.csv"
+
+echo "ranks,r_count,iterations,compute_min_seconds,compute_max_seconds,wait_seconds,gather_seconds,bytes_gathered,merge_seconds,wall_seconds" \
+  > "$out/gather.csv.tmp"
+# The workload at P = 1, 2, 3, then a 10x larger result with 100x fewer steps (P = 2, 3): the gather's and the
+# merge's rates on 64 MB rather than 6 MB, where fixed costs no longer dominate.
+for run in "1 $r_count 10000" "2 $r_count 10000" "3 $r_count 10000" "2 $((10 * r_count)) 100" "3 $((10 * r_count)) 100"; do
+  read -r P R N <<< "$run"
+  w=$(wall mpirun -n "$P" "$btob" "${work[@]}" --r-count "$R" --iterations "$N" --transient $((N / 10)) --threads 1 \
+      --out "$tmp/g$P")
+  j="$tmp/g$P/x.json"
+  if [ "$P" -eq 1 ]; then  # one rank runs run() itself: its work is the kernel's time, nothing is gathered
+    echo "1,$R,$N,$(attr "$j" iteration_seconds),$(attr "$j" iteration_seconds),0,0,0,0,$w" >> "$out/gather.csv.tmp"
+  else
+    echo "$P,$R,$N,$(attr "$j" mpi_compute_seconds_min),$(attr "$j" mpi_compute_seconds_max),$(attr "$j" mpi_wait_seconds),$(attr "$j" mpi_gather_seconds),$(attr "$j" mpi_gathered_bytes),$(attr "$j" mpi_merge_seconds),$w" \
+      >> "$out/gather.csv.tmp"
+  fi
+done
+mv "$out/gather.csv.tmp" "$out/gather.csv"
+/usr/bin/python3 analyses/mpi_model.py "$out" | tee "$out/model.md"
+"$(dirname "$btob")/btob_manifest" "$out/manifest.json" "analyses/mpi_scaling.sh $btob $r_count" \
+  benchmark.csv gather.csv projection.csv model.md

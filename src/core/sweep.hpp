@@ -1,0 +1,79 @@
+// Sweeps: requests whose work is a list of independent items (r values, grid rows), computed in parts and merged.
+// The one mechanism behind `mpirun -n P btob <command>` (src/cli/sweep.hpp); a module knows nothing of MPI:
+//
+//   struct Request { ...; std::size_t work_items() const; };        // how many items: r values, grid rows
+//   struct Part {                                                    // what items compute, nothing derived
+//     std::vector<std::size_t> items;                                // ascending
+//     ...                                                            // per-item rows, counts, timings
+//     template <class A> void members(A& a) { a(items, ...); }       // core/pack.hpp: sent between processes
+//   };
+//   Part run_part(const Request&, const std::vector<std::size_t>& items, const core::RunControl&);
+//   Result merge(const Request&, std::vector<Part> parts);           // parts cover every item once, any order
+//   Result run(const Request& r, const core::RunControl& c) { return merge(r, {run_part(r, all_items(r), c)}); }
+//
+// The rule that makes the output independent of the partition: an item's numbers depend only on the request and
+// the item, never on which other items share its part (random grids are generated for the whole request and then
+// sliced; no seed depends on the part).  merge() places rows by item index and sums integer counts, so any
+// partition, in any order, gives the single-process result bitwise; a single process is the partition {all}.
+#pragma once
+
+#include <algorithm>
+#include <concepts>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace btob::core {
+
+template <class Req> concept Sweep = requires(const Req& r) {
+  { r.work_items() } -> std::convertible_to<std::size_t>;
+};
+
+// 0, 1, ..., n - 1.
+inline std::vector<std::size_t> all_items(std::size_t n) {
+  std::vector<std::size_t> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = i;
+  return v;
+}
+template <Sweep Req> std::vector<std::size_t> all_items(const Req& r) { return all_items(r.work_items()); }
+
+// The items of part k of P in a cyclic split (item i goes to part i mod P): neighbouring items, whose costs are
+// alike (nearby r, adjacent rows), land in different parts, so parts cost about the same without measuring.
+inline std::vector<std::size_t> cyclic_items(std::size_t n, std::size_t k, std::size_t parts) {
+  std::vector<std::size_t> v;
+  for (std::size_t i = k; i < n; i += parts) v.push_back(i);
+  return v;
+}
+
+// For merge(): every part's (item, position in its part) sorted by item, checked to cover 0..n-1 exactly once.
+struct ItemRef {
+  std::size_t part, index;
+};
+template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& parts, std::size_t n) {
+  std::vector<ItemRef> at(n, ItemRef{parts.size(), 0});
+  for (std::size_t p = 0; p < parts.size(); ++p)
+    for (std::size_t j = 0; j < parts[p].items.size(); ++j) {
+      const std::size_t i = parts[p].items[j];
+      if (i >= n || at[i].part != parts.size()) throw std::logic_error("sweep parts: item out of range or repeated");
+      at[i] = ItemRef{p, j};
+    }
+  for (const auto& a : at)
+    if (a.part == parts.size()) throw std::logic_error("sweep parts: an item is missing");
+  return at;
+}
+
+// Rows of `width` values per item, in item order: the part of item i holds its row at index j of its own rows.
+template <class Part, class V, class Get>
+std::vector<V> merge_rows(const std::vector<Part>& parts, const std::vector<ItemRef>& order, std::size_t width, Get get) {
+  std::vector<V> out(order.size() * width);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::vector<V>& src = get(parts[order[i].part]);
+    if (src.size() < (order[i].index + 1) * width) throw std::logic_error("sweep parts: a row is missing");
+    std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(order[i].index * width), width,
+                out.begin() + static_cast<std::ptrdiff_t>(i * width));
+  }
+  return out;
+}
+
+}  // namespace btob::core

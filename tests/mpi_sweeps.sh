@@ -1,0 +1,108 @@
+#!/bin/bash
+# Sweeps over MPI ranks (src/cli/sweep.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3 writes the data files of
+# the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files byte for byte), and a rank
+# that fails ends the job with one line naming it, a non-zero status and no files.
+#
+# Usage: mpi_sweeps.sh BTOB [MPIRUN].  CI runs as root: Open MPI then wants --allow-run-as-root, given here
+# through its environment variables.  --oversubscribe: three ranks on two cores.
+set -u
+BTOB=$1
+MPIRUN=${2:-mpirun}
+HERE=$(cd "$(dirname "$0")" && pwd)
+PY=/usr/bin/python3
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+# No shared-memory transport warnings from containers without a usable /dev/shm, no help texts.
+export OMPI_MCA_btl_base_warn_component_unused=0 OMPI_MCA_orte_base_help_aggregate=1
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+# same NAME ARGS...: the single process against P = 1, 2, 3 ranks (one OpenMP thread each).
+same() {
+  local name=$1
+  shift
+  local ref=$TMP/$name/single
+  if ! "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$ref" --name x; then
+    fail "$name: the single-process run failed"
+    return
+  fi
+  for P in 1 2 3; do
+    local out=$TMP/$name/p$P
+    if ! "$MPIRUN" -n $P "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x; then
+      fail "$name: mpirun -n $P failed"
+      continue
+    fi
+    "$PY" "$HERE/h5_same_data.py" "$ref/x.h5" "$out/x.h5" > "$TMP/cmp.txt" || fail "$name, $P ranks: $(cat "$TMP/cmp.txt")"
+    for f in "$ref"/*.csv; do
+      [ -e "$f" ] || continue
+      cmp -s "$f" "$out/$(basename "$f")" || fail "$name, $P ranks: $(basename "$f") differs"
+    done
+    [ "$(cd "$ref" && ls)" = "$(cd "$out" && ls)" ] || fail "$name, $P ranks: other files than the single process's"
+  done
+  echo "ok: $name, P = 1, 2, 3 equal to the single process"
+}
+
+# Sizes: each item costs about the same, a few items per rank, r ranges with chaos, windows and invariant curves.
+same bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
+same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
+same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --iterations 300 --max-period 200 \
+  --lyap-iterations 400 --refine-factor 2
+same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --transient 500 --iterations 300 \
+  --max-period 200 --lyap-iterations 400 --refine-factor 2
+
+# The comparison can fail: another request (one more r value) differs from the reference.
+"$BTOB" lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 24 --iterations 1000 --transient 200 --blocks 5 --threads 1 \
+  --no-plot --quiet --out "$TMP/other" --name x
+"$PY" "$HERE/h5_same_data.py" "$TMP/lyapunov-map/single/x.h5" "$TMP/other/x.h5" > /dev/null &&
+  fail "h5_same_data.py found two different requests equal"
+
+# A bad input on every rank: the single process's one line, said once, exit 2, nothing written.
+"$MPIRUN" -n 2 "$BTOB" bifurcation --r-min 2 --out "$TMP/bad" > "$TMP/out.txt" 2> "$TMP/err.txt"
+code=$?
+[ $code -eq 2 ] || fail "bad input on every rank: exit $code, expected 2"
+grep -c '^btob: error: r-min: got 2' "$TMP/err.txt" | grep -qx 1 || fail "bad input: not one line: $(cat "$TMP/err.txt")"
+[ ! -e "$TMP/bad" ] || fail "bad input: $TMP/bad was created"
+
+# One rank fails before the work (its request is not the others'): one line naming rank 1, non-zero, no files.
+"$MPIRUN" -n 1 "$BTOB" bifurcation --r-count 50 --iterations 200 --tail 10 --out "$TMP/split" --quiet --no-plot : \
+  -n 1 "$BTOB" bifurcation --r-count 0 --iterations 200 --tail 10 --out "$TMP/split" --quiet --no-plot \
+  > "$TMP/out.txt" 2> "$TMP/err.txt"
+code=$?
+[ $code -ne 0 ] || fail "a failing rank 1: exit 0"
+grep -q '^btob: rank 1: r-count: got 0' "$TMP/err.txt" || fail "a failing rank 1: no line naming it: $(cat "$TMP/err.txt")"
+[ ! -e "$TMP/split" ] || fail "a failing rank 1: $TMP/split was created"
+
+# A rank fails during the work (out of memory: 1 GB of raw tails under a 700 MB address-space limit), after the
+# others started; an existing result in the output folder stays as it was.
+mkdir -p "$TMP/kept" && echo old > "$TMP/kept/x.h5"
+args=(bifurcation --r-count 2000 --iterations 4000 --tail 4000 --raw --out "$TMP/kept" --name x --quiet --no-plot --threads 1)
+"$MPIRUN" -n 1 "$BTOB" "${args[@]}" : -n 1 bash -c 'ulimit -v 700000; exec "$0" "$@"' "$BTOB" "${args[@]}" \
+  > "$TMP/out.txt" 2> "$TMP/err.txt"
+code=$?
+[ $code -ne 0 ] || fail "out of memory on rank 1: exit 0"
+grep -q '^btob: rank 1: out of memory' "$TMP/err.txt" || fail "out of memory on rank 1: $(cat "$TMP/err.txt")"
+[ "$(ls "$TMP/kept")" = "x.h5" ] && [ "$(cat "$TMP/kept/x.h5")" = old ] || fail "out of memory: the old result changed"
+
+# `btob run SCENE.toml` splits the same way.
+cat > "$TMP/scene.toml" << 'EOF'
+command = "bifurcation"
+[args]
+r-min = 0.1
+r-max = 0.2
+r-count = 13
+iterations = 500
+tail = 20
+bins = 100
+EOF
+"$BTOB" run "$TMP/scene.toml" --out "$TMP/scene1" --quiet --no-plot --threads 1 &&
+  "$MPIRUN" -n 3 "$BTOB" run "$TMP/scene.toml" --out "$TMP/scene3" --quiet --no-plot --threads 1 &&
+  "$PY" "$HERE/h5_same_data.py" "$TMP/scene1/scene.h5" "$TMP/scene3/scene.h5" > /dev/null ||
+  fail "btob run SCENE.toml under mpirun -n 3"
+
+[ $failures -eq 0 ] && echo "mpi sweeps: all equal, failures reported" && exit 0
+exit 1

@@ -1,0 +1,150 @@
+// Sweeps in parts (core/sweep.hpp), without MPI: for any partition of the items, in any order, merge(run_part...)
+// equals run() bitwise, array by array; parts survive core/pack.hpp bitwise.  This is what makes `mpirun -n P`
+// give the single process's files (tests/mpi_sweeps.sh checks the command line on top of it).
+#include "attractors/requests.hpp"
+#include "bifurcation/bifurcation.hpp"
+#include "core/pack.hpp"
+#include "core/sweep.hpp"
+#include "lyapunov/requests.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <variant>
+
+namespace {
+using namespace btob;
+
+// The arrays of two results, bitwise (same names, shapes and bytes).
+template <class R> void expect_same_arrays(const R& a, const R& b, const std::string& what) {
+  core::Contents ca, cb;
+  a.describe(ca);
+  b.describe(cb);
+  ASSERT_EQ(ca.arrays.size(), cb.arrays.size()) << what;
+  for (std::size_t i = 0; i < ca.arrays.size(); ++i) {
+    const auto& x = ca.arrays[i];
+    const auto& y = cb.arrays[i];
+    EXPECT_EQ(x.name, y.name) << what;
+    EXPECT_EQ(x.dims, y.dims) << what << " " << x.name;
+    std::visit(
+        [&](const auto* u) {
+          using V = std::remove_cvref_t<decltype(*u)>;
+          const V* v = std::get<const V*>(y.data);
+          ASSERT_EQ(u->size(), v->size()) << what << " " << x.name;
+          EXPECT_EQ(0, std::memcmp(u->data(), v->data(), u->size() * sizeof(typename V::value_type)))
+              << what << ": " << x.name << " differs";
+        },
+        x.data);
+  }
+}
+
+// `parts` random parts of 0..n-1 (some possibly empty), each ascending, returned in shuffled order.
+std::vector<std::vector<std::size_t>> random_partition(std::size_t n, std::size_t parts, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<std::size_t>> p(parts);
+  for (std::size_t i = 0; i < n; ++i) p[rng() % parts].push_back(i);
+  std::shuffle(p.begin(), p.end(), rng);
+  return p;
+}
+
+// run() against merge() of the parts of several partitions, each part sent through pack/unpack.
+template <class Req> void expect_any_partition_equals_run(const Req& req, const std::string& what) {
+  core::RunControl one;
+  one.threads = 1;
+  const auto whole = run(req, one);
+  const std::size_t n = req.work_items();
+  for (std::size_t parts : {std::size_t{2}, std::size_t{3}, n + 1}) {
+    using Part = decltype(run_part(req, std::vector<std::size_t>{}, one));
+    std::vector<Part> got;
+    for (const auto& items : random_partition(n, parts, parts))
+      got.push_back(core::unpack<Part>(core::pack(run_part(req, items, one))));
+    expect_same_arrays(whole, merge(req, std::move(got)), what + ", " + std::to_string(parts) + " parts");
+  }
+}
+
+TEST(Sweep, CyclicItemsCoverEveryItemOnce) {
+  for (std::size_t n : {0, 1, 7, 40})
+    for (std::size_t p : {1, 2, 3, 64}) {
+      std::vector<int> seen(n, 0);
+      for (std::size_t k = 0; k < p; ++k)
+        for (std::size_t i : core::cyclic_items(n, k, p)) ++seen[i];
+      for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(seen[i], 1) << n << " items, " << p << " parts, item " << i;
+    }
+}
+
+TEST(Sweep, MergeRefusesMissingOrRepeatedItems) {
+  bifurcation::Request q;
+  q.r_count = 4;
+  q.iterations = 20;
+  q.tail = 5;
+  EXPECT_THROW(merge(q, {run_part(q, {0, 1, 2})}), std::logic_error);
+  EXPECT_THROW(merge(q, {run_part(q, {0, 1, 2}), run_part(q, {2, 3})}), std::logic_error);
+}
+
+TEST(Sweep, PackRoundTripsBitwise) {
+  attractors::OrbitVerdict v;
+  v.type = attractors::Type::periodic;
+  v.word.s = {1, 3, 2};
+  v.key = "P132";
+  v.lambda1 = -0.0;
+  v.residual = std::numeric_limits<double>::quiet_NaN();
+  v.point = core::Vec3<double>(1, -2.5, 1e-310);
+  v.detail = std::string("with a\0 byte", 12);
+  attractors::BasinRows p{{3, 5}, {v, v}, 1.5, 2};
+  const auto q = core::unpack<attractors::BasinRows>(core::pack(p));
+  EXPECT_EQ(q.items, p.items);
+  ASSERT_EQ(q.verdicts.size(), 2u);
+  EXPECT_EQ(q.verdicts[1].word.s, v.word.s);
+  EXPECT_EQ(q.verdicts[1].detail, v.detail);
+  EXPECT_TRUE(std::signbit(q.verdicts[0].lambda1));
+  EXPECT_TRUE(std::isnan(q.verdicts[0].residual));
+  EXPECT_EQ(q.verdicts[0].point, v.point);
+  auto bytes = core::pack(p);
+  bytes.pop_back();
+  EXPECT_THROW(core::unpack<attractors::BasinRows>(bytes), std::runtime_error);  // short message
+}
+
+TEST(Sweep, BifurcationAnyPartitionEqualsRun) {
+  bifurcation::Request q;
+  q.r_min = 0.08, q.r_max = 0.4, q.r_count = 21, q.iterations = 800, q.tail = 30, q.bins = 100, q.raw = true;
+  expect_any_partition_equals_run(q, "bifurcation");
+  q.raw = false, q.precision = "float", q.log = true;
+  expect_any_partition_equals_run(q, "bifurcation float log");
+}
+
+TEST(Sweep, LyapunovMapAnyPartitionEqualsRun) {
+  // 31 r x 32 orbits: 992 orbits, not a multiple of the batch width, so parts end in partial batches that the
+  // whole run has elsewhere (TangentRecorder steps partial batches through the full-width loop).
+  lyapunov::MapRequest q;
+  q.r_min = 0.08, q.r_max = 0.35, q.r_count = 31, q.iterations = 400, q.transient = 100, q.blocks = 4;
+  expect_any_partition_equals_run(q, "lyapunov-map");
+}
+
+TEST(Sweep, LyapunovStripAnyPartitionEqualsRun) {
+  lyapunov::StripRequest q;
+  q.r = 0.3, q.n1 = 11, q.n2 = 7, q.iterations = 300, q.transient = 50, q.blocks = 3;
+  expect_any_partition_equals_run(q, "lyapunov-strip");
+}
+
+TEST(Sweep, BasinsAnyPartitionEqualsRun) {
+  attractors::BasinsRequest q;
+  q.r = 0.2, q.grid = "strip:13x7", q.replicates = 1;
+  q.thresholds.transient = 400, q.thresholds.window = 300, q.thresholds.max_period = 200;
+  q.thresholds.lyap_iterations = 400, q.thresholds.refine_factor = 2;
+  expect_any_partition_equals_run(q, "basins");
+}
+
+TEST(Sweep, BasinsRAnyPartitionEqualsRun) {
+  attractors::BasinsRRequest q;
+  q.r_values = {0.11, 0.15, 0.2, 0.3};
+  q.grid = "random:40";
+  q.thresholds.transient = 400, q.thresholds.window = 300, q.thresholds.max_period = 200;
+  q.thresholds.lyap_iterations = 400, q.thresholds.refine_factor = 2;
+  expect_any_partition_equals_run(q, "basins-r");
+}
+
+}  // namespace
