@@ -180,6 +180,10 @@ MapResult merge_exponents(std::vector<MapPart>& parts, std::size_t items, std::s
   e.err1 = rows(&OrbitExponents::err1);
   e.lambda2 = rows(&OrbitExponents::lambda2);
   e.err2 = rows(&OrbitExponents::err2);
+  e.lambda_max = rows(&OrbitExponents::lambda_max);
+  e.err_max = rows(&OrbitExponents::err_max);
+  e.lambda_min = rows(&OrbitExponents::lambda_min);
+  e.err_min = rows(&OrbitExponents::err_min);
   e.chi1 = rows(&OrbitExponents::chi1);
   e.iterations = iterations;
   e.blocks = blocks;

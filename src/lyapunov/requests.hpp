@@ -122,8 +122,9 @@ struct MapPart {
   OrbitExponents exponents;
   double iteration_seconds = 0;
   template <class A> void members(A& a) {
-    a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.chi1, exponents.iterations,
-      exponents.blocks, iteration_seconds);
+    a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max,
+      exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations, exponents.blocks,
+      iteration_seconds);
   }
 };
 MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
