@@ -43,6 +43,11 @@ struct ResultBase {
   core::Attrs attrs;
   std::string function, command, plot;  // the Python function, the CLI command, the plot script (or "")
   Args request;                         // the request's fields (flag names, text values)
+  core::Tables tables;                  // the CSV files of the command line (results with tables())
+  // How the plot script reads the result: empty, from NAME.h5 (draw(f) in Python); else the files it is given, as
+  // suffixes of NAME (".h5", ".csv", "_critical.csv", ".json"), and whether it writes several PNGs into a folder.
+  std::vector<std::string> plot_inputs;
+  bool plot_many = false;
   virtual ~ResultBase() = default;
 };
 template <class Res> struct ResultOf : ResultBase {
@@ -137,7 +142,9 @@ int threads_of(const py::kwargs& kw);
 // How a request type is presented in Python; specialised per request in module.cpp (names and strings only):
 //   function  the Python function (btob.<function>)          kind, stem  the attributes kind and name (as the CLI)
 //   plot      analyses/plot script drawing it ("" for none)   help        the docstring's first line
-// and, from RouteBase, defaults(), prepare(req) (before the run) and scalar(req, res) (the scalar_type attribute).
+// and, from RouteBase, defaults(), prepare(req) (before the run), scalar(req, res) (the scalar_type attribute),
+// plot_of(req) (the script, when the request chooses it), plot_inputs() and plot_many (scripts that read the
+// command line's files rather than draw(f); see ResultBase).
 template <class Req> struct Route;
 template <class Req, class Derived> struct RouteBase {
   static Req defaults() { return Req{}; }
@@ -145,6 +152,9 @@ template <class Req, class Derived> struct RouteBase {
   template <class Res> static std::string scalar(const Req&, const Res&) { return "double"; }
   static std::string name_of(const Req&) { return Derived::stem; }
   static std::string kind_of(const Req&) { return Derived::kind; }
+  static std::string plot_of(const Req&) { return Derived::plot; }
+  static std::vector<std::string> plot_inputs() { return {}; }
+  static constexpr bool plot_many = false;
 };
 
 // Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
@@ -185,7 +195,10 @@ template <class Req> void bind(py::module_& m) {
         holder->extras.apply(holder->attrs);
         holder->function = R::function;
         holder->command = R::command;
-        holder->plot = R::plot;
+        holder->plot = R::plot_of(req);
+        holder->plot_inputs = R::plot_inputs();
+        holder->plot_many = R::plot_many;
+        if constexpr (requires { holder->res.tables(); }) holder->tables = holder->res.tables();
         return py::cast(std::static_pointer_cast<ResultBase>(holder));
       },
       doc.c_str());

@@ -47,8 +47,6 @@ BTOB_ROUTE(windows::BoundsRequest, "windows_bounds", "windows bounds", "windows_
            "Window lower bounds and r_crit,2(n) (Table B.1) as exact decimals; certify=True adds exact certificates")
 BTOB_ROUTE(windows::ThresholdsRequest, "windows_thresholds", "windows thresholds", "windows_thresholds", "thresholds", "",
            "7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1 in high precision")
-BTOB_ROUTE(orbits::StripOrbitsRequest, "strip_orbits", "strip-orbits", "strip-orbits", "strip_orbits", "",
-           "Tails of orbits at one r in the strip (w1, w2), each classified (Figures 6.9-6.11)")
 BTOB_ROUTE(windows::StripesRequest, "windows_stripes", "windows stripes", "windows_stripes", "stripes", "",
            "Thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max_m")
 #undef BTOB_ROUTE_BODY
@@ -56,8 +54,6 @@ BTOB_ROUTE(windows::StripesRequest, "windows_stripes", "windows stripes", "windo
 // Routes whose scalar_type is the request's precision.
 #define BTOB_ROUTE_BODY \
   template <class Res> static std::string scalar(const auto& req, const Res&) { return req.precision; }
-BTOB_ROUTE(lyapunov::OrbitRequest, "lyapunov", "lyapunov", "lyapunov", "lyapunov", "",
-           "Both Lyapunov exponents of one orbit (projective derivative cocycle, QR) with batch-means error bars")
 BTOB_ROUTE(lyapunov::MapRequest, "lyapunov_map", "lyapunov-map", "lyapunov-map", "lyapunov_map", "lyapunov_map.py",
            "Lyapunov exponents of every orbit over r values x a grid, summarised per r")
 BTOB_ROUTE(lyapunov::StripRequest, "lyapunov_strip", "lyapunov-strip", "lyapunov-strip", "lyapunov_strip", "lyapunov_strip.py",
@@ -69,6 +65,25 @@ BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_
 #undef BTOB_ROUTE_BODY
 
 // The rest, one by one.
+// The strip orbits' figure reads NAME.h5 and NAME.csv (the verdicts), as the command line gives them.
+#define BTOB_ROUTE_BODY \
+  static std::vector<std::string> plot_inputs() { return {".h5", ".csv"}; }
+BTOB_ROUTE(orbits::StripOrbitsRequest, "strip_orbits", "strip-orbits", "strip-orbits", "strip_orbits", "strip_orbits.py",
+           "Tails of orbits at one r in the strip (w1, w2), each classified (Figures 6.9-6.11)")
+#undef BTOB_ROUTE_BODY
+// convergence: the command line writes the table to a CSV file; Python has it as arrays of every result, so a
+// path is refused (accepting and ignoring it would lie).
+#define BTOB_ROUTE_BODY                                                                                       \
+  template <class Res> static std::string scalar(const auto& req, const Res&) { return req.precision; }      \
+  static void prepare(lyapunov::OrbitRequest& req) {                                                          \
+    if (!req.convergence.empty())                                                                             \
+      throw core::InvalidField("convergence", "'" + req.convergence + "'",                                    \
+                               "no value (a CSV file of the command line; in Python every result holds "      \
+                               "the table: res.convergence_n, convergence_lambda1, convergence_lambda2)");    \
+  }
+BTOB_ROUTE(lyapunov::OrbitRequest, "lyapunov", "lyapunov", "lyapunov", "lyapunov", "",
+           "Both Lyapunov exponents of one orbit (projective derivative cocycle, QR) with batch-means error bars")
+#undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \
   template <class Res> static std::string scalar(const auto&, const Res& res) { return res.scalar_type; }
 BTOB_ROUTE(bifurcation::Request, "bifurcation", "bifurcation", "bifurcation", "bifurcation", "bifurcation.py",
@@ -84,13 +99,19 @@ BTOB_ROUTE(patterns::WordRequest, "pattern", "pattern", "pattern", "pattern", ""
   static std::string name_of(const auto& req) { return req.default_name(); }                     \
   static std::string kind_of(const auto& req) {                                                   \
     return req.feasible ? "patterns-feasible-atlas" : "patterns-atlas";                           \
-  }
+  }                                                                                               \
+  static std::string plot_of(const auto& req) {                                                   \
+    return req.feasible ? "patterns_feasible.py" : "patterns_atlas.py";                           \
+  }                                                                                               \
+  static std::vector<std::string> plot_inputs() { return {".json"}; }
 BTOB_ROUTE(patterns::AtlasRequest, "pattern_atlas", "pattern atlas", "patterns-atlas", "", "",
            "Every canonical primitive word up to a length: stability sets, checked against the iterator")
 #undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \
-  template <class Res> static std::string scalar(const auto&, const Res&) { return "double (spectrum in long double)"; }
-BTOB_ROUTE(patterns::CurvesRequest, "pattern_curves", "pattern-curves", "pattern-curves", "curves", "",
+  template <class Res> static std::string scalar(const auto&, const Res&) { return "double (spectrum in long double)"; } \
+  static std::vector<std::string> plot_inputs() { return {".h5", "_critical.csv"}; }                                   \
+  static constexpr bool plot_many = true;
+BTOB_ROUTE(patterns::CurvesRequest, "pattern_curves", "pattern-curves", "pattern-curves", "curves", "pattern_curves.py",
            "Spectrum and feasibility quantities of a word's period matrix against r (Figures 7.1-7.8)")
 #undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \

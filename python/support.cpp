@@ -95,9 +95,21 @@ std::vector<std::string> save(const ResultBase& r, const std::string& out, const
   args.emplace_back("name", std::vector<std::string>{name});
   args.emplace_back("title", std::vector<std::string>{title});
   io::ResultFiles files(out, name);
+  for (const auto& [role, text] : r.tables) files.text(core::table_file(name, role), text);
   if (!r.contents.arrays.empty()) files.h5(r.contents, at);
-  files.manifest(at, r.command, args);
-  if (plot && !r.plot.empty() && !r.contents.arrays.empty()) files.plot(r.plot);
+  files.manifest(at, r.command, args);  // lists the files staged so far
+  if (plot && !r.plot.empty()) {
+    if (r.plot_inputs.empty()) {
+      if (!r.contents.arrays.empty()) files.plot(r.plot);
+    } else {  // the script reads the command line's files, as the command line calls it
+      std::vector<std::string> inputs;
+      for (const auto& suffix : r.plot_inputs) inputs.push_back(name + suffix);
+      if (r.plot_many)
+        files.plot_figures(r.plot, inputs);
+      else
+        files.plot_inputs(r.plot, inputs);
+    }
+  }
   std::vector<std::string> written;
   for (const auto& p : files.commit()) written.push_back(p.string());
   return written;
@@ -252,13 +264,28 @@ void bind_result(py::module_& m) {
         return w;
       })
       .def_property_readonly("plot_script", [](const ResultBase& r) { return r.plot; })
+      .def_property_readonly("plots_from_files", [](const ResultBase& r) { return !r.plot_inputs.empty(); },
+                             "True when the figure's script reads the command line's files (plot() saves the result "
+                             "to a temporary folder and shows the PNGs it writes)")
+      .def_property_readonly(
+          "tables",
+          [](const ResultBase& r) {
+            py::dict d;
+            const auto it = r.attrs.find("name");
+            const std::string name = it != r.attrs.end() && std::holds_alternative<std::string>(it->second)
+                                         ? std::get<std::string>(it->second)
+                                         : std::string("result");
+            for (const auto& [role, text] : r.tables) d[py::str(core::table_file(name, role))] = text;
+            return d;
+          },
+          "the command line's CSV files of this result: {file name: text}")
       .def("__dir__",
            [](const ResultBase& r) {
              py::list l;
              for (const auto& a : r.contents.arrays) l.append(a.name);
              for (const auto& d : r.contents.decimals) l.append(d.name);
              for (const auto& [k, v] : r.attrs) l.append(k);
-             for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function"}) l.append(k);
+             for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function", "tables"}) l.append(k);
              return l;
            })
       .def("__repr__", [](const ResultBase& r) {

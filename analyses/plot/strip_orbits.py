@@ -17,8 +17,8 @@ def main(h5path, csvpath, dst):
     rows = list(csv.DictReader(open(csvpath)))
     r = float(a["r"])
     alpha = (1 + r) / 2
-    lim = float(a["plot_w1"])
-    only = int(a["only"])
+    lim = float(a.get("plot_w1", 2))  # the command line's --plot-w1 and --only (Python results: their defaults)
+    only = int(a.get("only", 0))
     idx = [only - 1] if only > 0 else list(range(len(rows)))
     n = len(idx)
     ncol = 1 if n == 1 else min(5, n)

@@ -1,8 +1,12 @@
-"""Figures of btob results, drawn by the command line's own scripts (analyses/plot/*.py, shipped in btob/data/plot):
-each script has draw(f) -> matplotlib Figure for an h5py-like f, which a Result stands in for here."""
+"""Figures of btob results, drawn by the command line's own scripts (analyses/plot/*.py, shipped in btob/data/plot).
+Most scripts have draw(f) -> matplotlib Figure for an h5py-like f, which a Result stands in for here.  The scripts
+of strip_orbits, pattern_curves and pattern_atlas read the command line's files (their CSV tables, the manifest):
+for those, plot() saves the result to a temporary folder exactly as the command line writes it, runs the script as
+the command line does and returns a figure showing the PNGs it wrote, pixel for pixel."""
 import importlib
 import os
 import sys
+import tempfile
 
 import numpy as np
 
@@ -37,9 +41,36 @@ def script(name):
 
 def plot(res):
     """The command line's figure of this result (a matplotlib Figure, not saved)."""
-    if not res.plot_script or not hasattr(script(res.plot_script), "draw"):
+    if not res.plot_script:
         raise NotImplementedError(f"btob.{res.function}: the command line draws no figure from this result alone")
+    if res.plots_from_files:
+        return figure_of_files(res)
     return script(res.plot_script).draw(H5View(res))
+
+
+def figure_of_files(res):
+    """The PNGs the command line's script writes for this result, stacked in one Figure at their own pixel size."""
+    import matplotlib.image
+    import matplotlib.pyplot as plt
+
+    with tempfile.TemporaryDirectory(prefix="btob-plot-") as d:
+        written = res._save(d, res.attrs.get("name") or "result", "", True)
+        images = [matplotlib.image.imread(p) for p in sorted(written) if p.endswith(".png")]
+    if not images:
+        raise RuntimeError(f"btob.{res.function}: {res.plot_script} wrote no figure")
+    dpi = 100
+    width = max(im.shape[1] for im in images)
+    height = sum(im.shape[0] for im in images)
+    fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi)
+    top = 1.0
+    for im in images:
+        h = im.shape[0] / height
+        ax = fig.add_axes([0, top - h, im.shape[1] / width, h])
+        ax.imshow(im, interpolation="none")
+        ax.set_axis_off()
+        top -= h
+    fig.btob_images = images  # the command line's pixels, for comparison
+    return fig
 
 
 def savefig(res, path, dpi=None):
@@ -52,8 +83,9 @@ def savefig(res, path, dpi=None):
 def save(res, out, name=None, title="", plot=True):
     """Writes the result as the command line does, into the folder `out`: NAME.h5 (the arrays with units, axes and
     descriptions; the attributes), NAME.json (the attributes and the request: `btob run out/NAME.json` reproduces
-    the numbers) and NAME.png (the command line's figure), all together or none.  The command line's CSV tables
-    are not written.  Returns the paths written."""
+    the numbers), the CSV tables of results that have them in the library (res.tables: strip_orbits,
+    pattern_curves, pattern_atlas) and the command line's figure(s), all together or none.  Returns the paths
+    written."""
     return res._save(str(out), name or res.attrs["name"], title, bool(plot))
 
 

@@ -116,24 +116,38 @@ def test_fig41_density_is_not_copied():
 
 
 def test_a_second_thread_advances_during_a_run():
-    ticks = []
-    stop = threading.Event()
+    """Another Python thread keeps running while btob computes (the GIL is released).  The workload doubles until a
+    run lasts at least 0.3 s, so a fast machine cannot make the check vacuous (a 2000 x 5000 Figure 4.1 run took
+    0.07 s on one CI machine, too short to count ticks of 10 ms)."""
 
-    def count():
-        while not stop.is_set():
-            ticks.append(time.monotonic())
-            time.sleep(0.01)
+    def run_while_ticking(iterations):
+        ticks = []
+        stop = threading.Event()
 
-    t = threading.Thread(target=count)
-    t.start()
-    t0 = time.monotonic()
-    btob.bifurcation(**dict(FIG41, r_count=2000))
-    t1 = time.monotonic()
-    stop.set()
-    t.join()
-    during = [x for x in ticks if t0 < x < t1]
-    # The other thread ticks every ~10 ms while the run holds no GIL (it would not tick at all otherwise).
-    assert t1 - t0 > 0.1 and len(during) >= 0.3 * (t1 - t0) / 0.01, (t1 - t0, len(during))
+        def count():
+            while not stop.is_set():
+                ticks.append(time.monotonic())
+                time.sleep(0.01)
+
+        t = threading.Thread(target=count)
+        t.start()
+        time.sleep(0.02)
+        t0 = time.monotonic()
+        btob.bifurcation(**dict(FIG41, r_count=2000, iterations=iterations))
+        t1 = time.monotonic()
+        stop.set()
+        t.join()
+        return t1 - t0, [x for x in ticks if t0 < x < t1]
+
+    iterations = 5000
+    elapsed, during = run_while_ticking(iterations)
+    while elapsed < 0.3 and iterations < 5000 * 2**8:
+        iterations *= 2
+        elapsed, during = run_while_ticking(iterations)
+    assert elapsed >= 0.3, f"even {iterations} iterations ran in {elapsed:.3f} s"
+    # The other thread ticks every ~10 ms while the run holds no GIL (it would not tick at all otherwise); a third of
+    # the ticks leaves room for a busy machine.
+    assert len(during) >= 0.3 * elapsed / 0.01, (elapsed, len(during))
 
 
 def test_keyboard_interrupt_within_half_a_second():

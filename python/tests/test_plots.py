@@ -1,9 +1,12 @@
 """res.plot() draws the command line's figure from the result itself (the plot scripts' draw(f) on the result
 seen as an h5py file): every function with a figure returns a matplotlib Figure with the script's axes and title."""
+import os
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.figure  # noqa: E402
+import matplotlib.pyplot  # noqa: E402
 import pytest  # noqa: E402
 
 import btob  # noqa: E402
@@ -53,3 +56,38 @@ def test_bifurcation_figure_is_the_command_lines_pixel_for_pixel(tmp_path):
     btob.bifurcation(**kw).savefig(tmp_path / "py.png", dpi=150)  # the script's figure dpi
     a, b = mpimg.imread(tmp_path / "bifurcation.png"), mpimg.imread(tmp_path / "py.png")
     assert a.shape == b.shape and np.array_equal(a, b)
+
+
+# Results whose scripts read the command line's files (tables, manifest): the figure is the command line's PNGs.
+FILE_CASES = [
+    ("strip_orbits", "strip-orbits", dict(r=0.2, orbits=3, iterations=2000, tail=200, seed=3)),
+    ("pattern_curves", "pattern-curves", dict(word="132312", r_min=0.3, r_max=0.6, r_count=60)),
+    ("pattern_atlas", "pattern atlas", dict(max_length=6)),
+]
+
+
+@pytest.mark.parametrize("function,command,kwargs", FILE_CASES, ids=[c[0] for c in FILE_CASES])
+def test_figures_from_files_are_the_command_lines_pixel_for_pixel(function, command, kwargs, tmp_path):
+    import subprocess
+
+    import matplotlib.image as mpimg
+    import numpy as np
+    from conftest import exe, flags
+    res = getattr(btob, function)(**kwargs)
+    name = res.attrs["name"]
+    p = subprocess.run([exe()] + command.split() + flags(kwargs) + ["--out", str(tmp_path), "--quiet"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    cli_pngs = sorted(tmp_path.glob("*.png"))
+    fig = res.plot()
+    assert isinstance(fig, matplotlib.figure.Figure) and len(fig.btob_images) == len(cli_pngs) >= 1
+    for got, path in zip(fig.btob_images, cli_pngs):
+        want = mpimg.imread(path)
+        assert got.shape == want.shape and np.array_equal(got, want), path.name
+    matplotlib.pyplot.close(fig)
+    # save() writes the command line's tables with the same bytes.
+    saved = res.save(tmp_path / "py", name=name, plot=False)
+    tables = [f for f in saved if f.endswith(".csv")]
+    assert tables and sorted(os.path.basename(f) for f in tables) == sorted(res.tables)
+    for f in tables:
+        assert open(f).read() == (tmp_path / os.path.basename(f)).read_text(), f

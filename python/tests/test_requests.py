@@ -105,6 +105,22 @@ def test_lyapunov_orbit_matches_stdout():
     assert res.iterations == int(row["iterations"])
 
 
+def test_lyapunov_convergence_table_is_the_command_lines(tmp_path):
+    """The running averages that `btob lyapunov --convergence FILE` writes are arrays of every Python result; the
+    keyword itself (a file of the command line) is refused rather than accepted and ignored."""
+    kw = dict(r=0.11, point=(1.0, -0.5, -1.1), iterations=5000, transient=200)
+    cli("lyapunov", kw, extra=["--convergence", str(tmp_path / "c.csv")])
+    table = np.genfromtxt(tmp_path / "c.csv", delimiter=",", names=True, comments="#")
+    res = btob.lyapunov(**kw)
+    assert res.convergence_n.dtype == np.uint64 and res.convergence_n.tolist() == table["n"].astype(int).tolist()
+    for k in ("lambda1", "lambda2"):
+        got = [float(format(x, ".12g")) for x in getattr(res, "convergence_" + k)]
+        assert got == table[k].tolist(), k
+    assert res.convergence_n[-1] == kw["iterations"]
+    with pytest.raises(ValueError, match="^convergence: got 'c.csv'"):
+        btob.lyapunov(convergence="c.csv", **kw)
+
+
 def test_lyapunov_mpfr_matches_stdout():
     kw = dict(r=0.2, point=(1.0, 0.8, -1.0), iterations=2000, transient=100, precision="mpfr:30")
     row = rows(cli("lyapunov", kw))[0]

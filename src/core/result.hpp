@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -38,6 +39,13 @@ struct DecimalView {
   std::string name, axes, units, description;
   const std::vector<std::string>* data;
 };
+
+// The CSV tables of a result as (role, text): the command line and Python's save() write each to NAME.csv (role "")
+// or NAME_role.csv, through table_file().  Results with tables have `Tables tables() const`.
+using Tables = std::vector<std::pair<std::string, std::string>>;
+inline std::string table_file(const std::string& name, const std::string& role) {
+  return name + (role.empty() ? "" : "_" + role) + ".csv";
+}
 
 struct Contents {
   std::vector<ArrayView> arrays;

@@ -46,7 +46,7 @@ struct Estimate {
 
 // Exponent against the number of averaged steps n (powers of two and block ends, increasing).
 struct Convergence {
-  std::vector<long> n;
+  std::vector<std::uint64_t> n;  // averaged-step counts: powers of two and block ends
   std::vector<std::vector<double>> exponents;  // exponents[i][j]: exponent i at n[j]
 };
 
@@ -58,8 +58,9 @@ struct ProjectiveResult {
   Convergence convergence;
   std::vector<int> symbols_tail;  // symbols of the last min(iterations, 4096) steps (for period detection)
   Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
-  // Attributes only: lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the
-  // columns `btob lyapunov --weighted` prints).
+  // Attributes lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the
+  // columns `btob lyapunov --weighted` prints); arrays convergence_n, convergence_lambda1, convergence_lambda2 (the
+  // table `btob lyapunov --convergence FILE` writes: the running averages at every checkpoint).
   void describe(core::Contents& c) const;
 };
 

@@ -21,6 +21,14 @@ void ProjectiveResult::describe(core::Contents& c) const {
   c.attr("lambda2_weighted", weighted[1]);
   c.attr("iterations", iterations);
   c.attr("blocks", static_cast<long>(blocks));
+  if (convergence.exponents.size() < 2) return;  // a result that was never run
+  const std::vector<std::size_t> dims{convergence.n.size()};
+  c.array("convergence_n", convergence.n, dims, "checkpoint", "iterations",
+          "averaged steps at the checkpoint (powers of two and block ends)");
+  c.array("convergence_lambda1", convergence.exponents[0], dims, "checkpoint", "1/iteration (natural log)",
+          "running average of lambda1 at the checkpoint");
+  c.array("convergence_lambda2", convergence.exponents[1], dims, "checkpoint", "1/iteration (natural log)",
+          "running average of lambda2 at the checkpoint");
 }
 
 namespace {

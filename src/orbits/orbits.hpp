@@ -51,6 +51,7 @@ struct StripOrbitsResult {
 
   // One CSV line per orbit: where it started and what the classifier says (the panel titles).
   std::string csv() const;
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv
   void describe(core::Contents& c) const;
 };
 

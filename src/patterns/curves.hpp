@@ -58,6 +58,7 @@ struct CurvesResult {
   std::vector<double> critical_r;   // [critical]: their r
 
   std::string critical_csv() const;  // what,r (16 decimals)
+  core::Tables tables() const { return {{"critical", critical_csv()}}; }  // NAME_critical.csv
   void describe(core::Contents& c) const;
 };
 

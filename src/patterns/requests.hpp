@@ -107,10 +107,11 @@ struct AtlasResult {
   bool checked = false;                    // the iterator check ran
   long detected = 0, disagreements = 0, quasi_periodic = 0, missed = 0;
   double atlas_seconds = 0, check_seconds = 0;
-  std::vector<std::pair<std::string, std::string>> csv;  // (file name, content) in writing order
+  core::Tables csv;  // (role, content) in writing order: NAME.csv, NAME_detected.csv, ...
   std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
   std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
 
+  core::Tables tables() const { return csv; }
   std::string summary() const;             // the lines the command line prints
   void describe(core::Contents& c) const;
 };
