@@ -74,6 +74,7 @@ class Unpacker {
   const char* end_;
   void raw(void* dst, std::size_t n) {
     if (static_cast<std::size_t>(end_ - p_) < n) throw std::runtime_error("core::Unpacker: message shorter than its contents");
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see (UBSan: nonnull)
     std::memcpy(dst, p_, n);
     p_ += n;
   }
