@@ -68,6 +68,31 @@ def check_csv(path):
         fail(f"{path}: numpy reads {n} rows, the csv module {len(rows) - 1}")
 
 
+def check_h5(path):
+    """Issue 21 item 6: every dataset carries its units, axes and a one-line description, and every string attribute
+    (datasets' and the file's) reads as str, not bytes."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        for k, v in f.attrs.items():
+            if isinstance(v, bytes):
+                fail(f"{path}: file attribute {k} reads as bytes")
+        datasets = []
+        f.visititems(lambda name, obj: datasets.append((name, obj)) if isinstance(obj, h5py.Dataset) else None)
+        for name, ds in datasets:
+            for key in ("units", "axes", "description"):
+                v = ds.attrs.get(key)
+                if v is None:
+                    fail(f"{path}: dataset {name} has no attribute {key}")
+                elif not isinstance(v, str):
+                    fail(f"{path}: dataset {name}: attribute {key} reads as {type(v).__name__}, not str")
+                elif key != "axes" and not v.strip():
+                    fail(f"{path}: dataset {name}: attribute {key} is empty")
+            for k, v in ds.attrs.items():
+                if isinstance(v, bytes):
+                    fail(f"{path}: dataset {name}: attribute {k} reads as bytes")
+    return len(datasets)
+
+
 def commands(d):
     """(arguments, file to hold stdout or None): one small run of every command that writes a CSV."""
     q = ["--no-plot", "--quiet"]
@@ -130,6 +155,9 @@ def main():
         for f in files:
             check_csv(f)
         print(f"{len(files)} CSV files checked, {len(failures)} failure(s)")
+        h5 = sorted(glob.glob(os.path.join(d, "**", "*.h5"), recursive=True))
+        n = sum(check_h5(f) for f in h5)
+        print(f"{len(h5)} HDF5 files ({n} datasets) checked, {len(failures)} failure(s) in all")
     sys.exit(1 if failures else 0)
 
 
