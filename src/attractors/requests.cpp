@@ -1,5 +1,7 @@
 #include "attractors/requests.hpp"
 
+#include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "iterate/ensemble.hpp"
 #include "patterns/patterns.hpp"
@@ -373,6 +375,77 @@ void BasinsRResult::describe(core::Contents& c) const {
   c.attr("columns", static_cast<long>(columns.size()));
   threshold_attrs(c, request.thresholds);
   c.attr("seconds", seconds);
+}
+
+// NAME_fractions.csv: the requested columns first, then counts, replicate spread and evidence; the unresolved
+// points are the last row (attractor 0), with the columns that describe an attractor left empty.
+core::Tables BasinsResult::tables() const {
+  const Basins& b = basins;
+  core::CsvTable t(
+      "attractor,type,pattern,fraction,ci_low,ci_high,count,replicate_mean,replicate_sd,canonical,period,collisions,"
+      "stability,lambda2,rotation_min,rotation_max,invariant_min,invariant_max,w1,w2,letters,measure");
+  const std::string measure = measure_name(b.grid);
+  const auto f = [](double v) { return fmt::format("{:.6f}", v); };
+  for (std::size_t i = 0; i < b.attractors.size(); ++i) {
+    const auto& at = b.attractors[i];
+    const auto w = core::strip<double>(at.point);
+    t.row({fmt::format("{}", at.id), type_name(at.type), at.pattern, f(b.fractions[i].value),
+           f(b.fractions[i].low), f(b.fractions[i].high), fmt::format("{}", at.count), f(replicate_mean[i]),
+           f(replicate_sd[i]), at.canonical, fmt::format("{}", at.period), fmt::format("{}", at.collisions),
+           at.stability, fmt::format("{:.6g}", at.lyapunov2), fmt::format("{:.10g}", at.rotation_min),
+           fmt::format("{:.10g}", at.rotation_max), fmt::format("{:.8g}", at.invariant_min),
+           fmt::format("{:.8g}", at.invariant_max), fmt::format("{:.12g}", w.first), fmt::format("{:.12g}", w.second),
+           at.letters, measure});
+  }
+  const std::size_t u = b.attractors.size();
+  std::vector<std::string> row = {"0", "unresolved", "", f(b.unresolved.value), f(b.unresolved.low),
+                                  f(b.unresolved.high), fmt::format("{}", unresolved_count), f(replicate_mean[u]),
+                                  f(replicate_sd[u])};
+  row.resize(t.columns().size());
+  row.back() = measure;
+  t.row(row);
+  return {{"fractions", t.text()}};
+}
+
+std::string BasinsRResult::fractions_csv() const {
+  core::CsvTable t("r,attractor_key,type,pattern,fraction,ci_low,ci_high,count,stability,measure");
+  const std::string measure = core::csv_text(grid_measure(request.grid));
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.attractors.size(); ++i)
+      t.line(fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{},{},{}", row.r, core::csv_text(row.attractors[i].key),
+                         type_name(row.attractors[i].type), core::csv_text(row.attractors[i].pattern),
+                         row.fractions[i].value, row.fractions[i].low, row.fractions[i].high, row.attractors[i].count,
+                         core::csv_text(row.attractors[i].stability), measure));
+    t.line(fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.unresolved.value, row.unresolved.low,
+                       row.unresolved.high,
+                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(points))),
+                       measure));
+  }
+  return t.text();
+}
+
+// table_6_1_comparison.csv: periodic fraction (paper: % of 10 orbits) and the patterns found, per r.
+std::string BasinsRResult::comparison_csv() const {
+  core::CsvTable cmp(
+      "r,paper_percent_periodic,paper_ci_low,paper_ci_high,consistent,paper_patterns,periodic_fraction,ci_low,ci_high,"
+      "patterns_found,paper_patterns_found,extra_patterns,other_types,measure");
+  const std::string measure = core::csv_text(grid_measure(request.grid));
+  for (const auto& c : comparison) {
+    std::string pci_lo, pci_hi, consistent;
+    if (c.has_percent) {
+      pci_lo = fmt::format("{:.4f}", c.paper.low), pci_hi = fmt::format("{:.4f}", c.paper.high);
+      consistent = c.consistent ? "yes" : "no";
+    }
+    const std::string paper_found = c.in_table ? fmt::format("{}/{}", c.paper_found, c.paper_total) : "";
+    cmp.line(fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", c.r, c.paper_percent, pci_lo, pci_hi,
+                         consistent, core::csv_text(c.paper_patterns), c.periodic.value, c.periodic.low, c.periodic.high,
+                         core::csv_text(c.found), paper_found, core::csv_text(c.extra), core::csv_text(c.other), measure));
+  }
+  return cmp.text();
+}
+
+core::Tables BasinsRResult::tables() const {
+  return {{"", fractions_csv()}, {"table_6_1_comparison.csv", comparison_csv()}};
 }
 
 }  // namespace btob::attractors

@@ -93,6 +93,9 @@ struct BasinsResult {
   // Arrays: labels [n2, n1] (attractor id per grid point, 0 = unresolved), fraction, ci_low, ci_high
   // [attractors]; attributes: the request, the grid, counts, timings and legend_<id>.
   void describe(core::Contents& c) const;
+  // NAME_fractions.csv: per attractor its fraction and 95% interval, counts, replicate spread and evidence; the
+  // unresolved points last (attractor 0), their attractor columns empty; the measure on every row.
+  core::Tables tables() const;
 };
 
 // In parts (core/sweep.hpp): item k * n2 + j is row j of grid k (0: main, then the replicates).
@@ -175,6 +178,9 @@ struct BasinsRResult {
   double seconds = 0;
   // Arrays: r [rows], fraction [rows, columns]; attributes: column_<j>, the request and timings.
   void describe(core::Contents& c) const;
+  std::string fractions_csv() const;   // NAME.csv: per r and attractor, fraction, interval, count, measure
+  std::string comparison_csv() const;  // table_6_1_comparison.csv: the periodic fraction and patterns against Table 6.1
+  core::Tables tables() const;         // both
 };
 
 // Some r values (items: ascending indices into all_r()), one row each.

@@ -68,18 +68,7 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   ex.apply(at);
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  if constexpr (std::is_same_v<Req, lyapunov::MapRequest>) {
-    const auto& s = res.summary;
-    // Each statistic of lambda1 with its error bar (maps.hpp, RSummary); the classification adds the floor 10/n.
-    core::CsvTable csv(
-        "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
-        "frac_zero,frac_negative");
-    for (std::size_t i = 0; i < res.ensemble.r.size(); ++i)
-      csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", res.ensemble.r[i],
-                           s.min[i], s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i],
-                           s.frac_positive[i], s.frac_zero[i], s.frac_negative[i]));
-    files.text(o.name + "_summary.csv", csv.text());
-  }
+  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot(script);
   const auto written = files.commit();

@@ -40,10 +40,12 @@ struct DecimalView {
   const std::vector<std::string>* data;
 };
 
-// The CSV tables of a result as (role, text): the command line and Python's save() write each to NAME.csv (role "")
-// or NAME_role.csv, through table_file().  Results with tables have `Tables tables() const`.
+// The CSV tables of a result as (role, text): the command line and Python's save() write each to NAME.csv (role ""),
+// NAME_role.csv, or to the role itself when it is a file name ending in .csv (a name fixed by convention, e.g.
+// table_6_1_comparison.csv), through table_file().  Results with tables have `Tables tables() const`.
 using Tables = std::vector<std::pair<std::string, std::string>>;
 inline std::string table_file(const std::string& name, const std::string& role) {
+  if (role.size() > 4 && role.compare(role.size() - 4, 4, ".csv") == 0) return role;
   return name + (role.empty() ? "" : "_" + role) + ".csv";
 }
 

@@ -1,6 +1,7 @@
 // The Lyapunov requests: validation, the runs, and the description of their results.
 #include "lyapunov/requests.hpp"
 
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "core/coords.hpp"
@@ -335,6 +336,19 @@ void MapResult::describe(core::Contents& c) const {
     c.attr("float_check_disagree", float_disagree);
     if (float_disagree > 0) c.attr("float_check_first_r", float_disagree_r);
   }
+}
+
+core::Tables MapResult::tables() const {
+  if (n1 > 0) return {};  // a strip has no per-r summary
+  const auto& s = summary;
+  core::CsvTable csv(
+      "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
+      "frac_zero,frac_negative");
+  for (std::size_t i = 0; i < ensemble.r.size(); ++i)
+    csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", ensemble.r[i], s.min[i],
+                         s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i], s.frac_positive[i],
+                         s.frac_zero[i], s.frac_negative[i]));
+  return {{"summary", csv.text()}};
 }
 
 }  // namespace btob::lyapunov

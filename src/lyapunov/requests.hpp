@@ -113,6 +113,9 @@ struct MapResult {
 
   // Arrays: r [R]; lambda1, err1, lambda2, err2, chi1 [R, I] (map) or [n1, n2] (strip); summary [R].
   void describe(core::Contents& c) const;
+  // lyapunov-map: NAME_summary.csv, per r each statistic of lambda1 with its error bar and the sign fractions (the
+  // classification adds the floor 10/n); lyapunov-strip: none.
+  core::Tables tables() const;
 };
 
 // Some r values of a map (items: ascending indices into linspace(r-min, r-max, r-count)): the exponents of their
