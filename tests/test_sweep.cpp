@@ -167,7 +167,7 @@ TEST(Sweep, HyperbolicityAnyPartitionEqualsRun) {
 
 TEST(Sweep, HyperbolicityOrbitsAnyPartitionEqualsRun) {
   // Pooled quantiles and histograms per r are rows: each r pools its own orbits only.  Degenerate orbits (NaN
-  // angles) occur at r = 0.3 (an invariant curve); 5 orbits are a partial batch of the tangent recorder.
+  // angles) occur from r = 0.2 on (invariant curves); 5 orbits are a partial batch of the tangent recorder.
   lyapunov::HyperbolicityOrbitsRequest q;
   q.r_min = 0.09, q.r_max = 0.31, q.r_count = 7, q.grid = "random:5", q.seed = 3;
   q.iterations = 200, q.transient = 100, q.backward = 100, q.bins = 12;
