@@ -1,7 +1,7 @@
 #!/bin/bash
 # Sweeps over MPI ranks (src/cli/sweep.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3 writes the data files of
-# the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files byte for byte), and a rank
-# that fails ends the job with one line naming it, a non-zero status and no files.
+# the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files and standard output byte
+# for byte), and a rank that fails ends the job with one line naming it, a non-zero status and no files.
 #
 # Usage: mpi_sweeps.sh BTOB [MPIRUN].  CI runs as root: Open MPI then wants --allow-run-as-root, given here
 # through its environment variables.  --oversubscribe: three ranks on two cores.
@@ -27,13 +27,14 @@ same() {
   local name=$1
   shift
   local ref=$TMP/$name/single
-  if ! "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$ref" --name x; then
+  mkdir -p "$TMP/$name"
+  if ! "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$ref" --name x > "$TMP/$name/single.stdout"; then
     fail "$name: the single-process run failed"
     return
   fi
   for P in 1 2 3; do
     local out=$TMP/$name/p$P
-    if ! "$MPIRUN" -n $P "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x; then
+    if ! "$MPIRUN" -n $P "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x > "$out.stdout"; then
       fail "$name: mpirun -n $P failed"
       continue
     fi
@@ -43,6 +44,7 @@ same() {
       cmp -s "$f" "$out/$(basename "$f")" || fail "$name, $P ranks: $(basename "$f") differs"
     done
     [ "$(cd "$ref" && ls)" = "$(cd "$out" && ls)" ] || fail "$name, $P ranks: other files than the single process's"
+    cmp -s "$TMP/$name/single.stdout" "$out.stdout" || fail "$name, $P ranks: another standard output"
   done
   echo "ok: $name, P = 1, 2, 3 equal to the single process"
 }
@@ -54,6 +56,12 @@ same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --i
   --lyap-iterations 400 --refine-factor 2
 same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --transient 500 --iterations 300 \
   --max-period 200 --lyap-iterations 400 --refine-factor 2
+same hyperbolicity hyperbolicity --r 0.11 --grid strip:60x30
+# r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.
+same hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
+  --iterations 1000 --transient 500 --backward 500 --bins 30
+# r = 0.3: four groups of measures (invariant curves) whose heads lie on different ranks.
+same measure measure --r 0.3 --grid random:12 --iterations 20000 --transient 1000 --bins 50
 
 # The comparison can fail: another request (one more r value) differs from the reference.
 "$BTOB" lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 24 --iterations 1000 --transient 200 --blocks 5 --threads 1 \

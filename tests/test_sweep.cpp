@@ -5,7 +5,9 @@
 #include "bifurcation/bifurcation.hpp"
 #include "core/pack.hpp"
 #include "core/sweep.hpp"
+#include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
+#include "stats/requests.hpp"
 
 #include <gtest/gtest.h>
 
@@ -146,6 +148,83 @@ TEST(Sweep, BasinsRAnyPartitionEqualsRun) {
   q.thresholds.transient = 400, q.thresholds.window = 300, q.thresholds.max_period = 200;
   q.thresholds.lyap_iterations = 400, q.thresholds.refine_factor = 2;
   expect_any_partition_equals_run(q, "basins-r");
+}
+
+TEST(Sweep, HyperbolicityAnyPartitionEqualsRun) {
+  lyapunov::HyperbolicityRequest q;
+  q.r = 0.11, q.grid = "strip:17x9", q.w1_range = "-1.5,2.5";
+  expect_any_partition_equals_run(q, "hyperbolicity");
+  core::RunControl one;
+  one.threads = 1;
+  // The expanding fraction (an attribute) is counted over the merged cells: the same for any partition.
+  const auto whole = run(q, one);
+  const auto items = random_partition(q.work_items(), 3, 7);
+  std::vector<lyapunov::HyperbolicityPart> parts;
+  for (const auto& i : items) parts.push_back(run_part(q, i, one));
+  EXPECT_EQ(merge(q, std::move(parts)).image.expanding_fraction, whole.image.expanding_fraction);
+  EXPECT_EQ(whole.image.expanding_fraction, lyapunov::strip_singular_values(0.11, 17, 9, -1.5, 2.5).expanding_fraction);
+}
+
+TEST(Sweep, HyperbolicityOrbitsAnyPartitionEqualsRun) {
+  // Pooled quantiles and histograms per r are rows: each r pools its own orbits only.  Degenerate orbits (NaN
+  // angles) occur from r = 0.2 on (invariant curves); 5 orbits are a partial batch of the tangent recorder.
+  lyapunov::HyperbolicityOrbitsRequest q;
+  q.r_min = 0.09, q.r_max = 0.31, q.r_count = 7, q.grid = "random:5", q.seed = 3;
+  q.iterations = 200, q.transient = 100, q.backward = 100, q.bins = 12;
+  expect_any_partition_equals_run(q, "hyperbolicity-orbits");
+}
+
+TEST(Sweep, HyperbolicityOrbitsPartPackRoundTrips) {
+  lyapunov::HyperbolicityOrbitsRequest q;
+  q.r_min = 0.11, q.r_max = 0.3, q.r_count = 3, q.grid = "1,-3,-1.1;1,0.1,-1";
+  q.iterations = 100, q.transient = 50, q.backward = 50, q.bins = 5;
+  core::RunControl one;
+  one.threads = 1;
+  const auto p = run_part(q, {0, 2}, one);
+  const auto u = core::unpack<lyapunov::HyperbolicityOrbitsPart>(core::pack(p));
+  EXPECT_EQ(u.items, p.items);
+  EXPECT_EQ(u.angle_histogram, p.angle_histogram);
+  EXPECT_EQ(u.orbit_degenerate, p.orbit_degenerate);
+  EXPECT_EQ(u.exponents.lambda1, p.exponents.lambda1);
+  EXPECT_EQ(u.exponents.iterations, p.exponents.iterations);
+  EXPECT_EQ(u.exponents.blocks, p.exponents.blocks);
+  EXPECT_EQ(u.threads, p.threads);
+  EXPECT_EQ(0, std::memcmp(u.angle_median.data(), p.angle_median.data(), p.angle_median.size() * sizeof(double)));
+  auto bytes = core::pack(p);
+  bytes.pop_back();
+  EXPECT_THROW(core::unpack<lyapunov::HyperbolicityOrbitsPart>(bytes), std::runtime_error);
+}
+
+TEST(Sweep, MeasureAnyPartitionEqualsRun) {
+  // r = 0.3: the 12 random orbits fall in 4 groups (invariant curves), so heads, distances and the convergence
+  // table span parts; 12 orbits are a partial batch of the kernel.
+  stats::MeasureRequest q;
+  q.r = 0.3, q.grid = "random:12", q.iterations = 3000, q.transient = 500, q.bins = 30;
+  expect_any_partition_equals_run(q, "measure");
+  q.r = 0.11, q.grid = "strip:3x4", q.coords = "angles", q.extent = {0.2, 1.2, 0.5, 2.5};  // points outside
+  expect_any_partition_equals_run(q, "measure angles extent");
+}
+
+TEST(Sweep, MeasureIsEmpiricalMeasureOfTheOrbits) {
+  // The measures counted from the bins of the parts are the ones empirical_measure gives from the orbits.
+  const auto series = stats::orbit_series(0.3, iterate::parse_grid("random:3", 1), 200, 1000, 1);
+  for (const bool zoom : {false, true}) {
+    const std::vector<double> extent = zoom ? std::vector<double>{-1, 1, -0.5, 0.5} : std::vector<double>{};
+    const stats::Measure frame = stats::measure_frame(stats::Chart::strip, 20, 10, extent);
+    for (const auto& s : series) {
+      const auto cells = stats::measure_cells(s, frame, extent.empty());
+      ASSERT_EQ(cells.size(), 1000u);
+      for (const long n : {1L, 16L, 1000L}) {
+        const stats::Measure a = stats::measure_of_cells(frame, cells.data(), n);
+        const stats::Measure b = stats::empirical_measure(s, stats::Chart::strip, 20, 10, 0, n, extent);
+        EXPECT_EQ(a.mass, b.mass);
+        EXPECT_EQ(a.outside, b.outside);
+        EXPECT_EQ(a.points, b.points);
+        EXPECT_EQ(a.u_lo, b.u_lo);
+        EXPECT_EQ(a.v_hi, b.v_hi);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // `btob hyperbolicity` (singular values of the one-step derivative over a strip grid, as an image) and
 // `btob hyperbolicity-orbits` (per r: fraction of expanding steps and CLV angles along orbits, beside lambda1):
-// the (non-)hyperbolicity of Section 8.1 (3).  Flags -> lyapunov::Hyperbolicity*Request -> run -> files.
+// the (non-)hyperbolicity of Section 8.1 (3).  Flags -> lyapunov::Hyperbolicity*Request -> run -> files; both are
+// sweeps (cli/sweep.hpp): under mpirun the ranks share the w1 columns or the r values and rank 0 writes.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "core/csv.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 
@@ -15,7 +17,9 @@ namespace btob::cli {
 namespace {
 
 void strip(const lyapunov::HyperbolicityRequest& req, const Output& o, const Context& ctx) {
-  const lyapunov::HyperbolicityResult res = lyapunov::run(req, ctx.control);
+  const auto got = sweep(req, ctx);  // every MPI rank computes its columns; rank 0 writes
+  if (!got) return;
+  const lyapunov::HyperbolicityResult& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "hyperbolicity-strip", "double");
@@ -48,7 +52,9 @@ void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, co
   Context run_ctx = ctx;
   const auto progress = terminal_progress("hyperbolicity-orbits");
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const lyapunov::HyperbolicityOrbitsResult res = lyapunov::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its r values; rank 0 writes
+  if (!got) return;
+  const lyapunov::HyperbolicityOrbitsResult& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "hyperbolicity-orbits", "double");

@@ -1,7 +1,9 @@
 // `btob correlate` (C_N along one orbit) and `btob measure` (empirical measures of many initial conditions, their
-// distances and convergence), Section 8.1 (2): flags -> stats::*Request -> run -> files.
+// distances and convergence), Section 8.1 (2): flags -> stats::*Request -> run -> files.  measure is a sweep
+// (cli/sweep.hpp): under mpirun the ranks share the initial conditions and rank 0 writes.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "core/csv.hpp"
 #include "stats/requests.hpp"
 
@@ -74,7 +76,9 @@ void measure(const stats::MeasureRequest& req, const Output& o, const Context& c
   Context run_ctx = ctx;
   const auto progress = terminal_progress("measure");
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const stats::MeasureResult res = stats::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its initial conditions' orbits; rank 0 writes
+  if (!got) return;
+  const stats::MeasureResult& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "measure", "double");

@@ -45,16 +45,64 @@ void HyperbolicityRequest::validate() const {
 
 std::string HyperbolicityRequest::default_name() const { return fmt::format("hyperbolicity_strip_r{}", r); }
 
-HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control) {
+std::size_t HyperbolicityRequest::work_items() const { return static_cast<std::size_t>(strip().n1); }
+
+HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
+                           const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
   const iterate::StripSpec s = req.strip();
+  const auto t0 = std::chrono::steady_clock::now();
+  // Cell (i, j) at i * n2 + j, as strip_singular_values (hyperbolicity.cpp) walks it: each cell the same call.
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
+  const std::size_t n2 = static_cast<std::size_t>(s.n2);
+  HyperbolicityPart p;
+  p.items = items;
+  for (auto* v : {&p.s1, &p.s2}) v->reserve(items.size() * n2);
+  p.symbol.reserve(items.size() * n2);
+  for (std::size_t i : items)
+    for (std::size_t j = 0; j < n2; ++j) {
+      const StepSingularValues sv = step_singular_values(grid.at(i * n2 + j), req.r);
+      p.s1.push_back(sv.s1);
+      p.s2.push_back(sv.s2);
+      p.symbol.push_back(static_cast<std::uint8_t>(sv.symbol));
+    }
+  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return p;
+}
+
+HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts) {
+  req.validate();
+  const iterate::StripSpec s = req.strip();
+  const std::size_t n2 = static_cast<std::size_t>(s.n2);
+  const auto order = core::item_order(parts, req.work_items());
   HyperbolicityResult res;
   res.request = req;
-  const auto t0 = std::chrono::steady_clock::now();
-  res.image = strip_singular_values(req.r, s.n1, s.n2, s.w1_min, s.w1_max);
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  StripSingularValues& m = res.image;
+  m.n1 = s.n1;
+  m.n2 = s.n2;
+  m.w1_min = s.w1_min;
+  m.w1_max = s.w1_max;
+  using V = std::vector<double>;
+  m.s1 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s1; });
+  m.s2 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s2; });
+  m.symbol = core::merge_rows<HyperbolicityPart, std::uint8_t>(
+      parts, order, n2, [](const HyperbolicityPart& p) -> const std::vector<std::uint8_t>& { return p.symbol; });
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
+  m.w1.resize(grid.size());
+  m.w2.resize(grid.size());
+  long expanding = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
+    expanding += m.s1[i] >= 1;
+  }
+  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
+  for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
   return res;
+}
+
+HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 void HyperbolicityResult::describe(core::Contents& c) const {
@@ -106,17 +154,16 @@ void HyperbolicityOrbitsRequest::validate() const {
 }
 
 namespace {
-// The CLVs of every orbit at r index ir (OpenMP, static schedule), pooled in orbit order: the same for any
-// thread count; angles only from non-degenerate orbits.
-void clv_row(HyperbolicityOrbitsResult& res, std::size_t ir, const ClvOptions& co) {
-  const auto& ens = res.ensemble;
-  const std::size_t I = ens.initial.size(), B = res.bins;
+// The CLVs of every orbit at r (OpenMP, static schedule), pooled in orbit order into row j of the part: the same
+// for any thread count and any other r in the part; angles only from non-degenerate orbits.
+void clv_row(HyperbolicityOrbitsPart& res, std::size_t j, double r, const std::vector<iterate::Vec3<double>>& initial,
+             std::size_t B, const ClvOptions& co) {
+  const std::size_t I = initial.size();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<ClvResult> clv(I);
-  const double r = ens.r[ir];
 #pragma omp parallel for schedule(static) num_threads(res.threads)
   for (long i = 0; i < static_cast<long>(I); ++i) {
-    clv[static_cast<std::size_t>(i)] = covariant_vectors<double>(ens.initial[static_cast<std::size_t>(i)], r, co);
+    clv[static_cast<std::size_t>(i)] = covariant_vectors<double>(initial[static_cast<std::size_t>(i)], r, co);
     clv[static_cast<std::size_t>(i)].symbols = {};  // only the angles are pooled below
   }
   std::vector<double> pooled, l1s;
@@ -124,7 +171,7 @@ void clv_row(HyperbolicityOrbitsResult& res, std::size_t ir, const ClvOptions& c
   long deg = 0;
   for (std::size_t i = 0; i < I; ++i) {
     const auto& c = clv[i];
-    const std::size_t o = ir * I + i;
+    const std::size_t o = j * I + i;
     res.orbit_frac_expanding[o] = c.expanding_fraction;
     res.orbit_angle_median[o] = c.degenerate ? nan : c.median_angle;
     res.orbit_angle_q05[o] = c.degenerate ? nan : c.q05_angle;
@@ -136,30 +183,29 @@ void clv_row(HyperbolicityOrbitsResult& res, std::size_t ir, const ClvOptions& c
     deg += c.degenerate;
     if (c.degenerate) continue;
     pooled.insert(pooled.end(), c.angle.begin(), c.angle.end());
-    for (std::size_t b = 0; b < B; ++b) res.angle_histogram[ir * B + b] += c.histogram[b];
+    for (std::size_t b = 0; b < B; ++b) res.angle_histogram[j * B + b] += c.histogram[b];
   }
-  res.frac_expanding[ir] = f / static_cast<double>(I);
-  res.frac_degenerate[ir] = static_cast<double>(deg) / static_cast<double>(I);
-  res.lambda1_qr_median[ir] = median(l1s);  // as lyapunov-map's median column
+  res.frac_expanding[j] = f / static_cast<double>(I);
+  res.frac_degenerate[j] = static_cast<double>(deg) / static_cast<double>(I);
+  res.lambda1_qr_median[j] = median(l1s);  // as lyapunov-map's median column
   if (!pooled.empty()) {
-    res.angle_median[ir] = quantile(pooled, 0.5);
-    res.angle_q05[ir] = quantile(pooled, 0.05);
-    res.angle_min[ir] = *std::min_element(pooled.begin(), pooled.end());
+    res.angle_median[j] = quantile(pooled, 0.5);
+    res.angle_q05[j] = quantile(pooled, 0.05);
+    res.angle_min[j] = *std::min_element(pooled.begin(), pooled.end());
   }
 }
 }  // namespace
 
-HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control) {
+HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const std::vector<std::size_t>& items,
+                                 const core::RunControl& control) {
   req.validate();
-  HyperbolicityOrbitsResult res;
-  res.request = req;
-  auto& ens = res.ensemble;
-  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  iterate::Ensemble ens;  // the part's r values with the whole request's grid
+  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
-  ens.grid_description = req.grid;
-  ens.seed = req.seed;
-  const std::size_t R = ens.r.size(), N = ens.orbits();
-  res.bins = static_cast<std::size_t>(req.bins);
+  const std::size_t R = ens.r.size(), N = ens.orbits(), B = static_cast<std::size_t>(req.bins);
+  HyperbolicityOrbitsPart res;
+  res.items = items;
   res.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (auto* v : {&res.orbit_frac_expanding, &res.orbit_angle_median, &res.orbit_angle_q05, &res.orbit_lambda1_qr,
@@ -170,13 +216,13 @@ HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core:
   res.frac_degenerate.resize(R);
   res.lambda1_qr_median.resize(R);
   for (auto* v : {&res.angle_median, &res.angle_q05, &res.angle_min}) v->assign(R, nan);
-  res.angle_histogram.assign(R * res.bins, 0.0);
+  res.angle_histogram.assign(R * B, 0.0);
   const ClvOptions co = clv_options(req);
   const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t ir = 0; ir < R; ++ir) {
+  for (std::size_t j = 0; j < R; ++j) {
     control.check_cancelled();
-    clv_row(res, ir, co);
-    if (control.progress) control.progress->update(ir + 1, R);
+    clv_row(res, j, ens.r[j], ens.initial, B, co);
+    if (control.progress) control.progress->update(j + 1, R);
   }
   res.clv_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // lambda1 beside them, from the batched tangent recorder on the same orbits (same r, same grid).
@@ -187,8 +233,65 @@ HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core:
   mo.run.threads = control.threads;
   mo.run.cancel = control.cancel;
   res.exponents = map_exponents(ens, mo);
-  res.summary = summarise(res.exponents, R, ens.initial.size());
   return res;
+}
+
+HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vector<HyperbolicityOrbitsPart> parts) {
+  req.validate();
+  HyperbolicityOrbitsResult res;
+  res.request = req;
+  auto& ens = res.ensemble;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  ens.grid_description = req.grid;
+  ens.seed = req.seed;
+  const std::size_t R = ens.r.size(), I = ens.initial.size();
+  res.bins = static_cast<std::size_t>(req.bins);
+  const auto order = core::item_order(parts, req.work_items());
+  using P = HyperbolicityOrbitsPart;
+  using V = std::vector<double>;
+  const auto rows = [&](V P::*f, std::size_t width) {
+    return core::merge_rows<P, double>(parts, order, width, [f](const P& p) -> const V& { return p.*f; });
+  };
+  res.frac_expanding = rows(&P::frac_expanding, 1);
+  res.angle_median = rows(&P::angle_median, 1);
+  res.angle_q05 = rows(&P::angle_q05, 1);
+  res.angle_min = rows(&P::angle_min, 1);
+  res.frac_degenerate = rows(&P::frac_degenerate, 1);
+  res.lambda1_qr_median = rows(&P::lambda1_qr_median, 1);
+  res.angle_histogram = rows(&P::angle_histogram, res.bins);
+  res.orbit_frac_expanding = rows(&P::orbit_frac_expanding, I);
+  res.orbit_angle_median = rows(&P::orbit_angle_median, I);
+  res.orbit_angle_q05 = rows(&P::orbit_angle_q05, I);
+  res.orbit_lambda1_qr = rows(&P::orbit_lambda1_qr, I);
+  res.orbit_lambda2_qr = rows(&P::orbit_lambda2_qr, I);
+  res.orbit_degenerate = core::merge_rows<P, std::uint8_t>(
+      parts, order, I, [](const P& p) -> const std::vector<std::uint8_t>& { return p.orbit_degenerate; });
+  OrbitExponents& e = res.exponents;
+  const auto ex = [&](V OrbitExponents::*f) {
+    return core::merge_rows<P, double>(parts, order, I, [f](const P& p) -> const V& { return p.exponents.*f; });
+  };
+  e.lambda1 = ex(&OrbitExponents::lambda1);
+  e.err1 = ex(&OrbitExponents::err1);
+  e.lambda2 = ex(&OrbitExponents::lambda2);
+  e.err2 = ex(&OrbitExponents::err2);
+  e.lambda_max = ex(&OrbitExponents::lambda_max);
+  e.err_max = ex(&OrbitExponents::err_max);
+  e.lambda_min = ex(&OrbitExponents::lambda_min);
+  e.err_min = ex(&OrbitExponents::err_min);
+  e.chi1 = ex(&OrbitExponents::chi1);
+  e.iterations = req.iterations;
+  e.blocks = 10;
+  for (const P& p : parts) {
+    res.threads = std::max(res.threads, p.threads);
+    res.clv_seconds = std::max(res.clv_seconds, p.clv_seconds);  // the slowest part
+  }
+  res.summary = summarise(res.exponents, R, I);
+  return res;
+}
+
+HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 void HyperbolicityOrbitsResult::describe(core::Contents& c) const {

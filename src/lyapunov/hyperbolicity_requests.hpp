@@ -5,6 +5,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/sweep.hpp"
 #include "iterate/ensemble.hpp"
 #include "lyapunov/hyperbolicity.hpp"
 #include "lyapunov/maps.hpp"
@@ -22,6 +23,7 @@ struct HyperbolicityRequest {
   std::string w1_range = "-2,2";      // w1 range a,b of the image, finite, a < b (w2 runs over [-1, 1])
 
   void validate() const;
+  std::size_t work_items() const;  // columns of w1 cells, N of strip:NxM (a sweep, core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)", core::required);
     v("grid", grid, "strip:NxM cells along w1 x w2");
@@ -41,6 +43,19 @@ struct HyperbolicityResult {
   void describe(core::Contents& c) const;
 };
 
+// Some w1 columns of the strip (items: ascending indices 0..N-1): the n2 cells of each, item-major.
+struct HyperbolicityPart {
+  std::vector<std::size_t> items;
+  std::vector<double> s1, s2;
+  std::vector<std::uint8_t> symbol;
+  double seconds = 0;
+  template <class A> void members(A& a) { a(items, s1, s2, symbol, seconds); }
+};
+HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
+                           const core::RunControl& control = {});
+// The columns in item order; the cell centres and the expanding fraction (counted over every cell) from them.
+HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts);
+// merge(req, {run_part(req, every column)}).
 HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control = {});
 
 // ---- CLV angles and expanding steps along orbits over r (`btob hyperbolicity-orbits`) ------------------------
@@ -55,6 +70,7 @@ struct HyperbolicityOrbitsRequest {
   int bins = 90;                       // angle histogram bins over [0, pi/2], >= 1
 
   void validate() const;
+  std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-min", r_min, "smallest r, in (0,1)");
     v("r-max", r_max, "largest r, in (0,1)");
@@ -86,6 +102,31 @@ struct HyperbolicityOrbitsResult {
   void describe(core::Contents& c) const;
 };
 
+// Some r values (items: ascending indices into linspace(r-min, r-max, r-count)): everything per r and per orbit
+// of them, item-major, and lambda1 of their orbits (the whole request's grid).  Each r's pooled statistics depend
+// on its own orbits only, so they are rows like the rest.
+struct HyperbolicityOrbitsPart {
+  std::vector<std::size_t> items;
+  std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;  // [items]
+  std::vector<double> angle_histogram;  // [items, bins]
+  std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr;
+  std::vector<std::uint8_t> orbit_degenerate;  // [items, I]
+  OrbitExponents exponents;                    // [items, I]
+  int threads = 0;
+  double clv_seconds = 0;
+  template <class A> void members(A& a) {
+    a(items, frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median, angle_histogram,
+      orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr, orbit_degenerate,
+      exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max, exponents.err_max,
+      exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations, exponents.blocks, threads,
+      clv_seconds);
+  }
+};
+HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const std::vector<std::size_t>& items,
+                                 const core::RunControl& control = {});
+// The rows in item order; the lambda1 summary per r from the merged exponents.
+HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vector<HyperbolicityOrbitsPart> parts);
+// merge(req, {run_part(req, every r)}).
 HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::lyapunov

@@ -232,18 +232,14 @@ void distances(MeasureResult& res, const std::vector<Measure>& ms) {
 
 // Convergence against N: at N = 16, 32, ..., the largest TV within each group between mu_N of its members and
 // mu_N of its first member, and the TV between mu_N of the first member and its mu at the full length.
-void convergence(MeasureResult& res, const std::vector<OrbitSeries>& series, const std::vector<Measure>& ms,
-                 Chart chart, const core::RunControl& control) {
+template <class MeasureOf>
+void convergence(MeasureResult& res, const std::vector<Measure>& ms, MeasureOf measure) {
   const MeasureRequest& a = res.request;
   const std::size_t G = res.groups();
   std::vector<long> checkpoints;
   for (long n = 16; n < a.iterations; n *= 2) checkpoints.push_back(n);
   checkpoints.push_back(a.iterations);
-  const auto measure = [&](std::size_t i, long n) {
-    return empirical_measure(series[i], chart, a.bins, a.bins, 0, n, a.extent);
-  };
   for (const long n : checkpoints) {
-    control.check_cancelled();
     res.conv_n.push_back(static_cast<double>(n));
     std::vector<Measure> heads;
     for (std::size_t g = 0; g < G; ++g) heads.push_back(measure(res.head[g], n));
@@ -260,25 +256,54 @@ void convergence(MeasureResult& res, const std::vector<OrbitSeries>& series, con
 }
 }  // namespace
 
-MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
+std::size_t MeasureRequest::work_items() const { return iterate::parse_grid(grid, seed, "grid").size(); }
+
+MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
-  MeasureResult res;
-  res.request = req;
-  const Chart chart = parse_chart(req.coords, "coords");
-  res.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  MeasurePart p;
+  p.items = items;
+  if (items.empty()) return p;  // a rank without initial conditions
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<iterate::Vec3<double>> grid = iterate::parse_grid(req.grid, req.seed, "grid");
+  std::vector<iterate::Vec3<double>> mine;  // each orbit on its own: the same for any other orbits in the run
+  for (std::size_t i : items) mine.push_back(grid.at(i));
   iterate::RunOptions opt;
   opt.threads = control.threads;
   opt.progress = control.progress;
   opt.cancel = control.cancel;
-  const auto series = orbit_series(req.r, res.initial, req.transient, req.iterations, opt);
+  const Measure frame = measure_frame(parse_chart(req.coords, "coords"), req.bins, req.bins, req.extent);
+  std::vector<OrbitSeries> series = orbit_series(req.r, mine, req.transient, req.iterations, opt);
   control.check_cancelled();
+  p.cells.reserve(items.size() * static_cast<std::size_t>(req.iterations));
+  for (auto& s : series) {
+    const std::vector<std::int32_t> c = measure_cells(s, frame, req.extent.empty());
+    p.cells.insert(p.cells.end(), c.begin(), c.end());
+    s = OrbitSeries{};  // free each orbit once binned
+  }
+  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return p;
+}
+
+MeasureResult merge(const MeasureRequest& req, std::vector<MeasurePart> parts) {
+  req.validate();
+  MeasureResult res;
+  res.request = req;
+  res.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  const std::size_t I = res.initial.size(), N = static_cast<std::size_t>(req.iterations);
+  const auto order = core::item_order(parts, I);
+  const std::vector<std::int32_t> cells = core::merge_rows<MeasurePart, std::int32_t>(
+      parts, order, N, [](const MeasurePart& p) -> const std::vector<std::int32_t>& { return p.cells; });
+  parts.clear();
+  const Measure frame = measure_frame(parse_chart(req.coords, "coords"), req.bins, req.bins, req.extent);
+  // Measure of the first n points of orbit i: bitwise empirical_measure(series i, ..., 0, n).
+  const auto measure = [&](std::size_t i, long n) { return measure_of_cells(frame, cells.data() + i * N, n); };
   std::vector<Measure> ms;
-  for (const auto& s : series) ms.push_back(empirical_measure(s, chart, req.bins, req.bins, 0, -1, req.extent));
+  for (std::size_t i = 0; i < I; ++i) ms.push_back(measure(i, req.iterations));
   res.group = group_measures(ms, req.tv_same);
   group_heads(res, ms.size());
   distances(res, ms);
-  convergence(res, series, ms, chart, control);
+  convergence(res, ms, measure);
   for (std::size_t g = 0; g < res.groups(); ++g) {
     const auto& m = ms[res.head[g]];
     for (double v : m.mass) res.counts.push_back(static_cast<std::uint32_t>(std::llround(v * static_cast<double>(m.points))));
@@ -289,6 +314,10 @@ MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
   }
   res.extent = {ms[0].u_lo, ms[0].u_hi, ms[0].v_lo, ms[0].v_hi};
   return res;
+}
+
+MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 double MeasureResult::tv_max_within_groups() const {

@@ -5,6 +5,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/sweep.hpp"
 #include "iterate/ensemble.hpp"
 #include "stats/stats.hpp"
 
@@ -79,6 +80,7 @@ struct MeasureRequest {
   double tv_same = 0.05;            // measures closer than this in total variation are one group, in (0, 1]
 
   void validate() const;
+  std::size_t work_items() const;   // the initial conditions of the grid (a sweep, core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("grid", grid, "initial conditions: paper (Section 4, 32 points), strip:NxM, random:N, x,y,z;...");
@@ -116,6 +118,20 @@ struct MeasureResult {
   void describe(core::Contents& c) const;
 };
 
+// Some initial conditions (items: ascending grid indices): the bin of every point of their orbits (stats::
+// measure_cells, -1 outside the extent), item-major [items, iterations].  Every measure of the result, at the full
+// length and at the convergence checkpoints, is counted from these bins in merge, so the orbits never travel and
+// the groups, distances and convergence are computed once, over all initial conditions in grid order.
+struct MeasurePart {
+  std::vector<std::size_t> items;
+  std::vector<std::int32_t> cells;
+  double seconds = 0;
+  template <class A> void members(A& a) { a(items, cells, seconds); }
+};
+MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items,
+                     const core::RunControl& control = {});
+MeasureResult merge(const MeasureRequest& req, std::vector<MeasurePart> parts);
+// merge(req, {run_part(req, every initial condition)}).
 MeasureResult run(const MeasureRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::stats

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -220,15 +221,15 @@ std::vector<double> Measure::marginal_v() const {
   return m;
 }
 
-Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first, long count,
-                          const std::vector<double>& extent) {
+namespace {
+void check_bins(int bins_u, int bins_v) {
   if (bins_u < 1 || bins_v < 1 || bins_u > 100000 || bins_v > 100000)
     throw std::invalid_argument(fmt::format("bins: got {}x{}, expected 1..100000 in each direction", bins_u, bins_v));
-  const long n_all = s.size();
-  if (count < 0) count = n_all - first;
-  if (first < 0 || count < 1 || first + count > n_all)
-    throw std::invalid_argument(
-        fmt::format("iterations: got points [{}, {}) of {}, expected a non-empty range", first, first + count, n_all));
+}
+}  // namespace
+
+Measure measure_frame(Chart chart, int bins_u, int bins_v, const std::vector<double>& extent) {
+  check_bins(bins_u, bins_v);
   Measure m;
   m.chart = chart;
   m.bins_u = bins_u;
@@ -244,17 +245,24 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
                                               extent.size()));
     m.u_lo = extent[0], m.u_hi = extent[1], m.v_lo = extent[2], m.v_hi = extent[3];
   }
-  const bool whole = extent.empty();
-  m.mass.assign(static_cast<std::size_t>(bins_u) * static_cast<std::size_t>(bins_v), 0);
-  m.points = count;
-  // Integer counts first, one division at the end: the masses are exact multiples of 1/N to rounding.
-  std::vector<long> counts(m.mass.size(), 0);
-  long out = 0;
-  const double su = bins_u / (m.u_hi - m.u_lo), sv = bins_v / (m.v_hi - m.v_lo);
+  return m;
+}
+
+namespace {
+void check_range(long first, long& count, long n_all) {
+  if (count < 0) count = n_all - first;
+  if (first < 0 || count < 1 || first + count > n_all)
+    throw std::invalid_argument(
+        fmt::format("iterations: got points [{}, {}) of {}, expected a non-empty range", first, first + count, n_all));
+}
+
+// Calls cell(c) with the bin i * bins_v + j of each point first..first+count-1 of s, or -1 outside the extent.
+template <class F> void each_cell(const OrbitSeries& s, const Measure& m, bool whole, long first, long count, F cell) {
+  const double su = m.bins_u / (m.u_hi - m.u_lo), sv = m.bins_v / (m.v_hi - m.v_lo);
   for (long k = first; k < first + count; ++k) {
     const double x = s.x[k], y = s.y[k], z = s.z[k];
     double u, v;
-    if (chart == Chart::strip) {
+    if (m.chart == Chart::strip) {
       u = std::atan2(y, x - z);  // atan(w1), x - z > 0 in Q
       v = (x + z) / (x - z);
     } else {
@@ -262,15 +270,52 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
       v = std::atan2(std::sqrt(x * x + z * z), -y);
     }
     if (!whole && !(u >= m.u_lo && u <= m.u_hi && v >= m.v_lo && v <= m.v_hi)) {
-      ++out;
+      cell(-1);
       continue;
     }
-    const int i = std::clamp(static_cast<int>((u - m.u_lo) * su), 0, bins_u - 1);
-    const int j = std::clamp(static_cast<int>((v - m.v_lo) * sv), 0, bins_v - 1);
-    ++counts[static_cast<std::size_t>(i) * bins_v + j];
+    const int i = std::clamp(static_cast<int>((u - m.u_lo) * su), 0, m.bins_u - 1);
+    const int j = std::clamp(static_cast<int>((v - m.v_lo) * sv), 0, m.bins_v - 1);
+    cell(static_cast<long>(i) * m.bins_v + j);
   }
+}
+
+// Integer counts first, one division at the end: the masses are exact multiples of 1/N to rounding.
+void masses(Measure& m, const std::vector<long>& counts, long out, long count) {
+  m.mass.assign(counts.size(), 0);
+  m.points = count;
   for (std::size_t b = 0; b < counts.size(); ++b) m.mass[b] = static_cast<double>(counts[b]) / static_cast<double>(count);
   m.outside = static_cast<double>(out) / static_cast<double>(count);
+}
+}  // namespace
+
+Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first, long count,
+                          const std::vector<double>& extent) {
+  check_bins(bins_u, bins_v);
+  check_range(first, count, s.size());  // the order of the checks: bins, the range, the extent
+  Measure m = measure_frame(chart, bins_u, bins_v, extent);
+  std::vector<long> counts(static_cast<std::size_t>(bins_u) * static_cast<std::size_t>(bins_v), 0);
+  long out = 0;
+  each_cell(s, m, extent.empty(), first, count, [&](long c) { c < 0 ? ++out : ++counts[static_cast<std::size_t>(c)]; });
+  masses(m, counts, out, count);
+  return m;
+}
+
+std::vector<std::int32_t> measure_cells(const OrbitSeries& s, const Measure& frame, bool whole) {
+  if (static_cast<long>(frame.bins_u) * frame.bins_v > std::numeric_limits<std::int32_t>::max())
+    throw std::invalid_argument(fmt::format("bins: got {}x{}, expected at most 2^31 - 1 cells", frame.bins_u, frame.bins_v));
+  std::vector<std::int32_t> cells;
+  cells.reserve(static_cast<std::size_t>(s.size()));
+  each_cell(s, frame, whole, 0, s.size(), [&](long c) { cells.push_back(static_cast<std::int32_t>(c)); });
+  return cells;
+}
+
+Measure measure_of_cells(const Measure& frame, const std::int32_t* cells, long count) {
+  if (count < 1) throw std::invalid_argument(fmt::format("iterations: got {} points, expected at least 1", count));
+  Measure m = frame;
+  std::vector<long> counts(static_cast<std::size_t>(m.bins_u) * static_cast<std::size_t>(m.bins_v), 0);
+  long out = 0;
+  for (long k = 0; k < count; ++k) cells[k] < 0 ? ++out : ++counts[static_cast<std::size_t>(cells[k])];
+  masses(m, counts, out, count);
   return m;
 }
 

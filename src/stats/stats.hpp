@@ -141,6 +141,12 @@ struct Measure {
 // (empty: the whole chart); points outside it count in Measure::outside.
 Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bins_v, long first = 0, long count = -1,
                           const std::vector<double>& extent = {});
+// The same in two steps, for measures of prefixes of one series and for sweeps (stats/requests.hpp, measure):
+// the frame (chart, bins and extent, no mass), the bin i * bins_v + j of every point of s (-1 outside the extent;
+// whole: no extent given) and the measure of the first `count` cells, bitwise empirical_measure(s, ..., 0, count).
+Measure measure_frame(Chart chart, int bins_u, int bins_v, const std::vector<double>& extent = {});
+std::vector<std::int32_t> measure_cells(const OrbitSeries& s, const Measure& frame, bool whole);
+Measure measure_of_cells(const Measure& frame, const std::int32_t* cells, long count);
 
 // (1/2) (sum over bins |a - b| + |a.outside - b.outside|), in [0, 1] (total variation of the binned measures).
 double total_variation(const Measure& a, const Measure& b);
