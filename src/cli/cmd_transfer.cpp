@@ -12,14 +12,6 @@
 namespace btob::cli {
 namespace {
 
-// Runs `req` with the terminal's progress bar (unless --quiet).
-template <class Req> auto run_with_progress(const Req& req, const Output& o, const Context& ctx, const char* label) {
-  core::RunControl control = ctx.control;
-  const auto progress = terminal_progress(label);
-  if (!o.quiet) control.progress = progress.get();
-  return transfer::run(req, control);
-}
-
 void transfer_body(const transfer::TransferRequest& req, const Output& o, const Context& ctx) {
   const transfer::TransferResult res = run_with_progress(req, o, ctx, "transfer");
   core::Contents c;
