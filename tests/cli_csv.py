@@ -4,8 +4,9 @@
 Runs each command that writes a CSV (files or stdout) on a small input into a temporary folder, then reads every
 CSV it finds there twice: with numpy.genfromtxt(names=True, delimiter=",", dtype=None) and with Python's csv
 module.  A CSV passes when it has one header line (no "#" line above it), every row has as many fields as the
-header (csv module), numpy reads the same number of columns and rows, and numpy's field names are the header's
-(up to the '.' numpy drops).  It also checks that two `basins` runs with different --name in one folder keep both
+header (csv module), numpy reads the same number of columns and rows, numpy's field names are the header's
+(up to the '.' numpy drops), and, in what the command line writes now, no cell spells a non-number ("nan", "inf":
+an undefined value is an empty cell, which numpy reads as nan).  It also checks that two `basins` runs with different --name in one folder keep both
 fraction tables (the old fractions.csv ignored --name).  `btob precision` is left out (its smallest run takes ~30 s): its
 CSV is checked by PrecisionTradeoff in tests/test_long_precision.cpp.
 
@@ -39,7 +40,7 @@ def run(btob, args, stdout_to=None):
             f.write(p.stdout)
 
 
-def check_csv(path):
+def check_csv(path, numbers_or_empty=False):
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     if not rows:
@@ -53,6 +54,11 @@ def check_csv(path):
     if ragged:
         fail(f"{path}: lines {ragged[:5]} have a field count other than the header's {len(header)}")
         return
+    if numbers_or_empty:
+        spelled = [(i + 1, c) for i, r in enumerate(rows[1:], 1) for c in r
+                   if c.strip().lower() in ("nan", "-nan", "inf", "-inf", "+inf", "infinity", "-infinity")]
+        if spelled:
+            fail(f"{path}: cells that spell a non-number (an undefined value is an empty cell): {spelled[:5]}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # numpy's own deprecation notices, not about the file
         try:
@@ -91,6 +97,10 @@ def check_h5(path):
                 if isinstance(v, bytes):
                     fail(f"{path}: dataset {name}: attribute {k} reads as bytes")
     return len(datasets)
+
+
+# CSVs of commands not yet moved to empty cells for undefined values: they may still spell "nan".
+SPELLS_NAN = {"hyperbolicity_orbits_summary.csv"}
 
 
 def commands(d):
@@ -153,7 +163,7 @@ def main():
                 fail(f"basins: {name} missing (two runs with different --name in one folder)")
         files = sorted(glob.glob(os.path.join(d, "**", "*.csv"), recursive=True))
         for f in files:
-            check_csv(f)
+            check_csv(f, numbers_or_empty=os.path.basename(f) not in SPELLS_NAN)
         print(f"{len(files)} CSV files checked, {len(failures)} failure(s)")
         h5 = sorted(glob.glob(os.path.join(d, "**", "*.h5"), recursive=True))
         n = sum(check_h5(f) for f in h5)

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -313,4 +314,21 @@ TEST(Csv, RowsMatchTheHeaderAndTextNeedsNoQuoting) {
   EXPECT_THROW(btob::core::CsvTable("a,b,a"), std::logic_error);
   EXPECT_THROW(btob::core::CsvTable("a,,b"), std::logic_error);
   EXPECT_EQ(btob::core::CsvTable("r,agree_min_r0.11").text(), "r,agree_min_r0.11\n");
+}
+
+// A number that is not finite is an empty cell, never "nan" or "inf"; a finite one reads back as written.
+TEST(Csv, NonFiniteNumbersAreEmptyCells) {
+  using btob::core::csv_number;
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(csv_number(std::numeric_limits<double>::quiet_NaN()), "");
+  EXPECT_EQ(csv_number(inf), "");
+  EXPECT_EQ(csv_number(-inf, "{:.6f}"), "");
+  EXPECT_EQ(csv_number(0.1), "0.10000000000000001");  // {:.17g} by default: reads back bitwise
+  EXPECT_EQ(std::stod(csv_number(0.1)), 0.1);
+  EXPECT_EQ(std::strtod(csv_number(5e-324).c_str(), nullptr), 5e-324);  // subnormals too
+  EXPECT_EQ(csv_number(0.25, "{:.6f}"), "0.250000");
+  EXPECT_EQ(csv_number(-1234.5, "{:.3g}"), "-1.23e+03");
+  btob::core::CsvTable t("r,gap");
+  t.line("0.1," + csv_number(std::nan("")));
+  EXPECT_EQ(t.text(), "r,gap\n0.1,\n");
 }

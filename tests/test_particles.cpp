@@ -14,6 +14,9 @@
 #include "reference/reference.hpp"
 
 #include <boost/multiprecision/eigen.hpp>
+#include "csv_cells.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -290,7 +293,7 @@ TEST(ParticlesRequestContract, ErrorsNameTheField) {
   EXPECT_EQ(field_of(q), "diagram-periods");
   // fields() lists every input once, under the flag's name.
   std::vector<std::string> names;
-  ok.fields([&](const char* n, auto&, const char*) { names.emplace_back(n); });
+  ok.fields([&](const char* n, auto&, const char*, auto...) { names.emplace_back(n); });
   EXPECT_EQ(names, (std::vector<std::string>{"word", "r", "periods", "precision", "start", "diagram-periods"}));
 }
 
@@ -361,4 +364,75 @@ TEST(ParticlesPatterns, ContractionFromTheExactCharacteristicPolynomial) {
     EXPECT_NEAR(s.length_contraction / rho, 1, 1e3 * eps) << c.word;
     EXPECT_NEAR(s.time_contraction / static_cast<double>(abs(l[2] / l[1])), 1, 1e3 * eps) << c.word;
   }
+}
+
+// ---- The files of `btob particles` (output.cpp), through the public API ----
+
+using btob::testing::csv_cells;
+using btob::testing::csv_column;
+using btob::testing::expect_numbers_or_empty;
+
+TEST(ParticlesFiles, ConvergenceRowsAreEveryPeriodTo99ThenTwentyPerDecade) {
+  EXPECT_TRUE(convergence_rows(0).empty());
+  for (std::size_t n : {1u, 50u, 99u, 100u}) {  // short runs: every period
+    const auto rows = convergence_rows(n);
+    ASSERT_EQ(rows.size(), n);
+    for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(rows[i], i);
+  }
+  for (std::size_t n : {101u, 1000u, 10000u, 123457u}) {
+    const auto rows = convergence_rows(n);
+    ASSERT_GE(rows.size(), 100u);
+    for (std::size_t i = 0; i < 100; ++i) EXPECT_EQ(rows[i], i) << n;  // periods 1..100
+    EXPECT_EQ(rows.back(), n - 1) << n;                                   // and the last one
+    // Beyond 100, consecutive periods k < k' (but the last) have k' = ceil(k 10^(1/20)): 20 per decade.
+    for (std::size_t i = 100; i + 1 < rows.size(); ++i) {
+      const double k = static_cast<double>(rows[i - 1] + 1), next = static_cast<double>(rows[i] + 1);
+      EXPECT_GE(next, k * std::pow(10.0, 0.05)) << n << " row " << i;
+      EXPECT_LT(next, k * std::pow(10.0, 0.05) + 1) << n << " row " << i;
+    }
+    const double decades = std::log10(static_cast<double>(n) / 100);
+    EXPECT_NEAR(static_cast<double>(rows.size() - 100), 20 * decades, 2) << n;
+  }
+}
+
+TEST(ParticlesFiles, ACollapseHasNumbersEverywhereButTheFirstTimeRatio) {
+  const ParticlesResult s = run_word("1133", 0.15, 20);
+  ASSERT_TRUE(s.sequence_ok);
+  const std::vector<std::pair<std::string, const char*>> files{
+      {s.csv(), "particles.csv"}, {s.convergence_csv(), "convergence.csv"}, {s.events_csv(), "events.csv"},
+      {s.row_csv(true), "row"}};
+  for (const auto& [csv, what] : files) expect_numbers_or_empty(csv, what);
+  const auto conv = csv_cells(s.convergence_csv());
+  ASSERT_EQ(conv.size(), 21u);  // header and 20 periods
+  EXPECT_EQ(conv[1][3], "");    // period 1 has no previous duration
+  EXPECT_NEAR(std::stod(conv[20][1]), s.length_contraction, 1e-15 * s.length_contraction);
+  const auto row = csv_cells(s.csv());
+  ASSERT_EQ(row.size(), 2u);
+  EXPECT_EQ(row[0].size(), 20u);
+  EXPECT_EQ(std::stod(row[1][7]), std::stod(fmt::format("{:.15g}", s.time_to_collapse)));
+  // The printed row is the first eight columns of particles.csv.
+  const auto printed = csv_cells(s.row_csv(false));
+  ASSERT_EQ(printed.size(), 1u);
+  EXPECT_EQ(printed[0], std::vector<std::string>(row[1].begin(), row[1].begin() + 8));
+  EXPECT_EQ(csv_cells(s.row_csv(true))[0], std::vector<std::string>(row[0].begin(), row[0].begin() + 8));
+  EXPECT_EQ(csv_cells(s.events_csv()).size(), s.events.size() / 8 + 1);
+}
+
+TEST(ParticlesFiles, NoCollapseLeavesEmptyCellsAndSaysWhy) {
+  const ParticlesResult s = run_word("132312", 0.5, 5);  // stable, not a collapse: the particles separate
+  ASSERT_FALSE(s.collapse);
+  const std::vector<std::pair<std::string, const char*>> files{
+      {s.csv(), "particles.csv"}, {s.convergence_csv(), "convergence.csv"}, {s.events_csv(), "events.csv"}};
+  for (const auto& [csv, what] : files) expect_numbers_or_empty(csv, what);
+  const auto row = csv_cells(s.csv());
+  const auto col = [&](const std::string& name) { return row[1][csv_column(row[0], name)]; };
+  for (const char* name : {"contraction", "predicted", "time_to_collapse", "velocity_predicted", "time_predicted"})
+    EXPECT_EQ(col(name), "") << name;
+  EXPECT_NE(col("failure").find("no collapse"), std::string::npos);
+  for (const auto& e : csv_cells(s.events_csv())) EXPECT_EQ(e.size(), 8u);
+  core::Contents c;
+  s.describe(c);
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("time_to_collapse")), "nan");  // JSON has no NaN
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("start")), "self-similar");
+  EXPECT_EQ(c.attrs.count("csv_empty_cells"), 1u);
 }

@@ -5,9 +5,13 @@
 #include "transfer/transfer.hpp"
 #include "transfer/transfer_impl.hpp"
 
+#include "csv_cells.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <numbers>
 
@@ -222,4 +226,110 @@ TEST(Transfer, RequestErrorsNameTheirField) {
   TransferRRequest rr;
   rr.r_max = 0.05;
   EXPECT_EQ(field(rr), "r-max");
+}
+
+// ---- The files of `btob transfer` and `btob transfer-r` (output.cpp), through the public API ----
+
+using btob::testing::csv_cells;
+using btob::testing::csv_column;
+using btob::testing::expect_numbers_or_empty;
+
+TEST(TransferFiles, TablesAndArraysOfOneRunAgreeWithTheResult) {
+  TransferRequest q;
+  q.r = 0.15;
+  q.boxes = "16x16";
+  q.samples = 4;
+  q.eigenvalues = 4;
+  q.measure_orbits = 0;
+  q.tv_bins = 16;
+  q.cycles = {"1133"};
+  const TransferResult res = run(q);
+  // spectrum.csv: one row per eigenvalue, modulus = |lambda|, the cross-check's columns empty (check-whole off).
+  const auto spec = csv_cells(res.spectrum_csv());
+  expect_numbers_or_empty(res.spectrum_csv(), "spectrum.csv");
+  ASSERT_EQ(spec.size(), res.eig_re.size() + 1);
+  for (std::size_t k = 0; k < res.eig_re.size(); ++k) {
+    const auto& row = spec[k + 1];
+    EXPECT_NEAR(std::stod(row[csv_column(spec[0], "modulus")]), std::abs(std::complex<double>(res.eig_re[k], res.eig_im[k])),
+                1e-15);
+    EXPECT_EQ(row[csv_column(spec[0], "whole_re")], "");
+  }
+  // components.csv: the Lebesgue fractions and what the projection left unabsorbed make the whole measure.
+  const auto comp = csv_cells(res.components_csv());
+  expect_numbers_or_empty(res.components_csv(), "components.csv");
+  ASSERT_EQ(comp.size(), res.components.size() + 1);
+  double total = res.unabsorbed;
+  for (std::size_t k = 1; k < comp.size(); ++k) total += std::stod(comp[k][csv_column(comp[0], "lebesgue_fraction")]);
+  EXPECT_NEAR(total, 1.0, 1e-5 * static_cast<double>(comp.size()));  // 6 decimals per fraction
+  // cycles.csv: the cycle with its points; the same points as the HDF5 array cycle_points.
+  const auto cyc = csv_cells(res.cycles_csv());
+  expect_numbers_or_empty(res.cycles_csv(), "cycles.csv");
+  ASSERT_EQ(cyc.size(), 2u);
+  EXPECT_EQ(cyc[1][csv_column(cyc[0], "word")], "1133");
+  EXPECT_EQ(std::stoul(cyc[1][csv_column(cyc[0], "points")]), res.cycles[0].a.size());
+  core::Contents c;
+  res.describe(c);
+  const core::ArrayView* pts = c.find("cycle_points");
+  ASSERT_NE(pts, nullptr);
+  EXPECT_EQ(pts->dims, (std::vector<std::size_t>{res.cycles[0].a.size(), 2}));
+  for (const char* name : {"density", "second", "component"}) {
+    const core::ArrayView* a = c.find(name);
+    ASSERT_NE(a, nullptr) << name;
+    EXPECT_EQ(a->size(), static_cast<std::size_t>(res.part.size())) << name;  // "second" too, when there is none
+  }
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("boxes")), "16x16");
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("cycle")), "1133");
+  EXPECT_EQ(std::get<std::string>(c.attrs.at("w1-range")), "-2,2");
+  EXPECT_EQ(c.attrs.count("p2_beta"), 0u);  // r = 0.15 < 3 - 2 sqrt 2: no P2 curves, no NaN in the manifest
+}
+
+TEST(TransferFiles, UndefinedValuesAcrossRAreEmptyCells) {
+  TransferRRequest q;
+  q.r_min = 0.15;  // below 3 - 2 sqrt 2: no P2 angle
+  q.r_max = 0.3;   // above it: beta = acos(-(1 - r)^2 / (4 r))
+  q.r_count = 2;
+  q.boxes = "8x8";
+  q.samples = 4;
+  q.eigenvalues = 4;
+  const TransferRResult res = run(q);
+  expect_numbers_or_empty(res.peripheral_csv(), "peripheral_r.csv");
+  expect_numbers_or_empty(res.spectrum_csv(), "spectrum_r.csv");
+  expect_numbers_or_empty(res.windows_csv(), "windows.csv");
+  const auto per = csv_cells(res.peripheral_csv());
+  ASSERT_EQ(per.size(), 3u);
+  const std::size_t beta = csv_column(per[0], "p2_beta");
+  EXPECT_EQ(per[1][beta], "");
+  EXPECT_NEAR(std::stod(per[2][beta]), std::acos(-(1 - 0.3) * (1 - 0.3) / (4 * 0.3)), 1e-15);
+  for (std::size_t i = 0; i < res.r.size(); ++i) {  // an empty gap exactly where the result has none
+    EXPECT_EQ(per[i + 1][csv_column(per[0], "gap")].empty(), !std::isfinite(res.gap[i])) << i;
+    EXPECT_EQ(per[i + 1][csv_column(per[0], "rest_modulus")].empty(), !std::isfinite(res.rest_modulus[i])) << i;
+  }
+  // spectrum_r.csv: every converged eigenvalue, none of the NaN placeholders.
+  std::size_t finite = 0;
+  for (double x : res.re) finite += std::isfinite(x);
+  EXPECT_EQ(csv_cells(res.spectrum_csv()).size(), finite + 1);
+  // windows.csv: n = 1 has no upper end; the window of n = 1 starts, and that of n = 2 ends, at 3 - 2 sqrt 2.
+  const auto win = csv_cells(res.windows_csv());
+  ASSERT_EQ(win.size(), 13u);
+  EXPECT_EQ(win[1][2], "");
+  EXPECT_NEAR(std::stod(win[1][1]), 3 - 2 * std::numbers::sqrt2, 1e-15);
+  EXPECT_NEAR(std::stod(win[2][2]), 3 - 2 * std::numbers::sqrt2, 1e-15);
+  for (std::size_t n = 2; n < win.size(); ++n) EXPECT_LT(std::stod(win[n][1]), std::stod(win[n][2])) << n;
+  core::Contents c;
+  res.describe(c);
+  EXPECT_EQ(std::get<long>(c.attrs.at("r-count")), 2);
+  EXPECT_EQ(c.find("re")->dims, (std::vector<std::size_t>{2, 4}));
+}
+
+TEST(TransferFiles, CycleItemsHoldingCommasGiveSeveralWords) {
+  TransferRequest q;  // --cycle 1322,3122 --cycle 132312, as analyses/transfer.sh passes them
+  q.cycles = {"1322,3122", "132312", ",1133,"};
+  EXPECT_EQ(q.cycle_words(), (std::vector<std::string>{"1322", "3122", "132312", "1133"}));
+  q.cycles = {"1322,14"};
+  try {
+    q.validate();
+    ADD_FAILURE() << "14 is not a word";
+  } catch (const core::InvalidField& e) {
+    EXPECT_EQ(e.field, "cycle");
+  }
 }

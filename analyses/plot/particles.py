@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Space-time diagram and animation of four particles collapsing along a periodic pattern.
 
-Usage: particles.py DIR
+Usage: particles.py [MANIFEST] DIR
 Reads DIR/events.csv (period,time,time_to_collapse,x1..x4,letter: the start of each period and every collision of
-the first periods, positions in the centre-of-mass frame, unit |p0|) and DIR/particles.json (written by
-`btob particles`); writes DIR/spacetime.png and DIR/animation.gif (Pillow writer) atomically.
+the first periods, positions in the centre-of-mass frame, unit |p0|; time_to_collapse empty without a collapse) and
+MANIFEST (default DIR/particles.json, written by `btob particles`); writes DIR/spacetime.png and DIR/animation.gif
+(Pillow writer) atomically.
 Between events the particles fly freely: positions are linear in time, hence in the time to collapse tau.
 """
 import csv
@@ -20,11 +21,16 @@ from matplotlib import animation  # noqa: E402
 COLORS = ["#1f4fd6", "#2ca02c", "#d62728", "#9467bd"]
 
 
-def read(folder):
+def number(cell):
+    """A CSV cell as a float: an empty cell (a value that is not defined) is NaN."""
+    return float(cell) if cell not in ("", None) else math.nan
+
+
+def read(folder, manifest):
     with open(os.path.join(folder, "events.csv"), newline="") as f:
-        ev = [dict(period=int(r["period"]), t=float(r["time"]), tau=float(r["time_to_collapse"]),
+        ev = [dict(period=int(r["period"]), t=float(r["time"]), tau=number(r["time_to_collapse"]),
                    x=[float(r[f"x{i}"]) for i in range(1, 5)], letter=r["letter"]) for r in csv.DictReader(f)]
-    with open(os.path.join(folder, "particles.json")) as f:
+    with open(manifest) as f:
         meta = json.load(f)
     collapse = all(math.isfinite(e["tau"]) for e in ev)
     if not collapse:  # no collapse: the time axis is the time before the last recorded collision
@@ -44,10 +50,11 @@ def positions_at(ev, tau):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: particles.py DIR")
-    folder = sys.argv[1]
-    ev, meta, collapse = read(folder)
+    if len(sys.argv) not in (2, 3):
+        sys.exit("usage: particles.py [MANIFEST] DIR")
+    folder = sys.argv[-1]
+    manifest = sys.argv[1] if len(sys.argv) == 3 else os.path.join(folder, "particles.json")
+    ev, meta, collapse = read(folder, manifest)
     rho, tq = float(meta["length_contraction"]), float(meta["time_contraction"])
     gamma = math.log(rho) / math.log(tq) if 0 < tq < 1 and 0 < rho < 1 else 1.0
     title = (f"{meta['word']} at r = {meta['r']:g}: letters {meta['letters']} per period; {meta['periods_ok']} of "

@@ -1,5 +1,8 @@
 """Peripheral spectrum of Ulam's operator across r with the gap, the thresholds and the windows.
-Usage: transfer_r.py SPECTRUM_R.csv PERIPHERAL_R.csv WINDOWS.csv PNG BOXES SAMPLES PERIPHERAL"""
+Usage: transfer_r.py SPECTRUM_R.csv PERIPHERAL_R.csv WINDOWS.csv MANIFEST.json PNG  (boxes, samples and peripheral
+from the manifest), or transfer_r.py SPECTRUM_R.csv PERIPHERAL_R.csv WINDOWS.csv PNG BOXES SAMPLES PERIPHERAL.
+Empty cells (undefined values: no gap, no P2 angle, no upper end of the window n = 1) load as NaN."""
+import json
 import sys
 
 import numpy as np
@@ -67,4 +70,9 @@ def main(spec, per, win, png, boxes, samples, tol):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:8])
+    if len(sys.argv) == 6:
+        with open(sys.argv[4]) as f:
+            m = json.load(f)
+        main(*sys.argv[1:4], sys.argv[5], m["boxes"], m["samples"], m["peripheral"])
+    else:
+        main(*sys.argv[1:8])

@@ -13,23 +13,15 @@
 namespace btob::cli {
 namespace {
 
-// Runs a request with the terminal's progress bar (unless --quiet).
-template <class Req> auto with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
-  core::RunControl control = ctx.control;
-  const auto bar = terminal_progress(label);
-  if (!o.quiet) control.progress = bar.get();
-  return windows::run(req, control);
-}
-
 void bounds(const windows::BoundsRequest& req, const Output& o, const Context& ctx) {
-  const windows::BoundsResult res = with_progress(req, o, ctx, "windows bounds");
+  const windows::BoundsResult res = run_with_progress(req, o, ctx, "windows bounds");
   std::cout << res.csv() << std::flush;
   for (const auto& c : res.certificates)
     if (!c.valid()) std::cerr << fmt::format("btob: warning: certificate of n = {} failed\n", c.n);
 }
 
 void verify(const windows::VerifyRequest& req, const Output& o, const Context& ctx) {
-  const windows::VerifyResult res = with_progress(req, o, ctx, "windows verify");
+  const windows::VerifyResult res = run_with_progress(req, o, ctx, "windows verify");
   core::Contents c;
   res.describe(c);
   // The committed n = 2..125 is verify.csv; other ranges verify_A-B.csv unless a name is given.
@@ -46,7 +38,7 @@ void verify(const windows::VerifyRequest& req, const Output& o, const Context& c
 }
 
 void precision(const windows::BoundPrecisionRequest& req, const Output& o, const Context& ctx) {
-  const windows::BoundPrecisionResult res = with_progress(req, o, ctx, "windows precision");
+  const windows::BoundPrecisionResult res = run_with_progress(req, o, ctx, "windows precision");
   core::Contents c;
   res.describe(c);
   io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));

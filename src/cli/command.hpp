@@ -82,6 +82,14 @@ inline std::string listing(const std::vector<io::fs::path>& files) {
 core::CancelToken& cancel_token();
 // The progress sink of the terminal (a bar on stderr when it is a terminal, else nothing), for one run.
 std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label);
+// Runs `req` through its module's run(request, control) (found by argument-dependent lookup) with the terminal's
+// progress bar, unless --quiet.
+template <class Req> auto run_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
+  core::RunControl control = ctx.control;
+  const auto bar = terminal_progress(label);
+  if (!o.quiet) control.progress = bar.get();
+  return run(req, control);
+}
 
 // A command runnable from a scene or a manifest: sets fields by name and runs.
 struct SceneCommand {
@@ -123,8 +131,8 @@ struct FlagBinder {
       o = app->add_option(positional ? name : "--" + name, *store, help);
       if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>)
         o->expected(1, -1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-      else
-        o->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+      else  // one value: a word after it is the next argument (`--periods 10 1133`: 1133 is the positional word)
+        o->expected(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
       const std::string d = joined(member);
       if (!d.empty()) o->default_str(d);
     }

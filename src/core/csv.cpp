@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <stdexcept>
 
 namespace btob::core {
@@ -23,6 +24,10 @@ std::string csv_text(std::string_view s) {
     }
   }
   return out;
+}
+
+std::string csv_number(double v, std::string_view spec) {
+  return std::isfinite(v) ? fmt::vformat(spec, fmt::make_format_args(v)) : std::string();
 }
 
 namespace {

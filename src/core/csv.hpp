@@ -9,6 +9,7 @@
 //   core::CsvTable t("r,fraction,pattern");
 //   t.row({fmt::format("{}", r), fmt::format("{:.6f}", f), pattern});      // every field goes through csv_text
 //   t.line(fmt::format("{},{:.6f},{}", r, f, core::csv_text(pattern)));     // or a whole line, fields counted
+//   t.line(fmt::format("{},{}", r, core::csv_number(gap)));                  // NaN or inf: an empty cell
 //   files.text("NAME.csv", t.text());
 #pragma once
 
@@ -21,6 +22,12 @@ namespace btob::core {
 
 // A text field made safe for an unquoted CSV: ',' -> ';', '"' -> '\'', '\r' and '\n' -> ' ', '#' -> "no.".
 std::string csv_text(std::string_view s);
+
+// A number as a CSV field in the format `spec` (fmt syntax, one argument: "{:.17g}", "{:.6f}"), or "" when it is NaN
+// or infinite: no cell is ever "nan" or "inf".  numpy.genfromtxt reads an empty cell of a float column as nan, the
+// csv module and pandas as a missing value; a reader that needs to know why a value is undefined finds it in the
+// result's manifest (or a column saying so).
+std::string csv_number(double v, std::string_view spec = "{:.17g}");
 
 class CsvTable {
  public:

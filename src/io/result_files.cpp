@@ -179,11 +179,11 @@ void ResultFiles::plot_figures(const std::string& script, const std::vector<std:
   args.push_back(tmp_.string());
   run_plot(script, args);
   std::error_code ec;
-  std::vector<std::string> pngs;
+  std::vector<std::string> images;
   for (const auto& e : fs::directory_iterator(tmp_, ec))
-    if (e.path().extension() == ".png") pngs.push_back(e.path().filename().string());
-  std::sort(pngs.begin(), pngs.end());  // a stable listing
-  for (const auto& f : pngs) staged(f);
+    if (e.path().extension() == ".png" || e.path().extension() == ".gif") images.push_back(e.path().filename().string());
+  std::sort(images.begin(), images.end());  // a stable listing
+  for (const auto& f : images) staged(f);
 }
 
 std::vector<fs::path> ResultFiles::commit() {

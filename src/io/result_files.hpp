@@ -43,7 +43,7 @@ class ResultFiles {
   // The same on several staged files of this result, passed in this order before NAME.png.
   void plot_inputs(const std::string& script, const std::vector<std::string>& inputs);
   // A script that draws several figures: runs it on the staged `inputs` and the staging folder (last argument),
-  // and keeps every PNG it wrote there (for figure families such as Figures 7.1-7.8).
+  // and keeps every PNG and GIF it wrote there (figure families such as Figures 7.1-7.8, animations).
   void plot_figures(const std::string& script, const std::vector<std::string>& inputs);
 
   // Moves every staged file into out/ (creating it), the manifest last; returns the final paths.  Throws with

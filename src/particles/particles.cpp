@@ -109,6 +109,7 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   res.r = req.r;
   res.periods = req.periods;
   res.precision = req.precision;
+  res.start = req.start;
   // Moduli of M_w (squares of those of J M_h when w = h J(h)).
   std::vector<T> mod;
   for (const auto& e : v.spectrum) mod.push_back(v.reduced ? T(e.modulus * e.modulus) : e.modulus);

@@ -3,6 +3,7 @@
 
 #include "core/map.hpp"
 #include "core/request.hpp"
+#include "core/result.hpp"
 
 #include <Eigen/Core>
 
@@ -83,7 +84,7 @@ struct ParticlesRequest {
 
   void validate() const;  // throws core::InvalidField; a word with no feasible periodic point at r is refused
   template <class V> void fields(V&& v) {
-    v("word", word, "periodic word over 1,2,3 (132312, 132^3312^3, (ab)(cb)(acb))");
+    v("word", word, "periodic word over 1,2,3 (132312, 132^3312^3, (ab)(cb)(acb))", core::positional);
     v("r", r, "restitution coefficient in (0, 1)");
     v("periods", periods, "periods simulated (rescaled every period), 1..1e8");
     v("precision", precision, "double, long-double, float128 or mpfr:D (D digits, 10..10000)");
@@ -100,6 +101,7 @@ struct ParticlesResult {
   double r = 0;
   long periods = 0;
   std::string precision;
+  std::string start;         // the request's start
   bool sequence_ok = false;  // every period's letters matched
   long periods_ok = 0;
   std::string failure;
@@ -124,7 +126,23 @@ struct ParticlesResult {
   // |p0| (centre-of-mass frame, collapse point 0).
   std::vector<double> events;
   double seconds = 0;
+
+  // What `btob particles` writes (output.cpp); every value that is not a finite number is an empty cell.
+  static const char* row_header();  // word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse
+  std::string row() const;          // those columns, one line without its end
+  std::string row_csv(bool header) const;  // the printed row, with its header line first if asked
+  std::string csv() const;          // particles.csv: the row's columns, then digits, outcome, ..., failure
+  std::string convergence_csv() const;  // period,length_ratio,velocity_ratio,time_ratio at convergence_rows()
+  std::string events_csv() const;   // period,time,time_to_collapse,x1,x2,x3,x4,letter
+  // Arrays length_ratio, velocity_ratio, time_ratio, events, moduli; the summary as attributes (JSON has no NaN:
+  // a value that is not finite is the string "nan", "inf" or "-inf").
+  void describe(core::Contents& c) const;
+  std::string summary() const;      // the line printed on stderr
 };
+
+// The periods (0-based) convergence.csv lists out of `periods`: every one up to 100, then about 20 per decade
+// (the next at ceil(k 10^(1/20)) after period k), and the last.
+std::vector<std::size_t> convergence_rows(std::size_t periods);
 
 ParticlesResult run(const ParticlesRequest& request, const core::RunControl& control = {});
 

@@ -7,6 +7,7 @@
 #include "iterate/ensemble.hpp"
 #include "patterns/patterns.hpp"
 #include "stats/stats.hpp"
+#include "windows/windows.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -460,6 +461,17 @@ void check_common(double r, const std::string& boxes, const std::string& domain,
 }
 }  // namespace
 
+std::vector<std::string> TransferRequest::cycle_words() const {
+  std::vector<std::string> words;
+  for (const auto& item : cycles)
+    for (std::size_t at = 0; at <= item.size();) {
+      const std::size_t end = std::min(item.find(',', at), item.size());
+      if (end > at) words.push_back(item.substr(at, end - at));
+      at = end + 1;
+    }
+  return words;
+}
+
 void TransferRequest::validate() const {
   check_common(r, boxes, domain, samples, eigenvalues, route, "r");
   if (!(near_one > 0 && near_one < 1)) throw core::InvalidField("near-one", str(near_one), "a distance in (0, 1)");
@@ -474,7 +486,7 @@ void TransferRequest::validate() const {
   const auto [n1, n2] = parse_boxes(boxes);
   if (tv_bins < 1 || n1 % tv_bins != 0 || n2 % tv_bins != 0)
     throw core::InvalidField("tv-bins", std::to_string(tv_bins), fmt::format("a divisor of both {} and {}", n1, n2));
-  for (const auto& w : cycles) patterns::parse_word(w, "cycle");
+  for (const auto& w : cycle_words()) patterns::parse_word(w, "cycle");
   if (measure_orbits > 0)
     iterate::checked_bytes(static_cast<std::size_t>(measure_orbits * measure_orbits) * 2 *
                                static_cast<std::size_t>(measure_iterations),
@@ -746,7 +758,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     break;
   }
   // Cycles: the boxes of the exact periodic points and the mass around them.
-  for (const auto& w : q.cycles) {
+  for (const auto& w : q.cycle_words()) {
     CycleCheck cc;
     cc.word = w;
     const auto v = patterns::analyse<double>(patterns::parse_word(w, "cycle"), q.r);
@@ -831,6 +843,12 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     res.tv_coarse = stats::total_variation(coarsen(ul, q.tv_bins, q.tv_bins), coarsen(emp, q.tv_bins, q.tv_bins));
     res.measure_points = emp.points;
   }
+  // The arrays of the HDF5 file: "second" all 0 when there is no such eigenvalue, the Lebesgue fractions, the
+  // (a, b) of every cycle point.
+  if (res.second.empty()) res.second.assign(res.density.size(), 0);
+  for (const auto& ci : res.components) res.lebesgue.push_back(ci.lebesgue);
+  for (const auto& cc : res.cycles)
+    for (std::size_t k = 0; k < cc.a.size(); ++k) res.cycle_points.push_back(cc.a[k]), res.cycle_points.push_back(cc.b[k]);
   res.seconds_total = seconds_since(t0);
   return res;
 }
@@ -865,11 +883,15 @@ TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
       if (1 - m < q.peripheral) ++per, min_per = std::min(min_per, m);
       else if (!(max_rest >= m)) max_rest = m;
     }
-    res.peripheral_count.push_back(per);
-    res.closed_classes.push_back(static_cast<int>(d.classes.size()));
+    res.peripheral_count.push_back(static_cast<std::uint32_t>(per));
+    res.closed_classes.push_back(static_cast<std::uint32_t>(d.classes.size()));
     res.rest_modulus.push_back(max_rest);
     res.gap.push_back(per > 0 && std::isfinite(max_rest) ? min_per - max_rest : std::numeric_limits<double>::quiet_NaN());
     if (c.progress) c.progress->update(ir + 1, R);
+  }
+  for (int n = 1; n <= 12; ++n) {
+    res.window_lower.push_back(static_cast<double>(windows::window_lower_bound(n, 12)));
+    res.window_upper.push_back(n >= 2 ? static_cast<double>(windows::r_crit2(n, 20)) : std::numeric_limits<double>::quiet_NaN());
   }
   res.seconds = seconds_since(t0);
   return res;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/request.hpp"
+#include "core/result.hpp"
 
 #include <complex>
 #include <cstdint>
@@ -119,6 +120,8 @@ struct TransferRequest {
   // their boxes and on the 3x3 neighbourhoods of those boxes, and the component hosting each.
   std::vector<std::string> cycles;
   bool check_whole = false;         // also run Spectra on the whole matrix (cross-check; doubles the time)
+  // The words of `cycles`, in order: an item holding commas gives several (--cycle 1322,3122,132^3312^3).
+  std::vector<std::string> cycle_words() const;
   void validate() const;            // throws core::InvalidField
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)");
@@ -181,7 +184,8 @@ struct TransferResult {
   // Sign structure of the leading real eigenvector with 0 < lambda < 1 - 1e-9 (almost-invariant sets).
   double second_value = 0;
   int second_block = 0;
-  std::vector<double> second;          // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block)
+  std::vector<double> second;          // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block; all 0
+                                       // when there is no such eigenvalue)
   double second_positive_mass = 0, second_negative_mass = 0;  // L1 mass of the two signs, sum 1
   long second_positive_boxes = 0, second_negative_boxes = 0;
   // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
@@ -190,6 +194,16 @@ struct TransferResult {
   long measure_points = 0;
   double seconds_matrix = 0, seconds_spectrum = 0, seconds_total = 0;
   std::size_t matrix_bytes = 0;
+  std::vector<double> lebesgue;        // per component: components[k].lebesgue
+  std::vector<double> cycle_points;    // (a, b) of every point of every cycle, the cycles in order (rows of 2)
+
+  // What `btob transfer` writes (output.cpp).  Arrays density, second, component, eig_re, eig_im, lebesgue,
+  // cycle_points; attributes: the request's fields under their flag names, the partition, the summary numbers.
+  void describe(core::Contents& c) const;
+  std::string spectrum_csv() const;    // k,re,im,modulus,block,whole_re,whole_im,whole_modulus (whole_*: check-whole)
+  std::string components_csv() const;  // component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2
+  std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
+  std::string summary() const;         // the lines printed on stderr
 };
 TransferResult run(const TransferRequest& q, const core::RunControl& c = {});
 
@@ -221,11 +235,21 @@ struct TransferRResult {
   std::vector<double> r;
   long K = 0;
   std::vector<double> re, im;          // r.size() x K row-major (NaN where fewer converged)
-  std::vector<int> peripheral_count;   // per r
-  std::vector<int> closed_classes;     // per r
+  std::vector<std::uint32_t> peripheral_count;  // per r
+  std::vector<std::uint32_t> closed_classes;    // per r
   std::vector<double> gap;             // min |peripheral| - max |rest| (NaN when no rest within K)
   std::vector<double> rest_modulus;    // max |lambda| outside the peripheral set
+  // The windows [root of Q_n, r_crit,2(n)] of (ab)^n(cb)^n (src/windows), n = 1..12 (narrower windows are below
+  // the resolution of any r grid we draw); n = 1 has no r_crit,2 (NaN).
+  std::vector<double> window_lower, window_upper;
   double seconds = 0;
+
+  // What `btob transfer-r` writes (output.cpp); every value that is not a finite number is an empty cell.
+  void describe(core::Contents& c) const;
+  std::string spectrum_csv() const;    // r,k,re,im,modulus: every converged eigenvalue
+  std::string peripheral_csv() const;  // r,peripheral_count,closed_classes,rest_modulus,gap,p2_beta
+  std::string windows_csv() const;     // n,lower,upper
+  std::string summary() const;
 };
 TransferRResult run(const TransferRRequest& q, const core::RunControl& c = {});
 
