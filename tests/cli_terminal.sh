@@ -44,7 +44,7 @@ for f in csv h5 json png; do
 done
 
 tty_run "$out/particles.log" particles 1133 --r 0.15 --periods 20 --out "$out/p"
-expect_line "$out/particles.log" "wrote .*particles\.csv.*particles\.json.*spacetime\.png" \
+expect_line "$out/particles.log" "wrote .*particles\.csv.*spacetime\.png.*particles\.json" \
   "particles names its files, PNG included"
 
 tty_run "$out/transfer.log" transfer --r 0.15 --boxes 16x16 --samples 4 --eigenvalues 4 --measure-orbits 2 \

@@ -208,15 +208,17 @@ def test_windows_precision_values(tmp_path):
 
 
 def test_save_writes_what_the_command_line_replays(tmp_path):
-    """res.save writes NAME.h5 and NAME.json like the command line; `btob run NAME.json` reproduces the arrays."""
+    """res.save writes NAME.h5, NAME.json and the summary table like the command line; `btob run NAME.json`
+    reproduces the arrays and the table byte for byte."""
     import subprocess
     from conftest import exe
     res = btob.lyapunov_map(r_min=0.1, r_max=0.2, r_count=5, grid="random:3", iterations=600, transient=60)
     written = res.save(tmp_path / "a", name="mine", plot=False)
-    assert sorted(os.path.basename(w) for w in written) == ["mine.h5", "mine.json"]
+    assert sorted(os.path.basename(w) for w in written) == ["mine.h5", "mine.json", "mine_summary.csv"]
     p = subprocess.run([exe(), "run", str(tmp_path / "a" / "mine.json"), "--out", str(tmp_path / "b"), "--no-plot",
                         "--quiet"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     with h5py.File(tmp_path / "b" / "mine.h5", "r") as f:
         for k in f.keys():
             same_array(getattr(res, k), f[k][...])
+    assert (tmp_path / "a" / "mine_summary.csv").read_bytes() == (tmp_path / "b" / "mine_summary.csv").read_bytes()

@@ -35,19 +35,6 @@ void strip(const lyapunov::HyperbolicityRequest& req, const Output& o, const Con
   if (!o.quiet) std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", img.s1.size(), res.seconds, listing(written));
 }
 
-// NAME_summary.csv: the per-r columns.
-std::string orbits_summary(const lyapunov::HyperbolicityOrbitsResult& res) {
-  core::CsvTable csv(
-      "r,frac_expanding,angle_median,angle_q05,angle_min,frac_degenerate,lambda1_median,lambda1_frac_positive,"
-      "lambda1_qr_median");
-  const auto& sm = res.summary;
-  for (std::size_t i = 0; i < res.ensemble.r.size(); ++i)
-    csv.line(fmt::format("{:.9f},{:.5f},{:.6g},{:.6g},{:.6g},{:.4f},{:.6g},{:.4f},{:.6g}", res.ensemble.r[i],
-                         res.frac_expanding[i], res.angle_median[i], res.angle_q05[i], res.angle_min[i],
-                         res.frac_degenerate[i], sm.median[i], sm.frac_positive[i], res.lambda1_qr_median[i]));
-  return csv.text();
-}
-
 void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, const Context& ctx) {
   Context run_ctx = ctx;
   const auto progress = terminal_progress("hyperbolicity-orbits");
@@ -60,7 +47,7 @@ void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, co
   const io::Attrs at = ctx.attrs(o, c, "hyperbolicity-orbits", "double");
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  files.text(o.name + "_summary.csv", orbits_summary(res));
+  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("hyperbolicity_orbits.py");
   const auto written = files.commit();

@@ -2,6 +2,7 @@
 #include "lyapunov/hyperbolicity_requests.hpp"
 
 #include "core/coords.hpp"
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "lyapunov/lyapunov.hpp"
 
@@ -329,6 +330,18 @@ void HyperbolicityOrbitsResult::describe(core::Contents& c) const {
   c.attr("degenerate", std::string("lambda1 - lambda2 < 10 / iterations (forward QR): CLV angle undefined, left out"));
   c.attr("lambda1_source", std::string("lyapunov::map_exponents (batched tangent recorder), 10 blocks"));
   c.attr("clv_seconds", clv_seconds);
+}
+
+core::Tables HyperbolicityOrbitsResult::tables() const {
+  core::CsvTable csv(
+      "r,frac_expanding,angle_median,angle_q05,angle_min,frac_degenerate,lambda1_median,lambda1_frac_positive,"
+      "lambda1_qr_median");
+  const auto g = [](double v) { return core::csv_number(v, "{:.6g}"); };
+  for (std::size_t i = 0; i < ensemble.r.size(); ++i)
+    csv.line(fmt::format("{:.9f},{:.5f},{},{},{},{:.4f},{},{:.4f},{}", ensemble.r[i], frac_expanding[i],
+                         g(angle_median[i]), g(angle_q05[i]), g(angle_min[i]), frac_degenerate[i], g(summary.median[i]),
+                         summary.frac_positive[i], g(lambda1_qr_median[i])));
+  return {{"summary", csv.text()}};
 }
 
 }  // namespace btob::lyapunov

@@ -100,6 +100,9 @@ struct HyperbolicityOrbitsResult {
   double clv_seconds = 0;
 
   void describe(core::Contents& c) const;
+  // NAME_summary.csv: per r the expanding and degenerate fractions, the CLV angle's median, 5% quantile and minimum
+  // (empty cells where every orbit is degenerate: no angle is defined), lambda1's median and sign fraction.
+  core::Tables tables() const;
 };
 
 // Some r values (items: ascending indices into linspace(r-min, r-max, r-count)): everything per r and per orbit
