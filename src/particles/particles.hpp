@@ -134,6 +134,9 @@ struct ParticlesResult {
   std::string csv() const;          // particles.csv: the row's columns, then digits, outcome, ..., failure
   std::string convergence_csv() const;  // period,length_ratio,velocity_ratio,time_ratio at convergence_rows()
   std::string events_csv() const;   // period,time,time_to_collapse,x1,x2,x3,x4,letter
+  core::Tables tables() const {     // NAME.csv, convergence.csv, events.csv
+    return {{"", csv()}, {"convergence.csv", convergence_csv()}, {"events.csv", events_csv()}};
+  }
   // Arrays length_ratio, velocity_ratio, time_ratio, events, moduli; the summary as attributes (JSON has no NaN:
   // a value that is not finite is the string "nan", "inf" or "-inf").
   void describe(core::Contents& c) const;

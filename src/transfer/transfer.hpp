@@ -203,6 +203,11 @@ struct TransferResult {
   std::string spectrum_csv() const;    // k,re,im,modulus,block,whole_re,whole_im,whole_modulus (whole_*: check-whole)
   std::string components_csv() const;  // component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2
   std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
+  core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv (when cycles were asked for)
+    core::Tables t{{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
+    if (!cycles.empty()) t.emplace_back("cycles.csv", cycles_csv());
+    return t;
+  }
   std::string summary() const;         // the lines printed on stderr
 };
 TransferResult run(const TransferRequest& q, const core::RunControl& c = {});
@@ -249,6 +254,9 @@ struct TransferRResult {
   std::string spectrum_csv() const;    // r,k,re,im,modulus: every converged eigenvalue
   std::string peripheral_csv() const;  // r,peripheral_count,closed_classes,rest_modulus,gap,p2_beta
   std::string windows_csv() const;     // n,lower,upper
+  core::Tables tables() const {
+    return {{"spectrum_r.csv", spectrum_csv()}, {"peripheral_r.csv", peripheral_csv()}, {"windows.csv", windows_csv()}};
+  }
   std::string summary() const;
 };
 TransferRResult run(const TransferRRequest& q, const core::RunControl& c = {});
