@@ -95,7 +95,7 @@ std::vector<std::string> save(const ResultBase& r, const std::string& out, const
   args.emplace_back("name", std::vector<std::string>{name});
   args.emplace_back("title", std::vector<std::string>{title});
   io::ResultFiles files(out, name);
-  for (const auto& [role, text] : r.tables) files.text(core::table_file(name, role), text);
+  files.tables(r.tables);
   if (!r.contents.arrays.empty()) files.h5(r.contents, at);
   files.manifest(at, r.command, args);  // lists the files staged so far
   if (plot && !r.plot.empty()) {

@@ -37,7 +37,7 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins", "double");
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot_inputs("attractors_basins.py", {o.name + ".h5", o.name + "_fractions.csv"});
@@ -84,7 +84,7 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins-r", "double");
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("attractors_fractions_r.py");

@@ -47,7 +47,7 @@ void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, co
   const io::Attrs at = ctx.attrs(o, c, "hyperbolicity-orbits", "double");
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("hyperbolicity_orbits.py");
   const auto written = files.commit();

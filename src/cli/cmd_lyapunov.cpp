@@ -68,7 +68,7 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   ex.apply(at);
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot(script);
   const auto written = files.commit();

@@ -26,7 +26,7 @@ void body(const ParticlesCommand& req, const Output& o, const Context& ctx) {
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "particles", res.precision);
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   ctx.manifest(files, at);  // before the plot, which reads it
   if (!o.no_plot) files.plot_figures("particles.py", {o.name + ".json"});
   const auto written = files.commit();

@@ -25,7 +25,7 @@ void atlas_body(const patterns::AtlasRequest& req, const Output& o, const Contex
   res.describe(c);
   io::Attrs at = ctx.attrs(o, c, req.feasible ? "patterns-feasible-atlas" : "patterns-atlas", "double");
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   at["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ctx.manifest(files, at);

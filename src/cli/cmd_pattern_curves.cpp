@@ -20,7 +20,7 @@ void body(const patterns::CurvesRequest& req, const Output& o, const Context& ct
   io::Attrs at = ctx.attrs(o, c, "pattern-curves", "double (spectrum in long double)");
   at["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // plot excluded
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot_figures("pattern_curves.py", {o.name + ".h5", o.name + "_critical.csv"});

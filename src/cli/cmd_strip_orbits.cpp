@@ -39,7 +39,7 @@ void body(const StripOrbitsCommand& req, const Output& o, const Context& ctx) {
   at["plot_w1"] = req.plot_w1;
   at["only"] = req.only;
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot_inputs("strip_orbits.py", {o.name + ".h5", o.name + ".csv"});

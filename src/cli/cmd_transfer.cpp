@@ -18,7 +18,7 @@ void transfer_body(const transfer::TransferRequest& req, const Output& o, const 
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "transfer", "double");
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot_inputs("transfer.py", {o.name + ".h5", "spectrum.csv"});
@@ -32,7 +32,7 @@ void transfer_r_body(const transfer::TransferRRequest& req, const Output& o, con
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "transfer-r", "double");
   io::ResultFiles files(o.out, o.name);
-  for (const auto& [role, text] : res.tables()) files.text(core::table_file(o.name, role), text);
+  files.tables(res.tables());
   ctx.manifest(files, at);  // before the plot, which reads boxes, samples and peripheral from it
   if (!o.no_plot)
     files.plot_inputs("transfer_r.py", {"spectrum_r.csv", "peripheral_r.csv", "windows.csv", o.name + ".json"});

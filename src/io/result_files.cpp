@@ -63,6 +63,10 @@ void ResultFiles::text(const std::string& filename, const std::string& content) 
   if (!f) throw_file_error("cannot write", final_path(filename), {});
 }
 
+void ResultFiles::tables(const core::Tables& t) {
+  for (const auto& [role, content] : t) text(core::table_file(name_, role), content);
+}
+
 namespace {
 template <class V> const H5::PredType& h5_type() {
   if constexpr (std::is_same_v<V, double>) return H5::PredType::NATIVE_DOUBLE;

@@ -32,6 +32,8 @@ class ResultFiles {
   void h5(const core::Contents& c, const Attrs& attrs);
   // A text file (CSV, ...).
   void text(const std::string& filename, const std::string& content);
+  // A result's CSV tables (core::Tables), each to its core::table_file(NAME, role).
+  void tables(const core::Tables& t);
   // NAME.json: the attributes, and the request that made the result as {"command": ..., "args": {...}}.
   void manifest(const Attrs& attrs, const std::string& command,
                 const std::vector<std::pair<std::string, std::vector<std::string>>>& args);
