@@ -4,6 +4,7 @@
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
+#include "core/sweep.hpp"
 #include "windows/direct.hpp"
 
 #include <fmt/format.h>
@@ -23,6 +24,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 void progress(const core::RunControl& control, std::size_t done, std::size_t total) {
   if (control.progress) control.progress->update(done, total);
 }
+
+// The items of a sweep over `range`, checked (a part names only n of its request).
+void check_items(const std::vector<std::size_t>& items, const NRange& range) {
+  for (std::size_t i : items)
+    if (i >= static_cast<std::size_t>(range.count())) throw std::logic_error("windows sweep: item beyond the n range");
+}
 }  // namespace
 
 NRange parse_n_range(std::string_view text, int min_n, const std::string& field) {
@@ -41,20 +48,42 @@ void PolyRequest::validate() const {
     throw core::InvalidField("form", "'" + form + "'", "developed, factorised or both");
 }
 
-PolyResult run(const PolyRequest& req, const core::RunControl& control) {
+std::size_t PolyRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
+
+PolyPart run_part(const PolyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   const NRange r = parse_n_range(req.n, 1, "n");
-  PolyResult res;
-  for (int n = r.first; n <= r.last; ++n) {
+  check_items(items, r);
+  PolyPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
     control.check_cancelled();
-    const RationalPoly q = window_polynomial(n);
-    res.n.push_back(static_cast<std::uint32_t>(n));
-    res.degree.push_back(static_cast<std::uint32_t>(q.degree()));
-    res.developed.push_back(req.form != "factorised" ? q.developed() : "");
-    res.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
-    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
+    const RationalPoly q = window_polynomial(r.n_of(items[j]));
+    part.degree.push_back(static_cast<std::uint32_t>(q.degree()));
+    part.developed.push_back(req.form != "factorised" ? q.developed() : "");
+    part.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
+    progress(control, j + 1, items.size());
+  }
+  return part;
+}
+
+PolyResult merge(const PolyRequest& req, std::vector<PolyPart> parts) {
+  const NRange r = parse_n_range(req.n, 1, "n");
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  PolyResult res;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    PolyPart& p = parts[order[i].part];
+    const std::size_t j = order[i].index;
+    res.n.push_back(static_cast<std::uint32_t>(r.n_of(i)));
+    res.degree.push_back(p.degree.at(j));
+    res.developed.push_back(std::move(p.developed.at(j)));
+    res.factorised.push_back(std::move(p.factorised.at(j)));
   }
   return res;
+}
+
+PolyResult run(const PolyRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string PolyResult::text() const {
@@ -81,33 +110,71 @@ void BoundsRequest::validate() const {
   require_digits(digits);
 }
 
-BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
+std::size_t BoundsRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
+
+BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   const NRange r = parse_n_range(req.n, 1, "n");
-  BoundsResult res;
-  res.digits = req.digits;
-  res.certified_run = req.certify;
-  for (int n = r.first; n <= r.last; ++n) {
+  check_items(items, r);
+  BoundsPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
     control.check_cancelled();
+    const int n = r.n_of(items[j]);
     const mpfr_float lo = window_lower_bound(n, req.digits);
-    res.n.push_back(static_cast<std::uint32_t>(n));
-    res.lower_text.push_back(fixed(lo, req.digits));
-    res.lower_bound.push_back(static_cast<double>(lo));
+    part.lower_text.push_back(fixed(lo, req.digits));
+    part.lower_bound.push_back(static_cast<double>(lo));
     if (n >= 2) {
       const mpfr_float up = r_crit2(n, req.digits + 5);
-      res.upper_text.push_back(fixed(up, req.digits));
-      res.upper_bound.push_back(static_cast<double>(up));
+      part.upper_text.push_back(fixed(up, req.digits));
+      part.upper_bound.push_back(static_cast<double>(up));
     } else {
-      res.upper_text.emplace_back();
-      res.upper_bound.push_back(std::nan(""));
+      part.upper_text.emplace_back();
+      part.upper_bound.push_back(std::nan(""));
     }
     if (req.certify) {
       const Certificate cert = certify_lower_bound(n, req.digits);
-      // a, b = k / 10^D exactly: their D decimals, printed from MPFR with 20 guard digits.
-      const auto dec = [&](const mpq_class& q) {
-        core::MpfrDigits guard(req.digits + 20);
-        return fixed(mpfr_float(q.get_mpq_t()), req.digits);
-      };
+      part.a.push_back(cert.a.get_str());  // canonical p/q: mpq_class reads it back exactly
+      part.b.push_back(cert.b.get_str());
+      part.sign_a.push_back(cert.sign_a);
+      part.sign_b.push_back(cert.sign_b);
+      part.roots_0_a.push_back(cert.roots_0_a);
+      part.roots_a_b.push_back(cert.roots_a_b);
+    }
+    progress(control, j + 1, items.size());
+  }
+  return part;
+}
+
+BoundsResult merge(const BoundsRequest& req, std::vector<BoundsPart> parts) {
+  const NRange r = parse_n_range(req.n, 1, "n");
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  BoundsResult res;
+  res.digits = req.digits;
+  res.certified_run = req.certify;
+  // a, b = k / 10^D exactly: their D decimals, printed from MPFR with 20 guard digits.
+  const auto dec = [&](const mpq_class& q) {
+    core::MpfrDigits guard(req.digits + 20);
+    return fixed(mpfr_float(q.get_mpq_t()), req.digits);
+  };
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    BoundsPart& p = parts[order[i].part];
+    const std::size_t j = order[i].index;
+    res.n.push_back(static_cast<std::uint32_t>(r.n_of(i)));
+    res.lower_text.push_back(std::move(p.lower_text.at(j)));
+    res.upper_text.push_back(std::move(p.upper_text.at(j)));
+    res.lower_bound.push_back(p.lower_bound.at(j));
+    res.upper_bound.push_back(p.upper_bound.at(j));
+    if (req.certify) {
+      Certificate cert;
+      cert.n = r.n_of(i);
+      cert.decimals = req.digits;
+      cert.a = mpq_class(p.a.at(j));
+      cert.b = mpq_class(p.b.at(j));
+      cert.sign_a = p.sign_a.at(j);
+      cert.sign_b = p.sign_b.at(j);
+      cert.roots_0_a = p.roots_0_a.at(j);
+      cert.roots_a_b = p.roots_a_b.at(j);
       res.a_text.push_back(dec(cert.a));
       res.b_text.push_back(dec(cert.b));
       res.sign_a.push_back(cert.sign_a);
@@ -115,11 +182,14 @@ BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
       res.roots_0_a.push_back(static_cast<double>(cert.roots_0_a));
       res.roots_a_b.push_back(static_cast<double>(cert.roots_a_b));
       res.valid.push_back(cert.valid() ? 1 : 0);
-      res.certificates.push_back(cert);
+      res.certificates.push_back(std::move(cert));
     }
-    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
   }
   return res;
+}
+
+BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string BoundsResult::csv() const {
@@ -235,38 +305,69 @@ void VerifyRequest::validate() const {
     throw core::InvalidField("precision", "'" + precision + "'", "double or long-double");
 }
 
-VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
+std::size_t VerifyRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 2, "n").count()); }
+
+namespace {
+VerifyOptions verify_options(const VerifyRequest& req, int threads) {
+  VerifyOptions o;
+  o.base_iterations = req.iterations;
+  o.per_n = req.per_n;
+  o.tail = req.tail;
+  o.long_double = req.precision == "long-double";
+  o.threads = threads;
+  return o;
+}
+}  // namespace
+
+VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   req.validate();
+  const NRange range = parse_n_range(req.n, 2, "n");
+  check_items(items, range);
+  const VerifyOptions options = verify_options(req, control.threads);
+  VerifyPart part;
+  part.items = items;
+  // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
+  for (std::size_t j = 0; j < items.size(); ++j) {
+    control.check_cancelled();
+    const int n = range.n_of(items[j]);
+    const std::vector<VerifyRow> rows = verify_windows(n, n, options);
+    if (rows.size() != 4) throw std::logic_error("windows verify: not 4 rows per n");  // merge places 4 per item
+    part.rows.insert(part.rows.end(), rows.begin(), rows.end());
+    progress(control, j + 1, items.size());
+  }
+  part.seconds = seconds_since(t0);
+  return part;
+}
+
+VerifyResult merge(const VerifyRequest& req, std::vector<VerifyPart> parts) {
   VerifyResult res;
   res.range = parse_n_range(req.n, 2, "n");
-  res.options.base_iterations = req.iterations;
-  res.options.per_n = req.per_n;
-  res.options.tail = req.tail;
-  res.options.long_double = req.precision == "long-double";
-  res.options.threads = control.threads;
-  // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
-  for (int n = res.range.first; n <= res.range.last; ++n) {
-    control.check_cancelled();
-    for (const auto& row : verify_windows(n, n, res.options)) {
-      res.passed += row.pass();
-      ++res.total;
-      res.rows.push_back(row);
-      res.n.push_back(static_cast<std::uint32_t>(row.n));
-      res.position.push_back(static_cast<std::uint32_t>(res.rows.size() - 1) % 4);
-      res.r.push_back(row.r);
-      res.lower.push_back(row.lower);
-      res.upper.push_back(row.upper);
-      res.iterations_run.push_back(static_cast<std::uint32_t>(row.iterations));
-      res.orbits.push_back(static_cast<std::uint32_t>(row.orbits));
-      res.on_pattern.push_back(static_cast<std::uint32_t>(row.on_pattern));
-      res.expected_on.push_back(row.expected_on ? 1 : 0);
-      res.pass.push_back(row.pass() ? 1 : 0);
-    }
-    progress(control, static_cast<std::size_t>(n - res.range.first + 1), static_cast<std::size_t>(res.range.count()));
+  res.options = verify_options(req, 0);
+  const auto order = core::item_order(parts, static_cast<std::size_t>(res.range.count()));
+  for (const auto& p : parts) res.total_seconds += p.seconds;
+  res.rows = core::merge_rows<VerifyPart, VerifyRow>(
+      parts, order, 4, [](const VerifyPart& p) -> const std::vector<VerifyRow>& { return p.rows; });
+  for (std::size_t k = 0; k < res.rows.size(); ++k) {
+    const VerifyRow& row = res.rows[k];
+    res.passed += row.pass();
+    ++res.total;
+    res.n.push_back(static_cast<std::uint32_t>(row.n));
+    res.position.push_back(static_cast<std::uint32_t>(k % 4));
+    res.r.push_back(row.r);
+    res.lower.push_back(row.lower);
+    res.upper.push_back(row.upper);
+    res.iterations_run.push_back(static_cast<std::uint32_t>(row.iterations));
+    res.orbits.push_back(static_cast<std::uint32_t>(row.orbits));
+    res.on_pattern.push_back(static_cast<std::uint32_t>(row.on_pattern));
+    res.expected_on.push_back(row.expected_on ? 1 : 0);
+    res.pass.push_back(row.pass() ? 1 : 0);
   }
-  res.total_seconds = seconds_since(t0);
   return res;
+}
+
+VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string VerifyResult::csv() const {
