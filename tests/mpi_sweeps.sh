@@ -53,6 +53,32 @@ same() {
   echo "ok: $name, P = 1, 2, 3 equal to the single process"
 }
 
+# same_columns NAME X_COLUMNS SUMMARY_COLUMNS ARGS...: like same for a command whose CSV files x.csv and
+# x_summary.csv hold timings: those columns (cut -d, -f lists) compared, the h5 datasets of none (no x.h5).
+same_columns() {
+  local name=$1 cols=$2 summary_cols=$3
+  shift 3
+  local ref=$TMP/$name/single
+  mkdir -p "$TMP/$name"
+  if ! "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$ref" --name x > /dev/null; then
+    fail "$name: the single-process run failed"
+    return
+  fi
+  [ "$(wc -l < "$ref/x.csv")" -gt 1 ] || fail "$name: no rows in x.csv"
+  for P in 1 2 3; do
+    local out=$TMP/$name/p$P
+    if ! "$MPIRUN" -n $P "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x > /dev/null; then
+      fail "$name: mpirun -n $P failed"
+      continue
+    fi
+    cmp -s <(cut -d, -f"$cols" "$ref/x.csv") <(cut -d, -f"$cols" "$out/x.csv") || fail "$name, $P ranks: x.csv differs"
+    cmp -s <(cut -d, -f"$summary_cols" "$ref/x_summary.csv") <(cut -d, -f"$summary_cols" "$out/x_summary.csv") ||
+      fail "$name, $P ranks: x_summary.csv differs"
+    [ "$(cd "$ref" && ls)" = "$(cd "$out" && ls)" ] || fail "$name, $P ranks: other files than the single process's"
+  done
+  echo "ok: $name, P = 1, 2, 3 equal to the single process (timings aside)"
+}
+
 # same_stdout NAME ARGS...: a command that prints its result (no files), P = 1, 2, 3 against the single process.
 same_stdout() {
   local name=$1
@@ -91,6 +117,8 @@ same measure measure --r 0.3 --grid random:12 --iterations 20000 --transient 100
 same_stdout windows-poly windows poly --n 1..7
 same_stdout windows-bounds windows bounds --n 1..20 --certify --digits 15
 same windows-verify windows verify --n 2..7 --iterations 2000 --per-n 10 --tail 1000
+# The precision study's seconds columns time each bound: compared without them (x.csv's last column, the summary's).
+same_columns windows-precision 1-6 1-4 windows precision --n 1..8 --mpfr-digits 20
 # Length 7: 5 words of length <= 7 stable; the check's 33 r values are items too (their patterns and counts).
 same pattern-atlas pattern atlas --max-length 7 --ics 40 --iterations 2000 --tail 500 --max-period 200
 same pattern-atlas-feasible pattern atlas --feasible --max-length 5

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -275,6 +276,35 @@ TEST(Sweep, WindowsVerifyAnyPartitionEqualsRun) {
     EXPECT_EQ(a.passed, b.passed) << what;
     EXPECT_EQ(a.total, b.total) << what;
   });
+}
+
+TEST(Sweep, WindowsPrecisionAnyPartitionEqualsRun) {
+  // The seconds column times each bound: compared without it.  The summary's largest n are derived in merge.
+  windows::BoundPrecisionRequest q;
+  q.n = "1..9", q.mpfr_digits = 20;
+  core::RunControl one;
+  one.threads = 1;
+  const auto whole = run(q, one);
+  std::vector<windows::BoundPrecisionPart> parts;
+  for (const auto& items : random_partition(q.work_items(), 3, 11))
+    parts.push_back(core::unpack<windows::BoundPrecisionPart>(core::pack(run_part(q, items, one))));
+  const auto merged = merge(q, std::move(parts));
+  ASSERT_EQ(whole.rows.size(), merged.rows.size());
+  for (std::size_t i = 0; i < whole.rows.size(); ++i) {
+    const auto &a = whole.rows[i], &b = merged.rows[i];
+    EXPECT_EQ(a.precision + a.route, b.precision + b.route) << i;
+    EXPECT_EQ(a.n, b.n) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.value), std::bit_cast<std::uint64_t>(b.value)) << a.precision << " n = " << a.n;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.abs_error), std::bit_cast<std::uint64_t>(b.abs_error)) << a.precision << " n = " << a.n;
+    EXPECT_EQ(a.correct_12, b.correct_12) << a.precision << " n = " << a.n;
+  }
+  ASSERT_EQ(whole.summary.size(), 10u);
+  ASSERT_EQ(merged.summary.size(), 10u);
+  for (std::size_t k = 0; k < 10; ++k) {
+    EXPECT_EQ(whole.summary[k].largest_all, merged.summary[k].largest_all) << whole.summary[k].precision;
+    EXPECT_EQ(whole.summary[k].largest_any, merged.summary[k].largest_any) << whole.summary[k].precision;
+  }
+  EXPECT_EQ(whole.correct_12, merged.correct_12);
 }
 
 // The atlas's tables are where its words and the check's patterns are: they must agree byte for byte.

@@ -1,5 +1,5 @@
 // `btob windows poly|bounds|thresholds|stripes|verify|precision`: flags -> windows::*Request -> run -> stdout or
-// files.  poly, bounds and verify are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n values and
+// files.  poly, bounds, verify and precision are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n values and
 // rank 0 prints or writes.
 #include "cli/app.hpp"
 #include "cli/command.hpp"
@@ -52,7 +52,9 @@ void verify(const windows::VerifyRequest& req, const Output& o, const Context& c
 }
 
 void precision(const windows::BoundPrecisionRequest& req, const Output& o, const Context& ctx) {
-  const windows::BoundPrecisionResult res = run_with_progress(req, o, ctx, "windows precision");
+  const auto got = sweep_with_progress(req, o, ctx, "windows precision");
+  if (!got) return;
+  const windows::BoundPrecisionResult& res = *got;
   core::Contents c;
   res.describe(c);
   io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));

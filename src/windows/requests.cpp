@@ -12,6 +12,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <optional>
 
 namespace btob::windows {
@@ -416,69 +417,99 @@ void BoundPrecisionRequest::validate() const {
     throw core::InvalidField("mpfr-digits", std::to_string(mpfr_digits), "10..1000");
 }
 
+std::size_t BoundPrecisionRequest::work_items() const {
+  return static_cast<std::size_t>(parse_n_range(n, 1, "n").count());
+}
+
 namespace {
-// One precision and route over n = first..last against the certified values `exact`; `mpfr_digits` > 0 for the
-// MPFR row (its working precision, held by a guard for each bound).
+// The rows of the study, in the order of nesting of BoundPrecisionResult::rows: route, then precision.
+constexpr Route study_routes[] = {Route::matrix, Route::polynomial};
+constexpr int study_precisions = 5;  // float, double, long-double, float128, mpfr:D
+std::string precision_name(int k, int mpfr_digits) {
+  static const char* names[] = {"float", "double", "long-double", "float128"};
+  return k < 4 ? std::string(names[k]) : fmt::format("mpfr:{}", mpfr_digits);
+}
+
+// One bound of precision T by `route` against the certified value `exact`; `mpfr_digits` > 0 for the MPFR row (its
+// working precision, held by a guard for the bound).
 template <class T>
-void study(const std::string& name, Route route, const NRange& r, const std::vector<mpfr_float>& exact, int mpfr_digits,
-           BoundPrecisionResult& res, const core::RunControl& control) {
-  int largest_all = 0, largest_any = 0;
-  bool prefix = true;
-  double total_s = 0;
-  for (int n = r.first; n <= r.last; ++n) {
-    control.check_cancelled();
-    std::optional<core::MpfrDigits> working;
-    if (mpfr_digits > 0) working.emplace(mpfr_digits);
-    const auto t0 = std::chrono::steady_clock::now();
-    const T v = window_lower_bound_in<T>(n, route);
-    const double s = seconds_since(t0);
-    working.reset();
-    total_s += s;
-    core::MpfrDigits sixty(60);  // the error against the 40-decimal reference
-    const mpfr_float err = abs(mpfr_float(v) - exact[static_cast<std::size_t>(n - r.first)]);
-    const bool finite = std::isfinite(static_cast<double>(v));
-    // Correct to 12 decimals: within half a unit of the 12th decimal of the certified value.
-    const bool ok = finite && err <= mpfr_float("5e-13");
-    if (ok) largest_any = n;
-    prefix = prefix && ok;
-    if (prefix) largest_all = n;
-    BoundPrecisionRow row;
-    row.precision = name;
-    row.route = route_name(route);
-    row.n = n;
-    row.value = static_cast<double>(v);
-    row.abs_error = finite ? static_cast<double>(err) : std::nan("");
-    row.correct_12 = ok;
-    row.seconds = s;
-    res.rows.push_back(row);
-  }
-  res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+void study(Route route, int n, const mpfr_float& exact, int mpfr_digits, BoundPrecisionPart& part) {
+  std::optional<core::MpfrDigits> working;
+  if (mpfr_digits > 0) working.emplace(mpfr_digits);
+  const auto t0 = std::chrono::steady_clock::now();
+  const T v = window_lower_bound_in<T>(n, route);
+  const double s = seconds_since(t0);
+  working.reset();
+  core::MpfrDigits sixty(60);  // the error against the 40-decimal reference
+  const mpfr_float err = abs(mpfr_float(v) - exact);
+  const bool finite = std::isfinite(static_cast<double>(v));
+  // Correct to 12 decimals: within half a unit of the 12th decimal of the certified value.
+  const bool ok = finite && err <= mpfr_float("5e-13");
+  part.value.push_back(static_cast<double>(v));
+  part.abs_error.push_back(finite ? static_cast<double>(err) : std::nan(""));
+  part.correct_12.push_back(ok ? 1 : 0);
+  part.seconds.push_back(s);
 }
 }  // namespace
 
-BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control) {
+BoundPrecisionPart run_part(const BoundPrecisionRequest& req, const std::vector<std::size_t>& items,
+                            const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   req.validate();
+  const NRange r = parse_n_range(req.n, 1, "n");
+  check_items(items, r);
+  BoundPrecisionPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
+    control.check_cancelled();
+    const int n = r.n_of(items[j]);
+    const mpfr_float exact = window_lower_bound(n, 40);
+    for (const Route route : study_routes) {
+      study<float>(route, n, exact, 0, part);
+      study<double>(route, n, exact, 0, part);
+      study<long double>(route, n, exact, 0, part);
+      study<core::float128>(route, n, exact, 0, part);
+      study<mpfr_float>(route, n, exact, req.mpfr_digits, part);
+    }
+    progress(control, j + 1, items.size());
+  }
+  part.total_seconds = seconds_since(t0);
+  return part;
+}
+
+BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPrecisionPart> parts) {
   BoundPrecisionResult res;
   const NRange r = parse_n_range(req.n, 1, "n");
   res.range = r;
-  std::vector<mpfr_float> exact;
-  for (int n = r.first; n <= r.last; ++n) exact.push_back(window_lower_bound(n, 40));
-  const std::string mp = fmt::format("mpfr:{}", req.mpfr_digits);
-  std::size_t step = 0;
-  for (auto route : {Route::matrix, Route::polynomial}) {
-    progress(control, step++, 10);
-    study<float>("float", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<double>("double", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<long double>("long-double", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<core::float128>("float128", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<mpfr_float>(mp, route, r, exact, req.mpfr_digits, res, control);
-  }
-  progress(control, 10, 10);
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  constexpr std::size_t per_n = std::size(study_routes) * study_precisions;
+  for (const auto& p : parts) res.total_seconds += p.total_seconds;
+  std::size_t k = 0;  // route x precision row
+  for (const Route route : study_routes)
+    for (int prec = 0; prec < study_precisions; ++prec, ++k) {
+      const std::string name = precision_name(prec, req.mpfr_digits);
+      int largest_all = 0, largest_any = 0;
+      bool prefix = true;
+      double total_s = 0;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const BoundPrecisionPart& p = parts[order[i].part];
+        const std::size_t at = order[i].index * per_n + k;
+        BoundPrecisionRow row;
+        row.precision = name;
+        row.route = route_name(route);
+        row.n = r.n_of(i);
+        row.value = p.value.at(at);
+        row.abs_error = p.abs_error.at(at);
+        row.correct_12 = p.correct_12.at(at) != 0;
+        row.seconds = p.seconds.at(at);
+        total_s += row.seconds;
+        if (row.correct_12) largest_any = row.n;
+        prefix = prefix && row.correct_12;
+        if (prefix) largest_all = row.n;
+        res.rows.push_back(row);
+      }
+      res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+    }
   for (const auto& row : res.rows) {
     res.value.push_back(row.value);
     res.abs_error.push_back(row.abs_error);
@@ -486,8 +517,11 @@ BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunContro
     res.correct_12.push_back(row.correct_12 ? 1 : 0);
   }
   for (int n = r.first; n <= r.last; ++n) res.n.push_back(static_cast<std::uint32_t>(n));
-  res.total_seconds = seconds_since(t0);
   return res;
+}
+
+BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string BoundPrecisionResult::csv() const {

@@ -206,6 +206,7 @@ struct BoundPrecisionRequest {
   int mpfr_digits = 32;      // digits of the MPFR row, 10..1000
 
   void validate() const;
+  std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("n", n, "A..B, n >= 1");
     v("mpfr-digits", mpfr_digits, "digits of the MPFR row");
@@ -237,6 +238,21 @@ struct BoundPrecisionResult {
   std::string summary_csv() const;  // precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound
   void describe(core::Contents& c) const;
 };
+// Some n of the range (items ascending, n = first + item): per n its 10 bounds, route-major then precision (float,
+// double, long-double, float128, mpfr:D), as in BoundPrecisionResult::rows; and the part's seconds.
+struct BoundPrecisionPart {
+  std::vector<std::size_t> items;
+  std::vector<double> value, abs_error, seconds;  // [items x 10]
+  std::vector<std::uint8_t> correct_12;
+  double total_seconds = 0;
+  template <class A> void members(A& a) { a(items, value, abs_error, seconds, correct_12, total_seconds); }
+};
+BoundPrecisionPart run_part(const BoundPrecisionRequest& req, const std::vector<std::size_t>& items,
+                            const core::RunControl& control = {});
+// The rows and the summary (largest n correct from the first on, and at all) from the parts; total_seconds is
+// the parts' seconds summed.
+BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPrecisionPart> parts);
+// merge(req, {run_part(req, every n)}).
 BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::windows
