@@ -7,11 +7,14 @@
 #include "core/sweep.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
+#include "patterns/requests.hpp"
 #include "stats/requests.hpp"
+#include "windows/requests.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -54,8 +57,13 @@ std::vector<std::vector<std::size_t>> random_partition(std::size_t n, std::size_
   return p;
 }
 
-// run() against merge() of the parts of several partitions, each part sent through pack/unpack.
-template <class Req> void expect_any_partition_equals_run(const Req& req, const std::string& what) {
+// run() against merge() of the parts of several partitions, each part sent through pack/unpack; `same_text`
+// compares what the arrays do not hold (decimal text, CSV tables) of the whole run and a merged one.
+struct NoText {
+  template <class R> void operator()(const R&, const R&, const std::string&) const {}
+};
+template <class Req, class Text = NoText>
+void expect_any_partition_equals_run(const Req& req, const std::string& what, Text same_text = {}) {
   core::RunControl one;
   one.threads = 1;
   const auto whole = run(req, one);
@@ -65,7 +73,9 @@ template <class Req> void expect_any_partition_equals_run(const Req& req, const 
     std::vector<Part> got;
     for (const auto& items : random_partition(n, parts, parts))
       got.push_back(core::unpack<Part>(core::pack(run_part(req, items, one))));
-    expect_same_arrays(whole, merge(req, std::move(got)), what + ", " + std::to_string(parts) + " parts");
+    const auto merged = merge(req, std::move(got));
+    expect_same_arrays(whole, merged, what + ", " + std::to_string(parts) + " parts");
+    same_text(whole, merged, what + ", " + std::to_string(parts) + " parts");
   }
 }
 
@@ -225,6 +235,104 @@ TEST(Sweep, MeasureIsEmpiricalMeasureOfTheOrbits) {
       }
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Sweep, WindowsPolyAnyPartitionEqualsRun) {
+  windows::PolyRequest q;
+  q.n = "2..9";
+  expect_any_partition_equals_run(q, "windows poly", [](const auto& a, const auto& b, const std::string& what) {
+    EXPECT_EQ(a.text(), b.text()) << what;
+  });
+}
+
+TEST(Sweep, WindowsBoundsAnyPartitionEqualsRun) {
+  // The certificates' brackets travel as exact rationals: the merged CSV prints the same a, b and root counts.
+  windows::BoundsRequest q;
+  q.n = "1..14", q.digits = 15, q.certify = true;
+  const auto text = [](const auto& a, const auto& b, const std::string& what) {
+    EXPECT_EQ(a.csv(), b.csv()) << what;
+    ASSERT_EQ(a.certificates.size(), b.certificates.size()) << what;
+    for (std::size_t i = 0; i < a.certificates.size(); ++i) {
+      EXPECT_EQ(a.certificates[i].a, b.certificates[i].a) << what << ", n = " << a.n[i];
+      EXPECT_EQ(a.certificates[i].b, b.certificates[i].b) << what << ", n = " << a.n[i];
+      EXPECT_EQ(a.certificates[i].decimals, b.certificates[i].decimals) << what << ", n = " << a.n[i];
+      EXPECT_TRUE(b.certificates[i].valid()) << what << ", n = " << a.n[i];
+    }
+  };
+  expect_any_partition_equals_run(q, "windows bounds --certify", text);
+  q.n = "5..11", q.certify = false;
+  expect_any_partition_equals_run(q, "windows bounds", text);
+}
+
+TEST(Sweep, WindowsVerifyAnyPartitionEqualsRun) {
+  windows::VerifyRequest q;
+  q.n = "2..7", q.iterations = 2000, q.per_n = 10, q.tail = 1000;
+  expect_any_partition_equals_run(q, "windows verify", [](const auto& a, const auto& b, const std::string& what) {
+    EXPECT_EQ(a.csv(), b.csv()) << what;
+    EXPECT_EQ(a.passed, b.passed) << what;
+    EXPECT_EQ(a.total, b.total) << what;
+  });
+}
+
+TEST(Sweep, WindowsPrecisionAnyPartitionEqualsRun) {
+  // The seconds column times each bound: compared without it.  The summary's largest n are derived in merge.
+  windows::BoundPrecisionRequest q;
+  q.n = "1..9", q.mpfr_digits = 20;
+  core::RunControl one;
+  one.threads = 1;
+  const auto whole = run(q, one);
+  std::vector<windows::BoundPrecisionPart> parts;
+  for (const auto& items : random_partition(q.work_items(), 3, 11))
+    parts.push_back(core::unpack<windows::BoundPrecisionPart>(core::pack(run_part(q, items, one))));
+  const auto merged = merge(q, std::move(parts));
+  ASSERT_EQ(whole.rows.size(), merged.rows.size());
+  for (std::size_t i = 0; i < whole.rows.size(); ++i) {
+    const auto &a = whole.rows[i], &b = merged.rows[i];
+    EXPECT_EQ(a.precision + a.route, b.precision + b.route) << i;
+    EXPECT_EQ(a.n, b.n) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.value), std::bit_cast<std::uint64_t>(b.value)) << a.precision << " n = " << a.n;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.abs_error), std::bit_cast<std::uint64_t>(b.abs_error)) << a.precision << " n = " << a.n;
+    EXPECT_EQ(a.correct_12, b.correct_12) << a.precision << " n = " << a.n;
+  }
+  ASSERT_EQ(whole.summary.size(), 10u);
+  ASSERT_EQ(merged.summary.size(), 10u);
+  for (std::size_t k = 0; k < 10; ++k) {
+    EXPECT_EQ(whole.summary[k].largest_all, merged.summary[k].largest_all) << whole.summary[k].precision;
+    EXPECT_EQ(whole.summary[k].largest_any, merged.summary[k].largest_any) << whole.summary[k].precision;
+  }
+  EXPECT_EQ(whole.correct_12, merged.correct_12);
+}
+
+// The atlas's tables are where its words and the check's patterns are: they must agree byte for byte.
+void expect_same_tables(const patterns::AtlasResult& a, const patterns::AtlasResult& b, const std::string& what) {
+  EXPECT_EQ(a.tables(), b.tables()) << what;
+  EXPECT_EQ(a.words_scanned, b.words_scanned) << what;
+  EXPECT_EQ(a.stable_words, b.stable_words) << what;
+  EXPECT_EQ(a.detected, b.detected) << what;
+  EXPECT_EQ(a.disagreements, b.disagreements) << what;
+  EXPECT_EQ(a.missed, b.missed) << what;
+  EXPECT_EQ(a.followed_agree, b.followed_agree) << what;
+  EXPECT_EQ(a.followed_checked, b.followed_checked) << what;
+}
+
+TEST(Sweep, PatternAtlasAnyPartitionEqualsRun) {
+  // Items: the words of length <= 6, then Table 6.1's 33 r values of the check (patterns longer than 6 found).
+  patterns::AtlasRequest q;
+  q.max_length = 6, q.ics = 20, q.iterations = 1500, q.tail = 400, q.max_period = 150;
+  const auto text = [](const auto& a, const auto& b, const std::string& what) { expect_same_tables(a, b, what); };
+  expect_any_partition_equals_run(q, "pattern atlas", text);
+  core::RunControl one;
+  one.threads = 1;
+  const auto whole = run(q, one);
+  EXPECT_GT(whole.detected, 0);
+  EXPECT_EQ(q.work_items(), static_cast<std::size_t>(whole.words_scanned) + patterns::table_6_1_r().size());
+  q.feasible = true, q.max_length = 5;  // unstable orbits followed per word, in its part
+  expect_any_partition_equals_run(q, "pattern atlas --feasible", text);
+  EXPECT_GT(run(q, one).followed_checked, 0);
 }
 
 }  // namespace

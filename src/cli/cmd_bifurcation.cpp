@@ -33,13 +33,14 @@ void warn(const bifurcation::Request& req, const bifurcation::Result& res) {
 
 void body(const bifurcation::Request& req, const Output& o, const Context& ctx) {
   const auto t0 = std::chrono::steady_clock::now();
-  const extras::Extras ex = extras::of(req);  // the overlays: unknown names fail first
+  extras::check(req);  // unknown overlay names fail first; the lines are computed after the run, on rank 0
   Context run_ctx = ctx;
   const auto progress = terminal_progress("bifurcation " + o.name);
   if (!o.quiet) run_ctx.control.progress = progress.get();
   const auto got = sweep(req, run_ctx);  // every MPI rank computes its share; rank 0 writes
   if (!got) return;
   const bifurcation::Result& res = *got;
+  const extras::Extras ex = extras::of(req);
   warn(req, res);
   core::Contents c;
   res.describe(c);

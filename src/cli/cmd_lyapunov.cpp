@@ -52,7 +52,7 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
 // Runs a map or strip request and writes NAME.h5, NAME.json (and for a map NAME_summary.csv), then the plot.
 template <class Req>
 void maps(const Req& req, const Output& o, const Context& ctx, const std::string& kind, const std::string& script) {
-  const extras::Extras ex = extras::of(req);  // the overlays (maps): unknown names fail first
+  extras::check(req);  // unknown overlay names fail first; the lines are computed after the run, on rank 0
   Context run_ctx = ctx;
   const auto progress = terminal_progress(kind);
   if (!o.quiet) run_ctx.control.progress = progress.get();
@@ -61,6 +61,7 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   else got = lyapunov::run(req, run_ctx.control);
   if (!got) return;
   const lyapunov::MapResult& res = *got;
+  const extras::Extras ex = extras::of(req);
   core::Contents c;
   res.describe(c);
   ex.add_to(c);

@@ -1,8 +1,10 @@
 // `btob pattern`: flags -> patterns::WordRequest (verdict of one word at r, its stability set, its exact
 // characteristic polynomial; printed on stdout) or patterns::AtlasRequest (`btob pattern atlas`: the atlas of
-// stable patterns and its check against the iterator, or every feasible periodic orbit; files).
+// stable patterns and its check against the iterator, or every feasible periodic orbit; files).  The atlas is a
+// sweep (cli/sweep.hpp): under mpirun the ranks share the words and the check's r values, and rank 0 writes.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "patterns/requests.hpp"
 
 #include <fmt/format.h>
@@ -19,7 +21,9 @@ void word_body(const patterns::WordRequest& req, const Output&, const Context& c
 
 void atlas_body(const patterns::AtlasRequest& req, const Output& o, const Context& ctx) {
   const auto t0 = std::chrono::steady_clock::now();
-  const patterns::AtlasResult res = patterns::run(req, ctx.control);
+  const auto got = sweep(req, ctx);
+  if (!got) return;
+  const patterns::AtlasResult& res = *got;
   if (!o.quiet) std::cerr << "btob: " << res.summary() << "\n";
   core::Contents c;
   res.describe(c);

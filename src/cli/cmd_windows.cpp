@@ -1,8 +1,10 @@
 // `btob windows poly|bounds|thresholds|stripes|verify|precision`: flags -> windows::*Request -> run -> stdout or
-// files.
+// files.  poly, bounds, verify and precision are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n values and
+// rank 0 prints or writes.
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "extras/extras.hpp"
 #include "windows/requests.hpp"
 
@@ -13,15 +15,27 @@
 namespace btob::cli {
 namespace {
 
+// sweep() with a progress bar on standard error (rank 0 only: the others are quiet): the result on rank 0.
+template <class Req> auto sweep_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
+  Context run_ctx = ctx;
+  const auto bar = terminal_progress(label);
+  if (!o.quiet) run_ctx.control.progress = bar.get();
+  return sweep(req, run_ctx);
+}
+
 void bounds(const windows::BoundsRequest& req, const Output& o, const Context& ctx) {
-  const windows::BoundsResult res = run_with_progress(req, o, ctx, "windows bounds");
+  const auto got = sweep_with_progress(req, o, ctx, "windows bounds");
+  if (!got) return;
+  const windows::BoundsResult& res = *got;
   std::cout << res.csv() << std::flush;
   for (const auto& c : res.certificates)
     if (!c.valid()) std::cerr << fmt::format("btob: warning: certificate of n = {} failed\n", c.n);
 }
 
 void verify(const windows::VerifyRequest& req, const Output& o, const Context& ctx) {
-  const windows::VerifyResult res = run_with_progress(req, o, ctx, "windows verify");
+  const auto got = sweep_with_progress(req, o, ctx, "windows verify");
+  if (!got) return;
+  const windows::VerifyResult& res = *got;
   core::Contents c;
   res.describe(c);
   // The committed n = 2..125 is verify.csv; other ranges verify_A-B.csv unless a name is given.
@@ -38,7 +52,9 @@ void verify(const windows::VerifyRequest& req, const Output& o, const Context& c
 }
 
 void precision(const windows::BoundPrecisionRequest& req, const Output& o, const Context& ctx) {
-  const windows::BoundPrecisionResult res = run_with_progress(req, o, ctx, "windows precision");
+  const auto got = sweep_with_progress(req, o, ctx, "windows precision");
+  if (!got) return;
+  const windows::BoundPrecisionResult& res = *got;
   core::Contents c;
   res.describe(c);
   io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));
@@ -63,7 +79,7 @@ struct Registration {
     command<windows::PolyRequest>(
         "windows poly", "Q_n = r^2n P_n(r) P_n(1/r) - r^2n exactly, developed and factorised (Table B.2)",
         Output::to_stdout(), [](const windows::PolyRequest& req, const Output&, const Context& ctx) {
-          std::cout << windows::run(req, ctx.control).text();
+          if (const auto res = sweep(req, ctx)) std::cout << res->text();
         });
     command<windows::BoundsRequest>(
         "windows bounds", "CSV n,lower_bound,upper_bound (Table B.1); --certify adds exact certificates",

@@ -38,11 +38,16 @@ std::string overlay_names() {
   return s;
 }
 
+void check_overlays(const std::vector<std::string>& names) {
+  for (const auto& n : names)
+    if (!overlays().count(n)) throw core::InvalidField("overlay", "'" + n + "'", "one of " + overlay_names());
+}
+
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max) {
+  check_overlays(names);
   std::vector<double> out;
   for (const auto& n : names) {
     auto it = overlays().find(n);
-    if (it == overlays().end()) throw core::InvalidField("overlay", "'" + n + "'", "one of " + overlay_names());
     for (const auto& [r, colour] : it->second(r_min, r_max))
       if (r >= r_min && r <= r_max) {
         out.push_back(r);

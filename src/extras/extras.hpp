@@ -33,8 +33,15 @@ struct Extras {
   }
 };
 
-// Per request type; computed before the run (an unknown overlay fails before any work).  Requests without
-// extras get none.
+// Unknown overlay names throw core::InvalidField("overlay", ...) without computing any line.  A command calls it
+// before its run (an unknown name fails before any work) and of() after it, on MPI rank 0 only: the windows
+// overlay is ~1 s of multiprecision root finding that no other rank uses.
+void check_overlays(const std::vector<std::string>& names);
+template <class Req> void check(const Req& req) {
+  if constexpr (requires { req.overlay; }) check_overlays(req.overlay);
+}
+
+// Per request type (overlay lines computed here).  Requests without extras get none.
 template <class Req> Extras of(const Req&) { return {}; }
 Extras of(const bifurcation::Request& req);
 Extras of(const lyapunov::MapRequest& req);

@@ -17,7 +17,11 @@
 namespace btob::patterns {
 
 std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>& grid, double tol, int threads) {
-  const std::vector<Word> words = enumerate_canonical(max_length);
+  return compute_atlas(enumerate_canonical(max_length), grid, tol, threads);
+}
+
+std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std::vector<double>& grid, double tol,
+                                      int threads) {
   std::vector<AtlasEntry> out(words.size());
   const long n = static_cast<long>(words.size());
   const int nt = threads > 0 ? threads : omp_get_max_threads();
@@ -43,6 +47,14 @@ std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vec
                                                   long* words_scanned) {
   const std::vector<Word> words = enumerate_canonical(max_length);
   if (words_scanned) *words_scanned = static_cast<long>(words.size());
+  std::vector<FeasibleEntry> out;
+  for (auto& e : compute_feasible_atlas(words, grid, tol, threads))
+    if (!e.intervals.empty()) out.push_back(std::move(e));
+  return out;
+}
+
+std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
+                                                  double tol, int threads) {
   std::vector<FeasibleEntry> all(words.size());
   const long n = static_cast<long>(words.size());
   const int nt = threads > 0 ? threads : omp_get_max_threads();
@@ -51,10 +63,7 @@ std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vec
     all[i].word = words[i];
     all[i].intervals = feasibility_set<double>(words[i], grid, tol);
   }
-  std::vector<FeasibleEntry> out;
-  for (auto& e : all)
-    if (!e.intervals.empty()) out.push_back(std::move(e));
-  return out;
+  return all;
 }
 
 std::vector<double> feasible_grid() {
@@ -127,29 +136,55 @@ template Followed follow_periodic_orbit<double>(const Word&, const double&, long
 template Followed follow_periodic_orbit<long double>(const Word&, const long double&, long);
 
 std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked) {
+  return followed_table(atlas, follow_unstable(atlas, max_periods, threads), max_periods, agree, checked);
+}
+
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads) {
   struct Row {
     const Word* w;
     double r;
-    Followed f;
+    Followed* f;
   };
+  std::vector<std::vector<Followed>> out(atlas.size());
   std::vector<Row> rows;
-  for (const auto& e : atlas)
-    for (const auto& iv : e.intervals)
-      if (iv.outcome == Outcome::unstable) rows.push_back({&e.word, (iv.lo + iv.hi) / 2, {}});
+  for (std::size_t k = 0; k < atlas.size(); ++k) {
+    std::size_t unstable = 0;
+    for (const auto& iv : atlas[k].intervals) unstable += iv.outcome == Outcome::unstable;
+    out[k].resize(unstable);
+    std::size_t j = 0;
+    for (const auto& iv : atlas[k].intervals)
+      if (iv.outcome == Outcome::unstable) rows.push_back({&atlas[k].word, (iv.lo + iv.hi) / 2, &out[k][j++]});
+  }
   const long n = static_cast<long>(rows.size());
   const int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
   for (long i = 0; i < n; ++i) {
     try {
-      rows[i].f = follow_periodic_orbit<double>(*rows[i].w, rows[i].r, max_periods);
+      *rows[i].f = follow_periodic_orbit<double>(*rows[i].w, rows[i].r, max_periods);
     } catch (const std::invalid_argument&) {
-      rows[i].f.periods = -1;  // not feasible at the midpoint (an interval narrower than the bisection noise)
+      rows[i].f->periods = -1;  // not feasible at the midpoint (an interval narrower than the bisection noise)
     }
+  }
+  return out;
+}
+
+std::string followed_table(const std::vector<FeasibleEntry>& atlas, const std::vector<std::vector<Followed>>& followed,
+                           long max_periods, long* agree, long* checked) {
+  struct Row {
+    const Word* w;
+    double r;
+    const Followed* f;
+  };
+  std::vector<Row> rows;
+  for (std::size_t k = 0; k < atlas.size(); ++k) {
+    std::size_t j = 0;
+    for (const auto& iv : atlas[k].intervals)
+      if (iv.outcome == Outcome::unstable) rows.push_back({&atlas[k].word, (iv.lo + iv.hi) / 2, &followed.at(k).at(j++)});
   }
   long a = 0, c = 0;
   core::CsvTable s("word,r,expansion,margin,predicted,followed");
   for (const auto& row : rows) {
-    const Followed& f = row.f;
+    const Followed& f = *row.f;
     if (f.expansion > 1 && f.periods >= 0 && 2 * f.predicted + 2 < static_cast<double>(max_periods)) {
       ++c;
       a += f.periods >= f.predicted / 2 - 2 && f.periods <= 2 * f.predicted + 2;

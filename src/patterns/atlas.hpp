@@ -19,6 +19,9 @@ struct AtlasEntry {
 // threads <= 0: OpenMP's default; the result does not depend on the thread count).  Entries keep the
 // order of enumerate_canonical; words never stable are included with no interval.
 std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>& grid, double tol, int threads);
+// The same for the given words, in their order (an entry depends on its word only: any subset gives its entries).
+std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std::vector<double>& grid, double tol,
+                                      int threads);
 // CSV word,r_low,r_high,low_reason,high_reason: one row per interval, words in paper notation, 17 digits.
 std::string atlas_csv(const std::vector<AtlasEntry>& atlas);
 
@@ -32,6 +35,9 @@ struct FeasibleEntry {
 };
 std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
                                                   long* words_scanned = nullptr);
+// The same for the given words, in their order, words never feasible included (with no interval).
+std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
+                                                  double tol, int threads);
 // The scan grid of the feasible atlas: 1570 points on [0.02, 1), step 2e-4 on [0.02, 0.26) where the windows
 // are thin (1^7 3^7 is 3.6e-4 wide), 2e-3 on [0.26, 1).  Below 0.02 the subdominant eigenvalues of long words
 // fall below double's resolution relative to the dominant one (their eigenvectors are then unreliable).
@@ -54,12 +60,18 @@ struct Followed {
   double predicted = 0;     // ln(m / eps) / ln(Lambda)
   double expansion = 0;     // Lambda per period
   double margin = 0;        // m
+  template <class A> void members(A& a) { a(periods, predicted, expansion, margin); }  // core/pack.hpp
 };
 template <class T> Followed follow_periodic_orbit(const Word& w, const T& r, long max_periods);
 // follow_periodic_orbit<double> at the middle of every unstable interval of the atlas (OpenMP over rows):
 // CSV word,r,expansion,margin,predicted,followed.  `checked` receives the number of rows with an expansion > 1
 // and 2 predicted + 2 < max_periods, `agree` those of them followed within [predicted / 2 - 2, 2 predicted + 2].
 std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked);
+// Its two halves: follow_unstable gives, entry by entry, the Followed of each unstable interval in order (periods
+// -1: not feasible at the midpoint; OpenMP over all of them); followed_table writes the CSV and the counts.
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads);
+std::string followed_table(const std::vector<FeasibleEntry>& atlas, const std::vector<std::vector<Followed>>& followed,
+                           long max_periods, long* agree, long* checked);
 
 // Periodic symbol sequences seen by the iterator.  For each r: `ics` random initial points (seeded),
 // `iterations` steps of the batched kernel (double), symbols of the last `tail` steps; the eventual period

@@ -26,6 +26,7 @@ using core::Vec3;
 struct Word {
   std::vector<std::uint8_t> s;  // symbols 1, 2, 3
   std::size_t size() const { return s.size(); }
+  template <class A> void members(A& a) { a(s); }  // core/pack.hpp
   bool operator==(const Word&) const = default;
   auto operator<=>(const Word&) const = default;
 };
@@ -91,6 +92,7 @@ template <class T> bool is_stable(const Word& w, const T& r);
 template <class T> struct Interval {
   T lo{}, hi{};
   std::string lo_reason, hi_reason;
+  template <class A> void members(A& a) { a(lo, hi, lo_reason, hi_reason); }  // core/pack.hpp
 };
 // The scan grid in double; transitions are then bisected in T down to `tol` (absolute, in r).
 std::vector<double> default_grid();  // 7500 points, denser on [0.07, 0.26) where windows are thin
@@ -123,6 +125,7 @@ template <class T> struct FeasibleInterval {
   Outcome outcome = Outcome::none;
   bool collapse = false;
   std::string lo_reason, hi_reason;
+  template <class A> void members(A& a) { a(lo, hi, outcome, collapse, lo_reason, hi_reason); }  // core/pack.hpp
 };
 // classify on `grid`, each change bisected in T down to `tol`.  Intervals narrower than the grid step can be
 // missed; the grid is the caller's resolution.

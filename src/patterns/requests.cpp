@@ -4,6 +4,7 @@
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/scalar.hpp"
+#include "core/sweep.hpp"
 #include "patterns/exact.hpp"
 
 #include <fmt/format.h>
@@ -310,11 +311,9 @@ std::string detection_status(const AtlasRequest& req, const std::vector<AtlasEnt
 }
 
 // Item 6 of the atlas issue: the iterator at Table 6.1's r values, its patterns against the atlas.
-void check(const AtlasRequest& req, const std::vector<double>& grid, AtlasResult& res, int threads) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> rs = table_6_1_r();
-  const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
-                                         static_cast<int>(req.max_period), threads);
+// `d` is the detection at Table 6.1's r values, in their order.
+void check(const AtlasRequest& req, const std::vector<double>& grid, const DetectionRun& d, AtlasResult& res) {
+  const std::vector<double>& rs = d.r;
   core::CsvTable det("r,word,symbols,collisions,count,ics,periodic_fraction,status");
   std::set<std::pair<double, Word>> seen;
   for (const auto& f : d.found) {
@@ -345,16 +344,18 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, AtlasResult
   res.csv.emplace_back("missed", missed.text());
   res.checked = true;
   res.detected = static_cast<long>(d.found.size());
-  res.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void stable_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
-  res.tol = 1e-15;  // bisection width in r: endpoints to ~1e-15 (double resolves r to 2.8e-17 near 0.2)
+// Bisection widths in r: stable endpoints to ~1e-15 (double resolves r to 2.8e-17 near 0.2); feasible transitions
+// are reported to ~13 digits.
+constexpr double stable_tol = 1e-15, feasible_tol = 1e-13;
+constexpr long followed_max_periods = 2000;
+
+// The stable atlas's tables and counts from its entries (and the check from `d` unless null).
+void stable_atlas(const AtlasRequest& req, AtlasResult& res, const DetectionRun* d) {
+  res.tol = stable_tol;
   const std::vector<double> grid = default_grid();
   res.grid_points = static_cast<long>(grid.size());
-  const auto t0 = std::chrono::steady_clock::now();
-  res.entries = compute_atlas(static_cast<int>(req.max_length), grid, res.tol, threads);
-  res.atlas_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.words_scanned = static_cast<long>(res.entries.size());
   for (const auto& e : res.entries) {
     res.stable_words += !e.intervals.empty();
@@ -366,16 +367,13 @@ void stable_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
     }
   }
   res.csv.emplace_back("", atlas_csv(res.entries));
-  if (!req.no_check) check(req, grid, res, threads);
+  if (d) check(req, grid, *d, res);
 }
 
-void feasible_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
-  res.tol = 1e-13;  // bisection width in r (the transitions are reported to ~13 digits)
-  const std::vector<double> grid = feasible_grid();
-  res.grid_points = static_cast<long>(grid.size());
-  const auto t0 = std::chrono::steady_clock::now();
-  res.feasible_entries = compute_feasible_atlas(static_cast<int>(req.max_length), grid, res.tol, threads, &res.words_scanned);
-  res.atlas_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+// The feasible atlas's tables and counts from its entries (feasible words only) and their followed orbits.
+void feasible_atlas(AtlasResult& res, const std::vector<std::vector<Followed>>& followed) {
+  res.tol = feasible_tol;
+  res.grid_points = static_cast<long>(feasible_grid().size());
   std::vector<double> rs;
   for (int i = 1; i < 1000; ++i) rs.push_back(i / 1000.0);
   for (const auto& e : res.feasible_entries) {
@@ -392,8 +390,12 @@ void feasible_atlas(const AtlasRequest& req, AtlasResult& res, int threads) {
   }
   res.csv.emplace_back("", feasible_csv(res.feasible_entries));
   res.csv.emplace_back("counts", feasible_counts_csv(res.feasible_entries, rs));
-  res.csv.emplace_back("unstable_followed",
-                       followed_csv(res.feasible_entries, 2000, threads, &res.followed_agree, &res.followed_checked));
+  res.csv.emplace_back("unstable_followed", followed_table(res.feasible_entries, followed, followed_max_periods,
+                                                          &res.followed_agree, &res.followed_checked));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -409,16 +411,103 @@ void AtlasRequest::validate() const {
     throw core::InvalidField("max-period", std::to_string(max_period), fmt::format("1..tail/2 ({})", tail / 2));
 }
 
-AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
+std::size_t AtlasRequest::work_items() const {
+  return enumerate_canonical(static_cast<int>(max_length)).size() + (checks() ? table_6_1_r().size() : 0);
+}
+
+AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
+  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length));
+  const std::vector<double> table = req.checks() ? table_6_1_r() : std::vector<double>{};
+  std::vector<Word> words;
+  std::vector<double> rs;
+  for (std::size_t i : items) {
+    if (i < all.size()) words.push_back(all[i]);
+    else if (i - all.size() < table.size()) rs.push_back(table[i - all.size()]);
+    else throw std::logic_error("pattern atlas sweep: item beyond the words and r values");
+  }
+  AtlasPart part;
+  part.items = items;
+  auto t0 = std::chrono::steady_clock::now();
+  if (!req.feasible) {
+    for (auto& e : compute_atlas(words, default_grid(), stable_tol, control.threads)) part.stable.push_back(std::move(e.intervals));
+  } else {
+    const std::vector<FeasibleEntry> f = compute_feasible_atlas(words, feasible_grid(), feasible_tol, control.threads);
+    part.followed = follow_unstable(f, followed_max_periods, control.threads);
+    for (const auto& e : f) part.feasible.push_back(e.intervals);
+  }
+  part.atlas_seconds = seconds_since(t0);
+  control.check_cancelled();
+  if (!rs.empty()) {
+    t0 = std::chrono::steady_clock::now();
+    const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
+                                           static_cast<int>(req.max_period), control.threads);
+    part.periodic = d.periodic;
+    part.found.resize(rs.size());
+    for (const auto& f : d.found)  // sorted by r in the order of rs
+      part.found[static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin())].emplace_back(f.word, f.count);
+    part.check_seconds = seconds_since(t0);
+  }
+  control.check_cancelled();
+  return part;
+}
+
+AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
+  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length));
+  const std::size_t W = all.size();
+  const auto order = core::item_order(parts, req.work_items());
+  // A part's items are ascending, words first: its r items follow its `words` word items.
+  std::vector<std::size_t> words_in(parts.size(), 0);
+  for (std::size_t p = 0; p < parts.size(); ++p)
+    words_in[p] = static_cast<std::size_t>(std::count_if(parts[p].items.begin(), parts[p].items.end(),
+                                                         [&](std::size_t i) { return i < W; }));
   AtlasResult res;
   res.request = req;
   res.feasible = req.feasible;
-  if (req.feasible) feasible_atlas(req, res, control.threads);
-  else stable_atlas(req, res, control.threads);
-  control.check_cancelled();
+  for (const auto& p : parts) {
+    res.atlas_seconds += p.atlas_seconds;
+    res.check_seconds += p.check_seconds;
+  }
+  if (req.feasible) {
+    res.words_scanned = static_cast<long>(W);
+    std::vector<std::vector<Followed>> followed;
+    for (std::size_t i = 0; i < W; ++i) {
+      AtlasPart& p = parts[order[i].part];
+      std::vector<FeasibleInterval<double>>& iv = p.feasible.at(order[i].index);
+      if (iv.empty()) continue;  // never feasible on the grid: left out, as compute_feasible_atlas does
+      res.feasible_entries.push_back({all[i], std::move(iv)});
+      followed.push_back(std::move(p.followed.at(order[i].index)));
+    }
+    feasible_atlas(res, followed);
+    return res;
+  }
+  for (std::size_t i = 0; i < W; ++i)
+    res.entries.push_back({all[i], std::move(parts[order[i].part].stable.at(order[i].index))});
+  if (!req.checks()) {
+    stable_atlas(req, res, nullptr);
+    return res;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  DetectionRun d;
+  d.r = table_6_1_r();
+  d.ics = req.ics;
+  d.iterations = req.iterations;
+  d.tail = req.tail;
+  d.seed = req.seed;
+  for (std::size_t k = 0; k < d.r.size(); ++k) {
+    const AtlasPart& p = parts[order[W + k].part];
+    const std::size_t j = order[W + k].index - words_in[order[W + k].part];
+    d.periodic.push_back(p.periodic.at(j));
+    for (const auto& [w, count] : p.found.at(j)) d.found.push_back({d.r[k], w, count});
+  }
+  stable_atlas(req, res, &d);
+  res.check_seconds += seconds_since(t0);  // the status column and the long words' stability sets, here
   return res;
+}
+
+AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string AtlasResult::summary() const {

@@ -82,6 +82,10 @@ struct AtlasRequest {
   long max_period = 500;
 
   void validate() const;
+  // A sweep (core/sweep.hpp): items 0..W-1 are the words of enumerate_canonical(max-length), in its order; with
+  // the iterator check, items W.. are Table 6.1's r values (the detection at each r is independent of the others).
+  std::size_t work_items() const;
+  bool checks() const { return !feasible && !no_check; }
   std::string default_name() const { return feasible ? "feasible" : "atlas"; }
   template <class V> void fields(V&& v) {
     v("max-length", max_length, "longest word, in symbols, 1..16");
@@ -116,6 +120,23 @@ struct AtlasResult {
   void describe(core::Contents& c) const;
 };
 
+// Some items of an atlas (ascending: words first, then r values of the check), item-major: what each computed.
+struct AtlasPart {
+  std::vector<std::size_t> items;
+  std::vector<std::vector<Interval<double>>> stable;            // per word (stable atlas): its stability set
+  std::vector<std::vector<FeasibleInterval<double>>> feasible;  // per word (feasible atlas): its feasibility set
+  std::vector<std::vector<Followed>> followed;                  // per word (feasible atlas): its unstable intervals
+  std::vector<long> periodic;                                   // per r: orbits with an eventual period
+  std::vector<std::vector<std::pair<Word, long>>> found;        // per r: patterns and counts, as detect_patterns
+  double atlas_seconds = 0, check_seconds = 0;
+  template <class A> void members(A& a) { a(items, stable, feasible, followed, periodic, found, atlas_seconds, check_seconds); }
+};
+AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+// The tables and counts of the whole atlas from its parts (the check's status column, the stability sets of the
+// found patterns longer than max-length and the missed entries are derived here, on one process); the seconds
+// are the parts' summed.
+AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts);
+// merge(req, {run_part(req, every item)}).
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::patterns

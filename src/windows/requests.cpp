@@ -4,6 +4,7 @@
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
+#include "core/sweep.hpp"
 #include "windows/direct.hpp"
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <optional>
 
 namespace btob::windows {
@@ -22,6 +24,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 void progress(const core::RunControl& control, std::size_t done, std::size_t total) {
   if (control.progress) control.progress->update(done, total);
+}
+
+// The items of a sweep over `range`, checked (a part names only n of its request).
+void check_items(const std::vector<std::size_t>& items, const NRange& range) {
+  for (std::size_t i : items)
+    if (i >= static_cast<std::size_t>(range.count())) throw std::logic_error("windows sweep: item beyond the n range");
 }
 }  // namespace
 
@@ -41,20 +49,42 @@ void PolyRequest::validate() const {
     throw core::InvalidField("form", "'" + form + "'", "developed, factorised or both");
 }
 
-PolyResult run(const PolyRequest& req, const core::RunControl& control) {
+std::size_t PolyRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
+
+PolyPart run_part(const PolyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   const NRange r = parse_n_range(req.n, 1, "n");
-  PolyResult res;
-  for (int n = r.first; n <= r.last; ++n) {
+  check_items(items, r);
+  PolyPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
     control.check_cancelled();
-    const RationalPoly q = window_polynomial(n);
-    res.n.push_back(static_cast<std::uint32_t>(n));
-    res.degree.push_back(static_cast<std::uint32_t>(q.degree()));
-    res.developed.push_back(req.form != "factorised" ? q.developed() : "");
-    res.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
-    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
+    const RationalPoly q = window_polynomial(r.n_of(items[j]));
+    part.degree.push_back(static_cast<std::uint32_t>(q.degree()));
+    part.developed.push_back(req.form != "factorised" ? q.developed() : "");
+    part.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
+    progress(control, j + 1, items.size());
+  }
+  return part;
+}
+
+PolyResult merge(const PolyRequest& req, std::vector<PolyPart> parts) {
+  const NRange r = parse_n_range(req.n, 1, "n");
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  PolyResult res;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    PolyPart& p = parts[order[i].part];
+    const std::size_t j = order[i].index;
+    res.n.push_back(static_cast<std::uint32_t>(r.n_of(i)));
+    res.degree.push_back(p.degree.at(j));
+    res.developed.push_back(std::move(p.developed.at(j)));
+    res.factorised.push_back(std::move(p.factorised.at(j)));
   }
   return res;
+}
+
+PolyResult run(const PolyRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string PolyResult::text() const {
@@ -81,33 +111,71 @@ void BoundsRequest::validate() const {
   require_digits(digits);
 }
 
-BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
+std::size_t BoundsRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
+
+BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   const NRange r = parse_n_range(req.n, 1, "n");
-  BoundsResult res;
-  res.digits = req.digits;
-  res.certified_run = req.certify;
-  for (int n = r.first; n <= r.last; ++n) {
+  check_items(items, r);
+  BoundsPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
     control.check_cancelled();
+    const int n = r.n_of(items[j]);
     const mpfr_float lo = window_lower_bound(n, req.digits);
-    res.n.push_back(static_cast<std::uint32_t>(n));
-    res.lower_text.push_back(fixed(lo, req.digits));
-    res.lower_bound.push_back(static_cast<double>(lo));
+    part.lower_text.push_back(fixed(lo, req.digits));
+    part.lower_bound.push_back(static_cast<double>(lo));
     if (n >= 2) {
       const mpfr_float up = r_crit2(n, req.digits + 5);
-      res.upper_text.push_back(fixed(up, req.digits));
-      res.upper_bound.push_back(static_cast<double>(up));
+      part.upper_text.push_back(fixed(up, req.digits));
+      part.upper_bound.push_back(static_cast<double>(up));
     } else {
-      res.upper_text.emplace_back();
-      res.upper_bound.push_back(std::nan(""));
+      part.upper_text.emplace_back();
+      part.upper_bound.push_back(std::nan(""));
     }
     if (req.certify) {
       const Certificate cert = certify_lower_bound(n, req.digits);
-      // a, b = k / 10^D exactly: their D decimals, printed from MPFR with 20 guard digits.
-      const auto dec = [&](const mpq_class& q) {
-        core::MpfrDigits guard(req.digits + 20);
-        return fixed(mpfr_float(q.get_mpq_t()), req.digits);
-      };
+      part.a.push_back(cert.a.get_str());  // canonical p/q: mpq_class reads it back exactly
+      part.b.push_back(cert.b.get_str());
+      part.sign_a.push_back(cert.sign_a);
+      part.sign_b.push_back(cert.sign_b);
+      part.roots_0_a.push_back(cert.roots_0_a);
+      part.roots_a_b.push_back(cert.roots_a_b);
+    }
+    progress(control, j + 1, items.size());
+  }
+  return part;
+}
+
+BoundsResult merge(const BoundsRequest& req, std::vector<BoundsPart> parts) {
+  const NRange r = parse_n_range(req.n, 1, "n");
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  BoundsResult res;
+  res.digits = req.digits;
+  res.certified_run = req.certify;
+  // a, b = k / 10^D exactly: their D decimals, printed from MPFR with 20 guard digits.
+  const auto dec = [&](const mpq_class& q) {
+    core::MpfrDigits guard(req.digits + 20);
+    return fixed(mpfr_float(q.get_mpq_t()), req.digits);
+  };
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    BoundsPart& p = parts[order[i].part];
+    const std::size_t j = order[i].index;
+    res.n.push_back(static_cast<std::uint32_t>(r.n_of(i)));
+    res.lower_text.push_back(std::move(p.lower_text.at(j)));
+    res.upper_text.push_back(std::move(p.upper_text.at(j)));
+    res.lower_bound.push_back(p.lower_bound.at(j));
+    res.upper_bound.push_back(p.upper_bound.at(j));
+    if (req.certify) {
+      Certificate cert;
+      cert.n = r.n_of(i);
+      cert.decimals = req.digits;
+      cert.a = mpq_class(p.a.at(j));
+      cert.b = mpq_class(p.b.at(j));
+      cert.sign_a = p.sign_a.at(j);
+      cert.sign_b = p.sign_b.at(j);
+      cert.roots_0_a = p.roots_0_a.at(j);
+      cert.roots_a_b = p.roots_a_b.at(j);
       res.a_text.push_back(dec(cert.a));
       res.b_text.push_back(dec(cert.b));
       res.sign_a.push_back(cert.sign_a);
@@ -115,11 +183,14 @@ BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
       res.roots_0_a.push_back(static_cast<double>(cert.roots_0_a));
       res.roots_a_b.push_back(static_cast<double>(cert.roots_a_b));
       res.valid.push_back(cert.valid() ? 1 : 0);
-      res.certificates.push_back(cert);
+      res.certificates.push_back(std::move(cert));
     }
-    progress(control, static_cast<std::size_t>(n - r.first + 1), static_cast<std::size_t>(r.count()));
   }
   return res;
+}
+
+BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string BoundsResult::csv() const {
@@ -235,38 +306,69 @@ void VerifyRequest::validate() const {
     throw core::InvalidField("precision", "'" + precision + "'", "double or long-double");
 }
 
-VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
+std::size_t VerifyRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 2, "n").count()); }
+
+namespace {
+VerifyOptions verify_options(const VerifyRequest& req, int threads) {
+  VerifyOptions o;
+  o.base_iterations = req.iterations;
+  o.per_n = req.per_n;
+  o.tail = req.tail;
+  o.long_double = req.precision == "long-double";
+  o.threads = threads;
+  return o;
+}
+}  // namespace
+
+VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   req.validate();
+  const NRange range = parse_n_range(req.n, 2, "n");
+  check_items(items, range);
+  const VerifyOptions options = verify_options(req, control.threads);
+  VerifyPart part;
+  part.items = items;
+  // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
+  for (std::size_t j = 0; j < items.size(); ++j) {
+    control.check_cancelled();
+    const int n = range.n_of(items[j]);
+    const std::vector<VerifyRow> rows = verify_windows(n, n, options);
+    if (rows.size() != 4) throw std::logic_error("windows verify: not 4 rows per n");  // merge places 4 per item
+    part.rows.insert(part.rows.end(), rows.begin(), rows.end());
+    progress(control, j + 1, items.size());
+  }
+  part.seconds = seconds_since(t0);
+  return part;
+}
+
+VerifyResult merge(const VerifyRequest& req, std::vector<VerifyPart> parts) {
   VerifyResult res;
   res.range = parse_n_range(req.n, 2, "n");
-  res.options.base_iterations = req.iterations;
-  res.options.per_n = req.per_n;
-  res.options.tail = req.tail;
-  res.options.long_double = req.precision == "long-double";
-  res.options.threads = control.threads;
-  // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
-  for (int n = res.range.first; n <= res.range.last; ++n) {
-    control.check_cancelled();
-    for (const auto& row : verify_windows(n, n, res.options)) {
-      res.passed += row.pass();
-      ++res.total;
-      res.rows.push_back(row);
-      res.n.push_back(static_cast<std::uint32_t>(row.n));
-      res.position.push_back(static_cast<std::uint32_t>(res.rows.size() - 1) % 4);
-      res.r.push_back(row.r);
-      res.lower.push_back(row.lower);
-      res.upper.push_back(row.upper);
-      res.iterations_run.push_back(static_cast<std::uint32_t>(row.iterations));
-      res.orbits.push_back(static_cast<std::uint32_t>(row.orbits));
-      res.on_pattern.push_back(static_cast<std::uint32_t>(row.on_pattern));
-      res.expected_on.push_back(row.expected_on ? 1 : 0);
-      res.pass.push_back(row.pass() ? 1 : 0);
-    }
-    progress(control, static_cast<std::size_t>(n - res.range.first + 1), static_cast<std::size_t>(res.range.count()));
+  res.options = verify_options(req, 0);
+  const auto order = core::item_order(parts, static_cast<std::size_t>(res.range.count()));
+  for (const auto& p : parts) res.total_seconds += p.seconds;
+  res.rows = core::merge_rows<VerifyPart, VerifyRow>(
+      parts, order, 4, [](const VerifyPart& p) -> const std::vector<VerifyRow>& { return p.rows; });
+  for (std::size_t k = 0; k < res.rows.size(); ++k) {
+    const VerifyRow& row = res.rows[k];
+    res.passed += row.pass();
+    ++res.total;
+    res.n.push_back(static_cast<std::uint32_t>(row.n));
+    res.position.push_back(static_cast<std::uint32_t>(k % 4));
+    res.r.push_back(row.r);
+    res.lower.push_back(row.lower);
+    res.upper.push_back(row.upper);
+    res.iterations_run.push_back(static_cast<std::uint32_t>(row.iterations));
+    res.orbits.push_back(static_cast<std::uint32_t>(row.orbits));
+    res.on_pattern.push_back(static_cast<std::uint32_t>(row.on_pattern));
+    res.expected_on.push_back(row.expected_on ? 1 : 0);
+    res.pass.push_back(row.pass() ? 1 : 0);
   }
-  res.total_seconds = seconds_since(t0);
   return res;
+}
+
+VerifyResult run(const VerifyRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string VerifyResult::csv() const {
@@ -315,69 +417,99 @@ void BoundPrecisionRequest::validate() const {
     throw core::InvalidField("mpfr-digits", std::to_string(mpfr_digits), "10..1000");
 }
 
+std::size_t BoundPrecisionRequest::work_items() const {
+  return static_cast<std::size_t>(parse_n_range(n, 1, "n").count());
+}
+
 namespace {
-// One precision and route over n = first..last against the certified values `exact`; `mpfr_digits` > 0 for the
-// MPFR row (its working precision, held by a guard for each bound).
+// The rows of the study, in the order of nesting of BoundPrecisionResult::rows: route, then precision.
+constexpr Route study_routes[] = {Route::matrix, Route::polynomial};
+constexpr int study_precisions = 5;  // float, double, long-double, float128, mpfr:D
+std::string precision_name(int k, int mpfr_digits) {
+  static const char* names[] = {"float", "double", "long-double", "float128"};
+  return k < 4 ? std::string(names[k]) : fmt::format("mpfr:{}", mpfr_digits);
+}
+
+// One bound of precision T by `route` against the certified value `exact`; `mpfr_digits` > 0 for the MPFR row (its
+// working precision, held by a guard for the bound).
 template <class T>
-void study(const std::string& name, Route route, const NRange& r, const std::vector<mpfr_float>& exact, int mpfr_digits,
-           BoundPrecisionResult& res, const core::RunControl& control) {
-  int largest_all = 0, largest_any = 0;
-  bool prefix = true;
-  double total_s = 0;
-  for (int n = r.first; n <= r.last; ++n) {
-    control.check_cancelled();
-    std::optional<core::MpfrDigits> working;
-    if (mpfr_digits > 0) working.emplace(mpfr_digits);
-    const auto t0 = std::chrono::steady_clock::now();
-    const T v = window_lower_bound_in<T>(n, route);
-    const double s = seconds_since(t0);
-    working.reset();
-    total_s += s;
-    core::MpfrDigits sixty(60);  // the error against the 40-decimal reference
-    const mpfr_float err = abs(mpfr_float(v) - exact[static_cast<std::size_t>(n - r.first)]);
-    const bool finite = std::isfinite(static_cast<double>(v));
-    // Correct to 12 decimals: within half a unit of the 12th decimal of the certified value.
-    const bool ok = finite && err <= mpfr_float("5e-13");
-    if (ok) largest_any = n;
-    prefix = prefix && ok;
-    if (prefix) largest_all = n;
-    BoundPrecisionRow row;
-    row.precision = name;
-    row.route = route_name(route);
-    row.n = n;
-    row.value = static_cast<double>(v);
-    row.abs_error = finite ? static_cast<double>(err) : std::nan("");
-    row.correct_12 = ok;
-    row.seconds = s;
-    res.rows.push_back(row);
-  }
-  res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+void study(Route route, int n, const mpfr_float& exact, int mpfr_digits, BoundPrecisionPart& part) {
+  std::optional<core::MpfrDigits> working;
+  if (mpfr_digits > 0) working.emplace(mpfr_digits);
+  const auto t0 = std::chrono::steady_clock::now();
+  const T v = window_lower_bound_in<T>(n, route);
+  const double s = seconds_since(t0);
+  working.reset();
+  core::MpfrDigits sixty(60);  // the error against the 40-decimal reference
+  const mpfr_float err = abs(mpfr_float(v) - exact);
+  const bool finite = std::isfinite(static_cast<double>(v));
+  // Correct to 12 decimals: within half a unit of the 12th decimal of the certified value.
+  const bool ok = finite && err <= mpfr_float("5e-13");
+  part.value.push_back(static_cast<double>(v));
+  part.abs_error.push_back(finite ? static_cast<double>(err) : std::nan(""));
+  part.correct_12.push_back(ok ? 1 : 0);
+  part.seconds.push_back(s);
 }
 }  // namespace
 
-BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control) {
+BoundPrecisionPart run_part(const BoundPrecisionRequest& req, const std::vector<std::size_t>& items,
+                            const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   req.validate();
+  const NRange r = parse_n_range(req.n, 1, "n");
+  check_items(items, r);
+  BoundPrecisionPart part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
+    control.check_cancelled();
+    const int n = r.n_of(items[j]);
+    const mpfr_float exact = window_lower_bound(n, 40);
+    for (const Route route : study_routes) {
+      study<float>(route, n, exact, 0, part);
+      study<double>(route, n, exact, 0, part);
+      study<long double>(route, n, exact, 0, part);
+      study<core::float128>(route, n, exact, 0, part);
+      study<mpfr_float>(route, n, exact, req.mpfr_digits, part);
+    }
+    progress(control, j + 1, items.size());
+  }
+  part.total_seconds = seconds_since(t0);
+  return part;
+}
+
+BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPrecisionPart> parts) {
   BoundPrecisionResult res;
   const NRange r = parse_n_range(req.n, 1, "n");
   res.range = r;
-  std::vector<mpfr_float> exact;
-  for (int n = r.first; n <= r.last; ++n) exact.push_back(window_lower_bound(n, 40));
-  const std::string mp = fmt::format("mpfr:{}", req.mpfr_digits);
-  std::size_t step = 0;
-  for (auto route : {Route::matrix, Route::polynomial}) {
-    progress(control, step++, 10);
-    study<float>("float", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<double>("double", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<long double>("long-double", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<core::float128>("float128", route, r, exact, 0, res, control);
-    progress(control, step++, 10);
-    study<mpfr_float>(mp, route, r, exact, req.mpfr_digits, res, control);
-  }
-  progress(control, 10, 10);
+  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  constexpr std::size_t per_n = std::size(study_routes) * study_precisions;
+  for (const auto& p : parts) res.total_seconds += p.total_seconds;
+  std::size_t k = 0;  // route x precision row
+  for (const Route route : study_routes)
+    for (int prec = 0; prec < study_precisions; ++prec, ++k) {
+      const std::string name = precision_name(prec, req.mpfr_digits);
+      int largest_all = 0, largest_any = 0;
+      bool prefix = true;
+      double total_s = 0;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const BoundPrecisionPart& p = parts[order[i].part];
+        const std::size_t at = order[i].index * per_n + k;
+        BoundPrecisionRow row;
+        row.precision = name;
+        row.route = route_name(route);
+        row.n = r.n_of(i);
+        row.value = p.value.at(at);
+        row.abs_error = p.abs_error.at(at);
+        row.correct_12 = p.correct_12.at(at) != 0;
+        row.seconds = p.seconds.at(at);
+        total_s += row.seconds;
+        if (row.correct_12) largest_any = row.n;
+        prefix = prefix && row.correct_12;
+        if (prefix) largest_all = row.n;
+        res.rows.push_back(row);
+      }
+      res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+    }
   for (const auto& row : res.rows) {
     res.value.push_back(row.value);
     res.abs_error.push_back(row.abs_error);
@@ -385,8 +517,11 @@ BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunContro
     res.correct_12.push_back(row.correct_12 ? 1 : 0);
   }
   for (int n = r.first; n <= r.last; ++n) res.n.push_back(static_cast<std::uint32_t>(n));
-  res.total_seconds = seconds_since(t0);
   return res;
+}
+
+BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 std::string BoundPrecisionResult::csv() const {

@@ -2,6 +2,8 @@
 // lower bounds and r_crit,2 (`windows bounds`, Table B.1), the paper's thresholds, the thin stripes of eq. (6.3),
 // the iterator's check inside and below each window (`windows verify`) and the precision study of the lower bound
 // (`windows precision`).  Every field is named as the command line's flag; every result can print its CSV.
+// Those whose work is a list of n (poly, bounds, verify, precision) are sweeps (core/sweep.hpp): item i is
+// n = first + i of the request's range, and a part carries what its n computed, so `mpirun -n P` splits them.
 #pragma once
 
 #include "core/request.hpp"
@@ -9,6 +11,7 @@
 #include "windows/verify.hpp"
 #include "windows/windows.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -20,6 +23,8 @@ namespace btob::windows {
 struct NRange {
   int first = 1, last = 1;
   int count() const { return last - first + 1; }
+  // The n of item i of a sweep over this range.
+  int n_of(std::size_t item) const { return first + static_cast<int>(item); }
 };
 inline constexpr int max_range_n = 5000;  // Q_n costs minutes at n = 5000 (windows.hpp, validate_n)
 
@@ -36,6 +41,7 @@ struct PolyRequest {
   std::string form = "both";  // developed, factorised or both
 
   void validate() const;
+  std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("n", n, "n or A..B, n >= 1");
     v("form", form, "developed, factorised or both");
@@ -50,6 +56,16 @@ struct PolyResult {
   std::string text() const;
   void describe(core::Contents& c) const;   // arrays n, degree; attributes Q_<n>_developed / Q_<n>_factorised
 };
+// Some n of the range (items: ascending indices, n = first + item): Q_n's degree and text, item-major.
+struct PolyPart {
+  std::vector<std::size_t> items;
+  std::vector<std::uint32_t> degree;
+  std::vector<std::string> developed, factorised;
+  template <class A> void members(A& a) { a(items, degree, developed, factorised); }
+};
+PolyPart run_part(const PolyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+PolyResult merge(const PolyRequest& req, std::vector<PolyPart> parts);
+// merge(req, {run_part(req, every n)}).
 PolyResult run(const PolyRequest& req, const core::RunControl& control = {});
 
 // ---- btob windows bounds -----------------------------------------------------------------------------------
@@ -59,6 +75,7 @@ struct BoundsRequest {
   bool certify = false;      // exact rational sign change + exact root counts (Descartes, Sturm fallback) for each n
 
   void validate() const;
+  std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("n", n, "n or A..B, n >= 1");
     v("digits", digits, "decimals after the point, 10..10000");
@@ -80,6 +97,22 @@ struct BoundsResult {
   std::string csv() const;  // n,lower_bound,upper_bound[,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified]
   void describe(core::Contents& c) const;
 };
+// Some n of the range (items ascending, n = first + item), item-major: the bounds, and with --certify the
+// certificate's bracket (exact rationals as GMP text "p/q") and its signs and root counts.
+struct BoundsPart {
+  std::vector<std::size_t> items;
+  std::vector<std::string> lower_text, upper_text;
+  std::vector<double> lower_bound, upper_bound;
+  std::vector<std::string> a, b;  // when certify
+  std::vector<int> sign_a, sign_b;
+  std::vector<long> roots_0_a, roots_a_b;
+  template <class A> void members(A& x) {
+    x(items, lower_text, upper_text, lower_bound, upper_bound, a, b, sign_a, sign_b, roots_0_a, roots_a_b);
+  }
+};
+BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BoundsResult merge(const BoundsRequest& req, std::vector<BoundsPart> parts);
+// merge(req, {run_part(req, every n)}).
 BoundsResult run(const BoundsRequest& req, const core::RunControl& control = {});
 
 // ---- btob windows thresholds / stripes ---------------------------------------------------------------------
@@ -128,6 +161,7 @@ struct VerifyRequest {
   std::string precision = "double";  // double or long-double
 
   void validate() const;
+  std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("n", n, "A..B, n >= 2");
     v("iterations", iterations, "iterations = this + per-n * n");
@@ -150,6 +184,17 @@ struct VerifyResult {
   std::string csv() const;  // n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict
   void describe(core::Contents& c) const;
 };
+// Some n of the range (items ascending, n = first + item): their 4 rows each, item-major, and the seconds spent.
+struct VerifyPart {
+  std::vector<std::size_t> items;
+  std::vector<VerifyRow> rows;
+  double seconds = 0;
+  template <class A> void members(A& a) { a(items, rows, seconds); }
+};
+VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+// total_seconds is the parts' seconds summed (one process: its run's time).
+VerifyResult merge(const VerifyRequest& req, std::vector<VerifyPart> parts);
+// merge(req, {run_part(req, every n)}).
 VerifyResult run(const VerifyRequest& req, const core::RunControl& control = {});
 
 // The file stem of a verify result: "verify" for the committed n = 2..125, else "verify_A-B".
@@ -161,6 +206,7 @@ struct BoundPrecisionRequest {
   int mpfr_digits = 32;      // digits of the MPFR row, 10..1000
 
   void validate() const;
+  std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("n", n, "A..B, n >= 1");
     v("mpfr-digits", mpfr_digits, "digits of the MPFR row");
@@ -192,6 +238,21 @@ struct BoundPrecisionResult {
   std::string summary_csv() const;  // precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound
   void describe(core::Contents& c) const;
 };
+// Some n of the range (items ascending, n = first + item): per n its 10 bounds, route-major then precision (float,
+// double, long-double, float128, mpfr:D), as in BoundPrecisionResult::rows; and the part's seconds.
+struct BoundPrecisionPart {
+  std::vector<std::size_t> items;
+  std::vector<double> value, abs_error, seconds;  // [items x 10]
+  std::vector<std::uint8_t> correct_12;
+  double total_seconds = 0;
+  template <class A> void members(A& a) { a(items, value, abs_error, seconds, correct_12, total_seconds); }
+};
+BoundPrecisionPart run_part(const BoundPrecisionRequest& req, const std::vector<std::size_t>& items,
+                            const core::RunControl& control = {});
+// The rows and the summary (largest n correct from the first on, and at all) from the parts; total_seconds is
+// the parts' seconds summed.
+BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPrecisionPart> parts);
+// merge(req, {run_part(req, every n)}).
 BoundPrecisionResult run(const BoundPrecisionRequest& req, const core::RunControl& control = {});
 
 }  // namespace btob::windows
