@@ -145,7 +145,8 @@ TEST(Attractors, P2InvariantIsConservedAndDistinguishesCurves) {
   ASSERT_EQ(a.type, Type::quasi_periodic);
   ASSERT_EQ(b.type, Type::quasi_periodic);
   EXPECT_TRUE(a.p2_region);
-  EXPECT_SMALL(a.invariant_spread, ulps(45000, "exact invariance: rounding only, accumulated over the orbit (measured 2660 eps)"));
+  EXPECT_SMALL(a.invariant_spread,
+               ulps(45000, "exact invariance: rounding only, accumulated over the orbit (measured 2660 eps)"));
   // I on the strip: 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 (attractor_recorder.hpp).
   const double al = (1 + r) / 2;
   EXPECT_CLOSE(a.invariant, 2 * 0.02 * 0.02 - 4 * al * 0.05 * 0.02 + 4 * r * 0.05 * 0.05,
@@ -186,7 +187,9 @@ TEST(Basins, FractionsSumToOneWithIntervals) {
     EXPECT_GE(b.fractions[i].high, b.fractions[i].value);
     EXPECT_EQ(b.attractors[i].id, static_cast<int>(i) + 1);
   }
-  EXPECT_CLOSE(sum, 1.0, ulps(16, "fractions of integer counts over one total: a rounding per term and per addition, a few attractors (measured 0)"));
+  EXPECT_CLOSE(sum, 1.0,
+               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
+                        "a few attractors (measured 0)"));
   EXPECT_EQ(b.labels.size(), 600u);
   EXPECT_EQ(b.replicate_fractions.size(), b.attractors.size() + 1);
   for (const auto& rf : b.replicate_fractions) EXPECT_EQ(rf.size(), 3u);
@@ -224,7 +227,8 @@ TEST(Basins, ClopperPearsonReferenceValues) {
   EXPECT_CLOSE(f.high, 0.812914, bound(1e-6, "the reference printed to 6 decimals"));
   const Fraction z = fraction(0, 100);
   EXPECT_EQ(z.low, 0.0);
-  EXPECT_CLOSE(z.high, 1 - std::pow(0.025, 0.01), ulps(16, "(alpha/2)^(1/n) rule at k = 0 against Boost's inverse beta, a few eps (measured 0.25)"));
+  EXPECT_CLOSE(z.high, 1 - std::pow(0.025, 0.01),
+               ulps(16, "(alpha/2)^(1/n) rule at k = 0 against Boost's inverse beta, a few eps (measured 0.25)"));
 }
 
 TEST(Basins, LabelsIdenticalWithOneAndTwoThreads) {
@@ -298,7 +302,9 @@ TEST(Requests, BasinsMatchTheDirectRoute) {
     EXPECT_EQ(res.fraction[i], b.fractions[i].value);
     sum += res.fraction[i];
   }
-  EXPECT_CLOSE(sum, 1.0, ulps(16, "fractions of integer counts over one total: a rounding per term and per addition, a few attractors (measured 0)"));
+  EXPECT_CLOSE(sum, 1.0,
+               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
+                        "a few attractors (measured 0)"));
   for (std::size_t i = 0; i < res.replicate_mean.size(); ++i) {
     const auto& v = b.replicate_fractions[i];
     ASSERT_EQ(v.size(), 3u);
@@ -355,7 +361,8 @@ TEST(Requests, BasinsRComparesWithTheTable) {
   for (std::size_t i = 0; i < 2; ++i) {
     double s = 0;
     for (std::size_t j = 0; j < cols; ++j) s += res.fraction[i * cols + j];
-    EXPECT_CLOSE(s, 1.0, ulps(16, "integer counts over one total: a rounding per term and per addition, a few attractors (measured 0)"));
+    EXPECT_CLOSE(s, 1.0,
+                 ulps(16, "counts over one total: a rounding per term and per addition (measured 0)"));
   }
   // No r at all, and a table asked for without its text, are refused naming the field.
   BasinsRRequest none;
@@ -434,19 +441,23 @@ TEST(Measure, SphereGridCountsSolidAngle) {
   // A region's count on a grid of h x h cells is off by at most its boundary cells: perimeter / h cells of area
   // h^2 each, in the (theta, y) chart (cap perimeter ~2 pi 0.5 / cell widths pi/800, 2/400): ~ 3e-3 at most.
   EXPECT_CLOSE(cap / n, 2 * (1 - std::cos(0.5)), bound(3e-3, "boundary cells: perimeter / h cells of area h^2"));
-  EXPECT_CLOSE(band / n, 0.7 / 6, bound(1e-12 + 2.0 / 400, "aligned with the cells: off by at most one row and column"));
+  EXPECT_CLOSE(band / n, 0.7 / 6,
+               bound(1e-12 + 2.0 / 400, "aligned with the cells: off by at most one row and column"));
   EXPECT_EQ(sphere_share(g), 1.0);
   // The strip rectangle's share of the sphere measure: (2/pi)(F(b) - F(a)), F(w) = asin(w / sqrt(1 + 2 w^2)).
   EXPECT_CLOSE(strip_sphere_share(-2, 2), 4 / std::numbers::pi * std::asin(2.0 / 3),
                ulps(4, "the same closed form, its argument 2/sqrt(9) rounded differently"));
-  EXPECT_CLOSE(strip_sphere_share(-1e9, 1e9), 1.0, ulps(4, "the whole strip is the whole domain: asin(1/sqrt 2) x 4/pi"));
+  EXPECT_CLOSE(strip_sphere_share(-1e9, 1e9), 1.0,
+               ulps(4, "the whole strip is the whole domain: asin(1/sqrt 2) x 4/pi"));
   const auto rnd = iterate::random_points(1000000, 5);
   for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-2, 2}, {-0.5, 0.5}, {-32, 32}, {-1, 3}}) {
     double in = 0, in_grid = 0;
     for (const auto& u : rnd) in += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     for (const auto& u : pts) in_grid += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     const double p = strip_sphere_share(a, b), sd = std::sqrt(p * (1 - p) / 1e6);
-    EXPECT_CLOSE(in / 1e6, p, statistical(5 * sd + 1e-12, "5 sigma of a binomial count of 1e6 points")) << "[" << a << ", " << b << "]";
+    EXPECT_CLOSE(in / 1e6, p,
+                 statistical(5 * sd + 1e-12, "5 sigma of a binomial count of 1e6 points"))
+        << "[" << a << ", " << b << "]";
     EXPECT_CLOSE(in_grid / n, p, bound(2e-3, "boundary cells, as above")) << "[" << a << ", " << b << "]";
   }
 }
@@ -473,7 +484,8 @@ TEST(Measure, SphereGridAndRandomPointsAgreeTheRectangleDoesNot) {
   ASSERT_EQ(sphere_fraction.size(), 4u);  // 312^2, 132^2, 132^3312^3 and the P2 curves
   for (const auto& [pattern, p] : sphere_fraction) {
     // Two estimates of one p from 3600 points each: their difference has sd sqrt(2 p (1 - p) / 3600); 4 sd.
-    EXPECT_CLOSE(random_fraction[pattern], p, statistical(4 * std::sqrt(2 * p * (1 - p) / 3600), "4 sd of the difference")) << pattern;
+    EXPECT_CLOSE(random_fraction[pattern], p,
+                 statistical(4 * std::sqrt(2 * p * (1 - p) / 3600), "4 sd of the difference")) << pattern;
   }
   const double curves = sphere_fraction["P2 invariant curves"], rect = strip_fraction["P2 invariant curves"];
   std::printf("r = 0.21, P2 invariant curves: sphere grid %.4f, random %.4f, strip rectangle %.4f\n", curves,

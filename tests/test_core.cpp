@@ -87,7 +87,8 @@ TEST(Map, JSymmetrySwapsSymbols1And3) {
       const auto a = btob::core::step(u, r), b = btob::core::step(S(u), r);
       ASSERT_EQ(b.symbol, 4 - a.symbol) << "r=" << r;  // branch tests negate exactly under S
       // P3 (S u) and S (P1 u) sum the same products in another order: a few ulps of |P| |u|.
-      const auto tol = ulps(8, "the same products summed in another order").of(btob::core::P(a.symbol, r).norm() * u.norm());
+      const auto tol =
+          ulps(8, "the same products summed in another order").of(btob::core::P(a.symbol, r).norm() * u.norm());
       ASSERT_SMALL((b.u - S(a.u)).norm(), tol) << "r=" << r;
     }
 }
@@ -110,7 +111,8 @@ TEST(Map, EigenvectorsOfPropositions51And53) {
     EXPECT_EQ(btob::core::P2(r) * V(1, 0, -1), r * V(1, 0, -1));
     // Prop. 5.1: P1 (alpha, r + 1, 3 alpha) = r^2 (alpha, r + 1, 3 alpha): rounding of 3 terms of size <= 4.
     const V e(a, r + 1, 3 * a);
-    EXPECT_SMALL((btob::core::P1(r) * e - r * r * e).norm(), ulps(16, "3 rounded terms of size <= 4 per entry").of(e.norm())) << r;
+    EXPECT_SMALL((btob::core::P1(r) * e - r * r * e).norm(),
+                 ulps(16, "3 rounded terms of size <= 4 per entry").of(e.norm())) << r;
     // The planes z = 0 (P1) and x = z (P2) are invariant.
     EXPECT_EQ((btob::core::P1(r) * V(0.3, -0.7, 0))(2), 0.0);
     const V w = btob::core::P2(r) * V(0.3, -0.7, 0.3);
@@ -248,7 +250,8 @@ TEST(Coords, ParticlesRoundTrip) {
     EXPECT_CLOSE(c.q.norm(), 1.0, ulps(4, "a normalised vector: its norm is a sqrt of 3 rounded squares"));
     EXPECT_CLOSE(c.p.dot(c.q), 0.0, ulps(8, "q is built orthogonal to p: 3 rounded products of unit vectors"));
     // theta is the angle of p: tan theta = p1 / p3 (Section 4).
-    EXPECT_CLOSE(std::atan2(c.p(0), c.p(2)), btob::core::theta(u), ulps(45, "two atan2 of rounded components, angles <= pi/2").of(1));
+    EXPECT_CLOSE(std::atan2(c.p(0), c.p(2)), btob::core::theta(u),
+                 ulps(45, "two atan2 of rounded components, angles <= pi/2").of(1));
     const V w = btob::core::from_particles(c);
     worst = std::max(worst, std::atan2(w.cross(u).norm(), w.dot(u)));
   }

@@ -61,7 +61,8 @@ template <class T> void check_orbits(double r, long iterations) {
   for (std::size_t o = 0; o < e.orbits(); ++o) {
     const auto& u = fin.out[o];
     ASSERT_TRUE(std::isfinite(u(0)) && std::isfinite(u(1)) && std::isfinite(u(2))) << "r = " << r << " orbit " << o;
-    EXPECT_CLOSE(u.norm(), 1.0, ulps(8, "FinalRecorder normalises in double: a sqrt of 3 squares and a division (measured 1 eps)"))
+    EXPECT_CLOSE(u.norm(), 1.0,
+                 ulps(8, "FinalRecorder normalises in double: a sqrt of 3 squares and a division (measured 1 eps)"))
         << "never a zero vector";
     EXPECT_GE(u(0), 0) << "quadrant x >= 0 invariant";
     EXPECT_LE(u(2), 0) << "quadrant z <= 0 invariant";

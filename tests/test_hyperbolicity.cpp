@@ -58,7 +58,8 @@ TEST(Hyperbolicity, ClosedFormEqualsSvdOfTheDerivative) {
         const Eigen::JacobiSVD<Eigen::Matrix2d> svd(A);
         const auto sv = lyapunov::singular_values<double>(P, det_of(s, r), u);
         // Both are backward stable: errors ~ eps * s1 * (|P| / |P u|) <= 1e-13 s1 here; 1e-11 leaves room.
-        const auto tol = ulps(4500, "backward stable: eps s1 |P| / |P u| <= 450 eps s1 here (measured 14 eps), 10x room").of(sv[0]);
+        const auto tol =
+            ulps(4500, "backward stable: eps s1 |P| / |P u| <= 450 eps s1 here (measured 14 eps), 10x room").of(sv[0]);
         EXPECT_CLOSE(sv[0], svd.singularValues()(0), tol) << "r=" << r << " s=" << s;
         EXPECT_CLOSE(sv[1], svd.singularValues()(1), tol) << "r=" << r << " s=" << s;
       }
@@ -134,7 +135,8 @@ void check_periodic_clvs(double r, const V3& u0, std::size_t period) {
     std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b)); });
     for (int i : idx) ASSERT_EQ(es.eigenvalues()(i).imag(), 0.0) << "complex eigenvalues: CLVs undefined";
     const V3 u = res.points[j];
-    ASSERT_SMALL(sin_between(es.eigenvectors().col(idx[0]).real(), u), bound(1e-9, "the orbit converged onto the cycle"))
+    ASSERT_SMALL(sin_between(es.eigenvectors().col(idx[0]).real(), u),
+                 bound(1e-9, "the orbit converged onto the cycle"))
         << "not on the periodic orbit";
     const Eigen::Matrix3d proj = Eigen::Matrix3d::Identity() - u * u.transpose();
     const V3 t2 = proj * es.eigenvectors().col(idx[1]).real(), t3 = proj * es.eigenvectors().col(idx[2]).real();
@@ -231,7 +233,8 @@ TEST(Hyperbolicity, RotationRegionOfP2IsDegenerate) {
       const Eigen::Matrix3d D = lyapunov::projective_derivative<double>(core::P2(r), res.points[k]);
       worst = std::max(worst, sin_between(D * tangent(res.points[k]), tangent(res.points[k + 1])));
     }
-    EXPECT_SMALL(worst, ulps(450000, "the tangent field is covariant: rounding on O(1) quantities (measured 4400 eps)"));
+    EXPECT_SMALL(worst,
+                 ulps(450000, "the tangent field is covariant: rounding on O(1) quantities (measured 4400 eps)"));
     // Both exponents vanish: |lambda| <= 2 log(cond E) / n, cond E < 1e2 here.
     const auto frame = bound(10.0 / 20000, "2 log(cond E) / n with cond E < 1e2, n = 2e4");
     EXPECT_SMALL(res.lambda[0], frame);
@@ -245,7 +248,8 @@ TEST(Hyperbolicity, StripImage) {
   for (std::size_t i = 0; i < img.s1.size(); ++i) {
     const auto sv = lyapunov::step_singular_values(core::from_strip(img.w1[i], img.w2[i]), 0.3);
     // The strip coordinates round-trip to a few ulps; s1 is Lipschitz with constant ~ s1 there.
-    EXPECT_CLOSE(sv.s1, img.s1[i], ulps(450, "the strip round trip's few ulps, times s1's Lipschitz constant ~ s1").of(img.s1[i]));
+    EXPECT_CLOSE(sv.s1, img.s1[i],
+                 ulps(450, "the strip round trip's few ulps, times s1's Lipschitz constant ~ s1").of(img.s1[i]));
     EXPECT_EQ(sv.symbol, img.symbol[i]);
     EXPECT_GE(img.s1[i], img.s2[i]);
   }

@@ -252,7 +252,8 @@ TEST(Kernel, RenormalisationAtTheExtremes) {
       for (const auto* rec : {&fd, &ff}) {
         const auto& u = rec->out[o];
         ASSERT_TRUE(std::isfinite(u(0)) && std::isfinite(u(1)) && std::isfinite(u(2))) << "r = " << r;
-        EXPECT_CLOSE(u.norm(), 1.0, ulps(8, "FinalRecorder normalises in double: a sqrt of 3 squares and a division (measured 1 eps)"));
+        EXPECT_CLOSE(u.norm(), 1.0,
+                     ulps(8, "FinalRecorder normalises in double: sqrt of 3 squares, a division (measured 1 eps)"));
         EXPECT_GE(u(0), 0);
         EXPECT_LE(u(2), 0);
       }

@@ -149,7 +149,8 @@ TEST(Lyapunov, QuasiPeriodicOrbitsAroundTheP2Centre) {
     // 1e-4: the brief's bound; the bounded-frame term log(kappa)/n is ~1e-6 here.
     const auto briefs = bound(1e-4, "the brief's bound; the frame term log(kappa) / n is ~1e-6 here");
     EXPECT_SMALL(res.lambda[0].value, briefs);
-    EXPECT_SMALL(res.lambda[0].value, statistical(3 * res.lambda[0].error + 1e-6, "3 error bars of 0, plus the frame term"))
+    EXPECT_SMALL(res.lambda[0].value,
+                 statistical(3 * res.lambda[0].error + 1e-6, "3 error bars of 0, plus the frame term"))
         << "not within 3 error bars of 0";
     EXPECT_SMALL(res.lambda[1].value, briefs);
   }
@@ -295,7 +296,7 @@ TEST(Lyapunov, BatchedRecorderMatchesQrRoute) {
     // rounding, the same exponent to ~1e-12.
     const auto tol = [&](double e1, double e2) {
       return r == 0.11 ? statistical(5 * (e1 + e2), "chaotic: two orbits, 5 error bars")
-                       : ulps(4500, "regular: the same orbit up to rounding, the same exponent to ~1e-12 (measured 39 eps)");
+                       : ulps(4500, "regular: the same orbit up to rounding, exponents to ~1e-12 (measured 39 eps)");
     };
     EXPECT_CLOSE(m.lambda1[k], p.lambda[0].value, tol(p.lambda[0].error, m.err1[k])) << "orbit " << k << " r " << r;
     EXPECT_CLOSE(m.lambda2[k], p.lambda[1].value, tol(p.lambda[1].error, m.err2[k])) << "orbit " << k;
@@ -305,7 +306,8 @@ TEST(Lyapunov, BatchedRecorderMatchesQrRoute) {
   iterate::run_scalar<double>(e, rec.total_steps(), rec);
   const auto s = lyapunov::exponents_from(rec);
   for (std::size_t k = 0; k < 8; ++k)  // r = 0.0717: periodic
-    EXPECT_CLOSE(s.lambda1[k], m.lambda1[k], ulps(4500, "scalar loop and batched kernel round differently on a periodic orbit (measured 58 eps)"));
+    EXPECT_CLOSE(s.lambda1[k], m.lambda1[k],
+                 ulps(4500, "scalar loop and batched kernel round differently on a periodic orbit (measured 58 eps)"));
   const auto sum = lyapunov::summarise(m, e.r.size(), e.initial.size());
   EXPECT_EQ(sum.frac_positive[3], 1.0);  // r = 0.11: every orbit chaotic
   EXPECT_EQ(sum.frac_negative[1], 1.0);  // r = 0.15: every orbit on the stable 1133

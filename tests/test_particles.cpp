@@ -83,7 +83,8 @@ TEST(ParticlesEnergy, LossPerCollisionIsTheRestitutionLaw) {
     const double e0 = kinetic_energy<double, 3>(q), w = q(j);
     collide<double, 3>(q, j, r);
     const double e1 = kinetic_energy<double, 3>(q);
-    EXPECT_CLOSE(e0 - e1, (1 - r * r) * w * w / 4, ulps(16, "a difference of two energies, each a few roundings").of(e0))
+    EXPECT_CLOSE(e0 - e1, (1 - r * r) * w * w / 4,
+                 ulps(16, "a difference of two energies, each a few roundings").of(e0))
         << "trial " << trial;
     // Momentum: the centre-of-mass velocities still sum to zero (absolute() builds them so; the gaps' map is
     // the relative form of eq. 2.1) and the relative velocity of the pair is -r times its old value, exactly.
@@ -372,7 +373,7 @@ TEST(ParticlesPatterns, ContractionFromTheExactCharacteristicPolynomial) {
     std::sort(l.begin(), l.end(), [](const mp& a, const mp& b) { return abs(a) > abs(b); });
     const double rho = static_cast<double>(sqrt(abs(l[0] * l[2] / l[1])));  // stable: the orbit's is l[0]
     const ParticlesResult s = run_word(c.word, c.r, 10000);
-    const auto tol = ulps(1000, "the simulation's roundings over a period; the MPFR eigenvalues rounded once to double");
+    const auto tol = ulps(1000, "the simulation's roundings over a period; MPFR eigenvalues rounded once to double");
     EXPECT_CLOSE(s.length_contraction / rho, 1, tol) << c.word;
     EXPECT_CLOSE(s.time_contraction / static_cast<double>(abs(l[2] / l[1])), 1, tol) << c.word;
   }
@@ -403,7 +404,8 @@ TEST(ParticlesFiles, ConvergenceRowsAreEveryPeriodTo99ThenTwentyPerDecade) {
       EXPECT_LT(next, k * std::pow(10.0, 0.05) + 1) << n << " row " << i;
     }
     const double decades = std::log10(static_cast<double>(n) / 100);
-    EXPECT_CLOSE(static_cast<double>(rows.size() - 100), 20 * decades, bound(2, "20 rows per decade, +-1 at each end")) << n;
+    EXPECT_CLOSE(static_cast<double>(rows.size() - 100), 20 * decades,
+                 bound(2, "20 rows per decade, +-1 at each end")) << n;
   }
 }
 
@@ -417,7 +419,8 @@ TEST(ParticlesFiles, ACollapseHasNumbersEverywhereButTheFirstTimeRatio) {
   const auto conv = csv_cells(s.convergence_csv());
   ASSERT_EQ(conv.size(), 21u);  // header and 20 periods
   EXPECT_EQ(conv[1][3], "");    // period 1 has no previous duration
-  EXPECT_CLOSE(std::stod(conv[20][1]), s.length_contraction, ulps(4, "the CSV's decimal read back").of(s.length_contraction));
+  EXPECT_CLOSE(std::stod(conv[20][1]), s.length_contraction,
+               ulps(4, "the CSV's decimal read back").of(s.length_contraction));
   const auto row = csv_cells(s.csv());
   ASSERT_EQ(row.size(), 2u);
   EXPECT_EQ(row[0].size(), 20u);

@@ -59,7 +59,8 @@ TEST(PatternCurves, SpectrumAgreesWithTheAnalysis) {
       else if (m > l2) l2 = m;
     }
     EXPECT_CLOSE(2 * std::log(l2 / l1) / 6, v.lyapunov2,
-                 ulps(45000, "two routes; the cubic's conditioning amplifies rounding near close roots (measured 22 eps)"));
+                 ulps(45000, "two routes; the cubic's conditioning amplifies rounding near close roots "
+                             "(measured 22 eps)"));
     EXPECT_CLOSE(std::abs(c.tracked[i]), l1, ulps(4, "the tracked eigenvalue is the dominant one: a modulus").of(1));
     // Feasibility for r > r_crit,132J (Section 7.1): u_z < 0, alpha u_y - u_x > 0, (P1 u)_y < 0, ...
     const std::size_t nf = c.feas_names.size();

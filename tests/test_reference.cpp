@@ -135,8 +135,11 @@ TEST(CrossProduct, LinearMapIsAccurateAgainstQuadPrecision) {
       const V exact(static_cast<double>(c.u(0)), static_cast<double>(c.u(1)), static_cast<double>(c.u(2)));
       const double a = angle(s.u, exact);
       // Measured <= 0.9 eps |P| |u| / |P u| (at most 8e-14, at r = 0.01); 1e-12 leaves margin.
-      ASSERT_SMALL(a, ulps(4500, "0.9 eps |P| |u| / |P u| measured, at most 8e-14")) << "r=" << r << " u=" << u.transpose();
-      ASSERT_SMALL(a, ulps(4, "eps |P| |u| / |P u| of the product, plus the normalisation").of(linear_condition(u, r) + 1))
+      ASSERT_SMALL(a,
+                   ulps(4500, "0.9 eps |P| |u| / |P u| measured, at most 8e-14"))
+          << "r=" << r << " u=" << u.transpose();
+      ASSERT_SMALL(a,
+                   ulps(4, "eps |P| |u| / |P u| of the product, plus the normalisation").of(linear_condition(u, r) + 1))
           << "r=" << r;
       worst = std::max(worst, a);
     }
@@ -229,7 +232,8 @@ TEST(Trig, StartMatchesEquation214) {
       EXPECT_CLOSE(s.V.norm(), 1.0, unit);
       EXPECT_CLOSE(s.X.dot(s.V), 0.0, unit);
       // u = -(p0 x q0) (core/coords.hpp).
-      EXPECT_SMALL((-s.X.cross(s.V) - core::from_angles(th, ph)).norm(), ulps(8, "a cross product of two unit vectors"));
+      EXPECT_SMALL((-s.X.cross(s.V) - core::from_angles(th, ph)).norm(),
+                   ulps(8, "a cross product of two unit vectors"));
     }
 }
 

@@ -112,7 +112,8 @@ TEST(Correlation, PrecisionFollowsT) {
   EXPECT_SMALL(max_rel_diff(fl, ref), ulps<float>(83, "inputs rounded to float, transforms round at ~log2(L) eps"));
   EXPECT_GT(max_rel_diff(fl, ref), 1e-9);  // and it really ran in float (double would be ~1e-15)
   // long double: both routes in 64-bit mantissas, ~1e-18; 1e-15 leaves room for the FFT's log factor.
-  EXPECT_SMALL(max_rel_diff(cl(xl, xl), ref), ulps<long double>(9200, "64-bit mantissas, ~10 eps, times the FFT's log factor"));
+  EXPECT_SMALL(max_rel_diff(cl(xl, xl), ref),
+               ulps<long double>(9200, "64-bit mantissas, ~10 eps, times the FFT's log factor"));
 }
 
 TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
@@ -122,7 +123,8 @@ TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
     const auto x = observe(s, o);
     Correlator<double> c(40000, 2000);
     EXPECT_SMALL(max_rel_diff(c(x, x), correlation_direct(x, x, 40000, 2000)),
-                 ulps(4500, "the required 1e-12 of max |C_N|; both routes round at ~1e-15 of it")) << observable_name(o);
+                 ulps(4500, "the required 1e-12 of max |C_N|; both routes round at ~1e-15 of it"))
+        << observable_name(o);
   }
   // Two observables and a user function composed with one (tolerance as above).
   const auto a = observe(s, Observable::phi, [](double p) { return std::sin(3 * p); });
@@ -161,7 +163,9 @@ TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
     const auto cn = c(x, x);
     double worst = 0;
     for (long n = 0; n + 4 <= 1000; ++n) worst = std::max(worst, std::fabs(cn[n + 4] - cn[n]));
-    EXPECT_SMALL(worst, ulps(4500, "the required p-periodicity: the sink is reached to rounding (measured 96 eps)")) << observable_name(o);
+    EXPECT_SMALL(worst,
+                 ulps(4500, "the required p-periodicity: the sink is reached to rounding (measured 96 eps)"))
+        << observable_name(o);
     EXPECT_GT(max_abs(cn), 1e-3) << observable_name(o);  // and not trivially zero
     double worst2 = 0;  // but not 2-periodic (period exactly 4)
     for (long n = 0; n + 2 <= 1000; ++n) worst2 = std::max(worst2, std::fabs(cn[n + 2] - cn[n]));
@@ -365,7 +369,8 @@ TEST(CorrelateRequest, RunIsTheCorrelatorOnTheOrbit) {
   const Decay d = fit_decay(res.c, 40, 4, res.noise_floor);
   EXPECT_EQ(res.decay.rate, d.rate);
   // The sink 1133 has period 4: the periodogram of phi peaks at a multiple of 1/4 cycles per iteration.
-  EXPECT_CLOSE(std::fmod(res.peak_frequency * 4, 1.0), 0.0, ulps(4, "bin k / L of the periodogram, times 4: a rounding or two (measured 0)"));
+  EXPECT_CLOSE(std::fmod(res.peak_frequency * 4, 1.0), 0.0,
+               ulps(4, "bin k / L of the periodogram, times 4: a rounding or two (measured 0)"));
   core::Contents c;
   res.describe(c);
   for (const char* name : {"C_N", "C_N_direct", "envelope", "spectrum_frequency", "power_spectrum"})
@@ -548,7 +553,8 @@ TEST(Correlation, DecayVerdictBranches) {
   // lag 131 (1.4e-3); the one starting at 141 (8.7e-4) ends the fit: 14 windows.
   const Decay d = fit_decay(fast, 200, 10, 1e-3);
   EXPECT_EQ(d.verdict, "decaying");
-  EXPECT_CLOSE(d.rate, 0.05, ulps(64, "the log of the window maxima is exactly linear up to rounding (~1e-16; measured 0)"));
+  EXPECT_CLOSE(d.rate, 0.05,
+               ulps(64, "the log of the window maxima is exactly linear up to rounding (~1e-16; measured 0)"));
   EXPECT_EQ(d.floor_lag, 141);
   EXPECT_EQ(d.windows, 14);
 }

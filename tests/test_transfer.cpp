@@ -114,7 +114,8 @@ TEST(Transfer, DecompositionOfAHandMadeChain) {
   ASSERT_EQ(e.size(), 4u);
   int ones = 0, roots = 0;
   for (const auto& x : e) {
-    EXPECT_CLOSE(std::abs(x.value), 1.0, ulps(64, "dense eigensolver of 3x3 and 1x1 blocks: rounding only (measured 1 eps)"));
+    EXPECT_CLOSE(std::abs(x.value), 1.0,
+                 ulps(64, "dense eigensolver of 3x3 and 1x1 blocks: rounding only (measured 1 eps)"));
     ones += std::abs(x.value - 1.0) < 1e-12;
     roots += std::abs(std::pow(x.value, 3) - 1.0) < 1e-12;
   }
@@ -132,7 +133,8 @@ TEST(Transfer, BlockSpectrumAgreesWithSpectraOnTheWholeMatrix) {
   ASSERT_GE(whole.size(), 3u);
   // Both are Arnoldi / QR to ~1e-10 relative (Spectra's tolerance); the leading three moduli must agree to 1e-8.
   for (std::size_t k = 0; k < 3; ++k)
-    EXPECT_CLOSE(std::abs(blocks[k].value), std::abs(whole[k]), bound(1e-8, "two Arnoldi runs to Spectra's 1e-10")) << k;
+    EXPECT_CLOSE(std::abs(blocks[k].value), std::abs(whole[k]),
+                 bound(1e-8, "two Arnoldi runs to Spectra's 1e-10")) << k;
   EXPECT_CLOSE(blocks[0].value.real(), 1.0, bound(1e-10, "Spectra's convergence tolerance"));
 }
 
@@ -188,7 +190,8 @@ TEST(Transfer, SinkAtR015HoldsTheDensity) {
   EXPECT_GE(res.cycles[0].radius99, 0);
   double total = 0;
   for (const auto& c : res.components) total += c.lebesgue;
-  EXPECT_CLOSE(total + res.unabsorbed, 1.0, ulps(4500, "mass conservation of the projection: 16384 sums, a random walk of ~128 eps (measured 38)"));
+  EXPECT_CLOSE(total + res.unabsorbed, 1.0,
+               ulps(4500, "mass conservation of the projection: 16384 sums, a random walk of ~128 eps (measured 38)"));
 }
 
 TEST(Transfer, RequestErrorsNameTheirField) {
@@ -257,7 +260,8 @@ TEST(TransferFiles, TablesAndArraysOfOneRunAgreeWithTheResult) {
   ASSERT_EQ(spec.size(), res.eig_re.size() + 1);
   for (std::size_t k = 0; k < res.eig_re.size(); ++k) {
     const auto& row = spec[k + 1];
-    EXPECT_CLOSE(std::stod(row[csv_column(spec[0], "modulus")]), std::abs(std::complex<double>(res.eig_re[k], res.eig_im[k])),
+    EXPECT_CLOSE(std::stod(row[csv_column(spec[0], "modulus")]),
+                 std::abs(std::complex<double>(res.eig_re[k], res.eig_im[k])),
                  ulps(4, "the CSV's decimal of the same modulus, read back"));
     EXPECT_EQ(row[csv_column(spec[0], "whole_re")], "");
   }

@@ -238,7 +238,8 @@ TEST(WindowPolynomial, TraceMatchesFloatingMatrixPower) {
     const RationalPoly p = trace_polynomial(n);
     mpq_class v = 0, x(3, 10), xp = 1;
     for (int k = 0; k <= p.degree(); ++k, xp *= x) v += p.coefficient(k) * xp;
-    EXPECT_CLOSE(v.get_d(), M[6] + M[4] + M[2], ulps(225, "a dozen double products of entries below 2").of(2)) << "n = " << n;
+    EXPECT_CLOSE(v.get_d(), M[6] + M[4] + M[2],
+                 ulps(225, "a dozen double products of entries below 2").of(2)) << "n = " << n;
   }
 }
 
