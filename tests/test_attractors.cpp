@@ -11,12 +11,18 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <set>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace btob::attractors {
 namespace {
@@ -93,8 +99,9 @@ TEST(Attractors, R02PeriodicCoexistsWithQuasiPeriodicCurves) {
   // the weighted average's accuracy (1e-9: Das-Yorke convergence at 4000 steps is far below).
   const auto& q = m.at("P2 invariant curves");
   const double beta = std::acos(-(1 - r) * (1 - r) / (4 * r)) / (2 * std::numbers::pi);
-  EXPECT_NEAR(std::fabs(q.rotation_min), beta, 1e-9);
-  EXPECT_NEAR(std::fabs(q.rotation_max), beta, 1e-9);
+  const auto conv = bound(1e-9, "the weighted rotation average at 4000 steps (Das-Yorke convergence is far below)");
+  EXPECT_CLOSE(std::fabs(q.rotation_min), beta, conv);
+  EXPECT_CLOSE(std::fabs(q.rotation_max), beta, conv);
   EXPECT_LT(q.invariant_min, q.invariant_max);  // a family of different curves
 }
 
@@ -138,10 +145,12 @@ TEST(Attractors, P2InvariantIsConservedAndDistinguishesCurves) {
   ASSERT_EQ(a.type, Type::quasi_periodic);
   ASSERT_EQ(b.type, Type::quasi_periodic);
   EXPECT_TRUE(a.p2_region);
-  EXPECT_LT(a.invariant_spread, 1e-9);  // exact invariance, rounding only
+  EXPECT_SMALL(a.invariant_spread,
+               ulps(45000, "exact invariance: rounding only, accumulated over the orbit (measured 2660 eps)"));
   // I on the strip: 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 (attractor_recorder.hpp).
   const double al = (1 + r) / 2;
-  EXPECT_NEAR(a.invariant, 2 * 0.02 * 0.02 - 4 * al * 0.05 * 0.02 + 4 * r * 0.05 * 0.05, 1e-12);
+  EXPECT_CLOSE(a.invariant, 2 * 0.02 * 0.02 - 4 * al * 0.05 * 0.02 + 4 * r * 0.05 * 0.05,
+               ulps(32, "I of the start from its strip coordinates: rounding only (measured 2.6 eps)"));
   EXPECT_TRUE(same_attractor(a, c, r));
   EXPECT_FALSE(same_attractor(a, b, r));
 }
@@ -178,7 +187,9 @@ TEST(Basins, FractionsSumToOneWithIntervals) {
     EXPECT_GE(b.fractions[i].high, b.fractions[i].value);
     EXPECT_EQ(b.attractors[i].id, static_cast<int>(i) + 1);
   }
-  EXPECT_NEAR(sum, 1.0, 1e-12);  // fractions of integer counts over one total
+  EXPECT_CLOSE(sum, 1.0,
+               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
+                        "a few attractors (measured 0)"));
   EXPECT_EQ(b.labels.size(), 600u);
   EXPECT_EQ(b.replicate_fractions.size(), b.attractors.size() + 1);
   for (const auto& rf : b.replicate_fractions) EXPECT_EQ(rf.size(), 3u);
@@ -212,11 +223,12 @@ TEST(Basins, LabelsEqualClassifyAndCollectOfTheMainGrid) {
 TEST(Basins, ClopperPearsonReferenceValues) {
   // Exact two-sided 95% interval for 5 of 10 (tables of Clopper and Pearson 1934: 0.1871, 0.8129).
   const Fraction f = fraction(5, 10);
-  EXPECT_NEAR(f.low, 0.187086, 1e-6);
-  EXPECT_NEAR(f.high, 0.812914, 1e-6);
+  EXPECT_CLOSE(f.low, 0.187086, bound(1e-6, "the reference printed to 6 decimals"));
+  EXPECT_CLOSE(f.high, 0.812914, bound(1e-6, "the reference printed to 6 decimals"));
   const Fraction z = fraction(0, 100);
   EXPECT_EQ(z.low, 0.0);
-  EXPECT_NEAR(z.high, 1 - std::pow(0.025, 0.01), 1e-9);  // (alpha/2)^(1/n) rule at k = 0
+  EXPECT_CLOSE(z.high, 1 - std::pow(0.025, 0.01),
+               ulps(16, "(alpha/2)^(1/n) rule at k = 0 against Boost's inverse beta, a few eps (measured 0.25)"));
 }
 
 TEST(Basins, LabelsIdenticalWithOneAndTwoThreads) {
@@ -290,14 +302,16 @@ TEST(Requests, BasinsMatchTheDirectRoute) {
     EXPECT_EQ(res.fraction[i], b.fractions[i].value);
     sum += res.fraction[i];
   }
-  EXPECT_NEAR(sum, 1.0, 1e-12);  // fractions of integer counts over one total
+  EXPECT_CLOSE(sum, 1.0,
+               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
+                        "a few attractors (measured 0)"));
   for (std::size_t i = 0; i < res.replicate_mean.size(); ++i) {
     const auto& v = b.replicate_fractions[i];
     ASSERT_EQ(v.size(), 3u);
     const double m = (v[0] + v[1] + v[2]) / 3;
     const double sd = std::sqrt(((v[0] - m) * (v[0] - m) + (v[1] - m) * (v[1] - m) + (v[2] - m) * (v[2] - m)) / 2);
-    EXPECT_NEAR(res.replicate_mean[i], m, 4 * std::numeric_limits<double>::epsilon());  // sums of 3 terms <= 1
-    EXPECT_NEAR(res.replicate_sd[i], sd, 16 * std::numeric_limits<double>::epsilon());   // a square root of those
+    EXPECT_CLOSE(res.replicate_mean[i], m, ulps(4, "a mean of 3 terms <= 1: 2 additions and a division"));
+    EXPECT_CLOSE(res.replicate_sd[i], sd, ulps(16, "the square root of a sum of 3 squares of those differences"));
   }
   core::Contents c;
   res.describe(c);
@@ -347,7 +361,8 @@ TEST(Requests, BasinsRComparesWithTheTable) {
   for (std::size_t i = 0; i < 2; ++i) {
     double s = 0;
     for (std::size_t j = 0; j < cols; ++j) s += res.fraction[i * cols + j];
-    EXPECT_NEAR(s, 1.0, 1e-12);  // integer counts over one total
+    EXPECT_CLOSE(s, 1.0,
+                 ulps(16, "counts over one total: a rounding per term and per addition (measured 0)"));
   }
   // No r at all, and a table asked for without its text, are refused naming the field.
   BasinsRRequest none;
@@ -425,20 +440,25 @@ TEST(Measure, SphereGridCountsSolidAngle) {
   }
   // A region's count on a grid of h x h cells is off by at most its boundary cells: perimeter / h cells of area
   // h^2 each, in the (theta, y) chart (cap perimeter ~2 pi 0.5 / cell widths pi/800, 2/400): ~ 3e-3 at most.
-  EXPECT_NEAR(cap / n, 2 * (1 - std::cos(0.5)), 3e-3);
-  EXPECT_NEAR(band / n, 0.7 / 6, 1e-12 + 2.0 / 400);  // aligned with the cells: off by at most one row and column
+  EXPECT_CLOSE(cap / n, 2 * (1 - std::cos(0.5)), bound(3e-3, "boundary cells: perimeter / h cells of area h^2"));
+  EXPECT_CLOSE(band / n, 0.7 / 6,
+               bound(1e-12 + 2.0 / 400, "aligned with the cells: off by at most one row and column"));
   EXPECT_EQ(sphere_share(g), 1.0);
   // The strip rectangle's share of the sphere measure: (2/pi)(F(b) - F(a)), F(w) = asin(w / sqrt(1 + 2 w^2)).
-  EXPECT_NEAR(strip_sphere_share(-2, 2), 4 / std::numbers::pi * std::asin(2.0 / 3), 1e-15);
-  EXPECT_NEAR(strip_sphere_share(-1e9, 1e9), 1.0, 1e-15);  // the whole strip is the whole domain
+  EXPECT_CLOSE(strip_sphere_share(-2, 2), 4 / std::numbers::pi * std::asin(2.0 / 3),
+               ulps(4, "the same closed form, its argument 2/sqrt(9) rounded differently"));
+  EXPECT_CLOSE(strip_sphere_share(-1e9, 1e9), 1.0,
+               ulps(4, "the whole strip is the whole domain: asin(1/sqrt 2) x 4/pi"));
   const auto rnd = iterate::random_points(1000000, 5);
   for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-2, 2}, {-0.5, 0.5}, {-32, 32}, {-1, 3}}) {
     double in = 0, in_grid = 0;
     for (const auto& u : rnd) in += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     for (const auto& u : pts) in_grid += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     const double p = strip_sphere_share(a, b), sd = std::sqrt(p * (1 - p) / 1e6);
-    EXPECT_NEAR(in / 1e6, p, 5 * sd + 1e-12) << "[" << a << ", " << b << "]";  // 5 sigma of a binomial count
-    EXPECT_NEAR(in_grid / n, p, 2e-3) << "[" << a << ", " << b << "]";         // boundary cells, as above
+    EXPECT_CLOSE(in / 1e6, p,
+                 statistical(5 * sd + 1e-12, "5 sigma of a binomial count of 1e6 points"))
+        << "[" << a << ", " << b << "]";
+    EXPECT_CLOSE(in_grid / n, p, bound(2e-3, "boundary cells, as above")) << "[" << a << ", " << b << "]";
   }
 }
 
@@ -464,7 +484,8 @@ TEST(Measure, SphereGridAndRandomPointsAgreeTheRectangleDoesNot) {
   ASSERT_EQ(sphere_fraction.size(), 4u);  // 312^2, 132^2, 132^3312^3 and the P2 curves
   for (const auto& [pattern, p] : sphere_fraction) {
     // Two estimates of one p from 3600 points each: their difference has sd sqrt(2 p (1 - p) / 3600); 4 sd.
-    EXPECT_NEAR(random_fraction[pattern], p, 4 * std::sqrt(2 * p * (1 - p) / 3600)) << pattern;
+    EXPECT_CLOSE(random_fraction[pattern], p,
+                 statistical(4 * std::sqrt(2 * p * (1 - p) / 3600), "4 sd of the difference")) << pattern;
   }
   const double curves = sphere_fraction["P2 invariant curves"], rect = strip_fraction["P2 invariant curves"];
   std::printf("r = 0.21, P2 invariant curves: sphere grid %.4f, random %.4f, strip rectangle %.4f\n", curves,
@@ -476,7 +497,8 @@ TEST(Measure, SphereGridAndRandomPointsAgreeTheRectangleDoesNot) {
   EXPECT_NE(measure_name(s.basins.grid).find("sphere"), std::string::npos);
   core::Contents ct;
   t.describe(ct);
-  EXPECT_NEAR(std::get<double>(ct.attrs.at("measure_sphere_share")), strip_sphere_share(-2, 2), 1e-15);
+  EXPECT_CLOSE(std::get<double>(ct.attrs.at("measure_sphere_share")), strip_sphere_share(-2, 2),
+               ulps(4, "the attribute is strip_sphere_share of the same strip"));
   EXPECT_EQ(BasinsRequest{}.grid.rfind("sphere:", 0), 0u);  // the default measure is the sphere's
 }
 

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <cmath>
 #include <complex>
 #include <cstdlib>
@@ -19,6 +21,10 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace {
 
@@ -81,8 +87,9 @@ TEST(Map, JSymmetrySwapsSymbols1And3) {
       const auto a = btob::core::step(u, r), b = btob::core::step(S(u), r);
       ASSERT_EQ(b.symbol, 4 - a.symbol) << "r=" << r;  // branch tests negate exactly under S
       // P3 (S u) and S (P1 u) sum the same products in another order: a few ulps of |P| |u|.
-      const double tol = 8 * eps * btob::core::P(a.symbol, r).norm() * u.norm();
-      ASSERT_LE((b.u - S(a.u)).norm(), tol) << "r=" << r;
+      const auto tol =
+          ulps(8, "the same products summed in another order").of(btob::core::P(a.symbol, r).norm() * u.norm());
+      ASSERT_SMALL((b.u - S(a.u)).norm(), tol) << "r=" << r;
     }
 }
 
@@ -90,10 +97,10 @@ TEST(Map, Determinants) {
   for (double r : kR) {
     // The cofactor sums cancel: terms of size r^(k-1) add up to r^k, so the relative error is a few
     // ulps divided by r.
-    const double tol = 16 * eps / r;
-    EXPECT_NEAR(btob::core::P1(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
-    EXPECT_NEAR(btob::core::P2(r).determinant() / std::pow(r, 3), 1.0, tol) << r;
-    EXPECT_NEAR(btob::core::P3(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
+    const auto tol = ulps(16 / r, "cofactor sums of terms r^(k-1) cancel to r^k: a few roundings over r");
+    EXPECT_CLOSE(btob::core::P1(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
+    EXPECT_CLOSE(btob::core::P2(r).determinant() / std::pow(r, 3), 1.0, tol) << r;
+    EXPECT_CLOSE(btob::core::P3(r).determinant() / std::pow(r, 4), 1.0, tol) << r;
   }
 }
 
@@ -104,7 +111,8 @@ TEST(Map, EigenvectorsOfPropositions51And53) {
     EXPECT_EQ(btob::core::P2(r) * V(1, 0, -1), r * V(1, 0, -1));
     // Prop. 5.1: P1 (alpha, r + 1, 3 alpha) = r^2 (alpha, r + 1, 3 alpha): rounding of 3 terms of size <= 4.
     const V e(a, r + 1, 3 * a);
-    EXPECT_LE((btob::core::P1(r) * e - r * r * e).norm(), 16 * eps * e.norm()) << r;
+    EXPECT_SMALL((btob::core::P1(r) * e - r * r * e).norm(),
+                 ulps(16, "3 rounded terms of size <= 4 per entry").of(e.norm())) << r;
     // The planes z = 0 (P1) and x = z (P2) are invariant.
     EXPECT_EQ((btob::core::P1(r) * V(0.3, -0.7, 0))(2), 0.0);
     const V w = btob::core::P2(r) * V(0.3, -0.7, 0.3);
@@ -117,13 +125,14 @@ TEST(Map, EigenvectorsOfPropositions51And53) {
     std::sort(v.begin(), v.end(), [](auto x, auto y) { return x.real() < y.real(); });
     return v;
   };
-  const double tol = 1e-12;  // eigenvalues of a well-separated 3x3 spectrum: ~ eps * |P| * condition
+  // Eigenvalues (all below 1) of a well-separated 3x3 spectrum: ~ eps * |P| * condition.
+  const auto tol = ulps(64, "Eigen's 3x3 eigensolver: eps |P| times the spectrum's condition (measured 4 eps)");
   {
     const double r = 0.05, sq = std::sqrt(r * r - 14 * r + 1);
     const auto v = sorted_eigs(btob::core::P1(r));
-    EXPECT_NEAR(v[0].real(), r * r, tol);
-    EXPECT_NEAR(v[1].real(), (r * r - 6 * r + 1 - (r + 1) * sq) / 8, tol);
-    EXPECT_NEAR(v[2].real(), (r * r - 6 * r + 1 + (r + 1) * sq) / 8, tol);
+    EXPECT_CLOSE(v[0].real(), r * r, tol);
+    EXPECT_CLOSE(v[1].real(), (r * r - 6 * r + 1 - (r + 1) * sq) / 8, tol);
+    EXPECT_CLOSE(v[2].real(), (r * r - 6 * r + 1 + (r + 1) * sq) / 8, tol);
     for (auto x : v) EXPECT_EQ(x.imag(), 0.0);
   }
   for (double r : {0.1, 0.5, 0.9}) {
@@ -132,20 +141,20 @@ TEST(Map, EigenvectorsOfPropositions51And53) {
     for (auto x : v)
       if (x.imag() != 0) {
         ++complex_pairs;
-        EXPECT_NEAR(std::abs(x), r, tol) << r;
+        EXPECT_CLOSE(std::abs(x), r, tol) << r;
       }
     EXPECT_EQ(complex_pairs, 2) << r;
   }
   {
     const double r = 0.1, a = btob::core::alpha(r), sq = std::sqrt(a * a - 2 * r);
     const auto v = sorted_eigs(btob::core::P2(r));
-    EXPECT_NEAR(v[0].real(), r - a * a - a * sq, tol);
-    EXPECT_NEAR(v[1].real(), r - a * a + a * sq, tol);
-    EXPECT_NEAR(v[2].real(), r, tol);
+    EXPECT_CLOSE(v[0].real(), r - a * a - a * sq, tol);
+    EXPECT_CLOSE(v[1].real(), r - a * a + a * sq, tol);
+    EXPECT_CLOSE(v[2].real(), r, tol);
   }
   for (double r : {0.2, 0.5, 0.9}) {
     const auto v = sorted_eigs(btob::core::P2(r));
-    for (auto x : v) EXPECT_NEAR(std::abs(x), r, tol) << r;
+    for (auto x : v) EXPECT_CLOSE(std::abs(x), r, tol) << r;
   }
 }
 
@@ -176,19 +185,19 @@ TEST(Map, BranchConventionsOnExactTies) {
 
 TEST(Coords, AnglesRoundTrip) {
   // theta, phi come back through atan2 of products of sines and cosines: a few ulps of pi.
-  const double tol = 1e-14;
+  const auto tol = ulps(14, "atan2 of products of sines and cosines, angles up to pi").of(std::numbers::pi);
   for (int i = 1; i < 50; ++i)
     for (int j = 1; j < 50; ++j) {
       const double th = 0.5 * std::numbers::pi * i / 50, ph = std::numbers::pi * j / 50;
       const V u = btob::core::from_angles(th, ph);
-      EXPECT_NEAR(u.norm(), 1.0, 4 * eps);
+      EXPECT_CLOSE(u.norm(), 1.0, ulps(4, "sqrt of a sum of 3 squares of sines and cosines"));
       EXPECT_GE(u(0), 0.0);
       EXPECT_LE(u(2), 0.0);
-      EXPECT_NEAR(btob::core::theta(u), th, tol);
-      EXPECT_NEAR(btob::core::phi(u), ph, tol);
+      EXPECT_CLOSE(btob::core::theta(u), th, tol);
+      EXPECT_CLOSE(btob::core::phi(u), ph, tol);
       // theta and phi depend on the direction only, and on neither quadrant representative.
-      EXPECT_NEAR(btob::core::theta<double>(-3.0 * u), th, tol);
-      EXPECT_NEAR(btob::core::phi<double>(-3.0 * u), ph, tol);
+      EXPECT_CLOSE(btob::core::theta<double>(-3.0 * u), th, tol);
+      EXPECT_CLOSE(btob::core::phi<double>(-3.0 * u), ph, tol);
     }
 }
 
@@ -197,11 +206,12 @@ TEST(Coords, StripRoundTrip) {
     for (double w2 = -1; w2 <= 1; w2 += 0.0625) {
       const auto [a, b] = btob::core::strip(btob::core::from_strip(w1, w2));
       // x - z == 1 exactly for these inputs (w2 on a dyadic grid), so only the division rounds.
-      EXPECT_NEAR(a, w1, 1e-14 * std::max(1.0, std::abs(w1)));
-      EXPECT_NEAR(b, w2, 1e-14);
+      const auto tol = ulps(45, "w -> u -> w: the construction's roundings and one division, relative to max(1, |w|)");
+      EXPECT_CLOSE(a, w1, tol);
+      EXPECT_CLOSE(b, w2, tol);
       const auto [c, d] = btob::core::strip<double>(-2.5 * btob::core::from_strip(w1, w2));
-      EXPECT_NEAR(c, w1, 1e-14 * std::max(1.0, std::abs(w1)));
-      EXPECT_NEAR(d, w2, 1e-14);
+      EXPECT_CLOSE(c, w1, tol);
+      EXPECT_CLOSE(d, w2, tol);
     }
 }
 
@@ -236,17 +246,18 @@ TEST(Coords, ParticlesRoundTrip) {
     ASSERT_GE(c.p(0), 0.0);
     ASSERT_GE(c.p(2), 0.0);
     ASSERT_GT(c.q(1), 0.0);  // the pair 2-3 separates
-    EXPECT_NEAR(c.p.norm(), 1.0, 4 * eps);
-    EXPECT_NEAR(c.q.norm(), 1.0, 4 * eps);
-    EXPECT_NEAR(c.p.dot(c.q), 0.0, 8 * eps);  // q is built orthogonal to p
+    EXPECT_CLOSE(c.p.norm(), 1.0, ulps(4, "a normalised vector: its norm is a sqrt of 3 rounded squares"));
+    EXPECT_CLOSE(c.q.norm(), 1.0, ulps(4, "a normalised vector: its norm is a sqrt of 3 rounded squares"));
+    EXPECT_CLOSE(c.p.dot(c.q), 0.0, ulps(8, "q is built orthogonal to p: 3 rounded products of unit vectors"));
     // theta is the angle of p: tan theta = p1 / p3 (Section 4).
-    EXPECT_NEAR(std::atan2(c.p(0), c.p(2)), btob::core::theta(u), 1e-14);
+    EXPECT_CLOSE(std::atan2(c.p(0), c.p(2)), btob::core::theta(u),
+                 ulps(45, "two atan2 of rounded components, angles <= pi/2").of(1));
     const V w = btob::core::from_particles(c);
     worst = std::max(worst, std::atan2(w.cross(u).norm(), w.dot(u)));
   }
   // p and q are orthogonal and unit, so p x q and the two cross products before it are well
   // conditioned: the direction comes back to a few ulps.
-  EXPECT_LT(worst, 1e-14);
+  EXPECT_SMALL(worst, ulps(45, "to particles and back: well-conditioned cross products, a few ulps"));
 }
 
 TEST(Validation, PointErrors) {

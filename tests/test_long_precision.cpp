@@ -43,7 +43,7 @@ TEST(Tradeoff, SmallStudy) {
     if (row.digits >= 19 && row.method != "trig/double") EXPECT_LT(row.error_median[0], 1e-15) << row.method;
   }
   // One header line, then a row per method (what was run is in notes(), the manifest's description).
-  const std::string csv = res.csv(req);
+  const std::string csv = res.csv();
   EXPECT_EQ(csv.rfind("method,decimal_digits,iterations_per_second,", 0), 0u);
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), res.rows.size() + 1);
   EXPECT_NE(btob::precision::TradeoffResult::notes(req).find("n in [2 3]"), std::string::npos);

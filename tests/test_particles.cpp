@@ -19,10 +19,16 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <cmath>
 #include <limits>
 #include <random>
 #include <string>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 using namespace btob;
 using namespace btob::particles;
@@ -77,7 +83,9 @@ TEST(ParticlesEnergy, LossPerCollisionIsTheRestitutionLaw) {
     const double e0 = kinetic_energy<double, 3>(q), w = q(j);
     collide<double, 3>(q, j, r);
     const double e1 = kinetic_energy<double, 3>(q);
-    EXPECT_NEAR(e0 - e1, (1 - r * r) * w * w / 4, 16 * eps * e0) << "trial " << trial;
+    EXPECT_CLOSE(e0 - e1, (1 - r * r) * w * w / 4,
+                 ulps(16, "a difference of two energies, each a few roundings").of(e0))
+        << "trial " << trial;
     // Momentum: the centre-of-mass velocities still sum to zero (absolute() builds them so; the gaps' map is
     // the relative form of eq. 2.1) and the relative velocity of the pair is -r times its old value, exactly.
     EXPECT_EQ(q(j), -r * w);
@@ -134,7 +142,8 @@ TEST(ParticlesThree, CollapseOnlyBelowSevenMinusFourSqrtThree) {
     EXPECT_EQ(three_particle_collisions(q, r, 100000, &ratio), 100000) << "r = " << r;
     // Time ratio of one ab period = mu2/mu1; tolerance 1e3 eps: the ratio of two flight times each computed
     // from gaps carrying O(10) roundings, divided by mu1 - mu2 which is small near the threshold (r = 0.07).
-    EXPECT_NEAR(ratio, mu2 / mu1, 1e3 * eps / (1 - mu2 / mu1)) << "r = " << r;
+    EXPECT_CLOSE(ratio, mu2 / mu1, ulps(1e3 / (1 - mu2 / mu1), "two flight times of O(10) roundings, over mu1 - mu2"))
+        << "r = " << r;
   }
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> U(0, 1);
@@ -160,10 +169,12 @@ TEST(ParticlesPatterns, IndependentRoutesAgree) {
     EXPECT_EQ(rotations_contain(s.letters, c.letters), "yes") << c.word << " letters " << s.letters;
     EXPECT_EQ(s.outcome, "stable orbit") << c.word;
     EXPECT_TRUE(s.collapse) << c.word;
-    EXPECT_NEAR(s.length_contraction / s.length_predicted, 1, 1e3 * eps) << c.word;
-    EXPECT_NEAR(s.velocity_contraction / s.velocity_predicted, 1, 1e3 * eps) << c.word;
-    EXPECT_NEAR(s.time_contraction / s.time_predicted, 1, 1e3 * eps) << c.word;
-    EXPECT_LT(s.length_spread, 1e3 * eps) << c.word;  // converged: every ratio of the second half agrees
+    const auto tol = ulps(1000, "event times and gaps carry roundings of every collision of a period");
+    EXPECT_CLOSE(s.length_contraction / s.length_predicted, 1, tol) << c.word;
+    EXPECT_CLOSE(s.velocity_contraction / s.velocity_predicted, 1, tol) << c.word;
+    EXPECT_CLOSE(s.time_contraction / s.time_predicted, 1, tol) << c.word;
+    // Converged: every ratio of the second half agrees.
+    EXPECT_SMALL(s.length_spread, ulps(1000, "the ratios' own roundings, as above")) << c.word;
     EXPECT_TRUE(s.time_to_collapse > 0 && std::isfinite(s.time_to_collapse));
     // The map route: core::step from the periodic point, one letter group per symbol.
     patterns::Verdict<double> v = patterns::analyse<double>(patterns::parse_word(c.word), c.r);
@@ -218,9 +229,10 @@ TEST(ParticlesPatterns, Float128AgreesWithDouble) {
   const ParticlesResult d = run_word("111333", 0.1, 2000);
   const ParticlesResult q = run_word("111333", 0.1, 2000, "float128");
   EXPECT_TRUE(q.sequence_ok);
-  EXPECT_NEAR(q.length_predicted / d.length_predicted, 1, 1e3 * eps);
-  EXPECT_NEAR(q.length_contraction / q.length_predicted, 1, 1e-25);  // float128's own agreement: ~1e3 of its eps 1.9e-34
-  EXPECT_NEAR(q.time_to_collapse / d.time_to_collapse, 1, 1e3 * eps);
+  EXPECT_CLOSE(q.length_predicted / d.length_predicted, 1, ulps(1000, "double's own error, as above"));
+  // float128's own agreement (~1e3 of its eps 1.9e-34) is below half an ulp of the double ratio: exactly 1.
+  EXPECT_CLOSE(q.length_contraction / q.length_predicted, 1, ulps(0, "float128 agreement, reported in double"));
+  EXPECT_CLOSE(q.time_to_collapse / d.time_to_collapse, 1, ulps(1000, "double's own error, as above"));
 }
 
 TEST(ParticlesPatterns, NormalStartConvergesToTheSelfSimilarCollapse) {
@@ -230,7 +242,7 @@ TEST(ParticlesPatterns, NormalStartConvergesToTheSelfSimilarCollapse) {
     const double r = std::string(w) == "1133" ? 0.15 : 0.1;
     const ParticlesResult a = run_word(w, r, 2000, "double", "normal");
     EXPECT_TRUE(a.sequence_ok) << w << ": " << a.failure;
-    EXPECT_NEAR(a.length_contraction / a.length_predicted, 1, 1e3 * eps) << w;
+    EXPECT_CLOSE(a.length_contraction / a.length_predicted, 1, ulps(1000, "double's own error, as above")) << w;
     // The first period is off the self-similar value (this is a real convergence, not the start itself).
     EXPECT_GT(std::abs(a.length_ratio.front() / a.length_predicted - 1), 1e-6) << w;
   }
@@ -361,8 +373,9 @@ TEST(ParticlesPatterns, ContractionFromTheExactCharacteristicPolynomial) {
     std::sort(l.begin(), l.end(), [](const mp& a, const mp& b) { return abs(a) > abs(b); });
     const double rho = static_cast<double>(sqrt(abs(l[0] * l[2] / l[1])));  // stable: the orbit's is l[0]
     const ParticlesResult s = run_word(c.word, c.r, 10000);
-    EXPECT_NEAR(s.length_contraction / rho, 1, 1e3 * eps) << c.word;
-    EXPECT_NEAR(s.time_contraction / static_cast<double>(abs(l[2] / l[1])), 1, 1e3 * eps) << c.word;
+    const auto tol = ulps(1000, "the simulation's roundings over a period; MPFR eigenvalues rounded once to double");
+    EXPECT_CLOSE(s.length_contraction / rho, 1, tol) << c.word;
+    EXPECT_CLOSE(s.time_contraction / static_cast<double>(abs(l[2] / l[1])), 1, tol) << c.word;
   }
 }
 
@@ -391,7 +404,8 @@ TEST(ParticlesFiles, ConvergenceRowsAreEveryPeriodTo99ThenTwentyPerDecade) {
       EXPECT_LT(next, k * std::pow(10.0, 0.05) + 1) << n << " row " << i;
     }
     const double decades = std::log10(static_cast<double>(n) / 100);
-    EXPECT_NEAR(static_cast<double>(rows.size() - 100), 20 * decades, 2) << n;
+    EXPECT_CLOSE(static_cast<double>(rows.size() - 100), 20 * decades,
+                 bound(2, "20 rows per decade, +-1 at each end")) << n;
   }
 }
 
@@ -405,7 +419,8 @@ TEST(ParticlesFiles, ACollapseHasNumbersEverywhereButTheFirstTimeRatio) {
   const auto conv = csv_cells(s.convergence_csv());
   ASSERT_EQ(conv.size(), 21u);  // header and 20 periods
   EXPECT_EQ(conv[1][3], "");    // period 1 has no previous duration
-  EXPECT_NEAR(std::stod(conv[20][1]), s.length_contraction, 1e-15 * s.length_contraction);
+  EXPECT_CLOSE(std::stod(conv[20][1]), s.length_contraction,
+               ulps(4, "the CSV's decimal read back").of(s.length_contraction));
   const auto row = csv_cells(s.csv());
   ASSERT_EQ(row.size(), 2u);
   EXPECT_EQ(row[0].size(), 20u);

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include "reference_tables.hpp"
 
 #include <cmath>
@@ -19,6 +21,9 @@
 using namespace btob::patterns;
 using btob::core::float128;
 using btob::core::mpfr_float;
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace {
 
@@ -185,7 +190,7 @@ TEST(Theorem71, CriticalValuesTo20Digits) {
   // The same endpoint in double to 1e-14 (the brief's accuracy in double).
   const auto sd = stability_set<double>(W("132312"), default_grid(), 1e-15);
   ASSERT_EQ(sd.size(), 1u);
-  EXPECT_NEAR(sd[0].lo, 0.22006978614631047521, 1e-14);
+  EXPECT_CLOSE(sd[0].lo, 0.22006978614631047521, ulps(45, "the brief's accuracy in double (1e-14)"));
 }
 
 TEST(Theorem71, StableOrbitMatchesTheIteratedMap) {
@@ -202,9 +207,10 @@ TEST(Theorem71, StableOrbitMatchesTheIteratedMap) {
       u = st.u / st.u.norm();
     }
     u = btob::core::to_quadrant(u);
-    EXPECT_LT((u - v.orbit[0]).norm(), 1e-12) << r;  // 1e-12: a few ulps times the conditioning of 6 steps
+    EXPECT_SMALL((u - v.orbit[0]).norm(), ulps(4500, "a few ulps times the conditioning of 6 steps")) << r;
     // Exponents from the cofactor product equal those of the reduced spectrum: M = A^2, p = 6.
-    EXPECT_NEAR(v.lyapunov2, 2 * std::log(v.spectrum[1].modulus / v.spectrum[0].modulus) / 6, 1e-12);
+    EXPECT_CLOSE(v.lyapunov2, 2 * std::log(v.spectrum[1].modulus / v.spectrum[0].modulus) / 6,
+                 ulps(4500, "cofactor product against the reduced spectrum: two routes' roundings, log of a ratio"));
   }
   EXPECT_NE(analyse<double>(W("132312"), 0.2).outcome, Outcome::stable);
 }
@@ -249,14 +255,16 @@ TEST(Windows, TableB1ForN2AndN3) {
   // Table B.1 prints 12 decimals: 6e-13 covers its rounding.
   const auto w2 = stability_set<double>(W("1133"), default_grid(), 1e-15);
   ASSERT_EQ(w2.size(), 1u);
-  EXPECT_NEAR(w2[0].lo, 0.127544097592, 6e-13);
-  EXPECT_NEAR(w2[0].hi, 0.171572875254, 6e-13);
-  EXPECT_NEAR(w2[0].hi, 3 - 2 * std::sqrt(2.0), 1e-14);
+  const auto printed = bound(6e-13, "Table B.1 prints 12 decimals");
+  const auto closed = ulps(45, "bisection to 1e-15 (4.5 eps) and the closed form's cancellation");
+  EXPECT_CLOSE(w2[0].lo, 0.127544097592, printed);
+  EXPECT_CLOSE(w2[0].hi, 0.171572875254, printed);
+  EXPECT_CLOSE(w2[0].hi, 3 - 2 * std::sqrt(2.0), closed);
   const auto w3 = stability_set<double>(W("111333"), default_grid(), 1e-15);
   ASSERT_EQ(w3.size(), 1u);
-  EXPECT_NEAR(w3[0].lo, 0.094519407247, 6e-13);
-  EXPECT_NEAR(w3[0].hi, 0.101020514434, 6e-13);
-  EXPECT_NEAR(w3[0].hi, 5 - 2 * std::sqrt(6.0), 1e-14);
+  EXPECT_CLOSE(w3[0].lo, 0.094519407247, printed);
+  EXPECT_CLOSE(w3[0].hi, 0.101020514434, printed);
+  EXPECT_CLOSE(w3[0].hi, 5 - 2 * std::sqrt(6.0), closed);
   EXPECT_TRUE(stability_set<double>(W("abcb"), default_grid(), 1e-15).empty());  // n = 1: never stable
   EXPECT_TRUE(stability_set<double>(W("13"), default_grid(), 1e-15).empty());
 }
@@ -271,13 +279,16 @@ TEST(Windows, PrecisionsAgree) {
       const auto q = analyse<float128>(W(s), float128(r));
       EXPECT_EQ(d.outcome, l.outcome);
       EXPECT_EQ(d.outcome, q.outcome);
-      EXPECT_NEAR(d.spectrum[0].re, static_cast<double>(l.spectrum[0].re), 1e-13);
-      EXPECT_NEAR(d.spectrum[0].re, static_cast<double>(q.spectrum[0].re), 1e-13);
+      const auto in_double = ulps(450, "double's error on a product of 6 matrices and a cubic").of(1);
+      EXPECT_CLOSE(d.spectrum[0].re, static_cast<double>(l.spectrum[0].re), in_double);
+      EXPECT_CLOSE(d.spectrum[0].re, static_cast<double>(q.spectrum[0].re), in_double);
       // float (issue 9: every precision): same verdict away from the window ends; the dominant eigenvalue to
       // 1e-5 relative (float's 6e-8 unit roundoff times the conditioning of 6 products and a cubic).
       const auto f = analyse<float>(W(s), static_cast<float>(r));
       EXPECT_EQ(d.outcome, f.outcome);
-      EXPECT_NEAR(d.spectrum[0].re, static_cast<double>(f.spectrum[0].re), 1e-5 * std::fabs(d.spectrum[0].re));
+      EXPECT_CLOSE(d.spectrum[0].re, static_cast<double>(f.spectrum[0].re),
+                   ulps<float>(83, "float's roundoff times the conditioning of 6 products and a cubic")
+                       .of(std::fabs(d.spectrum[0].re)));
     }
   }
 }
@@ -325,8 +336,8 @@ TEST(Iterator, SymbolPeriodicButNeutralAt03) {
   // not a periodic orbit.  The analysis says so; the detection has to be read with the verdict.
   const auto v = analyse<double>(W("2"), 0.3);
   EXPECT_EQ(v.reason, "complex");
-  EXPECT_NEAR(v.spectrum[0].modulus, 0.3, 1e-14);
-  EXPECT_NEAR(v.spectrum[1].modulus, 0.3, 1e-14);
+  EXPECT_CLOSE(v.spectrum[0].modulus, 0.3, ulps(45, "a complex pair of modulus r from the eigensolver"));
+  EXPECT_CLOSE(v.spectrum[1].modulus, 0.3, ulps(45, "a complex pair of modulus r from the eigensolver"));
 }
 
 // ------------------------------------------------------------------------------------------------ requests
@@ -400,7 +411,7 @@ TEST(PatternRequests, WindowEndsAtTwoMinusSqrtThree) {
   btob::patterns::WordRequest req{"1322", "", "double", true};
   const auto res = btob::patterns::run(req);
   ASSERT_EQ(res.r_high.size(), 1u);
-  EXPECT_NEAR(res.r_high[0], 2 - std::sqrt(3.0), 2e-15);
+  EXPECT_CLOSE(res.r_high[0], 2 - std::sqrt(3.0), ulps(9, "the bisection width 1e-15 (4.5 eps) plus a few ulps"));
   EXPECT_EQ(res.intervals[0][3], "domain");
   req.digits = 30;  // MPFR: the same end to 30 digits
   const auto mp = btob::patterns::run(req);

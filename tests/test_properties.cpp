@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +23,10 @@
 #include <random>
 #include <string>
 #include <vector>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 using namespace btob;
 using core::Vec3;
@@ -161,7 +167,7 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
   // one rounding of alpha*y (FMA contraction may skip it): they can only differ within 8 eps of a boundary.
   // Definition 2.1 decides by the signs of q.v built from cross products, each off by about eps * condition
   // (its own estimate, CrossProductImage::condition): it can only differ within 8 eps * condition.
-  const double kSymbolKernel = 8 * eps;
+  const auto kSymbolKernel = ulps(8, "kernel and scalar loop symbols differ only within 8 eps of a boundary");
   // Directions.  Kernel and scalar loop: two products P q with forward error <= gamma_3 kappa each
   // (product_condition), plus the normalisations (2 eps): 2 (3.1 eps kappa) + 4 eps <= 8 eps kappa.
   // Definition 2.1: eps * condition radians (its estimate) from the cross products; 8 eps * condition.
@@ -184,14 +190,15 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
       ASSERT_TRUE(us.allFinite() && us.norm() > 0) << us.transpose();
       const double d = boundary_distance(s.u, r);
       if (batched.sym[i] != scalar.sym[i]) {
-        EXPECT_LT(d, kSymbolKernel) << "kernel symbol " << batched.sym[i] << ", scalar loop " << scalar.sym[i];
+        EXPECT_SMALL(d, kSymbolKernel) << "kernel symbol " << batched.sym[i] << ", scalar loop " << scalar.sym[i];
         ++boundary_cases;
         continue;
       }
       const double kappa = product_condition(scalar.sym[i], r, s.u);
       const double tol = 8 * eps * kappa;
       const double dk = projective_distance(ub, us);
-      EXPECT_LE(dk, tol) << "kernel " << ub.transpose() << " vs scalar loop " << us.transpose();
+      EXPECT_SMALL(dk, ulps(8, "two products P q, gamma_3 kappa each, and the normalisations").of(kappa))
+          << "kernel " << ub.transpose() << " vs scalar loop " << us.transpose();
       worst_kernel = std::max(worst_kernel, dk / tol);
 
       // Definition 2.1 on the point brought into Q (its step 1 flips only x < 0; x = 0, z > 0 is the other
@@ -212,13 +219,15 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
       ++def21_checked;
       const double tol21 = 8 * eps * ref.condition;
       if (symbol_of(ref.letters) != scalar.sym[i]) {
-        EXPECT_LT(d, tol21) << "Definition 2.1 letters " << ref.letters << ", scalar loop " << scalar.sym[i]
+        EXPECT_SMALL(d, ulps(8, "Definition 2.1's signs are off by eps times its condition").of(ref.condition))
+            << "Definition 2.1 letters " << ref.letters << ", scalar loop " << scalar.sym[i]
                             << " (condition " << ref.condition << ")";
         ++boundary_cases;
         continue;
       }
       const double d21 = projective_distance(ref.u, us);
-      EXPECT_LE(d21, tol21 + tol) << "Definition 2.1 " << ref.u.transpose() << " vs scalar loop " << us.transpose();
+      EXPECT_SMALL(d21, ulps(8, "Definition 2.1's and the scalar loop's errors added").of(ref.condition + kappa))
+          << "Definition 2.1 " << ref.u.transpose() << " vs scalar loop " << us.transpose();
       worst_def21 = std::max(worst_def21, d21 / (tol21 + tol));
     }
   }

@@ -8,6 +8,8 @@
 #include <boost/multiprecision/eigen.hpp>  // Eigen::NumTraits for float128
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +18,10 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace {
 
@@ -86,7 +92,7 @@ TEST(CrossProduct, AgreesWithLinearMap) {
       const V pu = s.u / s.u.norm();
       const auto c = ref::cross_product_map(u, r);
       ASSERT_FALSE(c.degenerate);
-      ASSERT_NEAR(c.u.norm(), 1.0, 8 * eps);
+      ASSERT_CLOSE(c.u.norm(), 1.0, ulps(8, "a cross product normalised: sqrt of 3 squares and a division"));
       // Same orientation, not only the same line: the theorem's "colinear with the same orientation".
       ASSERT_GT(c.u.dot(pu), 0.0) << "r=" << r;
       const double a = angle(c.u, pu);
@@ -94,7 +100,8 @@ TEST(CrossProduct, AgreesWithLinearMap) {
       // (the sum is c.condition, up to 6e8 for points near x, y or z = 0), the matrix product
       // eps * |P| |u| / |P u|.  Measured: angle <= 2.7 eps * (sum); 8 gives margin.
       const double cond = c.condition + linear_condition(u, r);
-      ASSERT_LE(a, std::max(1e-12, 8 * eps * cond)) << "r=" << r << " u=" << u.transpose();
+      ASSERT_SMALL(a, ulps(8, "cross products and matrix product: eps times their conditions").of(cond).at_least(1e-12))
+          << "r=" << r << " u=" << u.transpose();
       worst = std::max(worst, a);
       // Well-conditioned points (sum < 1e3, most of the domain) agree to 1e-12 outright.
       if (cond < 1e3) {
@@ -108,7 +115,7 @@ TEST(CrossProduct, AgreesWithLinearMap) {
       }
       ASSERT_EQ(c.letters, core::letters(s.symbol, core::to_quadrant(u))) << "r=" << r << " u=" << u.transpose();
     }
-    EXPECT_LT(worst_well, 1e-12) << "r=" << r;
+    EXPECT_SMALL(worst_well, ulps(4500, "8 eps x condition < 1e3")) << "r=" << r;
     EXPECT_GT(well, 50000) << "r=" << r;  // the 1e-12 claim covers most points, not a few
     EXPECT_LT(excluded, 5) << "r=" << r;  // boundary exclusions: probability ~1e-12 per point
     RecordProperty("max_angle_r" + g3(r), g3(worst));
@@ -128,8 +135,12 @@ TEST(CrossProduct, LinearMapIsAccurateAgainstQuadPrecision) {
       const V exact(static_cast<double>(c.u(0)), static_cast<double>(c.u(1)), static_cast<double>(c.u(2)));
       const double a = angle(s.u, exact);
       // Measured <= 0.9 eps |P| |u| / |P u| (at most 8e-14, at r = 0.01); 1e-12 leaves margin.
-      ASSERT_LT(a, 1e-12) << "r=" << r << " u=" << u.transpose();
-      ASSERT_LE(a, 4 * eps * linear_condition(u, r) + 4 * eps) << "r=" << r;
+      ASSERT_SMALL(a,
+                   ulps(4500, "0.9 eps |P| |u| / |P u| measured, at most 8e-14"))
+          << "r=" << r << " u=" << u.transpose();
+      ASSERT_SMALL(a,
+                   ulps(4, "eps |P| |u| / |P u| of the product, plus the normalisation").of(linear_condition(u, r) + 1))
+          << "r=" << r;
       worst = std::max(worst, a);
     }
     RecordProperty("max_angle_quad_r" + g3(r), g3(worst));
@@ -171,7 +182,9 @@ TEST(Particles, AgreesWithLinearMap) {
       const double a = angle(w, s.u);
       // Error model: each flight p + t q cancels (most with the shift lambda, p shrinks), and the
       // final p x q may be of nearly parallel vectors; sim.condition sums both amplifications.
-      ASSERT_LE(a, std::max(1e-12, 16 * eps * (sim.condition + linear_condition(u, r))))
+      ASSERT_SMALL(a, ulps(16, "flights that cancel and a final p x q: both amplifications")
+                          .of(sim.condition + linear_condition(u, r))
+                          .at_least(1e-12))
           << "r=" << r << " u=" << u.transpose() << " condition " << sim.condition;
       worst = std::max(worst, a);
       if (!near_boundary(u, r, 1e-12)) ASSERT_EQ(sim.letters, core::letters(s.symbol, core::to_quadrant(u))) << "r=" << r;
@@ -192,12 +205,13 @@ TEST(Particles, PhysicalStartNeedsNoShift) {
   EXPECT_EQ(sim.letters, "ab");
   // By hand: a at t = 1/3, p = (0, 1/3, 7/6), q = A q = (1.5, -1.25, 0.5); b after 4/15 more,
   // p = (1.5 * 4/15, 0, 7/6 + 0.5 * 4/15) = (0.4, 0, 1.3), q = B q.  Tolerance: a few ulps.
-  EXPECT_NEAR(sim.time, 1.0 / 3 + 4.0 / 15, 1e-15);
-  EXPECT_NEAR(sim.state.p(0), 0.4, 1e-15);
-  EXPECT_NEAR(sim.state.p(2), 1.3, 1e-15);
-  EXPECT_NEAR(sim.state.q(0), 1.5 + 0.75 * -1.25, 1e-15);
-  EXPECT_NEAR(sim.state.q(1), 0.625, 1e-15);
-  EXPECT_NEAR(sim.state.q(2), 0.5 + 0.75 * -1.25, 1e-15);
+  const auto by_hand = ulps(3, "two collisions by hand: a few roundings");
+  EXPECT_CLOSE(sim.time, 1.0 / 3 + 4.0 / 15, by_hand);
+  EXPECT_CLOSE(sim.state.p(0), 0.4, by_hand);
+  EXPECT_CLOSE(sim.state.p(2), 1.3, by_hand);
+  EXPECT_CLOSE(sim.state.q(0), 1.5 + 0.75 * -1.25, by_hand);
+  EXPECT_CLOSE(sim.state.q(1), 0.625, by_hand);
+  EXPECT_CLOSE(sim.state.q(2), 0.5 + 0.75 * -1.25, by_hand);
   // All pairs separating: no collision with lambda = 0, the shifted start collides in the order of
   // the map (u = p x q = (-1, -1, 1) ~ (1, 1, -1): y > 0, alpha y < x, so acb).
   const auto sep = ref::simulate_b_to_b(core::Particles<double>{V(1, 0, 1), V(1, 1, 2)}, r);
@@ -213,11 +227,13 @@ TEST(Trig, StartMatchesEquation214) {
     for (double ph : {0.2, 1.0, 2.0, 3.0}) {
       const auto s = ref::trig_start(th, ph);
       EXPECT_EQ(s.contact, 2);
-      EXPECT_NEAR(s.X.norm(), 1.0, 4 * eps);
-      EXPECT_NEAR(s.V.norm(), 1.0, 4 * eps);
-      EXPECT_NEAR(s.X.dot(s.V), 0.0, 4 * eps);
+      const auto unit = ulps(4, "unit vectors from sines and cosines, orthogonal by construction");
+      EXPECT_CLOSE(s.X.norm(), 1.0, unit);
+      EXPECT_CLOSE(s.V.norm(), 1.0, unit);
+      EXPECT_CLOSE(s.X.dot(s.V), 0.0, unit);
       // u = -(p0 x q0) (core/coords.hpp).
-      EXPECT_LT((-s.X.cross(s.V) - core::from_angles(th, ph)).norm(), 8 * eps);
+      EXPECT_SMALL((-s.X.cross(s.V) - core::from_angles(th, ph)).norm(),
+                   ulps(8, "a cross product of two unit vectors"));
     }
 }
 
@@ -283,7 +299,10 @@ TEST(Trig, AgreesWithLinearMapForModerateR) {
           ASSERT_EQ(c.status, ref::TrigStatus::ok) << "r=" << r;
           // One cycle: rounding amplified by about 1 / margin^2 (measured <= 21 eps / margin^2), plus
           // the conversions u -> (theta, phi) -> u and the linear map's own rounding (<= 1e-13).
-          ASSERT_LE(angle(core::from_angles(c.theta, c.phi), st.u), std::max(1e-12, 64 * eps / (margin * margin)))
+          ASSERT_SMALL(angle(core::from_angles(c.theta, c.phi), st.u),
+                       ulps(64, "rounding amplified by 1 / margin^2 (measured <= 21 eps / margin^2)")
+                           .of(1 / (margin * margin))
+                           .at_least(1e-12))
               << "r=" << r << " u=" << u0.transpose();
           if (!near_boundary(u, r, 1e-9)) ASSERT_EQ(c.letters, core::letters(st.symbol, core::to_quadrant(u)));
         }
@@ -296,7 +315,9 @@ TEST(Trig, AgreesWithLinearMapForModerateR) {
         // agree to 1e-9 (eps / 1e-4 per cycle, times the map's expansion over 3 steps).
         if (k == 3 && margin > 1e-2) {
           ++well;
-          ASSERT_LT(angle(core::from_angles(c.theta, c.phi), u), 1e-9) << "r=" << r << " u=" << u0.transpose();
+          ASSERT_SMALL(angle(core::from_angles(c.theta, c.phi), u),
+                       ulps(4.5e6, "eps / 1e-4 per cycle, times the map's expansion over 3 steps"))
+              << "r=" << r << " u=" << u0.transpose();
         }
       }
       (void)ok;

@@ -10,9 +10,15 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <cmath>
 #include <limits>
 #include <thread>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace {
 using namespace btob;
@@ -118,8 +124,9 @@ TEST(LyapunovRequest, SmallestResolvedRAgreesWithAWiderPrecision) {
   const auto d = lyapunov::run(o);
   o.precision = "long-double";
   const auto l = lyapunov::run(o);
-  EXPECT_NEAR(d.lambda[0].value, l.lambda[0].value, 1e-3);
-  EXPECT_NEAR(d.lambda[1].value, l.lambda[1].value, 1e-3);
+  const auto criterion = bound(1e-3, "the criterion double's bound on r states (eps / r^2 relative per step)");
+  EXPECT_CLOSE(d.lambda[0].value, l.lambda[0].value, criterion);
+  EXPECT_CLOSE(d.lambda[1].value, l.lambda[1].value, criterion);
 }
 
 TEST(LyapunovRequest, MpfrDigitsDoNotLeakBetweenRuns) {

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +21,10 @@
 #include <numbers>
 #include <random>
 #include <string>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 using namespace btob;
 using namespace btob::stats;
@@ -52,9 +58,11 @@ TEST(Fft, RoundTripAndLengths) {
   RealFft<double> f(12);
   for (int k = 0; k < 12; ++k) f.data()[k] = k * k - 3.0;
   f.forward();
-  EXPECT_NEAR(f.spectrum()[0].real(), 506 - 36, 1e-12);  // sum of the inputs (sum k^2 = 506); 1e-12: 12 terms of size 1e2
+  // The sum of the inputs (sum k^2 = 506): 12 terms of size 1e2, a few roundings each.
+  const auto terms = ulps(45, "an FFT of 12 terms of size 1e2: a few roundings each").of(100);
+  EXPECT_CLOSE(f.spectrum()[0].real(), 506 - 36, terms);
   f.inverse();
-  for (int k = 0; k < 12; ++k) EXPECT_NEAR(f.data()[k] / 12, k * k - 3.0, 1e-12);  // unnormalised: n x
+  for (int k = 0; k < 12; ++k) EXPECT_CLOSE(f.data()[k] / 12, k * k - 3.0, terms);  // unnormalised: n x
   EXPECT_EQ(fast_fft_length(1100000), 1105920);  // 2^13 3^3 5
   EXPECT_EQ(fast_fft_length(1), 1);
   EXPECT_EQ(fast_fft_length(7), 8);
@@ -69,9 +77,10 @@ TEST(Correlation, FftEqualsDirectOnRandomSeries) {
   Correlator<double> c(N, n_max);
   // Both routes round at ~1e-15 of max |C_N| (centred FFT: log2(L) eps; blocked direct sum: ~128 eps per
   // block); 1e-12 is the required agreement.
-  EXPECT_LT(max_rel_diff(c(x, y), correlation_direct(x, y, N, n_max)), 1e-12);
-  EXPECT_LT(max_rel_diff(c(x, x), correlation_direct(x, x, N, n_max)), 1e-12);
-  EXPECT_LT(max_rel_diff(c(y, x), correlation_direct(y, x, N, n_max)), 1e-12);  // the same plan, reused
+  const auto routes = ulps(4500, "the required 1e-12 of max |C_N|; both routes round at ~1e-15 of it");
+  EXPECT_SMALL(max_rel_diff(c(x, y), correlation_direct(x, y, N, n_max)), routes);
+  EXPECT_SMALL(max_rel_diff(c(x, x), correlation_direct(x, x, N, n_max)), routes);
+  EXPECT_SMALL(max_rel_diff(c(y, x), correlation_direct(y, x, N, n_max)), routes);  // the same plan, reused
 }
 
 TEST(Correlation, DirectSumIsThePaperFormula) {
@@ -85,7 +94,7 @@ TEST(Correlation, DirectSumIsThePaperFormula) {
   for (long n = 0; n <= n_max; ++n) {
     long double s = 0;
     for (long k = 0; k < N; ++k) s += static_cast<long double>(x[k]) * y[k + n];
-    EXPECT_NEAR(c[n], static_cast<double>(s / N - mx * my), 1e-13);  // 200 terms of size ~10: ~1e-14 rounding
+    EXPECT_CLOSE(c[n], static_cast<double>(s / N - mx * my), ulps(45, "200 terms of size ~10: ~1e-14 rounding").of(10));
   }
 }
 
@@ -100,10 +109,11 @@ TEST(Correlation, PrecisionFollowsT) {
   const auto f = cf(xf, xf);
   std::vector<long double> fl(f.begin(), f.end());
   // float: inputs rounded to 6e-8 relative and the transforms round at ~log2(L) 6e-8; 1e-5 of max |C_N|.
-  EXPECT_LT(max_rel_diff(fl, ref), 1e-5);
+  EXPECT_SMALL(max_rel_diff(fl, ref), ulps<float>(83, "inputs rounded to float, transforms round at ~log2(L) eps"));
   EXPECT_GT(max_rel_diff(fl, ref), 1e-9);  // and it really ran in float (double would be ~1e-15)
   // long double: both routes in 64-bit mantissas, ~1e-18; 1e-15 leaves room for the FFT's log factor.
-  EXPECT_LT(max_rel_diff(cl(xl, xl), ref), 1e-15);
+  EXPECT_SMALL(max_rel_diff(cl(xl, xl), ref),
+               ulps<long double>(9200, "64-bit mantissas, ~10 eps, times the FFT's log factor"));
 }
 
 TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
@@ -112,13 +122,16 @@ TEST(Correlation, FftEqualsDirectOnOrbitSeries) {
                        Observable::symbol1, Observable::symbol2, Observable::symbol3}) {
     const auto x = observe(s, o);
     Correlator<double> c(40000, 2000);
-    EXPECT_LT(max_rel_diff(c(x, x), correlation_direct(x, x, 40000, 2000)), 1e-12) << observable_name(o);
+    EXPECT_SMALL(max_rel_diff(c(x, x), correlation_direct(x, x, 40000, 2000)),
+                 ulps(4500, "the required 1e-12 of max |C_N|; both routes round at ~1e-15 of it"))
+        << observable_name(o);
   }
   // Two observables and a user function composed with one (tolerance as above).
   const auto a = observe(s, Observable::phi, [](double p) { return std::sin(3 * p); });
   const auto b = observe(s, [](const iterate::Vec3<double>& u, int sym) { return u(0) * u(2) + (sym == 2); });
   Correlator<double> c(40000, 2000);
-  EXPECT_LT(max_rel_diff(c(a, b), correlation_direct(a, b, 40000, 2000)), 1e-12);
+  EXPECT_SMALL(max_rel_diff(c(a, b), correlation_direct(a, b, 40000, 2000)),
+               ulps(4500, "the required 1e-12 of max |C_N|; both routes round at ~1e-15 of it"));
 }
 
 TEST(Series, MatchesTailAndSymbolRecorders) {
@@ -133,7 +146,8 @@ TEST(Series, MatchesTailAndSymbolRecorders) {
   iterate::Both<iterate::TailRecorder, iterate::SymbolRecorder> both(th, sy);
   iterate::run<double>(e, T + L, both);
   for (long k = 0; k < L; ++k) {
-    EXPECT_NEAR(value(Observable::phi, s.state(k), s.symbol[k]), th.out[k], 1e-14);  // atan2 vs atan_pos: ~1e-16
+    EXPECT_CLOSE(value(Observable::phi, s.state(k), s.symbol[k]), th.out[k],
+                 ulps(14, "atan2 against atan_pos (~1e-16): angles up to pi").of(std::numbers::pi));
     EXPECT_EQ(s.symbol[k], sy.out[k]);
   }
   const auto many = orbit_series(0.3, std::vector<iterate::Vec3<double>>{kGrid0, {1, -1, -2}}, T, L, 2);
@@ -149,7 +163,9 @@ TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
     const auto cn = c(x, x);
     double worst = 0;
     for (long n = 0; n + 4 <= 1000; ++n) worst = std::max(worst, std::fabs(cn[n + 4] - cn[n]));
-    EXPECT_LT(worst, 1e-10) << observable_name(o);  // the required p-periodicity (sink reached to rounding)
+    EXPECT_SMALL(worst,
+                 ulps(4500, "the required p-periodicity: the sink is reached to rounding (measured 96 eps)"))
+        << observable_name(o);
     EXPECT_GT(max_abs(cn), 1e-3) << observable_name(o);  // and not trivially zero
     double worst2 = 0;  // but not 2-periodic (period exactly 4)
     for (long n = 0; n + 2 <= 1000; ++n) worst2 = std::max(worst2, std::fabs(cn[n + 2] - cn[n]));
@@ -170,7 +186,7 @@ TEST(Correlation, QuasiPeriodicDoesNotDecay) {
   EXPECT_FALSE(d.decays);
   EXPECT_EQ(d.verdict, "not decaying") << d.reason;
   EXPECT_EQ(d.windows, 20);  // every window stays above the noise floor
-  EXPECT_LT(std::fabs(d.rate), 1e-4);  // no decay: 1e-4 per iteration would be a 10% fall over 1000 lags
+  EXPECT_SMALL(d.rate, bound(1e-4, "no decay: 1e-4 per iteration would be a 10% fall over 1000 lags"));
   EXPECT_GT(lo, 0.9 * hi);  // the envelope is flat to 10% (oscillation without decay)
 }
 
@@ -214,7 +230,7 @@ TEST(Spectrum, PeriodogramFindsThePeriod) {
   EXPECT_EQ(std::max_element(s.begin(), s.end()) - s.begin(), N / 4);
   double sum = 0;
   for (std::size_t j = 1; j < s.size(); ++j) sum += s[j] * (j == s.size() - 1 ? 1 : 2);  // both halves
-  EXPECT_NEAR(sum / N, 0.5, 1e-12);  // Parseval: variance of cos = 1/2
+  EXPECT_CLOSE(sum / N, 0.5, ulps(4500, "Parseval: variance of cos = 1/2, a sum of N squared moduli"));
 }
 
 TEST(Measures, OneBasinGivesOneMeasure) {
@@ -223,11 +239,12 @@ TEST(Measures, OneBasinGivesOneMeasure) {
   std::vector<Measure> ms;
   for (const auto& s : series) ms.push_back(empirical_measure(s, Chart::strip, 200, 200));
   for (const auto& m : ms) {
-    EXPECT_LT(total_variation(m, ms[0]), 1e-3);  // the required coincidence after 1e5 iterations
-    EXPECT_LT(wasserstein_1d(m.marginal_u(), ms[0].marginal_u(), m.u_lo, m.u_hi), 1e-3);
+    const auto coincide = bound(1e-3, "the required coincidence after 1e5 iterations");
+    EXPECT_SMALL(total_variation(m, ms[0]), coincide);
+    EXPECT_SMALL(wasserstein_1d(m.marginal_u(), ms[0].marginal_u(), m.u_lo, m.u_hi), coincide);
     double sum = 0;
     for (double v : m.mass) sum += v;
-    EXPECT_NEAR(sum, 1.0, 1e-12);  // weights 1/N: 4e4 bins summed
+    EXPECT_CLOSE(sum, 1.0, ulps(4500, "weights 1/N: 4e4 bins summed"));
   }
   EXPECT_EQ(group_measures(ms, 0.05), std::vector<int>(ms.size(), 0));
   // The measure is atomic: 4 points, mass 1/4 each.
@@ -343,15 +360,17 @@ TEST(CorrelateRequest, RunIsTheCorrelatorOnTheOrbit) {
   Correlator<double> corr(4096, 64);
   EXPECT_EQ(res.c, corr(x, y));  // bitwise: the point's scale by 2 is exact and the orbit is projective
   EXPECT_EQ(res.c_direct, correlation_direct(x, y, 4096, 64));
-  EXPECT_LT(res.max_rel_diff, 1e-12);  // FFT vs direct: ~ eps log N relative to max |C_N|
-  EXPECT_LT(max_rel_diff(res.c, res.c_direct), 1e-12);
+  const auto routes = ulps(4500, "FFT against direct: ~ eps log N relative to max |C_N|; the required 1e-12");
+  EXPECT_SMALL(res.max_rel_diff, routes);
+  EXPECT_SMALL(max_rel_diff(res.c, res.c_direct), routes);
   EXPECT_EQ(res.envelope, envelope(res.c, 4));
   EXPECT_EQ(res.noise_floor, 4 * std::fabs(res.c[0]) / 64.0);  // sqrt(4096) = 64 exactly
   EXPECT_TRUE(res.fitted);
   const Decay d = fit_decay(res.c, 40, 4, res.noise_floor);
   EXPECT_EQ(res.decay.rate, d.rate);
   // The sink 1133 has period 4: the periodogram of phi peaks at a multiple of 1/4 cycles per iteration.
-  EXPECT_NEAR(std::fmod(res.peak_frequency * 4, 1.0), 0.0, 1e-12);
+  EXPECT_CLOSE(std::fmod(res.peak_frequency * 4, 1.0), 0.0,
+               ulps(4, "bin k / L of the periodogram, times 4: a rounding or two (measured 0)"));
   core::Contents c;
   res.describe(c);
   for (const char* name : {"C_N", "C_N_direct", "envelope", "spectrum_frequency", "power_spectrum"})
@@ -534,7 +553,8 @@ TEST(Correlation, DecayVerdictBranches) {
   // lag 131 (1.4e-3); the one starting at 141 (8.7e-4) ends the fit: 14 windows.
   const Decay d = fit_decay(fast, 200, 10, 1e-3);
   EXPECT_EQ(d.verdict, "decaying");
-  EXPECT_NEAR(d.rate, 0.05, 1e-12);  // the log of the window maxima is exactly linear up to rounding (~1e-16)
+  EXPECT_CLOSE(d.rate, 0.05,
+               ulps(64, "the log of the window maxima is exactly linear up to rounding (~1e-16; measured 0)"));
   EXPECT_EQ(d.floor_lag, 141);
   EXPECT_EQ(d.windows, 14);
 }

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tolerance.hpp"
+
 #include "core/scalar.hpp"
 #include "reference_tables.hpp"
 
@@ -23,6 +25,10 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+using btob::test::bound;
+using btob::test::statistical;
+using btob::test::ulps;
 
 namespace {
 
@@ -232,8 +238,8 @@ TEST(WindowPolynomial, TraceMatchesFloatingMatrixPower) {
     const RationalPoly p = trace_polynomial(n);
     mpq_class v = 0, x(3, 10), xp = 1;
     for (int k = 0; k <= p.degree(); ++k, xp *= x) v += p.coefficient(k) * xp;
-    // 1e-13: a dozen double products of entries below 2 in magnitude.
-    EXPECT_NEAR(v.get_d(), M[6] + M[4] + M[2], 1e-13) << "n = " << n;
+    EXPECT_CLOSE(v.get_d(), M[6] + M[4] + M[2],
+                 ulps(225, "a dozen double products of entries below 2").of(2)) << "n = " << n;
   }
 }
 
@@ -448,7 +454,8 @@ TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {
   }
   // In double the matrix route is exact to 12 decimals for small n (the precision study measures the limit).
   for (int n = 1; n <= 10; ++n)
-    EXPECT_NEAR(window_lower_bound_in<double>(n, Route::matrix), static_cast<double>(window_lower_bound(n, 20)), 5e-13) << n;
+    EXPECT_CLOSE(window_lower_bound_in<double>(n, Route::matrix), static_cast<double>(window_lower_bound(n, 20)),
+                 ulps(2250, "the matrix route in double, good to 12 decimals for small n")) << n;
   // The sign convention: Q_n > 0 at 7 - 4 sqrt 3 and < 0 at r_crit,2(n).
   EXPECT_GT(window_condition<double>(10, 7 - 4 * std::sqrt(3.0)), 0);
   EXPECT_LT(window_condition<double>(10, static_cast<double>(r_crit2(10, 20))), 0);
@@ -587,8 +594,8 @@ TEST(WindowRequests, BoundsEqualTableB1AndTheCertificatesHold) {
     EXPECT_LE(std::stod(res.a_text[i]), res.lower_bound[i]);
     EXPECT_GE(std::stod(res.b_text[i]), res.lower_bound[i]);
     // Independent route: bisection on the sign of Q_n from 3x3 matrix powers in long double.
-    EXPECT_NEAR(static_cast<double>(window_lower_bound_in<long double>(static_cast<int>(res.n[i]), Route::matrix)),
-                res.lower_bound[i], 1e-15);
+    EXPECT_CLOSE(static_cast<double>(window_lower_bound_in<long double>(static_cast<int>(res.n[i]), Route::matrix)),
+                 res.lower_bound[i], ulps(4, "a long double bisection rounded to double"));
   }
   const std::string csv = res.csv();
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
@@ -613,10 +620,11 @@ TEST(WindowRequests, ThresholdsAndStripesAgainstClosedForms) {
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(t.value[i], std::stod(t.text[i]));  // both correctly rounded
   // The closed forms in double lose to cancellation: 7 - 4 sqrt 3 errs by up to ulp(4 sqrt 3) ~ 8.9e-16 plus
   // the final rounding, so 2e-15 absolute.
-  EXPECT_NEAR(t.value[0], 7 - 4 * std::sqrt(3.0), 2e-15);
-  EXPECT_NEAR(t.value[1], 3 - 2 * std::sqrt(2.0), 2e-15);
-  EXPECT_NEAR(t.value[2], 5 - 2 * std::sqrt(6.0), 2e-15);
-  EXPECT_NEAR(t.value[3], std::cbrt(4.0) - 1, 2e-15);
+  const auto closed = ulps(9, "cancellation: ulp(4 sqrt 3) = 4 eps, plus the final rounding");
+  EXPECT_CLOSE(t.value[0], 7 - 4 * std::sqrt(3.0), closed);
+  EXPECT_CLOSE(t.value[1], 3 - 2 * std::sqrt(2.0), closed);
+  EXPECT_CLOSE(t.value[2], 5 - 2 * std::sqrt(6.0), closed);
+  EXPECT_CLOSE(t.value[3], std::cbrt(4.0) - 1, closed);
   const StripesResult s = run(StripesRequest{40, 20});
   std::size_t count = 0;
   for (int m = 1; m <= 40; ++m)
@@ -625,7 +633,8 @@ TEST(WindowRequests, ThresholdsAndStripesAgainstClosedForms) {
   for (std::size_t i = 0; i < s.r.size(); ++i) {
     const double xi = std::cos(M_PI - 2 * M_PI * s.l[i] / s.m[i]);
     // eq. (6.3) in double: sqrt(xi + xi^2) loses relative accuracy only near xi = 0 (l/m = 1/4, excluded).
-    EXPECT_NEAR(s.r[i], 1 + 2 * xi - 2 * std::sqrt(xi + xi * xi), 1e-14) << s.l[i] << "/" << s.m[i];
+    EXPECT_CLOSE(s.r[i], 1 + 2 * xi - 2 * std::sqrt(xi + xi * xi), ulps(45, "eq. (6.3) in double, away from xi = 0"))
+        << s.l[i] << "/" << s.m[i];
     EXPECT_EQ(s.mirror_l[i], s.m[i] - s.l[i]);
     if (i > 0) EXPECT_LT(s.r[i - 1], s.r[i]);
   }

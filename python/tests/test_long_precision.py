@@ -2,6 +2,7 @@
 fixed sizes), hence labelled long: the deterministic columns of tradeoff.csv and the manifest's attributes."""
 import csv
 import io
+import os
 
 import btob
 from conftest import cli, manifest
@@ -20,3 +21,12 @@ def test_precision_study_attrs(tmp_path):
     assert [float(r["decimal_digits"]) for r in t] == res.decimal_digits.tolist()
     assert [float(r["agree_min_r0.2"]) for r in t] == res.agree_min.ravel().tolist()
     assert [float(r["window_n_max"] or -1) for r in t] == res.window_n_max.tolist()
+    # save() writes tradeoff.csv through the result's tables(), as the command line does: the same bytes but for
+    # the speed column.
+    saved = [f for f in res.save(tmp_path / "py", name="tradeoff", plot=False) if f.endswith(".csv")]
+    assert [os.path.basename(f) for f in saved] == ["tradeoff.csv"]
+    a = list(csv.reader(open(saved[0])))
+    b = list(csv.reader(open(tmp_path / "tradeoff.csv")))
+    col = b[0].index("iterations_per_second")
+    assert a[0] == b[0] and len(a) == len(b) > 1
+    assert [r[:col] + r[col + 1:] for r in a] == [r[:col] + r[col + 1:] for r in b]

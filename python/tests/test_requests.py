@@ -222,3 +222,22 @@ def test_save_writes_what_the_command_line_replays(tmp_path):
         for k in f.keys():
             same_array(getattr(res, k), f[k][...])
     assert (tmp_path / "a" / "mine_summary.csv").read_bytes() == (tmp_path / "b" / "mine_summary.csv").read_bytes()
+
+
+# The tables that moved from the command line into their results' tables() (correlate, measure): save() writes them
+# with the command line's bytes.  The precision study's table is compared in test_long_precision.py (a run takes 30 s).
+TABLE_CASES = [
+    ("correlate", "correlate", dict(r=0.2, iterations=3000, n_max=300, observable="theta,w2", method="both")),
+    ("measure", "measure", dict(r=0.11, grid="random:6", iterations=1000, bins=10)),
+]
+
+
+@pytest.mark.parametrize("function,command,kwargs", TABLE_CASES, ids=[c[0] for c in TABLE_CASES])
+def test_moved_tables_are_the_command_lines(function, command, kwargs, tmp_path):
+    res = getattr(btob, function)(**kwargs)
+    name = res.attrs["name"]
+    cli(command, kwargs, out=tmp_path / "cli", extra=["--name", name])
+    saved = [f for f in res.save(tmp_path / "py", name=name, plot=False) if f.endswith(".csv")]
+    assert saved and sorted(os.path.basename(f) for f in saved) == sorted(res.tables)
+    for f in saved:
+        assert open(f).read() == (tmp_path / "cli" / os.path.basename(f)).read_text(), f

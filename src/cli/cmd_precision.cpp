@@ -18,15 +18,15 @@ void tradeoff(const precision::TradeoffRequest& req, const Output& o, const Cont
   const precision::TradeoffResult res = precision::run(req, control);
   core::Contents c;
   res.describe(c);
-  const std::string csv = res.csv(req);
   io::Attrs at = ctx.attrs(o, c, "precision_tradeoff", "float,double,long-double,float128,mpfr:50,mpfr:100,mpfr:256");
   extras::of(req).apply(at);
   io::ResultFiles files(o.out, o.name);
-  files.text(o.name + ".csv", csv);
+  const core::Tables tables = res.tables();  // NAME.csv, also printed
+  files.tables(tables);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("precision_tradeoff.py", o.name + ".csv");
   files.commit();
-  std::cout << csv;
+  for (const auto& [role, text] : tables) std::cout << text;
 }
 
 struct Registration {

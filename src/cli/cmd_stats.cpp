@@ -4,7 +4,6 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "cli/sweep.hpp"
-#include "core/csv.hpp"
 #include "stats/requests.hpp"
 
 #include <fmt/format.h>
@@ -14,22 +13,13 @@
 namespace btob::cli {
 namespace {
 
-// NAME.csv: lag,C_N[,C_N_direct] (what the run was is in NAME.json and NAME.h5).
-std::string correlation_csv(const stats::CorrelateResult& res) {
-  const bool both = !res.c_direct.empty();
-  core::CsvTable t(both ? "lag,C_N,C_N_direct" : "lag,C_N");
-  for (std::size_t n = 0; n < res.c.size(); ++n)
-    t.line(both ? fmt::format("{},{:.17g},{:.17g}", n, res.c[n], res.c_direct[n]) : fmt::format("{},{:.17g}", n, res.c[n]));
-  return t.text();
-}
-
 void correlate(const stats::CorrelateRequest& req, const Output& o, const Context& ctx) {
   const stats::CorrelateResult res = stats::run(req, ctx.control);
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "correlate", req.precision);
   io::ResultFiles files(o.out, o.name);
-  files.text(o.name + ".csv", correlation_csv(res));
+  files.tables(res.tables());  // NAME.csv
   files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_correlation.py");
@@ -60,18 +50,6 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   std::cerr << "; wrote " << listing(written) << "\n";
 }
 
-// NAME_report.csv: per initial condition its group and distances to the group's first member (the run's r, grid,
-// iterations, bins and chart are in NAME.json and NAME.h5).
-std::string measure_report(const stats::MeasureResult& res) {
-  core::CsvTable t("ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head");
-  for (std::size_t i = 0; i < res.initial.size(); ++i) {
-    const auto& u = res.initial[i];
-    t.line(fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}", i, u(0), u(1), u(2), res.group[i], res.tv[i], res.w1_u[i],
-                       res.w1_v[i]));
-  }
-  return t.text();
-}
-
 void measure(const stats::MeasureRequest& req, const Output& o, const Context& ctx) {
   Context run_ctx = ctx;
   const auto progress = terminal_progress("measure");
@@ -84,7 +62,7 @@ void measure(const stats::MeasureRequest& req, const Output& o, const Context& c
   const io::Attrs at = ctx.attrs(o, c, "measure", "double");
   io::ResultFiles files(o.out, o.name);
   files.h5(c, at);
-  files.text(o.name + "_report.csv", measure_report(res));
+  files.tables(res.tables());  // NAME_report.csv
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("stats_measure.py");
   const auto written = files.commit();

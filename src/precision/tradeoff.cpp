@@ -337,9 +337,9 @@ std::string TradeoffResult::notes(const TradeoffRequest& req) {
   return s;
 }
 
-std::string TradeoffResult::csv(const TradeoffRequest& req) const {
+std::string TradeoffResult::csv() const {
   std::string h = "method,decimal_digits,iterations_per_second";
-  for (double r : req.r) h += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", r);
+  for (double x : r) h += fmt::format(",agree_min_r{0},agree_median_r{0},final_error_median_r{0}", x);
   core::CsvTable t(h + ",window_n_max,lyapunov_error,lyapunov_error_near_neutral");
   for (const TradeoffRow& row : rows) {
     std::string s = fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);

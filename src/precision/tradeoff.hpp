@@ -50,8 +50,9 @@ struct TradeoffResult {
   std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, lyapunov_near_neutral,
       window_n_max;
 
-  // The CSV of results/precision/tradeoff.csv: one header line, a row per method.
-  std::string csv(const TradeoffRequest& req) const;
+  // The CSV of results/precision/tradeoff.csv: one header line, a row per method (columns per r of `r`).
+  std::string csv() const;
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv
   // What the columns measure and how (the manifest's "description"; the CSV itself has only its header line).
   static std::string notes(const TradeoffRequest& req);
   void describe(core::Contents& c) const;

@@ -1,6 +1,7 @@
 // The statistics requests: validation, the runs, and the description of their results.
 #include "stats/requests.hpp"
 
+#include "core/csv.hpp"
 #include "core/fields.hpp"
 
 #include <fmt/format.h>
@@ -123,6 +124,14 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   res.fitted = M >= req.fit_lags && req.fit_lags >= 3 * req.window;
   if (res.fitted) res.decay = fit_decay(res.c, req.fit_lags, req.window, res.noise_floor);
   return res;
+}
+
+core::Tables CorrelateResult::tables() const {
+  const bool both = !c_direct.empty();
+  core::CsvTable t(both ? "lag,C_N,C_N_direct" : "lag,C_N");
+  for (std::size_t n = 0; n < c.size(); ++n)
+    t.line(both ? fmt::format("{},{:.17g},{:.17g}", n, c[n], c_direct[n]) : fmt::format("{},{:.17g}", n, c[n]));
+  return {{"", t.text()}};
 }
 
 void CorrelateResult::describe(core::Contents& c) const {
@@ -322,6 +331,15 @@ MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
 
 double MeasureResult::tv_max_within_groups() const {
   return *std::max_element(tv_max_group.begin(), tv_max_group.end());
+}
+
+core::Tables MeasureResult::tables() const {
+  core::CsvTable t("ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head");
+  for (std::size_t i = 0; i < initial.size(); ++i) {
+    const auto& u = initial[i];
+    t.line(fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}", i, u(0), u(1), u(2), group[i], tv[i], w1_u[i], w1_v[i]));
+  }
+  return {{"report", t.text()}};
 }
 
 void MeasureResult::describe(core::Contents& c) const {

@@ -63,6 +63,8 @@ struct CorrelateResult {
   // Arrays: C_N [n-max + 1], C_N_direct [n-max + 1] (method both), envelope [windows], spectrum_frequency and
   // power_spectrum [points]; attributes: the request, timings, noise floor, spectrum peak and the decay fit.
   void describe(core::Contents& c) const;
+  // NAME.csv: lag,C_N[,C_N_direct] (what the run was is in NAME.json and NAME.h5).
+  core::Tables tables() const;
 };
 
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control = {});
@@ -116,6 +118,9 @@ struct MeasureResult {
   // group_tv_max [G], group, tv_to_group_head, w1_u/v_to_group_head [I], convergence_n [C],
   // convergence_tv_within_group and convergence_tv_to_full [C, G], extent [4].
   void describe(core::Contents& c) const;
+  // NAME_report.csv: per initial condition its group and distances to the group's first member (the run's r, grid,
+  // iterations, bins and chart are in NAME.json and NAME.h5).
+  core::Tables tables() const;
 };
 
 // Some initial conditions (items: ascending grid indices): the bin of every point of their orbits (stats::
