@@ -39,6 +39,9 @@ struct RunOptions {
   // When set, receives the number of orbits whose final state is not a finite non-zero vector (the
   // precision could not cope, e.g. float at extreme r); 0 on healthy runs.
   std::size_t* degenerate = nullptr;
+  // run_cocycle only (iterate/cocycle.hpp): receives how many (orbit, block) pairs were redone with a projection
+  // after every step.
+  std::size_t* redone = nullptr;
 };
 
 // Number of steps between renormalisations for scalar type T that keeps every state normal and finite

@@ -1,6 +1,8 @@
 // Lyapunov maps on the batched kernel: run the TangentRecorder, turn its cumulative sums into exponents.
 #include "lyapunov/maps.hpp"
 
+#include "iterate/cocycle.hpp"
+#include "lyapunov/exponent_sums.hpp"
 #include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
@@ -19,34 +21,39 @@ OrbitExponents map_exponents(const iterate::Ensemble& ens, const MapOptions& opt
   o.blocks = opt.blocks;
   validate(o);
   for (double r : ens.r) core::validate_r(r);
-  lyapunov::TangentRecorder rec(ens, opt.transient, opt.iterations, opt.blocks);
-  if (opt.single_precision) iterate::run<float>(ens, rec.total_steps(), rec, opt.run);
-  else iterate::run<double>(ens, rec.total_steps(), rec, opt.run);
-  return exponents_from(rec);
+  lyapunov::ExponentSums sums(ens, opt.transient, opt.iterations, opt.blocks);
+  if (opt.single_precision) iterate::run_cocycle<float>(ens, sums.total_steps(), sums, opt.run);
+  else iterate::run_cocycle<double>(ens, sums.total_steps(), sums, opt.run);
+  return exponents_from(ens, sums.n, sums.blocks, sums.block_end, sums.cum);
 }
 
 OrbitExponents exponents_from(const lyapunov::TangentRecorder& rec) {
-  const std::size_t N = rec.ens->orbits(), B = static_cast<std::size_t>(rec.blocks);
+  return exponents_from(*rec.ens, rec.n, rec.blocks, rec.block_end, rec.cum);
+}
+
+OrbitExponents exponents_from(const iterate::Ensemble& ens, long n, int blocks, const std::vector<long>& block_end,
+                              const std::vector<double>& cum) {
+  const std::size_t N = ens.orbits(), B = static_cast<std::size_t>(blocks), n_ic = ens.initial.size();
   OrbitExponents out;
-  out.iterations = rec.n;
-  out.blocks = rec.blocks;
+  out.iterations = n;
+  out.blocks = blocks;
   for (auto* v : {&out.lambda1, &out.err1, &out.lambda2, &out.err2, &out.chi1, &out.lambda_max, &out.err_max,
                   &out.lambda_min, &out.err_min})
     v->resize(N);
   std::vector<double> c1(B), c2(B), cc(B);
   for (std::size_t o = 0; o < N; ++o) {
-    const double* c = rec.cum.data() + o * (B + 1) * 3;
-    const double logr = std::log(rec.rr[o]);
+    const double* c = cum.data() + o * (B + 1) * 3;
+    const double logr = std::log(ens.r[o / n_ic]);
     // Cumulative sums over averaged steps at each block end (Section 8.1 (3); identities in tangent.hpp).
     for (std::size_t j = 0; j < B; ++j) {
       const double* e = c + (j + 1) * 3;
       const double dL = e[0] - c[0], dG = e[1] - c[1], dn = e[2] - c[2];
       c1[j] = dL - dG;                          // log |D^n v0|
       c2[j] = dn * logr - 3 * dG - c1[j];       // log |det D^n| - log |D^n v0|
-      cc[j] = dG + static_cast<double>(rec.block_end[j]) * logr;  // log |P^n u0|
+      cc[j] = dG + static_cast<double>(block_end[j]) * logr;  // log |P^n u0|
     }
-    const Estimate l1 = detail::batch_means(c1, rec.block_end), l2 = detail::batch_means(c2, rec.block_end),
-                   x1 = detail::batch_means(cc, rec.block_end);
+    const Estimate l1 = detail::batch_means(c1, block_end), l2 = detail::batch_means(c2, block_end),
+                   x1 = detail::batch_means(cc, block_end);
     out.lambda1[o] = l1.value, out.err1[o] = l1.error;
     out.lambda2[o] = l2.value, out.err2[o] = l2.error;
     out.chi1[o] = x1.value;

@@ -15,7 +15,8 @@ struct MapOptions {
   long transient = 1000;     // steps before averaging (orbit and tangent vector together), >= 0
   long iterations = 10000;   // averaged steps per orbit, >= blocks
   int blocks = 10;           // batch-means blocks, >= 2
-  bool single_precision = false;  // run the kernel in float (tangent arithmetic stays in double)
+  bool single_precision = false;  // run the plain kernel in float, the tangent recorder in double (otherwise: the fused
+                                  // cocycle kernel in double, iterate/cocycle.hpp)
   iterate::RunOptions run;   // threads, progress
 };
 
@@ -40,6 +41,10 @@ OrbitExponents map_exponents(const iterate::Ensemble& ensemble, const MapOptions
 
 // The exponents from a finished run of a TangentRecorder (batch means over its blocks).
 OrbitExponents exponents_from(const TangentRecorder& rec);
+// The same from cumulative sums (L1, logG, n13 per orbit at the end of the transient and at each of `blocks` block
+// ends, layout of ExponentSums::cum) over n averaged steps.
+OrbitExponents exponents_from(const iterate::Ensemble& ensemble, long n, int blocks, const std::vector<long>& block_end,
+                              const std::vector<double>& cum);
 
 // Sign of an exponent given its error bar: +1 when lambda > k err + b, -1 when lambda < -(k err + b), else 0,
 // with k = 3 (three standard errors) and b = 10 / n (finite-time bias floor: for a bounded cocycle

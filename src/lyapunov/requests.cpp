@@ -140,7 +140,7 @@ void MapRequest::validate() const {
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  check_range(std::min(r_min, r_max), core::parse_precision("double"), r_min <= r_max ? "r-min" : "r-max");
+  check_range(std::min(r_min, r_max), core::parse_precision(precision), r_min <= r_max ? "r-min" : "r-max");
   (void)iterate::parse_grid(grid, seed, "grid");
 }
 
@@ -152,7 +152,7 @@ void StripRequest::validate() const {
     throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_min, w1_max), "w1-min < w1-max");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  check_range(r, core::parse_precision("double"), "r");  // the tangent arithmetic is double
+  check_range(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
   iterate::checked_bytes(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 200, "n1 x n2");
 }
 

@@ -54,7 +54,7 @@ struct MapRequest {
   std::uint64_t seed = 1;              // seed of random grids
   long iterations = 10000, transient = 1000;
   int blocks = 10;
-  std::string precision = "double";    // float or double (the tangent arithmetic is double)
+  std::string precision = "double";    // float or double: the whole cocycle (point, tangent vector, projections)
   std::vector<std::string> overlay;    // named r overlays drawn on the figure (not part of the computation)
 
   void validate() const;
@@ -68,7 +68,7 @@ struct MapRequest {
     v("iterations", iterations, "averaged map iterations per orbit");
     v("transient", transient, "iterations discarded first (orbit and tangent vector)");
     v("blocks", blocks, "batch-means blocks for the error bars");
-    v("precision", precision, "kernel precision: float or double (tangent arithmetic in double)");
+    v("precision", precision, "cocycle precision: float or double (point and tangent vector)");
     v("overlay", overlay, "named r overlays (default: thresholds, windows)");
   }
 };
@@ -92,7 +92,7 @@ struct StripRequest {
     v("iterations", iterations, "averaged map iterations per orbit");
     v("transient", transient, "iterations discarded first (orbit and tangent vector)");
     v("blocks", blocks, "batch-means blocks for the error bars");
-    v("precision", precision, "kernel precision: float or double (tangent arithmetic in double)");
+    v("precision", precision, "cocycle precision: float or double (point and tangent vector)");
   }
 };
 
