@@ -12,7 +12,7 @@ namespace detail {
 
 // Vectors in flight of the cocycle kernel: each carries 10 live registers (u, v, r, alpha, alpha / r, the symbol
 // count), so 2 vectors (20 registers and the step's temporaries) fit the 32 zmm without spilling; 3 spill.
-inline constexpr int kCocycleVectors = 2;
+inline constexpr int kCocycleVectors = 4;
 
 template <class T> struct CocycleLanes {
   static constexpr int W = Simd<T>::W;
