@@ -16,7 +16,7 @@ for name in bm_iterate bm_lyapunov bm_stats bm_attractors bm_windows; do
   bm="$bdir/$name"
   [ -x "$bm" ] || { echo "benchmarks: $bm not built" >&2; exit 2; }
   filter='^[^s]'  # everything but the smoke/... cases
-  [ "$name" = bm_iterate ] && filter='^(core_clock|scalar_loop|batched|fig41_density)'
+  [ "$name" = bm_iterate ] && filter='^(core_clock|scalar_loop|batched|fig41_density|fig41_plain)'
   tmp="$out/$name.json.tmp-$$"
   "$bm" --benchmark_filter="$filter" --benchmark_min_time=1 --benchmark_out="$tmp" --benchmark_out_format=json >/dev/null
   mv "$tmp" "$out/$name.json"

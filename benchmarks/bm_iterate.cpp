@@ -70,6 +70,20 @@ template <class T> void BM_fig41_density(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
 }
 
+// The same workload without the image: the plain iteration it is compared with (issue 17: within 10%).
+template <class T> void BM_fig41_plain(benchmark::State& st) {
+  const Ensemble e = fig41(st.range(0));
+  const long iters = st.range(1);
+  RunOptions opt;
+  opt.threads = static_cast<int>(st.range(2));
+  for (auto _ : st) {
+    FinalRecorder rec(e.orbits(), iters);
+    run<T>(e, iters, rec, opt);
+    benchmark::DoNotOptimize(rec.out.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
+}
+
 // The core clock under load, for the hardware-limit estimate: a chain of dependent 1-cycle integer adds
 // retires one add per cycle, so adds per second = cycles per second (counter "GHz").
 void BM_core_clock(benchmark::State& st) {
@@ -114,6 +128,9 @@ BENCHMARK(BM_batched<float>)->Name("batched/float")->Args({1000, 5000, 1})->Args
 // The full Figure 4.1 workload (5000 r, 8e8 map iterations) with the density recorder.
 BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_fig41_density<float>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41_plain<double>)->Name("fig41_plain/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41_plain<double>)->Name("fig41_plain/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
 // Wider precisions: batched 1 and 2 threads, scalar loop.
 BENCHMARK(BM_batched<long double>)->Name("batched/long-double")->Args({20, 2000, 1, 0})->Args({20, 2000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_batched<btob::core::float128>)->Name("batched/float128")->Args({4, 1000, 1, 0})->Args({4, 1000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
