@@ -16,8 +16,12 @@ run() {  # run NAME R BOXES TV_BINS CYCLES [extra flags...]
 }
 # Sinks: r = 0.15 (1133; 512 x 512 is the timing target) and r = 0.1 (111333, inside the window n = 3).
 for b in 128 256 512; do run "r0.15_${b}" 0.15 "${b}x${b}" 32 1133; done
-for b in 128 256 512; do run "r0.1_${b}" 0.1 "${b}x${b}" 32 111333; done
-# Coexistence: r = 0.21 (132^2, 312^2, 132^3312^3 and the P2 invariant curves).
+# r = 0.1's sink lies 0.0145 rad in atan(w1) from the P2/P3 branch line (2.4 boxes at 512^2): Ulam's smearing
+# crosses it below 1024^2 (the closed class is then the whole chart), so a fourth resolution (~4 min, 1.8 GB).
+for b in 128 256 512 1024; do run "r0.1_${b}" 0.1 "${b}x${b}" 32 111333; done
+# Coexistence: r = 0.21 (132^2, 312^2, 132^3312^3 and the P2 invariant curves); basins from the Ulam graph against
+# the counted fractions of results/attractors/basins_r0.21 (transfer_summary.py).  Not 512^2: its Arnoldi runs on the
+# 198 225-box closed class took 67 s for the 24 leading eigenvalues, then over 8 min more without finishing (load 10).
 for b in 64 128 256; do run "r0.21_${b}" 0.21 "${b}x${b}" 32 "1322,3122,132^3312^3"; done
 # The P2 region: r = 0.3 (132312 and the P2 curves; rotation eigenvalues exp(i k beta)).
 for b in 64 128 256; do run "r0.3_${b}" 0.3 "${b}x${b}" 32 132312; done
@@ -29,3 +33,6 @@ for b in 32 64 128; do
     --peripheral 0.01 --threads "$THREADS" --out "$OUT/r_scan_${b}"
 done
 "${BTOB_PYTHON:-/usr/bin/python3}" analyses/transfer_summary.py "$OUT"
+# The summary's manifest (the script's tables are no command's output): btob_manifest is built beside btob.
+"$(dirname "$BTOB")/btob_manifest" "$OUT/summary.json" "analyses/transfer.sh $BTOB $THREADS" \
+  convergence.csv gap_r.csv gap_r.png

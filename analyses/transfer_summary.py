@@ -8,6 +8,37 @@ import os
 import sys
 
 
+def expand(word):
+    """A pattern with exponents (132^3312^3) as its plain word (1322231222), rotated to its smallest rotation."""
+    out, i = "", 0
+    while i < len(word):
+        if word[i] == "^":
+            j = i + 1
+            while j < len(word) and word[j].isdigit():
+                j += 1
+            out += out[-1] * (int(word[i + 1:j]) - 1)
+            i = j
+        else:
+            out += word[i]
+            i += 1
+    return min(out[k:] + out[:k] for k in range(len(out))) if out else out
+
+
+def counted_fractions(root, r):
+    """`btob basins` fractions at r (results/attractors/basins_rR/basins_fractions.csv), keyed like basins.csv's
+    attractors: the expanded word of a periodic attractor, "P2 region" for the P2 invariant curves."""
+    path = os.path.join(root, "..", "attractors", f"basins_r{r}", "basins_fractions.csv")
+    if not os.path.exists(path):
+        return {}
+    out = {}
+    for row in csv.DictReader(open(path)):
+        if row["type"] == "periodic":
+            out[expand(row["pattern"])] = (float(row["fraction"]), float(row["ci_low"]), float(row["ci_high"]))
+        elif row["type"] == "quasi-periodic":
+            out["P2 region"] = (float(row["fraction"]), float(row["ci_low"]), float(row["ci_high"]))
+    return out
+
+
 def main(root):
     rows = []
     for man in sorted(glob.glob(os.path.join(root, "r0.*_*", "transfer.json"))):
@@ -17,6 +48,13 @@ def main(root):
         comps = list(csv.DictReader(open(os.path.join(d, "components.csv"))))
         cyc_path = os.path.join(d, "cycles.csv")
         cycles = list(csv.DictReader(open(cyc_path))) if os.path.exists(cyc_path) else []
+        bas_path = os.path.join(d, "basins.csv")
+        basins = list(csv.DictReader(open(bas_path))) if os.path.exists(bas_path) else []
+        counted = counted_fractions(root, a["r"])
+
+        def key(b):
+            return "P2 region" if b["attractor"] == "P2 region" else expand(b["attractor"])
+
         lam = [complex(float(s["re"]), float(s["im"])) for s in spec]
         beta = a.get("p2_beta")
         beta = float(beta) if beta not in (None, "nan") else float("nan")
@@ -42,6 +80,11 @@ def main(root):
             "cycle_radius99": ";".join(f'{c["word"]}:{c["radius99"]}' for c in cycles),
             "cycle_mass_3x3": ";".join(f'{c["word"]}:{float(c["mass_neighbourhood"]):.4f}' for c in cycles),
             "tv_boxes": a["tv_boxes"], "tv_32x32": a["tv_coarse"],
+            # Basins from the Ulam graph against the counted fractions of `btob basins` (same Lebesgue rectangle)
+            "basin_fractions": ";".join(f'{b["attractor"]}:{float(b["fraction"]):.4f}' for b in basins),
+            "counted_fractions": ";".join(
+                f'{b["attractor"]}:{counted[key(b)][0]:.4f}[{counted[key(b)][1]:.4f},{counted[key(b)][2]:.4f}]'
+                for b in basins if key(b) in counted),
         })
     rows.sort(key=lambda x: (float(x["r"]), int(str(x["boxes"]).split("x")[0])))
     out = os.path.join(root, "convergence.csv")

@@ -192,6 +192,49 @@ TEST(Transfer, SinkAtR015HoldsTheDensity) {
   for (const auto& c : res.components) total += c.lebesgue;
   EXPECT_CLOSE(total + res.unabsorbed, 1.0,
                ulps(4500, "mass conservation of the projection: 16384 sums, a random walk of ~128 eps (measured 38)"));
+  // Basins from the Ulam graph: the sink is the only attractor named, and every box of the rectangle reaches it.
+  ASSERT_EQ(res.basins.size(), 1u);
+  EXPECT_EQ(res.basins[0].attractor, "1133");
+  EXPECT_EQ(res.basins[0].target_boxes, 4);
+  EXPECT_CLOSE(res.basins[0].fraction, 1.0, bound(1e-9, "BiCGSTAB to a relative residual of 1e-12 on 16384 boxes"));
+}
+
+// r = 0.21: three sinks and the P2 invariant curves coexist.  The spectral route sees one closed class (the P2
+// lamination's diffusion ties them together); absorption into each attractor's boxes gives one basin each.
+TEST(Transfer, BasinsFromTheUlamGraphAtR021) {
+  TransferRequest q;
+  q.r = 0.21;
+  q.boxes = "64x64";
+  q.samples = 64;
+  q.eigenvalues = 4;
+  q.measure_orbits = 0;
+  q.tv_bins = 16;
+  q.cycles = {"1322,3122,132^3312^3"};
+  const auto res = run(q);
+  ASSERT_EQ(res.basins.size(), 4u);
+  EXPECT_EQ(res.basins[3].attractor, "P2 region");
+  double sum = 0;
+  for (const auto& b : res.basins) {
+    EXPECT_GT(b.fraction, 0.05) << b.attractor;
+    sum += b.fraction;
+  }
+  EXPECT_CLOSE(sum + res.basin_unabsorbed, 1.0, ulps(64, "the unabsorbed mass is defined as 1 - the sum"));
+  EXPECT_SMALL(std::fabs(res.basin_unabsorbed), bound(1e-8, "every box reaches an attractor; solves to 1e-12"));
+  EXPECT_LT(res.basin_residual, 1e-11);
+  // The P2 region R = {I < 2 - alpha^2/r} lies inside |w1| < 2 at r = 0.21: its share of the 4 x 2 rectangle is
+  // the ellipse's area pi c / sqrt(det M) / 8, M = [[4r, -2 alpha], [-2 alpha, 2]] (`btob basins` counts 0.2172).
+  const double al = (1 + q.r) / 2, c = 2 - al * al / q.r;
+  const double area = std::numbers::pi * c / std::sqrt(8 * q.r - 4 * al * al) / 8;
+  EXPECT_CLOSE(res.basins[3].exact, area, bound(1e-7, "midpoint rule on 2^17 points with square-root ends"));
+  // Ulam's blur puts the boundary boxes of R into R's basin: the fraction exceeds R's measure (0.40 at 64^2,
+  // 0.27 at 256^2, see the README); the boxes of R alone weigh less than R.
+  EXPECT_GT(res.basins[3].fraction, area);
+  // The map of basins: every target box is its own attractor's with probability 1.
+  ASSERT_EQ(res.basin_of_box.size(), 4096u);
+  long p2 = 0;
+  for (std::size_t i = 0; i < res.basin_of_box.size(); ++i)
+    if (res.basin_of_box[i] == 4 && res.basin_probability[i] == 1) ++p2;
+  EXPECT_GE(p2, res.basins[3].target_boxes);
 }
 
 TEST(Transfer, RequestErrorsNameTheirField) {
@@ -283,7 +326,15 @@ TEST(TransferFiles, TablesAndArraysOfOneRunAgreeWithTheResult) {
   const core::ArrayView* pts = c.find("cycle_points");
   ASSERT_NE(pts, nullptr);
   EXPECT_EQ(pts->dims, (std::vector<std::size_t>{res.cycles[0].a.size(), 2}));
-  for (const char* name : {"density", "second", "component"}) {
+  // basins.csv: the sink's row, its fraction as the result holds it; the P2 column "exact" empty (no P2 region).
+  const auto bas = csv_cells(res.basins_csv());
+  expect_numbers_or_empty(res.basins_csv(), "basins.csv");
+  ASSERT_EQ(bas.size(), res.basins.size() + 1);
+  EXPECT_EQ(bas[1][csv_column(bas[0], "attractor")], "1133");
+  EXPECT_CLOSE(std::stod(bas[1][csv_column(bas[0], "fraction")]), res.basins[0].fraction,
+               bound(5e-7, "the CSV prints 6 decimals"));
+  EXPECT_EQ(bas[1][csv_column(bas[0], "exact")], "");
+  for (const char* name : {"density", "second", "component", "basin", "basin_probability"}) {
     const core::ArrayView* a = c.find(name);
     ASSERT_NE(a, nullptr) << name;
     EXPECT_EQ(a->size(), static_cast<std::size_t>(res.part.size())) << name;  // "second" too, when there is none

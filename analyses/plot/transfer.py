@@ -20,6 +20,9 @@ def main(h5path, spec_path, png):
         comp = f["component"][...]
         leb = f["lebesgue"][...]
         cyc = f["cycle_points"][...] if "cycle_points" in f else np.zeros((0, 2))
+        basin = f["basin"][...] if "basin" in f else None
+        basin_p = f["basin_probability"][...] if "basin" in f else None
+        basin_f = f["basin_fraction"][...] if "basin" in f else None
     rows = list(csv.DictReader(open(spec_path)))
     re = np.array([float(r["re"]) for r in rows])
     im = np.array([float(r["im"]) for r in rows])
@@ -30,7 +33,8 @@ def main(h5path, spec_path, png):
     xl = "atan(w1) (rad)" if strip else "theta (rad)"
     yl = "w2" if strip else "phi (rad)"
     area = (a["hi1"] - a["lo1"]) * (a["hi2"] - a["lo2"]) / (n1 * n2)
-    fig, ax = plt.subplots(2, 2, figsize=(12, 10.5))
+    nb = 0 if basin is None else len(basin_f)
+    fig, ax = plt.subplots(2, 3 if nb else 2, figsize=(18 if nb else 12, 10.5), squeeze=False)
     # (a) density (mass per unit chart area), log scale
     d = dens / area
     pos = d[d > 0]
@@ -38,11 +42,23 @@ def main(h5path, spec_path, png):
                           norm=LogNorm(vmin=max(pos.min(), pos.max() * 1e-8), vmax=pos.max()), interpolation="nearest")
     fig.colorbar(im0, ax=ax[0, 0], label="density (mass per unit chart area)")
     ax[0, 0].set_title("invariant density: Lebesgue projected on the components")
+    if 0 < len(pos) < 5000:
+        # A density on a few boxes (a sink's) would be invisible pixels: its boxes drawn as markers too.
+        i1, i2 = np.nonzero(d > 0)
+        c1 = a["lo1"] + (i1 + 0.5) * (a["hi1"] - a["lo1"]) / n1
+        c2 = a["lo2"] + (i2 + 0.5) * (a["hi2"] - a["lo2"]) / n2
+        ax[0, 0].scatter(c1, c2, c=d[i1, i2], cmap="magma", norm=im0.norm, s=10, marker="s",
+                         label=f"the {len(pos)} boxes with mass (enlarged)")
     # (b) components
     k = int(comp.max())
     cmap = ListedColormap(["#f0f0f0"] + [plt.cm.tab10(i % 10) for i in range(max(k, 1))])
     ax[0, 1].imshow(comp.T, origin="lower", extent=ext, aspect="auto", cmap=cmap, vmin=-0.5, vmax=k + 0.5,
                     interpolation="nearest")
+    if 0 < np.count_nonzero(comp) < 5000:  # a few boxes (a sink's class): drawn as enlarged markers too
+        j1, j2 = np.nonzero(comp)
+        ax[0, 1].scatter(a["lo1"] + (j1 + 0.5) * (a["hi1"] - a["lo1"]) / n1,
+                         a["lo2"] + (j2 + 0.5) * (a["hi2"] - a["lo2"]) / n2, c=comp[j1, j2], cmap=cmap,
+                         vmin=-0.5, vmax=k + 0.5, s=10, marker="s")
     for i in range(k):
         ax[0, 1].plot([], [], "s", color=plt.cm.tab10(i % 10), label=f"component {i + 1}: Lebesgue {leb[i]:.3f}")
     if k:
@@ -85,9 +101,35 @@ def main(h5path, spec_path, png):
     ax[1, 1].set_ylabel("Im lambda")
     ax[1, 1].legend(loc="lower left", fontsize=8)
     ax[1, 1].set_title(f"{len(re)} leading eigenvalues; {a['near_one_count']} within {a['near-one']} of 1")
+    if nb:
+        # (e) basins from the Ulam graph: the attractor of largest absorption probability; (f) that probability
+        names = [str(a[f"basin_{k + 1}"]) for k in range(nb)]
+        colours = [plt.cm.tab10(k % 10) for k in range(nb)]
+        bmap = ListedColormap(["#f0f0f0"] + colours)
+        ax[0, 2].imshow(basin.T, origin="lower", extent=ext, aspect="auto", cmap=bmap, vmin=-0.5, vmax=nb + 0.5,
+                        interpolation="nearest")
+        for k in range(nb):
+            ax[0, 2].plot([], [], "s", color=colours[k], label=f"{names[k]}: Lebesgue {basin_f[k]:.4f}")
+        ax[0, 2].legend(loc="upper right", fontsize=8, title="absorbed by", title_fontsize=8)
+        ax[0, 2].set_title(f"basins from the Ulam graph (unabsorbed {a['basin_unabsorbed']:.1e})")
+        im5 = ax[1, 2].imshow(basin_p.T, origin="lower", extent=ext, aspect="auto", cmap="viridis", vmin=0, vmax=1,
+                              interpolation="nearest")
+        fig.colorbar(im5, ax=ax[1, 2], label="largest absorption probability")
+        ax[1, 2].set_title("certainty of the basin (< 1: within Ulam's blur of a boundary)")
+        for axx in (ax[0, 2], ax[1, 2]):
+            axx.set_xlabel(xl)
+            axx.set_ylabel(yl)
+            if len(cyc):
+                axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:red", ms=7, mew=1.0)
+        if strip:
+            # the lines w1 = +-2 bounding the Lebesgue rectangle of the fractions
+            w1r = [float(x) for x in str(a["w1-range"]).split(",")]
+            for axx in (ax[0, 2], ax[1, 2]):
+                for w in w1r:
+                    axx.axvline(np.arctan(w), color="k", lw=0.6, ls="--")
     fig.suptitle(f"Ulam transfer operator of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} samples "
-                 f"per box, TV to empirical measure {a['tv_boxes']:.3f} ({n1}x{n2}) / {a['tv_coarse']:.3f} "
-                 f"({a['tv-bins']}x{a['tv-bins']})")
+                 f"per box\nTV to the empirical measure {a['tv_boxes']:.3f} ({n1}x{n2} boxes) / {a['tv_coarse']:.3f} "
+                 f"({a['tv-bins']}x{a['tv-bins']} bins)")
     fig.tight_layout()
     save_atomic(fig, png)
 

@@ -1,8 +1,8 @@
 // `btob transfer`: flags -> transfer::TransferRequest -> run -> spectrum.csv, components.csv, cycles.csv (when
-// cycles were asked for), NAME.h5, NAME.json, NAME.png: Ulam's transfer operator at one r (spectrum, invariant
-// densities, Lebesgue projection, TV to the empirical measure).  `btob transfer-r`: flags ->
-// transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json, NAME.png: the
-// peripheral spectrum and its gap across r.  Section 8's programme.
+// cycles were asked for), basins.csv (when the request names an attractor), NAME.h5, NAME.json, NAME.png: Ulam's
+// transfer operator at one r (spectrum, invariant densities, Lebesgue projection, TV to the empirical measure).  `btob
+// transfer-r`: flags -> transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json,
+// NAME.png: the peripheral spectrum and its gap across r.  Section 8's programme.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "transfer/transfer.hpp"
@@ -44,9 +44,10 @@ struct Registration {
   Registration() {
     command<transfer::TransferRequest>(
         "transfer",
-        "Ulam's transfer operator of P^_r on a box partition (Section 8): leading spectrum (Spectra), closed classes and "
-        "invariant densities, projection of Lebesgue measure (basin fractions), almost-invariant sets, TV distance to "
-        "the empirical measure; writes spectrum.csv, components.csv, NAME.h5/.json/.png",
+        "Ulam's transfer operator of P^_r on a box partition (Section 8): leading spectrum (Spectra), closed classes "
+        "and invariant densities, projection of Lebesgue measure, almost-invariant sets, TV distance to the empirical "
+        "measure, basins from the Ulam graph (absorption into the named attractors); writes spectrum.csv, "
+        "components.csv, cycles.csv, basins.csv, NAME.h5/.json/.png",
         Output{"results/transfer/r0.15", "transfer", "", 0, false, false}, transfer_body);
     command<transfer::TransferRRequest>(
         "transfer-r",

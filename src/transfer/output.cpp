@@ -53,6 +53,14 @@ void TransferResult::describe(core::Contents& c) const {
           "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
   c.array("cycle_points", cycle_points, {cycle_points.size() / 2, 2}, "cycle point, (a, b)", "rad, 1",
           "chart coordinates of every point of every requested cycle, the cycles in order");
+  if (!basins.empty()) {
+    c.array("basin", basin_of_box, box_dims, box_axes, "index",
+            "attractor (1-based, as in basins.csv) with the largest absorption probability of the box, 0 for none");
+    c.array("basin_probability", basin_probability, box_dims, box_axes, "1",
+            "that absorption probability (1 on the attractor's own boxes)");
+    c.array("basin_fraction", basin_fraction, {basin_fraction.size()}, "attractor", "1",
+            "fraction of the Lebesgue measure of the chart rectangle absorbed by each attractor's boxes");
+  }
   request_attrs(request, c);
   c.attr("n1", part.n1);
   c.attr("n2", part.n2);
@@ -81,13 +89,23 @@ void TransferResult::describe(core::Contents& c) const {
   c.attr("seconds_matrix", seconds_matrix);
   c.attr("seconds_spectrum", seconds_spectrum);
   c.attr("seconds", seconds_total);
+  c.attr("basins", static_cast<long>(basins.size()));
+  if (!basins.empty()) {
+    c.attr("basin_unabsorbed", basin_unabsorbed);
+    c.attr("basin_residual", basin_residual);
+    c.attr("basin_iterations", basin_iterations);
+    c.attr("seconds_basins", seconds_basins);
+    for (std::size_t k = 0; k < basins.size(); ++k) c.attr(fmt::format("basin_{}", k + 1), basins[k].attractor);
+  }
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     c.attr(fmt::format("cycle_{}", k + 1), cycles[k].word);
     c.attr(fmt::format("cycle_{}_mass_boxes", k + 1), cycles[k].mass_boxes);
     c.attr(fmt::format("cycle_{}_mass_neighbourhood", k + 1), cycles[k].mass_neighbourhood);
   }
-  c.attr("csv_empty_cells", std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
-                                        "whole-matrix cross-check (check-whole); any empty cell: not a finite number"));
+  c.attr("csv_empty_cells",
+         std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
+                     "whole-matrix cross-check (check-whole); basins.csv: exact except for the P2 region "
+                     "on the strip; any empty cell: not a finite number"));
 }
 
 std::string TransferResult::spectrum_csv() const {
@@ -130,6 +148,16 @@ std::string TransferResult::cycles_csv() const {
   return t.text();
 }
 
+std::string TransferResult::basins_csv() const {
+  if (basins.empty()) return "";
+  core::CsvTable t("attractor,kind,target_boxes,fraction,exact");
+  for (const BasinInfo& b : basins)
+    t.line(fmt::format("{},{},{},{},{}", core::csv_text(b.attractor), core::csv_text(b.kind), b.target_boxes,
+                       core::csv_number(b.fraction, "{:.6f}"),
+                       b.exact >= 0 ? core::csv_number(b.exact, "{:.6f}") : ""));
+  return t.text();
+}
+
 std::string TransferResult::summary() const {
   const TransferRequest& q = request;
   std::string s = fmt::format(
@@ -146,6 +174,13 @@ std::string TransferResult::summary() const {
     s += fmt::format("  cycle {} ({}): mass {:.4f} on its boxes, {:.4f} on their 3x3 neighbourhoods, 99% within {} boxes; "
                      "component {} (99% of it within {} boxes)\n",
                      c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
+  for (const BasinInfo& b : basins)
+    s += fmt::format("  basin of {} ({}, {} target boxes): Lebesgue fraction {:.4f}{}\n", b.attractor, b.kind,
+                     b.target_boxes, b.fraction,
+                     b.exact >= 0 ? fmt::format(" (the region itself: {:.4f})", b.exact) : "");
+  if (!basins.empty())
+    s += fmt::format("  basins: unabsorbed {:.2e}, residual {:.1e}, {} BiCGSTAB iterations, {:.2f} s\n",
+                     basin_unabsorbed, basin_residual, basin_iterations, seconds_basins);
   return s;
 }
 

@@ -1,29 +1,30 @@
 // Ulam's transfer operator of P^_r: partitions, ergodic decomposition, spectra (Eigen, Spectra), projections.
 #include "transfer/transfer.hpp"
-#include "transfer/transfer_impl.hpp"
+
+#include <Spectra/GenEigsSolver.h>
+#include <Spectra/MatOp/SparseGenMatProd.h>
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
 
 #include "core/coords.hpp"
 #include "core/map.hpp"
 #include "iterate/ensemble.hpp"
 #include "patterns/patterns.hpp"
 #include "stats/stats.hpp"
+#include "transfer/transfer_impl.hpp"
 #include "windows/windows.hpp"
-
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
-#include <Spectra/GenEigsSolver.h>
-#include <Spectra/MatOp/SparseGenMatProd.h>
-#include <fmt/format.h>
-#include <omp.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cstdlib>
-#include <cmath>
-#include <limits>
-#include <numbers>
-#include <numeric>
-#include <stdexcept>
 
 namespace btob::transfer {
 
@@ -524,6 +525,157 @@ std::vector<double> lebesgue(const Partition& p, Domain d, const std::vector<dou
   return m;
 }
 
+// The Lebesgue measure of the P2 region R = {I < c}, c = 2 - alpha^2 / r, inside the request's rectangle
+// w1 in [w1a, w1b] x w2 in [-1, 1], as a fraction of the rectangle: the chord of R at w1 has length
+// sqrt(8 c - (32 r - 16 alpha^2) w1^2) / 2 (R lies within |w2| <= 1: it is tangent to w2 = +-1); midpoint rule
+// on 2^17 points (the chord's square-root ends: error ~ N^-1.5, below 1e-7).
+double p2_region_fraction(double r, double w1a, double w1b) {
+  const double al = (1 + r) / 2, cm = 2 - al * al / r, k = 32 * r - 16 * al * al;
+  if (!(cm > 0 && k > 0)) return 0;
+  const double half = std::sqrt(8 * cm / k), lo = std::max(w1a, -half), hi = std::min(w1b, half);
+  if (!(hi > lo)) return 0;
+  const long N = 1L << 17;
+  const double dw = (hi - lo) / static_cast<double>(N);
+  double s = 0;
+  for (long i = 0; i < N; ++i) {
+    const double w = lo + (static_cast<double>(i) + 0.5) * dw;
+    s += std::sqrt(std::max(0.0, 8 * cm - k * w * w)) / 2;
+  }
+  return s * dw / (2 * (w1b - w1a));
+}
+
+// Basins from the Ulam graph (see BasinInfo in transfer.hpp).
+void ulam_basins(const UlamMatrix& P, const Partition& part, Domain dom, const TransferRequest& q,
+                 const std::vector<double>& mu, TransferResult& res) {
+  const long n = P.n;
+  const auto sz = [](long i) { return static_cast<std::size_t>(i); };
+  std::vector<std::uint32_t> target(sz(n), 0);
+  for (const auto& cc : res.cycles) {
+    if (cc.outcome != "stable orbit") continue;  // an unstable or absent cycle attracts nothing
+    BasinInfo b;
+    b.attractor = cc.word;
+    b.kind = "sink";
+    const auto id = static_cast<std::uint32_t>(res.basins.size() + 1);
+    for (long box : cc.boxes)
+      if (box >= 0 && target[sz(box)] == 0) target[sz(box)] = id, ++b.target_boxes;
+    if (b.target_boxes > 0) res.basins.push_back(b);
+  }
+  const double al = (1 + q.r) / 2, cmax = 2 - al * al / q.r;
+  if (cmax > 0) {
+    // The boxes inside R: all four corners (R is convex in (w1, w2), and a box of either chart is a rectangle in
+    // (atan w1, w2) or (theta, phi); on the strip a box is a rectangle in (w1, w2) too, so the test is exact there).
+    BasinInfo b;
+    b.attractor = "P2 region";
+    b.kind = "P2 invariant curves";
+    const auto id = static_cast<std::uint32_t>(res.basins.size() + 1);
+    const double h1 = (part.hi1 - part.lo1) / static_cast<double>(part.n1),
+                 h2 = (part.hi2 - part.lo2) / static_cast<double>(part.n2);
+    const auto I = [&](double a, double bb) {
+      double x, y, z;
+      chart_to_vector(dom, a, bb, x, y, z);
+      const double s = x + z, d = x - z;
+      return d > 0 ? (2 * s * s - 4 * al * s * y + 4 * q.r * y * y) / (d * d) : std::numeric_limits<double>::infinity();
+    };
+    for (long i1 = 0; i1 < part.n1; ++i1)
+      for (long i2 = 0; i2 < part.n2; ++i2) {
+        const double a0 = part.lo1 + static_cast<double>(i1) * h1, b0 = part.lo2 + static_cast<double>(i2) * h2;
+        if (I(a0, b0) < cmax && I(a0 + h1, b0) < cmax && I(a0, b0 + h2) < cmax && I(a0 + h1, b0 + h2) < cmax &&
+            target[sz(i1 * part.n2 + i2)] == 0)
+          target[sz(i1 * part.n2 + i2)] = id, ++b.target_boxes;
+      }
+    if (dom == Domain::strip) b.exact = p2_region_fraction(q.r, q.w1_range[0], q.w1_range[1]);
+    if (b.target_boxes > 0) res.basins.push_back(b);
+  }
+  if (res.basins.empty()) return;
+  const std::size_t K = res.basins.size();
+  // Boxes from which a target can be reached (reverse breadth-first search); the others are absorbed by none.
+  std::vector<int> in_ptr(sz(n + 1), 0), in_col(P.col.size());
+  for (int j : P.col) ++in_ptr[sz(j + 1)];
+  for (long j = 0; j < n; ++j) in_ptr[sz(j + 1)] += in_ptr[sz(j)];
+  {
+    std::vector<int> fill(in_ptr.begin(), in_ptr.end() - 1);
+    for (long i = 0; i < n; ++i)
+      for (int e = P.row_ptr[sz(i)]; e < P.row_ptr[sz(i + 1)]; ++e)
+        in_col[sz(fill[sz(P.col[sz(e)])]++)] = static_cast<int>(i);
+  }
+  std::vector<char> reach(sz(n), 0);
+  std::vector<long> queue;
+  for (long i = 0; i < n; ++i)
+    if (target[sz(i)]) reach[sz(i)] = 1, queue.push_back(i);
+  for (std::size_t k = 0; k < queue.size(); ++k)
+    for (int e = in_ptr[sz(queue[k])]; e < in_ptr[sz(queue[k] + 1)]; ++e)
+      if (!reach[sz(in_col[sz(e)])]) reach[sz(in_col[sz(e)])] = 1, queue.push_back(in_col[sz(e)]);
+  // The unknowns: boxes that reach a target and are none.  A = I - Q on them, B(:, k) = P 1_k.
+  std::vector<int> loc(sz(n), -1);
+  int m = 0;
+  for (long i = 0; i < n; ++i)
+    if (reach[sz(i)] && !target[sz(i)]) loc[sz(i)] = m++;
+  // A in compressed rows, built directly: P's columns are sorted in each row and loc is increasing, so the
+  // columns of A's rows are sorted; the diagonal 1 is merged in at its place.
+  using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+  std::vector<int> a_ptr{0}, a_col;
+  std::vector<double> a_val;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(m, static_cast<long>(K));
+  for (long i = 0; i < n; ++i) {
+    const int u = loc[sz(i)];
+    if (u < 0) continue;
+    bool diag = false;
+    for (int e = P.row_ptr[sz(i)]; e < P.row_ptr[sz(i + 1)]; ++e) {
+      const long j = P.col[sz(e)];
+      if (target[sz(j)]) {
+        B(u, target[sz(j)] - 1) += P.val[sz(e)];
+        continue;
+      }
+      const int v = loc[sz(j)];
+      if (v < 0) continue;
+      if (!diag && v >= u) {
+        diag = true;
+        if (v > u)
+          a_col.push_back(u), a_val.push_back(1.0);
+        else {
+          a_col.push_back(u), a_val.push_back(1.0 - P.val[sz(e)]);
+          continue;
+        }
+      }
+      a_col.push_back(v), a_val.push_back(-P.val[sz(e)]);
+    }
+    if (!diag) a_col.push_back(u), a_val.push_back(1.0);
+    a_ptr.push_back(static_cast<int>(a_col.size()));
+  }
+  const RowMat A =
+      Eigen::Map<const RowMat>(m, m, static_cast<int>(a_col.size()), a_ptr.data(), a_col.data(), a_val.data());
+  res.basin_of_box.assign(sz(n), 0);
+  res.basin_probability.assign(sz(n), 0);
+  for (long i = 0; i < n; ++i)
+    if (target[sz(i)]) res.basin_of_box[sz(i)] = target[sz(i)], res.basin_probability[sz(i)] = 1;
+  double absorbed = 0;
+  Eigen::BiCGSTAB<RowMat> solver;  // diagonal preconditioner
+  // 1e-12 relative residual: the fractions are reported to 1e-6 and the absorption probabilities lie in [0, 1].
+  solver.setTolerance(1e-12);
+  solver.setMaxIterations(20000);
+  if (m > 0) solver.compute(A);
+  for (std::size_t k = 0; k < K; ++k) {
+    Eigen::VectorXd h = Eigen::VectorXd::Zero(m);
+    if (m > 0) {
+      h = solver.solve(B.col(static_cast<long>(k)));
+      res.basin_iterations += solver.iterations();
+      res.basin_residual = std::max(res.basin_residual, solver.error());
+    }
+    double f = 0;
+    for (long i = 0; i < n; ++i) {
+      const double p = target[sz(i)] ? (target[sz(i)] == k + 1 ? 1.0 : 0.0)
+                                     : (loc[sz(i)] >= 0 ? std::clamp(h(loc[sz(i)]), 0.0, 1.0) : 0.0);
+      f += mu[sz(i)] * p;
+      if (!target[sz(i)] && p > res.basin_probability[sz(i)])
+        res.basin_probability[sz(i)] = p, res.basin_of_box[sz(i)] = static_cast<std::uint32_t>(k + 1);
+    }
+    res.basins[k].fraction = f;
+    res.basin_fraction.push_back(f);
+    absorbed += f;
+  }
+  res.basin_unabsorbed = 1 - absorbed;
+}
+
 stats::Measure coarsen(const stats::Measure& m, int b1, int b2) {
   stats::Measure c = m;
   c.bins_u = b1, c.bins_v = b2;
@@ -813,6 +965,13 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
       if (cc.component > 0) cc.radius99_component = radius(dens[static_cast<std::size_t>(cc.component - 1)]);
     }
     res.cycles.push_back(std::move(cc));
+  }
+  // Basins from the Ulam graph: absorption into the named attractors, weighted by Lebesgue measure.
+  {
+    const auto tb = std::chrono::steady_clock::now();
+    ulam_basins(P, res.part, dom, q, lebesgue(res.part, dom, q.w1_range), res);
+    res.seconds_basins = seconds_since(tb);
+    c.check_cancelled();
   }
   // The empirical measure of `btob measure` (stats module) from an NxN grid of the same Lebesgue rectangle.
   if (q.measure_orbits > 0) {

@@ -167,6 +167,22 @@ struct CycleCheck {
   double component_share = 0;      // that component's own density mass on the neighbourhoods
 };
 
+// Basins from the Ulam graph: the chain made absorbing on the boxes of the attractors the request names (each
+// stable --cycle: the boxes of its exact points; for r > 3 - 2 sqrt 2 on the strip, the P2 region
+// R = {I < 2 - alpha^2 / r}, I = 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 the conserved quantity of P2 (Section 5.2):
+// the largest invariant ellipse inside the P2 branch, tangent to its four edges, so R is forward invariant and
+// every orbit entering it stays on an invariant curve; its boxes are those inside it).  The absorption
+// probability h_k(i) of box i into target k solves (I - Q) h_k = P 1_k on the boxes that reach a target (Q: the
+// chain among them; BiCGSTAB); the Lebesgue measure of the request weighted by h_k is the basin fraction that the
+// transfer operator gives to attractor k, the counterpart of `btob basins`' counted fractions.
+struct BasinInfo {
+  std::string attractor;  // the cycle's word, or "P2 region"
+  std::string kind;       // "sink" or "P2 invariant curves"
+  long target_boxes = 0;
+  double fraction = 0;  // of the Lebesgue measure of the request
+  double exact = -1;    // P2 region: the Lebesgue measure of R itself (closed form by quadrature), -1 else
+};
+
 struct TransferResult {
   TransferRequest request;
   Partition part;
@@ -196,6 +212,15 @@ struct TransferResult {
   std::size_t matrix_bytes = 0;
   std::vector<double> lebesgue;        // per component: components[k].lebesgue
   std::vector<double> cycle_points;    // (a, b) of every point of every cycle, the cycles in order (rows of 2)
+  // Basins from the Ulam graph (empty when the request names no attractor: no stable cycle, no P2 region).
+  std::vector<BasinInfo> basins;
+  std::vector<std::uint32_t> basin_of_box;  // n1 x n2: the target (1-based) of largest absorption probability, 0: none
+  std::vector<double> basin_probability;    // n1 x n2: that probability (1 on the targets; < 1 near basin boundaries)
+  std::vector<double> basin_fraction;       // per attractor: basins[k].fraction
+  double basin_unabsorbed = 0;              // Lebesgue mass absorbed by no target: 1 - sum of the fractions
+  double basin_residual = 0;                // largest relative residual of the solves
+  long basin_iterations = 0;                // BiCGSTAB iterations, summed over the targets
+  double seconds_basins = 0;
 
   // What `btob transfer` writes (output.cpp).  Arrays density, second, component, eig_re, eig_im, lebesgue,
   // cycle_points; attributes: the request's fields under their flag names, the partition, the summary numbers.
@@ -203,9 +228,11 @@ struct TransferResult {
   std::string spectrum_csv() const;    // k,re,im,modulus,block,whole_re,whole_im,whole_modulus (whole_*: check-whole)
   std::string components_csv() const;  // component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2
   std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
-  core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv (when cycles were asked for)
+  std::string basins_csv() const;      // attractor,kind,target_boxes,fraction,exact; "" when there is no target
+  core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some)
     core::Tables t{{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
     if (!cycles.empty()) t.emplace_back("cycles.csv", cycles_csv());
+    if (!basins.empty()) t.emplace_back("basins.csv", basins_csv());
     return t;
   }
   std::string summary() const;         // the lines printed on stderr
