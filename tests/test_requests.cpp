@@ -182,6 +182,17 @@ TEST(RInPrecision, RangeIsEvaluatedInThePrecisionAndIsBitwiseInDouble) {
   }
   const iterate::Ensemble sub = e.with_r(items);
   EXPECT_EQ(sub.r_at<core::float128>(1), e.r_at<core::float128>(17));
+  // r_in<T> (what the kernel reads, the range's ends parsed once) is r_at<T> for every value.
+  for (const iterate::Ensemble* x : std::vector<const iterate::Ensemble*>{&e, &part, &sub}) {
+    const auto q = x->r_in<core::float128>();
+    const auto l = x->r_in<long double>();
+    const auto f = x->r_in<float>();
+    for (std::size_t j = 0; j < x->r.size(); ++j) {
+      EXPECT_EQ(q[j], x->r_at<core::float128>(j));
+      EXPECT_EQ(l[j], x->r_at<long double>(j));
+      EXPECT_EQ(f[j], x->r_at<float>(j));
+    }
+  }
 }
 
 TEST(RInPrecision, Float128AndMpfrRunsUseTheirOwnR) {

@@ -57,6 +57,19 @@ template <class T> T Ensemble::r_at(std::size_t j) const {
 template <class T> std::vector<T> Ensemble::r_in() const {
   std::vector<T> out;
   out.reserve(r.size());
+  if constexpr (std::is_same_v<T, float>) {
+    if (!r_text.empty() || !r_lo.empty()) {  // rounded once from float128, as r_at<float>
+      for (const core::float128& v : r_in<core::float128>()) out.push_back(static_cast<float>(v));
+      return out;
+    }
+  } else if constexpr (!std::is_same_v<T, double>) {
+    if (r_text.empty() && !r_lo.empty()) {  // a range: its ends parsed once (r_at parses them for every value)
+      if (r_index.size() != r.size()) throw std::logic_error("Ensemble: r_index and r differ in size");
+      const T lo = core::from_decimal<T>(r_lo), hi = core::from_decimal<T>(r_hi);
+      for (std::size_t i : r_index) out.push_back(linspace_value<T>(lo, hi, i, r_count));
+      return out;
+    }
+  }
   for (std::size_t j = 0; j < r.size(); ++j) out.push_back(r_at<T>(j));
   return out;
 }
