@@ -91,8 +91,10 @@ struct KwargsApplier {
         throw core::InvalidField(name, py::str(py::repr(v)).cast<std::string>(), "True or False");
       member = v.cast<bool>();
     } else {
-      constexpr bool is_double = std::is_same_v<T, double> || std::is_same_v<T, std::vector<double>>;
-      constexpr bool is_vector = std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>;
+      constexpr bool is_double = std::is_same_v<T, double> || std::is_same_v<T, std::vector<double>> ||
+                                 std::is_same_v<T, core::Decimal> || std::is_same_v<T, std::vector<core::Decimal>>;
+      constexpr bool is_vector = std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>> ||
+                                 std::is_same_v<T, std::vector<core::Decimal>>;
       core::set_field(member, items_of(v, is_double, is_vector), name);
     }
   }

@@ -8,7 +8,10 @@
 #include "iterate/recorders.hpp"
 #include "lyapunov/requests.hpp"
 
+#include <boost/lexical_cast.hpp>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "tolerance.hpp"
 
@@ -69,6 +72,206 @@ TEST(Fields, TextRoundTripsBitwise) {
   EXPECT_TRUE(b);
   core::set_field(b, {"false"}, "log");
   EXPECT_FALSE(b);
+}
+
+// ------------------------------------------------------------------------------------------------ r in the precision
+// Issue 13, item 2: r is carried in the run's precision from the request to the lanes.  A request keeps the decimal
+// text it was given (core::Decimal), the ensemble keeps it (a list, or a range's ends and count), and every
+// precision reads r from it (Ensemble::r_at<T>), so a float128 run at r = 0.1 uses float128's 0.1.
+
+TEST(Fields, DecimalKeepsItsTextAndReadsLikeADouble) {
+  core::Decimal d;
+  core::set_field(d, {" 0.10 "}, "r");
+  EXPECT_EQ(d.text, "0.10");                                  // trimmed, otherwise as given
+  EXPECT_EQ(d.value, 0.1);                                    // strtod of the text, as a double field reads it
+  EXPECT_EQ(core::field_text(d), std::vector<std::string>{"0.10"});  // manifests record the text
+  EXPECT_EQ(fmt::format("{}", d), "0.1");                     // messages and titles print the double, as before
+  core::Decimal many;
+  core::set_field(many, {"0.1000000000000000000000001"}, "r");  // more digits than a double holds: kept
+  EXPECT_EQ(many.value, 0.1);
+  EXPECT_EQ(many.text, "0.1000000000000000000000001");
+  EXPECT_EQ(core::Decimal(0.0717).text, "0.0717");            // a double's shortest exact form
+  EXPECT_EQ(failing_field([] {
+              core::Decimal x;
+              core::set_field(x, {"0.1x"}, "r-min");
+            }),
+            "r-min");
+  EXPECT_EQ(failing_field([] {
+              core::Decimal x;
+              core::set_field(x, {"1e999"}, "r");
+            }),
+            "r");
+  std::vector<core::Decimal> list;
+  core::set_field(list, {"0.11,0.2", "0.30"}, "r");
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[2].text, "0.30");
+  EXPECT_EQ(core::values(list), (std::vector<double>{0.11, 0.2, 0.3}));
+}
+
+// T's nearest value to `text`, checked independently of core::from_decimal: the exact decimal as a ratio of
+// integers in MPFR at 400 bits (mpfr_set_str of the integer digits, then one division, error 2^-400), and |x - exact|
+// no larger than the distance of either neighbour of x.
+template <class T> bool is_nearest(const T& x, const std::string& digits, const std::string& ten_power) {
+  core::MpfrDigits wide(130);  // 430 bits
+  const core::mpfr_float exact = core::mpfr_float(digits) / core::mpfr_float(ten_power);
+  using std::nextafter;
+  using boost::multiprecision::nextafter;
+  const T up = nextafter(x, T(1)), down = nextafter(x, T(0));
+  const core::mpfr_float d = abs(core::mpfr_float(x) - exact);
+  return d <= abs(core::mpfr_float(up) - exact) && d <= abs(core::mpfr_float(down) - exact);
+}
+
+TEST(RInPrecision, ListedRIsTheNearestValueOfEachPrecision) {
+  iterate::Ensemble e;
+  e.set_r_list({core::Decimal::parse("0.1", "r"), core::Decimal::parse("0.171599", "r")});
+  EXPECT_EQ(e.r, (std::vector<double>{0.1, 0.171599}));  // double: the values as before
+  EXPECT_TRUE(is_nearest(e.r_at<long double>(0), "1", "10"));
+  EXPECT_TRUE(is_nearest(e.r_at<core::float128>(0), "1", "10"));
+  EXPECT_TRUE(is_nearest(e.r_at<float>(0), "1", "10"));
+  EXPECT_TRUE(is_nearest(e.r_at<core::float128>(1), "171599", "1000000"));
+  EXPECT_TRUE(is_nearest(e.r_at<long double>(1), "171599", "1000000"));
+  // And not double's value widened: 0.1 in double is 0.1 + 5.55e-18, 1.6e16 ulps of float128 away.
+  EXPECT_NE(e.r_at<core::float128>(0), core::float128(0.1));
+  EXPECT_NE(e.r_at<long double>(0), static_cast<long double>(0.1));
+  EXPECT_EQ(e.r_at<core::float128>(0), boost::lexical_cast<core::float128>("0.1"));
+  EXPECT_EQ(e.r_at<long double>(0), boost::lexical_cast<long double>("0.1"));
+  {
+    core::MpfrDigits fifty(50);
+    EXPECT_EQ(e.r_at<core::mpfr_float>(0), core::mpfr_float(1) / 10);  // the rational 1/10 rounded once, to 50 digits
+    EXPECT_NE(e.r_at<core::mpfr_float>(0), core::mpfr_float(0.1));
+  }
+  // Values computed in double (no decimal source) are widened exactly.
+  iterate::Ensemble c;
+  c.r = {0.1};
+  EXPECT_EQ(c.r_at<core::float128>(0), core::float128(0.1));
+  // A source that no longer matches r is refused rather than read out of step.
+  iterate::Ensemble bad = e;
+  bad.r.push_back(0.5);
+  EXPECT_THROW((void)bad.r_at<core::float128>(0), std::logic_error);
+}
+
+TEST(RInPrecision, RangeIsEvaluatedInThePrecisionAndIsBitwiseInDouble) {
+  // r_i = lo + (hi - lo) i / (n - 1), in T from T's lo and hi: double gets linspace_r bit for bit, float128 the
+  // exact r_i to a few float128 roundings (four operations), never the double's error (up to ~1e-17).
+  const long n = 37;
+  iterate::Ensemble e;
+  e.set_r_range(core::Decimal::parse("0.0717", "r-min"), core::Decimal::parse("0.1717", "r-max"), n);
+  EXPECT_EQ(e.r, iterate::linspace_r(0.0717, 0.1717, n));
+  core::MpfrDigits wide(60);
+  double worst_double = 0, worst_quad = 0;
+  for (long i = 0; i < n; ++i) {
+    const std::size_t j = static_cast<std::size_t>(i);
+    // The exact r_i = (717 (n - 1) + 1000 i) / (10000 (n - 1)).
+    const core::mpfr_float exact = core::mpfr_float(717 * (n - 1) + 1000 * i) / core::mpfr_float(10000 * (n - 1));
+    const core::float128 q = e.r_at<core::float128>(j);
+    const core::float128 lo = boost::lexical_cast<core::float128>("0.0717"), hi = boost::lexical_cast<core::float128>("0.1717");
+    EXPECT_EQ(q, i == 0 ? lo : i == n - 1 ? hi : core::float128(lo + (hi - lo) * i / (n - 1))) << i;
+    worst_quad = std::max(worst_quad, static_cast<double>(abs(core::mpfr_float(q) - exact) / exact));
+    worst_double = std::max(worst_double, static_cast<double>(abs(core::mpfr_float(e.r[j]) - exact) / exact));
+    EXPECT_EQ(e.r_at<float>(j), static_cast<float>(e.r[j])) << i;  // float: the committed float runs' r (see README)
+  }
+  EXPECT_SMALL(worst_quad, ulps<core::float128>(4, "four float128 roundings: lo, hi, the difference, the product, the quotient"));
+  EXPECT_GT(worst_double, 1e3 * static_cast<double>(std::numeric_limits<core::float128>::epsilon()));  // what it fixes
+  // A part of a sweep keeps the whole range and its items' indices.
+  iterate::Ensemble part;
+  const std::vector<std::size_t> items = {3, 17, 36};
+  part.set_r_range(core::Decimal::parse("0.0717", "r-min"), core::Decimal::parse("0.1717", "r-max"), n, &items);
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    EXPECT_EQ(part.r[k], e.r[items[k]]);
+    EXPECT_EQ(part.r_at<core::float128>(k), e.r_at<core::float128>(items[k]));
+  }
+  const iterate::Ensemble sub = e.with_r(items);
+  EXPECT_EQ(sub.r_at<core::float128>(1), e.r_at<core::float128>(17));
+  // r_in<T> (what the kernel reads, the range's ends parsed once) is r_at<T> for every value.
+  for (const iterate::Ensemble* x : std::vector<const iterate::Ensemble*>{&e, &part, &sub}) {
+    const auto q = x->r_in<core::float128>();
+    const auto l = x->r_in<long double>();
+    const auto f = x->r_in<float>();
+    for (std::size_t j = 0; j < x->r.size(); ++j) {
+      EXPECT_EQ(q[j], x->r_at<core::float128>(j));
+      EXPECT_EQ(l[j], x->r_at<long double>(j));
+      EXPECT_EQ(f[j], x->r_at<float>(j));
+    }
+  }
+}
+
+TEST(RInPrecision, Float128AndMpfrRunsUseTheirOwnR) {
+  // At r = 0.11 the map is chaotic (README: symbols are lost after ~ digits x ln(10) / 0.66 steps): the 6e-18
+  // relative difference between float128's 0.11 and double's 0.11 widened grows until the symbol sequences part
+  // within ~60 steps (MPFR at 40 digits likewise).  Before the change both ensembles gave the same
+  // lanes (double's r widened), so the symbols were equal.
+  iterate::Ensemble text, widened;
+  text.set_r_list({core::Decimal::parse("0.11", "r")});
+  widened.r = {0.11};
+  text.initial = widened.initial = iterate::random_points(8, 3);
+  const long steps = 3000;
+  iterate::SymbolRecorder a(text.orbits(), 1, steps), b(text.orbits(), 1, steps);
+  iterate::run<core::float128>(text, steps, a);
+  iterate::run<core::float128>(widened, steps, b);
+  EXPECT_NE(a.out, b.out);
+  iterate::SymbolRecorder sa(text.orbits(), 1, steps), sb(text.orbits(), 1, steps);
+  iterate::run_scalar<core::float128>(text, steps, sa);
+  iterate::run_scalar<core::float128>(widened, steps, sb);
+  EXPECT_NE(sa.out, sb.out);
+  {
+    core::MpfrDigits forty(40);
+    iterate::SymbolRecorder ma(text.orbits(), 1, 600), mb(text.orbits(), 1, 600);
+    iterate::run<core::mpfr_float>(text, 600, ma);
+    iterate::run<core::mpfr_float>(widened, 600, mb);
+    EXPECT_NE(ma.out, mb.out);
+  }
+  // Double: the decimal source changes nothing.
+  iterate::SymbolRecorder da(text.orbits(), 1, steps), db(text.orbits(), 1, steps);
+  iterate::run<double>(text, steps, da);
+  iterate::run<double>(widened, steps, db);
+  EXPECT_EQ(da.out, db.out);
+}
+
+TEST(RInPrecision, BifurcationInDoubleIsUnchangedAndFloat128ReadsTheDecimal) {
+  bifurcation::Request r;
+  core::set_field(r.r_min, {"0.105"}, "r-min");  // chaotic (README: r = 0.11): the tails differ with r's last bits
+  core::set_field(r.r_max, {"0.11"}, "r-max");
+  r.r_count = 3, r.iterations = 2000, r.tail = 200, r.bins = 256;
+  // Double: the kernel over linspace_r's doubles, as before the change, bitwise.
+  const bifurcation::Result d = bifurcation::run(r);
+  iterate::Ensemble e;
+  e.r = iterate::linspace_r(0.105, 0.11, 3);
+  e.initial = iterate::paper_grid();
+  iterate::DensityRecorder dens(iterate::Coord::theta, e, r.iterations, r.tail, 256, 0, std::acos(-1.0) / 2,
+                                static_cast<std::size_t>(omp_get_max_threads()));
+  iterate::run<double>(e, r.iterations, dens);
+  EXPECT_EQ(d.density, dens.merge());
+  // float128: the same r values from the decimals, not the doubles widened.
+  r.precision = "float128";
+  const bifurcation::Result q = bifurcation::run(r);
+  iterate::DensityRecorder wid(iterate::Coord::theta, e, r.iterations, r.tail, 256, 0, std::acos(-1.0) / 2,
+                               static_cast<std::size_t>(omp_get_max_threads()));
+  iterate::run<core::float128>(e, r.iterations, wid);
+  EXPECT_NE(q.density, wid.merge());
+}
+
+TEST(RInPrecision, OrbitRequestReadsRInItsPrecision) {
+  // The Lyapunov orbit request passes T's r: equal to projective_exponents<T> at T's parse of the decimal, and (the
+  // orbit at r = 0.11 being chaotic) not to the run at double's r widened.
+  lyapunov::OrbitRequest req;
+  core::set_field(req.r, {"0.11"}, "r");
+  req.point = "1,-0.5,-1";
+  req.iterations = 20000;
+  req.transient = 100;
+  req.precision = "float128";
+  const lyapunov::ProjectiveResult a = lyapunov::run(req);
+  lyapunov::Options o;
+  o.iterations = req.iterations;
+  o.transient = req.transient;
+  o.reorthonormalise = req.reorthonormalise;
+  o.blocks = req.blocks;
+  const core::Vec3<double> u = core::parse_point(req.point, "point");
+  const core::Vec3<core::float128> uq(u(0), u(1), u(2));
+  const lyapunov::ProjectiveResult t = lyapunov::projective_exponents<core::float128>(uq, boost::lexical_cast<core::float128>("0.11"), o);
+  const lyapunov::ProjectiveResult w = lyapunov::projective_exponents<core::float128>(uq, core::float128(0.11), o);
+  EXPECT_EQ(a.weighted, t.weighted);
+  EXPECT_TRUE(a.final_point == t.final_point);
+  EXPECT_TRUE(a.final_point != w.final_point);
 }
 
 // ------------------------------------------------------------------------------------------------ lyapunov

@@ -99,9 +99,8 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   req.validate();
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   const Axis ax = axis_of(req);
-  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
   iterate::Ensemble ens;  // the part's r values with the whole request's grid
-  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
+  ens.set_r_range(req.r_min, req.r_max, req.r_count, &items);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   ens.grid_description = req.grid;
   ens.seed = req.seed;
@@ -151,7 +150,7 @@ Result merge(const Request& req, std::vector<Part> parts) {
   const Axis ax = axis_of(req);
   Result res;
   iterate::Ensemble& ens = res.ensemble;
-  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.set_r_range(req.r_min, req.r_max, req.r_count);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   ens.grid_description = req.grid;
   ens.seed = req.seed;

@@ -16,7 +16,7 @@
 namespace btob::bifurcation {
 
 struct Request {
-  double r_min = 0.0717, r_max = 0.1717;  // r range, each in (0, 1)
+  core::Decimal r_min = 0.0717, r_max = 0.1717;  // r range, each in (0, 1), kept as given (read in the precision)
   long r_count = 5000;                    // evenly spaced r values
   long iterations = 5000;                 // map iterations per orbit
   long tail = 100;                        // last iterations binned per orbit, 1..iterations

@@ -129,7 +129,8 @@ struct FlagBinder {
       o = app->add_flag("--" + name, help);
     } else {
       o = app->add_option(positional ? name : "--" + name, *store, help);
-      if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>)
+      if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>> ||
+                    std::is_same_v<T, std::vector<core::Decimal>>)
         o->expected(1, -1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
       else  // one value: a word after it is the next argument (`--periods 10 1133`: 1133 is the positional word)
         o->expected(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

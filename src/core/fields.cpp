@@ -80,6 +80,17 @@ double parse_double(std::string_view text, const std::string& field) {
   return v;
 }
 
+Decimal::Decimal(double v) : value(v), text(fmt::format("{}", v)) {}
+
+Decimal Decimal::parse(std::string_view text, const std::string& field) {
+  Decimal d;
+  d.value = parse_double(text, field);
+  d.text = std::string(trim(text));
+  return d;
+}
+
+std::vector<double> values(const std::vector<Decimal>& v) { return {v.begin(), v.end()}; }
+
 template <class T> void set_field(T& value, const std::vector<std::string>& items, const std::string& field) {
   if constexpr (std::is_same_v<T, bool>) {
     value = items.empty() ? true : parse_bool(single(items, field), field);  // a flag given alone means true
@@ -93,6 +104,11 @@ template <class T> void set_field(T& value, const std::vector<std::string>& item
     value = parse_u64(single(items, field), field);
   } else if constexpr (std::is_same_v<T, double>) {
     value = parse_double(single(items, field), field);
+  } else if constexpr (std::is_same_v<T, Decimal>) {
+    value = Decimal::parse(single(items, field), field);
+  } else if constexpr (std::is_same_v<T, std::vector<Decimal>>) {
+    value.clear();
+    for (const auto& s : split_items(items)) value.push_back(Decimal::parse(s, field));
   } else if constexpr (std::is_same_v<T, std::string>) {
     value = single(items, field);
   } else if constexpr (std::is_same_v<T, std::vector<double>>) {
@@ -108,6 +124,12 @@ template <class T> std::vector<std::string> field_text(const T& value) {
   if constexpr (std::is_same_v<T, bool>) return {value ? "true" : "false"};
   else if constexpr (std::is_same_v<T, double>) return {fmt::format("{}", value)};  // shortest round-trip form
   else if constexpr (std::is_same_v<T, std::string>) return {value};
+  else if constexpr (std::is_same_v<T, Decimal>) return {value.text};
+  else if constexpr (std::is_same_v<T, std::vector<Decimal>>) {
+    std::vector<std::string> out;
+    for (const Decimal& v : value) out.push_back(v.text);
+    return out;
+  }
   else if constexpr (std::is_same_v<T, std::vector<double>>) {
     std::vector<std::string> out;
     for (double v : value) out.push_back(fmt::format("{}", v));
@@ -127,6 +149,8 @@ BTOB_FIELD_TYPE(double)
 BTOB_FIELD_TYPE(std::string)
 BTOB_FIELD_TYPE(std::vector<double>)
 BTOB_FIELD_TYPE(std::vector<std::string>)
+BTOB_FIELD_TYPE(Decimal)
+BTOB_FIELD_TYPE(std::vector<Decimal>)
 #undef BTOB_FIELD_TYPE
 
 Vec3<double> parse_point(std::string_view text, const std::string& field) {

@@ -19,7 +19,8 @@ template <class T>
 inline constexpr bool is_field_type_v =
     std::is_same_v<T, bool> || std::is_same_v<T, int> || std::is_same_v<T, long> || std::is_same_v<T, std::uint64_t> ||
     std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::vector<double>> ||
-    std::is_same_v<T, std::vector<std::string>>;
+    std::is_same_v<T, std::vector<std::string>> || std::is_same_v<T, Decimal> ||
+    std::is_same_v<T, std::vector<Decimal>>;
 
 // Parses one scalar: the whole text must be consumed.  Doubles accept subnormals and must be finite.
 bool parse_bool(std::string_view text, const std::string& field);
@@ -31,7 +32,8 @@ double parse_double(std::string_view text, const std::string& field);
 // commas or spaces is split too, so "0.1,0.2" and "0.1 0.2" both give two numbers).
 template <class T> void set_field(T& value, const std::vector<std::string>& items, const std::string& field);
 
-// The text form of a value, exact for doubles (shortest representation that reads back bitwise).
+// The text form of a value, exact for doubles (shortest representation that reads back bitwise); a Decimal's text
+// as it was given.
 template <class T> std::vector<std::string> field_text(const T& value);
 
 // An initial direction "x,y,z": three finite numbers (subnormals and 1e308 included), non-zero, not x = z = 0,
@@ -44,5 +46,8 @@ std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, c
 
 // r in the open interval (0, 1), else InvalidField naming `field`.
 void require_r(double r, const std::string& field);
+
+// The Decimals' values (a list of r for code that computes in double).
+std::vector<double> values(const std::vector<Decimal>& v);
 
 }  // namespace btob::core

@@ -12,10 +12,13 @@
 // binding all read and write a request through it, with the flag's long name (dashes) as the field name.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <atomic>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace btob::core {
@@ -62,6 +65,20 @@ struct RunControl {
 }  // namespace btob::core
 
 namespace btob::core {
+// A number kept as the decimal text it was given in (command line, scene, manifest, Python), with that text's double.
+// r is one: double runs use `value` (strtod of the text, as a double field would be), every other precision reads
+// the text itself (a float128 run at r = 0.1 uses float128's 0.1, not double's 0.1 widened).  Converts to double,
+// so arithmetic and comparisons read the value; assigning a double keeps its shortest exact text.
+struct Decimal {
+  double value = 0;
+  std::string text = "0";
+  Decimal() = default;
+  Decimal(double v);  // NOLINT: implicit, a double is its own decimal (the text is its shortest round-trip form)
+  operator double() const { return value; }
+  // The trimmed text kept as given; throws InvalidField(field, 'text', "a finite number") like a double field.
+  static Decimal parse(std::string_view text, const std::string& field);
+};
+
 // Marks a field that has no sensible default: v("r", r, "help", core::required).
 struct Required {};
 inline constexpr Required required{};
@@ -70,3 +87,11 @@ inline constexpr Required required{};
 struct Positional {};
 inline constexpr Positional positional{};
 }  // namespace btob::core
+
+// fmt prints a Decimal as its double (shortest form), exactly as the double field it replaced: messages, titles,
+// file names and CSV headers are unchanged.  The text is d.text (manifests record it through core::field_text).
+template <> struct fmt::formatter<btob::core::Decimal> : fmt::formatter<double> {
+  auto format(const btob::core::Decimal& d, fmt::format_context& ctx) const {
+    return fmt::formatter<double>::format(d.value, ctx);
+  }
+};

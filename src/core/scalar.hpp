@@ -4,6 +4,7 @@
 #include <boost/multiprecision/float128.hpp>
 #include <boost/multiprecision/mpfr.hpp>
 
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -36,6 +37,15 @@ class MpfrDigits {
  private:
   unsigned previous_;
 };
+
+// The T nearest a decimal text (correctly rounded: strtof/strtod/strtold, quadmath's strtoflt128, mpfr_set_str at
+// MPFR's current default precision).  The text is one core::Decimal::parse accepted.
+template <class T> T from_decimal(const std::string& text) {
+  if constexpr (std::is_same_v<T, float>) return std::strtof(text.c_str(), nullptr);
+  else if constexpr (std::is_same_v<T, double>) return std::strtod(text.c_str(), nullptr);
+  else if constexpr (std::is_same_v<T, long double>) return std::strtold(text.c_str(), nullptr);
+  else return T(text);
+}
 
 template <class T> constexpr const char* scalar_name() {
   if constexpr (std::is_same_v<T, float>) return "float";

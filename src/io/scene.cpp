@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <sstream>
 #include <stdexcept>
 
 namespace btob::io {
@@ -13,12 +12,10 @@ namespace {
 std::string scalar_text(const toml::node& n, const std::string& where) {
   if (auto s = n.value<std::string>()) return *s;
   if (n.is_integer()) return std::to_string(*n.value<long long>());
-  if (n.is_floating_point()) {
-    std::ostringstream o;
-    o.precision(17);
-    o << *n.value<double>();
-    return o.str();
-  }
+  // A TOML float reaches us as a double: its shortest round-trip form is the decimal the scene wrote whenever that
+  // has at most 15 significant digits (r = 0.1 stays "0.1", which a float128 run reads as float128's 0.1; 17 digits
+  // would give it 0.10000000000000001).  A value with more digits than a double holds is written as a string.
+  if (n.is_floating_point()) return fmt::format("{}", *n.value<double>());
   throw std::invalid_argument(fmt::format("{}: expected a string, number or boolean", where));
 }
 }  // namespace

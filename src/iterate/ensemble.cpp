@@ -2,6 +2,7 @@
 #include "iterate/ensemble.hpp"
 
 #include "core/request.hpp"
+#include "core/scalar.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -23,6 +24,111 @@ std::vector<double> linspace_r(double a, double b, long n) {
   for (long i = 0; i < n; ++i) r[i] = n == 1 ? a : a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1);
   if (n > 1) r.back() = b;
   return r;
+}
+
+namespace {
+template <class T> T linspace_value(const T& a, const T& b, std::size_t i, long n) {
+  // linspace_r's expression and order: a + (b - a) * i / (n - 1), the ends exact.
+  if (n == 1 || i == 0) return a;
+  if (static_cast<long>(i) == n - 1) return b;
+  return T(a + T(T(b - a) * T(static_cast<double>(i))) / T(static_cast<double>(n - 1)));
+}
+}  // namespace
+
+template <class T> T Ensemble::r_at(std::size_t j) const {
+  if constexpr (std::is_same_v<T, double>) {
+    return r.at(j);
+  } else if constexpr (std::is_same_v<T, float>) {
+    if (r_text.empty() && r_lo.empty()) return static_cast<float>(r.at(j));
+    return static_cast<float>(r_at<core::float128>(j));
+  } else {
+    if (!r_text.empty()) {
+      if (r_text.size() != r.size()) throw std::logic_error("Ensemble: r_text and r differ in size");
+      return core::from_decimal<T>(r_text.at(j));
+    }
+    if (!r_lo.empty()) {
+      if (r_index.size() != r.size()) throw std::logic_error("Ensemble: r_index and r differ in size");
+      return linspace_value<T>(core::from_decimal<T>(r_lo), core::from_decimal<T>(r_hi), r_index.at(j), r_count);
+    }
+    return static_cast<T>(r.at(j));
+  }
+}
+
+template <class T> std::vector<T> Ensemble::r_in() const {
+  std::vector<T> out;
+  out.reserve(r.size());
+  if constexpr (std::is_same_v<T, float>) {
+    if (!r_text.empty() || !r_lo.empty()) {  // rounded once from float128, as r_at<float>
+      for (const core::float128& v : r_in<core::float128>()) out.push_back(static_cast<float>(v));
+      return out;
+    }
+  } else if constexpr (!std::is_same_v<T, double>) {
+    if (r_text.empty() && !r_lo.empty()) {  // a range: its ends parsed once (r_at parses them for every value)
+      if (r_index.size() != r.size()) throw std::logic_error("Ensemble: r_index and r differ in size");
+      const T lo = core::from_decimal<T>(r_lo), hi = core::from_decimal<T>(r_hi);
+      for (std::size_t i : r_index) out.push_back(linspace_value<T>(lo, hi, i, r_count));
+      return out;
+    }
+  }
+  for (std::size_t j = 0; j < r.size(); ++j) out.push_back(r_at<T>(j));
+  return out;
+}
+
+template float Ensemble::r_at<float>(std::size_t) const;
+template double Ensemble::r_at<double>(std::size_t) const;
+template long double Ensemble::r_at<long double>(std::size_t) const;
+template core::float128 Ensemble::r_at<core::float128>(std::size_t) const;
+template core::mpfr_float Ensemble::r_at<core::mpfr_float>(std::size_t) const;
+template std::vector<float> Ensemble::r_in<float>() const;
+template std::vector<double> Ensemble::r_in<double>() const;
+template std::vector<long double> Ensemble::r_in<long double>() const;
+template std::vector<core::float128> Ensemble::r_in<core::float128>() const;
+template std::vector<core::mpfr_float> Ensemble::r_in<core::mpfr_float>() const;
+
+void Ensemble::set_r_range(const core::Decimal& lo, const core::Decimal& hi, long n, const std::vector<std::size_t>* items) {
+  std::vector<double> all = linspace_r(lo.value, hi.value, n);
+  r_text.clear();
+  r_lo = lo.text;
+  r_hi = hi.text;
+  r_count = n;
+  r_index.clear();
+  if (!items) {
+    r = std::move(all);
+    r_index.resize(r.size());
+    for (std::size_t i = 0; i < r_index.size(); ++i) r_index[i] = i;
+    return;
+  }
+  r.clear();
+  for (std::size_t i : *items) {
+    r.push_back(all.at(i));
+    r_index.push_back(i);
+  }
+}
+
+void Ensemble::set_r_list(const std::vector<core::Decimal>& values) {
+  r.clear();
+  r_text.clear();
+  r_lo.clear();
+  r_hi.clear();
+  r_count = 0;
+  r_index.clear();
+  for (const core::Decimal& v : values) {
+    r.push_back(v.value);
+    r_text.push_back(v.text);
+  }
+}
+
+Ensemble Ensemble::with_r(const std::vector<std::size_t>& indices) const {
+  Ensemble e = *this;
+  e.r.clear();
+  e.r_text.clear();
+  e.r_index.clear();
+  for (std::size_t i : indices) {
+    e.r.push_back(r.at(i));
+    if (!r_text.empty()) e.r_text.push_back(r_text.at(i));
+    if (!r_lo.empty()) e.r_index.push_back(r_index.at(i));
+  }
+  return e;
 }
 
 std::vector<Vec3<double>> paper_grid() {

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 namespace btob::iterate {
 namespace detail {
@@ -237,6 +238,12 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
   const long first = std::max<long>(rec.first_step(), 1);
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   std::atomic<std::size_t> done{0}, degenerate{0};
+  // r in T from the ensemble's decimal source (Ensemble::r_at), evaluated once here (MPFR: at the caller's digits).
+  std::vector<T> r_own;
+  if constexpr (!std::is_same_v<T, double>) r_own = ens.r_in<T>();
+  const T* r_t = nullptr;
+  if constexpr (std::is_same_v<T, double>) r_t = ens.r.data();
+  else r_t = r_own.data();
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
@@ -248,11 +255,10 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
     for (int l = 0; l < B; ++l) {
       const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
       const core::Vec3<double> q = detail::unit_start(ens.initial[o % n_ic]);
-      const double rv = ens.r[o / n_ic];
       x[l] = static_cast<T>(q(0));
       y[l] = static_cast<T>(q(1));
       z[l] = static_cast<T>(q(2));
-      r[l] = static_cast<T>(rv);
+      r[l] = r_t[o / n_ic];
       a[l] = (T(1) + r[l]) / T(2);
       k[l] = a[l] / r[l];
     }
@@ -304,7 +310,7 @@ template <class T, Recorder Rec> void run_scalar(const Ensemble& ens, long itera
   const std::size_t n_ic = ens.initial.size();
   const long first = std::max<long>(rec.first_step(), 1);
   for (std::size_t o = 0; o < ens.orbits(); ++o) {
-    const T rv = static_cast<T>(ens.r[o / n_ic]);
+    const T rv = ens.r_at<T>(o / n_ic);
     const core::Vec3<double> u0 = detail::unit_start(ens.initial[o % n_ic]);
     core::Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
     {

@@ -114,7 +114,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   const auto in = [&]<class T>(T*) {
     const core::Vec3<T> ut(T(u(0)), T(u(1)), T(u(2)));
-    return projective_exponents<T>(ut, T(req.r), o);
+    return projective_exponents<T>(ut, core::from_decimal<T>(req.r.text), o);  // T's r, not double's widened
   };
   ProjectiveResult res;
   switch (prec.kind) {
@@ -205,9 +205,9 @@ namespace {
 // MapResult's float check: every k-th r value's orbits again in double, their sign classes compared.
 void check_float(MapResult& res, const MapRequest& req, const core::RunControl& control) {
   const std::size_t R = res.ensemble.r.size(), I = res.ensemble.initial.size(), k = (R + 63) / 64;
-  iterate::Ensemble sub = res.ensemble;
-  sub.r.clear();
-  for (std::size_t i = 0; i < R; i += k) sub.r.push_back(res.ensemble.r[i]);
+  std::vector<std::size_t> every_k;
+  for (std::size_t i = 0; i < R; i += k) every_k.push_back(i);
+  const iterate::Ensemble sub = res.ensemble.with_r(every_k);
   core::RunControl quiet = control;
   quiet.progress = nullptr;
   const MapResult d = run_ensemble(sub, req.iterations, req.transient, req.blocks, "double", quiet);
@@ -225,9 +225,8 @@ void check_float(MapResult& res, const MapRequest& req, const core::RunControl& 
 
 MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
   iterate::Ensemble ens;  // the part's r values with the whole request's grid
-  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
+  ens.set_r_range(req.r_min, req.r_max, req.r_count, &items);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
   return MapPart{items, std::move(res.exponents), res.iteration_seconds};
@@ -238,7 +237,7 @@ MapResult merge(const MapRequest& req, std::vector<MapPart> parts) {
   const std::vector<core::Vec3<double>> grid = iterate::parse_grid(req.grid, req.seed, "grid");
   MapResult res = merge_exponents(parts, req.work_items(), grid.size(), req.iterations, req.blocks);
   iterate::Ensemble& ens = res.ensemble;
-  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.set_r_range(req.r_min, req.r_max, req.r_count);
   ens.initial = grid;
   ens.grid_description = req.grid;
   ens.seed = req.seed;
@@ -257,7 +256,7 @@ MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items,
   const auto grid = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);  // cell (i, j) at i * n2 + j
   const std::size_t n2 = static_cast<std::size_t>(req.n2);
   iterate::Ensemble ens;
-  ens.r = {req.r};
+  ens.set_r_list({req.r});
   for (std::size_t i : items)
     ens.initial.insert(ens.initial.end(), grid.begin() + static_cast<std::ptrdiff_t>(i * n2),
                        grid.begin() + static_cast<std::ptrdiff_t>((i + 1) * n2));
@@ -269,7 +268,7 @@ MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {
   req.validate();
   MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(req.n2), req.iterations, req.blocks);
   iterate::Ensemble& ens = res.ensemble;
-  ens.r = {req.r};
+  ens.set_r_list({req.r});
   ens.initial = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);
   ens.grid_description = fmt::format("strip:{}x{}:{}:{}", req.n1, req.n2, req.w1_min, req.w1_max);
   res.n1 = static_cast<std::size_t>(req.n1);

@@ -17,7 +17,7 @@ namespace btob::lyapunov {
 
 // ---- one orbit (`btob lyapunov`) --------------------------------------------------------------------------
 struct OrbitRequest {
-  double r = 0;               // restitution coefficient, in (0, 1)
+  core::Decimal r = 0;        // restitution coefficient, in (0, 1), kept as given (read in the precision)
   std::string point;          // initial direction x,y,z (x*z <= 0)
   long iterations = 100000;   // averaged map iterations, >= blocks
   long transient = 1000;      // iterations discarded first, 0..iterations
@@ -48,7 +48,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control = 
 
 // ---- maps over r x initial conditions (`btob lyapunov-map`) and a strip at one r (`btob lyapunov-strip`) ----
 struct MapRequest {
-  double r_min = 0.0717, r_max = 0.6;  // r range, each in (0, 1)
+  core::Decimal r_min = 0.0717, r_max = 0.6;  // r range, each in (0, 1), kept as given (float reads it)
   long r_count = 5000;                 // evenly spaced r values, >= 1
   std::string grid = "paper";          // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
   std::uint64_t seed = 1;              // seed of random grids
@@ -74,7 +74,7 @@ struct MapRequest {
 };
 
 struct StripRequest {
-  double r = 0.3;                      // restitution coefficient, in (0, 1)
+  core::Decimal r = 0.3;               // restitution coefficient, in (0, 1), kept as given (float reads it)
   long n1 = 200, n2 = 100;             // cells along w1 and w2
   double w1_min = -2, w1_max = 2;      // w1 range of the strip (w2 runs over [-1, 1])
   long iterations = 5000, transient = 500;

@@ -99,7 +99,7 @@ namespace {
 
 template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
-  const T r = T(req.r);
+  const T r = core::from_decimal<T>(req.r.text);  // T nearest the decimal, not double's value widened
   const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r);
   ParticlesResult res;
   res.word = patterns::to_paper(v.word);

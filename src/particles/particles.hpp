@@ -75,7 +75,7 @@ template <class T> bool self_similar_start(const core::Vec3<T>& u, const std::st
 
 struct ParticlesRequest {
   std::string word = "132312";         // a word over 1, 2, 3 (patterns::parse_word: 132312, 132^3312^3, (ab)(cb))
-  double r = 0.5;                      // restitution coefficient, (0, 1)
+  core::Decimal r = 0.5;               // restitution coefficient, (0, 1), kept as given (read in the precision)
   long periods = 10000;                // periods simulated with rescaling, 1..100000000
   std::string precision = "double";    // double, long-double, float128 or mpfr:D (10 <= D <= 10000)
   std::string start = "self-similar";  // self-similar (velocity eigenvector of K_w) or normal (q normal to p,

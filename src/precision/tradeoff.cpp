@@ -133,7 +133,7 @@ int window_n_max(const SymFn& sym, const std::vector<int>& ns, const RunOptions&
 // 132312 (r = 0.5), started from the Section 4 grid's first point (0.1, 0.15) or a random point (0.5).
 template <class T> double lyapunov_error() {
   struct Case {
-    double r;
+    core::Decimal r;  // read in T from its decimal (lyapunov::OrbitRequest's route)
     Vec3<double> u;
   };
   const std::vector<Case> cases = {{0.15, paper_grid()[0]}, {0.1, paper_grid()[0]}, {0.5, random_points(1, 3)[0]}};
@@ -143,7 +143,7 @@ template <class T> double lyapunov_error() {
     opt.transient = 2000;
     opt.iterations = 100000;
     const Vec3<T> u(T(c.u(0)), T(c.u(1)), T(c.u(2)));
-    const lyapunov::ProjectiveResult res = lyapunov::projective_exponents<T>(u, T(c.r), opt);
+    const lyapunov::ProjectiveResult res = lyapunov::projective_exponents<T>(u, core::from_decimal<T>(c.r.text), opt);
     const int p = lyapunov::detect_period(res.symbols_tail, 64, 512);
     if (p == 0) return std::numeric_limits<double>::quiet_NaN();  // not on a sink: no exact value
     const std::vector<int> period(res.symbols_tail.end() - p, res.symbols_tail.end());
@@ -157,7 +157,7 @@ template <class T> double lyapunov_error() {
 // arithmetic whose rounding moves the orbit off the sink is off by up to |lambda1| (the exact value needs no period
 // detection: the eigenvalues of the word's period matrix do not depend on its phase).
 template <class T> double lyapunov_error_near_neutral() {
-  constexpr double r = 0.171599;
+  const core::Decimal r = 0.171599;  // read in T from its decimal
   std::vector<int> word = {3, 1};
   word.insert(word.end(), 150, 2);
   lyapunov::Options opt;
@@ -167,7 +167,7 @@ template <class T> double lyapunov_error_near_neutral() {
   opt.iterations = 400000;
   const Vec3<double> u0 = paper_grid()[0];
   const lyapunov::ProjectiveResult res =
-      lyapunov::projective_exponents<T>(Vec3<T>(T(u0(0)), T(u0(1)), T(u0(2))), T(r), opt);
+      lyapunov::projective_exponents<T>(Vec3<T>(T(u0(0)), T(u0(1)), T(u0(2))), core::from_decimal<T>(r.text), opt);
   return std::fabs(res.weighted[0] - exact_lambda1(word, r));
 }
 
@@ -230,7 +230,7 @@ TradeoffRow measure(const Method& m, const TradeoffRequest& req, const Ensemble&
   // Throughput on a workload sized to the method's speed: enough orbits to fill the SIMD batches and both threads
   // (8192 for float/double), fewer for the slow types so that one timing takes about a second.
   Ensemble w;
-  w.r = {0.2};
+  w.set_r_list({0.2});
   const long n_orbits = m.digits > 34 ? 16 : (m.digits > 16 || m.name.starts_with("trig") ? 256 : 8192);
   w.initial = random_points(n_orbits, req.seed + 1);
   row.rate = m.rate(w, m.digits > 34 ? 200 : 2000, ro);
@@ -242,10 +242,10 @@ TradeoffRow measure(const Method& m, const TradeoffRequest& req, const Ensemble&
 
 }  // namespace
 
-double exact_lambda1(const std::vector<int>& period, double r_double) {
+double exact_lambda1(const std::vector<int>& period, const core::Decimal& r_decimal) {
   using core::Mat3;
   core::MpfrDigits sixty(60);
-  const mpfr_float r(r_double);
+  const mpfr_float r = core::from_decimal<mpfr_float>(r_decimal.text);  // the decimal to 60 digits, not a double
   Mat3<mpfr_float> M = Mat3<mpfr_float>::Identity();
   for (int s : period) M = Mat3<mpfr_float>(core::P<mpfr_float>(s, r) * M);
   const mpfr_float tr = M(0, 0) + M(1, 1) + M(2, 2);
@@ -284,7 +284,7 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
   std::vector<int> window_n;
   for (double n : req.window_n) window_n.push_back(static_cast<int>(n));
   Ensemble e;
-  e.r = req.r;
+  e.set_r_list(req.r);  // each precision reads r from its decimal (Ensemble::r_at)
   e.initial = random_points(req.orbits, req.seed);
   const std::vector<Method> methods = {
       linear<float>("linear/float", 7),
@@ -307,7 +307,7 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
     res.rows.push_back(measure(methods[step], req, e, reference, window_n, ro));
   }
   if (control.progress) control.progress->update(methods.size(), methods.size());
-  res.r = req.r;
+  res.r = core::values(req.r);
   for (const TradeoffRow& row : res.rows) {
     res.digits.push_back(row.digits);
     res.rate.push_back(row.rate);

@@ -18,7 +18,7 @@ namespace btob::precision {
 struct TradeoffRequest {
   long orbits = 16;                                    // random initial conditions per r, 1..4096
   long iterations = 3000;                              // symbols compared per orbit, 10..1000000
-  std::vector<double> r{0.11, 0.2, 0.3, 0.58};         // r values of the symbol comparison, each in (0, 1)
+  std::vector<core::Decimal> r{0.11, 0.2, 0.3, 0.58};  // r values of the symbol comparison, each in (0, 1), as given
   std::vector<double> window_n{2, 3, 5, 8, 12, 20, 30, 45, 60, 80, 100, 125};  // integers 2..400
   std::uint64_t seed = 7;                              // seed of the random initial conditions
 
@@ -60,10 +60,10 @@ struct TradeoffResult {
 
 TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control = {});
 
-// lambda1 = log|l2/l1| / p of the periodic word `period` (symbols 1, 2, 3) at r (the double value, converted
-// exactly), in MPFR with 60 digits: the period matrix, its dominant eigenvalue l1 by Newton on det(t - M) from the
+// lambda1 = log|l2/l1| / p of the periodic word `period` (symbols 1, 2, 3) at r (read from its decimal
+// text to 60 digits: the r that T's runs read, not double's value widened), in MPFR with 60 digits: the period matrix, its dominant eigenvalue l1 by Newton on det(t - M) from the
 // double estimate, and l2, l3 from t^2 - (tr M - l1) t + det M / l1 (a complex pair when the discriminant is
 // negative, then |l2| = sqrt(det M / l1)).  MPFR's default precision is restored on return.
-double exact_lambda1(const std::vector<int>& period, double r);
+double exact_lambda1(const std::vector<int>& period, const core::Decimal& r);
 
 }  // namespace btob::precision

@@ -268,7 +268,7 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
     std::vector<double> buf(static_cast<std::size_t>(3 * std::max<long>(tail, 1)));
 #pragma omp for schedule(static)
     for (std::size_t o = 0; o < n_orbits; ++o) {
-      const T r = static_cast<T>(ens.r[o / n_ic]);
+      const T r = ens.r_at<T>(o / n_ic);  // T's r from the request's decimal
       const Vec3<double>& u0 = ens.initial[o % n_ic];
       Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
       u = core::to_quadrant<T>(u / u.norm());

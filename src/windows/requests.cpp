@@ -14,6 +14,7 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <utility>
 
 namespace btob::windows {
 
@@ -38,6 +39,33 @@ NRange parse_n_range(std::string_view text, int min_n, const std::string& field)
   return {static_cast<int>(a), static_cast<int>(b)};
 }
 
+namespace {
+// The run_part of a per-n sweep (core/sweep.hpp): validates the request, reads its n range (n >= min_n), checks the
+// items, and calls f(part, n) for each item's n in the items' order, checking cancellation before and reporting
+// progress after each.  Returns the part, its items set.
+template <class Part, class Req, class F>
+Part for_each_n(const Req& req, int min_n, const std::vector<std::size_t>& items, const core::RunControl& control, F&& f) {
+  req.validate();
+  const NRange r = parse_n_range(req.n, min_n, "n");
+  check_items(items, r);
+  Part part;
+  part.items = items;
+  for (std::size_t j = 0; j < items.size(); ++j) {
+    control.check_cancelled();
+    f(part, r.n_of(items[j]));
+    progress(control, j + 1, items.size());
+  }
+  return part;
+}
+
+// The merge preamble of a per-n sweep: the request's n range and where each of its items is among the parts.
+template <class Part> std::pair<NRange, std::vector<core::ItemRef>> n_order(const std::string& n, int min_n,
+                                                                            const std::vector<Part>& parts) {
+  const NRange r = parse_n_range(n, min_n, "n");
+  return {r, core::item_order(parts, static_cast<std::size_t>(r.count()))};
+}
+}  // namespace
+
 void require_digits(long digits, const std::string& field) {
   if (digits < 10 || digits > 10000) throw core::InvalidField(field, std::to_string(digits), "10..10000");
 }
@@ -52,25 +80,16 @@ void PolyRequest::validate() const {
 std::size_t PolyRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
 
 PolyPart run_part(const PolyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
-  req.validate();
-  const NRange r = parse_n_range(req.n, 1, "n");
-  check_items(items, r);
-  PolyPart part;
-  part.items = items;
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    control.check_cancelled();
-    const RationalPoly q = window_polynomial(r.n_of(items[j]));
+  return for_each_n<PolyPart>(req, 1, items, control, [&](PolyPart& part, int n) {
+    const RationalPoly q = window_polynomial(n);
     part.degree.push_back(static_cast<std::uint32_t>(q.degree()));
     part.developed.push_back(req.form != "factorised" ? q.developed() : "");
     part.factorised.push_back(req.form != "developed" ? factorise(q).to_string() : "");
-    progress(control, j + 1, items.size());
-  }
-  return part;
+  });
 }
 
 PolyResult merge(const PolyRequest& req, std::vector<PolyPart> parts) {
-  const NRange r = parse_n_range(req.n, 1, "n");
-  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  const auto [r, order] = n_order(req.n, 1, parts);
   PolyResult res;
   for (std::size_t i = 0; i < order.size(); ++i) {
     PolyPart& p = parts[order[i].part];
@@ -114,14 +133,7 @@ void BoundsRequest::validate() const {
 std::size_t BoundsRequest::work_items() const { return static_cast<std::size_t>(parse_n_range(n, 1, "n").count()); }
 
 BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
-  req.validate();
-  const NRange r = parse_n_range(req.n, 1, "n");
-  check_items(items, r);
-  BoundsPart part;
-  part.items = items;
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    control.check_cancelled();
-    const int n = r.n_of(items[j]);
+  return for_each_n<BoundsPart>(req, 1, items, control, [&](BoundsPart& part, int n) {
     const mpfr_float lo = window_lower_bound(n, req.digits);
     part.lower_text.push_back(fixed(lo, req.digits));
     part.lower_bound.push_back(static_cast<double>(lo));
@@ -142,14 +154,11 @@ BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& it
       part.roots_0_a.push_back(cert.roots_0_a);
       part.roots_a_b.push_back(cert.roots_a_b);
     }
-    progress(control, j + 1, items.size());
-  }
-  return part;
+  });
 }
 
 BoundsResult merge(const BoundsRequest& req, std::vector<BoundsPart> parts) {
-  const NRange r = parse_n_range(req.n, 1, "n");
-  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
+  const auto [r, order] = n_order(req.n, 1, parts);
   BoundsResult res;
   res.digits = req.digits;
   res.certified_run = req.certify;
@@ -322,30 +331,22 @@ VerifyOptions verify_options(const VerifyRequest& req, int threads) {
 
 VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
-  req.validate();
-  const NRange range = parse_n_range(req.n, 2, "n");
-  check_items(items, range);
   const VerifyOptions options = verify_options(req, control.threads);
-  VerifyPart part;
-  part.items = items;
   // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    control.check_cancelled();
-    const int n = range.n_of(items[j]);
+  VerifyPart part = for_each_n<VerifyPart>(req, 2, items, control, [&](VerifyPart& p, int n) {
     const std::vector<VerifyRow> rows = verify_windows(n, n, options);
     if (rows.size() != 4) throw std::logic_error("windows verify: not 4 rows per n");  // merge places 4 per item
-    part.rows.insert(part.rows.end(), rows.begin(), rows.end());
-    progress(control, j + 1, items.size());
-  }
+    p.rows.insert(p.rows.end(), rows.begin(), rows.end());
+  });
   part.seconds = seconds_since(t0);
   return part;
 }
 
 VerifyResult merge(const VerifyRequest& req, std::vector<VerifyPart> parts) {
   VerifyResult res;
-  res.range = parse_n_range(req.n, 2, "n");
+  const auto [range, order] = n_order(req.n, 2, parts);
+  res.range = range;
   res.options = verify_options(req, 0);
-  const auto order = core::item_order(parts, static_cast<std::size_t>(res.range.count()));
   for (const auto& p : parts) res.total_seconds += p.seconds;
   res.rows = core::merge_rows<VerifyPart, VerifyRow>(
       parts, order, 4, [](const VerifyPart& p) -> const std::vector<VerifyRow>& { return p.rows; });
@@ -455,33 +456,24 @@ void study(Route route, int n, const mpfr_float& exact, int mpfr_digits, BoundPr
 BoundPrecisionPart run_part(const BoundPrecisionRequest& req, const std::vector<std::size_t>& items,
                             const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
-  req.validate();
-  const NRange r = parse_n_range(req.n, 1, "n");
-  check_items(items, r);
-  BoundPrecisionPart part;
-  part.items = items;
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    control.check_cancelled();
-    const int n = r.n_of(items[j]);
+  BoundPrecisionPart part = for_each_n<BoundPrecisionPart>(req, 1, items, control, [&](BoundPrecisionPart& p, int n) {
     const mpfr_float exact = window_lower_bound(n, 40);
     for (const Route route : study_routes) {
-      study<float>(route, n, exact, 0, part);
-      study<double>(route, n, exact, 0, part);
-      study<long double>(route, n, exact, 0, part);
-      study<core::float128>(route, n, exact, 0, part);
-      study<mpfr_float>(route, n, exact, req.mpfr_digits, part);
+      study<float>(route, n, exact, 0, p);
+      study<double>(route, n, exact, 0, p);
+      study<long double>(route, n, exact, 0, p);
+      study<core::float128>(route, n, exact, 0, p);
+      study<mpfr_float>(route, n, exact, req.mpfr_digits, p);
     }
-    progress(control, j + 1, items.size());
-  }
+  });
   part.total_seconds = seconds_since(t0);
   return part;
 }
 
 BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPrecisionPart> parts) {
   BoundPrecisionResult res;
-  const NRange r = parse_n_range(req.n, 1, "n");
+  const auto [r, order] = n_order(req.n, 1, parts);
   res.range = r;
-  const auto order = core::item_order(parts, static_cast<std::size_t>(r.count()));
   constexpr std::size_t per_n = std::size(study_routes) * study_precisions;
   for (const auto& p : parts) res.total_seconds += p.total_seconds;
   std::size_t k = 0;  // route x precision row
