@@ -235,6 +235,13 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
   const std::size_t n_batches = (n_orbits + B - 1) / B;
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   std::atomic<std::size_t> done{0}, degenerate{0}, redone{0};
+  // r in T from the ensemble's decimal source (Ensemble::r_at, as iterate::run): float's r is the float nearest the
+  // request's decimal, double's is ens.r itself.
+  std::vector<T> r_own;
+  if constexpr (!std::is_same_v<T, double>) r_own = ens.r_in<T>();
+  const T* r_t = nullptr;
+  if constexpr (std::is_same_v<T, double>) r_t = ens.r.data();
+  else r_t = r_own.data();
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
@@ -248,7 +255,7 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
     for (int l = 0; l < B; ++l) {
       const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
       detail::cocycle_start<T>(ens.initial[o % n_ic], cur.x[l], cur.y[l], cur.z[l], cur.vx[l], cur.vy[l], cur.vz[l]);
-      r[l] = static_cast<T>(ens.r[o / n_ic]);
+      r[l] = r_t[o / n_ic];
       a[l] = (T(1) + r[l]) / T(2);
       k[l] = a[l] / r[l];
       lu[l] = lv[l] = n13[l] = 0;
