@@ -164,20 +164,47 @@ struct Basins {
   std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; unresolved appended last
   std::size_t unresolved_first_pass = 0;   // before refinement
   long iterations_total = 0;               // map iterations spent (all passes, all grids)
+  std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
   double seconds = 0;
 };
 Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt);
 
+// Early exit (basins only; classify() always runs the full length).  An orbit whose state at a checkpoint
+// t < transient lies in a trapping cone of a stable cycle (a cone around the cycle's point, in the eigenvector
+// coordinates of its monodromy, on which every branch of the word holds with margin and which the monodromy maps
+// into itself) or on a P2 invariant ellipse inside the P2 region is given the verdict the full-length
+// classification would give (periodic with the cycle's key; quasi-periodic "Q2"), with bounds that prove the
+// full-length tests pass (return within return_tol at step `transient`, point within point_tol, for Q2: no return,
+// |lambda1| below its bar, a converged rotation number).  The stable cycles are those that a fixed 16 x 16 sphere
+// probe finds at r.  Per grid row the first certified orbit of each attractor (and for Q2 those of smallest and
+// largest invariant, whose values the output prints) is classified again at full length, and must agree.
 // The same in parts (core/sweep.hpp): item k * n2 + j is row j (w2 or phi) of grid k (0: the main grid, then the
 // replicates).  A row's verdicts depend on the request and the row only: the replicate shifts are drawn for the
 // whole request, then the grids are sliced.  basins() = merge_basins(..., {basin_rows(every item)}).
 std::size_t basin_items(const Grid& g, int replicates);
+// One attractor (type, key) as a part of a basin run saw it: what merging needs, without per-orbit verdicts.
+struct BasinClass {
+  OrbitVerdict first;              // the verdict of its lowest-index orbit (evidence text dropped)
+  std::size_t first_index = 0;     // that orbit's index k n + i2 n1 + i1 over all grids
+  std::vector<std::size_t> count;  // orbits per grid (main, then the replicates)
+  double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;  // over its orbits
+  template <class A> void members(A& a) {
+    a(first, first_index, count, rotation_min, rotation_max, invariant_min, invariant_max);
+  }
+};
 struct BasinRows {
   std::vector<std::size_t> items;       // ascending
-  std::vector<OrbitVerdict> verdicts;   // n1 per item, in item order
+  std::vector<std::uint32_t> labels;    // n1 per main-grid item (they come first), in item order: 1 + class, 0 unresolved
+  std::vector<BasinClass> classes;      // the attractors its orbits reached
+  std::vector<std::size_t> unresolved;  // unresolved orbits per grid
+  std::size_t unresolved_first_pass = 0;  // main grid: unresolved after the first pass (before refinement)
+  long iterations = 0;                  // map iterations spent (all passes, all its grids)
+  std::size_t certified = 0;            // orbits decided before the full length (early exit), all its grids
   double seconds = 0;
   int threads = 0;                      // threads the part ran on (reported, not computed with)
-  template <class A> void members(A& a) { a(items, verdicts, seconds, threads); }
+  template <class A> void members(A& a) {
+    a(items, labels, classes, unresolved, unresolved_first_pass, iterations, certified, seconds, threads);
+  }
 };
 BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
                      const std::vector<std::size_t>& items);
