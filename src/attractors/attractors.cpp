@@ -710,6 +710,9 @@ struct Early {
 // full[full_of[o]]), kQ2 (certified on a P2 invariant curve; I[o] its invariant at the checkpoint) or the index of
 // the cone that certified it.  `steps`: map iterations made (all orbits).
 constexpr std::int32_t kFull = -1, kQ2 = -2;
+// Orbits taken through the checkpoints at once (~100 bytes an orbit: starts, states, codes; few parallel regions,
+// which cost much on a loaded machine), and through the full-length route at once (~700 bytes an orbit).
+constexpr std::size_t kChunk = std::size_t{1} << 18, kFullChunk = std::size_t{1} << 16;
 struct EarlyOut {
   std::vector<std::int32_t> code;
   std::vector<double> I;
@@ -718,22 +721,35 @@ struct EarlyOut {
   long steps = 0;
 };
 
-EarlyOut classify_early(const iterate::Ensemble& ens, const Options& opt, const Early& early) {
-  const std::size_t N = ens.orbits();
+// Buffers kept from chunk to chunk (no fresh pages per chunk).
+struct Scratch {
   EarlyOut out;
+  std::vector<std::size_t> active;
+  iterate::Ensemble cur;
+  StateRecorder st{0, 1};
+};
+
+const EarlyOut& classify_early(const iterate::Ensemble& ens, const Options& opt, const Early& early, Scratch& sc) {
+  const std::size_t N = ens.orbits();
+  EarlyOut& out = sc.out;
   out.code.assign(N, kFull);
   out.I.assign(N, 0.0);
   out.full_of.assign(N, 0);
-  std::vector<std::size_t> active(N);
+  out.full.clear();
+  out.steps = 0;
+  std::vector<std::size_t>& active = sc.active;
+  active.resize(N);
   for (std::size_t o = 0; o < N; ++o) active[o] = o;
-  iterate::Ensemble cur;
+  iterate::Ensemble& cur = sc.cur;
   cur.r = ens.r;
-  cur.initial = ens.initial;
+  cur.initial.assign(ens.initial.begin(), ens.initial.end());
   long done = 0;
   if (!early.cones.empty() || early.trap.on)
     for (long t : early.checkpoints) {
       if (active.empty()) break;
-      StateRecorder st(cur.initial.size(), t - done);
+      StateRecorder& st = sc.st;
+      st.steps = t - done;
+      st.state.resize(cur.initial.size());
       iterate::run<double>(cur, t - done, st, opt.run);
       done = t;
       std::vector<double> e_max(early.cones.size());
@@ -765,14 +781,43 @@ EarlyOut classify_early(const iterate::Ensemble& ens, const Options& opt, const 
       active.resize(kept);
       cur.initial.resize(kept);
     }
-  if (!active.empty()) {
-    out.full = classify_from(cur, opt, done);
-    for (std::size_t i = 0; i < active.size(); ++i) {
-      out.full_of[active[i]] = static_cast<std::uint32_t>(i);
-      out.steps += out.full[i].iterations;
+  // The rest at full length, kFullChunk at a time (their recorders and verdicts take ~700 bytes an orbit).
+  for (std::size_t f0 = 0; f0 < active.size(); f0 += kFullChunk) {
+    const std::size_t f1 = std::min(active.size(), f0 + kFullChunk);
+    iterate::Ensemble sub;
+    sub.r = cur.r;
+    sub.initial.assign(cur.initial.begin() + static_cast<std::ptrdiff_t>(f0),
+                       cur.initial.begin() + static_cast<std::ptrdiff_t>(f1));
+    std::vector<OrbitVerdict> v = classify_from(sub, opt, done);
+    for (std::size_t i = f0; i < f1; ++i) {
+      out.full_of[active[i]] = static_cast<std::uint32_t>(out.full.size());
+      out.steps += v[i - f0].iterations;
+      out.full.push_back(std::move(v[i - f0]));
+      out.full.back().detail.shrink_to_fit();
     }
   }
   return out;
+}
+
+// Full-length verdicts of a few starts, in whole batches of 128 (a multiple of every kernel width): each runs
+// through the recorders' full-width path, as in a whole-grid run.
+std::vector<OrbitVerdict> classify_whole_batches(double r, const std::vector<Vec3<double>>& starts, const Options& opt) {
+  iterate::Ensemble e;
+  e.r = {r};
+  e.initial = starts;
+  while (e.initial.size() % 128) e.initial.push_back(e.initial.back());
+  Options o = opt;
+  o.run.progress = nullptr;
+  std::vector<OrbitVerdict> v = classify(e, o);
+  v.resize(starts.size());
+  return v;
+}
+
+void expect_verdict(const OrbitVerdict& full, Type type, const std::string& key, double r) {
+  if (full.type != type || full.key != key)
+    throw std::logic_error(fmt::format("basins: early exit said {} {} for an orbit the full-length classification "
+                                       "calls {} {} at r = {} (a certification bound is wrong)",
+                                       type_name(type), key, type_name(full.type), full.key, r));
 }
 
 void check_basins(double r, const Grid& g, int replicates, const Options& opt) {
@@ -781,12 +826,11 @@ void check_basins(double r, const Grid& g, int replicates, const Options& opt) {
   if (replicates < 0 || replicates > 100)
     throw std::invalid_argument(fmt::format("replicates: got {}, expected 0..100", replicates));
   // Per point of the main grid: its label in a part and in the merged result; the work runs in chunks of at most
-  // kChunk orbits (~700 bytes each).
+  // kChunk orbits (see there).
   iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 8, "grid");
 }
 
-// Orbits classified at once: the recorders and verdicts of one chunk (~700 bytes an orbit) stay small.
-constexpr std::size_t kChunk = 1 << 16;
+
 
 // The running aggregate of a part: classes (linear search: a handful of attractors), counts per grid.
 struct Folder {
@@ -817,8 +861,21 @@ struct Folder {
       bc.first = v;
       bc.first.detail.clear();
       bc.first_index = index;
+      bc.first_pending = Pending{};
     }
   }
+  // An orbit decided early (in a cone, or Q2 with its I at the checkpoint).
+  void early(std::size_t c, const Vec3<double>& start, std::size_t index, bool q2, double I) {
+    BasinClass& bc = part.classes[c];
+    if (index < bc.first_index) {
+      bc.first_index = index;
+      bc.first_pending = q2 ? Pending{start, index, I} : Pending{};
+    }
+    if (!q2) return;
+    if (bc.lo.index == npos || I < bc.lo.I || (I == bc.lo.I && index < bc.lo.index)) bc.lo = Pending{start, index, I};
+    if (bc.hi.index == npos || I > bc.hi.I || (I == bc.hi.I && index < bc.hi.index)) bc.hi = Pending{start, index, I};
+  }
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 };
 }  // namespace
 
@@ -871,6 +928,10 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
     std::int32_t code;
   };
   std::vector<Witness> witnesses;
+  iterate::Ensemble e;
+  e.r = {r};
+  Scratch scratch;
+  const int threads = opt.run.threads > 0 ? opt.run.threads : omp_get_max_threads();
   for (std::size_t k = 0; k < grids; ++k) {
     const double du = k == 0 ? 0.0 : shift(rng), dv = k == 0 ? 0.0 : shift(rng);  // every grid's shift, always
     std::vector<std::size_t> rows;
@@ -879,42 +940,30 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
     if (rows.empty()) continue;
     for (std::size_t c0 = 0; c0 < rows.size(); c0 += rows_per_chunk) {
       const std::size_t c1 = std::min(rows.size(), c0 + rows_per_chunk);
-      iterate::Ensemble e;
-      e.r = {r};
-      e.initial.reserve((c1 - c0) * n1);
-      for (std::size_t ri = c0; ri < c1; ++ri) {
-        const std::size_t j = rows[ri];
-        const double b = g.lo2 + (static_cast<double>(j) + 0.5 + dv) * (g.hi2 - g.lo2) / static_cast<double>(g.n2);
-        for (std::size_t i = 0; i < n1; ++i) {
-          const double a = g.lo1 + (static_cast<double>(i) + 0.5 + du) * (g.hi1 - g.lo1) / static_cast<double>(g.n1);
-          e.initial.push_back(g.kind == "strip"    ? core::from_strip<double>(a, b)
-                              : g.kind == "sphere" ? core::from_height<double>(a, b)
-                                                   : core::from_angles<double>(a, b));
-        }
+      // The chunk's starts (grid_points' cell centres, one orbit per thread iteration).
+      e.initial.resize((c1 - c0) * n1);
+      const int kind = g.kind == "strip" ? 0 : (g.kind == "sphere" ? 1 : 2);
+      const long n_chunk = static_cast<long>(e.initial.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (long q = 0; q < n_chunk; ++q) {
+        const std::size_t ri = c0 + static_cast<std::size_t>(q) / n1, i = static_cast<std::size_t>(q) % n1;
+        const double b = g.lo2 + (static_cast<double>(rows[ri]) + 0.5 + dv) * (g.hi2 - g.lo2) / static_cast<double>(g.n2);
+        const double a = g.lo1 + (static_cast<double>(i) + 0.5 + du) * (g.hi1 - g.lo1) / static_cast<double>(g.n1);
+        e.initial[static_cast<std::size_t>(q)] = kind == 0   ? core::from_strip<double>(a, b)
+                                                 : kind == 1 ? core::from_height<double>(a, b)
+                                                             : core::from_angles<double>(a, b);
       }
-      const EarlyOut x = classify_early(e, opt, early);
+      const EarlyOut& x = classify_early(e, opt, early, scratch);
       part.iterations += x.steps;
-      // Witnesses: per row, the first certified orbit of each cone and of Q2, and for Q2 those of smallest and
-      // largest I; classified again at full length after the last chunk.
-      for (std::size_t ri = c0; ri < c1; ++ri) {
-        const std::size_t base = (ri - c0) * n1, row0 = k * n + rows[ri] * n1;
+      // Checks: the chunk's first orbit decided early for each cone and for Q2, classified again at full length
+      // after the last chunk.
+      {
         std::vector<std::int32_t> firsts;
-        const std::size_t w0 = witnesses.size();
-        std::size_t lo = n1, hi = n1;
-        for (std::size_t i = 0; i < n1; ++i) {
-          const std::int32_t code = x.code[base + i];
-          if (code == kFull) continue;
-          if (std::find(firsts.begin(), firsts.end(), code) == firsts.end())
-            firsts.push_back(code), witnesses.push_back({e.initial[base + i], row0 + i, code});
-          if (code == kQ2) {
-            if (lo == n1 || x.I[base + i] < x.I[base + lo]) lo = i;
-            if (hi == n1 || x.I[base + i] > x.I[base + hi]) hi = i;
+        for (std::size_t o = 0; o < x.code.size(); ++o)
+          if (x.code[o] != kFull && std::find(firsts.begin(), firsts.end(), x.code[o]) == firsts.end()) {
+            firsts.push_back(x.code[o]);
+            witnesses.push_back({e.initial[o], 0, x.code[o]});
           }
-        }
-        for (std::size_t i : {lo, hi})
-          if (i != n1 && std::none_of(witnesses.begin() + static_cast<std::ptrdiff_t>(w0), witnesses.end(),
-                                      [&](const Witness& w) { return w.index == row0 + i; }))
-            witnesses.push_back({e.initial[base + i], row0 + i, kQ2});
       }
       for (std::size_t ri = c0; ri < c1; ++ri) {
         const std::size_t j = rows[ri];
@@ -938,9 +987,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
           } else {
             ++part.certified;
             c = code == kQ2 ? q2_class(early) : cone_class(early, static_cast<std::size_t>(code));
-            // A periodic verdict's values (rotation 0, invariant 0, its key's word and exact point) are its key's:
-            // only the first index matters.  Q2's values come from the witnesses.
-            if (code != kQ2 && index < part.classes[c].first_index) part.classes[c].first_index = index;
+            fold.early(c, e.initial[o], index, code == kQ2, x.I[o]);
           }
           ++part.classes[c].count[k];
           if (k == 0) part.labels.push_back(static_cast<std::uint32_t>(c + 1));
@@ -949,35 +996,17 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
       if (opt.run.cancel && opt.run.cancel->cancelled()) throw core::Cancelled();
     }
   }
-  // The witnesses at full length (whole batches of 128, a multiple of every kernel width: each runs through the
-  // recorders' full-width path, as in a whole-grid run).  Their verdict must be the certified one.
+  // The checks at full length.
   if (!witnesses.empty()) {
-    iterate::Ensemble we;
-    we.r = {r};
-    for (const auto& w : witnesses) we.initial.push_back(w.start);
-    while (we.initial.size() % 128) we.initial.push_back(we.initial.back());
-    Options wo = opt;
-    wo.run.progress = nullptr;
-    const std::vector<OrbitVerdict> wv = classify(we, wo);
+    std::vector<Vec3<double>> starts;
+    for (const auto& w : witnesses) starts.push_back(w.start);
+    const std::vector<OrbitVerdict> wv = classify_whole_batches(r, starts, opt);
     for (std::size_t w = 0; w < witnesses.size(); ++w) {
-      const OrbitVerdict& full = wv[w];
       const std::int32_t code = witnesses[w].code;
-      const Type type = code == kQ2 ? Type::quasi_periodic : Type::periodic;
-      const std::string key = code == kQ2 ? "Q2" : early.cones[static_cast<std::size_t>(code)].key;
-      if (full.type != type || full.key != key)
-        throw std::logic_error(fmt::format("basins: early exit said {} {} for an orbit the full-length classification "
-                                           "calls {} {} at r = {} (a certification bound is wrong)",
-                                           type_name(type), key, type_name(full.type), full.key, r));
-      fold.values(fold.find(full), full, witnesses[w].index);
+      expect_verdict(wv[w], code == kQ2 ? Type::quasi_periodic : Type::periodic,
+                     code == kQ2 ? "Q2" : early.cones[static_cast<std::size_t>(code)].key, r);
     }
   }
-  // A class whose orbits were all certified periodic without a witness in this part: the full-length periodic
-  // verdict has rotation and invariant 0.
-  for (auto& c : part.classes)
-    if (c.rotation_min > c.rotation_max) {
-      if (c.first.type != Type::periodic) throw std::logic_error("basins: a certified class without a witness");
-      c.rotation_min = c.rotation_max = c.invariant_min = c.invariant_max = 0;
-    }
   part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return part;
 }
@@ -1006,13 +1035,50 @@ Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt,
       auto [it, fresh] = joined.try_emplace({static_cast<int>(c.first.type), c.first.key}, c);
       if (fresh) continue;
       BasinClass& j = it->second;
-      if (c.first_index < j.first_index) j.first = c.first, j.first_index = c.first_index;
+      if (c.first_index < j.first_index) j.first = c.first, j.first_index = c.first_index, j.first_pending = c.first_pending;
       for (std::size_t k = 0; k < grids; ++k) j.count[k] += c.count[k];
       j.rotation_min = std::min(j.rotation_min, c.rotation_min);
       j.rotation_max = std::max(j.rotation_max, c.rotation_max);
       j.invariant_min = std::min(j.invariant_min, c.invariant_min);
       j.invariant_max = std::max(j.invariant_max, c.invariant_max);
+      const std::size_t none = static_cast<std::size_t>(-1);
+      if (c.lo.index != none && (j.lo.index == none || c.lo.I < j.lo.I || (c.lo.I == j.lo.I && c.lo.index < j.lo.index)))
+        j.lo = c.lo;
+      if (c.hi.index != none && (j.hi.index == none || c.hi.I > j.hi.I || (c.hi.I == j.hi.I && c.hi.index < j.hi.index)))
+        j.hi = c.hi;
     }
+  }
+  // The orbits decided early whose full-length values the table prints (the same ones for any partition): the
+  // first orbit of a non-periodic attractor, and the Q2 orbits of smallest and largest I.
+  {
+    const std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<Vec3<double>> starts;
+    std::vector<std::pair<BasinClass*, int>> what;  // 0: first, 1: lo, 2: hi
+    for (auto& [k, c] : joined) {
+      if (c.first.type == Type::periodic) continue;
+      if (c.first_pending.index != none && c.first_pending.index == c.first_index)
+        starts.push_back(c.first_pending.start), what.push_back({&c, 0});
+      if (c.lo.index != none) starts.push_back(c.lo.start), what.push_back({&c, 1});
+      if (c.hi.index != none) starts.push_back(c.hi.start), what.push_back({&c, 2});
+    }
+    if (!starts.empty()) {
+      const std::vector<OrbitVerdict> full = classify_whole_batches(r, starts, opt);
+      for (std::size_t w = 0; w < full.size(); ++w) {
+        BasinClass& c = *what[w].first;
+        const OrbitVerdict& v = full[w];
+        expect_verdict(v, c.first.type, c.first.key, r);
+        if (what[w].second == 0) c.first = v, c.first.detail.clear();
+        c.rotation_min = std::min(c.rotation_min, v.rotation);
+        c.rotation_max = std::max(c.rotation_max, v.rotation);
+        c.invariant_min = std::min(c.invariant_min, v.invariant);
+        c.invariant_max = std::max(c.invariant_max, v.invariant);
+      }
+    }
+    for (auto& [k, c] : joined)
+      if (c.rotation_min > c.rotation_max) {  // only orbits decided early, none pending: a periodic key's values
+        if (c.first.type != Type::periodic) throw std::logic_error("basins: an attractor without full-length values");
+        c.rotation_min = c.rotation_max = c.invariant_min = c.invariant_max = 0;
+      }
   }
   std::map<std::pair<int, std::string>, std::uint32_t> id_of;
   for (auto& [k, c] : joined) {

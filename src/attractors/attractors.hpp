@@ -176,20 +176,35 @@ Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const
 // classification would give (periodic with the cycle's key; quasi-periodic "Q2"), with bounds that prove the
 // full-length tests pass (return within return_tol at step `transient`, point within point_tol, for Q2: no return,
 // |lambda1| below its bar, a converged rotation number).  The stable cycles are those that a fixed 16 x 16 sphere
-// probe finds at r.  Per grid row the first certified orbit of each attractor (and for Q2 those of smallest and
-// largest invariant, whose values the output prints) is classified again at full length, and must agree.
+// probe finds at r.  The values the table prints come from full-length verdicts: merge_basins classifies the first
+// orbit of a non-periodic attractor when it was decided early, and the early Q2 orbits of smallest and largest I.
+// As a check, per chunk of rows the first orbit decided early for each attractor is classified at full length too;
+// a disagreement throws std::logic_error.
 // The same in parts (core/sweep.hpp): item k * n2 + j is row j (w2 or phi) of grid k (0: the main grid, then the
 // replicates).  A row's verdicts depend on the request and the row only: the replicate shifts are drawn for the
 // whole request, then the grids are sliced.  basins() = merge_basins(..., {basin_rows(every item)}).
 std::size_t basin_items(const Grid& g, int replicates);
 // One attractor (type, key) as a part of a basin run saw it: what merging needs, without per-orbit verdicts.
+// An orbit decided early whose full-length values the merged result needs: its start, index and invariant I at
+// the checkpoint (index = npos: none).
+struct Pending {
+  Vec3<double> start = Vec3<double>::Zero();
+  std::size_t index = static_cast<std::size_t>(-1);
+  double I = 0;
+  template <class A> void members(A& a) { a(start, index, I); }
+};
 struct BasinClass {
   OrbitVerdict first;              // the verdict of its lowest-index orbit (evidence text dropped)
   std::size_t first_index = 0;     // that orbit's index k n + i2 n1 + i1 over all grids
   std::vector<std::size_t> count;  // orbits per grid (main, then the replicates)
-  double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;  // over its orbits
+  // Over its orbits classified at full length (empty, min > max, when there were none).
+  double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;
+  // Decided early (non-periodic classes): the first orbit when it was, and the orbits of smallest and largest I;
+  // merge_basins classifies them at full length (a periodic key's values are its own: rotation and invariant 0,
+  // the exact cycle's point).
+  Pending first_pending, lo, hi;
   template <class A> void members(A& a) {
-    a(first, first_index, count, rotation_min, rotation_max, invariant_min, invariant_max);
+    a(first, first_index, count, rotation_min, rotation_max, invariant_min, invariant_max, first_pending, lo, hi);
   }
 };
 struct BasinRows {
