@@ -922,9 +922,8 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
     }
     return q2;
   };
-  struct Witness {
+  struct Witness {  // a check: an orbit decided early and its code
     Vec3<double> start;
-    std::size_t index;  // k n + i2 n1 + i1
     std::int32_t code;
   };
   std::vector<Witness> witnesses;
@@ -962,7 +961,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
         for (std::size_t o = 0; o < x.code.size(); ++o)
           if (x.code[o] != kFull && std::find(firsts.begin(), firsts.end(), x.code[o]) == firsts.end()) {
             firsts.push_back(x.code[o]);
-            witnesses.push_back({e.initial[o], 0, x.code[o]});
+            witnesses.push_back({e.initial[o], x.code[o]});
           }
       }
       for (std::size_t ri = c0; ri < c1; ++ri) {

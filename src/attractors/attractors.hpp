@@ -163,7 +163,8 @@ struct Basins {
   Fraction unresolved;
   std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; unresolved appended last
   std::size_t unresolved_first_pass = 0;   // before refinement
-  long iterations_total = 0;               // map iterations spent (all passes, all grids)
+  long iterations_total = 0;               // map iterations of the grids' orbits (all passes, all grids; not the
+                                           // early exit's probe and checks)
   std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
   double seconds = 0;
 };
