@@ -9,6 +9,7 @@
 #include "iterate/kernel.hpp"
 #include "patterns/patterns.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "tolerance.hpp"
@@ -18,6 +19,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
 
 using btob::test::bound;
@@ -217,6 +219,63 @@ TEST(Basins, LabelsEqualClassifyAndCollectOfTheMainGrid) {
     EXPECT_EQ(it->count, a.count) << a.key;
     const std::size_t i = static_cast<std::size_t>(it - b.attractors.begin());
     EXPECT_EQ(b.replicate_fractions[i][0], static_cast<double>(a.count) / static_cast<double>(labels.size()));
+  }
+}
+
+// The early exit (attractors.hpp) against the full-length route: the request's labels, counts per grid and the
+// attractors' table (first point, ranges of the rotation and the invariant, as NAME_fractions.csv prints them)
+// equal classify + collect over the main and replicate grids, with the replicate shifts drawn as basin_rows draws
+// them.  r = 0.2: a period-10 sink and the P2 curves (most orbits certified); 0.21: three sinks and the curves;
+// 0.15: 1133; 0.3: 132312; 0.11: chaos (nothing to certify); 0.05: the collapse (never certified).
+TEST(Basins, EarlyExitGivesTheFullLengthVerdicts) {
+  for (double r : {0.2, 0.21, 0.15, 0.3, 0.11, 0.05}) {
+    BasinsRequest q;
+    q.r = r, q.grid = "strip:33x21", q.replicates = 2, q.seed = 3;
+    const BasinsResult res = run(q);
+    const Grid g = q.parsed_grid();
+    const std::size_t n = static_cast<std::size_t>(g.n1 * g.n2);
+    std::mt19937_64 rng(q.seed);
+    std::uniform_real_distribution<double> shift(-0.45, 0.45);
+    std::vector<OrbitVerdict> all;
+    std::vector<std::vector<OrbitVerdict>> per_grid;
+    for (int k = 0; k <= q.replicates; ++k) {
+      const double du = k == 0 ? 0.0 : shift(rng), dv = k == 0 ? 0.0 : shift(rng);
+      per_grid.push_back(classify(ensemble(r, grid_points(g, du, dv)), {}));
+      all.insert(all.end(), per_grid.back().begin(), per_grid.back().end());
+    }
+    const std::vector<Attractor> want = collect(all, r, nullptr);
+    const std::vector<Attractor>& got = res.basins.attractors;
+    ASSERT_EQ(got.size(), want.size()) << "r = " << r;
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      const std::string at = fmt::format("r = {}, {}", r, want[i].key);
+      EXPECT_EQ(got[i].key, want[i].key) << at;
+      EXPECT_EQ(got[i].type, want[i].type) << at;
+      EXPECT_EQ(got[i].pattern, want[i].pattern) << at;
+      EXPECT_EQ(got[i].period, want[i].period) << at;
+      EXPECT_EQ(got[i].point, want[i].point) << at;
+      // The table prints rotations with 10 and invariants with 8 significant digits.
+      EXPECT_EQ(fmt::format("{:.10g} {:.10g}", got[i].rotation_min, got[i].rotation_max),
+                fmt::format("{:.10g} {:.10g}", want[i].rotation_min, want[i].rotation_max)) << at;
+      EXPECT_EQ(fmt::format("{:.8g} {:.8g}", got[i].invariant_min, got[i].invariant_max),
+                fmt::format("{:.8g} {:.8g}", want[i].invariant_min, want[i].invariant_max)) << at;
+      for (int k = 0; k <= q.replicates; ++k) {
+        std::size_t c = 0;
+        for (const auto& v : per_grid[static_cast<std::size_t>(k)]) c += v.type != Type::unresolved && v.key == want[i].key;
+        EXPECT_EQ(res.basins.replicate_fractions[i][static_cast<std::size_t>(k)],
+                  static_cast<double>(c) / static_cast<double>(n)) << at << ", grid " << k;
+      }
+    }
+    std::vector<std::uint32_t> labels;
+    const auto main_only = collect(per_grid[0], r, &labels);
+    ASSERT_EQ(res.basins.labels.size(), labels.size());
+    for (std::size_t o = 0; o < labels.size(); ++o) {
+      const std::string a = res.basins.labels[o] ? got[res.basins.labels[o] - 1].key : "";
+      const std::string b = labels[o] ? main_only[labels[o] - 1].key : "";
+      EXPECT_EQ(a, b) << "r = " << r << ", point " << o;
+    }
+    if (r == 0.2 || r == 0.21 || r == 0.15 || r == 0.3)
+      EXPECT_GT(res.basins.certified, 3 * n / 2) << "r = " << r << ": most orbits should exit early";
+    if (r == 0.05) EXPECT_EQ(res.basins.certified, 0u);
   }
 }
 

@@ -163,21 +163,64 @@ struct Basins {
   Fraction unresolved;
   std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; unresolved appended last
   std::size_t unresolved_first_pass = 0;   // before refinement
-  long iterations_total = 0;               // map iterations spent (all passes, all grids)
+  long iterations_total = 0;               // map iterations of the grids' orbits (all passes, all grids; not the
+                                           // early exit's probe and checks)
+  std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
   double seconds = 0;
 };
 Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt);
 
+// Early exit (basins only; classify() always runs the full length).  An orbit whose state at a checkpoint
+// t < transient lies in a trapping cone of a stable cycle (a cone around the cycle's point, in the eigenvector
+// coordinates of its monodromy, on which every branch of the word holds with margin and which the monodromy maps
+// into itself) or on a P2 invariant ellipse inside the P2 region is given the verdict the full-length
+// classification would give (periodic with the cycle's key; quasi-periodic "Q2"), with bounds that prove the
+// full-length tests pass (return within return_tol at step `transient`, point within point_tol, for Q2: no return,
+// |lambda1| below its bar, a converged rotation number).  The stable cycles are those that a fixed 16 x 16 sphere
+// probe finds at r.  The values the table prints come from full-length verdicts: merge_basins classifies the first
+// orbit of a non-periodic attractor when it was decided early, and the early Q2 orbits of smallest and largest I.
+// As a check, per chunk of rows the first orbit decided early for each attractor is classified at full length too;
+// a disagreement throws std::logic_error.
 // The same in parts (core/sweep.hpp): item k * n2 + j is row j (w2 or phi) of grid k (0: the main grid, then the
 // replicates).  A row's verdicts depend on the request and the row only: the replicate shifts are drawn for the
 // whole request, then the grids are sliced.  basins() = merge_basins(..., {basin_rows(every item)}).
 std::size_t basin_items(const Grid& g, int replicates);
+// One attractor (type, key) as a part of a basin run saw it: what merging needs, without per-orbit verdicts.
+// An orbit decided early whose full-length values the merged result needs: its start, index and invariant I at
+// the checkpoint (index = npos: none).
+struct Pending {
+  Vec3<double> start = Vec3<double>::Zero();
+  std::size_t index = static_cast<std::size_t>(-1);
+  double I = 0;
+  template <class A> void members(A& a) { a(start, index, I); }
+};
+struct BasinClass {
+  OrbitVerdict first;              // the verdict of its lowest-index orbit (evidence text dropped)
+  std::size_t first_index = 0;     // that orbit's index k n + i2 n1 + i1 over all grids
+  std::vector<std::size_t> count;  // orbits per grid (main, then the replicates)
+  // Over its orbits classified at full length (empty, min > max, when there were none).
+  double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;
+  // Decided early (non-periodic classes): the first orbit when it was, and the orbits of smallest and largest I;
+  // merge_basins classifies them at full length (a periodic key's values are its own: rotation and invariant 0,
+  // the exact cycle's point).
+  Pending first_pending, lo, hi;
+  template <class A> void members(A& a) {
+    a(first, first_index, count, rotation_min, rotation_max, invariant_min, invariant_max, first_pending, lo, hi);
+  }
+};
 struct BasinRows {
   std::vector<std::size_t> items;       // ascending
-  std::vector<OrbitVerdict> verdicts;   // n1 per item, in item order
+  std::vector<std::uint32_t> labels;    // n1 per main-grid item (they come first), in item order: 1 + class, 0 unresolved
+  std::vector<BasinClass> classes;      // the attractors its orbits reached
+  std::vector<std::size_t> unresolved;  // unresolved orbits per grid
+  std::size_t unresolved_first_pass = 0;  // main grid: unresolved after the first pass (before refinement)
+  long iterations = 0;                  // map iterations spent (all passes, all its grids)
+  std::size_t certified = 0;            // orbits decided before the full length (early exit), all its grids
   double seconds = 0;
   int threads = 0;                      // threads the part ran on (reported, not computed with)
-  template <class A> void members(A& a) { a(items, verdicts, seconds, threads); }
+  template <class A> void members(A& a) {
+    a(items, labels, classes, unresolved, unresolved_first_pass, iterations, certified, seconds, threads);
+  }
 };
 BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
                      const std::vector<std::size_t>& items);

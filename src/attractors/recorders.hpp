@@ -78,6 +78,27 @@ struct ReturnRecorder {
   }
 };
 
+// The kernel's state after `steps` steps, as it is (the unnormalised iterate times a power of two).  A run started
+// from it continues the same iteration bit for bit: the kernel only rescales by exact powers of two, which commute
+// with every rounding of the step, and the recorders above read scale-invariant quantities.  Storage: 3 doubles.
+struct StateRecorder {
+  static constexpr bool needs_symbols = false;
+  long steps;
+  std::vector<Vec3<double>> state;
+  StateRecorder(std::size_t orbits, long steps_) : steps(steps_) {
+    checked_bytes(orbits, sizeof(Vec3<double>), "orbits (state recorder)");
+    state.assign(orbits, Vec3<double>::Zero());
+  }
+  long first_step() const { return steps; }
+  template <class T>
+  void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t*) {
+    if (k != steps) return;
+    for (int l = 0; l < lanes; ++l)
+      state[o0 + static_cast<std::size_t>(l)] =
+          Vec3<double>(static_cast<double>(x[l]), static_cast<double>(y[l]), static_cast<double>(z[l]));
+  }
+};
+
 // atan2(a, b) on the whole circle, in (-pi, pi], from the vectorisable atan_pos.
 template <class T> inline T atan2_full(T a, T b) {
   const T t = iterate::atan_pos<T>(std::fabs(a), std::fabs(b));  // in [0, pi/2]

@@ -104,7 +104,8 @@ void BasinsRequest::validate() const {
   if (replicates < 0 || replicates > 100)
     throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
   const Grid g = parsed_grid();
-  iterate::checked_bytes(static_cast<std::size_t>(g.n1) * static_cast<std::size_t>(g.n2), 800, "grid");
+  // Per point of the main grid: its label in a part and in the merged result (the work runs in bounded chunks).
+  iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 8, "grid");
 }
 
 std::size_t BasinsRequest::work_items() const { return basin_items(parsed_grid(), replicates); }
@@ -174,6 +175,7 @@ void BasinsResult::describe(core::Contents& c) const {
   c.attr("unresolved_ci_high", b.unresolved.high);
   c.attr("unresolved_first_pass", static_cast<long>(b.unresolved_first_pass));
   c.attr("map_iterations", b.iterations_total);
+  c.attr("certified_early", static_cast<long>(b.certified));  // orbits decided before the full length (all grids)
   c.attr("seconds", b.seconds);
   c.attr("points_per_second", static_cast<double>(n * static_cast<std::size_t>(request.replicates + 1)) / b.seconds);
   for (const auto& x : b.attractors)
