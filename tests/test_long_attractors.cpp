@@ -5,20 +5,17 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <set>
 
 namespace btob::attractors {
 namespace {
 
-TEST(LongAttractors, Grid1000AtR02FewUnresolvedUnderAMinute) {
+// Its speed is measured by bm_attractors (basins_replicates/200/1000/2/2), never asserted here.
+TEST(LongAttractors, Grid1000AtR02FewUnresolved) {
   Options o;
   o.run.threads = 2;
-  const auto t0 = std::chrono::steady_clock::now();
   const Basins b = basins(0.2, parse_grid("strip:1000x1000", -2, 2), 0, 1, o);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_LT(b.unresolved.value, 0.01);  // the target
-  EXPECT_LT(s, 60.0);                   // the budget on 2 cores
   std::set<std::string> p;
   for (const auto& a : b.attractors) p.insert(a.pattern);
   EXPECT_TRUE(p.count("132^3312^3"));
