@@ -1,5 +1,5 @@
 // The linear cocycle on the batched kernel: every lane carries its point u and one tangent vector v, both
-// multiplied by the step's matrix, in registers (the fused kernel of docs/ARCHITECTURE.md, "The cocycle kernel").
+// multiplied by the step's matrix, in registers (docs/ARCHITECTURE.md, "The cocycle kernel").
 #pragma once
 
 #include "iterate/ensemble.hpp"
