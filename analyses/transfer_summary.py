@@ -80,10 +80,11 @@ def main(root):
             "cycle_radius99": ";".join(f'{c["word"]}:{c["radius99"]}' for c in cycles),
             "cycle_mass_3x3": ";".join(f'{c["word"]}:{float(c["mass_neighbourhood"]):.4f}' for c in cycles),
             "tv_boxes": a["tv_boxes"], "tv_32x32": a["tv_coarse"],
-            # Basins from the Ulam graph against the counted fractions of `btob basins` (same Lebesgue rectangle)
+            # Basins from the Ulam graph against the counted fractions of `btob basins` (same Lebesgue rectangle);
+            # an interval is written [lo hi], without a comma, so that the cell needs no quoting (tests/cli_csv.py)
             "basin_fractions": ";".join(f'{b["attractor"]}:{float(b["fraction"]):.4f}' for b in basins),
             "counted_fractions": ";".join(
-                f'{b["attractor"]}:{counted[key(b)][0]:.4f}[{counted[key(b)][1]:.4f},{counted[key(b)][2]:.4f}]'
+                f'{b["attractor"]}:{counted[key(b)][0]:.4f}[{counted[key(b)][1]:.4f} {counted[key(b)][2]:.4f}]'
                 for b in basins if key(b) in counted),
         })
     rows.sort(key=lambda x: (float(x["r"]), int(str(x["boxes"]).split("x")[0])))
