@@ -234,7 +234,8 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
   const std::vector<long>& cps = rec.checkpoints();
   const std::size_t n_batches = (n_orbits + B - 1) / B;
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
-  std::atomic<std::size_t> done{0}, degenerate{0}, redone{0};
+  detail::RunTally tally;
+  std::atomic<std::size_t> redone{0};
   // r in T from the ensemble's decimal source (Ensemble::r_at, as iterate::run): float's r is the float nearest the
   // request's decimal, double's is ens.r itself.
   std::vector<T> r_own;
@@ -299,23 +300,12 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
       if (ci < cps.size() && step == cps[ci]) record(step), ++ci;
     }
     if (redone_here) redone.fetch_add(redone_here, std::memory_order_relaxed);
-    if (opt.degenerate) {
-      std::size_t bad = 0;
-      for (int l = 0; l < lanes; ++l) {
-        const bool finite = std::isfinite(cur.x[l]) && std::isfinite(cur.y[l]) && std::isfinite(cur.z[l]) &&
-                            std::isfinite(cur.vx[l]) && std::isfinite(cur.vy[l]) && std::isfinite(cur.vz[l]);
-        if (!finite || (cur.x[l] == 0 && cur.y[l] == 0 && cur.z[l] == 0)) ++bad;
-      }
-      if (bad) degenerate.fetch_add(bad, std::memory_order_relaxed);
-    }
-    if (opt.progress) {
-      const std::size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
-      if (omp_get_thread_num() == 0) opt.progress->update(d, n_batches);
-    }
+    tally.batch_end(opt, n_batches, lanes, [&](int l) {
+      return detail::degenerate_vector(cur.x[l], cur.y[l], cur.z[l]) ||
+             detail::degenerate_vector(cur.vx[l], cur.vy[l], cur.vz[l]);
+    });
   }
-  if (opt.cancel && opt.cancel->cancelled()) throw core::Cancelled();
-  if (opt.progress) opt.progress->update(n_batches, n_batches);
-  if (opt.degenerate) *opt.degenerate = degenerate.load();
+  tally.finish(opt, n_batches);
   if (opt.redone) *opt.redone = redone.load();
 }
 

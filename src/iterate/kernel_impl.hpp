@@ -206,6 +206,34 @@ inline void step_log2_bounds(double r, double& grow, double& shrink) {
   }
 }
 
+// What every batched run does at the end of a batch and at the end of the run: count the lanes whose state is no
+// longer a finite non-zero vector (the precision could not cope: callers say so instead of plotting garbage), report
+// progress from thread 0, and publish both; a cancelled run throws core::Cancelled once the parallel region is over.
+struct RunTally {
+  std::atomic<std::size_t> done{0}, degenerate{0};
+  // bad(l): whether lane l's state is degenerate (evaluated only when the caller asked for the count).
+  template <class Bad> void batch_end(const RunOptions& opt, std::size_t n_batches, int lanes, Bad bad) {
+    if (opt.degenerate) {
+      std::size_t n = 0;
+      for (int l = 0; l < lanes; ++l) n += bad(l) ? 1 : 0;
+      if (n) degenerate.fetch_add(n, std::memory_order_relaxed);
+    }
+    if (opt.progress) {
+      const std::size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (omp_get_thread_num() == 0) opt.progress->update(d, n_batches);
+    }
+  }
+  void finish(const RunOptions& opt, std::size_t n_batches) {
+    if (opt.cancel && opt.cancel->cancelled()) throw core::Cancelled();
+    if (opt.progress) opt.progress->update(n_batches, n_batches);
+    if (opt.degenerate) *opt.degenerate = degenerate.load();
+  }
+};
+template <class T> inline bool degenerate_vector(const T& x, const T& y, const T& z) {
+  using std::isfinite;
+  return !(isfinite(x) && isfinite(y) && isfinite(z)) || (x == 0 && y == 0 && z == 0);
+}
+
 }  // namespace detail
 
 template <class T> int renormalisation_interval(const std::vector<double>& r) {
@@ -237,7 +265,7 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
   const int K = renormalisation_interval<T>(ens.r);
   const long first = std::max<long>(rec.first_step(), 1);
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
-  std::atomic<std::size_t> done{0}, degenerate{0};
+  detail::RunTally tally;
   // r in T from the ensemble's decimal source (Ensemble::r_at), evaluated once here (MPFR: at the caller's digits).
   std::vector<T> r_own;
   if constexpr (!std::is_same_v<T, double>) r_own = ens.r_in<T>();
@@ -285,25 +313,9 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
       }
       rec.record(o0, lanes, step, x, y, z, Rec::needs_symbols ? sym : nullptr);
     }
-    if (opt.degenerate) {
-      // A state that is no longer a finite non-zero vector means the precision could not cope: count
-      // it, so that callers say so instead of plotting garbage.
-      std::size_t bad = 0;
-      for (int l = 0; l < lanes; ++l) {
-        using std::isfinite;
-        const bool finite = isfinite(x[l]) && isfinite(y[l]) && isfinite(z[l]);
-        if (!finite || (x[l] == 0 && y[l] == 0 && z[l] == 0)) ++bad;
-      }
-      if (bad) degenerate.fetch_add(bad, std::memory_order_relaxed);
-    }
-    if (opt.progress) {
-      const std::size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
-      if (omp_get_thread_num() == 0) opt.progress->update(d, n_batches);
-    }
+    tally.batch_end(opt, n_batches, lanes, [&](int l) { return detail::degenerate_vector(x[l], y[l], z[l]); });
   }
-  if (opt.cancel && opt.cancel->cancelled()) throw core::Cancelled();
-  if (opt.progress) opt.progress->update(n_batches, n_batches);
-  if (opt.degenerate) *opt.degenerate = degenerate.load();
+  tally.finish(opt, n_batches);
 }
 
 template <class T, Recorder Rec> void run_scalar(const Ensemble& ens, long iterations, Rec& rec) {
