@@ -10,8 +10,22 @@
 namespace btob::iterate {
 namespace detail {
 
-// Vectors in flight of the cocycle kernel: each carries 10 live registers (u, v, r, alpha, alpha / r, the symbol
-// count), so 2 vectors (20 registers and the step's temporaries) fit the 32 zmm without spilling; 3 spill.
+// Vectors in flight of the cocycle kernel.  Each carries 10 live values (u, v, r, alpha, alpha / r, the symbol
+// count); with 4 vectors r, alpha and alpha / r are read from the stack as memory operands.  One step's dependency
+// chain (a y - x, the compare, the selections, the FMA for y', and v's behind them) is ~25 cycles, so few vectors are
+// latency-bound.  Measured (bm_lyapunov map_double/500/10000/1, CPU ms, one run): 2 -> 96, 3 -> 84, 4 -> 74,
+// 6 -> 93, 8 -> 98 (spills); float 58, 50, 47, 60, 60.
+//
+// Instruction count (g++ 12 -O3 -march=native, Zen 5, from the generated assembly of cocycle_blocks<double>): the
+// step loop is 166 instructions for 4 vectors, per 8-lane vector-step 41.5: 7.75 register moves (removed at rename),
+// 10 multiply-class (a y - x, a y - z, the masked r x or r z and the FMA for y', the same for v, one a v_y), 9 memory
+// operands (r, alpha, alpha / r), 33 operations on the FP pipes in all (compares, selections, sign flips, the count)
+// against 12 for the plain step.  A block's end (projection with one division, three max-exponents, two rescales,
+// the loss test, the sums) is 508 instructions for 4 vectors every 16 steps: 8 per vector-step.  Ceiling on Zen 5's
+// four 512-bit FP pipes (two of which multiply): max((33 + 8) / 4, 10 / 2) = 10.3 cycles per vector-step, 0.78
+// lane-steps per cycle; measured 2.4e9 lane-steps/s per core at ~3.5 GHz = 0.69, 88% of it.  The plain kernel,
+// measured in the same run at 5.8e9, runs at 62% of its own ceiling (3 cycles per vector-step, README "Ceiling"),
+// so the measured ratio 0.41-0.44 is above the ceilings' ratio 3 / 10.3 = 0.29.
 inline constexpr int kCocycleVectors = 4;
 
 template <class T> struct CocycleLanes {
@@ -236,13 +250,9 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   detail::RunTally tally;
   std::atomic<std::size_t> redone{0};
-  // r in T from the ensemble's decimal source (Ensemble::r_at, as iterate::run): float's r is the float nearest the
-  // request's decimal, double's is ens.r itself.
+  // r in T from the ensemble's decimal source, as iterate::run: float's r is the float nearest the request's decimal.
   std::vector<T> r_own;
-  if constexpr (!std::is_same_v<T, double>) r_own = ens.r_in<T>();
-  const T* r_t = nullptr;
-  if constexpr (std::is_same_v<T, double>) r_t = ens.r.data();
-  else r_t = r_own.data();
+  const T* r_t = detail::r_values<T>(ens, r_own);
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {

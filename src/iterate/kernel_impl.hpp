@@ -229,6 +229,16 @@ struct RunTally {
     if (opt.degenerate) *opt.degenerate = degenerate.load();
   }
 };
+// Every r value of the ensemble in T from its decimal source (Ensemble::r_at), evaluated once per run (MPFR: at the
+// caller's digits) into `own`; double's are ens.r itself, so double runs read exactly the doubles they always read.
+template <class T> inline const T* r_values(const Ensemble& ens, std::vector<T>& own) {
+  if constexpr (std::is_same_v<T, double>) {
+    return ens.r.data();
+  } else {
+    own = ens.r_in<T>();
+    return own.data();
+  }
+}
 template <class T> inline bool degenerate_vector(const T& x, const T& y, const T& z) {
   using std::isfinite;
   return !(isfinite(x) && isfinite(y) && isfinite(z)) || (x == 0 && y == 0 && z == 0);
@@ -266,12 +276,8 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
   const long first = std::max<long>(rec.first_step(), 1);
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   detail::RunTally tally;
-  // r in T from the ensemble's decimal source (Ensemble::r_at), evaluated once here (MPFR: at the caller's digits).
   std::vector<T> r_own;
-  if constexpr (!std::is_same_v<T, double>) r_own = ens.r_in<T>();
-  const T* r_t = nullptr;
-  if constexpr (std::is_same_v<T, double>) r_t = ens.r.data();
-  else r_t = r_own.data();
+  const T* r_t = detail::r_values<T>(ens, r_own);
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
