@@ -5,6 +5,9 @@
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <vector>
@@ -24,6 +27,17 @@ namespace btob::iterate {
 //   log2u, log2v the sums of the exponents removed by the exact power-of-two rescalings (doubles: exact).
 // v_0 is u_0 x e_i / |u_0 x e_i| with e_i the coordinate axis least aligned with u_0 (i the smallest |u_0(i)|, the
 // first on ties), u_0 the orbit's start vector in Q; log2u = log2v = 0 at step 0.
+// v_0 for a start vector u (any length): u x e_i / |u x e_i|, e_i the coordinate axis least aligned with u.  The one
+// choice of the cocycle kernel and of lyapunov::TangentRecorder (their exponents are compared orbit by orbit).
+inline Vec3<double> first_tangent(const Vec3<double>& u) {
+  int i = 0;
+  for (int j = 1; j < 3; ++j)
+    if (std::fabs(u(j)) < std::fabs(u(i))) i = j;
+  Vec3<double> axis = Vec3<double>::Zero();
+  axis(i) = 1;
+  return u.cross(axis).normalized();
+}
+
 template <class T> struct CocycleBatch {
   std::size_t orbit0 = 0;
   int lanes = 0;

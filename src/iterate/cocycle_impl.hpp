@@ -218,12 +218,7 @@ inline int cocycle_redo(CocycleLanes<T>& st, const CocycleLanes<T>& pre, const T
 // and v_0 (cocycle.hpp), both rounded to T.
 template <class T> inline void cocycle_start(const Vec3<double>& u0, T& x, T& y, T& z, T& vx, T& vy, T& vz) {
   const Vec3<double> q = unit_start(u0);
-  int i = 0;
-  for (int j = 1; j < 3; ++j)
-    if (std::fabs(q(j)) < std::fabs(q(i))) i = j;
-  Vec3<double> axis = Vec3<double>::Zero();
-  axis(i) = 1;
-  const Vec3<double> v = q.cross(axis).normalized();
+  const Vec3<double> v = first_tangent(q);
   x = static_cast<T>(q(0)), y = static_cast<T>(q(1)), z = static_cast<T>(q(2));
   vx = static_cast<T>(v(0)), vy = static_cast<T>(v(1)), vz = static_cast<T>(v(2));
 }

@@ -1,6 +1,7 @@
 // TangentRecorder: the projective derivative cocycle carried along every orbit of a batched run (Section 8.1 (3)).
 #pragma once
 
+#include "iterate/cocycle.hpp"
 #include "iterate/lanes.hpp"
 
 #include <algorithm>
@@ -180,12 +181,7 @@ struct TangentRecorder {
       const Vec3<double> qd = core::to_quadrant<double>(u0 / u0.norm());
       const Vec3<double> u(static_cast<double>(static_cast<T>(qd(0))), static_cast<double>(static_cast<T>(qd(1))),
                            static_cast<double>(static_cast<T>(qd(2))));
-      int i = 0;
-      for (int j = 1; j < 3; ++j)
-        if (std::fabs(u(j)) < std::fabs(u(i))) i = j;
-      Vec3<double> axis = Vec3<double>::Zero();
-      axis(i) = 1;
-      const Vec3<double> e1 = u.cross(axis).normalized();
+      const Vec3<double> e1 = iterate::first_tangent(u);
       sx[o] = u(0), sy[o] = u(1), sz[o] = u(2);
       vx[o] = e1(0), vy[o] = e1(1), vz[o] = e1(2);
       pg[o] = 1, eg[o] = 0, ev[o] = 0, n13[o] = 0;
