@@ -118,6 +118,118 @@ TEST(Recorders, AtanPosMatchesStdAtan2) {
   EXPECT_DOUBLE_EQ(atan_pos<double>(1.0, 1.0), std::numbers::pi / 4);
 }
 
+TEST(Recorders, AtanFastWithinItsBound) {
+  // The density image's fast route (atan_fast) against atan2 in long double, over 40 orders of magnitude on both
+  // sides of the diagonal and near its reduction points (t = tan(pi/8), t = 1); NaN where its bound does not hold.
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  double worst = 0;
+  const auto check = [&](double a, double b) {
+    const double got = atan_fast(a, b);
+    const long double ref = std::atan2(static_cast<long double>(a), static_cast<long double>(b));
+    worst = std::max(worst, static_cast<double>(std::fabs(static_cast<long double>(got) - ref)));
+  };
+  for (int i = 0; i < 1000000; ++i) {
+    check(std::pow(10.0, -20 * u(gen)) * u(gen) + 1e-280, std::pow(10.0, -20 * u(gen)) * u(gen) + 1e-280);
+    const double t = 0.41421356237309503 * (1 + 1e-3 * (u(gen) - 0.5)), s = std::ldexp(1 + u(gen), 40 - static_cast<int>(80 * u(gen)));
+    check(t * s, s);
+    check(s, t * s);
+    check(s * (1 + 1e-3 * (u(gen) - 0.5)), s);
+  }
+  EXPECT_SMALL(worst, bound(kAtanFastError, "atan_fast's stated bound (fit 1.17e-7, three Newton steps 4.3e-11)"));
+  EXPECT_GT(worst, kAtanFastError / 10);  // the bound is the polynomial's, not a loose one
+  EXPECT_TRUE(std::isnan(atan_fast(0.0, 0.0)));
+  EXPECT_TRUE(std::isnan(atan_fast(1e-310, 1e-310)));
+  EXPECT_TRUE(std::isnan(atan_fast(1.0, 1e301)));
+  EXPECT_EQ(atan_fast(0.0, 1.0), 0.0);
+}
+
+namespace {
+
+// The image by the rule of DensityRecorder::exact_bin from recorded values (under, over: per column).
+struct RuleImage {
+  std::vector<std::uint32_t> img;
+  std::vector<std::uint64_t> under, over;
+};
+RuleImage rule_image(const std::vector<double>& values, std::size_t n_ic, std::size_t columns, long tail, std::size_t bins,
+                     double lo, double hi) {
+  RuleImage out{std::vector<std::uint32_t>(columns * bins, 0), std::vector<std::uint64_t>(columns, 0),
+                std::vector<std::uint64_t>(columns, 0)};
+  const double scale = static_cast<double>(bins) / (hi - lo);
+  for (std::size_t o = 0; o < columns * n_ic; ++o)
+    for (long j = 0; j < tail; ++j) {
+      const std::size_t col = o / n_ic;
+      const double f = (values[o * static_cast<std::size_t>(tail) + static_cast<std::size_t>(j)] - lo) * scale;
+      if (!(f >= 0)) ++out.under[col];
+      else if (f > static_cast<double>(bins)) ++out.over[col];
+      else ++out.img[col * bins + std::min(static_cast<std::size_t>(f), bins - 1)];
+    }
+  return out;
+}
+
+template <class T> void expect_image_of_exact_values(Coord c, std::size_t bins, double lo, double hi) {
+  // Batches straddle columns (11 orbits per r), r spans windows and chaos; 2 threads.
+  const Ensemble e = make(linspace_r(0.0717, 0.3, 23), random_points(11, 3));
+  const long iters = 600, tail = 60;
+  DensityRecorder dens(c, e, iters, tail, bins, lo, hi, 2);
+  TailRecorder raw(c, e.orbits(), iters, tail);
+  Both<DensityRecorder, TailRecorder> both(dens, raw);
+  RunOptions opt;
+  opt.threads = 2;
+  run<T>(e, iters, both, opt);
+  const RuleImage want = rule_image(raw.out, e.initial.size(), e.r.size(), tail, bins, lo, hi);
+  EXPECT_EQ(dens.merge(), want.img) << coord_name(c) << " bins " << bins;
+  EXPECT_EQ(dens.under, want.under);
+  EXPECT_EQ(dens.over, want.over);
+}
+
+}  // namespace
+
+TEST(Recorders, DensityImageIsTheExactCoordinatesImage) {
+  // The fast route (atan_fast, bins proven by its error bound) gives the image of coord_value<T> bit for bit.  At
+  // 800 bins over pi/2 the guard band (DensityRecorder::fast_error in bin units, both sides of each edge) sends
+  // ~2e-4 of double's values and ~3e-3 of float's to coord_value<T>; at 2e5 bins over pi ~2.5e-2 and ~0.4.  Also a
+  // range cutting the values (under and over), and the coordinates without a fast route.
+  for (const std::size_t bins : {std::size_t{800}, std::size_t{200000}}) {
+    expect_image_of_exact_values<double>(Coord::theta, bins, 0, std::numbers::pi / 2);
+    expect_image_of_exact_values<float>(Coord::theta, bins, 0, std::numbers::pi / 2);
+    expect_image_of_exact_values<double>(Coord::phi, bins, 0, std::numbers::pi);
+    expect_image_of_exact_values<float>(Coord::phi, bins, 0, std::numbers::pi);
+  }
+  expect_image_of_exact_values<double>(Coord::theta, 300, 0.2, 1.1);
+  expect_image_of_exact_values<double>(Coord::phi, 300, 1.0, 2.0);
+  expect_image_of_exact_values<double>(Coord::w2, 500, -1, 1);
+  expect_image_of_exact_values<float>(Coord::w1, 500, -3, 3);
+  expect_image_of_exact_values<double>(Coord::log10_theta, 200, -8, 0.5);
+  expect_image_of_exact_values<long double>(Coord::theta, 800, 0, std::numbers::pi / 2);
+}
+
+TEST(Recorders, DensityValuesOnBinEdgesTakeTheExactRoute) {
+  // Lanes whose exact coordinate lies on a bin edge, or within the fast route's error of one, are binned by
+  // coord_value<T>: theta = pi/2 (x = 0) in the last bin, theta = 0 (z = 0) in the first, and values a hair on
+  // either side of an edge placed at an exact coordinate value.
+  const std::vector<Vec3<double>> ic{{1, 0.3, -0.4}, {0, 0.5, -1}, {1, 0.2, 0}, {0.7, 0.1, -0.9}};
+  const Ensemble e = make({0.2}, ic);
+  const std::size_t bins = 1000;
+  const double v0 = atan_pos<double>(0.4, 1.0), h = 1e-3;
+  const double lo = v0 - 400 * h, hi = lo + static_cast<double>(bins) * h;  // v0 within rounding of the edge 400
+  DensityRecorder rec(Coord::theta, e, 1, 1, bins, lo, hi, 1);
+  alignas(64) double x[4] = {1, 0, 1, 0.7}, y[4] = {0.3, 0.5, 0.2, 0.1}, z[4] = {-0.4, -1, 0, -0.9};
+  rec.record<double>(0, 4, 1, x, y, z, nullptr);
+  std::vector<double> vals;
+  for (int l = 0; l < 4; ++l) vals.push_back(coord_value<double>(Coord::theta, x[l], y[l], z[l]));
+  const RuleImage want = rule_image(vals, 4, 1, 1, bins, lo, hi);
+  EXPECT_EQ(rec.merge(), want.img);
+  EXPECT_EQ(rec.under, want.under);
+  EXPECT_EQ(rec.over, want.over);
+  DensityRecorder full(Coord::theta, e, 1, 1, 10, 0, std::numbers::pi / 2, 1);
+  full.record<double>(0, 4, 1, x, y, z, nullptr);
+  const std::vector<std::uint32_t> img = full.merge();
+  EXPECT_EQ(img[9], 1u);  // theta = pi/2: the last bin, not overflow
+  EXPECT_EQ(img[0], 1u);  // theta = 0
+  EXPECT_EQ(full.over[0] + full.under[0], 0u);
+}
+
 TEST(Kernel, BatchedEqualsScalarLoopOnTheSection4WorkloadAtR015) {
   // Section 4 workload at r = 0.15: 32 orbits of the paper grid.  The orbits converge to the sink
   // 1133, so symbol sequences are reproducible across implementations (perf-notes: chaotic orbits

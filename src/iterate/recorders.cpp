@@ -30,6 +30,8 @@ DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, l
     : coord(c), iterations(iterations_), tail(tail_), n_ic(e.initial.size()), columns(e.r.size()), bins(bins_), lo(lo_),
       hi(hi_) {
   if (bins < 1) throw std::invalid_argument(fmt::format("bins: got {}, expected at least 1", bins));
+  if (bins > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw std::invalid_argument(fmt::format("bins: got {}, expected at most {}", bins, std::numeric_limits<std::int32_t>::max()));
   if (!(lo < hi)) throw std::invalid_argument(fmt::format("range: got [{}, {}], expected lo < hi", lo, hi));
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
