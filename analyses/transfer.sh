@@ -28,11 +28,12 @@ for b in 128 256 512 1024; do run "r0.1_${b}" 0.1 "${b}x${b}" 32 111333; done
 # the counted fractions of results/attractors/basins_r0.21 (transfer_summary.py).  Not 512^2: its Arnoldi runs on the
 # 198 225-box closed class took 67 s for the 24 leading eigenvalues, then over 8 min more without finishing (load 10).
 for b in 64 128 256; do run "r0.21_${b}" 0.21 "${b}x${b}" 32 "1322,3122,132^3312^3"; done
-# The basins alone at the two finer resolutions (no spectrum: the absorption solves need only the matrix).
-for b in 512 1024; do basins "r0.21_${b}" 0.21 "${b}x${b}" "1322,3122,132^3312^3"; done
+# The basins alone at three finer resolutions (no spectrum: the absorption solves need only the matrix; 2048^2:
+# ~4 min, ~2.3 GB).
+for b in 512 1024 2048; do basins "r0.21_${b}" 0.21 "${b}x${b}" "1322,3122,132^3312^3"; done
 # The P2 region: r = 0.3 (132312 and the P2 curves; rotation eigenvalues exp(i k beta)).
 for b in 64 128 256; do run "r0.3_${b}" 0.3 "${b}x${b}" 32 132312; done
-for b in 512 1024; do basins "r0.3_${b}" 0.3 "${b}x${b}" 132312; done
+for b in 512 1024 2048; do basins "r0.3_${b}" 0.3 "${b}x${b}" 132312; done
 # Chaos: r = 0.11 (the Ulam density against the empirical measure of 256 orbits).
 for b in 64 128 256; do run "r0.11_${b}" 0.11 "${b}x${b}" 32 ""; done
 # The peripheral spectrum across r at three resolutions.
