@@ -276,9 +276,28 @@ TEST(Transfer, RequestErrorsNameTheirField) {
   auto c = q;
   c.cycles = {"14"};
   EXPECT_THROW(c.validate(), std::invalid_argument);
+  // eigenvalues 0 (no spectrum, only the basins): allowed when there is an attractor and no cross-check.
+  auto z = q;  // r = 0.15 < 3 - 2 sqrt 2: no P2 region, no cycle
+  z.eigenvalues = 0;
+  EXPECT_EQ(field(z), "eigenvalues");
+  z.cycles = {"132312"};  // not stable at 0.15
+  EXPECT_EQ(field(z), "eigenvalues");
+  z.cycles = {"1133"};
+  EXPECT_EQ(field(z), "");
+  z.check_whole = true;
+  EXPECT_EQ(field(z), "eigenvalues");
+  auto p2 = q;
+  p2.r = 0.21;  // the P2 region is a target
+  p2.eigenvalues = 0;
+  EXPECT_EQ(field(p2), "");
+  p2.eigenvalues = -1;
+  EXPECT_EQ(field(p2), "eigenvalues");
   TransferRRequest rr;
   rr.r_max = 0.05;
   EXPECT_EQ(field(rr), "r-max");
+  TransferRRequest r0;  // transfer-r's output is the spectrum: no 0
+  r0.eigenvalues = 0;
+  EXPECT_EQ(field(r0), "eigenvalues");
 }
 
 // ---- The files of `btob transfer` and `btob transfer-r` (output.cpp), through the public API ----
@@ -343,6 +362,58 @@ TEST(TransferFiles, TablesAndArraysOfOneRunAgreeWithTheResult) {
   EXPECT_EQ(std::get<std::string>(c.attrs.at("cycle")), "1133");
   EXPECT_EQ(std::get<std::string>(c.attrs.at("w1-range")), "-2,2");
   EXPECT_EQ(c.attrs.count("p2_beta"), 0u);  // r = 0.15 < 3 - 2 sqrt 2: no P2 curves, no NaN in the manifest
+}
+
+// --eigenvalues 0 (no spectrum): the basins are computed from the matrix alone, so they must be those of a run with
+// the spectrum, to the last bit (same matrix, same solves); the outputs that need eigenvectors are left out.
+TEST(Transfer, BasinsWithoutTheSpectrumAreThoseWithIt) {
+  TransferRequest q;
+  q.r = 0.3;  // 132312 and the P2 region
+  q.boxes = "32x32";
+  q.samples = 16;
+  q.eigenvalues = 8;
+  q.measure_orbits = 2;
+  q.measure_iterations = 200;
+  q.tv_bins = 16;
+  q.cycles = {"132312"};
+  const TransferResult with = run(q);
+  q.eigenvalues = 0;
+  const TransferResult without = run(q);
+  ASSERT_EQ(with.basins.size(), 2u);
+  ASSERT_EQ(without.basins.size(), with.basins.size());
+  for (std::size_t k = 0; k < with.basins.size(); ++k) {
+    EXPECT_EQ(without.basins[k].attractor, with.basins[k].attractor);
+    EXPECT_EQ(without.basins[k].target_boxes, with.basins[k].target_boxes);
+    EXPECT_EQ(without.basins[k].fraction, with.basins[k].fraction) << with.basins[k].attractor;
+  }
+  EXPECT_EQ(without.basin_of_box, with.basin_of_box);
+  EXPECT_EQ(without.basin_probability, with.basin_probability);
+  EXPECT_EQ(without.basin_iterations, with.basin_iterations);
+  EXPECT_EQ(without.closed_classes, with.closed_classes);
+  EXPECT_EQ(without.basins_csv(), with.basins_csv());
+  // Nothing that needs an eigenvector: no eigenvalue, component, density, TV; the cycle's boxes are there.
+  EXPECT_TRUE(without.eig_re.empty());
+  EXPECT_TRUE(without.components.empty());
+  EXPECT_TRUE(without.density.empty());
+  EXPECT_EQ(without.tv_boxes, -1);
+  ASSERT_EQ(without.cycles.size(), 1u);
+  EXPECT_EQ(without.cycles[0].boxes, with.cycles[0].boxes);
+  std::vector<std::string> names;
+  for (const auto& [name, text] : without.tables()) names.push_back(name);
+  EXPECT_EQ(names, (std::vector<std::string>{"cycles.csv", "basins.csv"}));
+  const auto cyc = csv_cells(without.cycles_csv());
+  expect_numbers_or_empty(without.cycles_csv(), "cycles.csv");
+  ASSERT_EQ(cyc.size(), 2u);
+  EXPECT_EQ(cyc[1][csv_column(cyc[0], "boxes_found")], "6");
+  EXPECT_EQ(cyc[1][csv_column(cyc[0], "mass_boxes")], "");
+  EXPECT_EQ(cyc[1][csv_column(cyc[0], "radius99")], "");
+  core::Contents c;
+  without.describe(c);
+  for (const char* name : {"density", "second", "component", "eig_re", "lebesgue"}) EXPECT_EQ(c.find(name), nullptr) << name;
+  for (const char* name : {"basin", "basin_probability", "basin_fraction", "cycle_points"}) EXPECT_NE(c.find(name), nullptr) << name;
+  for (const char* name : {"tv_boxes", "near_one_count", "second_value", "cycle_1_mass_boxes"})
+    EXPECT_EQ(c.attrs.count(name), 0u) << name;
+  EXPECT_EQ(std::get<long>(c.attrs.at("eigenvalues")), 0);
 }
 
 TEST(TransferFiles, UndefinedValuesAcrossRAreEmptyCells) {

@@ -1,5 +1,7 @@
 """Ulam's transfer operator at one r: invariant density (Lebesgue projection), components, the sign structure of
-the leading real eigenvector below 1, and the spectrum in the complex plane.  Usage: transfer.py H5 SPECTRUM.csv PNG"""
+the leading real eigenvector below 1, and the spectrum in the complex plane; the basins from the Ulam graph when the
+request names attractors.  Usage: transfer.py H5 SPECTRUM.csv PNG, or transfer.py H5 PNG for a run without a
+spectrum (--eigenvalues 0: the basins' two panels alone)."""
 import csv
 import sys
 
@@ -10,6 +12,54 @@ from plotlib import attrs, save_atomic
 
 import matplotlib.pyplot as plt
 from matplotlib.colors import LogNorm, ListedColormap
+
+
+def basins_only(h5path, png):
+    """A run without a spectrum: the attractor of largest absorption probability and that probability."""
+    with h5py.File(h5path, "r") as f:
+        a = attrs(f)
+        cyc = f["cycle_points"][...] if "cycle_points" in f else np.zeros((0, 2))
+        basin = f["basin"][...]
+        basin_p = f["basin_probability"][...]
+        basin_f = f["basin_fraction"][...]
+    n1, n2 = int(a["n1"]), int(a["n2"])
+    ext = [a["lo1"], a["hi1"], a["lo2"], a["hi2"]]
+    strip = a["domain"] == "strip"
+    fig, ax = plt.subplots(1, 2, figsize=(14, 5.8), squeeze=False)
+    basin_panels(fig, ax[0, 0], ax[0, 1], a, basin, basin_p, basin_f, cyc, ext, strip)
+    fig.suptitle(f"Basins from the Ulam graph of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} "
+                 f"samples per box (no spectrum: --eigenvalues 0)")
+    fig.tight_layout()
+    save_atomic(fig, png)
+
+
+def basin_panels(fig, axb, axp, a, basin, basin_p, basin_f, cyc, ext, strip):
+    """(e) the attractor of largest absorption probability of every box; (f) that probability."""
+    nb = len(basin_f)
+    names = [str(a[f"basin_{k + 1}"]) for k in range(nb)]
+    colours = [plt.cm.tab10(k % 10) for k in range(nb)]
+    bmap = ListedColormap(["#f0f0f0"] + colours)
+    axb.imshow(basin.T, origin="lower", extent=ext, aspect="auto", cmap=bmap, vmin=-0.5, vmax=nb + 0.5,
+               interpolation="nearest")
+    for k in range(nb):
+        axb.plot([], [], "s", color=colours[k], label=f"{names[k]}: Lebesgue {basin_f[k]:.4f}")
+    axb.legend(loc="upper right", fontsize=8, title="absorbed by", title_fontsize=8)
+    axb.set_title(f"basins from the Ulam graph (unabsorbed {a['basin_unabsorbed']:.1e})")
+    im5 = axp.imshow(basin_p.T, origin="lower", extent=ext, aspect="auto", cmap="viridis", vmin=0, vmax=1,
+                     interpolation="nearest")
+    fig.colorbar(im5, ax=axp, label="largest absorption probability")
+    axp.set_title("certainty of the basin (< 1: within Ulam's blur of a boundary)")
+    for axx in (axb, axp):
+        axx.set_xlabel("atan(w1) (rad)" if strip else "theta (rad)")
+        axx.set_ylabel("w2" if strip else "phi (rad)")
+        if len(cyc):
+            axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:red", ms=7, mew=1.0)
+    if strip:
+        # the lines w1 = +-2 bounding the Lebesgue rectangle of the fractions
+        w1r = [float(x) for x in str(a["w1-range"]).split(",")]
+        for axx in (axb, axp):
+            for w in w1r:
+                axx.axvline(np.arctan(w), color="k", lw=0.6, ls="--")
 
 
 def main(h5path, spec_path, png):
@@ -102,31 +152,7 @@ def main(h5path, spec_path, png):
     ax[1, 1].legend(loc="lower left", fontsize=8)
     ax[1, 1].set_title(f"{len(re)} leading eigenvalues; {a['near_one_count']} within {a['near-one']} of 1")
     if nb:
-        # (e) basins from the Ulam graph: the attractor of largest absorption probability; (f) that probability
-        names = [str(a[f"basin_{k + 1}"]) for k in range(nb)]
-        colours = [plt.cm.tab10(k % 10) for k in range(nb)]
-        bmap = ListedColormap(["#f0f0f0"] + colours)
-        ax[0, 2].imshow(basin.T, origin="lower", extent=ext, aspect="auto", cmap=bmap, vmin=-0.5, vmax=nb + 0.5,
-                        interpolation="nearest")
-        for k in range(nb):
-            ax[0, 2].plot([], [], "s", color=colours[k], label=f"{names[k]}: Lebesgue {basin_f[k]:.4f}")
-        ax[0, 2].legend(loc="upper right", fontsize=8, title="absorbed by", title_fontsize=8)
-        ax[0, 2].set_title(f"basins from the Ulam graph (unabsorbed {a['basin_unabsorbed']:.1e})")
-        im5 = ax[1, 2].imshow(basin_p.T, origin="lower", extent=ext, aspect="auto", cmap="viridis", vmin=0, vmax=1,
-                              interpolation="nearest")
-        fig.colorbar(im5, ax=ax[1, 2], label="largest absorption probability")
-        ax[1, 2].set_title("certainty of the basin (< 1: within Ulam's blur of a boundary)")
-        for axx in (ax[0, 2], ax[1, 2]):
-            axx.set_xlabel(xl)
-            axx.set_ylabel(yl)
-            if len(cyc):
-                axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:red", ms=7, mew=1.0)
-        if strip:
-            # the lines w1 = +-2 bounding the Lebesgue rectangle of the fractions
-            w1r = [float(x) for x in str(a["w1-range"]).split(",")]
-            for axx in (ax[0, 2], ax[1, 2]):
-                for w in w1r:
-                    axx.axvline(np.arctan(w), color="k", lw=0.6, ls="--")
+        basin_panels(fig, ax[0, 2], ax[1, 2], a, basin, basin_p, basin_f, cyc, ext, strip)
     fig.suptitle(f"Ulam transfer operator of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} samples "
                  f"per box\nTV to the empirical measure {a['tv_boxes']:.3f} ({n1}x{n2} boxes) / {a['tv_coarse']:.3f} "
                  f"({a['tv-bins']}x{a['tv-bins']} bins)")
@@ -135,4 +161,7 @@ def main(h5path, spec_path, png):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    if len(sys.argv) == 3:
+        basins_only(*sys.argv[1:3])
+    else:
+        main(*sys.argv[1:4])

@@ -1,6 +1,7 @@
 // `btob transfer`: flags -> transfer::TransferRequest -> run -> spectrum.csv, components.csv, cycles.csv (when
 // cycles were asked for), basins.csv (when the request names an attractor), NAME.h5, NAME.json, NAME.png: Ulam's
-// transfer operator at one r (spectrum, invariant densities, Lebesgue projection, TV to the empirical measure).  `btob
+// transfer operator at one r (spectrum, invariant densities, Lebesgue projection, TV to the empirical measure; with
+// --eigenvalues 0 only the basins: cycles.csv, basins.csv and the files).  `btob
 // transfer-r`: flags -> transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json,
 // NAME.png: the peripheral spectrum and its gap across r.  Section 8's programme.
 #include "cli/command.hpp"
@@ -21,7 +22,10 @@ void transfer_body(const transfer::TransferRequest& req, const Output& o, const 
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_inputs("transfer.py", {o.name + ".h5", "spectrum.csv"});
+  if (!o.no_plot) {  // without a spectrum (eigenvalues 0) the figure is the basins' alone
+    if (req.spectrum()) files.plot_inputs("transfer.py", {o.name + ".h5", "spectrum.csv"});
+    else files.plot_inputs("transfer.py", {o.name + ".h5"});
+  }
   const auto written = files.commit();
   if (!o.quiet) std::cerr << res.summary() << "btob: wrote " << listing(written) << "\n";
 }

@@ -41,16 +41,19 @@ std::string num(double v) { return core::csv_number(v); }
 void TransferResult::describe(core::Contents& c) const {
   const std::vector<std::size_t> box_dims{static_cast<std::size_t>(part.n1), static_cast<std::size_t>(part.n2)};
   const std::string box_axes = "first chart coordinate, second chart coordinate";
-  c.array("density", density, box_dims, box_axes, "mass per box",
-          "sum over the components of their Lebesgue fraction times their invariant density");
-  c.array("second", second, box_dims, box_axes, "1",
-          "leading real eigenvector with 0 < lambda < 1 (real part, max |.| = 1; all 0 when there is none)");
-  c.array("component", component_of_box, box_dims, box_axes, "index",
-          "component of each box (1-based, as in components.csv), 0 for none");
-  c.array("eig_re", eig_re, {eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
-  c.array("eig_im", eig_im, {eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
-  c.array("lebesgue", lebesgue, {lebesgue.size()}, "component", "1",
-          "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
+  const bool spectrum = request.spectrum();  // eigenvalues 0: no spectrum, none of what needs eigenvectors
+  if (spectrum) {
+    c.array("density", density, box_dims, box_axes, "mass per box",
+            "sum over the components of their Lebesgue fraction times their invariant density");
+    c.array("second", second, box_dims, box_axes, "1",
+            "leading real eigenvector with 0 < lambda < 1 (real part, max |.| = 1; all 0 when there is none)");
+    c.array("component", component_of_box, box_dims, box_axes, "index",
+            "component of each box (1-based, as in components.csv), 0 for none");
+    c.array("eig_re", eig_re, {eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
+    c.array("eig_im", eig_im, {eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
+    c.array("lebesgue", lebesgue, {lebesgue.size()}, "component", "1",
+            "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
+  }
   c.array("cycle_points", cycle_points, {cycle_points.size() / 2, 2}, "cycle point, (a, b)", "rad, 1",
           "chart coordinates of every point of every requested cycle, the cycles in order");
   if (!basins.empty()) {
@@ -72,22 +75,24 @@ void TransferResult::describe(core::Contents& c) const {
   c.attr("lost_samples", static_cast<long>(lost));
   c.attr("matrix_bytes", static_cast<long>(matrix_bytes));
   c.attr("closed_classes", static_cast<long>(closed_classes));
-  c.attr("near_one_count", static_cast<long>(near_one_count));
-  c.attr("components", static_cast<long>(components.size()));
-  c.attr("unabsorbed", unabsorbed);
-  c.attr("second_value", second_value);
-  c.attr("second_block", static_cast<long>(second_block));
-  c.attr("second_positive_mass", second_positive_mass);
-  c.attr("second_negative_mass", second_negative_mass);
-  c.attr("second_positive_boxes", second_positive_boxes);
-  c.attr("second_negative_boxes", second_negative_boxes);
-  c.attr("tv_boxes", tv_boxes);
-  c.attr("tv_coarse", tv_coarse);
-  c.attr("measure_points", measure_points);
+  if (spectrum) {
+    c.attr("near_one_count", static_cast<long>(near_one_count));
+    c.attr("components", static_cast<long>(components.size()));
+    c.attr("unabsorbed", unabsorbed);
+    c.attr("second_value", second_value);
+    c.attr("second_block", static_cast<long>(second_block));
+    c.attr("second_positive_mass", second_positive_mass);
+    c.attr("second_negative_mass", second_negative_mass);
+    c.attr("second_positive_boxes", second_positive_boxes);
+    c.attr("second_negative_boxes", second_negative_boxes);
+    c.attr("tv_boxes", tv_boxes);
+    c.attr("tv_coarse", tv_coarse);
+    c.attr("measure_points", measure_points);
+  }
   // JSON has no NaN: the P2 angle is recorded only where the P2 curves exist (r >= 3 - 2 sqrt 2).
   if (const double beta = p2_rotation_angle(request.r); std::isfinite(beta)) c.attr("p2_beta", beta);
   c.attr("seconds_matrix", seconds_matrix);
-  c.attr("seconds_spectrum", seconds_spectrum);
+  if (spectrum) c.attr("seconds_spectrum", seconds_spectrum);
   c.attr("seconds", seconds_total);
   c.attr("basins", static_cast<long>(basins.size()));
   if (!basins.empty()) {
@@ -99,13 +104,17 @@ void TransferResult::describe(core::Contents& c) const {
   }
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     c.attr(fmt::format("cycle_{}", k + 1), cycles[k].word);
+    if (!spectrum) continue;
     c.attr(fmt::format("cycle_{}_mass_boxes", k + 1), cycles[k].mass_boxes);
     c.attr(fmt::format("cycle_{}_mass_neighbourhood", k + 1), cycles[k].mass_neighbourhood);
   }
   c.attr("csv_empty_cells",
-         std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
-                     "whole-matrix cross-check (check-whole); basins.csv: exact except for the P2 region "
-                     "on the strip; any empty cell: not a finite number"));
+         spectrum ? std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
+                                "whole-matrix cross-check (check-whole); basins.csv: exact except for the P2 region "
+                                "on the strip; any empty cell: not a finite number")
+                  : std::string("cycles.csv: mass_boxes through radius99_component (eigenvalues 0: no spectrum, no "
+                                "density); basins.csv: exact except for the P2 region on the strip; any empty cell: "
+                                "not a finite number"));
 }
 
 std::string TransferResult::spectrum_csv() const {
@@ -141,6 +150,10 @@ std::string TransferResult::cycles_csv() const {
   for (const CycleCheck& c : cycles) {
     long found = 0;
     for (long b : c.boxes) found += b >= 0;
+    if (!request.spectrum()) {  // no density: its columns empty
+      t.line(fmt::format("{},{},{},{},,,,,,", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(), found));
+      continue;
+    }
     t.line(fmt::format("{},{},{},{},{},{},{},{},{},{}", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(),
                        found, f6(c.mass_boxes), f6(c.mass_neighbourhood), c.component, f6(c.component_share), c.radius99,
                        c.radius99_component));
@@ -160,20 +173,33 @@ std::string TransferResult::basins_csv() const {
 
 std::string TransferResult::summary() const {
   const TransferRequest& q = request;
-  std::string s = fmt::format(
-      "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, total "
-      "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
-      "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
-      q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix, seconds_spectrum,
-      seconds_total, closed_classes, near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2, tv_coarse,
-      q.tv_bins, q.tv_bins);
-  for (std::size_t k = 0; k < components.size(); ++k)
-    s += fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,
-                     components[k].boxes, components[k].period, components[k].rho, components[k].lebesgue);
-  for (const CycleCheck& c : cycles)
-    s += fmt::format("  cycle {} ({}): mass {:.4f} on its boxes, {:.4f} on their 3x3 neighbourhoods, 99% within {} boxes; "
-                     "component {} (99% of it within {} boxes)\n",
-                     c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
+  std::string s;
+  if (!q.spectrum()) {
+    s = fmt::format("btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, total {:.2f} s; "
+                    "{} closed classes; no spectrum (eigenvalues 0): basins only\n",
+                    q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix,
+                    seconds_total, closed_classes);
+    for (const CycleCheck& c : cycles) {
+      long found = 0;
+      for (long b : c.boxes) found += b >= 0;
+      s += fmt::format("  cycle {} ({}): {} of its {} points in the chart\n", c.word, c.outcome, found, c.boxes.size());
+    }
+  } else {
+    s = fmt::format(
+        "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, total "
+        "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
+        "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
+        q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix, seconds_spectrum,
+        seconds_total, closed_classes, near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2, tv_coarse,
+        q.tv_bins, q.tv_bins);
+    for (std::size_t k = 0; k < components.size(); ++k)
+      s += fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,
+                       components[k].boxes, components[k].period, components[k].rho, components[k].lebesgue);
+    for (const CycleCheck& c : cycles)
+      s += fmt::format("  cycle {} ({}): mass {:.4f} on its boxes, {:.4f} on their 3x3 neighbourhoods, 99% within {} boxes; "
+                       "component {} (99% of it within {} boxes)\n",
+                       c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
+  }
   for (const BasinInfo& b : basins)
     s += fmt::format("  basin of {} ({}, {} target boxes): Lebesgue fraction {:.4f}{}\n", b.attractor, b.kind,
                      b.target_boxes, b.fraction,

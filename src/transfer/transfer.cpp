@@ -447,17 +447,19 @@ Domain parse_domain(const std::string& s, const char* field) {
 }
 
 namespace {
+// eigenvalues_min: 1 for transfer-r (its output is the spectrum), 0 for transfer (0: no spectrum, only the basins).
 void check_common(double r, const std::string& boxes, const std::string& domain, int samples, int eigenvalues,
-                  const std::string& route, const char* r_field) {
+                  const std::string& route, const char* r_field, int eigenvalues_min = 1) {
   if (!(r > 0 && r < 1)) throw core::InvalidField(r_field, str(r), "a restitution coefficient in the open interval (0, 1)");
   const auto [n1, n2] = parse_boxes(boxes);
   parse_domain(domain);
   if (samples < 1 || samples > kMaxSamples)
     throw core::InvalidField("samples", std::to_string(samples), fmt::format("1..{}", kMaxSamples));
   check_size(n1 * n2, samples);
-  if (eigenvalues < 1 || eigenvalues > n1 * n2)
+  if (eigenvalues < eigenvalues_min || eigenvalues > n1 * n2)
     throw core::InvalidField("eigenvalues", std::to_string(eigenvalues),
-                             fmt::format("1..{} (the number of boxes)", n1 * n2));
+                             fmt::format("{}..{} (the number of boxes{})", eigenvalues_min, n1 * n2,
+                                         eigenvalues_min == 0 ? "; 0: no spectrum, only the basins" : ""));
   if (route != "direct" && route != "kernel") throw core::InvalidField("route", "'" + route + "'", "direct or kernel");
 }
 }  // namespace
@@ -473,8 +475,16 @@ std::vector<std::string> TransferRequest::cycle_words() const {
   return words;
 }
 
+bool TransferRequest::names_an_attractor() const {
+  const double al = (1 + r) / 2;
+  if (2 - al * al / r > 0) return true;  // the P2 region R = {I < 2 - alpha^2 / r} exists
+  for (const auto& w : cycle_words())
+    if (patterns::analyse<double>(patterns::parse_word(w, "cycle"), r).outcome == patterns::Outcome::stable) return true;
+  return false;
+}
+
 void TransferRequest::validate() const {
-  check_common(r, boxes, domain, samples, eigenvalues, route, "r");
+  check_common(r, boxes, domain, samples, eigenvalues, route, "r", 0);
   if (!(near_one > 0 && near_one < 1)) throw core::InvalidField("near-one", str(near_one), "a distance in (0, 1)");
   if (w1_range.size() != 2 || !(w1_range[0] < w1_range[1]) || !std::isfinite(w1_range[0]) || !std::isfinite(w1_range[1]))
     throw core::InvalidField("w1-range", fmt::format("{} values", w1_range.size()), "two finite numbers a < b");
@@ -488,6 +498,11 @@ void TransferRequest::validate() const {
   if (tv_bins < 1 || n1 % tv_bins != 0 || n2 % tv_bins != 0)
     throw core::InvalidField("tv-bins", std::to_string(tv_bins), fmt::format("a divisor of both {} and {}", n1, n2));
   for (const auto& w : cycle_words()) patterns::parse_word(w, "cycle");
+  if (eigenvalues == 0 && check_whole)
+    throw core::InvalidField("eigenvalues", "0 with check-whole", "1 or more: the cross-check compares spectra");
+  if (eigenvalues == 0 && !names_an_attractor())
+    throw core::InvalidField("eigenvalues", fmt::format("0 at r = {} with no stable --cycle and no P2 region", str(r)),
+                             "1 or more, or an attractor for the basins (0 computes only them)");
   if (measure_orbits > 0)
     iterate::checked_bytes(static_cast<std::size_t>(measure_orbits * measure_orbits) * 2 *
                                static_cast<std::size_t>(measure_iterations),
@@ -708,7 +723,8 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   const auto t1 = std::chrono::steady_clock::now();
   const Decomposition d = decompose(P);
   res.closed_classes = static_cast<int>(d.classes.size());
-  const auto pairs = leading_eigenpairs(P, d, q.eigenvalues, true);
+  const bool spectrum = q.spectrum();
+  const auto pairs = spectrum ? leading_eigenpairs(P, d, q.eigenvalues, true) : std::vector<Eigenpair>{};
   for (const auto& e : pairs) {
     res.eig_re.push_back(e.value.real());
     res.eig_im.push_back(e.value.imag());
@@ -727,187 +743,190 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   // transient block within near_one of 1: its eigenvector's largest entry names the strongly connected
   // component, which is made absorbing for the projection).
   std::vector<std::vector<double>> dens;  // per component: its density over all boxes (for the cycle checks)
-  // Absorbers: the closed classes, then the almost-invariant transient components (a real eigenvalue of the
-  // transient block within near_one of 1: its eigenvector's largest entry names the strongly connected
-  // component, made absorbing for the projection).  absorber_of_box: 0 none, a = absorber a.
-  struct Absorber {
-    int block = 0;  // class c >= 1, or -s - 1 (transient strongly connected component s)
-    double rho = 1;
-    std::vector<long> boxes;
-    std::vector<double> density;  // on `boxes`, sum 1
-  };
-  std::vector<Absorber> absorbers;
-  std::vector<std::uint32_t> absorber_of_box(static_cast<std::size_t>(n), 0);
-  for (int k = 1; k <= res.closed_classes; ++k) {
-    Absorber ab;
-    ab.block = k;
-    for (long i = 0; i < n; ++i)
-      if (d.class_of_box[static_cast<std::size_t>(i)] == static_cast<std::uint32_t>(k)) {
-        ab.boxes.push_back(i);
-        absorber_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(absorbers.size() + 1);
-      }
-    // The class's eigenvalue-1 vector among the leading pairs (else its own solve).
-    const Eigenpair* best = nullptr;
-    for (const auto& e : pairs)
-      if (e.block == k && std::abs(e.value - 1.0) < 1e-8 && (!best || std::abs(e.value - 1.0) < std::abs(best->value - 1.0))) best = &e;
-    std::vector<double> full;
-    if (best) {
-      full.assign(static_cast<std::size_t>(n), 0);
-      double sum = 0, t = 0;
-      for (long i : ab.boxes) sum += best->vector[static_cast<std::size_t>(i)].real();
-      for (long i : ab.boxes) t += full[static_cast<std::size_t>(i)] = std::max(0.0, best->vector[static_cast<std::size_t>(i)].real() / sum);
-      for (auto& x : full) x /= t;
-    } else {
-      full = class_density(P, d, k);
-    }
-    for (long i : ab.boxes) ab.density.push_back(full[static_cast<std::size_t>(i)]);
-    absorbers.push_back(std::move(ab));
-  }
-  for (const auto& e : pairs) {
-    if (e.block != 0 || std::fabs(e.value.imag()) > 1e-12 || std::abs(e.value - 1.0) > q.near_one) continue;
-    long arg = 0;
-    for (long i = 1; i < n; ++i)
-      if (std::abs(e.vector[static_cast<std::size_t>(i)]) > std::abs(e.vector[static_cast<std::size_t>(arg)])) arg = i;
-    const int s = d.scc[static_cast<std::size_t>(arg)];
-    if (absorber_of_box[static_cast<std::size_t>(arg)] != 0) continue;  // that component is already one
-    Absorber ab;
-    ab.block = -s - 1;
-    ab.rho = e.value.real();
-    double t = 0;
-    for (long i = 0; i < n; ++i)
-      if (d.scc[static_cast<std::size_t>(i)] == s) {
-        ab.boxes.push_back(i);
-        ab.density.push_back(std::abs(e.vector[static_cast<std::size_t>(i)]));
-        t += ab.density.back();
-        absorber_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(absorbers.size() + 1);
-      }
-    for (auto& x : ab.density) x /= t;
-    absorbers.push_back(std::move(ab));
-  }
-  // Projection of Lebesgue measure, step 1: mass starting in an absorber stays there; the rest flows under the
-  // chain with the absorbers absorbing until less than 1e-13 is left (or 10^5 steps).  entry[j]: the mass that
-  // starts in or enters an absorber at box j.
-  std::vector<double> entry(static_cast<std::size_t>(n), 0);
-  {
-    const std::vector<double> mu = lebesgue(res.part, dom, q.w1_range);
-    std::vector<double> x(static_cast<std::size_t>(n), 0), y(static_cast<std::size_t>(n), 0);
-    for (long i = 0; i < n; ++i) {
-      if (absorber_of_box[static_cast<std::size_t>(i)]) entry[static_cast<std::size_t>(i)] += mu[static_cast<std::size_t>(i)];
-      else x[static_cast<std::size_t>(i)] = mu[static_cast<std::size_t>(i)];
-    }
-    double left = 0;
-    for (int it = 0; it < 100000; ++it) {
-      left = 0;
-      for (long i = 0; i < n; ++i) {
-        const double xi = x[static_cast<std::size_t>(i)];
-        if (xi == 0) continue;
-        for (int e = P.row_ptr[static_cast<std::size_t>(i)]; e < P.row_ptr[static_cast<std::size_t>(i + 1)]; ++e) {
-          const int j = P.col[static_cast<std::size_t>(e)];
-          const double m = xi * P.val[static_cast<std::size_t>(e)];
-          if (absorber_of_box[static_cast<std::size_t>(j)]) entry[static_cast<std::size_t>(j)] += m;
-          else y[static_cast<std::size_t>(j)] += m;
+  // Without a spectrum (eigenvalues 0) there are no components, no density and no eigenvector: only the basins.
+  if (spectrum) {
+    // Absorbers: the closed classes, then the almost-invariant transient components (a real eigenvalue of the
+    // transient block within near_one of 1: its eigenvector's largest entry names the strongly connected
+    // component, made absorbing for the projection).  absorber_of_box: 0 none, a = absorber a.
+    struct Absorber {
+      int block = 0;  // class c >= 1, or -s - 1 (transient strongly connected component s)
+      double rho = 1;
+      std::vector<long> boxes;
+      std::vector<double> density;  // on `boxes`, sum 1
+    };
+    std::vector<Absorber> absorbers;
+    std::vector<std::uint32_t> absorber_of_box(static_cast<std::size_t>(n), 0);
+    for (int k = 1; k <= res.closed_classes; ++k) {
+      Absorber ab;
+      ab.block = k;
+      for (long i = 0; i < n; ++i)
+        if (d.class_of_box[static_cast<std::size_t>(i)] == static_cast<std::uint32_t>(k)) {
+          ab.boxes.push_back(i);
+          absorber_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(absorbers.size() + 1);
         }
-      }
-      std::swap(x, y);
-      std::fill(y.begin(), y.end(), 0.0);
-      for (double v : x) left += v;
-      if (left < 1e-13) break;
-      if (it % 64 == 0) c.check_cancelled();
-    }
-    res.unabsorbed = left;
-  }
-  // Step 2: a closed class with several real eigenvalues in (1 - near_one, 1] holds as many almost-invariant
-  // sets (the resolution merged attractors that the map keeps apart, through boxes straddling their basins'
-  // boundaries): PCCA+ on its right eigenvectors (P h = lambda h) gives memberships chi; a part receives the mass
-  // entering the class weighted by chi, and its density is the class's density weighted by chi.
-  res.component_of_box.assign(static_cast<std::size_t>(n), 0);
-  res.density.assign(static_cast<std::size_t>(n), 0);
-  const double h1 = (res.part.hi1 - res.part.lo1) / static_cast<double>(n1), h2 = (res.part.hi2 - res.part.lo2) / static_cast<double>(n2);
-  for (const auto& ab : absorbers) {
-    std::vector<double> values;  // the near-one real eigenvalues of this absorber (classes only)
-    if (ab.block > 0)
+      // The class's eigenvalue-1 vector among the leading pairs (else its own solve).
+      const Eigenpair* best = nullptr;
       for (const auto& e : pairs)
-        if (e.block == ab.block && std::fabs(e.value.imag()) < 1e-12 && e.value.real() > 1 - q.near_one)
-          values.push_back(e.value.real());
-    Eigen::MatrixXd chi = Eigen::MatrixXd::Ones(static_cast<long>(ab.boxes.size()), 1);
-    if (values.size() >= 2) {
-      const ColMat A = block_transpose(P, ab.boxes);
-      const ColMat Q = A.transpose();
-      const int p = static_cast<int>(values.size());
-      auto right = block_eigenpairs(Q, p + 2, true, 600, Spectra::SortRule::LargestReal);
-      std::stable_sort(right.begin(), right.end(), [](const LocalPair& x, const LocalPair& y) { return x.value.real() > y.value.real(); });
-      Eigen::MatrixXd H(static_cast<long>(ab.boxes.size()), p);
-      int got = 0;
-      for (const auto& r : right)
-        if (got < p && std::fabs(r.value.imag()) < 1e-12) H.col(got++) = r.vector.real();
-      if (got == p) chi = pcca(H);
-    }
-    for (long part = 0; part < chi.cols(); ++part) {
-      ComponentInfo ci;
-      ci.block = ab.block;
-      ci.rho = ab.rho;
-      ci.period = ab.block > 0 && chi.cols() == 1 ? d.classes[static_cast<std::size_t>(ab.block - 1)].period : 1;
-      double frac = 0, t = 0;
-      std::vector<double> w(ab.boxes.size());
-      for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
-        const double x = std::clamp(chi(static_cast<long>(j), part), 0.0, 1.0);  // PCCA+ rows may overshoot [0, 1] slightly
-        frac += entry[static_cast<std::size_t>(ab.boxes[j])] * x;
-        t += w[j] = ab.density[j] * x;
+        if (e.block == k && std::abs(e.value - 1.0) < 1e-8 && (!best || std::abs(e.value - 1.0) < std::abs(best->value - 1.0))) best = &e;
+      std::vector<double> full;
+      if (best) {
+        full.assign(static_cast<std::size_t>(n), 0);
+        double sum = 0, t = 0;
+        for (long i : ab.boxes) sum += best->vector[static_cast<std::size_t>(i)].real();
+        for (long i : ab.boxes) t += full[static_cast<std::size_t>(i)] = std::max(0.0, best->vector[static_cast<std::size_t>(i)].real() / sum);
+        for (auto& x : full) x /= t;
+      } else {
+        full = class_density(P, d, k);
       }
-      ci.lebesgue = frac;
-      if (chi.cols() > 1) {
-        // Metastability of the part: the chance of staying in it for one step, averaged over its density
-        // (sum_i w_i sum_j P_ij chi_j / sum_i w_i, chi extended by 0 outside the class).
-        std::vector<double> chi_full(static_cast<std::size_t>(n), 0);
-        for (std::size_t j = 0; j < ab.boxes.size(); ++j)
-          chi_full[static_cast<std::size_t>(ab.boxes[j])] = std::clamp(chi(static_cast<long>(j), part), 0.0, 1.0);
-        double stay = 0;
+      for (long i : ab.boxes) ab.density.push_back(full[static_cast<std::size_t>(i)]);
+      absorbers.push_back(std::move(ab));
+    }
+    for (const auto& e : pairs) {
+      if (e.block != 0 || std::fabs(e.value.imag()) > 1e-12 || std::abs(e.value - 1.0) > q.near_one) continue;
+      long arg = 0;
+      for (long i = 1; i < n; ++i)
+        if (std::abs(e.vector[static_cast<std::size_t>(i)]) > std::abs(e.vector[static_cast<std::size_t>(arg)])) arg = i;
+      const int s = d.scc[static_cast<std::size_t>(arg)];
+      if (absorber_of_box[static_cast<std::size_t>(arg)] != 0) continue;  // that component is already one
+      Absorber ab;
+      ab.block = -s - 1;
+      ab.rho = e.value.real();
+      double t = 0;
+      for (long i = 0; i < n; ++i)
+        if (d.scc[static_cast<std::size_t>(i)] == s) {
+          ab.boxes.push_back(i);
+          ab.density.push_back(std::abs(e.vector[static_cast<std::size_t>(i)]));
+          t += ab.density.back();
+          absorber_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(absorbers.size() + 1);
+        }
+      for (auto& x : ab.density) x /= t;
+      absorbers.push_back(std::move(ab));
+    }
+    // Projection of Lebesgue measure, step 1: mass starting in an absorber stays there; the rest flows under the
+    // chain with the absorbers absorbing until less than 1e-13 is left (or 10^5 steps).  entry[j]: the mass that
+    // starts in or enters an absorber at box j.
+    std::vector<double> entry(static_cast<std::size_t>(n), 0);
+    {
+      const std::vector<double> mu = lebesgue(res.part, dom, q.w1_range);
+      std::vector<double> x(static_cast<std::size_t>(n), 0), y(static_cast<std::size_t>(n), 0);
+      for (long i = 0; i < n; ++i) {
+        if (absorber_of_box[static_cast<std::size_t>(i)]) entry[static_cast<std::size_t>(i)] += mu[static_cast<std::size_t>(i)];
+        else x[static_cast<std::size_t>(i)] = mu[static_cast<std::size_t>(i)];
+      }
+      double left = 0;
+      for (int it = 0; it < 100000; ++it) {
+        left = 0;
+        for (long i = 0; i < n; ++i) {
+          const double xi = x[static_cast<std::size_t>(i)];
+          if (xi == 0) continue;
+          for (int e = P.row_ptr[static_cast<std::size_t>(i)]; e < P.row_ptr[static_cast<std::size_t>(i + 1)]; ++e) {
+            const int j = P.col[static_cast<std::size_t>(e)];
+            const double m = xi * P.val[static_cast<std::size_t>(e)];
+            if (absorber_of_box[static_cast<std::size_t>(j)]) entry[static_cast<std::size_t>(j)] += m;
+            else y[static_cast<std::size_t>(j)] += m;
+          }
+        }
+        std::swap(x, y);
+        std::fill(y.begin(), y.end(), 0.0);
+        for (double v : x) left += v;
+        if (left < 1e-13) break;
+        if (it % 64 == 0) c.check_cancelled();
+      }
+      res.unabsorbed = left;
+    }
+    // Step 2: a closed class with several real eigenvalues in (1 - near_one, 1] holds as many almost-invariant
+    // sets (the resolution merged attractors that the map keeps apart, through boxes straddling their basins'
+    // boundaries): PCCA+ on its right eigenvectors (P h = lambda h) gives memberships chi; a part receives the mass
+    // entering the class weighted by chi, and its density is the class's density weighted by chi.
+    res.component_of_box.assign(static_cast<std::size_t>(n), 0);
+    res.density.assign(static_cast<std::size_t>(n), 0);
+    const double h1 = (res.part.hi1 - res.part.lo1) / static_cast<double>(n1), h2 = (res.part.hi2 - res.part.lo2) / static_cast<double>(n2);
+    for (const auto& ab : absorbers) {
+      std::vector<double> values;  // the near-one real eigenvalues of this absorber (classes only)
+      if (ab.block > 0)
+        for (const auto& e : pairs)
+          if (e.block == ab.block && std::fabs(e.value.imag()) < 1e-12 && e.value.real() > 1 - q.near_one)
+            values.push_back(e.value.real());
+      Eigen::MatrixXd chi = Eigen::MatrixXd::Ones(static_cast<long>(ab.boxes.size()), 1);
+      if (values.size() >= 2) {
+        const ColMat A = block_transpose(P, ab.boxes);
+        const ColMat Q = A.transpose();
+        const int p = static_cast<int>(values.size());
+        auto right = block_eigenpairs(Q, p + 2, true, 600, Spectra::SortRule::LargestReal);
+        std::stable_sort(right.begin(), right.end(), [](const LocalPair& x, const LocalPair& y) { return x.value.real() > y.value.real(); });
+        Eigen::MatrixXd H(static_cast<long>(ab.boxes.size()), p);
+        int got = 0;
+        for (const auto& r : right)
+          if (got < p && std::fabs(r.value.imag()) < 1e-12) H.col(got++) = r.vector.real();
+        if (got == p) chi = pcca(H);
+      }
+      for (long part = 0; part < chi.cols(); ++part) {
+        ComponentInfo ci;
+        ci.block = ab.block;
+        ci.rho = ab.rho;
+        ci.period = ab.block > 0 && chi.cols() == 1 ? d.classes[static_cast<std::size_t>(ab.block - 1)].period : 1;
+        double frac = 0, t = 0;
+        std::vector<double> w(ab.boxes.size());
+        for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
+          const double x = std::clamp(chi(static_cast<long>(j), part), 0.0, 1.0);  // PCCA+ rows may overshoot [0, 1] slightly
+          frac += entry[static_cast<std::size_t>(ab.boxes[j])] * x;
+          t += w[j] = ab.density[j] * x;
+        }
+        ci.lebesgue = frac;
+        if (chi.cols() > 1) {
+          // Metastability of the part: the chance of staying in it for one step, averaged over its density
+          // (sum_i w_i sum_j P_ij chi_j / sum_i w_i, chi extended by 0 outside the class).
+          std::vector<double> chi_full(static_cast<std::size_t>(n), 0);
+          for (std::size_t j = 0; j < ab.boxes.size(); ++j)
+            chi_full[static_cast<std::size_t>(ab.boxes[j])] = std::clamp(chi(static_cast<long>(j), part), 0.0, 1.0);
+          double stay = 0;
+          for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
+            const long i = ab.boxes[j];
+            double pc = 0;
+            for (int e = P.row_ptr[static_cast<std::size_t>(i)]; e < P.row_ptr[static_cast<std::size_t>(i + 1)]; ++e)
+              pc += P.val[static_cast<std::size_t>(e)] * chi_full[static_cast<std::size_t>(P.col[static_cast<std::size_t>(e)])];
+            stay += w[j] * pc;
+          }
+          ci.rho = t > 0 ? stay / t : 0;
+        }
+        double ca = 0, cb = 0;
+        std::vector<double> full(static_cast<std::size_t>(n), 0);
         for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
           const long i = ab.boxes[j];
-          double pc = 0;
-          for (int e = P.row_ptr[static_cast<std::size_t>(i)]; e < P.row_ptr[static_cast<std::size_t>(i + 1)]; ++e)
-            pc += P.val[static_cast<std::size_t>(e)] * chi_full[static_cast<std::size_t>(P.col[static_cast<std::size_t>(e)])];
-          stay += w[j] * pc;
+          const double wn = t > 0 ? w[j] / t : 0;
+          full[static_cast<std::size_t>(i)] = wn;
+          res.density[static_cast<std::size_t>(i)] += frac * wn;
+          ca += wn * (res.part.lo1 + (static_cast<double>(i / n2) + 0.5) * h1);
+          cb += wn * (res.part.lo2 + (static_cast<double>(i % n2) + 0.5) * h2);
+          long arg = 0;
+          for (long k = 1; k < chi.cols(); ++k)
+            if (chi(static_cast<long>(j), k) > chi(static_cast<long>(j), arg)) arg = k;
+          ci.boxes += arg == part;
+          if (arg == part) res.component_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(res.components.size() + 1);
         }
-        ci.rho = t > 0 ? stay / t : 0;
+        ci.centre = {ca, cb};
+        res.components.push_back(ci);
+        dens.push_back(std::move(full));
       }
-      double ca = 0, cb = 0;
-      std::vector<double> full(static_cast<std::size_t>(n), 0);
-      for (std::size_t j = 0; j < ab.boxes.size(); ++j) {
-        const long i = ab.boxes[j];
-        const double wn = t > 0 ? w[j] / t : 0;
-        full[static_cast<std::size_t>(i)] = wn;
-        res.density[static_cast<std::size_t>(i)] += frac * wn;
-        ca += wn * (res.part.lo1 + (static_cast<double>(i / n2) + 0.5) * h1);
-        cb += wn * (res.part.lo2 + (static_cast<double>(i % n2) + 0.5) * h2);
-        long arg = 0;
-        for (long k = 1; k < chi.cols(); ++k)
-          if (chi(static_cast<long>(j), k) > chi(static_cast<long>(j), arg)) arg = k;
-        ci.boxes += arg == part;
-        if (arg == part) res.component_of_box[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(res.components.size() + 1);
+    }
+    // Almost-invariant sets: the leading real eigenvalue in (0, 1 - 1e-9) and the sign structure of its vector.
+    for (const auto& e : pairs) {
+      if (std::fabs(e.value.imag()) > 1e-12 || !(e.value.real() > 0 && e.value.real() < 1 - 1e-9)) continue;
+      res.second_value = e.value.real();
+      res.second_block = e.block;
+      res.second.assign(static_cast<std::size_t>(n), 0);
+      double mx = 0, pos = 0, neg = 0;
+      for (long i = 0; i < n; ++i) mx = std::max(mx, std::fabs(e.vector[static_cast<std::size_t>(i)].real()));
+      for (long i = 0; i < n; ++i) {
+        const double v = mx > 0 ? e.vector[static_cast<std::size_t>(i)].real() / mx : 0;
+        res.second[static_cast<std::size_t>(i)] = v;
+        // Entries below 1e-9 of the maximum are round-off of the eigensolver: no sign.
+        if (v > 1e-9) pos += v, ++res.second_positive_boxes;
+        else if (v < -1e-9) neg -= v, ++res.second_negative_boxes;
       }
-      ci.centre = {ca, cb};
-      res.components.push_back(ci);
-      dens.push_back(std::move(full));
+      if (pos + neg > 0) res.second_positive_mass = pos / (pos + neg), res.second_negative_mass = neg / (pos + neg);
+      break;
     }
-  }
-  // Almost-invariant sets: the leading real eigenvalue in (0, 1 - 1e-9) and the sign structure of its vector.
-  for (const auto& e : pairs) {
-    if (std::fabs(e.value.imag()) > 1e-12 || !(e.value.real() > 0 && e.value.real() < 1 - 1e-9)) continue;
-    res.second_value = e.value.real();
-    res.second_block = e.block;
-    res.second.assign(static_cast<std::size_t>(n), 0);
-    double mx = 0, pos = 0, neg = 0;
-    for (long i = 0; i < n; ++i) mx = std::max(mx, std::fabs(e.vector[static_cast<std::size_t>(i)].real()));
-    for (long i = 0; i < n; ++i) {
-      const double v = mx > 0 ? e.vector[static_cast<std::size_t>(i)].real() / mx : 0;
-      res.second[static_cast<std::size_t>(i)] = v;
-      // Entries below 1e-9 of the maximum are round-off of the eigensolver: no sign.
-      if (v > 1e-9) pos += v, ++res.second_positive_boxes;
-      else if (v < -1e-9) neg -= v, ++res.second_negative_boxes;
-    }
-    if (pos + neg > 0) res.second_positive_mass = pos / (pos + neg), res.second_negative_mass = neg / (pos + neg);
-    break;
   }
   // Cycles: the boxes of the exact periodic points and the mass around them.
   for (const auto& w : q.cycle_words()) {
@@ -930,6 +949,11 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
         for (long d2 = -1; d2 <= 1; ++d2)
           if (i1 + d1 >= 0 && i1 + d1 < n1 && i2 + d2 >= 0 && i2 + d2 < n2)
             nb[static_cast<std::size_t>((i1 + d1) * n2 + i2 + d2)] = 1;
+    }
+    if (!spectrum) {  // no density: the masses and radii are undefined (empty cells of cycles.csv)
+      cc.mass_boxes = cc.mass_neighbourhood = cc.component_share = std::numeric_limits<double>::quiet_NaN();
+      res.cycles.push_back(std::move(cc));
+      continue;
     }
     double tot = 0;
     for (double x : res.density) tot += x;
@@ -974,7 +998,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     c.check_cancelled();
   }
   // The empirical measure of `btob measure` (stats module) from an NxN grid of the same Lebesgue rectangle.
-  if (q.measure_orbits > 0) {
+  if (q.measure_orbits > 0 && spectrum) {  // (nothing to compare it with without the density)
     const int g = q.measure_orbits;
     std::vector<core::Vec3<double>> u0;
     if (dom == Domain::strip) u0 = iterate::strip_grid(g, g, q.w1_range[0], q.w1_range[1]);
@@ -1004,7 +1028,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   }
   // The arrays of the HDF5 file: "second" all 0 when there is no such eigenvalue, the Lebesgue fractions, the
   // (a, b) of every cycle point.
-  if (res.second.empty()) res.second.assign(res.density.size(), 0);
+  if (res.second.empty() && spectrum) res.second.assign(res.density.size(), 0);
   for (const auto& ci : res.components) res.lebesgue.push_back(ci.lebesgue);
   for (const auto& cc : res.cycles)
     for (std::size_t k = 0; k < cc.a.size(); ++k) res.cycle_points.push_back(cc.a[k]), res.cycle_points.push_back(cc.b[k]);

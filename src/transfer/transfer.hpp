@@ -106,7 +106,10 @@ struct TransferRequest {
   std::string boxes = "256x256";    // NxM boxes (N in the first chart coordinate), N, M >= 1
   std::string domain = "strip";     // strip | angles
   int samples = 64;                 // sample points per box, 1..65536
-  int eigenvalues = 16;             // K leading eigenvalues reported, 1 .. number of boxes
+  // K leading eigenvalues reported, 1 .. number of boxes; 0: no spectrum, only the basins from the Ulam graph (the
+  // outputs that need eigenvectors are left out: spectrum.csv, components.csv, the density, the Lebesgue projection,
+  // the cycles' masses, the TV distance); allowed when the request names an attractor and check_whole is off.
+  int eigenvalues = 16;
   std::string route = "direct";     // direct | kernel (how sample images are computed)
   double near_one = 1e-2;           // distance to 1 of the eigenvalues counted as ergodic components
   // Lebesgue measure projected on the eigenvectors: the rectangle w1 in [a, b] x w2 in [-1, 1] of the strip
@@ -122,13 +125,16 @@ struct TransferRequest {
   bool check_whole = false;         // also run Spectra on the whole matrix (cross-check; doubles the time)
   // The words of `cycles`, in order: an item holding commas gives several (--cycle 1322,3122,132^3312^3).
   std::vector<std::string> cycle_words() const;
+  // Whether the basins have a target: the P2 region exists at r (r > 3 - 2 sqrt 2) or a cycle word is stable at r.
+  bool names_an_attractor() const;
+  bool spectrum() const { return eigenvalues > 0; }
   void validate() const;            // throws core::InvalidField
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)");
     v("boxes", boxes, "NxM boxes of the chart, N, M >= 1");
     v("domain", domain, "strip (atan w1, w2) or angles (theta, phi)");
     v("samples", samples, "sample points per box, 1..65536");
-    v("eigenvalues", eigenvalues, "K leading eigenvalues, 1..boxes");
+    v("eigenvalues", eigenvalues, "K leading eigenvalues, 1..boxes; 0: no spectrum, only the basins");
     v("route", route, "direct (core step) or kernel (batched SIMD kernel)");
     v("near-one", near_one, "eigenvalues within this distance of 1 count as components, (0, 1)");
     v("w1-range", w1_range, "w1 range a,b of the Lebesgue rectangle projected on the eigenvectors");
@@ -225,12 +231,14 @@ struct TransferResult {
   // What `btob transfer` writes (output.cpp).  Arrays density, second, component, eig_re, eig_im, lebesgue,
   // cycle_points; attributes: the request's fields under their flag names, the partition, the summary numbers.
   void describe(core::Contents& c) const;
+  // Without a spectrum (eigenvalues 0) the tables are cycles.csv (its density columns empty) and basins.csv only.
   std::string spectrum_csv() const;    // k,re,im,modulus,block,whole_re,whole_im,whole_modulus (whole_*: check-whole)
   std::string components_csv() const;  // component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2
   std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
   std::string basins_csv() const;      // attractor,kind,target_boxes,fraction,exact; "" when there is no target
   core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some)
-    core::Tables t{{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
+    core::Tables t;
+    if (request.spectrum()) t = {{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
     if (!cycles.empty()) t.emplace_back("cycles.csv", cycles_csv());
     if (!basins.empty()) t.emplace_back("basins.csv", basins_csv());
     return t;
