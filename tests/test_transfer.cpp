@@ -398,6 +398,10 @@ TEST(Transfer, BasinsWithoutTheSpectrumAreThoseWithIt) {
   EXPECT_EQ(without.tv_boxes, -1);
   ASSERT_EQ(without.cycles.size(), 1u);
   EXPECT_EQ(without.cycles[0].boxes, with.cycles[0].boxes);
+  // The closed class holding the cycle's boxes is the component whose invariant density the spectrum puts on them.
+  ASSERT_EQ(without.classes.size(), static_cast<std::size_t>(with.closed_classes));
+  EXPECT_GE(without.cycles[0].component, 1);
+  EXPECT_EQ(without.cycles[0].component, with.cycles[0].component);
   std::vector<std::string> names;
   for (const auto& [name, text] : without.tables()) names.push_back(name);
   EXPECT_EQ(names, (std::vector<std::string>{"cycles.csv", "basins.csv"}));
@@ -406,6 +410,7 @@ TEST(Transfer, BasinsWithoutTheSpectrumAreThoseWithIt) {
   ASSERT_EQ(cyc.size(), 2u);
   EXPECT_EQ(cyc[1][csv_column(cyc[0], "boxes_found")], "6");
   EXPECT_EQ(cyc[1][csv_column(cyc[0], "mass_boxes")], "");
+  EXPECT_EQ(cyc[1][csv_column(cyc[0], "component")], std::to_string(without.cycles[0].component));
   EXPECT_EQ(cyc[1][csv_column(cyc[0], "radius99")], "");
   core::Contents c;
   without.describe(c);

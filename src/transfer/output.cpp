@@ -75,6 +75,10 @@ void TransferResult::describe(core::Contents& c) const {
   c.attr("lost_samples", static_cast<long>(lost));
   c.attr("matrix_bytes", static_cast<long>(matrix_bytes));
   c.attr("closed_classes", static_cast<long>(closed_classes));
+  for (std::size_t k = 0; k < classes.size(); ++k) {
+    c.attr(fmt::format("closed_class_{}_boxes", k + 1), classes[k].boxes);
+    c.attr(fmt::format("closed_class_{}_period", k + 1), static_cast<long>(classes[k].period));
+  }
   if (spectrum) {
     c.attr("near_one_count", static_cast<long>(near_one_count));
     c.attr("components", static_cast<long>(components.size()));
@@ -112,8 +116,9 @@ void TransferResult::describe(core::Contents& c) const {
          spectrum ? std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
                                 "whole-matrix cross-check (check-whole); basins.csv: exact except for the P2 region "
                                 "on the strip; any empty cell: not a finite number")
-                  : std::string("cycles.csv: mass_boxes through radius99_component (eigenvalues 0: no spectrum, no "
-                                "density); basins.csv: exact except for the P2 region on the strip; any empty cell: "
+                  : std::string("cycles.csv: mass_boxes, mass_neighbourhood, component_share, radius99 and "
+                                "radius99_component (eigenvalues 0: no spectrum, no density; component is then the "
+                                "closed class holding every box of the cycle, 0 for none); basins.csv: exact except for the P2 region on the strip; any empty cell: "
                                 "not a finite number"));
 }
 
@@ -150,8 +155,9 @@ std::string TransferResult::cycles_csv() const {
   for (const CycleCheck& c : cycles) {
     long found = 0;
     for (long b : c.boxes) found += b >= 0;
-    if (!request.spectrum()) {  // no density: its columns empty
-      t.line(fmt::format("{},{},{},{},,,,,,", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(), found));
+    if (!request.spectrum()) {  // no density: its columns empty; component: the closed class holding the cycle
+      t.line(fmt::format("{},{},{},{},,,{},,,", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(), found,
+                         c.component));
       continue;
     }
     t.line(fmt::format("{},{},{},{},{},{},{},{},{},{}", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(),
@@ -179,10 +185,14 @@ std::string TransferResult::summary() const {
                     "{} closed classes; no spectrum (eigenvalues 0): basins only\n",
                     q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix,
                     seconds_total, closed_classes);
+    for (std::size_t k = 0; k < classes.size(); ++k)
+      s += fmt::format("  closed class {}: {} boxes, period {}\n", k + 1, classes[k].boxes, classes[k].period);
     for (const CycleCheck& c : cycles) {
       long found = 0;
       for (long b : c.boxes) found += b >= 0;
-      s += fmt::format("  cycle {} ({}): {} of its {} points in the chart\n", c.word, c.outcome, found, c.boxes.size());
+      s += fmt::format("  cycle {} ({}): {} of its {} points in the chart; {}\n", c.word, c.outcome, found, c.boxes.size(),
+                       c.component > 0 ? fmt::format("every one in closed class {}", c.component)
+                                       : std::string("not within one closed class"));
     }
   } else {
     s = fmt::format(

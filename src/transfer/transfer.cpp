@@ -723,6 +723,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   const auto t1 = std::chrono::steady_clock::now();
   const Decomposition d = decompose(P);
   res.closed_classes = static_cast<int>(d.classes.size());
+  res.classes = d.classes;
   const bool spectrum = q.spectrum();
   const auto pairs = spectrum ? leading_eigenpairs(P, d, q.eigenvalues, true) : std::vector<Eigenpair>{};
   for (const auto& e : pairs) {
@@ -952,6 +953,17 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     }
     if (!spectrum) {  // no density: the masses and radii are undefined (empty cells of cycles.csv)
       cc.mass_boxes = cc.mass_neighbourhood = cc.component_share = std::numeric_limits<double>::quiet_NaN();
+      // The closed class holding the cycle: a closed class is invariant, so its stationary density (eigenvalue 1) is
+      // supported on it; one class per sink is one eigenvalue 1 per sink.
+      std::uint32_t cls = 0;
+      bool one = true;
+      for (long b : cc.boxes) {
+        if (b < 0) continue;
+        const std::uint32_t k = d.class_of_box[static_cast<std::size_t>(b)];
+        if (k == 0 || (cls != 0 && k != cls)) one = false;
+        cls = k;
+      }
+      cc.component = one ? static_cast<int>(cls) : 0;
       res.cycles.push_back(std::move(cc));
       continue;
     }

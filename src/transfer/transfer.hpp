@@ -169,7 +169,9 @@ struct CycleCheck {
   // density (of the whole density, and of the hosting component's density): for a sink, Ulam's smearing spreads
   // its mass over a number of boxes that does not shrink with h, so R stays bounded and R h -> 0.
   long radius99 = -1, radius99_component = -1;
-  int component = 0;               // component (1-based) whose density puts most mass on the neighbourhoods
+  // Component (1-based) whose density puts most mass on the neighbourhoods; without a spectrum, the closed class
+  // that holds every box of the cycle (0: none, or boxes in several or in the transient block).
+  int component = 0;
   double component_share = 0;      // that component's own density mass on the neighbourhoods
 };
 
@@ -198,6 +200,7 @@ struct TransferResult {
   std::vector<int> eig_block;          // their blocks (0 transient, c closed class)
   std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
   int closed_classes = 0;
+  std::vector<ClassInfo> classes;      // the closed classes' sizes and periods (class c = classes[c - 1])
   int near_one_count = 0;              // eigenvalues with |lambda - 1| <= near_one
   std::vector<ComponentInfo> components;  // closed classes, then almost-invariant transient components
   std::vector<std::uint32_t> component_of_box;  // n1 x n2 row-major, 0 none, k = components[k - 1]
