@@ -56,30 +56,23 @@ template <class T> void BM_batched(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
 }
 
-// The whole Figure 4.1 computation: 5000 iterations, the last 100 binned into the density image.
-template <class T> void BM_fig41_density(benchmark::State& st) {
+// The whole Figure 4.1 computation: 5000 iterations, the last 100 binned into the density image (Density = true), or
+// the same workload keeping only the final state: the plain iteration it is compared with (issue 17: within 10%).
+template <class T, bool Density> void BM_fig41(benchmark::State& st) {
   const Ensemble e = fig41(st.range(0));
   const long iters = st.range(1);
   RunOptions opt;
   opt.threads = static_cast<int>(st.range(2));
   for (auto _ : st) {
-    DensityRecorder rec(Coord::theta, e, iters, 100, 800, 0.0, 1.5707963267948966, opt.threads);
-    run<T>(e, iters, rec, opt);
-    benchmark::DoNotOptimize(rec.merge().data());
-  }
-  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
-}
-
-// The same workload without the image: the plain iteration it is compared with (issue 17: within 10%).
-template <class T> void BM_fig41_plain(benchmark::State& st) {
-  const Ensemble e = fig41(st.range(0));
-  const long iters = st.range(1);
-  RunOptions opt;
-  opt.threads = static_cast<int>(st.range(2));
-  for (auto _ : st) {
-    FinalRecorder rec(e.orbits(), iters);
-    run<T>(e, iters, rec, opt);
-    benchmark::DoNotOptimize(rec.out.data());
+    if constexpr (Density) {
+      DensityRecorder rec(Coord::theta, e, iters, 100, 800, 0.0, 1.5707963267948966, opt.threads);
+      run<T>(e, iters, rec, opt);
+      benchmark::DoNotOptimize(rec.merge().data());
+    } else {
+      FinalRecorder rec(e.orbits(), iters);
+      run<T>(e, iters, rec, opt);
+      benchmark::DoNotOptimize(rec.out.data());
+    }
   }
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
 }
@@ -126,11 +119,11 @@ BENCHMARK(BM_scalar_loop<float>)->Name("scalar_loop/float")->Args({50, 5000})->U
 BENCHMARK(BM_batched<double>)->Name("batched/double")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_batched<float>)->Name("batched/float")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 // The full Figure 4.1 workload (5000 r, 8e8 map iterations) with the density recorder.
-BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41_density<float>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41_plain<double>)->Name("fig41_plain/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41_density<double>)->Name("fig41_density/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41_plain<double>)->Name("fig41_plain/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, true>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<float, true>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, false>)->Name("fig41_plain/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, true>)->Name("fig41_density/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, false>)->Name("fig41_plain/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
 // Wider precisions: batched 1 and 2 threads, scalar loop.
 BENCHMARK(BM_batched<long double>)->Name("batched/long-double")->Args({20, 2000, 1, 0})->Args({20, 2000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_batched<btob::core::float128>)->Name("batched/float128")->Args({4, 1000, 1, 0})->Args({4, 1000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -141,7 +134,7 @@ BENCHMARK(BM_scalar_loop<btob::core::mpfr_float>)->Name("scalar_loop/mpfr")->Arg
 // Smoke runs for CTest (tiny sizes).
 BENCHMARK(BM_scalar_loop<double>)->Name("smoke/scalar_loop")->Args({2, 50});
 BENCHMARK(BM_batched<double>)->Name("smoke/batched")->Args({2, 50, 2})->UseRealTime();
-BENCHMARK(BM_fig41_density<float>)->Name("smoke/density")->Args({2, 200, 2})->UseRealTime();
+BENCHMARK(BM_fig41<float, true>)->Name("smoke/density")->Args({2, 200, 2})->UseRealTime();
 
 int main(int argc, char** argv) {
   benchmark::AddCustomContext("cpu_vendor", cpuinfo_field("vendor_id"));
