@@ -31,9 +31,10 @@ elseif(NOT BTOB_KERNEL_ARCH STREQUAL "generic")
   message(FATAL_ERROR "BTOB_KERNEL_ARCH must be native or generic, got '${BTOB_KERNEL_ARCH}'")
 endif()
 
-# btob_kernel_sources(<target> <file>...): compile these files with the kernel flags.
+# btob_kernel_sources(<target> <file>...): compile these files with the kernel flags (and without the target's
+# precompiled header, built without them: cmake/PrecompiledHeaders.cmake).
 function(btob_kernel_sources target)
   target_sources(${target} PRIVATE ${ARGN})
   set_source_files_properties(${ARGN} TARGET_DIRECTORY ${target}
-                              PROPERTIES COMPILE_OPTIONS "${BTOB_KERNEL_FLAGS}")
+                              PROPERTIES COMPILE_OPTIONS "${BTOB_KERNEL_FLAGS}" SKIP_PRECOMPILE_HEADERS ON)
 endfunction()
