@@ -74,7 +74,7 @@ void TransferResult::describe(core::Contents& c) const {
   c.attr("nnz", nnz);
   c.attr("lost_samples", static_cast<long>(lost));
   c.attr("matrix_bytes", static_cast<long>(matrix_bytes));
-  c.attr("closed_classes", static_cast<long>(closed_classes));
+  c.attr("closed_classes", static_cast<long>(closed_classes()));
   for (std::size_t k = 0; k < classes.size(); ++k) {
     c.attr(fmt::format("closed_class_{}_boxes", k + 1), classes[k].boxes);
     c.attr(fmt::format("closed_class_{}_period", k + 1), static_cast<long>(classes[k].period));
@@ -184,7 +184,7 @@ std::string TransferResult::summary() const {
     s = fmt::format("btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, total {:.2f} s; "
                     "{} closed classes; no spectrum (eigenvalues 0): basins only\n",
                     q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix,
-                    seconds_total, closed_classes);
+                    seconds_total, closed_classes());
     for (std::size_t k = 0; k < classes.size(); ++k)
       s += fmt::format("  closed class {}: {} boxes, period {}\n", k + 1, classes[k].boxes, classes[k].period);
     for (const CycleCheck& c : cycles) {
@@ -200,7 +200,7 @@ std::string TransferResult::summary() const {
         "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
         "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
         q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix, seconds_spectrum,
-        seconds_total, closed_classes, near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2, tv_coarse,
+        seconds_total, closed_classes(), near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2, tv_coarse,
         q.tv_bins, q.tv_bins);
     for (std::size_t k = 0; k < components.size(); ++k)
       s += fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,

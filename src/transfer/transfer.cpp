@@ -403,6 +403,15 @@ double p2_rotation_angle(double r) {
   return c >= -1 ? std::acos(c) : std::numeric_limits<double>::quiet_NaN();
 }
 
+// The level c = 2 - alpha^2 / r of the P2 region R = {I < c} (I the conserved quantity of P2): R exists iff c > 0
+// (r > 3 - 2 sqrt 2).
+namespace {
+double p2_level(double r) {
+  const double al = (1 + r) / 2;
+  return 2 - al * al / r;
+}
+}  // namespace
+
 // ---- Requests ---------------------------------------------------------------------------------------------
 namespace {
 std::string str(double v) { return fmt::format("{}", v); }
@@ -476,8 +485,7 @@ std::vector<std::string> TransferRequest::cycle_words() const {
 }
 
 bool TransferRequest::names_an_attractor() const {
-  const double al = (1 + r) / 2;
-  if (2 - al * al / r > 0) return true;  // the P2 region R = {I < 2 - alpha^2 / r} exists
+  if (p2_level(r) > 0) return true;  // the P2 region exists
   for (const auto& w : cycle_words())
     if (patterns::analyse<double>(patterns::parse_word(w, "cycle"), r).outcome == patterns::Outcome::stable) return true;
   return false;
@@ -545,7 +553,7 @@ std::vector<double> lebesgue(const Partition& p, Domain d, const std::vector<dou
 // sqrt(8 c - (32 r - 16 alpha^2) w1^2) / 2 (R lies within |w2| <= 1: it is tangent to w2 = +-1); midpoint rule
 // on 2^17 points (the chord's square-root ends: error ~ N^-1.5, below 1e-7).
 double p2_region_fraction(double r, double w1a, double w1b) {
-  const double al = (1 + r) / 2, cm = 2 - al * al / r, k = 32 * r - 16 * al * al;
+  const double al = (1 + r) / 2, cm = p2_level(r), k = 32 * r - 16 * al * al;
   if (!(cm > 0 && k > 0)) return 0;
   const double half = std::sqrt(8 * cm / k), lo = std::max(w1a, -half), hi = std::min(w1b, half);
   if (!(hi > lo)) return 0;
@@ -575,7 +583,7 @@ void ulam_basins(const UlamMatrix& P, const Partition& part, Domain dom, const T
       if (box >= 0 && target[sz(box)] == 0) target[sz(box)] = id, ++b.target_boxes;
     if (b.target_boxes > 0) res.basins.push_back(b);
   }
-  const double al = (1 + q.r) / 2, cmax = 2 - al * al / q.r;
+  const double al = (1 + q.r) / 2, cmax = p2_level(q.r);
   if (cmax > 0) {
     // The boxes inside R: all four corners (R is convex in (w1, w2), and a box of either chart is a rectangle in
     // (atan w1, w2) or (theta, phi); on the strip a box is a rectangle in (w1, w2) too, so the test is exact there).
@@ -722,7 +730,6 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
 
   const auto t1 = std::chrono::steady_clock::now();
   const Decomposition d = decompose(P);
-  res.closed_classes = static_cast<int>(d.classes.size());
   res.classes = d.classes;
   const bool spectrum = q.spectrum();
   const auto pairs = spectrum ? leading_eigenpairs(P, d, q.eigenvalues, true) : std::vector<Eigenpair>{};
@@ -757,7 +764,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     };
     std::vector<Absorber> absorbers;
     std::vector<std::uint32_t> absorber_of_box(static_cast<std::size_t>(n), 0);
-    for (int k = 1; k <= res.closed_classes; ++k) {
+    for (int k = 1; k <= res.closed_classes(); ++k) {
       Absorber ab;
       ab.block = k;
       for (long i = 0; i < n; ++i)

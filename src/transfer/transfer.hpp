@@ -199,8 +199,8 @@ struct TransferResult {
   std::vector<double> eig_re, eig_im;  // K leading eigenvalues by decreasing modulus (block route)
   std::vector<int> eig_block;          // their blocks (0 transient, c closed class)
   std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
-  int closed_classes = 0;
   std::vector<ClassInfo> classes;      // the closed classes' sizes and periods (class c = classes[c - 1])
+  int closed_classes() const { return static_cast<int>(classes.size()); }
   int near_one_count = 0;              // eigenvalues with |lambda - 1| <= near_one
   std::vector<ComponentInfo> components;  // closed classes, then almost-invariant transient components
   std::vector<std::uint32_t> component_of_box;  // n1 x n2 row-major, 0 none, k = components[k - 1]
