@@ -168,9 +168,9 @@ struct DensityRecorder {
                   int threads);
   long first_step() const { return iterations - tail + 1; }
   // Each lane's bin is that of coord_value<T> under the rule of `exact_bin`.  float/double take a fast route: the
-  // coordinate from atan_fast (one division, no branch) and the bin index in one vector loop, where the bin is
+  // coordinate from atan_fast (no division, no branch) and the bin index in one vector loop, where the bin is
   // certain (the value lies farther than the two routes' error bound from every bin edge); the other lanes (about
-  // 1e-5 of them in Figure 4.1, and every value outside [lo, hi)) take coord_value<T> itself, so the image is
+  // 2e-4 of them in Figure 4.1, and every value outside [lo, hi)) take coord_value<T> itself, so the image is
   // the one coord_value<T> gives, bit for bit.
   template <class T>
   void record(std::size_t o0, int lanes, long, const T* x, const T* y, const T* z, const std::uint8_t*) {
@@ -204,8 +204,9 @@ struct DensityRecorder {
   // The rule: bins are [lo + i h, lo + (i+1) h); the last one also holds hi itself (theta = pi/2 exactly is the
   // three-particle collapse x = 0, a value of the diagram, not an overflow); NaN and values below lo are under,
   // values above hi over.
+  double scale() const { return static_cast<double>(bins) / (hi - lo); }  // bins per unit of the coordinate
   void exact_bin(int t, std::size_t col, double v) {
-    const double f = (v - lo) * (static_cast<double>(bins) / (hi - lo));
+    const double f = (v - lo) * scale();
     if (!(f >= 0)) ++under_t[static_cast<std::size_t>(t)][col];
     else if (f > static_cast<double>(bins)) ++over_t[static_cast<std::size_t>(t)][col];
     else ++per_thread[static_cast<std::size_t>(t)][col * bins + std::min(static_cast<std::size_t>(f), bins - 1)];
@@ -213,7 +214,7 @@ struct DensityRecorder {
   // bin[l] = the bin of lane l where the fast route proves it, -1 elsewhere (always -1 for the wide types).
   template <class T> void certain_bins(int n, const T* x, const T* y, const T* z, std::int32_t* bin) const {
     if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) {
-      const double scale = static_cast<double>(bins) / (hi - lo), nb = static_cast<double>(bins), lo_ = lo;
+      const double scale = this->scale(), nb = static_cast<double>(bins), lo_ = lo;
       // Guard in bin units: the two routes' distance (fast_error), and the rounding of (v - lo) * scale (a few ulps
       // of f <= bins).
       const double g = fast_error<T>(coord) * scale * (1 + 1e-9) + 8 * std::numeric_limits<double>::epsilon() * nb;
