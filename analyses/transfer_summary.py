@@ -11,6 +11,9 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "plot"))
+from plotlib import save_atomic  # noqa: E402  (the plot scripts' atomic PNG write)
+
 
 def expand(word):
     """A pattern with exponents (132^3312^3) as its plain word (1322231222), rotated to its smallest rotation."""
@@ -107,11 +110,7 @@ def main(root):
                                    "fraction": float(b["fraction"]), "counted": f, "ci_low": lo, "ci_high": hi})
     rows.sort(key=lambda x: (float(x["r"]), int(str(x["boxes"]).split("x")[0])))
     out = os.path.join(root, "convergence.csv")
-    with open(out + ".tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(out + ".tmp", out)
+    write_csv(out, rows, list(rows[0].keys()))
     print(f"wrote {out} ({len(rows)} runs)")
     basin_convergence(root, basin_rows)
     gap_convergence(root)
@@ -227,9 +226,7 @@ def basin_convergence(root, basin_rows):
     fig.suptitle("Basins from the Ulam graph against the counted fractions of `btob basins` (Lebesgue, w1 in [-2, 2])"
                  "\nfilled: below the count, open: above; dotted: half-width of each counted 95% interval", fontsize=11)
     fig.tight_layout()
-    tmp = os.path.join(root, f"basins_convergence.png.tmp-{os.getpid()}.png")
-    fig.savefig(tmp)
-    os.replace(tmp, os.path.join(root, "basins_convergence.png"))
+    save_atomic(fig, os.path.join(root, "basins_convergence.png"))
     print("wrote basins_convergence.png")
 
 
@@ -269,9 +266,7 @@ def gap_convergence(root):
                  "24 eigenvalues)\n(the roots of unity of the closed classes, |lambda| > 1 - 1e-9, excluded)")
     ax.legend()
     fig.tight_layout()
-    tmp = os.path.join(root, f"gap_r.png.tmp-{os.getpid()}.png")
-    fig.savefig(tmp)
-    os.replace(tmp, os.path.join(root, "gap_r.png"))
+    save_atomic(fig, os.path.join(root, "gap_r.png"))
     print(f"wrote {out} and gap_r.png")
 
 
