@@ -157,6 +157,38 @@ TEST(Attractors, P2InvariantIsConservedAndDistinguishesCurves) {
   EXPECT_FALSE(same_attractor(a, b, r));
 }
 
+// Pass 2 (the fused cocycle kernel for lambda1, a plain run with the vectorised rotation recorder) gives an orbit the
+// same bits alone, at any place in a batch (the last, partial batch included) and with any thread count: r = 0.12
+// (chaotic, no rotation), r = 0.3 (P2 curves: rotation and invariant) and r = 0.9 (curves outside P2 as well).
+TEST(Attractors, PassTwoVerdictsDoNotDependOnTheBatch) {
+  for (const double r : {0.12, 0.3, 0.9}) {
+    const auto pts = grid_points(parse_grid("strip:10x7", -2, 2));  // 70 orbits: one full double batch and a partial
+    Options o1, o2;
+    o1.run.threads = 1, o2.run.threads = 2;
+    const auto all = classify(ensemble(r, pts), o2);
+    auto shifted = pts;
+    std::rotate(shifted.begin(), shifted.begin() + 23, shifted.end());
+    const auto moved = classify(ensemble(r, shifted), o1);
+    int second_pass = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const OrbitVerdict& a = all[i];
+      const OrbitVerdict& b = moved[(i + pts.size() - 23) % pts.size()];
+      const OrbitVerdict c = classify_point(pts[i], r, o1);
+      for (const OrbitVerdict* x : {&b, &c}) {
+        EXPECT_EQ(a.key, x->key) << r << " " << i;
+        EXPECT_EQ(a.lambda1, x->lambda1) << r << " " << i;
+        EXPECT_EQ(a.err1, x->err1) << r << " " << i;
+        EXPECT_EQ(a.rotation, x->rotation) << r << " " << i;
+        EXPECT_EQ(a.rotation_delta, x->rotation_delta) << r << " " << i;
+        EXPECT_EQ(a.invariant, x->invariant) << r << " " << i;
+        EXPECT_EQ(a.invariant_spread, x->invariant_spread) << r << " " << i;
+      }
+      second_pass += a.type == Type::chaotic || a.type == Type::quasi_periodic;
+    }
+    EXPECT_GT(second_pass, 10) << r;  // the test reaches pass 2
+  }
+}
+
 TEST(Attractors, PeriodicIdentityUpToPhase) {
   const double r = 0.15;
   const auto v = classify(ensemble(r, iterate::paper_grid()), {});

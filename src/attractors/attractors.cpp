@@ -4,6 +4,7 @@
 #include "core/coords.hpp"
 #include "core/sweep.hpp"
 #include "attractors/recorders.hpp"
+#include "iterate/cocycle.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/tangent.hpp"
 #include "lyapunov/maps.hpp"
@@ -145,14 +146,27 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
   iterate::Ensemble e2;
   e2.r = {r};
   for (std::size_t o : rest) e2.initial.push_back(latest[o]);
-  lyapunov::TangentRecorder tan(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
+  // lambda1 from the fused cocycle kernel (iterate/cocycle.hpp), the rotation from a plain run that records every
+  // step's point: the two runs step the same points bit for bit.  Below the r the fused kernel takes (r < 4.7e-7,
+  // where pass 1 has nearly always found a collapse) the tangent vector rides the plain run as a per-step recorder.
+  const long steps = opt.lyap_transient + opt.lyap_iterations;
   attractors::RotationRecorder rot(rest.size(), r, opt.lyap_transient, opt.lyap_iterations);
-  iterate::Both<lyapunov::TangentRecorder, attractors::RotationRecorder> both(tan, rot);
-  iterate::run<double>(e2, tan.total_steps(), both, opt.run);
-  const lyapunov::OrbitExponents ex = lyapunov::exponents_from(tan);
+  lyapunov::OrbitExponents ex;
+  if (iterate::cocycle_accepts<double>(e2.r)) {
+    lyapunov::MapOptions mo;
+    mo.transient = opt.lyap_transient, mo.iterations = opt.lyap_iterations, mo.blocks = opt.lyap_blocks;
+    mo.run = opt.run;
+    ex = lyapunov::map_exponents(e2, mo);
+    iterate::run<double>(e2, steps, rot, opt.run);
+  } else {
+    lyapunov::TangentRecorder tan(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
+    iterate::Both<lyapunov::TangentRecorder, attractors::RotationRecorder> both(tan, rot);
+    iterate::run<double>(e2, steps, both, opt.run);
+    ex = lyapunov::exponents_from(tan);
+  }
   for (std::size_t i = 0; i < rest.size(); ++i) {
     OrbitVerdict& v = out[rest[i]];
-    v.iterations += tan.total_steps();
+    v.iterations += steps;
     latest[rest[i]] = Vec3<double>(rot.fx[i], rot.fy[i], rot.fz[i]);
     v.lambda1 = ex.lambda1[i], v.err1 = ex.err1[i];
     v.invariant = rot.invariant(i);

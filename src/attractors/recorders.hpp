@@ -2,8 +2,10 @@
 #pragma once
 
 #include "iterate/ensemble.hpp"
+#include "iterate/lanes.hpp"
 #include "iterate/recorders.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -142,9 +144,15 @@ struct RotationRecorder {
       sum_full += w_full[static_cast<std::size_t>(j)];
       sum_half += w_half[static_cast<std::size_t>(j)];
     }
-    for (auto* v : {&last, &s_full, &s_half, &i_mean, &fx, &fy, &fz}) v->assign(orbits, 0.0);
-    i_min.assign(orbits, std::numeric_limits<double>::infinity());
-    i_max.assign(orbits, -std::numeric_limits<double>::infinity());
+    // Room for a whole batch of the widest kernel (96 float lanes with AVX-512, iterate/lanes.hpp; a fixed bound
+    // because this constructor also runs in units compiled without the kernel's flags) after the last orbit: the
+    // per-step loop runs over a full batch even for the last, partial one, whose padding lanes are never read.
+    constexpr std::size_t widest = 128;
+    const std::size_t padded = orbits + widest;
+    for (auto* v : {&last, &s_full, &s_half, &i_mean}) v->assign(padded, 0.0);
+    for (auto* v : {&fx, &fy, &fz}) v->assign(orbits, 0.0);
+    i_min.assign(padded, std::numeric_limits<double>::infinity());
+    i_max.assign(padded, -std::numeric_limits<double>::infinity());
   }
   long first_step() const { return start; }
   // Weighted Birkhoff averages of the angle increment, in turns (rotation numbers in (-1/2, 1/2]).
@@ -156,31 +164,59 @@ struct RotationRecorder {
   void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t*) {
     const long j = k - start;
     if (j > n) return;
-    const double wf = w_full[static_cast<std::size_t>(j)], wh = w_half[static_cast<std::size_t>(j)];
-    const double al = alpha, rr = r, ce = c_eta;
-    const bool rot = rotation_defined;
-    for (int l = 0; l < lanes; ++l) {
-      const std::size_t o = o0 + static_cast<std::size_t>(l);
-      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
-      const double s = X + Z, a = X - Z;
-      if (j == n) {
+    if (j == n)
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t o = o0 + static_cast<std::size_t>(l);
+        const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
         const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
         fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
       }
-      const double inv = a > 0 ? 1 / (a * a) : std::numeric_limits<double>::infinity();
+    // A full batch goes through the fixed-width loop directly; a partial one (or the scalar route's single lane)
+    // through the same loop on copies padded with its last lane, so that an orbit's bits do not depend on where in a
+    // batch it falls (a vectorised loop and its scalar remainder contract multiply-adds differently).
+    constexpr int B = iterate::detail::batch_lanes<T>();
+    if (lanes == B) return steps<T, B>(o0, j, x, y, z);
+    alignas(64) T px[B], py[B], pz[B];
+    for (int l = 0; l < B; ++l) {
+      const int q = std::min(l, lanes - 1);
+      px[l] = x[q], py[l] = y[q], pz[l] = z[q];
+    }
+    steps<T, B>(o0, j, px, py, pz);
+  }
+
+ private:
+  // Step j of the record for the B orbits from o0 (one vector loop: no branch but selections).
+  template <class T, int B>
+  void steps(std::size_t o0, long j, const T* __restrict x, const T* __restrict y, const T* __restrict z) {
+    const double wf = w_full[static_cast<std::size_t>(j)], wh = w_half[static_cast<std::size_t>(j)];
+    const double al = alpha, rr = r, ce = c_eta, inf = std::numeric_limits<double>::infinity();
+    double* __restrict lo = i_min.data() + o0;
+    double* __restrict hi = i_max.data() + o0;
+    double* __restrict mean = i_mean.data() + o0;
+#pragma omp simd
+    for (int l = 0; l < B; ++l) {
+      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
+      const double s = X + Z, a = X - Z;
+      const double inv = a > 0 ? 1 / (a * a) : inf;
       const double I = (2 * s * s - 4 * al * s * Y + 4 * rr * Y * Y) * inv;
-      i_min[o] = std::min(i_min[o], I);
-      i_max[o] = std::max(i_max[o], I);
-      i_mean[o] += wf * I;
-      if (!rot) continue;
-      const double ang = atan2_full<double>(ce * Y, (s - al * Y) * std::numbers::sqrt2 / 2);
-      if (j > 0) {
-        double d = ang - last[o];
-        d = d > std::numbers::pi ? d - 2 * std::numbers::pi : (d <= -std::numbers::pi ? d + 2 * std::numbers::pi : d);
-        s_full[o] += wf * d;
-        s_half[o] += wh * d;
-      }
-      last[o] = ang;
+      lo[l] = I < lo[l] ? I : lo[l];
+      hi[l] = I > hi[l] ? I : hi[l];
+      mean[l] += wf * I;
+    }
+    if (!rotation_defined) return;
+    double* __restrict prev = last.data() + o0;
+    double* __restrict full = s_full.data() + o0;
+    double* __restrict half = s_half.data() + o0;
+    const double pi = std::numbers::pi;
+#pragma omp simd
+    for (int l = 0; l < B; ++l) {
+      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
+      const double ang = atan2_full<double>(ce * Y, (X + Z - al * Y) * std::numbers::sqrt2 / 2);
+      double d = ang - prev[l];
+      d = d > pi ? d - 2 * pi : (d <= -pi ? d + 2 * pi : d);
+      full[l] += wf * d;  // step 0 only sets the first angle: its weights are 0
+      half[l] += wh * d;
+      prev[l] = ang;
     }
   }
 };

@@ -63,6 +63,12 @@ concept CocycleRecorder = requires(R& rec, const R& crec, const CocycleBatch<dou
 template <class T> constexpr int cocycle_interval() { return sizeof(T) == 4 ? 8 : 16; }
 template <class T> constexpr int cocycle_loss_budget() { return sizeof(T) == 4 ? 12 : 30; }
 
+// Whether run_cocycle<T> takes these r values: the plain kernel's bound on steps between rescalings (which keeps u and
+// v normal and finite) must allow one projection interval; true for r >= 4.7e-7 in double, r >= 7.7e-3 in float.
+template <class T> bool cocycle_accepts(const std::vector<double>& r) {
+  return renormalisation_interval<T>(r) >= cocycle_interval<T>();
+}
+
 // Runs every orbit of the ensemble `iterations` steps with the fused cocycle kernel (T = float or double): the same
 // symbols and points as iterate::run<T> (the point's steps are the plain kernel's, bit for bit), plus v.  Results
 // never depend on threads or on the ensemble's other orbits.  Throws core::Cancelled when cancelled.  When

@@ -235,9 +235,7 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
   constexpr long kFlush = 1L << 16;
   const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
   if (n_orbits == 0 || iterations < 0) return;
-  // The plain kernel's bound on steps between rescalings (keeps u and v normal and finite) must allow K steps; it
-  // does for every r that the Lyapunov routes accept (r >= 4.7e-7 in double: 11 steps; r >= 7.7e-3 in float: 7).
-  if (renormalisation_interval<T>(ens.r) < K)
+  if (!cocycle_accepts<T>(ens.r))
     throw std::invalid_argument("r: too small for the cocycle kernel in this precision (the state would leave the "
                                 "normal range within one projection interval)");
   const std::vector<long>& cps = rec.checkpoints();
