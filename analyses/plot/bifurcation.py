@@ -165,7 +165,8 @@ def draw(f):
         stalled_note = (f"; {int(stalled_m.sum())} tail states never reached (no more b-collisions)"
                         if stalled_m is not None and stalled_m.sum() else "")
         # The warning goes under the panel, not over the data.
-        axes[0].text(0.0, -0.13, "past acos's domain this is the algorithm's failure, not the dynamics (compare Figure 4.1); "
+        # Two lines: one would run under the colour bar.
+        axes[0].text(0.0, -0.11, "past acos's domain this is the algorithm's failure, not the dynamics (compare Figure 4.1);\n"
                      f"{n_nan} NaN values not drawn{stalled_note}",
                      transform=axes[0].transAxes, fontsize=8, color="#b00000", va="top")
         ax = axes[2]
