@@ -21,7 +21,8 @@ using core::Vec3;
 //  * Pass 1 (every orbit, batched kernel, no tangent): `transient` steps, then a window of `window`
 //    steps in which the return to the window's first point (period <= max_period), the symbols and
 //    the counts of symbols 1 / 3 are recorded.  Pass 2 (orbits without a period): Lyapunov exponent
-//    lambda1 (TangentRecorder, batch means) and the weighted Birkhoff rotation number about the P2
+//    lambda1 (lyapunov::map_exponents on the fused cocycle kernel, batch means) and, from a plain run of the
+//    same orbits, the weighted Birkhoff rotation number about the P2
 //    centre (1, 0, -1) with the P2 invariant I (attractors/recorders.hpp).  Refinement: orbits
 //    still unresolved are continued from where they stopped with `refine_factor` times the transient.
 //  * Types: periodic (a stable periodic orbit, the pattern tool's verdict attached), collapse
