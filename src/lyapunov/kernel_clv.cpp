@@ -175,43 +175,104 @@ void clv_phase(Regs& s, Sums& w, const V* r, const V* a, const V* k, long steps,
 std::size_t rank_of(double q, std::size_t n) { return static_cast<std::size_t>(q * static_cast<double>(n - 1) + 0.5); }
 double angle_of(double key) { return std::atan2(1.0, std::sqrt(key)); }
 
-// The keys of ascending ranks k0, k1 among n keys (>= 0) and the largest, as nth_element would give them: one pass
-// counting the keys per bucket of their leading bits (2^(63 - shift) buckets: the order of non-negative doubles is
-// that of their bits), one pass gathering the two ranks' buckets, a selection within each.  Two passes over the
-// keys instead of nth_element's several (measured: 320000 pooled keys, 4 ms -> 0.6 ms).
-void select_keys(const double* key, std::size_t n, int shift, std::size_t k0, std::size_t k1, double& v0, double& v1,
-                 double& max, std::vector<std::uint32_t>& count, std::vector<double>& gather) {
-  const auto bucket = [shift](double v) { return static_cast<std::size_t>(std::bit_cast<std::uint64_t>(v) >> shift); };
-  count.assign(std::size_t{1} << (63 - shift), 0);
-  double m = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    ++count[bucket(key[i])];
-    m = std::max(m, key[i]);
+// The smallest and largest of n keys, in vectors (a scalar min/max chain waits 4 cycles per key).
+void min_max(const double* key, std::size_t n, double& lo, double& hi) {
+  V vlo = V{} + key[0], vhi = vlo;
+  std::size_t i = 0;
+  for (; i + W <= n; i += W) {
+    const V v = S::load(key + i);
+    vlo = v < vlo ? v : vlo;
+    vhi = v > vhi ? v : vhi;
   }
-  max = m;
+  lo = key[0], hi = key[0];
+  for (int l = 0; l < W; ++l) lo = std::min(lo, vlo[l]), hi = std::max(hi, vhi[l]);
+  for (; i < n; ++i) lo = std::min(lo, key[i]), hi = std::max(hi, key[i]);
+}
+
+// Counts of n keys per bucket into four tables in turn (nb each): runs of equal keys (a periodic orbit has a few
+// values) would otherwise wait on the same counter's previous increment; summed into count[0, nb).
+template <class Bucket>
+void count_buckets(const double* key, std::size_t n, std::size_t nb, Bucket bucket, std::vector<std::uint32_t>& count) {
+  count.assign(4 * nb, 0);
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (std::size_t q = 0; q < 4; ++q) ++count[q * nb + bucket(key[i + q])];
+  for (; i < n; ++i) ++count[bucket(key[i])];
+  for (std::size_t b = 0; b < nb; ++b) count[b] += count[nb + b] + count[2 * nb + b] + count[3 * nb + b];
+}
+
+// Buckets of keys >= 0 by their bits (whose order is the keys'): at most 2^log2_cap equal spans of the bits between
+// the smallest and the largest key, so that keys one ulp apart split as soon as keys many binades apart.
+struct Buckets {
+  std::uint64_t lo = 0;
+  int shift = 0;
+  std::size_t count = 1;
+  Buckets(double min, double max, int log2_cap) : lo(std::bit_cast<std::uint64_t>(min)) {
+    const std::uint64_t span = std::bit_cast<std::uint64_t>(max) - lo;
+    shift = std::max(0, static_cast<int>(std::bit_width(span)) - log2_cap);
+    count = static_cast<std::size_t>(span >> shift) + 1;
+  }
+  std::size_t operator()(double x) const { return static_cast<std::size_t>((std::bit_cast<std::uint64_t>(x) - lo) >> shift); }
+};
+
+// The value of ascending rank k among n keys >= 0 (overwritten): while many, the keys of rank k's bucket are moved
+// to the front and bucketed again; then nth_element.  The value nth_element gives, in passes of counting instead
+// of its partitions (slow where keys repeat: a periodic orbit has a few values).
+double select_in(double* v, std::size_t n, std::size_t k, std::vector<std::uint32_t>& count) {
+  while (n > 2048) {
+    double lo = 0, hi = 0;
+    min_max(v, n, lo, hi);
+    if (lo == hi) return lo;
+    const Buckets bucket(lo, hi, 12);
+    count_buckets(v, n, bucket.count, bucket, count);
+    std::size_t b = 0, below = 0;
+    while (below + count[b] <= k) below += count[b++];
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i) {  // without a branch: the buckets come in no order
+      v[m] = v[i];
+      m += bucket(v[i]) == b;
+    }
+    n = m, k -= below;
+  }
+  std::nth_element(v, v + k, v + n);
+  return v[k];
+}
+
+// The keys of ascending ranks k0, k1 among n keys (>= 0, left as they are) and the largest: one pass for the
+// smallest and largest, one counting per bucket, one gathering the two ranks' buckets, select_in within each.
+void select_keys(const double* key, std::size_t n, std::size_t k0, std::size_t k1, double& v0, double& v1, double& max,
+                 std::vector<std::uint32_t>& count, std::vector<double>& gather) {
+  double lo = 0, hi = 0;
+  min_max(key, n, lo, hi);
+  max = hi;
+  const Buckets bucket(lo, hi, 12);
+  count_buckets(key, n, bucket.count, bucket, count);
   std::size_t b0 = 0, b1 = 0, below0 = 0, below1 = 0, seen = 0;
-  for (std::size_t b = 0; b < count.size(); ++b) {
-    if (seen <= k0 && k0 < seen + count[b]) b0 = b, below0 = seen;
-    if (seen <= k1 && k1 < seen + count[b]) b1 = b, below1 = seen;
-    seen += count[b];
+  for (std::size_t b = 0; b < bucket.count; ++b) {
+    const std::size_t c = count[b];
+    if (seen <= k0 && k0 < seen + c) b0 = b, below0 = seen;
+    if (seen <= k1 && k1 < seen + c) b1 = b, below1 = seen;
+    seen += c;
   }
-  gather.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (bucket(key[i]) == b0) gather.push_back(key[i]);
-  const std::size_t n0 = gather.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (bucket(key[i]) == b1) gather.push_back(key[i]);
-  std::nth_element(gather.begin(), gather.begin() + static_cast<long>(k0 - below0), gather.begin() + static_cast<long>(n0));
-  v0 = gather[k0 - below0];
-  std::nth_element(gather.begin() + static_cast<long>(n0), gather.begin() + static_cast<long>(n0 + k1 - below1), gather.end());
-  v1 = gather[n0 + k1 - below1];
+  const std::size_t n0 = count[b0], n1 = count[b1];
+  gather.resize(n0 + n1 + 2);  // each part one longer: the branch-free stores below write one past its end
+  std::size_t g0 = 0, g1 = n0 + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t b = bucket(key[i]);
+    gather[g0] = key[i];
+    g0 += b == b0;
+    gather[g1] = key[i];
+    g1 += b == b1;
+  }
+  v0 = select_in(gather.data(), n0, k0 - below0, count);
+  v1 = select_in(gather.data() + n0 + 1, n1, k1 - below1, count);
 }
 
 // Median, 5% quantile and minimum of the angles of n keys: the angle decreases as the key grows.
-void angle_stats(const double* key, std::size_t n, int shift, double& median, double& q05, double& min,
+void angle_stats(const double* key, std::size_t n, double& median, double& q05, double& min,
                  std::vector<std::uint32_t>& count, std::vector<double>& gather) {
   double km = 0, kq = 0, kmax = 0;
-  select_keys(key, n, shift, n - 1 - rank_of(0.5, n), n - 1 - rank_of(0.05, n), km, kq, kmax, count, gather);
+  select_keys(key, n, n - 1 - rank_of(0.5, n), n - 1 - rank_of(0.05, n), km, kq, kmax, count, gather);
   median = angle_of(km);
   q05 = angle_of(kq);
   min = angle_of(kmax);
@@ -256,7 +317,12 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
   for (std::size_t i = 0; i < rs.size(); ++i) K[i] = clv_interval(rs[i]);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ClvRows rows(rs.size());
-  std::vector<double> keys(I0 * Nz);  // the current r's keys, orbit-major
+  // r values in rounds of 4 per thread: the batches of a round's r values on every thread, then each r's pooled
+  // statistics on one thread (in parallel; dynamic schedules: no bit depends on which thread runs what, and a
+  // thread the machine delays holds the others less).  keys: the round's keys, r-major then orbit-major.
+  const std::size_t G = 4 * static_cast<std::size_t>(threads);
+  iterate::checked_bytes(G * I0, sizeof(double) * Nz, "window");
+  std::vector<double> keys(G * I0 * Nz);
   bool stop = false;
 
 #pragma omp parallel num_threads(threads)
@@ -266,18 +332,20 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
     std::vector<std::uint32_t> count;  // select_keys' buckets and gathered keys
     std::vector<double> gather;
     const Store st{A.data(), Bc.data(), rho.data(), sym.data(), expd.data()};
-    for (std::size_t ir = 0; ir < rs.size(); ++ir) {
-      ClvRow& row = rows[ir];
+    for (std::size_t r0 = 0; r0 < rs.size(); r0 += G) {
+      const std::size_t g = std::min(G, rs.size() - r0);
 #pragma omp single
       {
         stop = run.cancel && run.cancel->cancelled();
-        row.orbit.resize(I0);
+        for (std::size_t i = 0; i < g; ++i) rows[r0 + i].orbit.resize(I0);
       }
-      if (stop) break;  // read by every thread after the single's barrier: all leave at the same r
-      const double r = rs[ir];
-#pragma omp for schedule(static)
-      for (std::size_t bt = 0; bt < n_batches; ++bt) {
-        const std::size_t o0 = bt * B;
+      if (stop) break;  // read by every thread after the single's barrier: all leave at the same round
+#pragma omp for schedule(dynamic)
+      for (std::size_t t = 0; t < g * n_batches; ++t) {
+        const std::size_t ir = r0 + t / n_batches, o0 = t % n_batches * B;
+        ClvRow& row = rows[ir];
+        const double r = rs[ir];
+        double* const round_keys = keys.data() + (ir - r0) * I0 * Nz;
         const int lanes = static_cast<int>(std::min<std::size_t>(B, I0 - o0));
         alignas(64) double L[9][B], rv[B], av[B], kv[B];
         for (int l = 0; l < B; ++l) {
@@ -328,7 +396,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
             if (j < N) S::store(kk + v * W, tau[v] * tau[v] * S::load(rho.data() + row + v * W));
           }
           if (j < N)
-            for (int l = 0; l < lanes; ++l) keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
+            for (int l = 0; l < lanes; ++l) round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
         }
         for (int l = 0; l < lanes; ++l) {
           ClvResult& c = row.orbit[o0 + static_cast<std::size_t>(l)];
@@ -341,7 +409,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           c.lambda = {s11 / n, (sdet - s11) / n};
           c.degenerate = c.lambda[0] - c.lambda[1] < 10.0 / n;  // as covariant_vectors
           c.expanding_fraction = sums[3][l] / n;
-          double* key = keys.data() + (o0 + static_cast<std::size_t>(l)) * Nz;
+          double* key = round_keys + (o0 + static_cast<std::size_t>(l)) * Nz;
           if (keep_steps) {
             c.angle.resize(Nz);
             c.symbols.resize(Nz);
@@ -352,27 +420,35 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
               c.expanding[j] = expd[j * B + static_cast<std::size_t>(l)];
             }
           }
+          // A degenerate orbit's angles are undefined (hyperbolicity.hpp): nothing of them is kept.
+          if (c.degenerate) {
+            c.median_angle = c.q05_angle = c.min_angle = nan;
+            continue;
+          }
           c.histogram.assign(bins, 0.0);
           add_histogram(key, Nz, opt.bins, c.histogram.data());
-          angle_stats(key, Nz, 52, c.median_angle, c.q05_angle, c.min_angle, count, gather);
+          angle_stats(key, Nz, c.median_angle, c.q05_angle, c.min_angle, count, gather);
         }
       }
-      // Pooled over the non-degenerate orbits, in orbit order (their keys moved to the front).
-#pragma omp single
-      {
+      // Pooled over the non-degenerate orbits, in orbit order (their keys moved to the front), one r per thread.
+#pragma omp for schedule(dynamic)
+      for (std::size_t i = 0; i < g; ++i) {
+        ClvRow& row = rows[r0 + i];
+        double* const round_keys = keys.data() + i * I0 * Nz;
         std::size_t n = 0;
         row.histogram.assign(bins, 0.0);
         for (std::size_t o = 0; o < I0; ++o) {
           const ClvResult& c = row.orbit[o];
           if (c.degenerate) continue;
-          if (n != o) std::copy_n(keys.begin() + static_cast<long>(o * Nz), Nz, keys.begin() + static_cast<long>(n * Nz));
+          if (n != o) std::copy_n(round_keys + o * Nz, Nz, round_keys + n * Nz);
           ++n;
           for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
         }
-        if (n) angle_stats(keys.data(), n * Nz, 48, row.median_angle, row.q05_angle, row.min_angle, count, gather);
+        if (n) angle_stats(round_keys, n * Nz, row.median_angle, row.q05_angle, row.min_angle, count, gather);
         else row.median_angle = row.q05_angle = row.min_angle = nan;
-        if (run.progress) run.progress->update(ir + 1, rs.size());
       }
+#pragma omp single nowait
+      if (run.progress) run.progress->update(r0 + g, rs.size());
     }
   }
   if (run.cancel && run.cancel->cancelled()) throw core::Cancelled();
