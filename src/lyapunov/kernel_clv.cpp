@@ -214,7 +214,10 @@ struct Buckets {
     shift = std::max(0, static_cast<int>(std::bit_width(span)) - log2_cap);
     count = static_cast<std::size_t>(span >> shift) + 1;
   }
-  std::size_t operator()(double x) const { return static_cast<std::size_t>((std::bit_cast<std::uint64_t>(x) - lo) >> shift); }
+  // Clamped: a NaN key (tau overflowed, an angle below 1e-150) lands in the last bucket instead of past the table.
+  std::size_t operator()(double x) const {
+    return std::min(count - 1, static_cast<std::size_t>((std::bit_cast<std::uint64_t>(x) - lo) >> shift));
+  }
 };
 
 // The value of ascending rank k among n keys >= 0 (overwritten): while many, the keys of rank k's bucket are moved
