@@ -191,16 +191,14 @@ void min_max(const double* key, std::size_t n, double& lo, double& hi) {
   for (; i < n; ++i) lo = std::min(lo, key[i]), hi = std::max(hi, key[i]);
 }
 
-// Counts of n keys per bucket into four tables in turn (nb each): runs of equal keys (a periodic orbit has a few
-// values) would otherwise wait on the same counter's previous increment; summed into count[0, nb).
+// Adds the counts of n keys per bucket into four tables in turn (nb each, summed by the caller): runs of equal keys
+// (a periodic orbit has a few values) would otherwise wait on the same counter's previous increment.
 template <class Bucket>
 void count_buckets(const double* key, std::size_t n, std::size_t nb, Bucket bucket, std::vector<std::uint32_t>& count) {
-  count.assign(4 * nb, 0);
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4)
     for (std::size_t q = 0; q < 4; ++q) ++count[q * nb + bucket(key[i + q])];
   for (; i < n; ++i) ++count[bucket(key[i])];
-  for (std::size_t b = 0; b < nb; ++b) count[b] += count[nb + b] + count[2 * nb + b] + count[3 * nb + b];
 }
 
 // Buckets of keys >= 0 by their bits (whose order is the keys'): at most 2^log2_cap equal spans of the bits between
@@ -229,7 +227,10 @@ double select_in(double* v, std::size_t n, std::size_t k, std::vector<std::uint3
     min_max(v, n, lo, hi);
     if (lo == hi) return lo;
     const Buckets bucket(lo, hi, 12);
+    count.assign(4 * bucket.count, 0);
     count_buckets(v, n, bucket.count, bucket, count);
+    for (std::size_t c = 0; c < bucket.count; ++c)
+      count[c] += count[bucket.count + c] + count[2 * bucket.count + c] + count[3 * bucket.count + c];
     std::size_t b = 0, below = 0;
     while (below + count[b] <= k) below += count[b++];
     std::size_t m = 0;
@@ -243,15 +244,28 @@ double select_in(double* v, std::size_t n, std::size_t k, std::vector<std::uint3
   return v[k];
 }
 
-// The keys of ascending ranks k0, k1 among n keys (>= 0, left as they are) and the largest: one pass for the
-// smallest and largest, one counting per bucket, one gathering the two ranks' buckets, select_in within each.
-void select_keys(const double* key, std::size_t n, std::size_t k0, std::size_t k1, double& v0, double& v1, double& max,
+// Rows of keys (>= 0), each `len` long: one orbit's window, or every non-degenerate orbit's of an r, with the
+// smallest and the largest key among them (from the backward pass).
+struct KeyRows {
+  std::vector<const double*> row;
+  std::size_t len = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  std::size_t size() const { return row.size() * len; }
+  template <class F> void each(F f) const {
+    for (const double* r : row)
+      for (std::size_t i = 0; i < len; ++i) f(r[i]);
+  }
+};
+
+// The keys of ascending ranks k0, k1 (left as they are): one pass counting per bucket, one gathering the two
+// ranks' buckets, select_in within each.
+void select_keys(const KeyRows& keys, std::size_t k0, std::size_t k1, double& v0, double& v1,
                  std::vector<std::uint32_t>& count, std::vector<double>& gather) {
-  double lo = 0, hi = 0;
-  min_max(key, n, lo, hi);
-  max = hi;
-  const Buckets bucket(lo, hi, 12);
-  count_buckets(key, n, bucket.count, bucket, count);
+  const Buckets bucket(keys.lo, keys.hi, 12);
+  count.assign(4 * bucket.count, 0);
+  for (const double* r : keys.row) count_buckets(r, keys.len, bucket.count, bucket, count);
+  for (std::size_t b = 0; b < bucket.count; ++b)
+    count[b] += count[bucket.count + b] + count[2 * bucket.count + b] + count[3 * bucket.count + b];
   std::size_t b0 = 0, b1 = 0, below0 = 0, below1 = 0, seen = 0;
   for (std::size_t b = 0; b < bucket.count; ++b) {
     const std::size_t c = count[b];
@@ -262,25 +276,26 @@ void select_keys(const double* key, std::size_t n, std::size_t k0, std::size_t k
   const std::size_t n0 = count[b0], n1 = count[b1];
   gather.resize(n0 + n1 + 2);  // each part one longer: the branch-free stores below write one past its end
   std::size_t g0 = 0, g1 = n0 + 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t b = bucket(key[i]);
-    gather[g0] = key[i];
+  keys.each([&](double k) {
+    const std::size_t b = bucket(k);
+    gather[g0] = k;
     g0 += b == b0;
-    gather[g1] = key[i];
+    gather[g1] = k;
     g1 += b == b1;
-  }
+  });
   v0 = select_in(gather.data(), n0, k0 - below0, count);
   v1 = select_in(gather.data() + n0 + 1, n1, k1 - below1, count);
 }
 
-// Median, 5% quantile and minimum of the angles of n keys: the angle decreases as the key grows.
-void angle_stats(const double* key, std::size_t n, double& median, double& q05, double& min,
-                 std::vector<std::uint32_t>& count, std::vector<double>& gather) {
-  double km = 0, kq = 0, kmax = 0;
-  select_keys(key, n, n - 1 - rank_of(0.5, n), n - 1 - rank_of(0.05, n), km, kq, kmax, count, gather);
+// Median, 5% quantile and minimum of the angles of the keys: the angle decreases as the key grows.
+void angle_stats(const KeyRows& keys, double& median, double& q05, double& min, std::vector<std::uint32_t>& count,
+                 std::vector<double>& gather) {
+  const std::size_t n = keys.size();
+  double km = 0, kq = 0;
+  select_keys(keys, n - 1 - rank_of(0.5, n), n - 1 - rank_of(0.05, n), km, kq, count, gather);
   median = angle_of(km);
   q05 = angle_of(kq);
-  min = angle_of(kmax);
+  min = angle_of(keys.hi);
 }
 
 // Adds the angles of n keys to a histogram of `bins` bins over [0, pi/2]: iterate::atan_fast (error < 2e-7) where
@@ -327,7 +342,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
   // thread the machine delays holds the others less).  keys: the round's keys, r-major then orbit-major.
   const std::size_t G = 4 * static_cast<std::size_t>(threads);
   iterate::checked_bytes(G * I0, sizeof(double) * Nz, "window");
-  std::vector<double> keys(G * I0 * Nz);
+  std::vector<double> keys(G * I0 * Nz), key_lo(G * I0), key_hi(G * I0);  // and each orbit's extreme keys
   bool stop = false;
 
 #pragma omp parallel num_threads(threads)
@@ -392,17 +407,25 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
         }
         clv_phase<true, false, false>(s, w, vr, va, vk, Nb, N, K[ir], st);
         // Backward: tau from 0 (the second CLV is e2 after the last step); keys of the window steps.
-        V tau[NV] = {};
+        V tau[NV] = {}, kmin[NV], kmax[NV];
+        for (int v = 0; v < NV; ++v) kmin[v] = V{} + std::numeric_limits<double>::infinity(), kmax[v] = V{};
         for (long j = N + Nb - 1; j >= 0; --j) {
           const long row = j * B;
           alignas(64) double kk[B];
           for (int v = 0; v < NV; ++v) {
             tau[v] = S::load(A.data() + row + v * W) * tau[v] - S::load(Bc.data() + row + v * W);
-            if (j < N) S::store(kk + v * W, tau[v] * tau[v] * S::load(rho.data() + row + v * W));
+            if (j < N) {
+              const V key = tau[v] * tau[v] * S::load(rho.data() + row + v * W);
+              kmin[v] = key < kmin[v] ? key : kmin[v];
+              kmax[v] = key > kmax[v] ? key : kmax[v];
+              S::store(kk + v * W, key);
+            }
           }
           if (j < N)
             for (int l = 0; l < lanes; ++l) round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
         }
+        alignas(64) double klo[B], khi[B];
+        for (int v = 0; v < NV; ++v) S::store(klo + v * W, kmin[v]), S::store(khi + v * W, kmax[v]);
         for (int l = 0; l < lanes; ++l) {
           ClvResult& c = row.orbit[o0 + static_cast<std::size_t>(l)];
           const double n = static_cast<double>(N);
@@ -432,24 +455,28 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           }
           c.histogram.assign(bins, 0.0);
           add_histogram(key, Nz, opt.bins, c.histogram.data());
-          angle_stats(key, Nz, c.median_angle, c.q05_angle, c.min_angle, count, gather);
+          KeyRows own{{key}, Nz, klo[l], khi[l]};
+          key_lo[o0 + static_cast<std::size_t>(l) + (ir - r0) * I0] = klo[l];
+          key_hi[o0 + static_cast<std::size_t>(l) + (ir - r0) * I0] = khi[l];
+          angle_stats(own, c.median_angle, c.q05_angle, c.min_angle, count, gather);
         }
       }
       // Pooled over the non-degenerate orbits, in orbit order (their keys moved to the front), one r per thread.
 #pragma omp for schedule(dynamic)
       for (std::size_t i = 0; i < g; ++i) {
         ClvRow& row = rows[r0 + i];
-        double* const round_keys = keys.data() + i * I0 * Nz;
-        std::size_t n = 0;
+        KeyRows pooled;
+        pooled.len = Nz;
         row.histogram.assign(bins, 0.0);
         for (std::size_t o = 0; o < I0; ++o) {
           const ClvResult& c = row.orbit[o];
           if (c.degenerate) continue;
-          if (n != o) std::copy_n(round_keys + o * Nz, Nz, round_keys + n * Nz);
-          ++n;
+          pooled.row.push_back(keys.data() + (i * I0 + o) * Nz);
+          pooled.lo = std::min(pooled.lo, key_lo[i * I0 + o]);
+          pooled.hi = std::max(pooled.hi, key_hi[i * I0 + o]);
           for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
         }
-        if (n) angle_stats(round_keys, n * Nz, row.median_angle, row.q05_angle, row.min_angle, count, gather);
+        if (!pooled.row.empty()) angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, count, gather);
         else row.median_angle = row.q05_angle = row.min_angle = nan;
       }
 #pragma omp single nowait
