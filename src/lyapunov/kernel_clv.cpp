@@ -9,9 +9,9 @@
 // In the frames (e1, e2) -> (e1', e2') the projective derivative D = Pi_w M / |M u^| is the triangular
 // c [[1 / mm, b / N], [0, g mm / N]], c = |u| / |m|, N = e1' . e1', b = e1' . E2, g = e2' . E2.  Ginelli's backward
 // step for the second CLV x e1 + y e2 in the ratio tau = x / y is then tau_k = A_k tau_{k+1} - B_k with
-// A = g mm^2 / N and B = mm b / N (one division per stored step), A times s1 / s2 where e1', e2' were rescaled by
-// s1, s2.  The angle between the CLVs is atan(1 / (|tau| sqrt(rho))), rho = |e1|^2 / |e2|^2, which is the previous
-// step's mm (times (s1 / s2)^2).  The angles are kept as key = tau^2 rho (their order reversed) and an angle is
+// A = g mm^2 / N and B = mm b / N (one division per stored step; a second in the window for c^2 = |u|^2 / mm), A
+// times s1 / s2 where e1', e2' were rescaled by s1, s2.  The angle between the CLVs is atan(1 / (|tau| sqrt(rho))),
+// rho = |e1|^2 / |e2|^2, which is the previous step's mm (times (s1 / s2)^2).  The angles are kept as key = tau^2 rho (their order reversed) and an angle is
 // computed from its key only where a value is reported: quantiles are order statistics.
 //
 // lambda1 = mean log |D g1| (g1 = e1 / |e1|) = mean of (1/2) log(|u|^2 N / (mm^3 |e1|^2)) telescopes, up to the
