@@ -401,7 +401,8 @@ TEST(HyperbolicityBatched, ChaoticOrbitsAgreeInDistribution) {
   compare("min", [](const auto& c) { return c.min_angle; });
   compare("expanding", [](const auto& c) { return c.expanding_fraction; });
   for (int b = 0; b < o.bins; ++b)
-    compare(("histogram bin " + std::to_string(b)).c_str(), [b](const auto& c) { return c.histogram[static_cast<std::size_t>(b)]; });
+    compare(("histogram bin " + std::to_string(b)).c_str(),
+            [b](const auto& c) { return c.histogram[static_cast<std::size_t>(b)]; });
 }
 
 TEST(HyperbolicityBatched, P2RegionIsDegenerateOnBothRoutes) {

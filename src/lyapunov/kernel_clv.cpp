@@ -11,8 +11,9 @@
 // step for the second CLV x e1 + y e2 in the ratio tau = x / y is then tau_k = A_k tau_{k+1} - B_k with
 // A = g mm^2 / N and B = mm b / N (one division per stored step; a second in the window for c^2 = |u|^2 / mm), A
 // times s1 / s2 where e1', e2' were rescaled by s1, s2.  The angle between the CLVs is atan(1 / (|tau| sqrt(rho))),
-// rho = |e1|^2 / |e2|^2, which is the previous step's mm (times (s1 / s2)^2).  The angles are kept as key = tau^2 rho (their order reversed) and an angle is
-// computed from its key only where a value is reported: quantiles are order statistics.
+// rho = |e1|^2 / |e2|^2, which is the previous step's mm (times (s1 / s2)^2).  The angles are kept as
+// key = tau^2 rho (their order reversed) and an angle is computed from its key only where a value is reported:
+// quantiles are order statistics.
 //
 // lambda1 = mean log |D g1| (g1 = e1 / |e1|) = mean of (1/2) log(|u|^2 N / (mm^3 |e1|^2)) telescopes, up to the
 // rescaling exponents, into the logs of |u|^2 and |e1|^2 at the window's two ends and the sum of log mm (kept as a
@@ -57,7 +58,8 @@ int clv_interval(double r) {
   const double h = std::max(grow, shrink);
   for (int K = 16; K >= 1; --K)
     if (2 * (K * (K + 2) * h + 3 * K) <= 980) return K;
-  throw std::invalid_argument(fmt::format("r: got {}, expected r whose matrices keep the CLV frame in double's range", r));
+  throw std::invalid_argument(
+      fmt::format("r: got {}, expected r whose matrices keep the CLV frame in double's range", r));
 }
 
 struct Regs {
@@ -251,7 +253,8 @@ struct KeyRows {
   std::size_t len = 0;
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
   std::size_t size() const { return row.size() * len; }
-  template <class F> void each(F f) const {
+  template <class F>
+  void each(F f) const {
     for (const double* r : row)
       for (std::size_t i = 0; i < len; ++i) f(r[i]);
   }
@@ -314,8 +317,7 @@ void add_histogram(const double* key, std::size_t n, int bins, double* hist) {
       const bool certain = x - f > guard && f + 1 - x > guard && f < bins;  // false for NaN (key inf)
       bin[i] = certain ? static_cast<std::int64_t>(f) : -1;
     }
-    for (int i = 0; i < c; ++i)
-      hist[bin[i] >= 0 ? bin[i] : angle_bin(angle_of(key[i0 + i]), bins)] += 1;
+    for (int i = 0; i < c; ++i) hist[bin[i] >= 0 ? bin[i] : angle_bin(angle_of(key[i0 + i]), bins)] += 1;
   }
 }
 
@@ -330,8 +332,8 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
   const std::size_t I0 = initial.size(), n_batches = (I0 + B - 1) / B, Nz = static_cast<std::size_t>(N);
   const std::size_t bins = static_cast<std::size_t>(opt.bins);
   const int threads = run.threads > 0 ? run.threads : omp_get_max_threads();
-  iterate::checked_bytes(static_cast<std::size_t>(threads) * B, sizeof(double) * static_cast<std::size_t>(3 * N + 2 * Nb),
-                         "window");
+  iterate::checked_bytes(static_cast<std::size_t>(threads) * B,
+                         sizeof(double) * static_cast<std::size_t>(3 * N + 2 * Nb), "window");
   iterate::checked_bytes(I0, sizeof(double) * Nz, "window");
   std::vector<int> K(rs.size());
   for (std::size_t i = 0; i < rs.size(); ++i) K[i] = clv_interval(rs[i]);
@@ -369,7 +371,8 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
         const int lanes = static_cast<int>(std::min<std::size_t>(B, I0 - o0));
         alignas(64) double L[9][B], rv[B], av[B], kv[B];
         for (int l = 0; l < B; ++l) {
-          const Vec3<double> q = iterate::detail::unit_start(initial[o0 + static_cast<std::size_t>(std::min(l, lanes - 1))]);
+          const Vec3<double> q =
+              iterate::detail::unit_start(initial[o0 + static_cast<std::size_t>(std::min(l, lanes - 1))]);
           const Eigen::Matrix<double, 3, 2> f = tangent_basis<double>(q.normalized());
           for (int c = 0; c < 3; ++c) L[c][l] = q(c), L[3 + c][l] = f(c, 0);
           rv[l] = r, av[l] = (1 + r) / 2, kv[l] = av[l] / r;
@@ -396,8 +399,10 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           w.pm[j] = one(), w.em[j] = w.n13[j] = w.nexp[j] = w.eu[j] = w.ef[j] = V{};
           S::store(lu0 + j * W, uu), S::store(lq0 + j * W, q1);
         }
-        if (keep_steps) clv_phase<true, true, true>(s, w, vr, va, vk, N, 0, K[ir], st);
-        else clv_phase<true, true, false>(s, w, vr, va, vk, N, 0, K[ir], st);
+        if (keep_steps)
+          clv_phase<true, true, true>(s, w, vr, va, vk, N, 0, K[ir], st);
+        else
+          clv_phase<true, true, false>(s, w, vr, va, vk, N, 0, K[ir], st);
         alignas(64) double lu1[B], lq1[B], sums[9][B];
         for (int j = 0; j < NV; ++j) {
           S::store(lu1 + j * W, s.x[j] * s.x[j] + s.y[j] * s.y[j] + s.z[j] * s.z[j]);
@@ -422,7 +427,8 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
             }
           }
           if (j < N)
-            for (int l = 0; l < lanes; ++l) round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
+            for (int l = 0; l < lanes; ++l)
+              round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
         }
         alignas(64) double klo[B], khi[B];
         for (int v = 0; v < NV; ++v) S::store(klo + v * W, kmin[v]), S::store(khi + v * W, kmax[v]);
@@ -433,7 +439,8 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           const double e1 = -sums[4][l] + sums[5][l] - sums[1][l];
           const double s11 = 0.5 * (std::log(lu0[l]) - std::log(lu1[l]) + std::log(lq1[l]) - std::log(lq0[l])) +
                              e1 * ln2 - std::log(sums[0][l]);
-          const double sdet = sums[2][l] * std::log(r) + 1.5 * (std::log(lu0[l]) - std::log(lu1[l]) - 2 * ln2 * sums[4][l]);
+          const double sdet =
+              sums[2][l] * std::log(r) + 1.5 * (std::log(lu0[l]) - std::log(lu1[l]) - 2 * ln2 * sums[4][l]);
           c.lambda = {s11 / n, (sdet - s11) / n};
           c.degenerate = c.lambda[0] - c.lambda[1] < 10.0 / n;  // as covariant_vectors
           c.expanding_fraction = sums[3][l] / n;
@@ -476,8 +483,10 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           pooled.hi = std::max(pooled.hi, key_hi[i * I0 + o]);
           for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
         }
-        if (!pooled.row.empty()) angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, count, gather);
-        else row.median_angle = row.q05_angle = row.min_angle = nan;
+        if (!pooled.row.empty())
+          angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, count, gather);
+        else
+          row.median_angle = row.q05_angle = row.min_angle = nan;
       }
 #pragma omp single nowait
       if (run.progress) run.progress->update(r0 + g, rs.size());
