@@ -1,8 +1,9 @@
 // Throughput of the Lyapunov exponents in map iterations per second: the scalar QR route (Eigen, one orbit,
 // the baseline), the TangentRecorder on the plain batched kernel, and the fused cocycle kernel (map_exponents),
-// double and float, 1 and 2 threads.
+// double and float, 1 and 2 threads; and the covariant Lyapunov vectors, scalar and batched.
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
+#include "lyapunov/hyperbolicity.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 #include "lyapunov/tangent.hpp"
@@ -72,6 +73,43 @@ void BM_map_recorder(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * (n / 10 + n));
 }
 
+// Covariant Lyapunov vectors of `hyperbolicity-orbits`: r_count values x the 32-point grid, 10000 transient +
+// 10000 window + 10000 backward steps each (the command's defaults), `threads` threads.  clv_scalar is the route
+// before the batched one (covariant_vectors per orbit, OpenMP over the orbits); clv_batched the batched route with
+// everything clv_row reads (per-orbit and pooled angle statistics, histograms, exponents, expanding fractions).
+lyapunov::ClvOptions clv_workload() {
+  lyapunov::ClvOptions o;
+  o.transient = o.window = o.backward_transient = 10000;
+  return o;
+}
+void BM_clv_scalar(benchmark::State& st) {
+  const iterate::Ensemble e = workload(st.range(0));
+  const lyapunov::ClvOptions o = clv_workload();
+  const long n = static_cast<long>(e.orbits());
+  for (auto _ : st) {
+    std::vector<double> med(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) num_threads(static_cast<int>(st.range(1)))
+    for (long i = 0; i < n; ++i) {
+      const std::size_t o_ = static_cast<std::size_t>(i);
+      med[o_] = lyapunov::covariant_vectors<double>(e.initial[o_ % e.initial.size()], e.r[o_ / e.initial.size()], o)
+                    .median_angle;
+    }
+    benchmark::DoNotOptimize(med.data());
+  }
+  st.SetItemsProcessed(st.iterations() * n * (o.transient + o.window + o.backward_transient));
+}
+void BM_clv_batched(benchmark::State& st) {
+  const iterate::Ensemble e = workload(st.range(0));
+  const lyapunov::ClvOptions o = clv_workload();
+  iterate::RunOptions run;
+  run.threads = static_cast<int>(st.range(1));
+  for (auto _ : st) {
+    auto rows = lyapunov::covariant_vectors_batched(e.r, e.initial, o, run);
+    benchmark::DoNotOptimize(rows.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * (o.transient + o.window + o.backward_transient));
+}
+
 BENCHMARK(BM_qr_route<double>)->Name("smoke_qr_route")->Args({2000, 0});
 BENCHMARK(BM_map<false>)->Name("smoke_map_double")->Args({4, 500, 1})->UseRealTime();
 BENCHMARK(BM_qr_route<float>)->Name("qr_route/float")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
@@ -84,6 +122,8 @@ BENCHMARK(BM_map<false>)->Name("map_double")->Args({500, 10000, 1})->Args({500, 
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_map<true>)->Name("map_float")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_clv_scalar)->Name("clv_scalar")->Args({4, 1})->Args({4, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_clv_batched)->Name("clv_batched")->Args({20, 1})->Args({20, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_map_recorder)->Name("map_recorder/double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -7,6 +7,8 @@
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/maps.hpp"
 #include "lyapunov/lyapunov.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -286,9 +288,178 @@ TEST(Hyperbolicity, Errors) {
   o.bins = 0;
   EXPECT_EQ(msg([&] { lyapunov::validate(o); }), "bins: got 0, expected at least 1");
   EXPECT_THROW(lyapunov::covariant_vectors<double>(V3(1, 0, 1), 0.3, {}), std::logic_error);  // x z > 0
+  o = {};
+  o.window = 0;
+  EXPECT_EQ(msg([&] { lyapunov::covariant_vectors_batched({0.3}, {V3(1, -0.5, -1)}, o); }),
+            "window: got 0, expected at least 1");
+  EXPECT_THROW(lyapunov::covariant_vectors_batched({0.3}, {V3(1, 0, 1)}, {}), std::logic_error);
+  EXPECT_THROW(lyapunov::covariant_vectors_batched({1.5}, {V3(1, -0.5, -1)}, {}), std::domain_error);
   EXPECT_THROW(lyapunov::strip_singular_values(1.5, 4, 4, -1, 1), std::domain_error);
   EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 0, 4, -1, 1); }).find("grid"), std::string::npos);
   EXPECT_NE(msg([] { lyapunov::strip_singular_values(0.3, 4, 4, 1, -1); }).find("w1"), std::string::npos);
+}
+
+// ---- the batched route (covariant_vectors_batched) against the scalar reference ---------------------------
+
+// One orbit through both routes, the batched one with its per-step arrays.
+struct BothRoutes {
+  lyapunov::ClvResult scalar, batched;
+};
+BothRoutes both_routes(double r, const V3& u0, const lyapunov::ClvOptions& o) {
+  const auto rows = lyapunov::covariant_vectors_batched({r}, {u0}, o, {}, true);
+  return {lyapunov::covariant_vectors<double>(u0, r, o), rows.at(0).orbit.at(0)};
+}
+
+TEST(HyperbolicityBatched, PeriodicSinksMatchTheScalarRoute) {
+  // On a sink both routes converge onto the same cycle and the same eigenvector CLVs, possibly at another phase
+  // (from this start at r = 0.1 the batched orbit lands one step ahead: the transient's roundings differ); with a
+  // window of whole periods every statistic is the same up to rounding, and per step they agree once aligned.
+  for (const auto& [r, period] : {std::pair{0.15, 4}, std::pair{0.1, 6}}) {
+    SCOPED_TRACE("r = " + std::to_string(r));
+    lyapunov::ClvOptions o;
+    o.transient = 20000;  // as ClvsOnPeriodicSinksAreProjectedEigenvectors: the orbit at rounding level
+    o.window = 396;       // whole periods of both cycles
+    o.backward_transient = 2000;
+    const auto [sc, ba] = both_routes(r, V3(1, -0.9, -0.2), o);
+    ASSERT_FALSE(ba.degenerate);
+    int shift = 0;
+    const auto aligned = [&](int d) {
+      for (std::size_t j = 0; j + period < sc.symbols.size(); ++j)
+        if (ba.symbols[j] != sc.symbols[j + static_cast<std::size_t>(d)]) return false;
+      return true;
+    };
+    while (shift < period && !aligned(shift)) ++shift;
+    ASSERT_LT(shift, period) << "not the same cycle";
+    double worst = 0;
+    for (std::size_t j = 0; j + period < sc.angle.size(); ++j)
+      worst = std::max(worst, std::abs(ba.angle[j] - sc.angle[j + static_cast<std::size_t>(shift)]));
+    // Both within 1e-9 of the projected eigenvectors (ClvsOnPeriodicSinksAreProjectedEigenvectors); the two
+    // routes' roundings of the same cycle are closer still.
+    const auto cycle = ulps(64, "the same cycle's CLV angles rounded along two routes (measured 15 eps)");
+    EXPECT_SMALL(worst, cycle);
+    EXPECT_CLOSE(ba.median_angle, sc.median_angle, cycle);
+    EXPECT_CLOSE(ba.q05_angle, sc.q05_angle, cycle);
+    EXPECT_CLOSE(ba.min_angle, sc.min_angle, cycle);
+    EXPECT_EQ(ba.histogram, sc.histogram);
+    EXPECT_EQ(ba.expanding_fraction, sc.expanding_fraction);
+    // The window's mean of log r11 (r22): the scalar's sum of logs against the batched telescoped sums (logs at
+    // the window's ends, exact exponents, one mantissa product).
+    const auto mean = ulps(16, "396 logs of O(1) values summed two ways (measured 1.75 eps)");
+    EXPECT_CLOSE(ba.lambda[0], sc.lambda[0], mean);
+    EXPECT_CLOSE(ba.lambda[1], sc.lambda[1], mean);
+  }
+}
+
+TEST(HyperbolicityBatched, SymbolsAreThePlainKernels) {
+  // The batched route steps its points with the plain kernel's map_step: the window's symbols are those of
+  // iterate::run<double> bit for bit, on chaotic orbits too (r = 0.11), where any other rounding would diverge.
+  const double r = 0.11;
+  lyapunov::ClvOptions o;
+  o.transient = 3000;
+  o.window = 5000;
+  o.backward_transient = 100;
+  iterate::Ensemble e;
+  e.r = {r};
+  e.initial = iterate::parse_grid("random:21", 3);
+  iterate::SymbolRecorder rec(e.orbits(), o.transient + 1, o.transient + o.window);
+  iterate::run<double>(e, o.transient + o.window, rec);
+  const auto rows = lyapunov::covariant_vectors_batched({r}, e.initial, o, {}, true);
+  for (std::size_t i = 0; i < e.initial.size(); ++i) {
+    const auto& sym = rows[0].orbit[i].symbols;
+    ASSERT_EQ(sym.size(), static_cast<std::size_t>(o.window));
+    EXPECT_TRUE(std::equal(sym.begin(), sym.end(), rec.out.begin() + static_cast<long>(i) * o.window)) << i;
+  }
+}
+
+TEST(HyperbolicityBatched, ChaoticOrbitsAgreeInDistribution) {
+  // r = 0.11: the two routes round differently and lambda1 > 0 takes their orbits apart, so they are compared as
+  // samples: each per-orbit statistic's mean over 16 orbits, against 5 sigma of the difference of two such means
+  // (sigma the spread over the scalar route's orbits).
+  const double r = 0.11;
+  lyapunov::ClvOptions o;
+  o.transient = 2000;
+  o.window = 20000;
+  o.backward_transient = 2000;
+  o.bins = 18;
+  const auto ics = iterate::parse_grid("random:16", 5);
+  const auto rows = lyapunov::covariant_vectors_batched({r}, ics, o);
+  std::vector<lyapunov::ClvResult> sc;
+  for (const auto& u : ics) sc.push_back(lyapunov::covariant_vectors<double>(u, r, o));
+  const auto compare = [&](const char* what, auto stat) {
+    double mb = 0, ms = 0, ss = 0;
+    const double n = static_cast<double>(ics.size());
+    for (std::size_t i = 0; i < ics.size(); ++i) mb += stat(rows[0].orbit[i]) / n, ms += stat(sc[i]) / n;
+    for (std::size_t i = 0; i < ics.size(); ++i) ss += (stat(sc[i]) - ms) * (stat(sc[i]) - ms) / (n - 1);
+    EXPECT_CLOSE(mb, ms, statistical(5 * std::sqrt(2 * ss / n), "5 sigma of a difference of two means of 16 orbits"))
+        << what;
+  };
+  for (std::size_t i = 0; i < ics.size(); ++i) ASSERT_FALSE(rows[0].orbit[i].degenerate || sc[i].degenerate) << i;
+  compare("lambda1", [](const auto& c) { return c.lambda[0]; });
+  compare("lambda2", [](const auto& c) { return c.lambda[1]; });
+  compare("median", [](const auto& c) { return c.median_angle; });
+  compare("q05", [](const auto& c) { return c.q05_angle; });
+  compare("min", [](const auto& c) { return c.min_angle; });
+  compare("expanding", [](const auto& c) { return c.expanding_fraction; });
+  for (int b = 0; b < o.bins; ++b)
+    compare(("histogram bin " + std::to_string(b)).c_str(),
+            [b](const auto& c) { return c.histogram[static_cast<std::size_t>(b)]; });
+}
+
+TEST(HyperbolicityBatched, P2RegionIsDegenerateOnBothRoutes) {
+  // The rotation region of P2 (RotationRegionOfP2IsDegenerate): lambda1 = lambda2 = 0, the splitting is not
+  // resolved and the angle is undefined, so only the flag and the exponents are compared.
+  for (const double r : {0.2, 0.3}) {
+    SCOPED_TRACE("r = " + std::to_string(r));
+    lyapunov::ClvOptions o;
+    o.transient = 1000;
+    o.window = 20000;
+    o.backward_transient = 1000;
+    const auto [sc, ba] = both_routes(r, V3(1, 0.02, -1), o);
+    for (auto s : ba.symbols) ASSERT_EQ(s, 2) << "the orbit left the P2 region";
+    EXPECT_TRUE(sc.degenerate);
+    EXPECT_TRUE(ba.degenerate);
+    // Both are 2 log(cond E) / n from 0 (RotationRegionOfP2IsDegenerate); the frames start alike, so closer.
+    const auto frame = bound(10.0 / 20000, "2 log(cond E) / n with cond E < 1e2, n = 2e4");
+    EXPECT_CLOSE(ba.lambda[0], sc.lambda[0], frame);
+    EXPECT_CLOSE(ba.lambda[1], sc.lambda[1], frame);
+    EXPECT_EQ(ba.expanding_fraction, sc.expanding_fraction);
+  }
+}
+
+TEST(HyperbolicityBatched, AnOrbitsBitsDependOnItselfOnly) {
+  // 37 orbits: full batches and a partial one.  Each orbit alone, and the whole row on 1 and 2 threads: bitwise.
+  lyapunov::ClvOptions o;
+  o.transient = 500;
+  o.window = 1000;
+  o.backward_transient = 500;
+  o.bins = 9;
+  const auto ics = iterate::parse_grid("random:37", 9);
+  const std::vector<double> rs = {0.11, 0.3};
+  iterate::RunOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const auto a = lyapunov::covariant_vectors_batched(rs, ics, o, one, true);
+  const auto b = lyapunov::covariant_vectors_batched(rs, ics, o, two, true);
+  const auto same = [](const lyapunov::ClvResult& x, const lyapunov::ClvResult& y) {
+    const auto bits = [](double p, double q) { return std::memcmp(&p, &q, sizeof p) == 0; };
+    return x.angle == y.angle && x.symbols == y.symbols && x.expanding == y.expanding && x.histogram == y.histogram &&
+           bits(x.lambda[0], y.lambda[0]) && bits(x.lambda[1], y.lambda[1]) && x.degenerate == y.degenerate &&
+           bits(x.median_angle, y.median_angle) && bits(x.q05_angle, y.q05_angle) && bits(x.min_angle, y.min_angle) &&
+           bits(x.expanding_fraction, y.expanding_fraction);
+  };
+  for (std::size_t ir = 0; ir < rs.size(); ++ir) {
+    for (std::size_t i = 0; i < ics.size(); ++i) {
+      EXPECT_TRUE(same(a[ir].orbit[i], b[ir].orbit[i])) << ir << " " << i;
+      if (i % 6 == 0 || i + 1 == ics.size()) {
+        const auto alone = lyapunov::covariant_vectors_batched({rs[ir]}, {ics[i]}, o, one, true);
+        EXPECT_TRUE(same(alone[0].orbit[0], a[ir].orbit[i])) << ir << " " << i;
+      }
+    }
+    EXPECT_EQ(std::memcmp(&a[ir].median_angle, &b[ir].median_angle, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&a[ir].q05_angle, &b[ir].q05_angle, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&a[ir].min_angle, &b[ir].min_angle, sizeof(double)), 0);
+    EXPECT_EQ(a[ir].histogram, b[ir].histogram);
+  }
 }
 
 // ---- the requests (`btob hyperbolicity`, `btob hyperbolicity-orbits`) -----------------------------------------
@@ -404,8 +575,18 @@ TEST(HyperbolicityOrbitsRequest, RunPoolsTheClvsOfEachOrbit) {
   for (std::size_t ir = 0; ir < R; ++ir) {
     std::vector<double> l1, pooled;
     std::vector<double> hist(static_cast<std::size_t>(q.bins), 0.0);
+    // The batched route with its angles: the pooled statistics are those of quantile() on them, bit for bit.
+    const auto row = lyapunov::covariant_vectors_batched({res.ensemble.r[ir]}, grid, co, {}, true).at(0);
     for (std::size_t i = 0; i < I; ++i) {
-      const auto c = lyapunov::covariant_vectors<double>(grid[i], res.ensemble.r[ir], co);
+      const auto& c = row.orbit[i];
+      if (!c.degenerate) {
+        EXPECT_EQ(c.median_angle, lyapunov::quantile(c.angle, 0.5));
+        EXPECT_EQ(c.q05_angle, lyapunov::quantile(c.angle, 0.05));
+        EXPECT_EQ(c.min_angle, *std::min_element(c.angle.begin(), c.angle.end()));
+        std::vector<double> own(hist.size(), 0.0);  // the fast binning's counts are those of the angles
+        for (double a : c.angle) own[static_cast<std::size_t>(lyapunov::angle_bin(a, q.bins))] += 1;
+        EXPECT_EQ(c.histogram, own);
+      }
       const std::size_t o = ir * I + i;
       EXPECT_EQ(res.orbit_lambda1_qr[o], c.lambda[0]);
       EXPECT_EQ(res.orbit_lambda2_qr[o], c.lambda[1]);

@@ -3,10 +3,13 @@
 // vectors (Ginelli's forward-backward method) with the angle between the two Oseledets directions.
 #pragma once
 
+#include "iterate/kernel.hpp"
 #include "lyapunov/lyapunov.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace btob::lyapunov {
@@ -73,6 +76,31 @@ template <class T> ClvResult covariant_vectors(const Vec3<T>& u0, const T& r, co
 
 // Quantile q in [0, 1] of a sample (nearest rank on the sorted copy); NaN for an empty sample.
 double quantile(std::vector<double> sample, double q);
+
+// The histogram bin of an angle in [0, pi/2] among `bins` equal bins (the last one closed).
+inline long angle_bin(double angle, int bins) {
+  return std::clamp<long>(static_cast<long>(angle / (std::numbers::pi / 2) * bins), 0, bins - 1);
+}
+
+// The CLVs of many orbits at one r: per orbit what covariant_vectors gives (angle, expanding and symbols only with
+// keep_steps; points and vectors never; a degenerate orbit's angle statistics NaN and its histogram empty: its
+// angles are undefined), and the angle statistics pooled over the non-degenerate orbits, as
+// `btob hyperbolicity-orbits` reports them.
+struct ClvRow {
+  std::vector<ClvResult> orbit;
+  double median_angle = 0, q05_angle = 0, min_angle = 0;  // NaN when every orbit is degenerate
+  std::vector<double> histogram;                          // summed over the non-degenerate orbits
+};
+using ClvRows = std::vector<ClvRow>;
+// The batched route (kernel_clv.cpp), one row per r: lanes of orbits in SIMD registers through the plain kernel's
+// map step (the symbols are iterate::run<double>'s), the Ginelli frame carried unnormalised (divisions only at the
+// steps whose R is stored), the backward pass over each batch's stored coefficients.  An orbit's bits depend on
+// its start, its r and opt only: not on threads nor on the other orbits.  Memory: per thread one batch's
+// coefficients, 16 lanes (AVX-512; 8 with AVX2, 4 with SSE2) x (3 window + 2 backward_transient) doubles, and for
+// the r values in flight (4 per thread) initial.size() x window doubles each (the angles pooled per r).
+// run: threads, cancellation (checked per 4 r per thread; throws core::Cancelled), progress.
+ClvRows covariant_vectors_batched(const std::vector<double>& r, const std::vector<Vec3<double>>& initial,
+                                  const ClvOptions& opt, const iterate::RunOptions& run = {}, bool keep_steps = false);
 
 extern template std::array<double, 2> singular_values<double>(const Mat3<double>&, const double&, const Vec3<double>&);
 extern template std::array<long double, 2> singular_values<long double>(const Mat3<long double>&, const long double&,

@@ -122,10 +122,7 @@ template <class T> ClvResult covariant_vectors(const Vec3<T>& u0, const T& r, co
   res.q05_angle = quantile(res.angle, 0.05);
   res.min_angle = *std::min_element(res.angle.begin(), res.angle.end());
   res.histogram.assign(static_cast<std::size_t>(opt.bins), 0.0);
-  for (double a : res.angle) {
-    const long b = static_cast<long>(a / (std::numbers::pi / 2) * opt.bins);
-    res.histogram[static_cast<std::size_t>(std::clamp<long>(b, 0, opt.bins - 1))] += 1;
-  }
+  for (double a : res.angle) res.histogram[static_cast<std::size_t>(angle_bin(a, opt.bins))] += 1;
   return res;
 }
 

@@ -155,23 +155,16 @@ void HyperbolicityOrbitsRequest::validate() const {
 }
 
 namespace {
-// The CLVs of every orbit at r (OpenMP, static schedule), pooled in orbit order into row j of the part: the same
-// for any thread count and any other r in the part; angles only from non-degenerate orbits.
-void clv_row(HyperbolicityOrbitsPart& res, std::size_t j, double r, const std::vector<iterate::Vec3<double>>& initial,
-             std::size_t B, const ClvOptions& co) {
-  const std::size_t I = initial.size();
+// Row j of the part from the batched CLVs of every orbit at its r (covariant_vectors_batched: the same for any
+// thread count and any other r in the part); angles only from non-degenerate orbits.
+void clv_row(HyperbolicityOrbitsPart& res, std::size_t j, const ClvRow& row, std::size_t B) {
+  const std::size_t I = row.orbit.size();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::vector<ClvResult> clv(I);
-#pragma omp parallel for schedule(static) num_threads(res.threads)
-  for (long i = 0; i < static_cast<long>(I); ++i) {
-    clv[static_cast<std::size_t>(i)] = covariant_vectors<double>(initial[static_cast<std::size_t>(i)], r, co);
-    clv[static_cast<std::size_t>(i)].symbols = {};  // only the angles are pooled below
-  }
-  std::vector<double> pooled, l1s;
+  std::vector<double> l1s;
   double f = 0;
   long deg = 0;
   for (std::size_t i = 0; i < I; ++i) {
-    const auto& c = clv[i];
+    const auto& c = row.orbit[i];
     const std::size_t o = j * I + i;
     res.orbit_frac_expanding[o] = c.expanding_fraction;
     res.orbit_angle_median[o] = c.degenerate ? nan : c.median_angle;
@@ -182,18 +175,14 @@ void clv_row(HyperbolicityOrbitsPart& res, std::size_t j, double r, const std::v
     l1s.push_back(c.lambda[0]);
     f += c.expanding_fraction;
     deg += c.degenerate;
-    if (c.degenerate) continue;
-    pooled.insert(pooled.end(), c.angle.begin(), c.angle.end());
-    for (std::size_t b = 0; b < B; ++b) res.angle_histogram[j * B + b] += c.histogram[b];
   }
+  std::copy(row.histogram.begin(), row.histogram.end(), res.angle_histogram.begin() + static_cast<long>(j * B));
   res.frac_expanding[j] = f / static_cast<double>(I);
   res.frac_degenerate[j] = static_cast<double>(deg) / static_cast<double>(I);
   res.lambda1_qr_median[j] = median(l1s);  // as lyapunov-map's median column
-  if (!pooled.empty()) {
-    res.angle_median[j] = quantile(pooled, 0.5);
-    res.angle_q05[j] = quantile(pooled, 0.05);
-    res.angle_min[j] = *std::min_element(pooled.begin(), pooled.end());
-  }
+  res.angle_median[j] = row.median_angle;
+  res.angle_q05[j] = row.q05_angle;
+  res.angle_min[j] = row.min_angle;
 }
 }  // namespace
 
@@ -208,7 +197,6 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   HyperbolicityOrbitsPart res;
   res.items = items;
   res.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (auto* v : {&res.orbit_frac_expanding, &res.orbit_angle_median, &res.orbit_angle_q05, &res.orbit_lambda1_qr,
                   &res.orbit_lambda2_qr})
     v->resize(N);
@@ -216,15 +204,15 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   res.frac_expanding.resize(R);
   res.frac_degenerate.resize(R);
   res.lambda1_qr_median.resize(R);
-  for (auto* v : {&res.angle_median, &res.angle_q05, &res.angle_min}) v->assign(R, nan);
+  for (auto* v : {&res.angle_median, &res.angle_q05, &res.angle_min}) v->resize(R);
   res.angle_histogram.assign(R * B, 0.0);
-  const ClvOptions co = clv_options(req);
+  iterate::RunOptions run;
+  run.threads = res.threads;
+  run.progress = control.progress;
+  run.cancel = control.cancel;
   const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t j = 0; j < R; ++j) {
-    control.check_cancelled();
-    clv_row(res, j, ens.r[j], ens.initial, B, co);
-    if (control.progress) control.progress->update(j + 1, R);
-  }
+  const ClvRows rows = covariant_vectors_batched(ens.r, ens.initial, clv_options(req), run);
+  for (std::size_t j = 0; j < R; ++j) clv_row(res, j, rows[j], B);
   res.clv_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // lambda1 beside them, from the batched tangent recorder on the same orbits (same r, same grid).
   MapOptions mo;
