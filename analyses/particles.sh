@@ -63,6 +63,8 @@ PY
   rm -rf "$tmp/run$i"
 done < "$tmp/cases"
 mv "$tmp/realised.csv" "$OUT/realised.csv"
+# Its manifest (the particle runs' own manifests are not kept: realised.csv is their table).
+"$(dirname "$BTOB")/btob_manifest" "$OUT/manifest.json" "analyses/particles.sh $BTOB $L" realised.csv
 /usr/bin/python3 - "$OUT/realised.csv" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1], newline="")))
