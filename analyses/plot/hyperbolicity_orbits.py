@@ -31,7 +31,7 @@ def draw(f):
     fig, axs = plt.subplots(4, 1, figsize=(10, 11), sharex=True,
                             gridspec_kw={"height_ratios": [1, 1, 1.2, 1]})
     ax = axs[0]
-    ax.plot(r, d["lambda1_median"], "k.-", ms=3, lw=0.7, label=r"median $\lambda_1$ (batched tangent recorder)")
+    ax.plot(r, d["lambda1_median"], "k.-", ms=3, lw=0.7, label=r"median $\lambda_1$ (fused cocycle kernel)")
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_ylabel(r"$\lambda_1$ (per iteration)")
     ax.legend(fontsize=8, loc="upper right")
