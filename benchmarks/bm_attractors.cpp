@@ -48,9 +48,10 @@ template <bool Scalar> void BM_pass1(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * (o.transient + o.window));
 }
 
-// Pass 2 alone (the orbits pass 1 leaves without a period): lambda1 from the fused cocycle kernel and a plain run with
-// the rotation recorder (Fused, what run_pass does), or both recorders on one plain run (the per-step route, kept for
-// r below the fused kernel's range).  r = 0.102 (chaotic: the invariant I, no rotation) and r = 0.3 (I and the
+// Pass 2 alone with every orbit taking the rotation (the orbits pass 1 leaves without a period): lambda1 from the fused
+// cocycle kernel and a plain run with the rotation recorder (Fused: run_pass's two runs, its bound when every orbit's
+// lambda1 is zero), or both recorders on one plain run (the per-step route before, kept for r below the fused
+// kernel's range).  r = 0.102 (chaotic: the invariant I, no rotation) and r = 0.3 (I and the
 // rotation's angle every step); items = map iterations (lyap_transient + lyap_iterations).
 template <bool Fused> void BM_pass2(benchmark::State& st) {
   iterate::Ensemble e;
@@ -78,6 +79,25 @@ template <bool Fused> void BM_pass2(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * steps);
 }
 
+// The whole classification of 1024 orbits (pass 1, pass 2 and any refinement), r = 0.102 (chaotic: pass 2 is the
+// cocycle kernel alone) and r = 0.3 (periodic and P2 curves: the curves' orbits also take the rotation run); items =
+// the map iterations spent (the verdicts' sum), to set against the plain kernel's.
+void BM_classify(benchmark::State& st) {
+  iterate::Ensemble e;
+  e.r = {static_cast<double>(st.range(0)) / 1000};
+  e.initial = attractors::grid_points(attractors::parse_grid("strip:64x16", -2, 2));
+  attractors::Options o;
+  o.run.threads = static_cast<int>(st.range(1));
+  long steps = 0;
+  for (auto _ : st) {
+    const auto v = attractors::classify(e, o);
+    steps = 0;
+    for (const auto& x : v) steps += x.iterations;
+    benchmark::DoNotOptimize(v.data());
+  }
+  st.SetItemsProcessed(st.iterations() * steps);
+}
+
 BENCHMARK(BM_basins)->Name("smoke_basins")->Args({200, 8, 1, 0})->UseRealTime();
 BENCHMARK(BM_pass1<false>)->Name("smoke_pass1_batched")->Args({2})->UseRealTime();
 BENCHMARK(BM_basins)->Name("basins")->Args({200, 300, 1, 0})->Args({200, 300, 2, 0})->Args({102, 100, 1, 0})
@@ -85,6 +105,7 @@ BENCHMARK(BM_basins)->Name("basins")->Args({200, 300, 1, 0})->Args({200, 300, 2,
 // Issue 17's workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of it.
 BENCHMARK(BM_basins)->Name("basins_replicates")->Args({200, 333, 2, 2})->Args({200, 1000, 2, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_classify)->Name("classify")->ArgsProduct({{102, 300}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_pass2<true>)->Name("pass2_fused")->ArgsProduct({{102, 300}, {64}, {1, 2}})->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_pass2<false>)->Name("pass2_recorder")->ArgsProduct({{102, 300}, {64}, {1, 2}})->UseRealTime()

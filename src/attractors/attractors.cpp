@@ -146,33 +146,52 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
   iterate::Ensemble e2;
   e2.r = {r};
   for (std::size_t o : rest) e2.initial.push_back(latest[o]);
-  // lambda1 from the fused cocycle kernel (iterate/cocycle.hpp), the rotation from a plain run that records every
-  // step's point: the two runs step the same points bit for bit.  Below the r the fused kernel takes (r < 4.7e-7,
-  // where pass 1 has nearly always found a collapse) the tangent vector rides the plain run as a per-step recorder.
+  // lambda1 from the fused cocycle kernel (iterate/cocycle.hpp) for every orbit; the rotation number and the P2
+  // invariant, which decide only between quasi-periodic and unresolved, from a plain run of the orbits whose lambda1
+  // is zero within its bar where P2 rotates (the run records every step's point and steps the same points bit for
+  // bit).  Below the r the fused kernel takes (r < 4.7e-7, where pass 1 has nearly always found a collapse) the
+  // tangent vector rides one plain run with the rotation as a per-step recorder.
   const long steps = opt.lyap_transient + opt.lyap_iterations;
-  attractors::RotationRecorder rot(rest.size(), r, opt.lyap_transient, opt.lyap_iterations);
+  const std::size_t none = std::numeric_limits<std::size_t>::max();
   lyapunov::OrbitExponents ex;
+  std::vector<std::size_t> rot_of(rest.size(), none);  // orbit i's index in the rotation run, or none
+  std::optional<attractors::RotationRecorder> rot;
+  const auto wants_rotation = [&](std::size_t i) {
+    return RotationRecorder::defined(r) && lyapunov::classify(ex.lambda1[i], ex.err1[i], opt.lyap_iterations) == 0;
+  };
   if (iterate::cocycle_accepts<double>(e2.r)) {
-    lyapunov::MapOptions mo;
-    mo.transient = opt.lyap_transient, mo.iterations = opt.lyap_iterations, mo.blocks = opt.lyap_blocks;
-    mo.run = opt.run;
-    ex = lyapunov::map_exponents(e2, mo);
-    iterate::run<double>(e2, steps, rot, opt.run);
+    attractors::PassTwoSums sums(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
+    iterate::run_cocycle<double>(e2, steps, sums, opt.run);
+    ex = lyapunov::exponents_from(e2, sums.n, sums.blocks, sums.block_end, sums.cum);
+    iterate::Ensemble e3;
+    e3.r = {r};
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      latest[rest[i]] = Vec3<double>(sums.fx[i], sums.fy[i], sums.fz[i]);
+      if (wants_rotation(i)) rot_of[i] = e3.initial.size(), e3.initial.push_back(e2.initial[i]);
+    }
+    rot.emplace(e3.initial.size(), r, opt.lyap_transient, opt.lyap_iterations);
+    if (!e3.initial.empty()) iterate::run<double>(e3, steps, *rot, opt.run);
   } else {
     lyapunov::TangentRecorder tan(e2, opt.lyap_transient, opt.lyap_iterations, opt.lyap_blocks);
-    iterate::Both<lyapunov::TangentRecorder, attractors::RotationRecorder> both(tan, rot);
+    rot.emplace(rest.size(), r, opt.lyap_transient, opt.lyap_iterations);
+    iterate::Both<lyapunov::TangentRecorder, attractors::RotationRecorder> both(tan, *rot);
     iterate::run<double>(e2, steps, both, opt.run);
     ex = lyapunov::exponents_from(tan);
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      latest[rest[i]] = Vec3<double>(rot->fx[i], rot->fy[i], rot->fz[i]);
+      if (wants_rotation(i)) rot_of[i] = i;
+    }
   }
   for (std::size_t i = 0; i < rest.size(); ++i) {
     OrbitVerdict& v = out[rest[i]];
     v.iterations += steps;
-    latest[rest[i]] = Vec3<double>(rot.fx[i], rot.fy[i], rot.fz[i]);
     v.lambda1 = ex.lambda1[i], v.err1 = ex.err1[i];
-    v.invariant = rot.invariant(i);
-    v.invariant_spread = (rot.i_max[i] - rot.i_min[i]) / std::fabs(v.invariant);
-    v.rotation = rot.rotation(i);
-    v.rotation_delta = std::fabs(rot.rotation(i) - rot.rotation_half(i));
+    if (const std::size_t k = rot_of[i]; k != none) {
+      v.invariant = rot->invariant(k);
+      v.invariant_spread = (rot->i_max[k] - rot->i_min[k]) / std::fabs(v.invariant);
+      v.rotation = rot->rotation(k);
+      v.rotation_delta = std::fabs(rot->rotation(k) - rot->rotation_half(k));
+    }
     const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
     const std::string lam = fmt::format("lambda1 = {:.3g} +- {:.2g}", v.lambda1, v.err1);
     if (sign > 0) {
@@ -182,7 +201,7 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
       v.detail = fmt::format("{} < 0 but no return within {} steps (closest {:.2g} at {}): slow convergence or a "
                              "longer period",
                              lam, opt.max_period, v.residual, v.closest_return);
-    } else if (!rot.rotation_defined) {
+    } else if (!RotationRecorder::defined(r)) {
       v.detail = lam + " is zero, but r <= 3 - 2 sqrt(2): no P2 rotation to test";
     } else if (v.rotation_delta < opt.rotation_tol) {
       v.type = Type::quasi_periodic;

@@ -21,8 +21,8 @@ using core::Vec3;
 //  * Pass 1 (every orbit, batched kernel, no tangent): `transient` steps, then a window of `window`
 //    steps in which the return to the window's first point (period <= max_period), the symbols and
 //    the counts of symbols 1 / 3 are recorded.  Pass 2 (orbits without a period): Lyapunov exponent
-//    lambda1 (lyapunov::map_exponents on the fused cocycle kernel, batch means) and, from a plain run of the
-//    same orbits, the weighted Birkhoff rotation number about the P2
+//    lambda1 (the fused cocycle kernel, batch means) and, for the orbits whose lambda1 is zero within its bar,
+//    from a plain run of the same orbits, the weighted Birkhoff rotation number about the P2
 //    centre (1, 0, -1) with the P2 invariant I (attractors/recorders.hpp).  Refinement: orbits
 //    still unresolved are continued from where they stopped with `refine_factor` times the transient.
 //  * Types: periodic (a stable periodic orbit, the pattern tool's verdict attached), collapse
@@ -69,6 +69,7 @@ struct OrbitVerdict {
   double residual = 0;       // periodic: return distance |u_p - u_0|; else the closest return up to max_period
   int closest_return = 0;    // j of that closest return
   double lambda1 = 0, err1 = 0;  // pass 2 (batch means); periodic / collapse: the exact exponent log|l2/l1|/p, err 0
+  // Pass 2, for the orbits they decide (lambda1 zero within its bar, r > 3 - 2 sqrt(2)); 0 for the others:
   double rotation = 0, rotation_delta = 0;  // turns per iteration, and |full - half| of the weighted averages
   double invariant = 0, invariant_spread = 0;  // weighted mean of I and (max - min) / mean over the record
   bool p2_region = false;    // no symbol 1 or 3 in the window (an orbit of the P2 parallelogram)

@@ -4,6 +4,7 @@
 #include "iterate/ensemble.hpp"
 #include "iterate/lanes.hpp"
 #include "iterate/recorders.hpp"
+#include "lyapunov/exponent_sums.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -132,7 +133,7 @@ struct RotationRecorder {
   RotationRecorder(std::size_t orbits, double r_, long start_, long n_)
       : start(start_), n(n_), r(r_), alpha((1 + r_) / 2) {
     checked_bytes(orbits, 9 * sizeof(double), "orbits (rotation recorder)");
-    rotation_defined = r - alpha * alpha / 2 > 0;
+    rotation_defined = defined(r);
     c_eta = rotation_defined ? std::sqrt(r - alpha * alpha / 2) : 0.0;
     w_full.assign(static_cast<std::size_t>(n) + 1, 0.0);
     w_half.assign(static_cast<std::size_t>(n) + 1, 0.0);
@@ -153,6 +154,11 @@ struct RotationRecorder {
     for (auto* v : {&fx, &fy, &fz}) v->assign(orbits, 0.0);
     i_min.assign(padded, std::numeric_limits<double>::infinity());
     i_max.assign(padded, -std::numeric_limits<double>::infinity());
+  }
+  // Whether P2 acts as a rotation at r (I positive definite): r > 3 - 2 sqrt(2).
+  static bool defined(double r) {
+    const double al = (1 + r) / 2;
+    return r - al * al / 2 > 0;
   }
   long first_step() const { return start; }
   // Weighted Birkhoff averages of the angle increment, in turns (rotation numbers in (-1/2, 1/2]).
@@ -217,6 +223,28 @@ struct RotationRecorder {
       full[l] += wf * d;  // step 0 only sets the first angle: its weights are 0
       half[l] += wh * d;
       prev[l] = ang;
+    }
+  }
+};
+
+// Pass 2's cocycle recorder: lambda1's sums (lyapunov::ExponentSums) and, at the last checkpoint, the unit state
+// where a refinement pass continues (the fused kernel steps the plain kernel's points; they differ from a plain run's
+// only by exact powers of two, which normalising removes: the same bits).  Storage: orbits x 3 doubles more.
+struct PassTwoSums : lyapunov::ExponentSums {
+  std::vector<double> fx, fy, fz;
+  PassTwoSums(const Ensemble& e, long transient_, long iterations_, int blocks_)
+      : ExponentSums(e, transient_, iterations_, blocks_) {
+    checked_bytes(e.orbits(), 3 * sizeof(double), "orbits (pass 2)");
+    for (auto* v : {&fx, &fy, &fz}) v->assign(e.orbits(), 0.0);
+  }
+  template <class T> void record(const iterate::CocycleBatch<T>& b) {
+    ExponentSums::record(b);
+    if (b.step != total_steps()) return;
+    for (int l = 0; l < b.lanes; ++l) {
+      const std::size_t o = b.orbit0 + static_cast<std::size_t>(l);
+      const double X = b.x[l], Y = b.y[l], Z = b.z[l];
+      const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
+      fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
     }
   }
 };
