@@ -337,6 +337,23 @@ TEST(Basins, LabelsIdenticalWithOneAndTwoThreads) {
   EXPECT_EQ(a.replicate_fractions, b.replicate_fractions);
 }
 
+// One bar for a basins run: the kernels inside a chunk (pass 1, the cocycle, the rotation run, refinement) report
+// into the chunk's share, so the bar never moves back and ends at the part's orbit count.
+TEST(Basins, ProgressNeverMovesBack) {
+  struct Record final : core::ProgressSink {
+    std::vector<std::pair<std::size_t, std::size_t>> seen;
+    void update(std::size_t done, std::size_t total) override { seen.emplace_back(done, total); }
+  } rec;
+  Options o;
+  o.run.progress = &rec;
+  const Grid g = parse_grid("strip:30x20", -2, 2);
+  (void)basins(0.12, g, 1, 3, o);  // chaotic: every orbit through both passes
+  ASSERT_GT(rec.seen.size(), 2u);
+  for (std::size_t i = 1; i < rec.seen.size(); ++i) EXPECT_GT(rec.seen[i].first, rec.seen[i - 1].first) << i;
+  for (const auto& [done, total] : rec.seen) EXPECT_EQ(total, 2u * 30 * 20);
+  EXPECT_EQ(rec.seen.back().first, 2u * 30 * 20);
+}
+
 TEST(Basins, IdsDoNotDependOnProcessingOrder) {
   const double r = 0.21;
   auto pts = grid_points(parse_grid("strip:20x20", -2, 2));

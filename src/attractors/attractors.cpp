@@ -916,8 +916,27 @@ std::size_t basin_items(const Grid& g, int replicates) {
   return static_cast<std::size_t>(replicates + 1) * static_cast<std::size_t>(g.n2);
 }
 
-BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
+namespace {
+// One progress bar for a part: a chunk runs several kernels (pass 1 with its checkpoints, the cocycle, the rotation
+// run, refinement), each reporting its own 0..100%; they report into the chunk's share of the part's orbits instead,
+// and the bar never moves back.
+struct ShareProgress final : core::ProgressSink {
+  core::ProgressSink* outer = nullptr;
+  std::size_t base = 0, span = 0, total = 0, shown = 0;
+  void update(std::size_t done, std::size_t of) override {
+    const std::size_t v = base + (of ? span * std::min(done, of) / of : span);
+    if (outer && v > shown) outer->update(shown = v, total);
+  }
+};
+}  // namespace
+
+BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt_in,
                      const std::vector<std::size_t>& items) {
+  ShareProgress share;
+  share.outer = opt_in.run.progress;
+  share.total = items.size() * static_cast<std::size_t>(g.n1);
+  Options opt = opt_in;
+  if (share.outer) opt.run.progress = &share;
   check_basins(r, g, replicates, opt);
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t n1 = static_cast<std::size_t>(g.n1), n2 = static_cast<std::size_t>(g.n2), n = n1 * n2;
@@ -985,7 +1004,10 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
                                                  : kind == 1 ? core::from_height<double>(a, b)
                                                              : core::from_angles<double>(a, b);
       }
+      share.span = e.initial.size();
       const EarlyOut& x = classify_early(e, opt, early, scratch);
+      share.update(1, 1);  // the chunk is done, whatever its kernels reported
+      share.base += share.span;
       part.iterations += x.steps;
       // Checks: the chunk's first orbit decided early for each cone and for Q2, classified again at full length
       // after the last chunk.
