@@ -610,7 +610,7 @@ struct P2Trap {
 
 P2Trap make_trap(double r, const Options& opt) {
   P2Trap t;
-  const double al = core::alpha(r), c2 = r - al * al / 2;
+  const double al = core::alpha(r), c2 = RotationRecorder::eta2(r);
   if (!(c2 > 0)) return t;  // r <= 3 - 2 sqrt(2): no rotation (pass 2 cannot call it quasi-periodic)
   t.alpha = al, t.r = r, t.I_max = (2 * r - al * al) / r;
   const double ce = std::sqrt(c2);

@@ -1,6 +1,7 @@
 // Recorders of the attractor classification (src/attractors): period returns and the P2 rotation (Section 5.2).
 #pragma once
 
+#include "core/map.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/lanes.hpp"
 #include "iterate/recorders.hpp"
@@ -131,10 +132,10 @@ struct RotationRecorder {
   std::vector<double> fx, fy, fz;  // the unit state at step start + n (where a longer run would continue)
 
   RotationRecorder(std::size_t orbits, double r_, long start_, long n_)
-      : start(start_), n(n_), r(r_), alpha((1 + r_) / 2) {
+      : start(start_), n(n_), r(r_), alpha(core::alpha(r_)) {
     checked_bytes(orbits, 9 * sizeof(double), "orbits (rotation recorder)");
     rotation_defined = defined(r);
-    c_eta = rotation_defined ? std::sqrt(r - alpha * alpha / 2) : 0.0;
+    c_eta = rotation_defined ? std::sqrt(eta2(r)) : 0.0;
     w_full.assign(static_cast<std::size_t>(n) + 1, 0.0);
     w_half.assign(static_cast<std::size_t>(n) + 1, 0.0);
     const auto w = [](double t) { return t <= 0 || t >= 1 ? 0.0 : std::exp(-1 / (t * (1 - t))); };
@@ -155,11 +156,13 @@ struct RotationRecorder {
     i_min.assign(padded, std::numeric_limits<double>::infinity());
     i_max.assign(padded, -std::numeric_limits<double>::infinity());
   }
-  // Whether P2 acts as a rotation at r (I positive definite): r > 3 - 2 sqrt(2).
-  static bool defined(double r) {
-    const double al = (1 + r) / 2;
-    return r - al * al / 2 > 0;
+  // I's coefficient r - alpha^2 / 2 (c_eta^2); P2 acts as a rotation at r (I positive definite) where it is > 0:
+  // r > 3 - 2 sqrt(2).
+  static double eta2(double r) {
+    const double al = core::alpha(r);
+    return r - al * al / 2;
   }
+  static bool defined(double r) { return eta2(r) > 0; }
   long first_step() const { return start; }
   // Weighted Birkhoff averages of the angle increment, in turns (rotation numbers in (-1/2, 1/2]).
   double rotation(std::size_t o) const { return s_full[o] / sum_full / (2 * std::numbers::pi); }

@@ -76,6 +76,10 @@ template <class T> ClvResult covariant_vectors(const Vec3<T>& u0, const T& r, co
 
 // Quantile q in [0, 1] of a sample (nearest rank on the sorted copy); NaN for an empty sample.
 double quantile(std::vector<double> sample, double q);
+// Its rank among n >= 1 ascending values: nearest rank of q (n - 1), q clamped to [0, 1].
+inline std::size_t quantile_rank(double q, std::size_t n) {
+  return static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * static_cast<double>(n - 1) + 0.5);
+}
 
 // The histogram bin of an angle in [0, pi/2] among `bins` equal bins (the last one closed).
 inline long angle_bin(double angle, int bins) {

@@ -214,7 +214,7 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   const ClvRows rows = covariant_vectors_batched(ens.r, ens.initial, clv_options(req), run);
   for (std::size_t j = 0; j < R; ++j) clv_row(res, j, rows[j], B);
   res.clv_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // lambda1 beside them, from the batched tangent recorder on the same orbits (same r, same grid).
+  // lambda1 beside them, from the fused cocycle kernel (map_exponents) on the same orbits (same r, same grid).
   MapOptions mo;
   mo.transient = req.transient;
   mo.iterations = req.iterations;

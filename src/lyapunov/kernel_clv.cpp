@@ -175,8 +175,7 @@ void clv_phase(Regs& s, Sums& w, const V* r, const V* a, const V* k, long steps,
   }
 }
 
-// Rank of the q-quantile (quantile() in hyperbolicity.cpp) among n ascending angles, and the angle of a key.
-std::size_t rank_of(double q, std::size_t n) { return static_cast<std::size_t>(q * static_cast<double>(n - 1) + 0.5); }
+// The angle of a key.
 double angle_of(double key) { return std::atan2(1.0, std::sqrt(key)); }
 
 // The smallest and largest of n keys, in vectors (a scalar min/max chain waits 4 cycles per key).
@@ -295,18 +294,18 @@ void angle_stats(const KeyRows& keys, double& median, double& q05, double& min, 
                  std::vector<double>& gather) {
   const std::size_t n = keys.size();
   double km = 0, kq = 0;
-  select_keys(keys, n - 1 - rank_of(0.5, n), n - 1 - rank_of(0.05, n), km, kq, count, gather);
+  select_keys(keys, n - 1 - quantile_rank(0.5, n), n - 1 - quantile_rank(0.05, n), km, kq, count, gather);
   median = angle_of(km);
   q05 = angle_of(kq);
   min = angle_of(keys.hi);
 }
 
 // Adds the angles of n keys to a histogram of `bins` bins over [0, pi/2]: iterate::atan_fast (error < 2e-7) where
-// the bin is certain (farther than 4e-7 rad from both edges), angle_of and angle_bin elsewhere, so the counts are
-// those of the angles angle_of gives.
+// the bin is certain (farther than twice that bound, 4e-7 rad, from both edges), angle_of and angle_bin elsewhere,
+// so the counts are those of the angles angle_of gives.
 void add_histogram(const double* key, std::size_t n, int bins, double* hist) {
   constexpr int chunk = 256;
-  const double per = bins / (std::numbers::pi / 2), guard = 4e-7 * per;
+  const double per = bins / (std::numbers::pi / 2), guard = 2 * iterate::kAtanFastError * per;
   alignas(64) std::int64_t bin[chunk];
   for (std::size_t i0 = 0; i0 < n; i0 += chunk) {
     const int c = static_cast<int>(std::min<std::size_t>(chunk, n - i0));

@@ -407,7 +407,7 @@ double p2_rotation_angle(double r) {
 // (r > 3 - 2 sqrt 2).
 namespace {
 double p2_level(double r) {
-  const double al = (1 + r) / 2;
+  const double al = core::alpha(r);
   return 2 - al * al / r;
 }
 }  // namespace
@@ -553,7 +553,7 @@ std::vector<double> lebesgue(const Partition& p, Domain d, const std::vector<dou
 // sqrt(8 c - (32 r - 16 alpha^2) w1^2) / 2 (R lies within |w2| <= 1: it is tangent to w2 = +-1); midpoint rule
 // on 2^17 points (the chord's square-root ends: error ~ N^-1.5, below 1e-7).
 double p2_region_fraction(double r, double w1a, double w1b) {
-  const double al = (1 + r) / 2, cm = p2_level(r), k = 32 * r - 16 * al * al;
+  const double al = core::alpha(r), cm = p2_level(r), k = 32 * r - 16 * al * al;
   if (!(cm > 0 && k > 0)) return 0;
   const double half = std::sqrt(8 * cm / k), lo = std::max(w1a, -half), hi = std::min(w1b, half);
   if (!(hi > lo)) return 0;
@@ -583,7 +583,7 @@ void ulam_basins(const UlamMatrix& P, const Partition& part, Domain dom, const T
       if (box >= 0 && target[sz(box)] == 0) target[sz(box)] = id, ++b.target_boxes;
     if (b.target_boxes > 0) res.basins.push_back(b);
   }
-  const double al = (1 + q.r) / 2, cmax = p2_level(q.r);
+  const double al = core::alpha(q.r), cmax = p2_level(q.r);
   if (cmax > 0) {
     // The boxes inside R: all four corners (R is convex in (w1, w2), and a box of either chart is a rectangle in
     // (atan w1, w2) or (theta, phi); on the strip a box is a rectangle in (w1, w2) too, so the test is exact there).
