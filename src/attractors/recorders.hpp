@@ -43,9 +43,15 @@ struct ReturnRecorder {
       : transient(transient_), window(window_), max_period(max_period_), return_tol(return_tol_),
         words((2 * max_period_ + 63) / 64) {
     checked_bytes(orbits, 8 * 8 + 4 * 4 + 8 * static_cast<std::size_t>(words), "orbits (return recorder)");
-    for (auto* v : {&s0x, &s0y, &s0z, &fx, &fy, &fz, &resid}) v->assign(orbits, 0.0);
-    best_d.assign(orbits, std::numeric_limits<double>::infinity());
-    for (auto* v : {&best_j, &period, &n1, &n3}) v->assign(orbits, 0);
+    // The return test's arrays have room for a whole batch of the widest kernel after the last orbit (as
+    // RotationRecorder's): its vector loop runs over a full batch even for the last, partial one.
+    constexpr std::size_t widest = 128;
+    const std::size_t padded = orbits + widest;
+    for (auto* v : {&fx, &fy, &fz}) v->assign(orbits, 0.0);
+    for (auto* v : {&s0x, &s0y, &s0z, &resid}) v->assign(padded, 0.0);
+    best_d.assign(padded, std::numeric_limits<double>::infinity());
+    for (auto* v : {&best_j, &period}) v->assign(padded, 0);
+    for (auto* v : {&n1, &n3}) v->assign(orbits, 0);
     syms.assign(orbits * static_cast<std::size_t>(words), 0);
   }
   long first_step() const { return transient; }
@@ -56,28 +62,79 @@ struct ReturnRecorder {
     return static_cast<int>((syms[o * static_cast<std::size_t>(words) + b / 64] >> (b % 64)) & 3u);
   }
 
+  // Steps 1 .. max_period: the return test, in one fixed-width vector loop (as RotationRecorder's: a partial batch
+  // through copies padded with its last lane, so that an orbit's bits do not depend on where in a batch it falls);
+  // the steps after it count symbols only (no unit state), but the last, which keeps the final state.
   template <class T>
   void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t* sym) {
     const long j = k - transient;
+    if (j == 0 || j == window) {  // the unit state: s0, or the final state
+      std::vector<double>&ux = j == 0 ? s0x : fx, &uy = j == 0 ? s0y : fy, &uz = j == 0 ? s0z : fz;
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t o = o0 + static_cast<std::size_t>(l);
+        const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
+        const double inv = 1 / std::sqrt(norm2(X, Y, Z));
+        ux[o] = X * inv, uy[o] = Y * inv, uz[o] = Z * inv;
+      }
+      if (j == 0) return;
+    }
+    std::int32_t* __restrict c1 = n1.data() + o0;
+    std::int32_t* __restrict c3 = n3.data() + o0;
+#pragma omp simd
     for (int l = 0; l < lanes; ++l) {
-      const std::size_t o = o0 + static_cast<std::size_t>(l);
+      c1[l] += sym[l] == 1;
+      c3[l] += sym[l] == 3;
+    }
+    if (j > max_period) return;
+    const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
+    for (int l = 0; l < lanes; ++l)
+      syms[(o0 + static_cast<std::size_t>(l)) * static_cast<std::size_t>(words) + b / 64] |=
+          static_cast<std::uint64_t>(sym[l]) << (b % 64);
+    constexpr int B = iterate::detail::batch_lanes<T>();
+    if (lanes == B) return returns<T, B>(o0, j, x, y, z);
+    alignas(64) T px[B], py[B], pz[B];
+    for (int l = 0; l < B; ++l) {
+      const int q = std::min(l, lanes - 1);
+      px[l] = x[q], py[l] = y[q], pz[l] = z[q];
+    }
+    returns<T, B>(o0, j, px, py, pz);
+  }
+
+ private:
+  // |u|^2 as GCC contracts X X + Y Y + Z Z in scalar code (Y Y, then X X and Z Z added by multiply-adds), spelled out:
+  // the vector loop would contract it its own way, and the return distance compares its units with s0's.
+  static double norm2(double X, double Y, double Z) { return std::fma(Z, Z, std::fma(X, X, Y * Y)); }
+  // The return test of window step j (1 <= j <= max_period) for the B orbits from o0 (arrays padded past the last
+  // orbit: the padding lanes of a partial batch write there).  Bit for bit the scalar loop's: no contraction here
+  // but norm2's explicit multiply-adds (written out: a call would not inline across the attribute), so the unit
+  // vector is rounded before its difference to s0 (a contracted X inv - s0x made an exact return's distance 1.31
+  // ulps instead of 1).
+  template <class T, int B>
+  __attribute__((optimize("fp-contract=off"))) void returns(std::size_t o0, long j, const T* __restrict x,
+                                                            const T* __restrict y, const T* __restrict z) {
+    const double* __restrict ax = s0x.data() + o0;
+    const double* __restrict ay = s0y.data() + o0;
+    const double* __restrict az = s0z.data() + o0;
+    double* __restrict bd = best_d.data() + o0;
+    double* __restrict rs = resid.data() + o0;
+    std::int32_t* __restrict bj = best_j.data() + o0;
+    std::int32_t* __restrict per = period.data() + o0;
+    const double tol = return_tol;
+    const std::int32_t jj = static_cast<std::int32_t>(j);
+#pragma omp simd
+    for (int l = 0; l < B; ++l) {
       const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
-      const double inv = 1 / std::sqrt(X * X + Y * Y + Z * Z);
+      const double inv = 1 / std::sqrt(std::fma(Z, Z, std::fma(X, X, Y * Y)));
       const double ux = X * inv, uy = Y * inv, uz = Z * inv;
-      if (j == 0) {
-        s0x[o] = ux, s0y[o] = uy, s0z[o] = uz;
-        continue;
-      }
-      n1[o] += sym[l] == 1;
-      n3[o] += sym[l] == 3;
-      if (j <= max_period) {
-        const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
-        syms[o * static_cast<std::size_t>(words) + b / 64] |= static_cast<std::uint64_t>(sym[l]) << (b % 64);
-        const double d = std::max(std::fabs(ux - s0x[o]), std::max(std::fabs(uy - s0y[o]), std::fabs(uz - s0z[o])));
-        if (d < best_d[o]) best_d[o] = d, best_j[o] = static_cast<std::int32_t>(j);
-        if (period[o] == 0 && d < return_tol) period[o] = static_cast<std::int32_t>(j), resid[o] = d;
-      }
-      if (j == window) fx[o] = ux, fy[o] = uy, fz[o] = uz;
+      const double dx = std::fabs(ux - ax[l]), dy = std::fabs(uy - ay[l]), dz = std::fabs(uz - az[l]);
+      const double dyz = dy < dz ? dz : dy;  // std::max's selections, NaN included
+      const double d = dx < dyz ? dyz : dx;
+      const bool better = d < bd[l];
+      bd[l] = better ? d : bd[l];
+      bj[l] = better ? jj : bj[l];
+      const bool first = per[l] == 0 && d < tol;
+      per[l] = first ? jj : per[l];
+      rs[l] = first ? d : rs[l];
     }
   }
 };
