@@ -91,10 +91,12 @@ template <class T> struct SimdTypes;
 template <> struct SimdTypes<double> {
   using V = vf64;
   using I = vi64;
+  using Bytes = std::uint8_t __attribute__((vector_size(kVectorBytes / 8)));  // a symbol per lane
 };
 template <> struct SimdTypes<float> {
   using V = vf32;
   using I = vi32;
+  using Bytes = std::uint8_t __attribute__((vector_size(kVectorBytes / 4)));
 };
 template <class T> struct Simd {
   static constexpr int W = kVectorBytes / sizeof(T);  // lanes per vector
@@ -140,8 +142,12 @@ inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, con
     S::store(ys + j * S::W, y[j]);
     S::store(zs + j * S::W, z[j]);
     if constexpr (Sym) {
+      // Narrowed as one vector (a byte per lane; lane by lane, GCC inserts and extracts each: half of the classification's
+      // first pass went there).
+      using Bytes = typename SimdTypes<T>::Bytes;
       const I code = s1[j] ? I{} + 1 : (s3[j] ? I{} + 3 : I{} + 2);
-      for (int l = 0; l < S::W; ++l) sym[j * S::W + l] = static_cast<std::uint8_t>(code[l]);
+      const Bytes narrow = __builtin_convertvector(code, Bytes);
+      std::memcpy(sym + j * S::W, &narrow, sizeof narrow);
     }
   }
 }
