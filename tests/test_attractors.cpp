@@ -160,7 +160,7 @@ TEST(Attractors, P2InvariantIsConservedAndDistinguishesCurves) {
 // Pass 2 (the fused cocycle kernel for lambda1, a plain run with the vectorised rotation recorder) gives an orbit the
 // same bits alone, at any place in a batch (the last, partial batch included) and with any thread count: r = 0.12
 // (chaotic, no rotation), r = 0.3 (P2 curves: rotation and invariant) and r = 0.9 (curves outside P2 as well).
-TEST(Attractors, PassTwoVerdictsDoNotDependOnTheBatch) {
+TEST(Attractors, VerdictsDoNotDependOnTheBatch) {
   for (const double r : {0.12, 0.3, 0.9}) {
     const auto pts = grid_points(parse_grid("strip:10x7", -2, 2));  // 70 orbits: one full double batch and a partial
     Options o1, o2;
@@ -176,6 +176,9 @@ TEST(Attractors, PassTwoVerdictsDoNotDependOnTheBatch) {
       const OrbitVerdict c = classify_point(pts[i], r, o1);
       for (const OrbitVerdict* x : {&b, &c}) {
         EXPECT_EQ(a.key, x->key) << r << " " << i;
+        EXPECT_EQ(a.residual, x->residual) << r << " " << i;  // pass 1's return test, a fixed-width vector loop
+        EXPECT_EQ(a.closest_return, x->closest_return) << r << " " << i;
+        EXPECT_EQ(a.point, x->point) << r << " " << i;
         EXPECT_EQ(a.lambda1, x->lambda1) << r << " " << i;
         EXPECT_EQ(a.err1, x->err1) << r << " " << i;
         EXPECT_EQ(a.rotation, x->rotation) << r << " " << i;
@@ -208,6 +211,31 @@ TEST(Attractors, ScalarReferenceGivesTheSameReturns) {
     EXPECT_EQ(a.period[o], b.period[o]) << o;
     for (int j = 1; j <= 64; ++j) EXPECT_EQ(a.symbol(o, j), b.symbol(o, j)) << o << " " << j;
   }
+}
+
+// The return distance d = max_c |u_c - s0_c| is a difference of two rounded unit vectors: near a return Sterbenz
+// makes each difference exact, so d is a whole multiple of the spacing of doubles below |s0_c| for its coordinate c.
+// A multiply-add contracting u_c = X_c / |X| into the difference (u_c never rounded) gave exact returns 1.31 ulps.
+TEST(Attractors, ReturnDistanceIsADifferenceOfRoundedUnitVectors) {
+  int periodic = 0;
+  for (const double r : {0.15, 0.3}) {
+    const auto e = ensemble(r, grid_points(parse_grid("strip:10x7", -2, 2)));
+    attractors::ReturnRecorder rec(e.orbits(), 5000, 300, 64, 1e-9);
+    iterate::run<double>(e, rec.total_steps(), rec);
+    for (std::size_t o = 0; o < e.orbits(); ++o) {
+      if (rec.period[o] == 0) continue;
+      ++periodic;
+      const double d = rec.resid[o];
+      bool whole = false;
+      for (const double s : {rec.s0x[o], rec.s0y[o], rec.s0z[o]}) {
+        if (s == 0) continue;
+        const double q = std::ldexp(1.0, std::ilogb(s) - 53);  // the spacing below |s|
+        whole = whole || std::fmod(d, q) == 0;
+      }
+      EXPECT_TRUE(whole) << r << " " << o << " " << d;
+    }
+  }
+  EXPECT_GT(periodic, 50);
 }
 
 TEST(Basins, FractionsSumToOneWithIntervals) {
