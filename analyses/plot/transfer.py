@@ -29,8 +29,13 @@ def basins_only(h5path, png):
     basin_panels(fig, ax[0, 0], ax[0, 1], a, basin, basin_p, basin_f, cyc, ext, strip)
     fig.suptitle(f"Basins from the Ulam graph of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} "
                  f"samples per box (no spectrum: --eigenvalues 0)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, BASIN_LEGEND_ROOM, 1, 1))
     save_atomic(fig, png)
+
+
+# The basins' legend goes below the panels (inside the basin image it covered a corner of it): the figure's bottom
+# fraction kept free for it.
+BASIN_LEGEND_ROOM = 0.07
 
 
 def basin_panels(fig, axb, axp, a, basin, basin_p, basin_f, cyc, ext, strip):
@@ -41,9 +46,10 @@ def basin_panels(fig, axb, axp, a, basin, basin_p, basin_f, cyc, ext, strip):
     bmap = ListedColormap(["#f0f0f0"] + colours)
     axb.imshow(basin.T, origin="lower", extent=ext, aspect="auto", cmap=bmap, vmin=-0.5, vmax=nb + 0.5,
                interpolation="nearest")
-    for k in range(nb):
-        axb.plot([], [], "s", color=colours[k], label=f"{names[k]}: Lebesgue {basin_f[k]:.4f}")
-    axb.legend(loc="upper right", fontsize=8, title="absorbed by", title_fontsize=8)
+    handles = [axb.plot([], [], "s", color=colours[k], label=f"{names[k]}: Lebesgue {basin_f[k]:.4f}")[0]
+               for k in range(nb)]
+    fig.legend(handles=handles, loc="lower center", ncol=min(nb, 4), fontsize=8, frameon=False,
+               title="basins (the attractor of largest absorption probability): absorbed by", title_fontsize=8)
     axb.set_title(f"basins from the Ulam graph (unabsorbed {a['basin_unabsorbed']:.1e})")
     im5 = axp.imshow(basin_p.T, origin="lower", extent=ext, aspect="auto", cmap="viridis", vmin=0, vmax=1,
                      interpolation="nearest")
@@ -156,7 +162,7 @@ def main(h5path, spec_path, png):
     fig.suptitle(f"Ulam transfer operator of P_r, r = {a['r']}: {n1}x{n2} boxes ({a['domain']}), {a['samples']} samples "
                  f"per box\nTV to the empirical measure {a['tv_boxes']:.3f} ({n1}x{n2} boxes) / {a['tv_coarse']:.3f} "
                  f"({a['tv-bins']}x{a['tv-bins']} bins)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, BASIN_LEGEND_ROOM / 2 if nb else 0, 1, 1))
     save_atomic(fig, png)
 
 
