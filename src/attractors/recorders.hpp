@@ -21,6 +21,21 @@ using iterate::Ensemble;
 using iterate::Vec3;
 
 
+// Calls f(x, y, z) with a whole batch of the kernel's width: the batch itself, or a partial one (the scalar route's
+// single lane too) as copies padded with its last lane.  A recorder's fixed-width loop over f's arrays then treats
+// every orbit alike: a vectorised loop and its scalar remainder contract multiply-adds differently, and an orbit's
+// bits would depend on where in a batch it falls.
+template <class T, class F> inline void as_whole_batch(int lanes, const T* x, const T* y, const T* z, F&& f) {
+  constexpr int B = iterate::detail::batch_lanes<T>();
+  if (lanes == B) return f(x, y, z);
+  alignas(64) T px[B], py[B], pz[B];
+  for (int l = 0; l < B; ++l) {
+    const int q = std::min(l, lanes - 1);
+    px[l] = x[q], py[l] = y[q], pz[l] = z[q];
+  }
+  f(px, py, pz);
+}
+
 // First pass of the classification.  For every orbit, over the window of steps transient+1 .. transient+window:
 //   * s0: the unit state after `transient` steps (the reference point of the return test);
 //   * the symbols of the first max_period window steps, 2 bits each (word w_1 .. w_p, w_1 applied to s0);
@@ -62,9 +77,8 @@ struct ReturnRecorder {
     return static_cast<int>((syms[o * static_cast<std::size_t>(words) + b / 64] >> (b % 64)) & 3u);
   }
 
-  // Steps 1 .. max_period: the return test, in one fixed-width vector loop (as RotationRecorder's: a partial batch
-  // through copies padded with its last lane, so that an orbit's bits do not depend on where in a batch it falls);
-  // the steps after it count symbols only (no unit state), but the last, which keeps the final state.
+  // Steps 1 .. max_period: the return test, in one fixed-width vector loop over the whole batch (as_whole_batch); the
+  // steps after it count symbols only (no unit state), but the last, which keeps the final state.
   template <class T>
   void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t* sym) {
     const long j = k - transient;
@@ -90,14 +104,9 @@ struct ReturnRecorder {
     for (int l = 0; l < lanes; ++l)
       syms[(o0 + static_cast<std::size_t>(l)) * static_cast<std::size_t>(words) + b / 64] |=
           static_cast<std::uint64_t>(sym[l]) << (b % 64);
-    constexpr int B = iterate::detail::batch_lanes<T>();
-    if (lanes == B) return returns<T, B>(o0, j, x, y, z);
-    alignas(64) T px[B], py[B], pz[B];
-    for (int l = 0; l < B; ++l) {
-      const int q = std::min(l, lanes - 1);
-      px[l] = x[q], py[l] = y[q], pz[l] = z[q];
-    }
-    returns<T, B>(o0, j, px, py, pz);
+    as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
+      returns<T, iterate::detail::batch_lanes<T>()>(o0, j, bx, by, bz);
+    });
   }
 
  private:
@@ -237,17 +246,10 @@ struct RotationRecorder {
         const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
         fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
       }
-    // A full batch goes through the fixed-width loop directly; a partial one (or the scalar route's single lane)
-    // through the same loop on copies padded with its last lane, so that an orbit's bits do not depend on where in a
-    // batch it falls (a vectorised loop and its scalar remainder contract multiply-adds differently).
-    constexpr int B = iterate::detail::batch_lanes<T>();
-    if (lanes == B) return steps<T, B>(o0, j, x, y, z);
-    alignas(64) T px[B], py[B], pz[B];
-    for (int l = 0; l < B; ++l) {
-      const int q = std::min(l, lanes - 1);
-      px[l] = x[q], py[l] = y[q], pz[l] = z[q];
-    }
-    steps<T, B>(o0, j, px, py, pz);
+    // One fixed-width loop over the whole batch (as_whole_batch).
+    as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
+      steps<T, iterate::detail::batch_lanes<T>()>(o0, j, bx, by, bz);
+    });
   }
 
  private:
