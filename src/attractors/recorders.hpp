@@ -21,6 +21,15 @@ using iterate::Ensemble;
 using iterate::Vec3;
 
 
+// |u|^2 with its multiply-adds spelled out in the order GCC contracts X X + Y Y + Z Z in scalar code (Y Y, then X X
+// and Z Z added): the same bits in scalar and in vector loops, which would otherwise each contract it their own way.
+inline double norm2(double X, double Y, double Z) { return std::fma(Z, Z, std::fma(X, X, Y * Y)); }
+// The unit vector of a kernel state (the kernel's powers of two drop out: the same bits from any run of the orbit).
+inline Vec3<double> unit_of(double X, double Y, double Z) {
+  const double inv = 1 / std::sqrt(norm2(X, Y, Z));
+  return Vec3<double>(X * inv, Y * inv, Z * inv);
+}
+
 // Calls f(x, y, z) with a whole batch of the kernel's width: the batch itself, or a partial one (the scalar route's
 // single lane too) as copies padded with its last lane.  A recorder's fixed-width loop over f's arrays then treats
 // every orbit alike: a vectorised loop and its scalar remainder contract multiply-adds differently, and an orbit's
@@ -86,9 +95,8 @@ struct ReturnRecorder {
       std::vector<double>&ux = j == 0 ? s0x : fx, &uy = j == 0 ? s0y : fy, &uz = j == 0 ? s0z : fz;
       for (int l = 0; l < lanes; ++l) {
         const std::size_t o = o0 + static_cast<std::size_t>(l);
-        const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
-        const double inv = 1 / std::sqrt(norm2(X, Y, Z));
-        ux[o] = X * inv, uy[o] = Y * inv, uz[o] = Z * inv;
+        const Vec3<double> u = unit_of(static_cast<double>(x[l]), static_cast<double>(y[l]), static_cast<double>(z[l]));
+        ux[o] = u(0), uy[o] = u(1), uz[o] = u(2);
       }
       if (j == 0) return;
     }
@@ -110,9 +118,6 @@ struct ReturnRecorder {
   }
 
  private:
-  // |u|^2 as GCC contracts X X + Y Y + Z Z in scalar code (Y Y, then X X and Z Z added by multiply-adds), spelled out:
-  // the vector loop would contract it its own way, and the return distance compares its units with s0's.
-  static double norm2(double X, double Y, double Z) { return std::fma(Z, Z, std::fma(X, X, Y * Y)); }
   // The return test of window step j (1 <= j <= max_period) for the B orbits from o0 (arrays padded past the last
   // orbit: the padding lanes of a partial batch write there).  Bit for bit the scalar loop's: no contraction here
   // but norm2's explicit multiply-adds (written out: a call would not inline across the attribute), so the unit
@@ -242,9 +247,8 @@ struct RotationRecorder {
     if (j == n)
       for (int l = 0; l < lanes; ++l) {
         const std::size_t o = o0 + static_cast<std::size_t>(l);
-        const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
-        const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
-        fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
+        const Vec3<double> u = unit_of(static_cast<double>(x[l]), static_cast<double>(y[l]), static_cast<double>(z[l]));
+        fx[o] = u(0), fy[o] = u(1), fz[o] = u(2);
       }
     // One fixed-width loop over the whole batch (as_whole_batch).
     as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
@@ -304,9 +308,8 @@ struct PassTwoSums : lyapunov::ExponentSums {
     if (b.step != total_steps()) return;
     for (int l = 0; l < b.lanes; ++l) {
       const std::size_t o = b.orbit0 + static_cast<std::size_t>(l);
-      const double X = b.x[l], Y = b.y[l], Z = b.z[l];
-      const double nn = 1 / std::sqrt(X * X + Y * Y + Z * Z);
-      fx[o] = X * nn, fy[o] = Y * nn, fz[o] = Z * nn;
+      const Vec3<double> u = unit_of(b.x[l], b.y[l], b.z[l]);
+      fx[o] = u(0), fy[o] = u(1), fz[o] = u(2);
     }
   }
 };
