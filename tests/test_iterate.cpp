@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -393,4 +395,28 @@ TEST(Kernel, KernelStepMatchesThePaperMatrices) {
       EXPECT_SMALL((f.out[o] - ref).norm(), ulps(45, "unit vectors: a few ulps of 1")) << "r = " << r;
     }
   }
+}
+
+TEST(Build, RecorderVectorCodeIsInlinedIntoEachCaller) {
+  // Only the kernel's units are compiled for the host's instruction set.  A header function left out of line is
+  // emitted by every unit that calls it, and the linker keeps one copy: btob's DensityRecorder::certain_bins<double>
+  // was reference.cpp's baseline SSE2 copy (docs/ARCHITECTURE.md, "Determinism").  The recorders' per-lane functions
+  // are always_inline, so btob must hold no out-of-line copy of them.
+  const std::string bin = BTOB_BINARY;  // tests/CMakeLists.txt: this build's btob
+  ASSERT_TRUE(std::ifstream(bin).good()) << "btob not built at " << bin;
+  FILE* p = popen(("nm -C --defined-only " + bin + " 2>&1").c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string line, found;
+  long symbols = 0;
+  char buf[4096];
+  while (fgets(buf, sizeof buf, p)) {
+    line = buf;
+    ++symbols;
+    for (const char* f : {"DensityRecorder::certain_bins", "DensityRecorder::record", "TailRecorder::record",
+                          "iterate::coord_values<", "iterate::coord_value<", "iterate::atan_fast", "iterate::atan_pos<"})
+      if (line.find(f) != std::string::npos) found += line;
+  }
+  EXPECT_EQ(pclose(p), 0);
+  EXPECT_GT(symbols, 1000);  // nm read btob's symbol table
+  EXPECT_EQ(found, "") << "out-of-line copies of vectorising recorder code in btob";
 }

@@ -22,7 +22,7 @@ namespace btob::iterate {
 // atan2(a, b) for a, b >= 0 (not both zero), in [0, pi/2]; branch-free so that it vectorises.
 // Cephes' atan (S. Moshier): reduction to |t| <= 0.66 and a rational approximation; relative error
 // about 1e-16 in double (tested against std::atan2), exact-to-rounding ~1e-7 in float.
-template <class T> inline T atan_pos(T a, T b) {
+template <class T> [[gnu::always_inline]] inline T atan_pos(T a, T b) {
   const bool swap = a > b;
   const T num = swap ? b : a, den = swap ? a : b;
   const T t = den > T(0) ? num / den : T(0);  // in [0, 1]
@@ -50,7 +50,7 @@ template <class T> inline T atan_pos(T a, T b) {
 // nodes weighted by u; 1.17e-7).  Absolute error below kAtanFastError (tests/test_iterate.cpp checks it); NaN for
 // denominators outside [1e-300, 1e300] (the bit trick needs normal numbers) and for a = b = 0.
 inline constexpr double kAtanFastError = 2e-7;
-inline double atan_fast(double a, double b) {
+[[gnu::always_inline]] inline double atan_fast(double a, double b) {
   const bool swap = a > b;
   const double num = swap ? b : a, den = swap ? a : b;
   const bool big = num > 0.41421356237309503 * den;  // t = num/den > tan(pi/8)
@@ -76,7 +76,7 @@ const char* coord_name(Coord c);
 
 // atan2 for a, b >= 0: the vectorisable atan_pos in float/double, the type's own atan2 otherwise
 // (long double, float128, MPFR keep their precision).
-template <class T> inline T atan2_pos(const T& a, const T& b) {
+template <class T> [[gnu::always_inline]] inline T atan2_pos(const T& a, const T& b) {
   if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) return atan_pos<T>(a, b);
   else {
     using std::atan2;
@@ -84,7 +84,7 @@ template <class T> inline T atan2_pos(const T& a, const T& b) {
   }
 }
 
-template <class T> inline T coord_value(Coord c, const T& x, const T& y, const T& z) {
+template <class T> [[gnu::always_inline]] inline T coord_value(Coord c, const T& x, const T& y, const T& z) {
   using std::log10;
   using std::sqrt;
   switch (c) {
@@ -100,6 +100,35 @@ template <class T> inline T coord_value(Coord c, const T& x, const T& y, const T
   return T(0);
 }
 
+// out[i] = coord_value<T>(c, x[i], y[i], z[i]) for i < n, in double: one vector loop over whole blocks of 64 lanes (a
+// partial block padded with its last state), so that every caller in a translation unit gets the same vector code's
+// value.  coord_value<T> in a vectorised loop and in scalar code may contract its multiply-adds differently and differ
+// by an ulp (seen: phi in float, 2.65536857 against 2.65536833); the density image's exact route and the recorded
+// tails must agree to the bit.
+//
+// This function and every recorder function that vectorises are inlined (always_inline): an out-of-line copy of a
+// function defined in a header is emitted by every translation unit that calls it, each compiled for its own
+// instruction set, and the linker keeps one of them.  btob's DensityRecorder::certain_bins<double> was reference.cpp's
+// baseline SSE2 copy (Figure 4.7's trig_density calls record), not the AVX-512 kernel's.
+template <class T>
+[[gnu::always_inline]] inline void coord_values(Coord c, int n, const T* x, const T* y, const T* z, double* out) {
+  constexpr int kBlock = 64;
+  alignas(64) T xs[kBlock], ys[kBlock], zs[kBlock];
+  alignas(64) double vs[kBlock];
+  for (int i0 = 0; i0 < n; i0 += kBlock) {
+    const int m = std::min(kBlock, n - i0);
+    for (int l = 0; l < kBlock; ++l) {
+      const int i = i0 + std::min(l, m - 1);
+      xs[l] = x[i];
+      ys[l] = y[i];
+      zs[l] = z[i];
+    }
+#pragma omp simd
+    for (int l = 0; l < kBlock; ++l) vs[l] = static_cast<double>(coord_value<T>(c, xs[l], ys[l], zs[l]));
+    for (int l = 0; l < m; ++l) out[i0 + l] = vs[l];
+  }
+}
+
 // Keeps one coordinate of the last `tail` states of every orbit: out[o * tail + j] is the value at
 // state iterations - tail + 1 + j.  Values are stored in double (log-scale theta reaches 1e-140).
 struct TailRecorder {
@@ -111,12 +140,15 @@ struct TailRecorder {
       : coord(c), iterations(iterations_), tail(tail_), out(checked_bytes(orbits, sizeof(double) * tail_, "tail") / sizeof(double)) {}
   long first_step() const { return iterations - tail + 1; }
   template <class T>
-  void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z, const std::uint8_t*) {
+  [[gnu::always_inline]] void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z,
+                                     const std::uint8_t*) {
     const long j = k - first_step();
-    const Coord c = coord;
-#pragma omp simd
-    for (int l = 0; l < lanes; ++l)
-      out[(o0 + l) * tail + j] = static_cast<double>(coord_value<T>(c, x[l], y[l], z[l]));
+    alignas(64) double v[64];
+    for (int l0 = 0; l0 < lanes; l0 += 64) {
+      const int m = std::min(64, lanes - l0);
+      coord_values<T>(coord, m, x + l0, y + l0, z + l0, v);
+      for (int l = 0; l < m; ++l) out[(o0 + static_cast<std::size_t>(l0 + l)) * tail + j] = v[l];
+    }
   }
 };
 
@@ -173,7 +205,8 @@ struct DensityRecorder {
   // 2e-4 of them in Figure 4.1, and every value outside [lo, hi)) take coord_value<T> itself, so the image is
   // the one coord_value<T> gives, bit for bit.
   template <class T>
-  void record(std::size_t o0, int lanes, long, const T* x, const T* y, const T* z, const std::uint8_t*) {
+  [[gnu::always_inline]] void record(std::size_t o0, int lanes, long, const T* x, const T* y, const T* z,
+                                     const std::uint8_t*) {
     const int t = omp_get_thread_num();
     std::uint32_t* img = per_thread[static_cast<std::size_t>(t)].data();
     alignas(64) std::int32_t bin[64];
@@ -194,11 +227,20 @@ struct DensityRecorder {
         ++col;
         in_col = 0;
       }
-      if (rest)
+      if (rest) {  // the uncertain lanes, compacted, through coord_values<T> as the recorded tails are
+        alignas(64) T xs[64], ys[64], zs[64];
+        alignas(64) double v[64];
+        int m = 0;
         for (int l = 0; l < n; ++l)
-          if (bin[l] < 0)
-            exact_bin(t, (o + static_cast<std::size_t>(l)) / n_ic,
-                      static_cast<double>(coord_value<T>(coord, x[l0 + l], y[l0 + l], z[l0 + l])));
+          if (bin[l] < 0) {
+            xs[m] = x[l0 + l];
+            ys[m] = y[l0 + l];
+            zs[m] = z[l0 + l];
+            bin[m++] = l;
+          }
+        coord_values<T>(coord, m, xs, ys, zs, v);
+        for (int i = 0; i < m; ++i) exact_bin(t, (o + static_cast<std::size_t>(bin[i])) / n_ic, v[i]);
+      }
     }
   }
   // The rule: bins are [lo + i h, lo + (i+1) h); the last one also holds hi itself (theta = pi/2 exactly is the
@@ -212,7 +254,7 @@ struct DensityRecorder {
     else ++per_thread[static_cast<std::size_t>(t)][col * bins + std::min(static_cast<std::size_t>(f), bins - 1)];
   }
   // bin[l] = the bin of lane l where the fast route proves it, -1 elsewhere (always -1 for the wide types).
-  template <class T> void certain_bins(int n, const T* x, const T* y, const T* z, std::int32_t* bin) const {
+  template <class T> [[gnu::always_inline]] void certain_bins(int n, const T* x, const T* y, const T* z, std::int32_t* bin) const {
     if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) {
       const double scale = this->scale(), nb = static_cast<double>(bins), lo_ = lo;
       // Guard in bin units: the two routes' distance (fast_error), and the rounding of (v - lo) * scale (a few ulps
