@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -406,16 +407,21 @@ TEST(Build, RecorderVectorCodeIsInlinedIntoEachCaller) {
   ASSERT_TRUE(std::ifstream(bin).good()) << "btob not built at " << bin;
   FILE* p = popen(("nm -C --defined-only " + bin + " 2>&1").c_str(), "r");
   ASSERT_NE(p, nullptr);
-  std::string line, found;
+  std::string found;
   long symbols = 0;
-  char buf[4096];
-  while (fgets(buf, sizeof buf, p)) {
-    line = buf;
+  char* buf = nullptr;
+  std::size_t cap = 0;
+  while (getline(&buf, &cap, p) > 0) {  // whole lines: a demangled name can exceed any fixed buffer
+    const std::string line = buf;
     ++symbols;
+    // The functions themselves; the lambdas inside them are functions of their own, emitted where used when the build
+    // does not optimise (the debug preset; check_kernel_symbols covers them in optimised builds).
+    if (line.find("{lambda") != std::string::npos) continue;
     for (const char* f : {"DensityRecorder::certain_bins", "DensityRecorder::record", "TailRecorder::record",
                           "iterate::coord_values<", "iterate::coord_value<", "iterate::atan_fast", "iterate::atan_pos<"})
       if (line.find(f) != std::string::npos) found += line;
   }
+  std::free(buf);
   EXPECT_EQ(pclose(p), 0);
   EXPECT_GT(symbols, 1000);  // nm read btob's symbol table
   EXPECT_EQ(found, "") << "out-of-line copies of vectorising recorder code in btob";
