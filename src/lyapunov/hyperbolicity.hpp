@@ -98,10 +98,11 @@ struct ClvRow {
 using ClvRows = std::vector<ClvRow>;
 // The batched route (kernel_clv.cpp), one row per r: lanes of orbits in SIMD registers through the plain kernel's
 // map step (the symbols are iterate::run<double>'s), the Ginelli frame carried unnormalised (divisions only at the
-// steps whose R is stored), the backward pass over each batch's stored coefficients.  An orbit's bits depend on
-// its start, its r and opt only: not on threads nor on the other orbits.  Memory: per thread one batch's
-// coefficients, 16 lanes (AVX-512; 8 with AVX2, 4 with SSE2) x (3 window + 2 backward_transient) doubles, and for
-// the r values in flight (4 per thread) initial.size() x window doubles each (the angles pooled per r).
+// steps whose R is stored), the backward pass over each batch's stored window coefficients.  An orbit's bits depend
+// on its start, its r and opt only: not on threads nor on the other orbits.  Memory: per thread one batch's
+// coefficients, 16 lanes (AVX-512; 8 with AVX2, 4 with SSE2) x 3 window doubles (the backward transient is composed
+// as it is stepped, into one map of tau per lane), and for the r values in flight (4 per thread) initial.size() x
+// window doubles each (the angles pooled per r).
 // run: threads, cancellation (checked per 4 r per thread; throws core::Cancelled), progress.
 ClvRows covariant_vectors_batched(const std::vector<double>& r, const std::vector<Vec3<double>>& initial,
                                   const ClvOptions& opt, const iterate::RunOptions& run = {}, bool keep_steps = false);

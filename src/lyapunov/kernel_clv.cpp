@@ -10,7 +10,11 @@
 // c [[1 / mm, b / N], [0, g mm / N]], c = |u| / |m|, N = e1' . e1', b = e1' . E2, g = e2' . E2.  Ginelli's backward
 // step for the second CLV x e1 + y e2 in the ratio tau = x / y is then tau_k = A_k tau_{k+1} - B_k with
 // A = g mm^2 / N and B = mm b / N (one division per stored step; a second in the window for c^2 = |u|^2 / mm), A
-// times s1 / s2 where e1', e2' were rescaled by s1, s2.  The angle between the CLVs is atan(1 / (|tau| sqrt(rho))),
+// times s1 / s2 where e1', e2' were rescaled by s1, s2.  Over the backward transient only the composition of these
+// maps matters (tau at the window's end, from tau = 0 after the last step): it is composed forward as the steps come,
+// t -> alpha t + beta with alpha <- alpha A, beta <- beta - alpha B, instead of storing A and B of every step and
+// recursing back over them (the same value, with other roundings; Ginelli's start tau = 0 is arbitrary anyway, and
+// the recursion contracts).  The angle between the CLVs is atan(1 / (|tau| sqrt(rho))),
 // rho = |e1|^2 / |e2|^2, which is the previous step's mm (times (s1 / s2)^2).  The angles are kept as
 // key = tau^2 rho (their order reversed) and an angle is computed from its key only where a value is reported:
 // quantiles are order statistics.
@@ -67,8 +71,10 @@ struct Regs {
 };
 // Per vector over the window: rho and the inverse squared norms of e1, e2 for the next step, the mantissa product
 // and exponent sum of mm, the counts of symbols 1 and 3 and of expanding steps, the exponents removed from u, e1.
+// Over the backward transient: the composition t -> alpha t + beta of its steps' maps tau_k = A tau_{k+1} - B.
 struct Sums {
   V rho[NV], iq1[NV], iq2[NV], pm[NV], em[NV], n13[NV], nexp[NV], eu[NV], ef[NV];
+  V alpha[NV], beta[NV];
 };
 // A batch's stored steps: row j (B lanes) is step transient + j.
 struct Store {
@@ -101,8 +107,13 @@ inline void clv_block(Regs& s, Sums& w, const V* r, const V* a, const V* k, int 
         const V inv = one() / N;
         const V b = hx * e2x + hy * e2y + hz * e2z, g = cx * e2x + cy * e2y + cz * e2z;
         const V beta = b * inv, gam = g * mm * inv;  // coefficients of e1', e2' in Pi E2
-        S::store(st.A + row + j * W, mm * gam);
-        S::store(st.Bc + row + j * W, mm * beta);
+        if constexpr (Window) {
+          S::store(st.A + row + j * W, mm * gam);
+          S::store(st.Bc + row + j * W, mm * beta);
+        } else {
+          w.beta[j] -= w.alpha[j] * (mm * beta);
+          w.alpha[j] *= mm * gam;
+        }
         if constexpr (Window) {
           const V imm = one() / mm, c2 = uu * imm;
           const V det = (s1 | s3) ? r[j] : one();
@@ -150,29 +161,40 @@ inline void clv_rescale(Regs& s, Sums& w, long last, const Store& st) {
       const I eg = max_exponent<double, V, I>(s.bx[j], s.by[j], s.bz[j]);
       const V sg = scale_for<double, V, I>(eg);
       s.bx[j] *= sg, s.by[j] *= sg, s.bz[j] *= sg;
-      const V sigma = sf * pow2(eg);  // s1 / s2
-      double* A = st.A + last * B + j * W;
-      S::store(A, S::load(A) * sigma);
+      const V sigma = sf * pow2(eg);  // s1 / s2: the last step's A times sigma
       if constexpr (Window) {
+        double* A = st.A + last * B + j * W;
+        S::store(A, S::load(A) * sigma);
         w.rho[j] *= sigma * sigma;
         const V uf = pow2(ef), ug = pow2(eg);
         w.iq1[j] *= uf * uf;
         w.iq2[j] *= ug * ug;
         w.eu[j] += __builtin_convertvector(eu - bias, V);
         w.ef[j] += __builtin_convertvector(ef - bias, V);
+      } else {
+        w.alpha[j] *= sigma;
       }
     }
   }
 }
 
 template <bool Stored, bool Window, bool Keep>
-void clv_phase(Regs& s, Sums& w, const V* r, const V* a, const V* k, long steps, long j0, int K, const Store& st) {
+void clv_phase(Regs& s_out, Sums& w_out, const V* r_in, const V* a_in, const V* k_in, long steps, long j0, int K,
+               const Store& st) {
+  // Local copies: the rows are stored through double pointers, which may alias the caller's vectors; GCC would
+  // reload and store every state vector around each row's stores.
+  Regs s = s_out;
+  Sums w = w_out;
+  V r[NV], a[NV], k[NV];
+  for (int j = 0; j < NV; ++j) r[j] = r_in[j], a[j] = a_in[j], k[j] = k_in[j];
   for (long done = 0; done < steps;) {
     const int n = static_cast<int>(std::min<long>(K, steps - done));
     clv_block<Stored, Window, Keep>(s, w, r, a, k, n, j0 + done, st);
     done += n;
     clv_rescale<Stored, Window>(s, w, j0 + done - 1, st);
   }
+  s_out = s;
+  w_out = w;
 }
 
 // The angle of a key.
@@ -332,7 +354,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
   const std::size_t bins = static_cast<std::size_t>(opt.bins);
   const int threads = run.threads > 0 ? run.threads : omp_get_max_threads();
   iterate::checked_bytes(static_cast<std::size_t>(threads) * B,
-                         sizeof(double) * static_cast<std::size_t>(3 * N + 2 * Nb), "window");
+                         sizeof(double) * static_cast<std::size_t>(3 * N), "window");
   iterate::checked_bytes(I0, sizeof(double) * Nz, "window");
   std::vector<int> K(rs.size());
   for (std::size_t i = 0; i < rs.size(); ++i) K[i] = clv_interval(rs[i]);
@@ -348,7 +370,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
 
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<double> A(static_cast<std::size_t>(N + Nb) * B), Bc(A.size()), rho(Nz * B);
+    std::vector<double> A(Nz * B), Bc(A.size()), rho(Nz * B);
     std::vector<std::uint8_t> sym(keep_steps ? Nz * B : 0), expd(sym.size());
     std::vector<std::uint32_t> count;  // select_keys' buckets and gathered keys
     std::vector<double> gather;
@@ -409,25 +431,25 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
           const V* v[9] = {w.pm, w.em, w.n13, w.nexp, w.eu, w.ef, w.rho, w.iq1, w.iq2};
           for (int q = 0; q < 9; ++q) S::store(sums[q] + j * W, v[q][j]);
         }
+        // The backward transient composes its steps' maps: tau at the window's end is beta (tau = 0 after the last
+        // step, where the second CLV is e2).  Then back over the window, with the keys of its steps.
+        for (int j = 0; j < NV; ++j) w.alpha[j] = one(), w.beta[j] = V{};
         clv_phase<true, false, false>(s, w, vr, va, vk, Nb, N, K[ir], st);
-        // Backward: tau from 0 (the second CLV is e2 after the last step); keys of the window steps.
-        V tau[NV] = {}, kmin[NV], kmax[NV];
-        for (int v = 0; v < NV; ++v) kmin[v] = V{} + std::numeric_limits<double>::infinity(), kmax[v] = V{};
-        for (long j = N + Nb - 1; j >= 0; --j) {
+        V tau[NV], kmin[NV], kmax[NV];
+        for (int v = 0; v < NV; ++v)
+          tau[v] = w.beta[v], kmin[v] = V{} + std::numeric_limits<double>::infinity(), kmax[v] = V{};
+        for (long j = N - 1; j >= 0; --j) {
           const long row = j * B;
           alignas(64) double kk[B];
           for (int v = 0; v < NV; ++v) {
             tau[v] = S::load(A.data() + row + v * W) * tau[v] - S::load(Bc.data() + row + v * W);
-            if (j < N) {
-              const V key = tau[v] * tau[v] * S::load(rho.data() + row + v * W);
-              kmin[v] = key < kmin[v] ? key : kmin[v];
-              kmax[v] = key > kmax[v] ? key : kmax[v];
-              S::store(kk + v * W, key);
-            }
+            const V key = tau[v] * tau[v] * S::load(rho.data() + row + v * W);
+            kmin[v] = key < kmin[v] ? key : kmin[v];
+            kmax[v] = key > kmax[v] ? key : kmax[v];
+            S::store(kk + v * W, key);
           }
-          if (j < N)
-            for (int l = 0; l < lanes; ++l)
-              round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
+          for (int l = 0; l < lanes; ++l)
+            round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
         }
         alignas(64) double klo[B], khi[B];
         for (int v = 0; v < NV; ++v) S::store(klo + v * W, kmin[v]), S::store(khi + v * W, kmax[v]);
