@@ -462,6 +462,36 @@ TEST(HyperbolicityBatched, AnOrbitsBitsDependOnItselfOnly) {
   }
 }
 
+TEST(HyperbolicityBatched, ComposedBackwardTransientEqualsTheRecursion) {
+  // The backward transient is composed forward into one map of tau per lane (kernel_clv.cpp); the window's steps are
+  // stored and recursed back.  Run A (window 1500, backward transient 1003) composes steps 1500..2502; run B (window
+  // 2503) stores and recurses over the same steps.  Both step the same points (rescaling by powers of two changes no
+  // bit), so on the first 1500 window steps their angles differ only by the roundings of the two evaluations of tau
+  // at step 1500, the last steps most.  Chaotic orbits (r = 0.11), lengths not multiples of the rescaling interval,
+  // a partial batch.
+  lyapunov::ClvOptions o;
+  o.transient = 1000;
+  o.window = 1500;
+  o.backward_transient = 1003;
+  const auto ics = iterate::parse_grid("random:21", 5);
+  const auto a = lyapunov::covariant_vectors_batched({0.11}, ics, o, {}, true).at(0);
+  o.window = 2503;
+  o.backward_transient = 500;
+  const auto b = lyapunov::covariant_vectors_batched({0.11}, ics, o, {}, true).at(0);
+  double worst = 0;
+  int compared = 0;
+  for (std::size_t i = 0; i < ics.size(); ++i) {
+    const auto& x = a.orbit[i];
+    const auto& y = b.orbit[i];
+    ASSERT_TRUE(std::equal(x.symbols.begin(), x.symbols.end(), y.symbols.begin())) << i;  // the same points
+    if (x.degenerate) continue;
+    ++compared;
+    for (std::size_t j = 0; j < x.angle.size(); ++j) worst = std::max(worst, std::fabs(x.angle[j] - y.angle[j]));
+  }
+  ASSERT_GT(compared, 10);
+  EXPECT_SMALL(worst, ulps(64, "the same angles from tau composed or recursed (measured 1 eps)").of(1.0));
+}
+
 // ---- the requests (`btob hyperbolicity`, `btob hyperbolicity-orbits`) -----------------------------------------
 
 // The field a request's validation names, or "" when it passes (core::InvalidField's field; the grid and point
