@@ -110,11 +110,6 @@ inline void clv_block(Regs& s, Sums& w, const V* r, const V* a, const V* k, int 
         if constexpr (Window) {
           S::store(st.A + row + j * W, mm * gam);
           S::store(st.Bc + row + j * W, mm * beta);
-        } else {
-          w.beta[j] -= w.alpha[j] * (mm * beta);
-          w.alpha[j] *= mm * gam;
-        }
-        if constexpr (Window) {
           const V imm = one() / mm, c2 = uu * imm;
           const V det = (s1 | s3) ? r[j] : one();
           const V D2 = det * det * c2 * c2 * c2;
@@ -137,6 +132,9 @@ inline void clv_block(Regs& s, Sums& w, const V* r, const V* a, const V* k, int 
               st.expd[row + j * W + l] = e[l] != 0;
             }
           }
+        } else {  // the backward transient: compose its map into t -> alpha t + beta
+          w.beta[j] -= w.alpha[j] * (mm * beta);
+          w.alpha[j] *= mm * gam;
         }
         s.bx[j] = cx, s.by[j] = cy, s.bz[j] = cz;
       }
