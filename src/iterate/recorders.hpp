@@ -100,7 +100,7 @@ template <class T> [[gnu::always_inline]] inline T coord_value(Coord c, const T&
   return T(0);
 }
 
-// out[i] = coord_value<T>(c, x[i], y[i], z[i]) for i < n, in double: one vector loop over whole blocks of 64 lanes (a
+// out[i * stride] = coord_value<T>(c, x[i], y[i], z[i]) for i < n, in double: one vector loop over whole blocks of 64 lanes (a
 // partial block padded with its last state), so that every caller in a translation unit gets the same vector code's
 // value.  coord_value<T> in a vectorised loop and in scalar code may contract its multiply-adds differently and differ
 // by an ulp (seen: phi in float, 2.65536857 against 2.65536833); the density image's exact route and the recorded
@@ -111,7 +111,8 @@ template <class T> [[gnu::always_inline]] inline T coord_value(Coord c, const T&
 // instruction set, and the linker keeps one of them.  btob's DensityRecorder::certain_bins<double> was reference.cpp's
 // baseline SSE2 copy (Figure 4.7's trig_density calls record), not the AVX-512 kernel's.
 template <class T>
-[[gnu::always_inline]] inline void coord_values(Coord c, int n, const T* x, const T* y, const T* z, double* out) {
+[[gnu::always_inline]] inline void coord_values(Coord c, int n, const T* x, const T* y, const T* z, double* out,
+                                                std::size_t stride = 1) {
   constexpr int kBlock = 64;
   alignas(64) T xs[kBlock], ys[kBlock], zs[kBlock];
   alignas(64) double vs[kBlock];
@@ -125,7 +126,7 @@ template <class T>
     }
 #pragma omp simd
     for (int l = 0; l < kBlock; ++l) vs[l] = static_cast<double>(coord_value<T>(c, xs[l], ys[l], zs[l]));
-    for (int l = 0; l < m; ++l) out[i0 + l] = vs[l];
+    for (int l = 0; l < m; ++l) out[static_cast<std::size_t>(i0 + l) * stride] = vs[l];
   }
 }
 
@@ -142,13 +143,9 @@ struct TailRecorder {
   template <class T>
   [[gnu::always_inline]] void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z,
                                      const std::uint8_t*) {
-    const long j = k - first_step();
-    alignas(64) double v[64];
-    for (int l0 = 0; l0 < lanes; l0 += 64) {
-      const int m = std::min(64, lanes - l0);
-      coord_values<T>(coord, m, x + l0, y + l0, z + l0, v);
-      for (int l = 0; l < m; ++l) out[(o0 + static_cast<std::size_t>(l0 + l)) * tail + j] = v[l];
-    }
+    const std::size_t j = static_cast<std::size_t>(k - first_step());
+    const std::size_t stride = static_cast<std::size_t>(tail);
+    coord_values<T>(coord, lanes, x, y, z, out.data() + o0 * stride + j, stride);
   }
 };
 
