@@ -251,20 +251,33 @@ struct RotationRecorder {
         fx[o] = u(0), fy[o] = u(1), fz[o] = u(2);
       }
     // One fixed-width loop over the whole batch (as_whole_batch).
+    constexpr int B = iterate::detail::batch_lanes<T>();
     as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
-      steps<T, iterate::detail::batch_lanes<T>()>(o0, j, bx, by, bz);
+      if (rotation_defined) steps<T, B, true>(o0, j, bx, by, bz);
+      else steps<T, B, false>(o0, j, bx, by, bz);
     });
   }
 
  private:
-  // Step j of the record for the B orbits from o0 (one vector loop: no branch but selections).
-  template <class T, int B>
-  void steps(std::size_t o0, long j, const T* __restrict x, const T* __restrict y, const T* __restrict z) {
+  // Step j of the record for the B orbits from o0: one vector loop, no branch but selections, the invariant and (Rot)
+  // the angle of each lane.  Compiled without GCC's partial redundancy elimination, which evaluated atan_pos's
+  // rational function once for each side of its reduction's selection and selected afterwards (a fourth division per
+  // vector); the same operations otherwise, so the same bits.  The angle's abscissa (s - alpha Y) sqrt(2)/2 is one
+  // product by the double nearest sqrt(2), halved: round(v round(sqrt 2)) / 2 = round(v (round(sqrt 2) / 2)) exactly
+  // (a power of two commutes with rounding; v is never subnormal, the kernel keeps the state's exponent within
+  // about +-500 and v = 0 gives 0 either way).
+  template <class T, int B, bool Rot>
+  __attribute__((optimize("no-tree-pre"))) void steps(std::size_t o0, long j, const T* __restrict x,
+                                                      const T* __restrict y, const T* __restrict z) {
     const double wf = w_full[static_cast<std::size_t>(j)], wh = w_half[static_cast<std::size_t>(j)];
     const double al = alpha, rr = r, ce = c_eta, inf = std::numeric_limits<double>::infinity();
+    constexpr double pi = std::numbers::pi, half_sqrt2 = std::numbers::sqrt2 / 2;
     double* __restrict lo = i_min.data() + o0;
     double* __restrict hi = i_max.data() + o0;
     double* __restrict mean = i_mean.data() + o0;
+    double* __restrict prev = last.data() + o0;
+    double* __restrict full = s_full.data() + o0;
+    double* __restrict half = s_half.data() + o0;
 #pragma omp simd
     for (int l = 0; l < B; ++l) {
       const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
@@ -274,21 +287,14 @@ struct RotationRecorder {
       lo[l] = I < lo[l] ? I : lo[l];
       hi[l] = I > hi[l] ? I : hi[l];
       mean[l] += wf * I;
-    }
-    if (!rotation_defined) return;
-    double* __restrict prev = last.data() + o0;
-    double* __restrict full = s_full.data() + o0;
-    double* __restrict half = s_half.data() + o0;
-    const double pi = std::numbers::pi;
-#pragma omp simd
-    for (int l = 0; l < B; ++l) {
-      const double X = static_cast<double>(x[l]), Y = static_cast<double>(y[l]), Z = static_cast<double>(z[l]);
-      const double ang = atan2_full<double>(ce * Y, (X + Z - al * Y) * std::numbers::sqrt2 / 2);
-      double d = ang - prev[l];
-      d = d > pi ? d - 2 * pi : (d <= -pi ? d + 2 * pi : d);
-      full[l] += wf * d;  // step 0 only sets the first angle: its weights are 0
-      half[l] += wh * d;
-      prev[l] = ang;
+      if constexpr (Rot) {
+        const double ang = atan2_full<double>(ce * Y, (s - al * Y) * half_sqrt2);
+        double d = ang - prev[l];
+        d = d > pi ? d - 2 * pi : (d <= -pi ? d + 2 * pi : d);
+        full[l] += wf * d;  // step 0 only sets the first angle: its weights are 0
+        half[l] += wh * d;
+        prev[l] = ang;
+      }
     }
   }
 };
