@@ -59,13 +59,14 @@ struct ReturnRecorder {
   int max_period;
   double return_tol;
   int words;  // uint64 words of packed symbols per orbit
+  std::size_t n_orbits;
   std::vector<double> s0x, s0y, s0z, fx, fy, fz, best_d, resid;
   std::vector<std::int32_t> best_j, period, n1, n3;
-  std::vector<std::uint64_t> syms;
+  std::vector<std::uint64_t> syms;  // word w of orbit o at w * n_orbits + o: a step's symbols are contiguous over a batch
 
   ReturnRecorder(std::size_t orbits, long transient_, long window_, int max_period_, double return_tol_)
       : transient(transient_), window(window_), max_period(max_period_), return_tol(return_tol_),
-        words((2 * max_period_ + 63) / 64) {
+        words((2 * max_period_ + 63) / 64), n_orbits(orbits) {
     checked_bytes(orbits, 8 * 8 + 4 * 4 + 8 * static_cast<std::size_t>(words), "orbits (return recorder)");
     // The return test's arrays have room for a whole batch of the widest kernel after the last orbit (as
     // RotationRecorder's): its vector loop runs over a full batch even for the last, partial one.
@@ -83,7 +84,7 @@ struct ReturnRecorder {
   // Symbol j = 1 .. max_period of the window of orbit o.
   int symbol(std::size_t o, int j) const {
     const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
-    return static_cast<int>((syms[o * static_cast<std::size_t>(words) + b / 64] >> (b % 64)) & 3u);
+    return static_cast<int>((syms[b / 64 * n_orbits + o] >> (b % 64)) & 3u);
   }
 
   // Steps 1 .. max_period: the return test, in one fixed-width vector loop over the whole batch (as_whole_batch); the
@@ -109,9 +110,10 @@ struct ReturnRecorder {
     }
     if (j > max_period) return;
     const std::size_t b = static_cast<std::size_t>(2 * (j - 1));
-    for (int l = 0; l < lanes; ++l)
-      syms[(o0 + static_cast<std::size_t>(l)) * static_cast<std::size_t>(words) + b / 64] |=
-          static_cast<std::uint64_t>(sym[l]) << (b % 64);
+    std::uint64_t* __restrict w = syms.data() + b / 64 * n_orbits + o0;
+    const unsigned shift = static_cast<unsigned>(b % 64);
+#pragma omp simd
+    for (int l = 0; l < lanes; ++l) w[l] |= static_cast<std::uint64_t>(sym[l]) << shift;
     as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
       returns<T, iterate::detail::batch_lanes<T>()>(o0, j, bx, by, bz);
     });
