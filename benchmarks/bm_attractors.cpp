@@ -9,6 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "plain_reference.hpp"
+
 namespace {
 
 using namespace btob;
@@ -105,6 +107,7 @@ BENCHMARK(BM_basins)->Name("basins")->Args({200, 300, 1, 0})->Args({200, 300, 2,
 // Issue 17's workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of it.
 BENCHMARK(BM_basins)->Name("basins_replicates")->Args({200, 333, 2, 2})->Args({200, 1000, 2, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
+BTOB_PLAIN_REFERENCE;
 BENCHMARK(BM_classify)->Name("classify")->ArgsProduct({{102, 300}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_pass2<true>)->Name("pass2_fused")->ArgsProduct({{102, 300}, {64}, {1, 2}})->UseRealTime()
     ->Unit(benchmark::kMillisecond);

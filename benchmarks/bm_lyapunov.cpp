@@ -10,6 +10,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "plain_reference.hpp"
+
 #include <type_traits>
 
 namespace {
@@ -118,6 +120,7 @@ BENCHMARK(BM_qr_route<long double>)->Name("qr_route/long-double")->Args({200000,
 BENCHMARK(BM_qr_route<core::float128>)->Name("qr_route/float128")->Args({20000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<core::mpfr_float>)->Name("qr_route/mpfr")->Args({5000, 50})->Args({5000, 100})
     ->Unit(benchmark::kMillisecond);
+BTOB_PLAIN_REFERENCE;
 BENCHMARK(BM_map<false>)->Name("map_double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_map<true>)->Name("map_float")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()

@@ -1,0 +1,38 @@
+// The plain kernel on Figure 4.1's workload (bm_iterate's batched/double), registered again in the programs whose
+// workloads are quoted against it (issue 17's ratios: the cocycle, the covariant vectors, the classification).
+// analyses/benchmarks.sh runs those programs with repetitions in random interleaving, so a workload and this
+// reference are measured in the same minutes: on a shared machine whose speed moved by 2x between two programs of
+// one run (2026-11-27), a ratio of rates from different programs measured the machine as much as the code.
+// analyses/benchmark_ratios.py divides each workload's median by this reference's median from the same program.
+#pragma once
+
+#include "iterate/ensemble.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace btob::bench {
+
+// Arguments: r values (the paper's grid of 32 points each), iterations, threads; items = map iterations.
+inline void plain_reference(benchmark::State& st) {
+  iterate::Ensemble e;
+  e.r = iterate::linspace_r(0.0717, 0.1717, st.range(0));
+  e.initial = iterate::paper_grid();
+  const long iters = st.range(1);
+  iterate::RunOptions opt;
+  opt.threads = static_cast<int>(st.range(2));
+  for (auto _ : st) {
+    iterate::FinalRecorder rec(e.orbits(), iters);
+    iterate::run<double>(e, iters, rec, opt);
+    benchmark::DoNotOptimize(rec.out.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * iters);
+}
+
+}  // namespace btob::bench
+
+// The same arguments as bm_iterate's batched/double: 1000 r x 32 points x 5000 steps, 1 and 2 threads.
+#define BTOB_PLAIN_REFERENCE                                                                                         \
+  BENCHMARK(btob::bench::plain_reference)->Name("plain_reference")->Args({1000, 5000, 1})->Args({1000, 5000, 2})   \
+      ->UseRealTime()->Unit(benchmark::kMillisecond)
