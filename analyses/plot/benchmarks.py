@@ -41,7 +41,7 @@ def main(src, dst):
     family = ["scalar_loop", "batched", "fig41"]
     rows = sorted((b for b in rows if "items_per_second" in b),
                   key=lambda b: (next((i for i, f in enumerate(family) if b["name"].startswith(f)), len(family)),
-                                 rows.index(b)))
+                                 b["name"]))
     names = [b["name"].replace("/real_time", "") for b in rows]
     rate = [b["items_per_second"] for b in rows]
     base = next((b["items_per_second"] for b in rows if b["name"].startswith("scalar_loop/double")), None)
@@ -79,8 +79,10 @@ def main(src, dst):
     clk = f"{clock:.2f} GHz measured" if clock else f"{ctx.get('mhz_per_cpu', '?')} MHz nominal"
     ax.set_title(f"btob iterator throughput, Figure 4.1 workload (r in [0.0717, 0.1717], Section 4 grid)\n"
                  f"{ctx.get('num_cpus', '?')} x {cpu}, {clk}, {ctx.get('date', '')[:16]}\n"
-                 "names: route/precision/r values/iterations/threads[/MPFR digits]", fontsize=9)
-    ax.set_xlim(min(rate) / 2, max(max(rate), LIMIT_DOUBLE_2T if machine == LIMIT_CPU else 0) * 40)
+                 "names: route/precision/r values/iterations/threads[/MPFR digits]"
+                 + (f"; medians of {medians[0].get('repetitions', '?')} interleaved repetitions" if medians else ""),
+                 fontsize=9)
+    ax.set_xlim(min(rate) / 2, max(max(rate), LIMIT_DOUBLE_2T if machine == LIMIT_CPU else 0) * 80)
     fig.tight_layout()
     save_atomic(fig, dst)
 
