@@ -17,12 +17,13 @@ for name in bm_iterate bm_lyapunov bm_stats bm_attractors bm_windows; do
   [ -x "$bm" ] || { echo "benchmarks: $bm not built" >&2; exit 2; }
   filter='^[^s]'  # everything but the smoke/... cases
   [ "$name" = bm_iterate ] && filter='^(core_clock|scalar_loop|batched|fig41_density|fig41_plain)'
-  # The programs whose workloads are quoted against the plain kernel run three repetitions in random interleaving
+  # The programs whose workloads are quoted against the plain kernel run five repetitions in random interleaving
   # (bm_iterate's fig41 pair, and bm_lyapunov's and bm_attractors' plain_reference, benchmarks/plain_reference.hpp):
-  # a workload and its reference are measured in the same minutes, and analyses/benchmark_ratios.py divides medians.
+  # a workload and its reference are measured in the same minutes, and analyses/benchmark_ratios.py divides their best
+  # and their median repetitions.
   reps=()
   case "$name" in bm_iterate|bm_lyapunov|bm_attractors)
-    reps=(--benchmark_repetitions=3 --benchmark_enable_random_interleaving=true) ;;
+    reps=(--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true) ;;
   esac
   tmp="$out/$name.json.tmp-$$"
   "$bm" --benchmark_filter="$filter" --benchmark_min_time=1 "${reps[@]}" --benchmark_out="$tmp" \
