@@ -6,6 +6,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "plain_reference.hpp"
+
 #include <fstream>
 #include <string>
 
@@ -13,14 +15,7 @@ namespace {
 
 using namespace btob::iterate;
 
-// Figure 4.1: r in [0.0717, 0.1717] x the 32-point grid of Section 4.  `r_count` values of r.
-Ensemble fig41(long r_count) {
-  Ensemble e;
-  e.r = linspace_r(0.0717, 0.1717, r_count);
-  e.initial = paper_grid();
-  e.grid_description = "paper";
-  return e;
-}
+using btob::bench::fig41;  // Figure 4.1's ensemble (plain_reference.hpp)
 
 // MPFR's digits come from the benchmark's last argument (range(digits_arg)).
 template <class T> void set_digits(const benchmark::State& st, int digits_arg) {
