@@ -89,6 +89,16 @@ check(st.distinct_pixels(cyc[None, :], np.zeros((1, 2000)), 0.01, 0.01)[0] == 6,
 line = (np.arange(2000) + 0.5) / 2000
 check(st.distinct_pixels(line[None, :], np.zeros((1, 2000)), 0.01, 0.01)[0] == 100, "segment")
 check(st.distinct_pixels(np.array([[-0.001, 0.001]]), np.zeros((1, 2)), 0.01, 0.01)[0] == 2, "sign of w1")
+# 7b. The paper's rule at pixel 0.01 and blobs of 2 pixels: a 6-cycle is finite; the same cycle approached as
+#     0.5 * 0.999^t (0.07 = 7 pixels of streak over the last 2000 steps) is not; an irrational rotation on a ring of
+#     radius 5 pixels is a ring (not finite), on a ring of 0.1 pixel a dot (finite); a rational rotation 1/7 is 7 dots.
+t = np.arange(2000)
+cyc2 = np.tile(np.array([0.2, -0.5, 0.7, 0.9, -0.1, 0.3]), 334)[:2000]
+g = 2 * np.pi * (math.sqrt(5) - 1) / 2 * t
+w1s = np.array([cyc, cyc + 0.5 * 0.999**t, 0.05 * np.cos(g), 0.001 * np.cos(g), 0.5 * np.cos(2 * np.pi * t / 7)])
+w2s = np.array([cyc2, cyc2, 0.05 * np.sin(g), 0.001 * np.sin(g), 0.5 * np.sin(2 * np.pi * t / 7)])
+got = st.finite_at_resolution(w1s, w2s, 0.01, 0.01, blob=2.0, max_period=256).tolist()
+check(got == [True, False, False, True, True], f"finite_at_resolution {got}")
 # 8. Samplers: strip2 lies in |w1| <= 2, |w2| <= 1 (w = (y, x + z) / (x - z), eq. (6.4)); the sphere's heights y are
 #    uniform on [-1, 1] (mean 0, variance 1/3 within 5 standard errors).
 names = [c[0] for c in tc.CANDIDATES]
