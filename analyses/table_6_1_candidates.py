@@ -47,7 +47,7 @@ PIXEL_W1, PIXEL_W2 = 4 / 434, 2 / 342
 # p dots on the plot (table_6_1_stats.finite_at_resolution).  2 pixels is the size of MATLAB's '.' marker at that
 # resolution.  MAX_PERIOD = 64: the longest period of Table 6.1 is 38 (132^36 at r = 0.172), and more than 64 dots
 # evenly spread along an ellipse read as a dotted curve, not as points: where the P2 rotation number is within
-# ~1e-5 of l/m with m <= 256 (21/68 at r = 0.32, 68/253 at r = 0.51) every P2 invariant curve shows m dots, and the
+# ~1e-6 of l/m with m <= 256 (21/68 at r = 0.32, 68/253 at r = 0.51) every P2 invariant curve shows m dots, and the
 # paper, which lists no such pattern, did not count them.  Sensitivity (detection.csv): blobs of 0.5 and 8 pixels,
 # periods up to 256, and the plain count of distinct pixels (at most 100), which also accepts small invariant curves.
 BLOB_PIXELS = 2.0

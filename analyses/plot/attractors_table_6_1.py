@@ -87,7 +87,7 @@ def panel_likelihood(ax, like):
             ax.text(left * 0.9, yi, f"{v:.0f}", va="center", ha="left", fontsize=7)
     sat = float(like[0]["saturated_log_likelihood"])
     ax.axvline(sat, color="grey", ls=":", lw=1)
-    ax.text(sat + 2, len(base) - 0.5, "each row at\nits own K/10", fontsize=7, color="grey", ha="left",
+    ax.text(sat - 2, len(base) - 0.5, "each row at\nits own K/10", fontsize=7, color="grey", ha="right",
             va="bottom")
     ax.set_yticks(y)
     ax.set_yticklabels(base, fontsize=8)
