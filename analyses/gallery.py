@@ -122,6 +122,15 @@ LAB = [
     ("attractors/basins_r/fractions_r.png", "attractors/basins_r/fractions_r.json", "Basin fractions across r",
      "share of 2000 random initial conditions (uniform on the sphere of directions) reaching each attractor at the "
      "Table 6.1 r values."),
+    ("attractors/table_6_1/table_6_1_candidates.png", "attractors/table_6_1/table_6_1_candidates.json",
+     "Table 6.1 against candidate initial distributions",
+     "the paper's periodic counts out of ten against each candidate distribution's expected count (btob's fraction, "
+     "beta-binomial 95% interval), the rows' p-values, and the table's log-likelihood per candidate "
+     "(attractors/README.md)."),
+    ("attractors/table_6_1/detection.png", "attractors/table_6_1/table_6_1_candidates.json",
+     "Table 6.1: the paper's detection rule against btob's classifier",
+     "the same orbits classified by btob and by the paper's rule (a finite number of dots among the last 2000 of "
+     "5000 iterations at the pixel size of its plots)."),
 ] + [(f"attractors/basins_sphere_r{r}/basins.png", f"attractors/basins_sphere_r{r}/basins.json", f"Basins at r = {r}",
       "basin map on the equal-area grid (theta, y): fractions of the uniform measure on the sphere of directions.")
      for r in ("0.05", "0.1", "0.15", "0.172", "0.2", "0.21", "0.24", "0.3", "0.58")] + [

@@ -210,9 +210,10 @@ def manifests_and_files(root):
     its "files" list when it has one, else the files of its folder whose name starts with the manifest's stem,
     and files that match no stem belong to every manifest of the folder.  Returns (groups, orphans): orphans are
     files of folders without any manifest."""
-    # results/README.md (the gallery, written from the manifests) and results/STALE are about results, not results.
+    # results/README.md (the gallery, written from the manifests), the README.md of a results folder (what its
+    # results show, written by hand) and results/STALE are about results, not results.
     tracked = [f for f in git(root, "ls-files", "results").stdout.splitlines()
-               if f and f not in ("results/README.md", "results/STALE")]
+               if f and f != "results/STALE" and os.path.basename(f) != "README.md"]
     by_dir = {}
     for f in tracked:
         by_dir.setdefault(os.path.dirname(f), []).append(f)
