@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates results/windows (issue 4): certified bounds, precision study, iterator check.
+# Regenerates results/windows: certified bounds, precision study, iterator check.
 # Usage: analyses/windows.sh [path/to/btob]   (run from the repository root; called by analyses/run_all.sh)
 set -euo pipefail
 BTOB=${1:-build/release/btob}
