@@ -10,6 +10,7 @@ executed by nbsphinx), then checks every internal link and image of the HTML (ch
 when all of it succeeds."""
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -18,7 +19,9 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import gen_cli  # noqa: E402
+import gen_paper  # noqa: E402
 import gen_performance  # noqa: E402
+import gen_python  # noqa: E402
 import check_links  # noqa: E402
 
 
@@ -34,6 +37,16 @@ def stage(repo, src):
             shutil.copy(os.path.join(nb_dir, nb), os.path.join(src, "tutorials", nb))
     shutil.copy(os.path.join(repo, "CHANGELOG.md"), os.path.join(src, "CHANGELOG.md"))
     os.symlink(os.path.join(repo, "results"), os.path.join(src, "results"))
+    gallery(os.path.join(repo, "results", "README.md"), os.path.join(src, "gallery.md"))
+
+
+def gallery(readme, out):
+    """results/README.md (analyses/gallery.py) as a page: its <img src=X> become Markdown images of results/X, so
+    that Sphinx copies them and the link checker sees them."""
+    text = re.sub(r'<img src="([^"]+)"[^>]*>', lambda m: f"![{m.group(1)}](results/{m.group(1)})",
+                  open(readme).read())
+    with open(out, "w") as f:
+        f.write(text)
 
 
 def main():
@@ -50,8 +63,10 @@ def main():
     stage(repo, src)
     gen_cli.write(a.btob, os.path.join(src, "reference", "cli.md"))
     gen_performance.write(os.path.join(repo, "results", "benchmarks"), os.path.join(src, "performance_data.md"))
+    gen_paper.write(repo, a.btob, os.path.join(src, "paper_tables.md"))
     env = dict(os.environ, PYTHONPATH=os.path.abspath(a.pythonpath) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                BTOB_EXE=os.path.abspath(a.btob), MPLBACKEND="Agg", PYDEVD_DISABLE_FILE_VALIDATION="1")
+    gen_python.write(a.sphinx, env, os.path.join(src, "reference"))
     if os.path.isdir(html):
         shutil.rmtree(html)
     cmd = [a.sphinx, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-E",
