@@ -177,6 +177,51 @@ LAB = [
 
 
 
+def read_csv(path):
+    import csv
+    full = os.path.join(ROOT, path)
+    return list(csv.DictReader(open(full))) if os.path.exists(full) else []
+
+
+def tables():
+    """Tables 6.1, B.1 and B.2 beside the paper's, from the committed results and the transcribed tables."""
+    out = ["## The paper's tables", ""]
+    t61 = read_csv("results/attractors/basins_r/table_6_1_comparison.csv")
+    if t61:
+        out += ["### Table 6.1", "",
+                "Periodic patterns across r. The paper: the share of 10 random initial conditions reaching a periodic "
+                "pattern (its 95% interval from 10 draws) and the patterns seen; btob: the share of 2000 orbits "
+                "uniform on the sphere of directions, its 95% interval and every pattern found with its fraction "
+                "(`analyses/attractors.sh`, `results/attractors/basins_r/table_6_1_comparison.csv`).", "",
+                "| r | paper: periodic % | paper's patterns | btob: periodic | btob's 95% | btob's patterns | consistent |",
+                "|---|---|---|---|---|---|---|"]
+        out += [f"| {r['r']} | {r['paper_percent_periodic']} | {r['paper_patterns']} | {r['periodic_fraction']} | "
+                f"[{r['ci_low']}, {r['ci_high']}] | {r['patterns_found']} | {r['consistent']} |" for r in t61]
+        out.append("")
+    paper = {r["n"]: r for r in read_csv("analyses/reference/windows_paper_table_B1.csv")}
+    ours = {r["n"]: r for r in read_csv("results/windows/bounds_certified.csv")}
+    if paper and ours:
+        out += ["### Table B.1", "",
+                "Lower bounds of the windows of (ab)^n(cb)^n (smallest positive root of Q_n, eq. (4.3)) and "
+                "r_crit,2(n) (eq. (4.6)), 12 decimals; btob's lower bounds are certified in exact rational "
+                "arithmetic (`analyses/windows.sh`, `results/windows/bounds_certified.csv`). A differing value is "
+                "**bold**.", "", "| n | paper: lower | btob: lower | paper: r_crit,2 | btob: r_crit,2 | certified |",
+                "|---|---|---|---|---|---|"]
+        for n in sorted(paper, key=int):
+            p, o = paper[n], ours.get(n, {})
+            cell = lambda a, b: f"**{b}**" if a and b and a != b else (b or "")  # noqa: E731
+            out.append(f"| {n} | {p['lower_bound']} | {cell(p['lower_bound'], o.get('lower_bound', ''))} | "
+                       f"{p['upper_bound']} | {cell(p['upper_bound'], o.get('upper_bound', ''))} | "
+                       f"{o.get('certified', '')} |")
+        out.append("")
+    b2 = os.path.join(ROOT, "results", "windows", "table_B2.txt")
+    if os.path.exists(b2):
+        out += ["### Table B.2", "", "The polynomials Q_n, n = 2..10, exact (`btob windows poly --n 2..10`, "
+                "`results/windows/table_B2.txt`). The paper prints +81/128 r^4 in Q_2; the coefficient is -81/128.",
+                "", "```text", open(b2).read().rstrip(), "```", ""]
+    return out
+
+
 def transfer_and_particles():
     """The transfer operator's figures (one per r and resolution, the r scans, the basins' convergence and the gap)
     and the particles' (a space-time diagram per simulated pattern, the feasible atlas), found on disk so that a new
@@ -245,6 +290,7 @@ def main():
         out += [f"### {title}", "", f"<img src=\"{png}\" width=\"720\">", "",
                 "| | |", "|---|---|", f"| paper's caption | {caption} |", f"| what the image shows | {what} |",
                 f"| command | `{command(m)}` |", f"| compute time | {seconds(m)} |", ""]
+    out += tables()
     out += ["## The lab's own figures", ""]
     for png, man, title, what in LAB + transfer_and_particles():
         if not os.path.exists(os.path.join(ROOT, "results", png)):
