@@ -62,5 +62,18 @@ def offline_furo(app, exception):
             f.write(css.replace("url(/javascript/normalize.css/normalize.css)", "url(normalize.css)"))
 
 
+def keyword_block(app, what, name, obj, options, lines):
+    """The functions' docstrings are composed from each request's fields (python/bind.hpp): a summary, then
+    "Keyword arguments (...):" and one indented line per field, written for help() in a terminal.  Show that list as
+    a literal block, so a field's text (|C_N|, r^2n, ...) is not read as reStructuredText markup."""
+    for i, line in enumerate(lines):
+        if line.startswith("Keyword arguments") and line.rstrip().endswith(":"):
+            lines[i] = line.rstrip() + ":"
+            if i + 1 < len(lines) and lines[i + 1].strip():
+                lines.insert(i + 1, "")
+            return
+
+
 def setup(app):
+    app.connect("autodoc-process-docstring", keyword_block)
     app.connect("build-finished", offline_furo)

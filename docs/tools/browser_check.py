@@ -16,7 +16,8 @@ from selenium.webdriver.support.ui import WebDriverWait
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--disable-dev-shm-usage", "--window-size=1280,1000"]
-SHOTS = ["index.html", "guides/attractors.html", "tutorials/fig4_1.html", "reference/cli.html", "performance.html"]
+SHOTS = ["index.html", "guides/attractors.html", "tutorials/fig4_1.html", "reference/cli.html", "reference/python.html",
+         "performance.html", "paper.html", "gallery.html"]
 
 
 def browser(profile):

@@ -63,9 +63,10 @@ def main():
     stage(repo, src)
     gen_cli.write(a.btob, os.path.join(src, "reference", "cli.md"))
     gen_performance.write(os.path.join(repo, "results", "benchmarks"), os.path.join(src, "performance_data.md"))
-    gen_paper.write(repo, a.btob, os.path.join(src, "paper_tables.md"))
+    gen_paper.write(repo, os.path.join(src, "paper_tables.md"))
     env = dict(os.environ, PYTHONPATH=os.path.abspath(a.pythonpath) + os.pathsep + os.environ.get("PYTHONPATH", ""),
-               BTOB_EXE=os.path.abspath(a.btob), MPLBACKEND="Agg", PYDEVD_DISABLE_FILE_VALIDATION="1")
+               BTOB_EXE=os.path.abspath(a.btob), PYDEVD_DISABLE_FILE_VALIDATION="1")
+    env.pop("MPLBACKEND", None)  # the notebooks' kernels draw inline (their figures go into the pages)
     gen_python.write(a.sphinx, env, os.path.join(src, "reference"))
     if os.path.isdir(html):
         shutil.rmtree(html)
