@@ -47,11 +47,11 @@ def api_page(btob):
     for name in btob.FUNCTIONS:
         lines += [f".. autofunction:: btob.{name}", ""]
     lines += [".. autofunction:: btob.iterate", "",
-              ".. autoclass:: btob.Map", "   :members: step, matrix", "",
+              ".. autoclass:: btob.Map", "   :members: r, step, matrix", "",
               ".. autoclass:: btob.Result", "   :members: attrs, arrays, decimals, info, function, command, request, "
               "tables, plots_from_files", "",
               "   .. method:: plot()", "", "      " + (btob.plotting.plot.__doc__ or "").strip(), "",
-              "   .. method:: save(out, name=None, title=None, plot=True)", "",
+              "   .. method:: save(out, name=None, title=\"\", plot=True)", "",
               "      " + " ".join((btob.plotting.save.__doc__ or "").split()), "",
               "   .. method:: savefig(path, dpi=None)", "",
               "      " + " ".join((btob.plotting.savefig.__doc__ or "").split()), "", "```", ""]
