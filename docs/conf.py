@@ -21,7 +21,7 @@ myst_heading_anchors = 3
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 # Included into other pages, never pages of their own:
 exclude_patterns = ["_build", "**.ipynb_checkpoints", "results/**", "ARCHITECTURE.md", "README.md", "CHANGELOG.md",
-                    "reference/outputs/**", "reference/python_api.md", "performance_data.md", "paper_tables.md"]
+                    "reference/outputs/**", "reference/csv/**", "reference/python_api.md", "performance_data.md", "paper_tables.md"]
 suppress_warnings = ["myst.header"]
 
 # Notebooks run during the build (a kernel per notebook, cells of seconds); an error in a cell fails the build.

@@ -19,6 +19,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import gen_cli  # noqa: E402
+import gen_csv  # noqa: E402
 import gen_paper  # noqa: E402
 import gen_performance  # noqa: E402
 import gen_python  # noqa: E402
@@ -64,6 +65,7 @@ def main():
     gen_cli.write(a.btob, os.path.join(src, "reference", "cli.md"))
     gen_performance.write(os.path.join(repo, "results", "benchmarks"), os.path.join(src, "performance_data.md"))
     gen_paper.write(repo, os.path.join(src, "paper_tables.md"))
+    gen_csv.write(repo, os.path.join(src, "reference", "csv"))
     env = dict(os.environ, PYTHONPATH=os.path.abspath(a.pythonpath) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                BTOB_EXE=os.path.abspath(a.btob), PYDEVD_DISABLE_FILE_VALIDATION="1")
     env.pop("MPLBACKEND", None)  # the notebooks' kernels draw inline (their figures go into the pages)
