@@ -38,10 +38,11 @@ PAPER = [
     ("fig4_7/fig4_7.png", "fig4_7/fig4_7.json", "Figure 4.7",
      f"Plot of the tails of the orbits of {P} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, relying on the "
      "trigonometric algorithm of Section A.1.",
-     "(a) what the paper's MATLAB code draws: orbits continued in complex arithmetic once acos leaves [-1, 1] "
-     "(real part plotted); below r ≈ 0.08 about 94% of the orbits leave the domain and, in this continuation, settle "
-     "on a few values or stop producing b-collisions (the paper shows apparent chaos there: its picture must come from "
-     "another continuation); (b) only the orbits that never left acos's domain; (c) share of orbits per r that left it."),
+     "(a) btob's emulation of the paper's MATLAB code: orbits continued in complex arithmetic once acos leaves "
+     "[-1, 1] (real part plotted); (b) only the orbits that never left acos's domain; (c) share of orbits per r that "
+     "the emulation counts as complex. The printed code run in GNU Octave takes no complex acos on the grid at "
+     "r = 0.072-0.078 and freezes about half the orbits at phi = pi/2 (analyses/octave/README.md): (c) overstates "
+     "the share, and (a) is not yet what the paper's program draws."),
     ("fig6_1a/fig6_1a.png", "fig6_1a/fig6_1a.json", "Figure 6.1a",
      f"{TAILS} for 0.1 ≤ r ≤ 0.102. (a) p-th iterations of {P} for 4900 ≤ p ≤ 5000.",
      "phi; six accumulation values of (ab)^3(cb)^3 below 5-2√6 (red), apparent chaos above."),
