@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian packages btob needs (only the missing ones).  Why each: see README.md, "Dependencies".
+# Installs the Debian packages btob needs (only the missing ones).  Why each: docs/install.md, "Dependencies and why each".
 set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config git        # toolchain
@@ -17,6 +17,10 @@ packages=(
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars
   openmpi-bin libopenmpi-dev                  # sweeps split over ranks with `mpirun` (optional at build time)
+  python3-sphinx python3-myst-parser          # the documentation site (docs/, target `docs`): Sphinx, pages in Markdown
+  python3-nbsphinx pandoc                     # the tutorials: notebooks executed in the site (pandoc renders their Markdown)
+  furo                                        # the site's theme (responsive, with search)
+  chromium chromium-driver python3-selenium   # the test that opens the built site in headless Chromium (label docs)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates results/attractors/** (issue 8): basin maps at the r values of Section 6.2 / Table 6.1 and the basin
+# Regenerates results/attractors/**: basin maps at the r values of Section 6.2 / Table 6.1 and the basin
 # fractions across r compared with Table 6.1.  Usage: analyses/attractors.sh path/to/btob [threads]
 set -euo pipefail
 BTOB=${1:?usage: analyses/attractors.sh path/to/btob [threads]}
@@ -7,13 +7,13 @@ THREADS=${2:-2}
 cd "$(dirname "$0")/.."
 OUT=results/attractors
 mkdir -p "$OUT"
-# Fractions are of a measure, named in every output (issue 21).  The default, sphere:NxM, is the uniform measure on
+# Fractions are of a measure, named in every output.  The default, sphere:NxM, is the uniform measure on
 # the sphere of directions of the domain (an equal-area grid); strip:NxM grids count Lebesgue measure on their
 # rectangle of the plane x - z = 1 (an explicit choice: they print the share of the sphere measure they leave out).
 for r in 0.05 0.1 0.15 0.172 0.2 0.21 0.24 0.3 0.58; do
   "$BTOB" basins --r "$r" --grid sphere:300x300 --replicates 1 --seed 1 --threads "$THREADS" --out "$OUT/basins_sphere_r$r"
 done
-# The issue's target: 1000 x 1000 at r = 0.2 (two replicate grids shifted by random fractions of a cell).
+# The speed target: 1000 x 1000 at r = 0.2 (two replicate grids shifted by random fractions of a cell).
 "$BTOB" basins --r 0.2 --grid strip:1000x1000 --replicates 2 --seed 1 --threads "$THREADS" --out "$OUT/basins_r0.2"
 # Coexistence and single-basin cases of Table 6.1 (400 x 400, two replicates).
 for r in 0.05 0.1 0.15 0.172 0.21 0.24 0.3 0.58; do

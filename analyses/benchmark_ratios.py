@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 17's ratios from one benchmark run: each workload against the plain kernel measured in the same program.
+"""The speed ratios from one benchmark run: each workload against the plain kernel measured in the same program.
 
 Usage: analyses/benchmark_ratios.py [DIR]     (DIR = results/benchmarks; writes DIR/ratios.csv, prints a Markdown table)
 

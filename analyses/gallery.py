@@ -4,6 +4,7 @@ it where it reproduces one, the command that made it and its compute time (read 
 Usage: analyses/gallery.py [REPO_ROOT]   (run by analyses/run_all.sh after everything else)"""
 import json
 import os
+import re
 import sys
 
 ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
@@ -21,7 +22,7 @@ PAPER = [
      f"{TAILS.replace('the orbits', 'the 32 orbits')} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, in logarithmic "
      "scale.",
      "the same in log10 theta with the window bounds (lower bound blue, r_crit,2(n) red); range chosen from the "
-     "data, points outside counted in the figure, lines closer than 3 px thinned."),
+     "data, points outside counted in the figure, overlay lines closer than 5 px to a drawn one thinned (the plot script's MIN_GAP_PX)."),
     ("fig4_3/fig4_3.png", "fig4_3/fig4_3.json", "Figure 4.3",
      f"Plot of the tails of the orbits of {P} for 0.0717 ≤ r ≤ 0.0817 after 5000 iterations, in logarithmic scale.",
      "zoom towards 7-4√3: the windows n = 5 .. 100+ (Table B.1), each opening at its blue lower bound and closing at its red r_crit,2(n); theta collapses between them."),
@@ -35,11 +36,13 @@ PAPER = [
      f"Plot of the tails of the orbits of {P} for 0.07183 ≤ r ≤ 0.07184 after 5000 iterations, in logarithmic scale.",
      "the ten windows n = 69 .. 78 side by side."),
     ("fig4_7/fig4_7.png", "fig4_7/fig4_7.json", "Figure 4.7",
-     f"{TAILS} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, relying on the trigonometric algorithm of Section A.1.",
-     "(a) what the paper's MATLAB code draws: orbits continued in complex arithmetic once acos leaves [-1, 1] "
-     "(real part plotted); below r ≈ 0.08 about 94% of the orbits leave the domain and, in this continuation, settle "
-     "on a few values or stop producing b-collisions (the paper shows apparent chaos there: its picture must come from "
-     "another continuation); (b) only the orbits that never left acos's domain; (c) share of orbits per r that left it."),
+     f"Plot of the tails of the orbits of {P} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, relying on the "
+     "trigonometric algorithm of Section A.1.",
+     "(a) btob's emulation of the paper's MATLAB code: orbits continued in complex arithmetic once acos leaves "
+     "[-1, 1] (real part plotted); (b) only the orbits that never left acos's domain; (c) share of orbits per r that "
+     "the emulation counts as complex. The printed code run in GNU Octave takes no complex acos on the grid at "
+     "r = 0.072-0.078 and freezes about half the orbits at phi = pi/2 (analyses/octave/README.md): (c) overstates "
+     "the share, and (a) is not yet what the paper's program draws."),
     ("fig6_1a/fig6_1a.png", "fig6_1a/fig6_1a.json", "Figure 6.1a",
      f"{TAILS} for 0.1 ≤ r ≤ 0.102. (a) p-th iterations of {P} for 4900 ≤ p ≤ 5000.",
      "phi; six accumulation values of (ab)^3(cb)^3 below 5-2√6 (red), apparent chaos above."),
@@ -81,33 +84,45 @@ PAPER = [
      "the trajectory, for all ten random starts."),
     ("fig7_132312/fig7_1.png", "fig7_132312/fig7_132312.json", "Figure 7.1",
      "Eigenvalues of the collision matrix P̃_{132^J}, as functions of the restitution coefficient r, in the case when "
-     "these eigenvalues are real. (a) 0 ≤ r ≤ 1; (b) magnification, 0 ≤ r ≤ 0.19.",
+     "these eigenvalues are real. (a) Spectrum (when real) for 0 ≤ r ≤ 1. (b) Magnification of the plot of the "
+     "spectrum (when real), for 0 ≤ r ≤ 0.19.",
      "the real eigenvalues of J P2 P3 P1: three below r_Δ = 3-2√2, one above; all negative."),
     ("fig7_132312/fig7_2.png", "fig7_132312/fig7_132312.json", "Figure 7.2",
-     "Moduli of the eigenvalues of the collision matrix P̃_{132^J}, as functions of r. (a) 0 ≤ r ≤ 1; "
-     "(b) magnification, 0 ≤ r ≤ 0.3.",
+     "Moduli of the eigenvalues of the collision matrix P̃_{132^J}, as functions of the restitution coefficient r. "
+     "(a) Moduli of the eigenvalues for 0 ≤ r ≤ 1. (b) Magnification of the plot of the moduli of the eigenvalues, "
+     "for 0 ≤ r ≤ 0.3.",
      "moduli on a log scale: the eigenvalue real for every r dominates everywhere (Theorem 7.1)."),
     ("fig7_132312/fig7_3.png", "fig7_132312/fig7_132312.json", "Figure 7.3",
-     "The two first feasibility inequalities associated to the pattern 132312.",
+     "The two first feasibility inequalities associated to the pattern 132312. (a) First feasibility "
+     "inequality for 132312: plot of (u_{λ^dom})_z as a function of r. (b) Second feasibility inequality for 132312: "
+     "plot of α (u_{λ^dom})_y - (u_{λ^dom})_x as a function of r.",
      "(u)_z and alpha (u)_y - (u)_x of the dominant eigenvector (u_x = 1, symlog): the pole at r_crit,132J,1 = "
      "0.182615 (red), and the sign change of the second at 0.2201 = r_crit,132J (Theorem 7.1)."),
     ("fig7_132312/fig7_4.png", "fig7_132312/fig7_132312.json", "Figure 7.4",
-     "Third and fourth feasibility inequalities associated to the pattern 132312.",
+     "Third and fourth feasibility inequalities associated to the pattern 132312. (a) Third feasibility inequality "
+     "for 132312: plot of (P_1 u_{λ^dom})_y as a function of r. (b) Fourth feasibility inequality for 132312: plot of "
+     "α (P_1 u_{λ^dom})_y - (P_1 u_{λ^dom})_z as a function of r.",
      "(P1 u)_y and alpha (P1 u)_y - (P1 u)_z: both negative for r > r_crit,132J,1."),
     ("fig7_132312/fig7_5.png", "fig7_132312/fig7_132312.json", "Figure 7.5",
-     "The two last feasibility inequalities associated to the pattern 132312.",
+     "The two last feasibility inequalities associated to the pattern 132312. (a) Fifth feasibility inequality for "
+     "132312: plot of α (P_3 P_1 u_{λ^dom})_y - (P_3 P_1 u_{λ^dom})_x as a function of r. (b) Sixth feasibility inequality "
+     "for 132312: plot of α (P_3 P_1 u_{λ^dom})_y - (P_3 P_1 u_{λ^dom})_z as a function of r.",
      "alpha (P3P1u)_y - (P3P1u)_x < 0 and alpha (P3P1u)_y - (P3P1u)_z > 0 for r > r_crit,132J,1."),
     ("fig7_13223122/fig7_6.png", "fig7_13223122/fig7_13223122.json", "Figure 7.6",
-     "Eigenvalues of the collision matrix P̃_{1322^J}, as functions of r, in the case when these eigenvalues are "
-     "real. (a) 0 ≤ r ≤ 1; (b) magnification, 0 ≤ r ≤ 0.3.",
+     "Eigenvalues of the collision matrix P̃_{1322^J}, as functions of the restitution coefficient r, in the case "
+     "when these eigenvalues are real. (a) Spectrum (when real) for 0 ≤ r ≤ 1. (b) Magnification of the plot of "
+     "the spectrum (when real), for 0 ≤ r ≤ 0.3.",
      "the real eigenvalues of J P2 P2 P3 P1, with r_crit,1322J,1 and 2 (dashed) where the negative one starts and "
      "stops dominating."),
     ("fig7_13223122/fig7_7.png", "fig7_13223122/fig7_13223122.json", "Figure 7.7",
-     "Moduli of the eigenvalues of the collision matrix P̃_{1322^J}, as functions of r. (a) 0 ≤ r ≤ 1; "
-     "(b) magnification, 0 ≤ r ≤ 0.3.",
+     "Moduli of the eigenvalues of the collision matrix P̃_{1322^J}, as functions of the restitution coefficient r. "
+     "(a) Moduli of the eigenvalues for 0 ≤ r ≤ 1. (b) Magnification of the plot of the moduli of the eigenvalues, "
+     "for 0 ≤ r ≤ 0.3.",
      "moduli (log): the negative real eigenvalue dominates only between 0.160290 and 0.251127."),
     ("fig7_13223122/fig7_8.png", "fig7_13223122/fig7_13223122.json", "Figure 7.8",
-     "The two first feasibility inequalities associated to the pattern 13223122.",
+     "The two first feasibility inequalities associated to the pattern 13223122. (a) First feasibility inequality "
+     "for 13223122: plot of (u_{λ^dom})_z as a function of r. (b) Second feasibility inequality for 13223122: plot of "
+     "α (u_{λ^dom})_y - (u_{λ^dom})_x as a function of r.",
      "(u)_z and alpha (u)_y - (u)_x of the eigenvector of lambda^real (u_x = 1): both vanish at 3-2√2 = 0.171573 "
      "with opposite requirements, so 13223122 is never stable (Theorem 7.3); r_crit,1322J,3 = 0.236362 solid red."),
 ]
@@ -170,6 +185,86 @@ LAB = [
      "the scalar loop of Appendix A.2."),
 ]
 
+
+
+def read_csv(path):
+    import csv
+    full = os.path.join(ROOT, path)
+    return list(csv.DictReader(open(full))) if os.path.exists(full) else []
+
+
+def tables():
+    """Tables 6.1, B.1 and B.2 beside the paper's, from the committed results and the transcribed tables."""
+    out = ["## The paper's tables", ""]
+    t61 = read_csv("results/attractors/basins_r/table_6_1_comparison.csv")
+    if t61:
+        out += ["### Table 6.1", "",
+                "Periodic patterns across r. The paper: the share of 10 random initial conditions reaching a periodic "
+                "pattern (its 95% interval from 10 draws) and the patterns seen; btob: the share of 2000 orbits "
+                "uniform on the sphere of directions, its 95% interval and every pattern found with its fraction "
+                "(`analyses/attractors.sh`, `results/attractors/basins_r/table_6_1_comparison.csv`).", "",
+                "| r | paper: periodic % | paper's patterns | btob: periodic | btob's 95% | btob's patterns | consistent |",
+                "|---|---|---|---|---|---|---|"]
+        out += [f"| {r['r']} | {r['paper_percent_periodic']} | {r['paper_patterns']} | {r['periodic_fraction']} | "
+                f"[{r['ci_low']}, {r['ci_high']}] | {r['patterns_found']} | {r['consistent']} |" for r in t61]
+        out.append("")
+    paper = {r["n"]: r for r in read_csv("analyses/reference/windows_paper_table_B1.csv")}
+    ours = {r["n"]: r for r in read_csv("results/windows/bounds_certified.csv")}
+    if paper and ours:
+        out += ["### Table B.1", "",
+                "Lower bounds of the windows of (ab)^n(cb)^n (smallest positive root of Q_n, eq. (4.3)) and "
+                "r_crit,2(n) (eq. (4.6)), 12 decimals; btob's lower bounds are certified in exact rational "
+                "arithmetic (`analyses/windows.sh`, `results/windows/bounds_certified.csv`). A differing value is "
+                "**bold**.", "", "| n | paper: lower | btob: lower | paper: r_crit,2 | btob: r_crit,2 | certified |",
+                "|---|---|---|---|---|---|"]
+        for n in sorted(paper, key=int):
+            p, o = paper[n], ours.get(n, {})
+            cell = lambda a, b: f"**{b}**" if a and b and a != b else (b or "")  # noqa: E731
+            out.append(f"| {n} | {p['lower_bound']} | {cell(p['lower_bound'], o.get('lower_bound', ''))} | "
+                       f"{p['upper_bound']} | {cell(p['upper_bound'], o.get('upper_bound', ''))} | "
+                       f"{o.get('certified', '')} |")
+        out.append("")
+    b2 = os.path.join(ROOT, "results", "windows", "table_B2.txt")
+    if os.path.exists(b2):
+        out += ["### Table B.2", "", "The polynomials Q_n, n = 2..10, exact (`btob windows poly --n 2..10`, "
+                "`results/windows/table_B2.txt`). The paper prints +81/128 r^4 in Q_2; the coefficient is -81/128.",
+                "", "```text", open(b2).read().rstrip(), "```", ""]
+    return out
+
+
+def transfer_and_particles():
+    """The transfer operator's figures (one per r and resolution, the r scans, the basins' convergence and the gap)
+    and the particles' (a space-time diagram per simulated pattern, the feasible atlas), found on disk so that a new
+    run of analyses/transfer.sh or analyses/particles.sh appears without an edit here."""
+    import glob
+    res = os.path.join(ROOT, "results")
+    rel = lambda p: os.path.relpath(p, res)  # noqa: E731
+    key = lambda p: [float(x) if x.replace(".", "").isdigit() else x for x in  # noqa: E731
+                     os.path.basename(os.path.dirname(p)).replace("r_scan_", "scan_").lstrip("r").split("_")]
+    out = []
+    for png in sorted(glob.glob(os.path.join(res, "transfer", "r*_*", "transfer.png")), key=key):
+        r, n = os.path.basename(os.path.dirname(png)).lstrip("r").split("_")
+        out.append((rel(png), rel(png)[:-4] + ".json", f"Transfer operator, r = {r}, {n} x {n} boxes",
+                    "Ulam's matrix on the strip chart (atan w1, w2): the invariant density, the leading eigenvalues, "
+                    "the ergodic classes and, on the right, the basins from the Ulam graph (absorption probabilities)."))
+    for png in sorted(glob.glob(os.path.join(res, "transfer", "r_scan_*", "transfer_r.png")), key=key):
+        n = os.path.basename(os.path.dirname(png)).split("_")[-1]
+        out.append((rel(png), rel(png)[:-4] + ".json", f"Transfer operator across r, {n} x {n} boxes",
+                    "peripheral eigenvalues and the gap 1 - |lambda| against r."))
+    out += [("transfer/basins_convergence.png", None, "Transfer operator: basins against the resolution",
+             "basin fractions from the Ulam graph against the counted ones of btob basins, per resolution."),
+            ("transfer/gap_r.png", None, "Transfer operator: the spectral gap across r",
+             "the gap at three resolutions: it stays open below 3 - 2√2 and closes with the resolution above.")]
+    for png in sorted(glob.glob(os.path.join(res, "particles", "*_r*", "spacetime.png"))):
+        word, r = os.path.basename(os.path.dirname(png)).split("_r")
+        out.append((rel(png), os.path.join(os.path.dirname(rel(png)), "particles.json"),
+                    f"Four particles on the pattern {word}, r = {r}",
+                    "space-time diagram of the four particles started on the periodic point (rescaled every period)."))
+    out.append(("particles/atlas/feasible.png", "particles/atlas/feasible.json", "Feasible periodic patterns",
+                "which words of length ≤ 14 have a feasible periodic point, stable or not, against r."))
+    return out
+
+
 TIME_KEYS = ("total_seconds", "seconds", "atlas_seconds", "clv_seconds", "iteration_seconds")
 
 
@@ -184,7 +279,7 @@ def command(m):
     c = m.get("command", "")
     if " -> " in c:
         c = c.split(" -> ")[0]
-    return c.replace("build/release/btob", "btob").strip() or "see README.md"
+    return re.sub(r"^\S*/btob\S*(?=\s)", "btob", c.strip()) or "see README.md"  # any build's path to the binary
 
 
 def seconds(m):
@@ -205,8 +300,9 @@ def main():
         out += [f"### {title}", "", f"<img src=\"{png}\" width=\"720\">", "",
                 "| | |", "|---|---|", f"| paper's caption | {caption} |", f"| what the image shows | {what} |",
                 f"| command | `{command(m)}` |", f"| compute time | {seconds(m)} |", ""]
+    out += tables()
     out += ["## The lab's own figures", ""]
-    for png, man, title, what in LAB:
+    for png, man, title, what in LAB + transfer_and_particles():
         if not os.path.exists(os.path.join(ROOT, "results", png)):
             continue
         m = manifest(man)

@@ -18,7 +18,7 @@ mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# The workload of issue 15: r in [0.0717, 0.6] x the 32-point grid of Section 4 x 1e4 averaged steps (+1e3 transient).
+# The workload: r in [0.0717, 0.6] x the 32-point grid of Section 4 x 1e4 averaged steps (+1e3 transient).
 work=(lyapunov-map --r-min 0.0717 --r-max 0.6 --r-count "$r_count" --grid paper --iterations 10000 --transient 1000
       --no-plot --quiet --name x)
 attr() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j.get(sys.argv[2], ''))" "$@"; }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates results/particles (issue 19): periodic collapses realised by four particles, and every periodic
+# Regenerates results/particles: periodic collapses realised by four particles, and every periodic
 # orbit of P_r, stable or not.
 #   atlas/        btob pattern atlas --feasible: every canonical word of length <= L with a feasible periodic point
 #                 (feasible.csv, feasible_counts.csv, feasible_unstable_followed.csv, feasible.h5, feasible.json,
@@ -20,7 +20,8 @@ mkdir -p "$OUT"
 # SKIP_ATLAS=1 reuses an existing $OUT/atlas (the atlas is the long part: ~10 CPU minutes at L = 14).
 [ "${SKIP_ATLAS:-0}" = 1 ] || "$BTOB" pattern atlas --feasible --max-length "$L" --out "$OUT/atlas"
 
-# The three cases of the issue, and the unstable 13223122 followed in 100-digit arithmetic.
+# Three cases (the windows 1133 at r = 0.15 and 111333 at 0.1, and 132312 at 0.5), and the unstable 13223122
+# followed in 100-digit arithmetic.
 for case in "1133 0.15 double" "111333 0.1 double" "132312 0.5 double" "13223122 0.1 mpfr:100"; do
   set -- $case
   "$BTOB" particles "$1" --r "$2" --periods $PERIODS --precision "$3" --out "$OUT/${1}_r$2" >/dev/null

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates results/transfer/** (issue 20, Section 8): Ulam's transfer operator of P_r at the r values of the
-# issue, each at three resolutions, and the peripheral spectrum across [0.07, 0.6] at three resolutions; then the
+# Regenerates results/transfer/** (Section 8): Ulam's transfer operator of P_r at r = 0.15, 0.1, 0.21, 0.3, 0.11 (a
+# sink, a window, sinks with invariant curves, chaos), each at three resolutions or more, and the peripheral spectrum
+# across [0.07, 0.6] at three resolutions; then the
 # convergence tables (and the basins' extrapolation).  Usage: analyses/transfer.sh path/to/btob [threads]
 set -euo pipefail
 BTOB=${1:?usage: analyses/transfer.sh path/to/btob [threads]}

@@ -1,5 +1,5 @@
 """Convergence table of results/transfer: every `btob transfer` run's key numbers, grouped by r, three resolutions
-each (issue 20, item 3); runs without a spectrum (--eigenvalues 0: the basins alone) leave the spectral columns
+each; runs without a spectrum (--eigenvalues 0: the basins alone) leave the spectral columns
 empty.  Then the basins from the Ulam graph against the counted fractions of `btob basins` across the resolutions:
 errors against the box side, their rate, and Richardson's extrapolation (basins_convergence.csv,
 basins_extrapolation.csv, basins_convergence.png).

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates results/windows (issue 4): certified bounds, precision study, iterator check.
+# Regenerates results/windows: certified bounds (Table B.1), the polynomials Q_n (Table B.2), precision study,
+# iterator check.
 # Usage: analyses/windows.sh [path/to/btob]   (run from the repository root; called by analyses/run_all.sh)
 set -euo pipefail
 BTOB=${1:-build/release/btob}
@@ -11,6 +12,10 @@ mv "$OUT/bounds_certified.csv.tmp" "$OUT/bounds_certified.csv"
 # Its manifest (the command prints to stdout and writes none): btob_manifest is built beside btob.
 "$(dirname "$BTOB")/btob_manifest" "$OUT/bounds_certified.json" \
   "$BTOB windows bounds --n 1..100 --digits 12 --certify > $OUT/bounds_certified.csv" bounds_certified.csv
+# Table B.2: Q_n for n = 2..10, developed and factorised, in exact rationals (and its manifest).
+"$BTOB" windows poly --n 2..10 --quiet > "$OUT/table_B2.txt.tmp"
+mv "$OUT/table_B2.txt.tmp" "$OUT/table_B2.txt"
+"$(dirname "$BTOB")/btob_manifest" "$OUT/table_B2.json" "$BTOB windows poly --n 2..10 > $OUT/table_B2.txt" table_B2.txt
 # Precision study (precision.csv, precision_summary.csv, precision.json, precision.png).
 "$BTOB" windows precision --n 1..150 --out "$OUT"
 # The iterator inside and below each window (verify.csv + verify.json).

@@ -104,7 +104,7 @@ BENCHMARK(BM_basins)->Name("smoke_basins")->Args({200, 8, 1, 0})->UseRealTime();
 BENCHMARK(BM_pass1<false>)->Name("smoke_pass1_batched")->Args({2})->UseRealTime();
 BENCHMARK(BM_basins)->Name("basins")->Args({200, 300, 1, 0})->Args({200, 300, 2, 0})->Args({102, 100, 1, 0})
     ->Args({102, 100, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-// Issue 17's workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of it.
+// The basins' speed workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of it.
 BENCHMARK(BM_basins)->Name("basins_replicates")->Args({200, 333, 2, 2})->Args({200, 1000, 2, 2})->UseRealTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BTOB_PLAIN_REFERENCE;

@@ -52,7 +52,7 @@ template <class T> void BM_batched(benchmark::State& st) {
 }
 
 // The whole Figure 4.1 computation: 5000 iterations, the last 100 binned into the density image (Density = true), or
-// the same workload keeping only the final state: the plain iteration it is compared with (issue 17: within 10%).
+// the same workload keeping only the final state: the plain iteration it is compared with (the goal: within 10%).
 // Coord C = w2 bins the strip coordinate (x + z) / (x - z) over [-1, 1] instead of theta: one division and no atan, the
 // floor of what recording 100 steps and binning them costs.
 template <class T, bool Density, Coord C = Coord::theta> void BM_fig41(benchmark::State& st) {

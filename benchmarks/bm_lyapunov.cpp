@@ -18,7 +18,7 @@ namespace {
 
 using namespace btob;
 
-// The issue's workload: r in [0.0717, 0.6] x the 32-point grid of Section 4.
+// The speed goal's workload: r in [0.0717, 0.6] x the 32-point grid of Section 4.
 iterate::Ensemble workload(long r_count) {
   iterate::Ensemble e;
   e.r = iterate::linspace_r(0.0717, 0.6, r_count);
@@ -28,7 +28,7 @@ iterate::Ensemble workload(long r_count) {
 }
 
 // Scalar baseline: projective QR route (two tangent vectors, Gram-Schmidt every step) on one orbit, in every
-// precision of the lab (issue 9); the MPFR digits are the benchmark's second argument.
+// precision of the lab; the MPFR digits are the benchmark's second argument.
 template <class T> void BM_qr_route(benchmark::State& st) {
   if constexpr (std::is_same_v<T, core::mpfr_float>) core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
   const long n = st.range(0);

@@ -1,5 +1,5 @@
 // The plain kernel on Figure 4.1's workload (bm_iterate's batched/double), registered again in the programs whose
-// workloads are quoted against it (issue 17's ratios: the cocycle, the covariant vectors, the classification).
+// workloads are quoted against it (the speed ratios: the cocycle, the covariant vectors, the classification).
 // analyses/benchmarks.sh runs those programs with five repetitions in random interleaving, so a workload and this
 // reference are measured in the same minutes: on a shared machine whose speed moved by 2x between two programs of
 // one run (2026-11-27), a ratio of rates from different programs measured the machine as much as the code.

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """btob.bifurcation against `btob bifurcation` on the Figure 4.1 workload (5000 r x 32 orbits x 5000 iterations,
 700 bins), alternated A B A B ... in one run: the iteration time each reports (`iteration_seconds`, the kernel's
-wall time: what the binding could slow down) and the wall time of the whole call.  Issue 14 asks the Python
+wall time: what the binding could slow down) and the wall time of the whole call.  The goal: the Python
 iteration time to be within 5% of the command line's.  The machine is shared: quote the ratio of medians of one run.
 
 Usage: PYTHONPATH=build/release/python python3 benchmarks/python_vs_cli.py [BTOB_BINARY] [REPEATS] [OUT.csv]

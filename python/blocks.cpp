@@ -132,7 +132,7 @@ py::array iterate_orbits(py::handle r, py::handle points, long iterations, const
 void bind_blocks(py::module_& m) {
   py::class_<Map>(m, "Map", "The b-to-b map P_r (Theorem 3.1): Map(r).step(points) applies one step to N points")
       .def(py::init<double>(), py::arg("r"))
-      .def_readonly("r", &Map::r)
+      .def_readonly("r", &Map::r, "the restitution coefficient r, in (0, 1)")
       .def("step", &Map::step, py::arg("points"),
            "One step of every row x,y,z (an (N, 3) array, or one point (3,)): returns (P_s u, s), the image not "
            "normalised and in the quadrant Q = {x >= 0, z <= 0}, and the branch s in {1, 2, 3} (uint8) of each row")

@@ -219,19 +219,22 @@ void bind_result(py::module_& m) {
                                py::dict d;
                                for (const auto& [k, v] : r.attrs) d[py::str(k)] = attr_value(v);
                                return d;
-                             })
+                             },
+                             "provenance and summary: the attributes the command line writes to NAME.h5 (a dict)")
       .def_property_readonly("arrays",
                              [](const ResultBase& r) {
                                py::list l;
                                for (const auto& a : r.contents.arrays) l.append(a.name);
                                return l;
-                             })
+                             },
+                             "names of the result's arrays (each is also an attribute: res.NAME, a numpy view)")
       .def_property_readonly("decimals",
                              [](const ResultBase& r) {
                                py::list l;
                                for (const auto& d : r.contents.decimals) l.append(d.name);
                                return l;
-                             })
+                             },
+                             "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
       .def("info",
            [](const ResultBase& r, const std::string& name) {
              for (const auto& a : r.contents.arrays)
@@ -245,8 +248,10 @@ void bind_result(py::module_& m) {
              throw py::key_error(name);
            },
            "dims, axes, units and description of an array (or decimals)")
-      .def_property_readonly("function", [](const ResultBase& r) { return r.function; })
-      .def_property_readonly("command", [](const ResultBase& r) { return r.command; })
+      .def_property_readonly("function", [](const ResultBase& r) { return r.function; },
+                             "the Python function that made this result (e.g. 'bifurcation')")
+      .def_property_readonly("command", [](const ResultBase& r) { return r.command; },
+                             "the command line's subcommand of the same request (e.g. 'lyapunov-map')")
       .def_property_readonly("request",
                              [](const ResultBase& r) {
                                py::dict d;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every CSV the command line writes loads as it is (issue 21, item 3).
+"""Every CSV the command line writes loads as it is.
 
 Runs each command that writes a CSV (files or stdout) on a small input into a temporary folder, then reads every
 CSV it finds there twice: with numpy.genfromtxt(names=True, delimiter=",", dtype=None) and with Python's csv
@@ -75,7 +75,7 @@ def check_csv(path, numbers_or_empty=False):
 
 
 def check_h5(path):
-    """Issue 21 item 6: every dataset carries its units, axes and a one-line description, and every string attribute
+    """Every dataset carries its units, axes and a one-line description, and every string attribute
     (datasets' and the file's) reads as str, not bytes."""
     import h5py
     with h5py.File(path, "r") as f:

@@ -37,7 +37,7 @@ expect_error "teleport" run "$out/bad_cmd.toml" --out "$out/s"
 expect_error "scene" run "$out/missing.toml"
 [ -e "$out/s" ] && { echo "FAIL: scene output written despite errors"; fail=1; }
 
-# The other subcommands (windows: issue 4, pattern: issue 5, lyapunov: issue 6, precision: issue 9).
+# The other subcommands (windows, pattern, lyapunov, precision).
 expect_error "n" windows bounds --n 0
 expect_error "digits" windows bounds --n 1..3 --digits 5
 expect_error "digits" windows bounds --n 1..3 --digits 20000

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The error contract of the Lyapunov and hyperbolicity subcommands (issue 6), as tests/cli_errors.sh checks it
+# The error contract of the Lyapunov and hyperbolicity subcommands, as tests/cli_errors.sh checks it
 # for the others: bad input gets a one-line error naming the field, exit status 2, and no output file written.
 # Usage: cli_errors_lyapunov.sh PATH/TO/btob
 set -u
@@ -73,7 +73,7 @@ done
 [ -n "$(find "$out/h" "$out/o" -name "*tmp*")" ] && { echo "FAIL: temporary files left behind"; fail=1; }
 
 # Float near the weak sink 312^150 (r = 0.171599, lambda1 = -0.0116): the orbit leaves it in float; both commands
-# check float against double and warn (issue 21, item 5); on the strong sink 1133 (r = 0.15) they stay quiet.
+# check float against double and warn; on the strong sink 1133 (r = 0.15) they stay quiet.
 err=$("$btob" lyapunov --r 0.171599 --point 1,-3,-1.1 --iterations 100000 --precision float 2>&1 >/dev/null)
 grep -q "warning: in double this orbit" <<<"$err" || { echo "FAIL: no float warning at r = 0.171599: $err"; fail=1; }
 err=$("$btob" lyapunov --r 0.15 --point 1,-3,-1.1 --iterations 100000 --precision float 2>&1 >/dev/null)

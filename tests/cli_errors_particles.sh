@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The error contract of `btob particles` (issue 19), as tests/cli_errors.sh checks it for the others: bad input gets
+# The error contract of `btob particles`, as tests/cli_errors.sh checks it for the others: bad input gets
 # a one-line error naming the field, exit status 2, and no output file written.
 # Usage: cli_errors_particles.sh PATH/TO/btob
 set -u

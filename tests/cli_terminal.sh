@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What the terminal says (issue 21, item 7), run under a pseudo-terminal (script(1), bsdutils) so that progress bars
+# What the terminal says, run under a pseudo-terminal (script(1), bsdutils) so that progress bars
 # are drawn as a user sees them:
 #   - a progress bar ends its line: no "btob: ..." line starts after a bar on the same line;
 #   - basins prints each attractor's fraction with its interval;

@@ -558,7 +558,7 @@ TEST(Errors, NameTheField) {
 namespace btob::attractors {
 namespace {
 
-// Issue 21, item 2: the measure of the basin fractions.  The sphere grid is equal-area, so the share of its points in
+// The measure of the basin fractions.  The sphere grid is equal-area, so the share of its points in
 // a region is the region's solid angle over pi (the domain Q); checked on regions whose solid angle is known in
 // closed form, and the strip's closed-form share against random points uniform on the sphere (iterate::random_points,
 // Archimedes' sampling: an independent route).

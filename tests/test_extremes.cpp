@@ -1,4 +1,4 @@
-// Numerical stability at the extremes (issue 9): extreme r, points on and within 1e-300 of the branch
+// Numerical stability at the extremes: extreme r, points on and within 1e-300 of the branch
 // boundaries, subnormal coordinates, exact ties; float, double and long double.
 #include "core/coords.hpp"
 #include "core/map.hpp"

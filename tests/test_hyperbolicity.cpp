@@ -1,4 +1,4 @@
-// Non-hyperbolicity (issue 6 item 5): singular values of D P-hat (closed form vs SVD and central differences, the
+// Non-hyperbolicity: singular values of D P-hat (closed form vs SVD and central differences, the
 // P2 centre), covariant Lyapunov vectors (periodic sinks vs eigenvectors of the period matrix, covariance on a
 // chaotic orbit, the degenerate rotation region of P2), strip images and errors.
 #include "core/coords.hpp"

@@ -24,7 +24,7 @@ TEST(LongWindows, TwoPrecisionsAgreeToHundredDigits) {
   for (int n = 1; n <= 150; ++n) {
     const mpfr_float a = window_lower_bound(n, 256), b = window_lower_bound(n, 512);
     mpfr_float::default_precision(600);
-    EXPECT_LT(abs(a - b), mpfr_float("1e-100")) << "n = " << n;  // the issue asks for >= 100 digits
+    EXPECT_LT(abs(a - b), mpfr_float("1e-100")) << "n = " << n;  // the target: >= 100 digits
     EXPECT_LT(abs(a - b), mpfr_float("1e-255")) << "n = " << n;  // and we claim all 256 requested decimals
   }
 }

@@ -194,7 +194,7 @@ TEST(Lyapunov, ChaoticBetweenWindowsIsPositiveAndPrecisionIndependent) {
 }
 
 TEST(Lyapunov, EveryPrecisionOnTheSink1133) {
-  // Issue 9: the cocycle runs in float, double, long double, float128 and MPFR.  On the sink 1133 at r = 0.15
+  // Every precision: the cocycle runs in float, double, long double, float128 and MPFR.  On the sink 1133 at r = 0.15
   // the weighted averages of 2e4 steps (after a 2000-step transient) must give the period matrix's exponents:
   // float to 1e-5 (measured 2.9e-7: float's eps 1.2e-7 times the O(1) condition of the step), the others to
   // 1e-12 (the weighted average converges super-polynomially; what remains is the double of the reference and
@@ -227,7 +227,7 @@ TEST(Lyapunov, EveryPrecisionOnTheSink1133) {
       Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.9), mpfr_float(-0.2)), mpfr_float(r), o);
   EXPECT_CLOSE(m.weighted[0], ref[0], wide);
   EXPECT_CLOSE(m.weighted[1], ref[1], wide);
-  // The linear route in MPFR: chi2 - chi1 is the same exponent (the two routes of issue 6, in high precision).
+  // The linear route in MPFR: chi2 - chi1 is the same exponent (the two routes, in high precision).
   const auto lin = lyapunov::linear_exponents<mpfr_float>(
       Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.9), mpfr_float(-0.2)), mpfr_float(r), o);
   EXPECT_CLOSE(lin.weighted[1] - lin.weighted[0], ref[0], wide);
@@ -417,7 +417,7 @@ TEST(Lyapunov, ErrorsNameTheField) {
 
 }  // namespace
 
-// Issue 21, item 4: lambda1 (one tangent vector) is not always the larger exponent in finite time.  Over r in [0.18,
+// Ordered exponents: lambda1 (one tangent vector) is not always the larger exponent in finite time.  Over r in [0.18,
 // 0.22] (invariant curves of the P2 rotation, both exponents 0, and sinks) lambda2 > lambda1 in about half the
 // entries, but never by more than 3 sqrt(err1^2 + err2^2) + 10/n: the finite-time floor of a bounded cocycle that the
 // batch-means errors do not see (maps.hpp).  lambda_max, lambda_min are the two ordered, each with its own error.
@@ -441,7 +441,7 @@ TEST(Lyapunov, OrderedExponentsAndTheirErrors) {
     EXPECT_LE(m.lambda2[o] - m.lambda1[o], 3 * std::hypot(m.err1[o], m.err2[o]) + 10.0 / mo.iterations) << "orbit " << o;
   }
   std::printf("r in [0.18, 0.22], 41 x 32 orbits: lambda2 > lambda1 in %ld\n", reversed);
-  EXPECT_GT(reversed, 0);  // what the issue saw: the order is not a property of lambda1 alone
+  EXPECT_GT(reversed, 0);  // as observed: the order is not a property of lambda1 alone
 }
 
 // The per-r summary carries the error of each statistic: the errors of the orbits realising min and max, and for the

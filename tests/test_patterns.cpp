@@ -282,7 +282,7 @@ TEST(Windows, PrecisionsAgree) {
       const auto in_double = ulps(450, "double's error on a product of 6 matrices and a cubic").of(1);
       EXPECT_CLOSE(d.spectrum[0].re, static_cast<double>(l.spectrum[0].re), in_double);
       EXPECT_CLOSE(d.spectrum[0].re, static_cast<double>(q.spectrum[0].re), in_double);
-      // float (issue 9: every precision): same verdict away from the window ends; the dominant eigenvalue to
+      // float (every precision of the lab): same verdict away from the window ends; the dominant eigenvalue to
       // 1e-5 relative (float's 6e-8 unit roundoff times the conditioning of 6 products and a cubic).
       const auto f = analyse<float>(W(s), static_cast<float>(r));
       EXPECT_EQ(d.outcome, f.outcome);

@@ -75,7 +75,7 @@ TEST(Fields, TextRoundTripsBitwise) {
 }
 
 // ------------------------------------------------------------------------------------------------ r in the precision
-// Issue 13, item 2: r is carried in the run's precision from the request to the lanes.  A request keeps the decimal
+// r is carried in the run's precision from the request to the lanes.  A request keeps the decimal
 // text it was given (core::Decimal), the ensemble keeps it (a list, or a range's ends and count), and every
 // precision reads r from it (Ensemble::r_at<T>), so a float128 run at r = 0.1 uses float128's 0.1.
 
@@ -428,7 +428,7 @@ TEST(BifurcationRequest, DensityEqualsTheKernelWithItsRecorderBitwise) {
 
 }  // namespace
 
-// Issue 21, item 5: float near a weakly contracting sink.  At r = 0.171599 (just above 3 - 2 sqrt(2), the sink's
+// Float near a weakly contracting sink.  At r = 0.171599 (just above 3 - 2 sqrt(2), the sink's
 // exponent -0.0116 per step) float rounding moves orbits of the Section 4 grid off the sink (lyapunov-map called 37.5%
 // of them "zero", double none): the float run re-runs its orbits in double and counts the disagreements, which
 // the command line prints as a warning.  On the strongly contracting sink 1133 (r = 0.15) they agree.

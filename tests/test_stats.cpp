@@ -502,7 +502,7 @@ TEST(Cli, BadInputIsOneLineNamingTheFieldExit2) {
   EXPECT_FALSE(std::filesystem::exists(out)) << "bad input must not create the output directory";
 }
 
-// Issue 21, item 1: at r = 0.11 with the default N = 1e5, |C_N| reaches the noise floor 4 C_N(0)/sqrt(N) = 0.0145 at
+// Undecided correlations: at r = 0.11 with the default N = 1e5, |C_N| reaches the noise floor 4 C_N(0)/sqrt(N) = 0.0145 at
 // lag 21, after two windows of 10 lags: no line with an error can be fitted, so the verdict is "undecided" (it was
 // "not decaying, rate 0 +- 0"), with the lag and the windows reported.  With N = 1e6 the floor is 0.0046, three
 // windows are above it and the verdict is "decaying"; its 95% interval contains the rate of an independent fit (N =

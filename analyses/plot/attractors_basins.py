@@ -1,6 +1,7 @@
 """Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions."""
 import csv
 import sys
+import textwrap
 
 import h5py
 import numpy as np
@@ -60,8 +61,9 @@ def draw(f, rows=None):
     ax.set_ylabel("$w_2$" if strip else (r"$y = -\cos\varphi$ (equal area)" if sphere else r"$\varphi$ (rad)"))
     n = int(a["n1"]) * int(a["n2"])
     measure = a.get("measure", "")
-    ax.set_title(f"basins at r = {r:g}: {a['n1']} x {a['n2']} {a['grid_kind']} grid, transient {a['transient']}, "
-                 f"window {a['window']}\nfractions of the measure: {measure}", fontsize=9)
+    # The title spans the figure (image and legend), wrapped to its width: over the axes alone it was cut off.
+    fig.suptitle(f"basins at r = {r:g}: {a['n1']} x {a['n2']} {a['grid_kind']} grid, transient {a['transient']}, "
+                 f"window {a['window']}\n" + textwrap.fill(f"fractions of the measure: {measure}", 110), fontsize=9)
     handles = []
     for row in rows:
         i = int(row["attractor"])

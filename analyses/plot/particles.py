@@ -100,9 +100,9 @@ def main():
         ax.set_xscale("log")
         ax.invert_xaxis()
         ax.set_xlabel(("time to collapse t* - t" if collapse else "time before the last recorded collision") +
-                      " (units |p0|/|q0|, log scale; time runs to the right)")
+                      "\n(units |p0|/|q0|, log scale; time runs to the right)")  # two lines: one was cut off
         if scaled and not collapse:
-            ax.set_ylabel("x_i / (x_4 - x_1): the configuration rescaled by its spread")
+            ax.set_ylabel("x_i / (x_4 - x_1), positions rescaled by their spread")
             ax.set_title("rescaled configuration", fontsize=9)
         elif scaled:
             ax.set_ylabel(f"x_i / (t* - t)^gamma, gamma = ln(rho)/ln(time ratio) = {gamma:.4f}")

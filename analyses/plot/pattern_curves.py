@@ -30,6 +30,20 @@ PAPER = {
 CRIT_MIN_R = 0.02
 
 
+
+def symlog_ticks(ax, lin, lo, hi):
+    """Ticks 0 and +-10^k for the decades above the linear band that fit in [lo, hi], at most five per sign: the
+    default locator labels +-lin as well, and those labels overlap 0's."""
+    def decades(top):
+        if top <= lin:
+            return []
+        ks = np.arange(np.ceil(np.log10(lin)) + 1, np.floor(np.log10(top)) + 1)
+        step = max(1, int(np.ceil(len(ks) / 5)))
+        return [10.0 ** k for k in ks[::-1][::step]]
+    ticks = sorted([-t for t in decades(-lo)] + [0.0] + decades(hi))
+    ax.set_yticks(ticks)
+    ax.yaxis.set_minor_locator(plt.NullLocator())
+
 def robust_ylim(y, x, lo_r=None):
     """A y range holding the curve away from its poles: the 1..99 percentiles, widened by 15%; returns
     (lo, hi, n_clipped)."""
@@ -115,12 +129,16 @@ def main(h5path, critpath, outdir):
                 ax.plot(r, y, ".", ms=1.6, color="tab:blue")
                 ax.axhline(0, color="0.4", lw=0.8)
                 vlines(ax)
-                # symlog: the sign (what the inequality asks) and the size both readable on one axis.
+                # symlog: the sign (what the inequality asks) and the size both readable on one axis.  The linear
+                # band |y| < lin is set below the curve's smallest size away from its sign changes (one decade under
+                # the 1% quantile), so a curve crosses it only where it changes sign: a curve passing from the log
+                # part into the linear band would bend there for no reason of its own.
                 ay = np.abs(y[np.isfinite(y) & (y != 0)])
-                lin = max(float(np.percentile(ay, 10)), 1e-6) if ay.size else 1e-3
+                lin = 10.0 ** np.floor(np.log10(max(float(np.percentile(ay, 1)), 1e-12)) - 1) if ay.size else 1e-3
                 ax.set_yscale("symlog", linthresh=lin)
                 lo, hi = lo * (2 if lo < 0 else 1), hi * 2
                 ax.set_ylim(lo, hi)
+                symlog_ticks(ax, lin, lo, hi)
                 clipped = int(((y < lo) | (y > hi)).sum())
                 # Sign changes away from the pole u_x = 0 (grid resolution, linear interpolation).
                 dr = r[1] - r[0]

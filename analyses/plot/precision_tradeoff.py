@@ -34,9 +34,10 @@ def main(src, dst):
         x = [float(row["iterations_per_second"]) for row in rows]
         y = [max(1, int(row[f"agree_median_r{r}"])) for row in rows]
         ax.scatter(x, y, marker=markers[i % len(markers)], s=40, label=f"r = {r}", alpha=0.85)
-        for xi, yi, row in zip(x, y, rows):
-            if i == 0:
-                ax.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4), fontsize=7)
+        for k, (xi, yi, row) in enumerate(zip(x, y, rows)):
+            if i == 0:  # labels of neighbouring methods staggered vertically (they overlapped at equal y)
+                ax.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4 + 9 * (k % 3)),
+                            fontsize=7)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.axhline(int(iters) if iters.isdigit() else 1, color="#999999", ls=":", lw=1)
@@ -52,8 +53,9 @@ def main(src, dst):
         y = [max(1e-20, float(row[key])) for row in rows]
         cx.scatter(x, y, marker=markers[i % len(markers)], s=40, label=f"r = {r}", alpha=0.85)
         if i == 1:
-            for xi, yi, row in zip(x, y, rows):
-                cx.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4), fontsize=7)
+            for k, (xi, yi, row) in enumerate(zip(x, y, rows)):
+                cx.annotate(row["method"], (xi, yi), textcoords="offset points", xytext=(5, 4 + 9 * (k % 3)),
+                            fontsize=7)
     cx.set_xscale("log")
     cx.set_yscale("log")
     cx.set_xlabel("map iterations per second (2 threads; trig/double: 1 thread)")
@@ -72,20 +74,19 @@ def main(src, dst):
         lx.scatter([float(row["iterations_per_second"]) for row in nn],
                    [max(floor, float(row["lyapunov_error_near_neutral"])) for row in nn], color="#d62728", marker="x",
                    s=50, label="weak sink 312^150, r = 0.171599 (lambda1 = -0.0116)")
-        lx.legend(fontsize=7, loc="center right")
     for k, row in enumerate(ly):
         lx.annotate(row["method"], (float(row["iterations_per_second"]), max(floor, float(row["lyapunov_error"]))),
                     textcoords="offset points", xytext=(5, 4 + 9 * (k % 3)), fontsize=7)
-    lx.axhline(1.1e-16, color="#999999", ls=":", lw=1)
-    lx.text(min(float(row["iterations_per_second"]) for row in ly), 1.4e-16, "double resolution of the reported value",
-            fontsize=7, color="#666666")
+    # In the legend, not as text on the line: the text overlapped the methods' labels at the floor.
+    lx.axhline(1.1e-16, color="#999999", ls=":", lw=1, label="double resolution of the reported value")
+    lx.legend(fontsize=7, loc="center right")
     lx.set_xscale("log")
     lx.set_yscale("log")
     lx.set_ylim(floor / 3, 1e-1)
     lx.set_xlabel("map iterations per second (2 threads; trig/double: 1 thread)")
     lx.set_ylabel("largest |lambda1 - exact| per iteration on the sinks\n(1e-17: below double resolution)")
     lx.set_title("Lyapunov exponent, weighted average: 1133 (r=0.15), 111333 (r=0.1), 132312 (r=0.5), 1e5 steps"
-                 + ("; x: 312^150 (r=0.171599), 4e5 steps" if nn else ""), fontsize=9)
+                 + ("\nx: 312^150 (r=0.171599), 4e5 steps" if nn else ""), fontsize=9)  # two lines: one was cut off
     # Windows: every method resolved every n tested, so a "largest n resolved" plot says nothing.  Instead: the
     # width of window n (Table B.1, 12 decimals, extrapolated ~ n^-3 beyond n = 100) against the spacing of
     # representable r near 7 - 4 sqrt(3) in each precision: where a precision must fail, and how far the test went.

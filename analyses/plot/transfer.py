@@ -119,7 +119,12 @@ def main(h5path, spec_path, png):
         ax[0, 1].plot([], [], "s", color=plt.cm.tab10(i % 10), label=f"component {i + 1}: Lebesgue {leb[i]:.3f}")
     if k:
         ax[0, 1].legend(loc="upper right", fontsize=8)
-    ax[0, 1].set_title(f"components ({a['closed_classes']} closed class(es); grey: transient)")
+    ncl = int(a["closed_classes"])
+    classes = f"{ncl} closed class" + ("" if ncl == 1 else "es")
+    if k > ncl:  # PCCA+ split the closed classes (or the transient block) into almost-invariant components
+        ax[0, 1].set_title(f"{k} components: {classes} split by PCCA+\ninto almost-invariant sets; grey: transient")
+    else:
+        ax[0, 1].set_title(f"components: {classes}; grey: transient")
     for axx in (ax[0, 0], ax[0, 1]):
         if len(cyc):
             axx.plot(cyc[:, 0], cyc[:, 1], "o", mfc="none", mec="tab:cyan", ms=9, mew=1.2,

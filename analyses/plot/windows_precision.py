@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Precision study of the window lower bounds (issue 4): correct decimals and time per bound against n.
+"""Precision study of the window lower bounds: correct decimals and time per bound against n.
 
 Usage: windows_precision.py results/windows/precision.csv results/windows/precision.png
 Reads only the CSV written by `btob windows precision`.

@@ -58,12 +58,15 @@ def iterate(r, points, iterations, record="tail", coord="theta", tail=None, prec
     """Iterate every point at every r with the batched kernel (src/iterate) and keep what `record` says.
 
     r: one value in (0, 1) or a sequence of them; points: (N, 3) array of directions x,y,z (x*z <= 0), or one (3,).
-    record="tail": the coordinate `coord` (theta, log10-theta, phi, w1, w2; radians) of the last `tail` states,
+
+    - record="tail": the coordinate `coord` (theta, log10-theta, phi, w1, w2; radians) of the last `tail` states,
       shape (N, tail) (or (R, N, tail) for a sequence of r), float64;
-    record="symbols": the branch 1/2/3 of the last `tail` steps, same shape, uint8;
-    record="final": the final direction (unit vector), shape (N, 3) (or (R, N, 3)).
-    tail defaults to min(100, iterations).  precision: float, double or long-double.  The arrays own their data
-    (no copy was made from the kernel's buffers).
+    - record="symbols": the branch 1/2/3 of the last `tail` steps, same shape, uint8;
+    - record="final": the final direction (unit vector), shape (N, 3) (or (R, N, 3)).
+
+    tail defaults to min(100, iterations).  precision: float, double or long-double.  threads: OpenMP threads (0:
+    all cores); progress: False, True (a tqdm bar) or a callable(done, total).  The arrays own their data (no copy
+    was made from the kernel's buffers).
     """
     if tail is None:
         tail = min(100, int(iterations))

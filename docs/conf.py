@@ -1,0 +1,79 @@
+# Sphinx configuration of btob's documentation site.  Built by docs/tools/build.py (the CMake target `docs`), which
+# stages this folder with the generated pages (command reference, performance, result schemas), the notebooks and
+# CHANGELOG.md into <build>/docs/source and runs sphinx-build there, with the built Python package on sys.path.
+import os
+
+project = "btob"
+author = "the btob authors"
+copyright = "the btob authors"
+version = release = os.environ.get("BTOB_VERSION", "")
+
+extensions = [
+    "myst_parser",          # pages in Markdown (MyST)
+    "nbsphinx",             # the tutorials: analyses/notebooks, executed during the build
+    "sphinx.ext.autodoc",   # the Python reference from the built module's docstrings
+    "sphinx.ext.napoleon",
+]
+myst_enable_extensions = ["colon_fence", "deflist"]
+# No TeX maths on the site: MathJax would load from a CDN, and the site must render offline (the browser test).
+nbsphinx_assume_equations = False
+myst_heading_anchors = 3
+source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
+# Included into other pages, never pages of their own:
+exclude_patterns = ["_build", "**.ipynb_checkpoints", "results/**", "ARCHITECTURE.md", "README.md", "CHANGELOG.md",
+                    "reference/outputs/**", "reference/csv/**", "reference/python_api.md", "performance_data.md", "paper_tables.md"]
+suppress_warnings = ["myst.header"]
+
+# Notebooks run during the build (a kernel per notebook, cells of seconds); an error in a cell fails the build.
+nbsphinx_execute = "always"
+nbsphinx_timeout = 300
+nbsphinx_allow_errors = False
+html_theme = "furo"
+html_title = "btob"
+html_static_path = []
+html_show_sourcelink = False
+autodoc_member_order = "bysource"
+autodoc_typehints = "none"
+# The notebooks need no widgets: no require.js from a CDN (the site must work offline).
+nbsphinx_requirejs_path = ""
+
+
+def offline_furo(app, exception):
+    """Debian's furo ships its sources unbundled: furo.js is an ES module importing gumshoe-patched.js (a browser
+    refuses module scripts from file:// pages), and furo.css imports normalize.css from the web server's
+    /javascript/ (Debian's libjs path).  Bundle the two scripts into the classic script furo.js (gumshoe is UMD: it
+    sets window.Gumshoe) and import the packaged normalize.css from beside furo.css, so the site works from disk."""
+    if exception is not None or app.builder.format != "html":
+        return
+    import shutil
+    scripts, styles = os.path.join(app.outdir, "_static", "scripts"), os.path.join(app.outdir, "_static", "styles")
+    furo_js = os.path.join(scripts, "furo.js")
+    text = open(furo_js).read() if os.path.exists(furo_js) else ""
+    if text.startswith("import Gumshoe"):
+        gumshoe = open(os.path.join(scripts, "gumshoe-patched.js")).read()
+        with open(furo_js, "w") as f:
+            f.write(gumshoe + "\n" + text.split("\n", 1)[1])
+    furo_css = os.path.join(styles, "furo.css")
+    css = open(furo_css).read() if os.path.exists(furo_css) else ""
+    debian_normalize = "/usr/share/javascript/normalize.css/normalize.css"
+    if "/javascript/normalize.css/normalize.css" in css and os.path.exists(debian_normalize):
+        shutil.copy(debian_normalize, os.path.join(styles, "normalize.css"))
+        with open(furo_css, "w") as f:
+            f.write(css.replace("url(/javascript/normalize.css/normalize.css)", "url(normalize.css)"))
+
+
+def keyword_block(app, what, name, obj, options, lines):
+    """The functions' docstrings are composed from each request's fields (python/bind.hpp): a summary, then
+    "Keyword arguments (...):" and one indented line per field, written for help() in a terminal.  Show that list as
+    a literal block, so a field's text (|C_N|, r^2n, ...) is not read as reStructuredText markup."""
+    for i, line in enumerate(lines):
+        if line.startswith("Keyword arguments") and line.rstrip().endswith(":"):
+            lines[i] = line.rstrip() + ":"
+            if i + 1 < len(lines) and lines[i + 1].strip():
+                lines.insert(i + 1, "")
+            return
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", keyword_block)
+    app.connect("build-finished", offline_furo)
