@@ -17,6 +17,9 @@ packages=(
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars
   openmpi-bin libopenmpi-dev                  # sweeps split over ranks with `mpirun` (optional at build time)
+  libcpp-httplib-dev                          # `btob explore`: a maintained one-header HTTP server (Debian builds it as a library)
+  libpng-dev                                  # `btob explore`: PNG images of the density (the reference PNG library)
+  chromium chromium-driver python3-selenium   # the explorer's page tested in a real browser (headless)
 )
 missing=()
 for p in "${packages[@]}"; do
