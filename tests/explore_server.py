@@ -12,6 +12,8 @@ import os
 import subprocess
 import sys
 import tempfile
+import threading
+import time
 import urllib.error
 import urllib.request
 
@@ -122,6 +124,33 @@ def check_export(btob, base, export_dir, tmp):
     print("explore_server: export wrote only its scene and PNG; btob run reproduces the view's density")
 
 
+def check_cancel(base):
+    """A newer request of a session cancels the session's running one (409), whose progress was visible."""
+    long_view = "r_min=0.1&r_max=0.2&width=1000&height=100&iterations=120000&tail=10&session=s1"  # 3.8e9 iterations
+    got = {}
+
+    def run():
+        t0 = time.time()
+        got["status"], _, got["body"] = get(base + "/api/bifurcation?" + long_view)
+        got["seconds"] = time.time() - t0
+
+    t = threading.Thread(target=run)
+    t.start()
+    progress = {}
+    for _ in range(200):  # until the run reports progress (at most 20 s on a loaded machine)
+        time.sleep(0.1)
+        progress = json.loads(get(base + "/api/progress?session=s1")[2])
+        if progress.get("bifurcation", {}).get("total"):
+            break
+    assert progress.get("bifurcation", {}).get("total"), f"no progress reported: {progress}"
+    status, _, _ = get(base + "/api/bifurcation?r_min=0.1&r_max=0.2&width=20&height=10&iterations=10&tail=5&session=s1")
+    t.join()
+    assert status == 200 and got["status"] == 409, (status, got)
+    assert "cancelled" in json.loads(got["body"])["error"]
+    print(f"explore_server: a newer request cancelled the running one after {got['seconds']:.2f} s (progress "
+          f"{progress['bifurcation']['done']}/{progress['bifurcation']['total']} seen)")
+
+
 def main(btob):
     with tempfile.TemporaryDirectory() as tmp:
         export_dir = os.path.join(tmp, "exports")
@@ -130,6 +159,7 @@ def main(btob):
             check_errors(base)
             check_png_is_the_density(btob, base, tmp)
             check_export(btob, base, export_dir, tmp)
+            check_cancel(base)
             check_errors(base)  # still serving after all of the above
             written = sorted(set(os.listdir(tmp)) - {"exports", "ref", "rerun"})
             assert written == [], f"the server wrote outside its export folder: {written}"
