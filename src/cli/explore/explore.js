@@ -327,7 +327,12 @@ function onUp(e) {
   state.drag = null;
   if (!d) return;
   const { iw, ih } = plotSize();
-  if (!d.moved) { pick(rOf(d.x, state.view, iw)); return; }
+  if (!d.moved) {  // a click picks r, unless it was the first of a double click (reset)
+    const r = rOf(d.x, state.view, iw);
+    clearTimeout(pickTimer);
+    pickTimer = setTimeout(() => pick(r), 250);
+    return;
+  }
   if (d.pan) { setView(state.view, true); return; }
   const b = state.box, v = state.view;
   state.box = null;
@@ -336,7 +341,7 @@ function onUp(e) {
   if (b.y1 - b.y0 >= 3) { nv.hi = cOf(b.y0, v, ih); nv.lo = cOf(b.y1, v, ih); }
   setView(clampView(nv), true);
 }
-let wheelTimer = null;
+let wheelTimer = null, pickTimer = null;
 function onWheel(e) {
   e.preventDefault();
   const p = mouse(e), { iw, ih } = plotSize(), v = state.view;
@@ -446,7 +451,7 @@ function init() {
   window.addEventListener("mousemove", onMove);
   window.addEventListener("mouseup", onUp);
   ov.addEventListener("wheel", onWheel, { passive: false });
-  ov.addEventListener("dblclick", () => setView(defaultView(state.view.coord), true));
+  ov.addEventListener("dblclick", () => { clearTimeout(pickTimer); setView(defaultView(state.view.coord), true); });
   for (const k of Object.keys(OVERLAY_STYLE)) $("ov-" + k).addEventListener("change", drawOverlay);
   const go = () => setView(clampView(viewFromInputs()), true);
   $("go-button").addEventListener("click", go);
