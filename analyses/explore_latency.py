@@ -67,7 +67,7 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     rate_before = kernel_rate(a.bm_iterate, a.threads)
-    proc, base = start_server(a.btob, os.path.join(a.out, "exports-unused"), threads=a.threads)
+    proc, base = start_server(a.btob, os.path.join(a.out, "exports-unused"), threads=a.threads)  # never written
     rows = []
     try:
         for i in range(3):  # warm-up: OpenMP's threads, the allocator
@@ -94,6 +94,10 @@ def main():
     summary["compute_over_kernel"] = summary["median_compute_ms"] / summary["kernel_ms_predicted"]
     with open(os.path.join(a.out, "latency.json"), "w") as f:
         json.dump(summary, f, indent=1)
+    # The run's provenance (btob_manifest sits next to btob, built from the same tree).
+    subprocess.run([os.path.join(os.path.dirname(os.path.abspath(a.btob)), "btob_manifest"),
+                    os.path.join(a.out, "manifest.json"), "analyses/explore_latency.py " + " ".join(sys.argv[1:]),
+                    "latency.csv", "latency.json"], check=True)
     print(f"plain kernel ({a.threads} threads): {rate_before:.3g} and {rate_after:.3g} map iterations/s (before, after); "
           f"{work:.3g} map iterations -> {summary['kernel_ms_predicted']:.1f} ms")
     for k in keys[:-1]:
