@@ -18,6 +18,8 @@ const LEVELS = [
   { iterations: 6000, tail: 600 },
   { iterations: 50000, tail: 5000 },
 ];
+// levels=N in the address keeps the first N levels (1..3): a lighter page for slow machines and for tests.
+const NLEVELS = Math.max(1, Math.min(LEVELS.length, parseInt(new URLSearchParams(location.search).get("levels"), 10) || LEVELS.length));
 const ORBITS = 32;  // the paper's grid of Section 4
 const M = { left: 78, right: 16, top: 44, bottom: 52 };  // plot margins (px)
 const session = Math.random().toString(36).slice(2, 12);
@@ -47,7 +49,7 @@ function viewQuery(v) {
 function setView(v, push) {
   if (!(v.r_min > 0 && v.r_max < 1 && v.r_min < v.r_max && v.lo < v.hi)) return;
   state.view = v;
-  if (push) history.pushState(null, "", "?" + viewQuery(v));
+  if (push) history.pushState(null, "", "?" + viewQuery(v) + (NLEVELS < LEVELS.length ? `&levels=${NLEVELS}` : ""));
   syncInputs();
   render();
 }
@@ -83,7 +85,7 @@ async function render() {
   drawAll();
   fetchOverlays(v);
   const { iw, ih } = plotSize();
-  for (let level = 0; level < LEVELS.length; ++level) {
+  for (let level = 0; level < NLEVELS; ++level) {
     const work = levelWork(level, iw);
     const url = `api/bifurcation?${viewQuery(v)}&width=${iw}&height=${ih}&iterations=${work.iterations}` +
       `&tail=${work.tail}&session=${session}`;
@@ -111,7 +113,7 @@ async function fetchLevel(url, v, level, work, signal) {
     state.imageView = Object.assign({ iterations: work.iterations, tail: work.tail, width: img.width }, v);
     state.level = level;
     $("level").dataset.level = level;
-    $("level").textContent = `level ${level + 1}/${LEVELS.length}: ${ORBITS} orbits x ${work.iterations} iterations`;
+    $("level").textContent = `level ${level + 1}/${NLEVELS}: ${ORBITS} orbits x ${work.iterations} iterations`;
     $("timing").textContent = `${Math.round(performance.now() - t0)} ms (${timing.replace(/;dur=/g, " ")} ms)`;
     drawAll();
     return true;
@@ -129,8 +131,8 @@ async function pollProgress(level) {
   } catch (e) { /* the next poll will tell */ }
 }
 function showProgress(level, f) {
-  const total = (level + Math.min(1, f)) / LEVELS.length;
-  $("progress-bar").style.width = (f >= 1 && level === LEVELS.length - 1 ? 0 : 100 * total) + "%";
+  const total = (level + Math.min(1, f)) / NLEVELS;
+  $("progress-bar").style.width = (f >= 1 && level === NLEVELS - 1 ? 0 : 100 * total) + "%";
 }
 async function fetchOverlays(v) {
   try {
