@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
+#include <fcntl.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -252,10 +254,18 @@ void open_browser(const std::string& url) {
   std::string u = url;
   char arg0[] = "xdg-open";
   char* argv[] = {arg0, u.data(), nullptr};
-  if (posix_spawnp(&pid, "xdg-open", nullptr, nullptr, argv, environ) != 0)
+  posix_spawn_file_actions_t quiet;  // xdg-open's own complaints (no display, no browser) are not ours to print
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+  const int rc = posix_spawnp(&pid, "xdg-open", &quiet, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&quiet);
+  if (rc != 0) {
     std::cout << "btob explore: xdg-open failed; open " << url << " in a browser" << std::endl;
-  else
-    std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();  // reap it
+    return;
+  }
+  std::cout << "btob explore: asked xdg-open to show " << url << std::endl;
+  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();  // reap it
 }
 
 bool loopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
@@ -264,6 +274,12 @@ void serve(const Settings& s) {
   if (s.threads < 0 || s.threads > core::RunControl::max_threads)
     throw UsageError(fmt::format("--threads: got {}, expected 1..{}", s.threads, core::RunControl::max_threads));
   httplib::Server svr;
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second explorer would share a busy port
+  // silently instead of saying that it is taken.
+  svr.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   Jobs jobs;
   api_routes(svr, jobs, s);
   page_routes(svr);
