@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The explorer's page in a real browser (headless Chromium through chromium-driver and Selenium): it loads and draws
-a first image; a box zoom changes the view and the address, and Back restores it; the r window [0.0717, 0.0727]
+a first image; a box zoom changes the view and the address, and Back restores it; the wheel zooms in and a double
+click resets; the r window [0.0717, 0.0727]
 typed in gives a new image with the window lower bounds drawn; a link reproduces a view; a click inside the window of
 (ab)^2(cb)^2 (its bounds read from results/windows/bounds_certified.csv) shows the word 1133; the basins at that r come
 with their fractions; Export writes a scene that `btob run` reproduces.  Screenshots go to SHOTS.
@@ -19,6 +20,7 @@ import urllib.parse
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.actions.wheel_input import ScrollOrigin
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import WebDriverWait
@@ -91,6 +93,11 @@ def zoom_and_back(d):
     d.back()
     wait_image(d, lambda v: abs(v["r_min"] - 0.0717) < 1e-12 and abs(v["r_max"] - 0.1717) < 1e-12)
     print(f"explore_browser: box zoom to r in [{v['r_min']:.5f}, {v['r_max']:.5f}], Back restores the first view")
+    ActionChains(d).scroll_from_origin(ScrollOrigin.from_element(ov), 0, -400).perform()  # wheel up: zoom in
+    v = wait_image(d, lambda v: v["r_max"] - v["r_min"] < 0.09)
+    ActionChains(d).double_click(ov).perform()
+    wait_image(d, lambda v: abs(v["r_min"] - 0.0717) < 1e-12 and abs(v["r_max"] - 0.1717) < 1e-12)
+    print(f"explore_browser: the wheel zooms to a window {v['r_max'] - v['r_min']:.4f} wide; a double click resets")
     return first
 
 
