@@ -17,6 +17,9 @@ packages=(
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars
   openmpi-bin libopenmpi-dev                  # sweeps split over ranks with `mpirun` (optional at build time)
+  python3-setuptools python3-wheel python3-venv  # `pip install .` (setup.py: setuptools drives CMake, no network) and its test's venv
+  dpkg-dev file                               # `cpack -G DEB`: dpkg-shlibdeps (and file) compute the package's Depends
+  lintian                                     # the Debian package's test: lintian must report no error
 )
 missing=()
 for p in "${packages[@]}"; do
