@@ -107,8 +107,11 @@ setup(
     package_dir={"": "python"},
     ext_modules=[Extension("btob._btob", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
-    install_requires=["numpy", "matplotlib", "h5py"],
-    extras_require={"progress": ["tqdm"]},
+    # h5py (the plot scripts import it) is an extra: Debian's python3-h5py registers itself as the distribution
+    # "h5py.-debian-h5py-serial", so a requirement "h5py" is never satisfied by it and pip would look for h5py on
+    # the network.  In a --system-site-packages environment on Debian it is present; elsewhere: pip install .[hdf5]
+    install_requires=["numpy", "matplotlib"],
+    extras_require={"hdf5": ["h5py"], "progress": ["tqdm"]},
     zip_safe=False,  # the plot scripts are run from the package's folder
     options={"build": {"build_base": BUILD_BASE}, "egg_info": {"egg_base": BUILD_BASE}},
 )
