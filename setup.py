@@ -9,9 +9,11 @@ CMake: setuptools knows the package, its metadata and the wheel; CMake knows how
 --no-build-isolation uses the installed setuptools instead of downloading one.
 
 Where the module comes from:
-  BTOB_CMAKE_BUILD_DIR=<folder>  an existing CMake build of this source tree (e.g. build/release, for packagers and
-                                 the tests): only its target _btob is brought up to date (usually nothing to do)
-                                 and copied; its version and Python ABI must match this source and interpreter.
+  BTOB_CMAKE_BUILD_DIR=<folder>  an existing, built CMake build of this source tree (e.g. build/release, for
+                                 packagers and the tests): its module is copied as it is, never rebuilt (a rebuild
+                                 would relink it with a newer git commit than the build's command line, and under
+                                 a running test suite replace the module its tests import); its version and Python
+                                 ABI must match this source and interpreter.
   unset                          a fresh CMake build in build/python/cmake of the module alone (tests, benchmarks
                                  and MPI off; the module libraries it links compiled once, several minutes).
   BTOB_CMAKE_ARGS="-D..."        more arguments for that configure (e.g. -DBTOB_KERNEL_ARCH=generic).
@@ -65,7 +67,7 @@ class CMakeBuild(build_ext):
         else:
             build_dir = os.path.join(ROOT, BUILD_BASE, "cmake")
             self.configure(build_dir)
-        subprocess.check_call(["cmake", "--build", build_dir, "--target", "_btob"])
+            subprocess.check_call(["cmake", "--build", build_dir, "--target", "_btob"])
         version = built_version(build_dir)
         if version != cmake_version():
             sys.exit(f"setup.py: the CMake build {build_dir} is version {version}, this source {cmake_version()}: "
@@ -88,6 +90,8 @@ class CMakeBuild(build_ext):
         module = os.path.join(src, "_btob" + suffix)
         if not os.path.exists(module):
             found = [os.path.basename(p) for p in glob.glob(os.path.join(src, "_btob*"))]
+            if not found:
+                sys.exit(f"setup.py: no compiled module in {src}: build it first (cmake --build <build> --target _btob)")
             sys.exit(f"setup.py: no {os.path.basename(module)} in {src} (found {found}): the CMake build was made "
                      f"for another Python; configure it with -DPython3_EXECUTABLE={sys.executable}")
         os.makedirs(dst, exist_ok=True)

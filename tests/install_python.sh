@@ -3,8 +3,9 @@
 # `pip install --no-build-isolation --no-deps .` from the source tree, then, from a folder outside it, import btob
 # (which must come from the environment, with its data files), run a computation and draw its figure;
 # btob.__version__ must be the version of the command line.
-# The wheel's module comes from this CMake build (BTOB_CMAKE_BUILD_DIR, setup.py): the package is built by the same
-# rules as a fresh `pip install .`, without compiling the libraries a second time.
+# The wheel's module comes from this CMake build (BTOB_CMAKE_BUILD_DIR, setup.py), copied, never rebuilt: the package
+# is assembled by the same rules as a fresh `pip install .`, without compiling the libraries a second time, and the
+# build tree the other tests use is left as it is.
 # Usage: install_python.sh BUILD_DIR SOURCE_DIR WORK_DIR BTOB_EXE PYTHON (the interpreter the module was built for,
 # Debian's /usr/bin/python3)
 set -euo pipefail
@@ -12,10 +13,13 @@ build=$1 src=$2 work=$3 exe=$4 python=$5
 rm -rf "$work" && mkdir -p "$work/outside"
 unset PYTHONPATH BTOB_DATA_DIR
 export PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_NO_INDEX=1  # no network: everything is local
+module_stamp() { stat -c '%n %s %Y' "$build"/python/btob/_btob*.so; }
+before=$(module_stamp)
 "$python" -m venv --system-site-packages "$work/venv"
 (cd "$src" && BTOB_CMAKE_BUILD_DIR="$build" "$work/venv/bin/pip" install --no-build-isolation --no-deps . \
   > "$work/pip.log" 2>&1) || { cat "$work/pip.log"; exit 1; }
 tail -n 1 "$work/pip.log"
+[ "$(module_stamp)" = "$before" ] || { echo "install_python: pip rebuilt the build tree's module"; exit 1; }
 cd "$work/outside"
 "$work/venv/bin/python" - "$work/venv" "$exe" <<'PY'
 import os, subprocess, sys
