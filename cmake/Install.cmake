@@ -2,7 +2,7 @@
 #   bin/btob                                 the command line
 #   share/btob/{plot,reference}/             its plot scripts and the paper's reference tables (io::data_file)
 #   include/btob/<module>/*.hpp              the public headers, the source tree's src/ layout kept
-#   include/btob/btob.hpp                    the umbrella header (every module's requests), btob::version()
+#   include/btob/btob.hpp                    the umbrella header (every header declaring a request), btob::version()
 #   include/btob/build_info.hpp              the generated provenance header
 #   lib/libbtob_<module>.a                   the module libraries (static, position-independent)
 #   lib/cmake/btob/btob{Config,ConfigVersion,Targets}.cmake   find_package(btob): the target btob::btob
