@@ -23,6 +23,9 @@ packages=(
   chromium chromium-driver python3-selenium   # tests in a real browser (headless): the built site (label docs), the explorer's page
   libcpp-httplib-dev                          # `btob explore`: a maintained one-header HTTP server (Debian builds it as a library)
   libpng-dev                                  # `btob explore`: PNG images of the density (the reference PNG library)
+  python3-setuptools python3-wheel python3-venv  # `pip install .` (setup.py: setuptools drives CMake, no network) and its test's venv
+  dpkg-dev file                               # `cpack -G DEB`: dpkg-shlibdeps (and file) compute the package's Depends
+  lintian                                     # the Debian package's test: lintian must report no error
 )
 missing=()
 for p in "${packages[@]}"; do
