@@ -1,6 +1,6 @@
 // `btob particles WORD --r R`: flags -> particles::ParticlesRequest -> run -> one CSV row on stdout, and NAME.csv,
 // convergence.csv, events.csv, NAME.json, spacetime.png, animation.gif: four particles realise the periodic pattern
-// WORD, event by event (issue 19).
+// WORD, event by event.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "particles/particles.hpp"

@@ -1,4 +1,4 @@
-// Explicit instantiations of the Lyapunov cocycles for float, float128 and MPFR (issue 9: every precision),
+// Explicit instantiations of the Lyapunov cocycles for float, float128 and MPFR (every precision),
 // in their own unit so that the double build of lyapunov.cpp stays fast.  Sums of log R_ii are accumulated in
 // long double and results are reported in double (see lyapunov.hpp): for float128 and MPFR the exponent is
 // therefore known to ~1e-16 relative at best, which the precision study states.

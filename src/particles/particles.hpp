@@ -1,4 +1,4 @@
-// Four inelastic particles realising a periodic pattern: an event-driven simulation of the collapse (issue 19).
+// Four inelastic particles realising a periodic pattern: an event-driven simulation of the collapse.
 #pragma once
 
 #include "core/map.hpp"

@@ -152,7 +152,7 @@ template <class T> double lyapunov_error() {
   return worst;
 }
 
-// The hard case (issue 21): the weakly contracting sink 312^150 (period 152, lambda1 = -0.0116) at r = 0.171599, just
+// The hard case: the weakly contracting sink 312^150 (period 152, lambda1 = -0.0116) at r = 0.171599, just
 // above 3 - 2 sqrt(2), from the Section 4 grid's first point.  |lambda1 - exact| whatever the orbit does: an
 // arithmetic whose rounding moves the orbit off the sink is off by up to |lambda1| (the exact value needs no period
 // detection: the eigenvalues of the word's period matrix do not depend on its phase).

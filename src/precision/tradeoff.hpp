@@ -1,4 +1,4 @@
-// The precision study (`btob precision`, issue 9): speed against accuracy of each precision and algorithm.
+// The precision study (`btob precision`): speed against accuracy of each precision and algorithm.
 // The same random orbits run in float, double, long double, float128, MPFR with 50 and 100 digits (the batched
 // linear kernel) and with the trigonometric algorithm of Appendix A.1 (double); each is compared with a 256-digit
 // MPFR run of the same orbits (how many symbols agree, the angle between the final states), timed, tested on the

@@ -1,4 +1,4 @@
-// The matrix and polynomial routes to the window lower bound in float .. MPFR (precision study, issue 4).
+// The matrix and polynomial routes to the window lower bound in float .. MPFR (the precision study).
 #include "windows/direct.hpp"
 
 #include <boost/math/constants/constants.hpp>

@@ -1,4 +1,4 @@
-// The iterator's check of the windows of stability (issue 4, item 6).
+// The iterator's check of the windows of stability.
 #include "windows/verify.hpp"
 
 #include "iterate/ensemble.hpp"
