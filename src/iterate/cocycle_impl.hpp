@@ -12,20 +12,12 @@ namespace detail {
 
 // Vectors in flight of the cocycle kernel.  Each carries 10 live values (u, v, r, alpha, alpha / r, the symbol
 // count); with 4 vectors r, alpha and alpha / r are read from the stack as memory operands.  One step's dependency
-// chain (a y - x, the compare, the selections, the FMA for y', and v's behind them) is ~25 cycles, so few vectors are
-// latency-bound.  Measured (bm_lyapunov map_double/500/10000/1, CPU ms, one run): 2 -> 96, 3 -> 84, 4 -> 74,
-// 6 -> 93, 8 -> 98 (spills); float 58, 50, 47, 60, 60.
-//
-// Instruction count (g++ 12 -O3 -march=native, Zen 5, from the generated assembly of cocycle_blocks<double>): the
-// step loop is 166 instructions for 4 vectors, per 8-lane vector-step 41.5: 7.75 register moves (removed at rename),
-// 10 multiply-class (a y - x, a y - z, the masked r x or r z and the FMA for y', the same for v, one a v_y), 9 memory
-// operands (r, alpha, alpha / r), 33 operations on the FP pipes in all (compares, selections, sign flips, the count)
-// against 12 for the plain step.  A block's end (projection with one division, three max-exponents, two rescales,
-// the loss test, the sums) is 508 instructions for 4 vectors every 16 steps: 8 per vector-step.  Ceiling on Zen 5's
-// four 512-bit FP pipes (two of which multiply): max((33 + 8) / 4, 10 / 2) = 10.3 cycles per vector-step, 0.78
-// lane-steps per cycle; measured 2.4e9 lane-steps/s per core at ~3.5 GHz = 0.69, 88% of it.  The plain kernel,
-// measured in the same run at 5.8e9, runs at 62% of its own ceiling (3 cycles per vector-step, README "Ceiling"),
-// so the measured ratio 0.41-0.44 is above the ceilings' ratio 3 / 10.3 = 0.29.
+// chain (a y - x, the compare, the selections, the FMA for y', and v's behind them) is ~25 cycles, so fewer vectors
+// leave the pipes idle between steps, and more spill the state out of the 32 vector registers.  Per 8-lane
+// vector-step the loop issues ~41 instructions, 33 of them on the FP pipes (against 12 for the plain step), and a
+// block's end (projection, rescales, the loss test, the sums) adds ~8: on four 512-bit FP pipes the cocycle cannot
+// run faster than ~10 cycles per vector-step, against ~3 for the plain kernel.  (CHANGELOG.md keeps the
+// measurements behind the choice of 4.)
 inline constexpr int kCocycleVectors = 4;
 
 template <class T> struct CocycleLanes {

@@ -15,10 +15,9 @@ inline constexpr int kVectorBytes = 32;
 #else
 inline constexpr int kVectorBytes = 16;
 #endif
-// Lanes per batch: 6 vectors in flight (one step's dependency chain is ~18 cycles and its issue cost
-// ~3-5 per vector, so 6 independent vectors hide the latency).  Measured, double, map iterations/s:
-// Zen 4, 2 threads: 4 -> 6.3e9, 6 -> 6.9e9, 8 -> 6.7e9; Zen 5, 1 thread: 4 -> 4.4e9, 5 -> 5.4e9,
-// 6 -> 6.0e9 (8 spills registers: 36 live vectors of state and parameters exceed the 32 zmm).
+// Lanes per batch: 6 vectors in flight.  One step's dependency chain is ~18 cycles and its issue cost ~3-5 per
+// vector, so 6 independent vectors hide the latency; 8 would need more live state and parameters (36 vectors) than
+// the 32 zmm registers hold.  (CHANGELOG.md keeps the measurements behind the choice.)
 inline constexpr int kVectorsInFlight = 6;
 template <class T> constexpr int batch_lanes() {
   if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>)

@@ -44,9 +44,9 @@ namespace {
 using S = iterate::detail::Simd<double>;
 using V = S::V;
 using I = S::I;
-// Vectors per batch.  Measured (one thread, 20 r x 32 orbits, 10000 + 10000 + 10000 steps, ms; the transient's
-// steps alone, 30000 of them, in brackets): 1 vector 70 (40), 2 -> 69 (22), 4 -> 77 (20): the stored steps, not the
-// dependency chain, bound it, and 2 keep a batch's coefficients half of 4's.
+// Vectors per batch.  The covariant-vector pass is bound by the coefficients it stores per step, not by the
+// dependency chain, so 2 vectors do as well as 4 while keeping a batch's stored coefficients half as large.
+// (CHANGELOG.md keeps the measurements behind the choice.)
 constexpr int kVectors = 2;
 constexpr int W = S::W, NV = kVectors, B = W * NV;
 constexpr int bias = std::numeric_limits<double>::max_exponent - 1;
