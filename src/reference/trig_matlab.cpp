@@ -16,7 +16,14 @@ using C = std::complex<double>;
 using CVec = Eigen::Matrix<C, 3, 1>;
 const C I(0, 1);
 
-C acos_matlab(const C& z) { return -I * std::log(z + I * std::sqrt(C(1) - z * z)); }  // MATLAB's acos
+// MATLAB's acos: real for a real argument in [-1, 1] (MATLAB and Octave keep real arrays real there), otherwise the
+// principal branch -i log(z + i sqrt(1 - z^2)).  Evaluating that formula on a real argument in [-1, 1] would give it
+// an imaginary part of rounding size (about 6e-18 at z = 0.3) that the printed code never sees, and count an orbit
+// that stayed in acos's domain as complex.
+C acos_matlab(const C& z) {
+  if (z.imag() == 0 && std::abs(z.real()) <= 1) return C(std::acos(z.real()), 0.0);
+  return -I * std::log(z + I * std::sqrt(C(1) - z * z));
+}
 double norm_matlab(const CVec& v) { return std::sqrt(std::norm(v(0)) + std::norm(v(1)) + std::norm(v(2))); }
 C dot_matlab(const CVec& a, const CVec& b) {  // dot(a, b) = sum conj(a_i) b_i
   return std::conj(a(0)) * b(0) + std::conj(a(1)) * b(1) + std::conj(a(2)) * b(2);
