@@ -60,7 +60,7 @@ H5_CASES = [
      dict(r_min=0.0717, r_max=0.08, r_count=20, iterations=300, tail=30, log=True, precision="float", grid="random:5")),
     ("lyapunov_map", "lyapunov-map",
      dict(r_min=0.1, r_max=0.2, r_count=8, grid="random:4", iterations=1000, transient=100)),
-    ("lyapunov_strip", "lyapunov-strip", dict(r=0.3, n1=8, n2=5, iterations=800, transient=100)),
+    ("lyapunov_strip", "lyapunov-strip", dict(r=0.3, grid="strip:8x5", iterations=800, transient=100)),
     ("hyperbolicity", "hyperbolicity", dict(r=0.2, grid="strip:16x8")),
     ("hyperbolicity_orbits", "hyperbolicity-orbits",
      dict(r_min=0.1, r_max=0.2, r_count=3, grid="random:3", iterations=300, transient=100, backward=100)),
