@@ -31,8 +31,11 @@ void bind_blocks(py::module_& m);
     BTOB_ROUTE_BODY                                                 \
   };
 
-// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.
+// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.  (The basins'
+// script draws the legend from NAME.h5 alone; the command line also gives it NAME_fractions.csv, the same numbers.)
 #define BTOB_ROUTE_BODY
+BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "attractors_basins.py",
+           "Basins of the attractors at one r over a grid: labels image and fractions with Clopper-Pearson 95% intervals")
 BTOB_ROUTE(lyapunov::HyperbolicityOrbitsRequest, "hyperbolicity_orbits", "hyperbolicity-orbits", "hyperbolicity-orbits", "hyperbolicity_orbits",
            "hyperbolicity_orbits.py", "Per r: fraction of expanding steps and CLV angles along orbits, beside lambda1")
 BTOB_ROUTE(attractors::ClassifyRequest, "classify", "classify", "classify", "classify", "",
@@ -66,12 +69,6 @@ BTOB_ROUTE(stats::CorrelateRequest, "correlate", "correlate", "correlate", "corr
   static std::string name_of(const auto& req) { return req.default_name(); }
 BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_verify", "verify", "",
            "Iterate the Section 4 grid inside and below each window: is the pattern (ab)^n(cb)^n reached?")
-#undef BTOB_ROUTE_BODY
-// The basins' figure reads NAME.h5 and NAME_fractions.csv (the legend), as the command line gives them.
-#define BTOB_ROUTE_BODY \
-  static std::vector<std::string> plot_inputs() { return {".h5", "_fractions.csv"}; }
-BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "attractors_basins.py",
-           "Basins of the attractors at one r over a grid: labels image and fractions with Clopper-Pearson 95% intervals")
 #undef BTOB_ROUTE_BODY
 // The strip orbits' figure reads NAME.h5 and NAME.csv (the verdicts), as the command line gives them.
 #define BTOB_ROUTE_BODY \

@@ -33,9 +33,14 @@ def compare_h5(res, path):
     """Every dataset of the command line's HDF5 file equals the Python array of the same name bitwise, the
     Python result has no array the file lacks, and the attributes agree."""
     with h5py.File(path, "r") as f:
-        assert sorted(f.keys()) == sorted(res.arrays)
-        for k in f.keys():
+        assert sorted(f.keys()) == sorted(res.arrays + res.texts + res.decimals)
+        for k in res.arrays:
             same_array(getattr(res, k), f[k][...])
+        for k in res.texts:  # names as data: strings
+            assert getattr(res, k) == list(f[k].asstr()[...]), k
+        for k in res.decimals:  # exact decimals: the same text (None where the result has no value)
+            assert [None if v is None else str(v) for v in getattr(res, k)] == \
+                [None if v == "" else v for v in f[k].asstr()[...]], k
         file_attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
     compare_attrs(res.attrs, file_attrs)
 
@@ -219,7 +224,7 @@ def test_save_writes_what_the_command_line_replays(tmp_path):
                         "--quiet"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     with h5py.File(tmp_path / "b" / "mine.h5", "r") as f:
-        for k in f.keys():
+        for k in res.arrays:
             same_array(getattr(res, k), f[k][...])
     assert (tmp_path / "a" / "mine_summary.csv").read_bytes() == (tmp_path / "b" / "mine_summary.csv").read_bytes()
 
