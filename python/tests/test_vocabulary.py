@@ -5,6 +5,7 @@ import re
 import subprocess
 
 import btob
+import pytest
 from conftest import exe
 
 # The concepts and their one spelling each (README, "The parameter vocabulary").
@@ -82,3 +83,15 @@ def test_command_flags_use_one_spelling_per_concept():
 def test_the_checks_catch_a_second_spelling():
     assert offences("f", ["n1", "grid"]) and offences("f", ["r_lo"]) and offences("f", ["r"], {"r": ["0.1", "0.2"]})
     assert not offences("f", ["r_min", "r_max", "r_count", "grid", "point", "lyap_iterations"])
+
+
+def test_the_one_spellings_work_where_the_issue_found_others():
+    """basins_r takes an r range like every other sweep; lyapunov_strip takes grid= like basins and hyperbolicity;
+    integers take exact scientific notation."""
+    res = btob.basins_r(r_min=0.2, r_max=0.3, r_count=2, grid="random:4", transient=300, iterations=300,
+                        lyap_iterations=400, lyap_transient=50)
+    assert res.r.tolist() == [0.2, 0.3]
+    strip = btob.lyapunov_strip(r=0.3, grid="strip:4x3:-1:1", iterations="4e2", transient=50)
+    assert strip.lambda1.shape == (4, 3) and strip.w1_cell.tolist()[0] == -0.75
+    with pytest.raises(ValueError, match="iterations: got '4.005e2', expected an integer"):
+        btob.lyapunov_strip(r=0.3, grid="strip:4x3", iterations="4.005e2", transient=50)
