@@ -57,7 +57,7 @@ while read -r w r src; do
   /usr/bin/python3 - "$tmp/run$i/particles.csv" "$src" >> "$tmp/realised.csv" <<'PY'
 import csv, sys
 row = next(csv.DictReader(open(sys.argv[1], newline="")))
-print(",".join([row["word"], row["r"], row["sequence_ok"], row["contraction"], row["predicted"], row["digits"],
+print(",".join([row["word"], row["r"], row["sequence_ok"], row["contraction"], row["predicted"], row["word_digits"],
                 row["outcome"], row["periods_ok"], row["letters"], row["time_contraction"], row["time_predicted"],
                 row["velocity_contraction"], row["velocity_predicted"], row["time_to_collapse"], sys.argv[2]]))
 PY

@@ -119,8 +119,27 @@ struct ArgsWriter {
     out->emplace_back(name, core::field_text(member));
   }
 };
-// "btob.f(k='v', ...)": the provenance attribute `command` of a Python result.
-std::string call_text(const std::string& function, const Args& args);
+// "btob.f(k='v', flag=True, values=['1', '2'], ...)": the provenance attribute `command` of a Python result, a
+// call that pasted into Python reproduces the request (text values in quotes, lists for list fields, booleans
+// as True/False: every form the keyword parser reads back to the same field).
+struct CallWriter {
+  std::string* text;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    std::string v;
+    if constexpr (std::is_same_v<T, bool>) {
+      v = member ? "True" : "False";
+    } else if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>> ||
+                         std::is_same_v<T, std::vector<core::Decimal>>) {
+      for (const auto& t : core::field_text(member)) v += (v.empty() ? "" : ", ") + quoted(t);
+      v = "[" + v + "]";
+    } else {
+      for (const auto& t : core::field_text(member)) v += (v.empty() ? "" : " ") + t;
+      v = quoted(v);
+    }
+    *text += (text->empty() ? "" : ", ") + keyword(name) + "=" + v;
+  }
+  static std::string quoted(const std::string& t) { return py::repr(py::str(t)).cast<std::string>(); }
+};
 
 // Progress of a run, written by its threads and read by the waiting Python thread.
 struct AtomicProgress : core::ProgressSink {
@@ -192,7 +211,9 @@ template <class Req> void bind(py::module_& m) {
         holder->extras.add_to(holder->contents);
         req.fields(ArgsWriter{&holder->request});
         const long used_threads = threads > 0 ? threads : default_threads();
-        holder->attrs = io::result_attrs(call_text(R::function, holder->request), holder->contents, R::kind_of(req),
+        std::string call;
+        req.fields(CallWriter{&call});
+        holder->attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder->contents, R::kind_of(req),
                                          R::name_of(req), "", R::scalar(req, holder->res), used_threads);
         holder->extras.apply(holder->attrs);
         holder->function = R::function;
@@ -204,6 +225,20 @@ template <class Req> void bind(py::module_& m) {
         return py::cast(std::static_pointer_cast<ResultBase>(holder));
       },
       doc.c_str());
+  // The bound functions, their commands and keyword arguments with their defaults as text, for tests that must
+  // cover every request ({function: command}, {function: [(keyword, default)]}).
+  if (!py::hasattr(m, "_commands")) m.attr("_commands") = py::dict();
+  if (!py::hasattr(m, "_fields")) m.attr("_fields") = py::dict();
+  m.attr("_commands")[R::function] = R::command;
+  Args fields;
+  defaults.fields(ArgsWriter{&fields});
+  py::list kws;
+  for (const auto& [name, values] : fields) {
+    py::list texts;
+    for (const auto& t : values) texts.append(py::str(t));
+    kws.append(py::make_tuple(py::str(keyword(name)), texts));
+  }
+  m.attr("_fields")[R::function] = kws;
 }
 
 }  // namespace btob::python

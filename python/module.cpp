@@ -31,14 +31,15 @@ void bind_blocks(py::module_& m);
     BTOB_ROUTE_BODY                                                 \
   };
 
-// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.
+// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.  (The basins'
+// script draws the legend from NAME.h5 alone; the command line also gives it NAME_fractions.csv, the same numbers.)
 #define BTOB_ROUTE_BODY
+BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "attractors_basins.py",
+           "Basins of the attractors at one r over a grid: labels image and fractions with Clopper-Pearson 95% intervals")
 BTOB_ROUTE(lyapunov::HyperbolicityOrbitsRequest, "hyperbolicity_orbits", "hyperbolicity-orbits", "hyperbolicity-orbits", "hyperbolicity_orbits",
            "hyperbolicity_orbits.py", "Per r: fraction of expanding steps and CLV angles along orbits, beside lambda1")
 BTOB_ROUTE(attractors::ClassifyRequest, "classify", "classify", "classify", "classify", "",
            "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or unresolved")
-BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "attractors_basins.py",
-           "Basins of the attractors at one r over a grid: labels image and fractions with 95% intervals")
 BTOB_ROUTE(stats::MeasureRequest, "measure", "measure", "measure", "measure", "stats_measure.py",
            "Empirical measures of many initial conditions at one r, their distances and convergence (Section 8.1 (2))")
 BTOB_ROUTE(windows::PolyRequest, "windows_poly", "windows poly", "windows_poly", "poly", "",
@@ -60,11 +61,15 @@ BTOB_ROUTE(lyapunov::StripRequest, "lyapunov_strip", "lyapunov-strip", "lyapunov
            "Lyapunov exponent at one r over a strip grid (w1, w2), as an image")
 BTOB_ROUTE(stats::CorrelateRequest, "correlate", "correlate", "correlate", "correlation", "stats_correlation.py",
            "C_N(phi, psi; n) along one orbit, its envelope, decay rate and power spectrum (Section 8.1 (2))")
-BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_verify", "verify", "",
-           "Iterate the Section 4 grid inside and below each window: is the pattern (ab)^n(cb)^n reached?")
 #undef BTOB_ROUTE_BODY
 
 // The rest, one by one.
+#define BTOB_ROUTE_BODY                                                                                   \
+  template <class Res> static std::string scalar(const auto& req, const Res&) { return req.precision; } \
+  static std::string name_of(const auto& req) { return req.default_name(); }
+BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_verify", "verify", "",
+           "Iterate the Section 4 grid inside and below each window: is the pattern (ab)^n(cb)^n reached?")
+#undef BTOB_ROUTE_BODY
 // The strip orbits' figure reads NAME.h5 and NAME.csv (the verdicts), as the command line gives them.
 #define BTOB_ROUTE_BODY \
   static std::vector<std::string> plot_inputs() { return {".h5", ".csv"}; }
@@ -136,8 +141,9 @@ BTOB_ROUTE(precision::TradeoffRequest, "precision_study", "precision", "precisio
 #define BTOB_ROUTE_BODY \
   template <class Res> static std::string scalar(const auto& req, const Res&) {                   \
     return fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits);            \
-  }
-BTOB_ROUTE(windows::BoundPrecisionRequest, "windows_precision", "windows precision", "windows_precision", "precision", "",
+  }                                                                                               \
+  static std::vector<std::string> plot_inputs() { return {".csv"}; }
+BTOB_ROUTE(windows::BoundPrecisionRequest, "windows_precision", "windows precision", "windows_precision", "precision", "windows_precision.py",
            "Largest n with a 12-decimal window bound per precision and route")
 #undef BTOB_ROUTE_BODY
 #undef BTOB_ROUTE

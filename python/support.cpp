@@ -74,18 +74,9 @@ py::object attr_value(const core::AttrValue& v) {
   return std::visit([](const auto& x) -> py::object { return py::cast(x); }, v);
 }
 
-std::string call_text(const std::string& function, const Args& args) {
-  std::string s;
-  for (const auto& [name, values] : args) {
-    std::string v;
-    for (const auto& t : values) v += (v.empty() ? "" : " ") + t;
-    s += (s.empty() ? "" : ", ") + keyword(name) + "=" + py::repr(py::str(v)).cast<std::string>();
-  }
-  return "btob." + function + "(" + s + ")";
-}
-
 // Writes the result as the command line does: NAME.h5 (when it has arrays), NAME.json (attributes and the request,
-// so that `btob run NAME.json` reproduces it) and NAME.png (when `plot` and the command draws one), all together.
+// so that `btob run NAME.json` reproduces it) and NAME.png (when `plot` and the command draws one), all together:
+// a figure that cannot be drawn is an error and nothing is written (the command line warns and keeps the data).
 std::vector<std::string> save(const ResultBase& r, const std::string& out, const std::string& name,
                               const std::string& title, bool plot) {
   core::Attrs at = r.attrs;
@@ -96,19 +87,21 @@ std::vector<std::string> save(const ResultBase& r, const std::string& out, const
   args.emplace_back("title", std::vector<std::string>{title});
   io::ResultFiles files(out, name);
   files.tables(r.tables);
-  if (!r.contents.arrays.empty()) files.h5(r.contents, at);
+  if (io::ResultFiles::has_data(r.contents)) files.h5(r.contents, at);
   files.manifest(at, r.command, args);  // lists the files staged so far
   if (plot && !r.plot.empty()) {
+    bool drawn = false;
     if (r.plot_inputs.empty()) {
-      if (!r.contents.arrays.empty()) files.plot(r.plot);
+      drawn = r.contents.arrays.empty() || files.plot(r.plot);
     } else {  // the script reads the command line's files, as the command line calls it
       std::vector<std::string> inputs;
       for (const auto& suffix : r.plot_inputs) inputs.push_back(name + suffix);
-      if (r.plot_many)
-        files.plot_figures(r.plot, inputs);
-      else
-        files.plot_inputs(r.plot, inputs);
+      drawn = r.plot_many ? files.plot_figures(r.plot, inputs) : files.plot_inputs(r.plot, inputs);
     }
+    if (!drawn)
+      throw std::runtime_error(fmt::format("save: the figure's script {} failed (its message is above); nothing was "
+                                           "written to {} (plot=False writes the data alone)",
+                                           r.plot, out));
   }
   std::vector<std::string> written;
   for (const auto& p : files.commit()) written.push_back(p.string());
@@ -211,6 +204,8 @@ void bind_result(py::module_& m) {
                  for (const auto& s : *d.data) out.append(s.empty() ? py::object(py::none()) : dec(s));
                  return std::move(out);
                }
+             for (const auto& t : r.contents.texts)
+               if (t.name == name) return py::cast(*t.data);
              if (auto it = r.attrs.find(name); it != r.attrs.end()) return attr_value(it->second);
              throw py::attribute_error(fmt::format("btob.{} result has no attribute '{}'", r.function, name));
            })
@@ -235,6 +230,13 @@ void bind_result(py::module_& m) {
                                return l;
                              },
                              "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
+      .def_property_readonly("texts",
+                             [](const ResultBase& r) {
+                               py::list l;
+                               for (const auto& d : r.contents.texts) l.append(d.name);
+                               return l;
+                             },
+                             "names of the string arrays (word names, overlay names): res.<name> is a list of str")
       .def("info",
            [](const ResultBase& r, const std::string& name) {
              for (const auto& a : r.contents.arrays)

@@ -30,10 +30,10 @@ expect_error "threads" "${m[@]}" --threads -1
 [ -e "$out/m" ] && [ -n "$(ls -A "$out/m")" ] && { echo "FAIL: lyapunov-map output written despite errors"; fail=1; }
 
 # btob lyapunov-strip
-s=(lyapunov-strip --out "$out/s" --n1 4 --n2 4 --iterations 100 --transient 10 --no-plot --quiet)
+s=(lyapunov-strip --out "$out/s" --grid strip:4x4 --iterations 100 --transient 10 --no-plot --quiet)
 expect_error "r" "${s[@]}" --r 1.2
-expect_error "size" "${s[@]}" --n1 0
-expect_error "w1-range" "${s[@]}" --w1-min 1 --w1-max -1
+expect_error "grid" "${s[@]}" --grid strip:0x4
+expect_error "grid" "${s[@]}" --grid strip:4x4:1:-1
 expect_error "iterations" "${s[@]}" --iterations 0
 [ -e "$out/s" ] && [ -n "$(ls -A "$out/s")" ] && { echo "FAIL: lyapunov-strip output written despite errors"; fail=1; }
 

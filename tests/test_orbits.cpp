@@ -67,13 +67,12 @@ TEST(StripOrbits, SameSeedSameResultOnOneAndTwoThreads) {
 TEST(StripOrbits, StartPointsLieInTheRequestedPartOfTheStrip) {
   StripOrbitsRequest q = small(0.3);
   q.orbits = 200;
-  q.w1_min = -0.5;
-  q.w1_max = 0.25;
+  q.w1_range = {-0.5, 0.25};
   q.iterations = q.tail = 1;
   const auto res = run(q);
   for (std::size_t o = 0; o < res.start_w1.size(); ++o) {
-    EXPECT_GE(res.start_w1[o], q.w1_min);
-    EXPECT_LE(res.start_w1[o], q.w1_max);
+    EXPECT_GE(res.start_w1[o], q.w1_range[0]);
+    EXPECT_LE(res.start_w1[o], q.w1_range[1]);
     EXPECT_GT(res.start_w2[o], -1);
     EXPECT_LT(res.start_w2[o], 1);
   }
@@ -116,11 +115,14 @@ TEST(StripOrbits, ErrorsNameTheField) {
   q.iterations = 10;
   expect_field(q, "iterations");
   q = {};
-  q.w1_max = q.w1_min;
-  expect_field(q, "w1-max");
+  q.w1_range = {1, 1};
+  expect_field(q, "w1-range");
   q = {};
-  q.w1_min = -1e7;
-  expect_field(q, "w1-min");
+  q.w1_range = {-1e7, 0};
+  expect_field(q, "w1-range");
+  q = {};
+  q.w1_range = {0};
+  expect_field(q, "w1-range");
 }
 
 }  // namespace

@@ -73,10 +73,10 @@ TEST(TradeoffRequest, ValidationNamesTheField) {
   EXPECT_EQ(field(r), "iterations");
   r = ok;
   r.r = {0.2, 1.0};
-  EXPECT_EQ(field(r), "r");
+  EXPECT_EQ(field(r), "r-values");
   r = ok;
   r.r = {};
-  EXPECT_EQ(field(r), "r");
+  EXPECT_EQ(field(r), "r-values");
   r = ok;
   r.window_n = {2, 2.5};
   EXPECT_EQ(field(r), "window-n");

@@ -9,6 +9,7 @@
 #include "lyapunov/requests.hpp"
 
 #include <boost/lexical_cast.hpp>
+#include <climits>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -72,6 +73,38 @@ TEST(Fields, TextRoundTripsBitwise) {
   EXPECT_TRUE(b);
   core::set_field(b, {"false"}, "log");
   EXPECT_FALSE(b);
+}
+
+TEST(Fields, IntegersAcceptExactScientificNotationOnly) {
+  const auto as_long = [](const std::string& t) {
+    long v = 0;
+    core::set_field(v, {t}, "iterations");
+    return v;
+  };
+  EXPECT_EQ(as_long("1e6"), 1000000);
+  EXPECT_EQ(as_long("2.5e3"), 2500);
+  EXPECT_EQ(as_long("-3E2"), -300);
+  EXPECT_EQ(as_long("1.000e3"), 1000);
+  EXPECT_EQ(as_long("12000e-3"), 12);            // a negative exponent is fine where the value stays whole
+  EXPECT_EQ(as_long("9223372036854775807"), LONG_MAX);
+  EXPECT_EQ(as_long("-9223372036854775808"), LONG_MIN);
+  std::uint64_t seed = 0;
+  core::set_field(seed, {"1.8446744073709551615e19"}, "seed");  // 2^64 - 1, exactly: no rounding through double
+  EXPECT_EQ(seed, UINT64_MAX);
+  int small = 0;
+  core::set_field(small, {"2e9"}, "tail");
+  EXPECT_EQ(small, 2000000000);
+  for (const char* bad : {"1.5e0", "1e-3", "2.55e1", "1e", "e3", "1.", "1e19", "9223372036854775808", "0x10", "1e6x"})
+    EXPECT_EQ(failing_field([&] { as_long(bad); }), "iterations") << bad;
+  EXPECT_EQ(failing_field([&] { core::set_field(seed, {"1.8446744073709551616e19"}, "seed"); }), "seed");
+  EXPECT_EQ(failing_field([&] { core::set_field(seed, {"-1"}, "seed"); }), "seed");
+  EXPECT_EQ(failing_field([&] { core::set_field(small, {"3e9"}, "tail"); }), "tail");
+  try {
+    as_long("1.5e0");
+  } catch (const core::InvalidField& e) {
+    EXPECT_STREQ(e.what(), "iterations: got '1.5e0', expected an integer (1000000, or exactly in scientific notation: "
+                           "1e6, 2.5e3)");
+  }
 }
 
 // ------------------------------------------------------------------------------------------------ r in the precision
@@ -299,8 +332,10 @@ TEST(LyapunovRequest, ValidationNamesTheField) {
   m.r_count = 0;
   EXPECT_EQ(failing_field([&] { m.validate(); }), "r-count");
   lyapunov::StripRequest s;
-  s.w1_min = 1, s.w1_max = -1;
-  EXPECT_EQ(failing_field([&] { s.validate(); }), "w1-range");
+  s.grid = "strip:4x4:1:-1";
+  EXPECT_EQ(failing_field([&] { s.validate(); }), "grid");
+  s.grid = "strip:0x4";
+  EXPECT_EQ(failing_field([&] { s.validate(); }), "grid");
 }
 
 TEST(LyapunovRequest, OrbitEqualsTheQrRouteBitwise) {

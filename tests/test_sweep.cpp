@@ -154,7 +154,7 @@ TEST(Sweep, LyapunovMapAnyPartitionEqualsRun) {
 
 TEST(Sweep, LyapunovStripAnyPartitionEqualsRun) {
   lyapunov::StripRequest q;
-  q.r = 0.3, q.n1 = 11, q.n2 = 7, q.iterations = 300, q.transient = 50, q.blocks = 3;
+  q.r = 0.3, q.grid = "strip:11x7", q.iterations = 300, q.transient = 50, q.blocks = 3;
   expect_any_partition_equals_run(q, "lyapunov-strip");
 }
 

@@ -52,6 +52,23 @@ std::vector<double> invariant(const UlamMatrix& P) {
   return class_density(P, d, 1);
 }
 
+TEST(Transfer, FindsAndNamesItsPeriodicAttractorsWithoutCycles) {
+  // r = 0.15: one closed class holding the stable cycle 1133 (Table 6.1), found from the class's boxes alone.
+  TransferRequest q;
+  q.r = 0.15;
+  q.boxes = "64x64";
+  q.samples = 16;
+  q.eigenvalues = 2;
+  q.measure_orbits = 0;
+  const auto res = run(q);
+  EXPECT_EQ(res.attractors_found, std::vector<std::string>{"1133"});
+  ASSERT_EQ(res.cycles.size(), 1u);
+  EXPECT_EQ(res.cycles[0].word, "1133");
+  EXPECT_EQ(res.cycles[0].outcome, "stable orbit");
+  q.cycles = {"1133"};
+  EXPECT_TRUE(run(q).attractors_found.empty());  // named cycles: nothing searched
+}
+
 }  // namespace
 
 TEST(Transfer, LogisticArcsineDensityConvergesWithTheBoxes) {

@@ -26,9 +26,16 @@ def rows_of(f):
     return out
 
 
-def main(h5_path, csv_path, png_path):
+def main(h5_path, csv_path, png_path=None):
+    """main(NAME.h5, NAME_fractions.csv, NAME.png), or main(NAME.h5, NAME.png) with the legend from NAME.h5."""
+    if png_path is None:
+        csv_path, png_path = None, csv_path
     with h5py.File(h5_path, "r") as f:
-        fig = draw(f, list(csv.DictReader(open(csv_path))))
+        rows = None
+        if csv_path is not None:
+            with open(csv_path) as c:
+                rows = list(csv.DictReader(c))
+        fig = draw(f, rows)
     save_atomic(fig, png_path)
 
 
@@ -71,9 +78,11 @@ def draw(f, rows=None):
         lab = (f"{row['pattern'] or row['type']} [{row['type']}] "
                f"{100 * frac:.2f}% ({100 * float(row['ci_low']):.2f}-{100 * float(row['ci_high']):.2f})")
         handles.append(Patch(color=cols[i], label=lab))
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, 95% CI (sampling)")
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, title=f"{n} points, Clopper-Pearson 95% intervals (sampling)")
     return fig
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    if len(sys.argv) not in (3, 4):
+        sys.exit("usage: attractors_basins.py NAME.h5 [NAME_fractions.csv] NAME.png")
+    main(*sys.argv[1:])

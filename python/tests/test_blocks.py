@@ -63,6 +63,20 @@ def test_iterate_final_is_the_normalised_state():
     assert np.allclose(final[0], u, rtol=0, atol=1e-12)
 
 
+def test_iterate_orbit_records_states_and_branches_per_step():
+    orbit = btob.iterate(0.2, POINTS, iterations=30, record="orbit", tail=30)
+    assert {k: v.shape for k, v in orbit.items()} == {k: (4, 30) for k in ("x", "y", "z", "branch", "theta", "phi")}
+    m = btob.Map(0.2)
+    u = POINTS.copy()
+    for k in range(30):
+        u, s = m.step(u)
+        u = u / np.linalg.norm(u, axis=1, keepdims=True)
+        assert np.array_equal(s, orbit["branch"][:, k]), k
+        got = np.stack([orbit["x"][:, k], orbit["y"][:, k], orbit["z"][:, k]], axis=1)
+        # 30 steps of rounding in the kernel and in this loop, then the angles' sin/cos: far below 1e-12.
+        assert np.allclose(got, u, rtol=0, atol=1e-12), k
+
+
 def test_iterate_float_and_long_double():
     d = btob.iterate(0.2, POINTS, iterations=30, record="symbols", tail=30)
     for p in ("float", "long-double"):

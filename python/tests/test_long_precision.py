@@ -10,7 +10,7 @@ from test_requests import compare_attrs
 
 
 def test_precision_study_attrs(tmp_path):
-    kw = dict(orbits=2, iterations=200, r=[0.2], window_n=[2, 3])
+    kw = dict(orbits=2, iterations=200, r_values=[0.2], window_n=[2, 3])
     cli("precision", kw, out=tmp_path)
     res = btob.precision_study(**kw)
     compare_attrs(res.attrs, {k: v for k, v in manifest(str(tmp_path / "tradeoff.json")).items() if k != "request"})

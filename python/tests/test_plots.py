@@ -14,7 +14,7 @@ import btob  # noqa: E402
 CASES = [
     ("bifurcation", dict(r_min=0.1, r_max=0.12, r_count=30, iterations=300, tail=30, overlay=["windows"])),
     ("lyapunov_map", dict(r_min=0.1, r_max=0.2, r_count=6, grid="random:3", iterations=800, transient=80)),
-    ("lyapunov_strip", dict(r=0.3, n1=8, n2=5, iterations=500, transient=50)),
+    ("lyapunov_strip", dict(r=0.3, grid="strip:8x5", iterations=500, transient=50)),
     ("hyperbolicity", dict(r=0.2, grid="strip:16x8")),
     ("hyperbolicity_orbits", dict(r_min=0.1, r_max=0.2, r_count=3, grid="random:3", iterations=300, transient=100,
                                   backward=100)),

@@ -33,9 +33,14 @@ def compare_h5(res, path):
     """Every dataset of the command line's HDF5 file equals the Python array of the same name bitwise, the
     Python result has no array the file lacks, and the attributes agree."""
     with h5py.File(path, "r") as f:
-        assert sorted(f.keys()) == sorted(res.arrays)
-        for k in f.keys():
+        assert sorted(f.keys()) == sorted(res.arrays + res.texts + res.decimals)
+        for k in res.arrays:
             same_array(getattr(res, k), f[k][...])
+        for k in res.texts:  # names as data: strings
+            assert getattr(res, k) == list(f[k].asstr()[...]), k
+        for k in res.decimals:  # exact decimals: the same text (None where the result has no value)
+            assert [None if v is None else str(v) for v in getattr(res, k)] == \
+                [None if v == "" else v for v in f[k].asstr()[...]], k
         file_attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
     compare_attrs(res.attrs, file_attrs)
 
@@ -60,7 +65,7 @@ H5_CASES = [
      dict(r_min=0.0717, r_max=0.08, r_count=20, iterations=300, tail=30, log=True, precision="float", grid="random:5")),
     ("lyapunov_map", "lyapunov-map",
      dict(r_min=0.1, r_max=0.2, r_count=8, grid="random:4", iterations=1000, transient=100)),
-    ("lyapunov_strip", "lyapunov-strip", dict(r=0.3, n1=8, n2=5, iterations=800, transient=100)),
+    ("lyapunov_strip", "lyapunov-strip", dict(r=0.3, grid="strip:8x5", iterations=800, transient=100)),
     ("hyperbolicity", "hyperbolicity", dict(r=0.2, grid="strip:16x8")),
     ("hyperbolicity_orbits", "hyperbolicity-orbits",
      dict(r_min=0.1, r_max=0.2, r_count=3, grid="random:3", iterations=300, transient=100, backward=100)),
@@ -219,7 +224,7 @@ def test_save_writes_what_the_command_line_replays(tmp_path):
                         "--quiet"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     with h5py.File(tmp_path / "b" / "mine.h5", "r") as f:
-        for k in f.keys():
+        for k in res.arrays:
             same_array(getattr(res, k), f[k][...])
     assert (tmp_path / "a" / "mine_summary.csv").read_bytes() == (tmp_path / "b" / "mine_summary.csv").read_bytes()
 

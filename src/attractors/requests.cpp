@@ -139,8 +139,30 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
     res.replicate_sd.push_back(v.size() > 1 ? std::sqrt(s / static_cast<double>(v.size() - 1)) : 0.0);
   }
   for (auto l : b.labels) res.unresolved_count += l == 0;
+  const Grid& g = b.grid;  // cell centres of the main (unshifted) grid, as attractors.cpp places its points
+  for (long i = 0; i < g.n1; ++i)
+    res.axis1.push_back(g.lo1 + (static_cast<double>(i) + 0.5) * (g.hi1 - g.lo1) / static_cast<double>(g.n1));
+  for (long j = 0; j < g.n2; ++j)
+    res.axis2.push_back(g.lo2 + (static_cast<double>(j) + 0.5) * (g.hi2 - g.lo2) / static_cast<double>(g.n2));
   return res;
 }
+
+namespace {
+// The names, units and meanings of a basin grid's two axes, by grid kind.
+struct GridAxis {
+  const char *name, *units, *meaning;
+};
+std::pair<GridAxis, GridAxis> grid_axes(const std::string& kind) {
+  if (kind == "strip")
+    return {{"w1", "1", "strip coordinate w1 (eq. (6.4)), cell centres"},
+            {"w2", "1", "strip coordinate w2 in [-1, 1] (eq. (6.4)), cell centres"}};
+  if (kind == "sphere")
+    return {{"theta", "rad", "polar angle theta in [0, pi/2], cell centres"},
+            {"y", "1", "height y = -cos(phi) in [-1, 1] (equal-area chart of the sphere), cell centres"}};
+  return {{"theta", "rad", "polar angle theta in [0, pi/2], cell centres"},
+          {"phi", "rad", "angle phi in [0, pi], cell centres"}};
+}
+}  // namespace
 
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
@@ -149,11 +171,22 @@ BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
 void BasinsResult::describe(core::Contents& c) const {
   const Basins& b = basins;
   const Grid& g = b.grid;
-  c.array("labels", b.labels, {static_cast<std::size_t>(g.n2), static_cast<std::size_t>(g.n1)}, "axis 2, axis 1",
-          "attractor id", "attractor of each grid point (0 = unresolved; legend_<id>)");
+  const auto [ax1, ax2] = grid_axes(g.kind);
+  c.array(ax1.name, axis1, {axis1.size()}, ax1.name, ax1.units, ax1.meaning);
+  c.array(ax2.name, axis2, {axis2.size()}, ax2.name, ax2.units, ax2.meaning);
+  c.array("labels", b.labels, {static_cast<std::size_t>(g.n2), static_cast<std::size_t>(g.n1)},
+          fmt::format("{}, {}", ax2.name, ax1.name), "attractor id",
+          "attractor of each grid point (0 = unresolved; legend_<id>)");
   c.array("fraction", fraction, {fraction.size()}, "attractor", "1", "fraction of the main grid in each basin");
-  c.array("ci_low", ci_low, {ci_low.size()}, "attractor", "1", "lower end of the 95% interval of the fraction");
-  c.array("ci_high", ci_high, {ci_high.size()}, "attractor", "1", "upper end of the 95% interval of the fraction");
+  c.array("ci_low", ci_low, {ci_low.size()}, "attractor", "1",
+          "lower end of the Clopper-Pearson 95% interval of the fraction (sampling only)");
+  c.array("ci_high", ci_high, {ci_high.size()}, "attractor", "1",
+          "upper end of the Clopper-Pearson 95% interval of the fraction (sampling only)");
+  c.array("replicate_mean", replicate_mean, {replicate_mean.size()}, "attractor then unresolved", "1",
+          "mean fraction over the main and the randomly shifted replicate grids (unresolved last)");
+  c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then unresolved", "1",
+          "sample standard deviation of the fraction over the main and replicate grids (0 with one grid)");
+  c.attr("interval", "Clopper-Pearson 95% (sampling only)");
   const std::size_t n = points();
   c.attr("r", request.r);
   c.attr("grid", request.grid);
@@ -201,6 +234,8 @@ std::vector<TableRow> parse_table(const std::string& csv) {
 
 std::vector<double> BasinsRRequest::all_r() const {
   std::vector<double> rs = r_values;
+  if (r_count > 0)
+    for (double r : iterate::linspace_r(r_min, r_max, r_count)) rs.push_back(r);
   if (table)
     for (const auto& t : parse_table(reference_csv))
       if (t.r >= 0.1 - 1e-12 && t.r <= 0.6 + 1e-12) rs.push_back(t.r);
@@ -221,8 +256,14 @@ void BasinsRRequest::validate() const {
   // command line reads the file named by `reference`); run() checks the table itself.
   const bool table_pending = table && reference_csv.empty();
   if (!table_pending) require_table(*this);
+  if (r_count < 0 || r_count > 100000)
+    throw core::InvalidField("r-count", std::to_string(r_count), "0 (no range) .. 100000");
+  if (r_count > 0) {
+    core::require_r(r_min, "r-min");
+    core::require_r(r_max, "r-max");
+  }
   const std::vector<double> rs = all_r();
-  if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1) or --table");
+  if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1), a range (r-min, r-max, r-count) or --table");
   for (double r : rs) core::require_r(r, "r-values");
   const auto pts = iterate::parse_grid(grid, seed, "grid");
   if (pts.empty()) throw core::InvalidField("grid", "'" + grid + "' with no points", "at least one");

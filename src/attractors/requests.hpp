@@ -87,11 +87,13 @@ struct BasinsResult {
   Basins basins;
   std::vector<double> fraction, ci_low, ci_high;  // [attractors]: main-grid fractions and their 95% intervals
   std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; unresolved last
+  std::vector<double> axis1, axis2;                  // [n1], [n2]: the main grid's cell centres along each axis
   std::size_t unresolved_count = 0;                  // unresolved points of the main grid
   int threads = 0;                                   // threads used
   std::size_t points() const { return basins.labels.size(); }
-  // Arrays: labels [n2, n1] (attractor id per grid point, 0 = unresolved), fraction, ci_low, ci_high
-  // [attractors]; attributes: the request, the grid, counts, timings and legend_<id>.
+  // Arrays: labels [n2, n1] (attractor id per grid point, 0 = unresolved) with its axes' coordinates (w1, w2 on a
+  // strip; theta, y = -cos phi on the sphere; theta, phi for angles), fraction, ci_low, ci_high [attractors],
+  // replicate_mean, replicate_sd [attractors + 1]; attributes: the request, the grid, counts, timings, legend_<id>.
   void describe(core::Contents& c) const;
   // NAME_fractions.csv: per attractor its fraction and 95% interval, counts, replicate spread and evidence; the
   // unresolved points last (attractor 0), their attractor columns empty; the measure on every row.
@@ -122,6 +124,8 @@ std::string grid_measure(const std::string& spec);
 
 struct BasinsRRequest {
   std::vector<double> r_values;       // r values in (0, 1)
+  double r_min = 0.1, r_max = 0.6;    // a range of r_count values, both ends included (r_count = 0: none)
+  long r_count = 0;
   bool table = false;                 // add the r values of Table 6.1 in [0.1, 0.6]
   std::string grid = "random:2000";   // initial conditions: random:N, paper, strip:NxM or x,y,z;...
   std::uint64_t seed = 1;             // seed of random grids
@@ -131,10 +135,13 @@ struct BasinsRRequest {
   std::string reference_csv;
 
   void validate() const;
-  std::vector<double> all_r() const;  // r_values, then Table 6.1's when `table`
+  std::vector<double> all_r() const;  // r_values, the range's, then Table 6.1's when `table`
   std::size_t work_items() const { return all_r().size(); }  // a sweep over all_r() (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-values", r_values, "r values r1,r2,... in (0, 1)");
+    v("r-min", r_min, "smallest r of the range, in (0, 1)");
+    v("r-max", r_max, "largest r of the range, in (0, 1)");
+    v("r-count", r_count, "r values of the range r-min..r-max (0: no range)");
     v("table", table, "add the r values of Table 6.1 in [0.1, 0.6]");
     v("grid", grid, "initial conditions: random:N, paper, strip:NxM or x,y,z;...");
     v("seed", seed, "seed of random grids");

@@ -185,6 +185,8 @@ Result merge(const Request& req, std::vector<Part> parts) {
   res.lo = ax.lo;
   res.hi = ax.hi;
   res.bins = bins;
+  for (std::size_t i = 0; i < bins; ++i)  // bin i covers [lo + i h, lo + (i+1) h): its centre
+    res.bin_centre.push_back(ax.lo + (static_cast<double>(i) + 0.5) * (ax.hi - ax.lo) / static_cast<double>(bins));
   res.vlines = req.vline;
   res.scalar_type = prec.name();
   res.algorithm = req.algorithm;
@@ -219,6 +221,8 @@ void Result::describe(core::Contents& c) const {
                       "also holds hi ({} in {})",
                       coord, unit));
   c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients (the image's columns)");
+  c.array("bin_centre", bin_centre, {bins}, "bin of " + coord, unit, "centre of each bin of " + coord + " (the image's rows)");
+  c.coordinate("bin of " + coord, "bin_centre");
   c.array("underflow", underflow, {R}, "r", "count", "tail points below lo (or NaN) at each r");
   c.array("overflow", overflow, {R}, "r", "count", "tail points above hi at each r");
   c.array("vlines", vlines, {vlines.size()}, "line", "1", "r values drawn as vertical lines");

@@ -60,6 +60,7 @@ struct Result {
   std::string coord;                   // the binned coordinate: theta, log10_theta, phi, w1, w2
   double lo = 0, hi = 0;               // the axis range
   std::size_t bins = 0;
+  std::vector<double> bin_centre;      // [bins]: lo + (i + 1/2) (hi - lo) / bins, the density's coordinates
   std::vector<std::uint32_t> density;  // [r, bin]: tail points per bin
   std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
   std::vector<std::uint64_t> broken;   // [r]: orbits the trigonometric algorithm lost (acos out of its domain)

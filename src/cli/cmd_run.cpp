@@ -101,7 +101,8 @@ void run_scene(const RunFlags& f) {
     args.emplace_back(a.key, a.values);
   }
   const auto it = scene_commands().find(s.command);
-  const bool writes = it == scene_commands().end() || it->second.files;
+  // A stdout command writes files when its manifest names them (a result saved by Python, or run with --out).
+  const bool writes = it == scene_commands().end() || it->second.files || (manifest && has_name);
   if (!out_override.empty()) args.emplace_back("out", std::vector<std::string>{out_override});
   else if (!has_out && writes)
     args.emplace_back("out", std::vector<std::string>{manifest ? std::filesystem::path(path).parent_path().string()
@@ -111,12 +112,12 @@ void run_scene(const RunFlags& f) {
   const std::size_t injected_from = args.size();  // the run's own flags, below
   if (f.threads != 0) args.emplace_back("threads", std::vector<std::string>{std::to_string(f.threads)});
   if (f.quiet) args.emplace_back("quiet", std::vector<std::string>{"true"});
-  if (f.no_plot && writes) args.emplace_back("no-plot", std::vector<std::string>{"true"});
+  if (f.no_plot && (it == scene_commands().end() || it->second.files)) args.emplace_back("no-plot", std::vector<std::string>{"true"});
   if (it == scene_commands().end()) return replay_flags(s, path, args, injected_from);
   std::string inv = invocation() + " -> btob " + s.command;
   for (const auto& [k, vals] : args) {
     inv += " --" + k;
-    for (const auto& v : vals) inv += " '" + v + "'";
+    for (const auto& v : vals) inv += " " + shell_quote(v);
   }
   try {
     it->second.run(args, inv);

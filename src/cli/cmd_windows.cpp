@@ -38,17 +38,16 @@ void verify(const windows::VerifyRequest& req, const Output& o, const Context& c
   const windows::VerifyResult& res = *got;
   core::Contents c;
   res.describe(c);
-  // The committed n = 2..125 is verify.csv; other ranges verify_A-B.csv unless a name is given.
-  const std::string stem = o.name == "verify" ? windows::verify_stem(res.range) : o.name;
+  // The stem: --name, else verify for the committed n = 2..125 and verify_A-B otherwise (default_name()).
   io::Attrs at = ctx.attrs(o, c, "windows_verify", req.precision);
-  at["name"] = stem;
-  io::ResultFiles files(o.out, stem);
-  files.text(stem + ".csv", res.csv());
+  io::ResultFiles files(o.out, o.name);
+  files.tables(res.tables());
+  files.h5(c, at);
   ctx.manifest(files, at);
   files.commit();
   std::cout << fmt::format("windows verify n = {}..{}: {} of {} checks pass ({:.1f} s); wrote {}\n", res.range.first,
                            res.range.last, res.passed, res.total, res.total_seconds,
-                           files.final_path(stem + ".csv").string());
+                           files.final_path(o.name + ".csv").string());
 }
 
 void precision(const windows::BoundPrecisionRequest& req, const Output& o, const Context& ctx) {
@@ -60,8 +59,8 @@ void precision(const windows::BoundPrecisionRequest& req, const Output& o, const
   io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));
   extras::of(req).apply(at);  // threads = 1: the study runs on one thread
   io::ResultFiles files(o.out, o.name);
-  files.text(o.name + ".csv", res.csv());
-  files.text(o.name + "_summary.csv", res.summary_csv());
+  files.tables(res.tables());
+  files.h5(c, at);
   ctx.manifest(files, at);
   if (!o.no_plot) files.plot("windows_precision.py", o.name + ".csv");
   files.commit();
@@ -98,7 +97,7 @@ struct Registration {
         "windows verify",
         "iterate the Section 4 grid inside/below each window; CSV + manifest (file stem verify for n = 2..125, else "
         "verify_A-B, unless --name is given)",
-        Output{"results/windows", "verify", "", 0, false, false}, verify);
+        Output{"results/windows", "", "", 0, false, false}, verify);
     command<windows::BoundPrecisionRequest>(
         "windows precision", "largest n with a 12-decimal bound per precision and route; CSV + PNG",
         Output{"results/windows", "precision", "", 0, false, false}, precision);

@@ -14,11 +14,14 @@
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/sweep.hpp"
+#include "extras/extras.hpp"
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <concepts>
+#include <iostream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -38,17 +41,25 @@ struct Output {
   std::string title;  // figure title
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
-  bool files = true;  // false: the command prints its result on stdout and has no out/name/title/no-plot
+  // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
+  // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
+  bool files = true;
   static Output to_stdout() {
     Output o;
     o.files = false;
     return o;
   }
+  // Whether this run writes files (a file command always; a stdout command given --out).
+  bool writes() const { return files || !out.empty(); }
   template <class V> void fields(V&& v) {
     if (files) {
       v("out", out, "output folder (created when the result is complete)");
       v("name", name, "file stem of the outputs");
       v("title", title, "figure title (r range, grid and iterations are added)");
+    } else {
+      v("out", out, "write NAME.h5, the CSV tables and NAME.json into this folder instead of printing");
+      v("name", name, "file stem of the outputs (with --out)");
+      v("title", title, "title recorded with the result (with --out)");
     }
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
@@ -182,6 +193,31 @@ struct NameLister {
 };
 
 void validate_output(const Output& o, bool threads_given);
+
+// The scalar_type attribute of a result written by write_files: the result's own, else the request's precision.
+template <class Req, class Res> std::string scalar_of(const Req& req, const Res& res) {
+  if constexpr (requires { std::string(res.scalar_type); }) return res.scalar_type;
+  else if constexpr (requires { std::string(req.precision); }) return req.precision;
+  else return "double";
+}
+
+// A stdout command given --out: the result's files as Python's Result.save() writes them (NAME.h5 when the
+// result has arrays, its CSV tables, NAME.json), so that a saved result and `btob run` of its manifest agree.
+template <class Req> void write_files(const Req& req, const Output& o, const Context& ctx, const std::string& kind) {
+  const extras::Extras ex = extras::of(req);
+  const auto res = run_with_progress(req, o, ctx, kind);
+  core::Contents c;
+  res.describe(c);
+  ex.add_to(c);
+  io::Attrs at = ctx.attrs(o, c, kind, scalar_of(req, res));
+  ex.apply(at);
+  io::ResultFiles files(o.out, o.name);
+  if constexpr (requires { res.tables(); }) files.tables(res.tables());
+  if (io::ResultFiles::has_data(c)) files.h5(c, at);
+  ctx.manifest(files, at);
+  const auto written = files.commit();
+  if (!o.quiet) std::cerr << "btob: wrote " << listing(written) << "\n";
+}
 // Adds subcommand `name` to `app`; a name of several words ("windows bounds") goes under the subcommands named by
 // the words before the last, each found or else created (a parent registered earlier keeps its help and settings).
 CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& help);
@@ -199,10 +235,11 @@ void command(const std::string& name, const std::string& help, Output output_def
     // A request may name its own file stem for when none is given (e.g. hyperbolicity_strip_r<r>).
     if constexpr (requires { { req.default_name() } -> std::convertible_to<std::string>; })
       if (out.files && out.name.empty()) out.name = req.default_name();
+    if (!out.files && out.name.empty()) out.name = name.substr(name.rfind(' ') + 1);  // "windows bounds" -> bounds
     detail::validate_output(out, threads_given);
     Args recorded;
     req.fields(detail::ArgsWriter{&recorded});
-    if (out.files) {  // what the figure says belongs to the record; where it went and how fast does not
+    if (out.writes()) {  // what the figure says belongs to the record; where it went and how fast does not
       recorded.emplace_back("name", std::vector<std::string>{out.name});
       recorded.emplace_back("title", std::vector<std::string>{out.title});
     }
@@ -213,7 +250,14 @@ void command(const std::string& name, const std::string& help, Output output_def
       if constexpr (!core::Sweep<Req>) return;
       out.quiet = true;
     }
-    body(req, out, detail::make_context(name, out, invocation, std::move(recorded)));
+    Context ctx = detail::make_context(name, out, invocation, std::move(recorded));
+    if (!out.files && !out.out.empty()) {
+      std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
+      std::replace(kind.begin(), kind.end(), ' ', '_');
+      if (mpi::rank() == 0) detail::write_files(req, out, ctx, kind);
+      return;
+    }
+    body(req, out, ctx);
   };
   registry().push_back([=](CLI::App& app) {
     struct State {

@@ -15,6 +15,15 @@ std::string& invocation() {
   return s;
 }
 
+std::string shell_quote(const std::string& word) {
+  const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_-+=.,:/@%^") == std::string::npos;
+  if (plain) return word;
+  std::string q = "'";
+  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
 ProgressAdapter& progress_adapter(io::Progress& p) {
   thread_local std::unique_ptr<ProgressAdapter> a;
   a = std::make_unique<ProgressAdapter>(&p);

@@ -14,6 +14,9 @@ namespace btob::cli {
 
 // The whole command line of this process (for provenance).
 std::string& invocation();
+// `word` as one shell word: as is when it holds only characters no shell treats specially, else in single quotes
+// (a ' inside as '\''), so that a recorded command line pasted into a shell runs the same request.
+std::string shell_quote(const std::string& word);
 inline std::string command_line_of(const CLI::App*) { return invocation(); }
 
 // Adapts io::Progress to the kernel's ProgressSink (one per thread of control, lives as long as `p`).

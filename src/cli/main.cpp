@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // A flag given twice takes its last value (scenes and scripts can override earlier flags).
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i) btob::cli::invocation() += (i ? " " : "") + btob::cli::shell_quote(argv[i]);
   for (auto& reg : btob::cli::registry()) reg(app);
   mpi::guard_root_only(app);
   std::signal(SIGINT, btob::cli::on_signal);

@@ -6,6 +6,9 @@
 #include <charconv>
 #include <cerrno>
 #include <cmath>
+#include <cctype>
+#include <climits>
+#include <cstdint>
 #include <cstdlib>
 
 namespace btob::core {
@@ -49,23 +52,77 @@ bool parse_bool(std::string_view text, const std::string& field) {
   throw InvalidField(field, quoted(text), "true or false");
 }
 
+namespace {
+// An integer written in decimal, optionally in scientific notation whose value is an exact integer: "1000000",
+// "1e6", "2.5e3", "-3E2".  Parsed with integer arithmetic only (no rounding through double): the digits of the
+// mantissa form D, f of them after the point, and the value is D * 10^(e - f), which must have no fractional
+// part ("1.5e0", "1e-3" are refused).  `magnitude` gets |value|; false when the text is not such an integer or
+// |value| >= 2^64.
+bool exact_integer(const std::string& s, bool& negative, std::uint64_t& magnitude) {
+  std::size_t i = 0;
+  negative = false;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
+  std::string digits;  // mantissa digits, the point removed
+  long frac = 0;       // how many of them were after the point
+  bool point = false;
+  for (; i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || (s[i] == '.' && !point)); ++i) {
+    if (s[i] == '.') point = true;
+    else {
+      digits += s[i];
+      frac += point ? 1 : 0;
+    }
+  }
+  if (digits.empty()) return false;
+  long exponent = 0;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    bool eneg = false;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
+    if (i == s.size()) return false;
+    for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i)
+      if ((exponent = exponent * 10 + (s[i] - '0')) > 100000) return false;
+    if (eneg) exponent = -exponent;
+  } else if (point && frac == 0) {
+    return false;  // "12." is not written as an integer
+  }
+  if (i != s.size()) return false;
+  long shift = exponent - frac;  // value = digits * 10^shift
+  while (shift < 0) {            // drop trailing zeros; a non-zero one is a fractional part
+    if (digits.back() != '0') return false;
+    digits.pop_back();
+    ++shift;
+    if (digits.empty()) digits = "0";
+  }
+  unsigned __int128 v = 0;
+  const unsigned __int128 limit = static_cast<unsigned __int128>(UINT64_MAX);
+  for (char c : digits)
+    if ((v = v * 10 + static_cast<unsigned>(c - '0')) > limit) return false;
+  for (long k = 0; k < shift && v != 0; ++k)
+    if ((v *= 10) > limit) return false;
+  magnitude = static_cast<std::uint64_t>(v);
+  return true;
+}
+constexpr const char* integer_forms = "(1000000, or exactly in scientific notation: 1e6, 2.5e3)";
+}  // namespace
+
 long parse_long(std::string_view text, const std::string& field) {
   const std::string s(trim(text));
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE) throw InvalidField(field, quoted(text), "an integer");
-  return v;
+  bool negative = false;
+  std::uint64_t m = 0;
+  const std::uint64_t max = static_cast<std::uint64_t>(LONG_MAX);
+  if (!exact_integer(s, negative, m) || m > max + (negative ? 1 : 0))
+    throw InvalidField(field, quoted(text), fmt::format("an integer {}", integer_forms));
+  if (negative) return m == max + 1 ? LONG_MIN : -static_cast<long>(m);
+  return static_cast<long>(m);
 }
 
 std::uint64_t parse_u64(std::string_view text, const std::string& field) {
   const std::string s(trim(text));
-  errno = 0;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
-  if (s.empty() || s.front() == '-' || end != s.c_str() + s.size() || errno == ERANGE)
-    throw InvalidField(field, quoted(text), "a non-negative integer below 2^64");
-  return v;
+  bool negative = false;
+  std::uint64_t m = 0;
+  if (!exact_integer(s, negative, m) || (negative && m != 0))
+    throw InvalidField(field, quoted(text), fmt::format("a non-negative integer below 2^64 {}", integer_forms));
+  return m;
 }
 
 double parse_double(std::string_view text, const std::string& field) {

@@ -33,8 +33,8 @@ struct ArrayView {
 };
 
 // Exact decimal numbers as text (multiprecision values: window bounds, thresholds), one per element: Python
-// returns them as decimal.Decimal, never rounded to double.  The HDF5 writer does not store them (the command
-// line prints them in its CSV).
+// returns them as decimal.Decimal, never rounded to double; the HDF5 writer stores them as string datasets.
+// The same view holds names that are data (Contents::texts: words, overlay names), strings in Python and HDF5.
 struct DecimalView {
   std::string name, axes, units, description;
   const std::vector<std::string>* data;
@@ -52,7 +52,12 @@ inline std::string table_file(const std::string& name, const std::string& role) 
 struct Contents {
   std::vector<ArrayView> arrays;
   std::vector<DecimalView> decimals;
+  std::vector<DecimalView> texts;  // 1-D string data (word names, overlay names)
   Attrs attrs;
+  // Coordinates of axes: axis label (as an array's `axes` names it) -> the 1-D array holding that axis's values.
+  // An axis label that is itself the name of a 1-D array of the right length needs no entry.  The HDF5 writer
+  // attaches these arrays as dimension scales (H5DS) to every dataset with that axis.
+  std::map<std::string, std::string> coordinates;
 
   template <class V>
   void array(std::string name, const std::vector<V>& v, std::vector<std::size_t> dims, std::string axes,
@@ -63,7 +68,13 @@ struct Contents {
                std::string description) {
     decimals.push_back({std::move(name), std::move(axes), std::move(units), std::move(description), &v});
   }
+  void text(std::string name, const std::vector<std::string>& v, std::string axes, std::string units,
+            std::string description) {
+    texts.push_back({std::move(name), std::move(axes), std::move(units), std::move(description), &v});
+  }
   void attr(const std::string& name, AttrValue v) { attrs[name] = std::move(v); }
+  // Declares array `array` (added with array()) as the coordinates of axis `label`.
+  void coordinate(const std::string& label, const std::string& array) { coordinates[label] = array; }
   const ArrayView* find(const std::string& name) const {
     for (const auto& a : arrays)
       if (a.name == name) return &a;

@@ -43,30 +43,63 @@ void check_overlays(const std::vector<std::string>& names) {
     if (!overlays().count(n)) throw core::InvalidField("overlay", "'" + n + "'", "one of " + overlay_names());
 }
 
-std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max) {
+namespace {
+// What a line of an overlay is: the thresholds by name, the other overlays by colour (windows: r_crit,2(n) red,
+// lower bounds blue; stripes: r(l/m)).
+std::string line_label(const std::string& overlay, double r, int colour) {
+  if (overlay == "thresholds") {
+    const std::pair<double, const char*> known[] = {{7 - 4 * std::sqrt(3.0), "7-4sqrt3 (three-particle collapse)"},
+                                                     {3 - 2 * std::sqrt(2.0), "3-2sqrt2 (end of the (ab)^2(cb)^2 window)"},
+                                                     {5 - 2 * std::sqrt(6.0), "5-2sqrt6 (end of the (ab)^3(cb)^3 window)"},
+                                                     {std::cbrt(4.0) - 1, "2^(2/3)-1 (no four-particle collapse above)"}};
+    for (const auto& [v, name] : known)
+      if (v == r) return std::string("thresholds: ") + name;
+  }
+  if (overlay == "windows") return colour == 0 ? "windows: r_crit,2(n)" : "windows: lower bound of a window";
+  if (overlay == "stripes") return "stripes: thin stripe r(l/m), eq. (6.3)";
+  return overlay;
+}
+}  // namespace
+
+std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
+                                   std::vector<std::string>* labels) {
   check_overlays(names);
   std::vector<double> out;
+  std::vector<std::string> lab;
   for (const auto& n : names) {
     auto it = overlays().find(n);
-    for (const auto& [r, colour] : it->second(r_min, r_max))
-      if (r >= r_min && r <= r_max) {
-        out.push_back(r);
-        out.push_back(colour);
+    for (const auto& [r, colour] : it->second(r_min, r_max)) {
+      if (!(r >= r_min && r <= r_max)) continue;
+      // One line per r: a value two overlays share (3-2sqrt2 is a threshold and r_crit,2(2)) is drawn once, its
+      // labels joined; 1e-12 relative: the routes round the same number differently by a few ulps at most.
+      std::size_t k = 0;
+      while (k < lab.size() && !(std::fabs(out[2 * k] - r) <= 1e-12 * std::fabs(r))) ++k;
+      const std::string l = line_label(n, r, colour);
+      if (k < lab.size()) {
+        lab[k] += "; " + l;
+        continue;
       }
+      out.push_back(r);
+      out.push_back(colour);
+      lab.push_back(l);
+    }
   }
+  if (labels) *labels = std::move(lab);
   return out;
 }
 
 void Extras::add_to(core::Contents& c) const {
-  if (has_overlay)
-    c.array("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2}, "line, (r, colour)", "1",
-            "r values of the named overlays and their colour code (0 red, 1 blue, 2 grey)");
+  if (!has_overlay) return;
+  c.array("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2}, "line, (r, colour)", "1",
+          "r values of the named overlays (column 0) and their colour code (column 1: 0 red, 1 blue, 2 grey); "
+          "overlay_labels names each line");
+  c.text("overlay_labels", overlay_labels, "line", "name", "what each line of overlay_lines is (overlay: value)");
 }
 
 Extras of(const bifurcation::Request& req) {
   Extras e;
   e.has_overlay = true;
-  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max);
+  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels);
   return e;
 }
 
@@ -90,7 +123,7 @@ Extras of(const lyapunov::MapRequest& req) {
   std::vector<std::string> names = req.overlay;
   if (names.empty()) names = {"thresholds", "windows"};
   e.has_overlay = true;
-  e.overlay_lines = overlay_values(names, req.r_min, req.r_max);
+  e.overlay_lines = overlay_values(names, req.r_min, req.r_max, &e.overlay_labels);
   e.attrs["overlays"] = fmt::format("{}", fmt::join(names, ","));
   return e;
 }
@@ -98,8 +131,9 @@ Extras of(const lyapunov::MapRequest& req) {
 Extras of(const lyapunov::StripRequest& req) {
   Extras e = lyapunov_common(req);
   e.attrs["r"] = req.r;
-  e.attrs["w1_min"] = req.w1_min;
-  e.attrs["w1_max"] = req.w1_max;
+  const iterate::StripSpec g = req.spec();
+  e.attrs["w1_min"] = g.w1_min;
+  e.attrs["w1_max"] = g.w1_max;
   e.attrs["alpha"] = core::alpha(req.r);
   return e;
 }

@@ -18,12 +18,15 @@ namespace btob::extras {
 // The names of the overlays ("stripes, thresholds, windows").
 std::string overlay_names();
 // The lines of the named overlays inside [r_min, r_max], flattened as (r, colour) pairs (colour 0 red, 1 blue,
-// 2 grey); an unknown name throws core::InvalidField("overlay", ...).
-std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max);
+// 2 grey), one per r value (a value of two overlays once); `labels` (when given) gets what each line is.  An
+// unknown name throws core::InvalidField("overlay", ...).
+std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
+                                   std::vector<std::string>* labels = nullptr);
 
 struct Extras {
   bool has_overlay = false;
   std::vector<double> overlay_lines;  // the storage the overlay_lines array views: keep Extras alive with the Contents
+  std::vector<std::string> overlay_labels;  // what each line is (the overlay_labels texts view it)
   core::Attrs attrs;                  // set after the provenance and kind/name/... attributes (they override)
   // Adds the overlay_lines array (when the command has one) to `c`.
   void add_to(core::Contents& c) const;

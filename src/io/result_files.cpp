@@ -2,6 +2,7 @@
 #include "io/result_files.hpp"
 
 #include <H5Cpp.h>
+#include <hdf5_hl.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -81,6 +82,60 @@ void string_attr(H5::H5Object& o, const std::string& k, const std::string& v) {
   H5::DataSpace scalar(H5S_SCALAR);
   o.createAttribute(k, t, scalar).write(t, v);
 }
+// A 1-D dataset of variable-length UTF-8 strings (exact decimals, word names) with units, axes and description.
+void string_dataset(H5::H5File& file, const core::DecimalView& d) {
+  H5::StrType t(H5::PredType::C_S1, H5T_VARIABLE);
+  t.setCset(H5T_CSET_UTF8);
+  const hsize_t n = d.data->size();
+  H5::DataSpace space(1, &n);
+  H5::DataSet ds = file.createDataSet(d.name, t, space);
+  std::vector<const char*> ptrs;
+  for (const auto& s : *d.data) ptrs.push_back(s.c_str());
+  if (n > 0) ds.write(ptrs.data(), t);
+  string_attr(ds, "units", d.units);
+  string_attr(ds, "axes", d.axes);
+  string_attr(ds, "description", d.description);
+}
+
+// The axis labels of an array ("r, theta bin" -> {"r", "theta bin"}).
+std::vector<std::string> axis_labels(const std::string& axes) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= axes.size()) {
+    std::size_t end = axes.find(',', start);
+    if (end == std::string::npos) end = axes.size();
+    std::string l = axes.substr(start, end - start);
+    while (!l.empty() && l.front() == ' ') l.erase(l.begin());
+    while (!l.empty() && l.back() == ' ') l.pop_back();
+    out.push_back(l);
+    start = end + 1;
+  }
+  return out;
+}
+
+// Dimension scales: each axis of each dataset whose coordinates are an array of the result (the axis label
+// itself, or Contents::coordinates[label]) gets that array attached as its H5DS scale, named by the label.
+void attach_scales(H5::H5File& file, const core::Contents& c) {
+  std::map<std::string, bool> is_scale;
+  for (const auto& a : c.arrays) {
+    const std::vector<std::string> labels = axis_labels(a.axes);
+    if (labels.size() != a.dims.size()) continue;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      const auto it = c.coordinates.find(labels[i]);
+      const std::string coord = it != c.coordinates.end() ? it->second : labels[i];
+      const core::ArrayView* s = c.find(coord);
+      if (!s || s == &a || s->dims.size() != 1 || s->dims[0] != a.dims[i]) continue;
+      H5::DataSet scale = file.openDataSet(coord), ds = file.openDataSet(a.name);
+      if (!is_scale[coord] && H5DSset_scale(scale.getId(), labels[i].c_str()) < 0)
+        throw H5::DataSetIException("H5DSset_scale", coord);
+      is_scale[coord] = true;
+      if (H5DSattach_scale(ds.getId(), scale.getId(), static_cast<unsigned>(i)) < 0)
+        throw H5::DataSetIException("H5DSattach_scale", a.name);
+      if (H5DSset_label(ds.getId(), static_cast<unsigned>(i), labels[i].c_str()) < 0)
+        throw H5::DataSetIException("H5DSset_label", a.name);
+    }
+  }
+}
 }  // namespace
 
 void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
@@ -141,6 +196,9 @@ void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
           },
           a.data);
     }
+    for (const auto* list : {&c.decimals, &c.texts})
+      for (const auto& d : *list) string_dataset(file, d);
+    attach_scales(file, c);
     file.close();
   } catch (const H5::Exception& e) {
     // Disk full, permission denied, a vanished folder: one line naming the file (the detail is HDF5's).
@@ -164,30 +222,33 @@ void ResultFiles::manifest(const Attrs& attrs, const std::string& command,
   text(name_ + ".json", j.dump(2) + "\n");
 }
 
-void ResultFiles::plot(const std::string& script) { plot(script, name_ + ".h5"); }
+bool ResultFiles::plot(const std::string& script) { return plot(script, name_ + ".h5"); }
 
-void ResultFiles::plot(const std::string& script, const std::string& input) { plot_inputs(script, {input}); }
+bool ResultFiles::plot(const std::string& script, const std::string& input) { return plot_inputs(script, {input}); }
 
-void ResultFiles::plot_inputs(const std::string& script, const std::vector<std::string>& inputs) {
+bool ResultFiles::plot_inputs(const std::string& script, const std::vector<std::string>& inputs) {
   std::vector<std::string> args;
   for (const auto& f : inputs) args.push_back(staged(f).string());
   args.push_back(staged(name_ + ".png").string());
-  run_plot(script, args);
+  const bool ran = run_plot(script, args);
   std::error_code ec;
-  if (!fs::exists(tmp_ / (name_ + ".png"), ec)) files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
+  if (fs::exists(tmp_ / (name_ + ".png"), ec)) return ran;
+  files_.erase(std::remove(files_.begin(), files_.end(), name_ + ".png"), files_.end());
+  return false;
 }
 
-void ResultFiles::plot_figures(const std::string& script, const std::vector<std::string>& inputs) {
+bool ResultFiles::plot_figures(const std::string& script, const std::vector<std::string>& inputs) {
   std::vector<std::string> args;
   for (const auto& f : inputs) args.push_back(staged(f).string());
   args.push_back(tmp_.string());
-  run_plot(script, args);
+  const bool ran = run_plot(script, args);
   std::error_code ec;
   std::vector<std::string> images;
   for (const auto& e : fs::directory_iterator(tmp_, ec))
     if (e.path().extension() == ".png" || e.path().extension() == ".gif") images.push_back(e.path().filename().string());
   std::sort(images.begin(), images.end());  // a stable listing
   for (const auto& f : images) staged(f);
+  return ran && !images.empty();
 }
 
 std::vector<fs::path> ResultFiles::commit() {

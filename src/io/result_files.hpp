@@ -27,9 +27,14 @@ class ResultFiles {
   // Where `filename` will be after commit() (for messages and manifests).
   fs::path final_path(const std::string& filename) const { return out_ / filename; }
 
-  // NAME.h5: every array of `c` with its dims, and on each dataset the string attributes units, axes and
-  // description; `attrs` (provenance and summary) as file attributes.
+  // NAME.h5: every array of `c` with its dims, its decimals and texts as string datasets, on each dataset the
+  // string attributes units, axes and description, and each axis's coordinates attached as an HDF5 dimension
+  // scale (Contents::coordinates); `attrs` (provenance and summary) as file attributes.
   void h5(const core::Contents& c, const Attrs& attrs);
+  // Whether `c` has anything for NAME.h5 (arrays, decimals, texts, or only attributes: a verdict).
+  static bool has_data(const core::Contents& c) {
+    return !c.arrays.empty() || !c.decimals.empty() || !c.texts.empty() || !c.attrs.empty();
+  }
   // A text file (CSV, ...).
   void text(const std::string& filename, const std::string& content);
   // A result's CSV tables (core::Tables), each to its core::table_file(NAME, role).
@@ -38,15 +43,15 @@ class ResultFiles {
   void manifest(const Attrs& attrs, const std::string& command,
                 const std::vector<std::pair<std::string, std::vector<std::string>>>& args);
   // Runs analyses/plot/<script> on the staged NAME.h5 writing the staged NAME.png (a warning, not an error, when
-  // matplotlib is missing).
-  void plot(const std::string& script);
+  // matplotlib is missing or the script fails); true when the figure was written.
+  bool plot(const std::string& script);
   // The same on the staged file `input` of this result (a CSV, say) instead of NAME.h5.
-  void plot(const std::string& script, const std::string& input);
+  bool plot(const std::string& script, const std::string& input);
   // The same on several staged files of this result, passed in this order before NAME.png.
-  void plot_inputs(const std::string& script, const std::vector<std::string>& inputs);
+  bool plot_inputs(const std::string& script, const std::vector<std::string>& inputs);
   // A script that draws several figures: runs it on the staged `inputs` and the staging folder (last argument),
   // and keeps every PNG and GIF it wrote there (figure families such as Figures 7.1-7.8, animations).
-  void plot_figures(const std::string& script, const std::vector<std::string>& inputs);
+  bool plot_figures(const std::string& script, const std::vector<std::string>& inputs);
 
   // Moves every staged file into out/ (creating it), the manifest last; returns the final paths.  Throws with
   // the file and the cause when the output folder cannot be made or written.

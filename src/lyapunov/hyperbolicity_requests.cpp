@@ -98,6 +98,8 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
     expanding += m.s1[i] >= 1;
   }
   m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
+  for (long i = 0; i < s.n1; ++i) res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.n2)]);  // (i, j) at i n2 + j
+  for (long j = 0; j < s.n2; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
   for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
   return res;
 }
@@ -115,6 +117,10 @@ void HyperbolicityResult::describe(core::Contents& c) const {
   c.array("symbol", m.symbol, dims, axes, "branch", "branch 1, 2 or 3 of the map at the cell centre");
   c.array("w1", m.w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
   c.array("w2", m.w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
+  c.array("w1_cell", w1_cell, {w1_cell.size()}, "w1 cell", "1", "strip coordinate w1 (eq. (6.4)) of each column of cells");
+  c.array("w2_cell", w2_cell, {w2_cell.size()}, "w2 cell", "1", "strip coordinate w2 (eq. (6.4)) of each row of cells");
+  c.coordinate("w1 cell", "w1_cell");
+  c.coordinate("w2 cell", "w2_cell");
   c.attr("r", request.r);
   c.attr("alpha", core::alpha(request.r));
   c.attr("grid", fmt::format("strip:{}x{}:{}:{}", m.n1, m.n2, m.w1_min, m.w1_max));

@@ -37,6 +37,7 @@ struct HyperbolicityRequest {
 struct HyperbolicityResult {
   HyperbolicityRequest request;
   StripSingularValues image;  // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
+  std::vector<double> w1_cell, w2_cell;  // [n1], [n2]: the cell centres along each axis
   double seconds = 0;
 
   // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.

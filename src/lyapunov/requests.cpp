@@ -146,14 +146,15 @@ void MapRequest::validate() const {
 
 void StripRequest::validate() const {
   core::require_r(r, "r");
-  if (n1 < 1 || n2 < 1)
-    throw core::InvalidField("size", fmt::format("{}x{}", n1, n2), "positive numbers of cells n1 x n2");
-  if (!(w1_min < w1_max))
-    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_min, w1_max), "w1-min < w1-max");
+  const iterate::StripSpec g = spec();
+  if (g.n1 < 1 || g.n2 < 1)
+    throw core::InvalidField("grid", "'" + grid + "'", "strip:NxM[:w1min:w1max] with N, M >= 1");
+  if (!(g.w1_min < g.w1_max))
+    throw core::InvalidField("grid", "'" + grid + "'", "strip:NxM:w1min:w1max with w1min < w1max");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
   check_range(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
-  iterate::checked_bytes(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 200, "n1 x n2");
+  iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 200, "grid");
 }
 
 namespace {
@@ -253,8 +254,9 @@ MapResult run(const MapRequest& req, const core::RunControl& control) {
 
 MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  const auto grid = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);  // cell (i, j) at i * n2 + j
-  const std::size_t n2 = static_cast<std::size_t>(req.n2);
+  const iterate::StripSpec g = req.spec();
+  const auto grid = iterate::strip_grid(g.n1, g.n2, g.w1_min, g.w1_max);  // cell (i, j) at i * n2 + j
+  const std::size_t n2 = static_cast<std::size_t>(g.n2);
   iterate::Ensemble ens;
   ens.set_r_list({req.r});
   for (std::size_t i : items)
@@ -266,17 +268,20 @@ MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items,
 
 MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {
   req.validate();
-  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(req.n2), req.iterations, req.blocks);
+  const iterate::StripSpec g = req.spec();
+  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(g.n2), req.iterations, req.blocks);
   iterate::Ensemble& ens = res.ensemble;
   ens.set_r_list({req.r});
-  ens.initial = iterate::strip_grid(req.n1, req.n2, req.w1_min, req.w1_max);
-  ens.grid_description = fmt::format("strip:{}x{}:{}:{}", req.n1, req.n2, req.w1_min, req.w1_max);
-  res.n1 = static_cast<std::size_t>(req.n1);
-  res.n2 = static_cast<std::size_t>(req.n2);
+  ens.initial = iterate::strip_grid(g.n1, g.n2, g.w1_min, g.w1_max);
+  ens.grid_description = fmt::format("strip:{}x{}:{}:{}", g.n1, g.n2, g.w1_min, g.w1_max);
+  res.n1 = static_cast<std::size_t>(g.n1);
+  res.n2 = static_cast<std::size_t>(g.n2);
   res.w1.resize(res.ensemble.initial.size());
   res.w2.resize(res.ensemble.initial.size());
   for (std::size_t i = 0; i < res.ensemble.initial.size(); ++i)
     std::tie(res.w1[i], res.w2[i]) = core::strip<double>(res.ensemble.initial[i]);
+  for (std::size_t i = 0; i < res.n1; ++i) res.w1_cell.push_back(res.w1[i * res.n2]);  // cell (i, j) at i * n2 + j
+  for (std::size_t j = 0; j < res.n2; ++j) res.w2_cell.push_back(res.w2[j]);
   return res;
 }
 
@@ -306,6 +311,10 @@ void MapResult::describe(core::Contents& c) const {
   if (strip) {
     c.array("w1", w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
     c.array("w2", w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
+    c.array("w1_cell", w1_cell, {n1}, "w1 cell", "1", "strip coordinate w1 (eq. (6.4)) of each column of cells");
+    c.array("w2_cell", w2_cell, {n2}, "w2 cell", "1", "strip coordinate w2 (eq. (6.4)) of each row of cells");
+    c.coordinate("w1 cell", "w1_cell");
+    c.coordinate("w2 cell", "w2_cell");
   } else {
     const std::string s = "of lambda1 over the initial conditions at each r";
     c.array("min", summary.min, {R}, "r", per, "minimum " + s);

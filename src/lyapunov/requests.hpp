@@ -74,21 +74,19 @@ struct MapRequest {
 };
 
 struct StripRequest {
-  core::Decimal r = 0.3;               // restitution coefficient, in (0, 1), kept as given (float reads it)
-  long n1 = 200, n2 = 100;             // cells along w1 and w2
-  double w1_min = -2, w1_max = 2;      // w1 range of the strip (w2 runs over [-1, 1])
+  core::Decimal r = 0.3;                     // restitution coefficient, in (0, 1), kept as given (float reads it)
+  std::string grid = "strip:200x100";        // cells n1 along w1 x n2 along w2, w1 range (default [-2, 2])
   long iterations = 5000, transient = 500;
   int blocks = 10;
   std::string precision = "double";
 
   void validate() const;
-  std::size_t work_items() const { return static_cast<std::size_t>(n1); }  // columns of w1 cells (core/sweep.hpp)
+  // The grid as numbers: "strip:NxM[:w1min:w1max]" (iterate::parse_strip, the grid grammar's one reader).
+  iterate::StripSpec spec() const { return iterate::parse_strip(grid, "grid"); }
+  std::size_t work_items() const { return static_cast<std::size_t>(spec().n1); }  // columns of w1 cells (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
-    v("n1", n1, "cells along w1");
-    v("n2", n2, "cells along w2");
-    v("w1-min", w1_min, "smallest w1");
-    v("w1-max", w1_max, "largest w1");
+    v("grid", grid, "strip:NxM[:w1min:w1max]: N cells along w1 x M along w2 (w2 in [-1, 1], w1 by default in [-2, 2])");
     v("iterations", iterations, "averaged map iterations per orbit");
     v("transient", transient, "iterations discarded first (orbit and tangent vector)");
     v("blocks", blocks, "batch-means blocks for the error bars");
@@ -103,6 +101,7 @@ struct MapResult {
   OrbitExponents exponents;
   RSummary summary;                  // lyapunov-map only
   std::vector<double> w1, w2;        // lyapunov-strip only: the cell centres, n1 x n2
+  std::vector<double> w1_cell, w2_cell;  // lyapunov-strip only: the cell centres along each axis, [n1] and [n2]
   std::size_t n1 = 0, n2 = 0;        // lyapunov-strip only
   double iteration_seconds = 0;
   // lyapunov-map --precision float only: the orbits of every k-th r value (at most 64 r values) re-run in double,

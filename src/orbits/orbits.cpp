@@ -32,9 +32,10 @@ void StripOrbitsRequest::validate() const {
     throw core::InvalidField("iterations", fmt::format("{}", iterations), fmt::format("tail ({})..1e7", tail));
   if (static_cast<double>(orbits) * static_cast<double>(tail) > 1e8)
     throw core::InvalidField("tail", fmt::format("{}", tail), "orbits * tail <= 1e8 (memory)");
-  if (!(std::abs(w1_min) <= 1e6)) throw core::InvalidField("w1-min", fmt::format("{}", w1_min), "|w1-min| <= 1e6");
-  if (!(std::abs(w1_max) <= 1e6) || !(w1_max > w1_min))
-    throw core::InvalidField("w1-max", fmt::format("{}", w1_max), fmt::format("w1-min ({}) < w1-max <= 1e6", w1_min));
+  if (w1_range.size() != 2)
+    throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
+  if (!(std::abs(w1_range[0]) <= 1e6 && std::abs(w1_range[1]) <= 1e6 && w1_range[0] < w1_range[1]))
+    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_range[0], w1_range[1]), "a < b, |a|, |b| <= 1e6");
 }
 
 const char* panel_word(attractors::Type t) {
@@ -57,10 +58,10 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   ens.r = {q.r};
   ens.seed = q.seed;
   ens.grid_description = fmt::format("random strip points: w1 uniform in [{}, {}], w2 uniform in (-1, 1), seed {}",
-                                     q.w1_min, q.w1_max, q.seed);
+                                     q.w1_range[0], q.w1_range[1], q.seed);
   for (long i = 0; i < q.orbits; ++i) {
     const std::uint64_t base = splitmix(q.seed ^ splitmix(static_cast<std::uint64_t>(i)));
-    const double w1 = q.w1_min + (q.w1_max - q.w1_min) * unit_open(splitmix(base + 1));
+    const double w1 = q.w1_range[0] + (q.w1_range[1] - q.w1_range[0]) * unit_open(splitmix(base + 1));
     const double w2 = 2 * unit_open(splitmix(base + 2)) - 1;
     res.start_w1.push_back(w1);
     res.start_w2.push_back(w2);
@@ -115,10 +116,10 @@ void StripOrbitsResult::describe(core::Contents& c) const {
   c.attr("iterations", request.iterations);
   c.attr("tail", request.tail);
   c.attr("seed", static_cast<long>(request.seed));
-  c.attr("w1_min", request.w1_min);
-  c.attr("w1_max", request.w1_max);
+  c.attr("w1_min", request.w1_range[0]);
+  c.attr("w1_max", request.w1_range[1]);
   c.attr("initial_conditions", fmt::format("random strip points: w1 uniform in [{}, {}], w2 uniform in (-1, 1), seed {}",
-                                           request.w1_min, request.w1_max, request.seed));
+                                           request.w1_range[0], request.w1_range[1], request.seed));
   c.attr("periodic", static_cast<long>(periodic));
   c.attr("quasi_periodic", static_cast<long>(quasi_periodic));
   c.attr("other", static_cast<long>(other));

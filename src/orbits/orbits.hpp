@@ -25,8 +25,7 @@ struct StripOrbitsRequest {
   long iterations = 5000;     // map iterations per orbit, tail .. 1e7
   long tail = 2000;           // last states kept per orbit, 1 .. iterations (and orbits * tail <= 1e8)
   std::uint64_t seed = 1;     // seed of the initial conditions
-  double w1_min = -2;         // initial w1 range (strip units), w1-min < w1-max, |w1| <= 1e6
-  double w1_max = 2;
+  std::vector<double> w1_range{-2, 2};  // initial w1 range a,b (strip units), a < b, |a|, |b| <= 1e6
 
   void validate() const;
   template <class V> void fields(V&& v) {
@@ -35,8 +34,7 @@ struct StripOrbitsRequest {
     v("iterations", iterations, "map iterations per orbit, tail..1e7");
     v("tail", tail, "last states kept per orbit, 1..iterations");
     v("seed", seed, "seed of the random initial points");
-    v("w1-min", w1_min, "initial points: smallest w1");
-    v("w1-max", w1_max, "initial points: largest w1");
+    v("w1-range", w1_range, "initial points: w1 range a,b");
   }
 };
 

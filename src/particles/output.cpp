@@ -43,7 +43,7 @@ std::string ParticlesResult::row_csv(bool header) const {
 
 std::string ParticlesResult::csv() const {
   core::CsvTable t(std::string(row_header()) +
-                   ",digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
+                   ",word_digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
                    "length_spread,energy_ratio,collisions_unrescaled,collisions_limit_predicted,failure");
   t.line(row() + fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}", digits, core::csv_text(outcome), periods_ok,
                              g15(velocity_contraction), g15(velocity_predicted), g15(time_contraction), g15(time_predicted),
@@ -85,7 +85,7 @@ void ParticlesResult::describe(core::Contents& c) const {
     return std::string(std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
   };
   c.attr("word", word);
-  c.attr("digits", digits);
+  c.attr("word_digits", digits);  // the word in digits 1, 2, 3 (not a precision)
   c.attr("letters", letters);
   c.attr("outcome", outcome);
   c.attr("r", r);

@@ -314,15 +314,27 @@ std::string detection_status(const AtlasRequest& req, const std::vector<AtlasEnt
 // `d` is the detection at Table 6.1's r values, in their order.
 void check(const AtlasRequest& req, const std::vector<double>& grid, const DetectionRun& d, AtlasResult& res) {
   const std::vector<double>& rs = d.r;
-  core::CsvTable det("r,word,symbols,collisions,count,ics,periodic_fraction,status");
+  // Per r: symbol_periodic_fraction counts the orbits whose symbol sequence is eventually periodic, which includes
+  // the invariant curves of P2 (symbols 222..., quasi-periodic in the state); periodic_fraction counts only the
+  // orbits whose word the row's status does not call quasi-periodic (periodic orbits of the map itself).
+  core::CsvTable det("r,word,symbols,collisions,count,ics,symbol_periodic_fraction,periodic_fraction,status");
   std::set<std::pair<double, Word>> seen;
+  std::vector<std::string> status;
+  std::vector<long> periodic(rs.size(), 0);
   for (const auto& f : d.found) {
+    status.push_back(detection_status(req, res.entries, f, res));
+    const std::size_t ir = static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin());
+    if (status.back().rfind("quasi-periodic", 0) != 0) periodic[ir] += f.count;
+  }
+  for (std::size_t k = 0; k < d.found.size(); ++k) {
+    const Detected& f = d.found[k];
     seen.insert({f.r, f.word});
     const std::size_t ir = static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin());
+    const double ics = static_cast<double>(d.ics);
     det.row({fmt::format("{}", f.r), to_paper(f.word), fmt::format("{}", f.word.size()),
              fmt::format("{}", collisions(f.word)), fmt::format("{}", f.count), fmt::format("{}", d.ics),
-             fmt::format("{:.4f}", static_cast<double>(d.periodic[ir]) / static_cast<double>(d.ics)),
-             detection_status(req, res.entries, f, res)});
+             fmt::format("{:.4f}", static_cast<double>(d.periodic[ir]) / ics),
+             fmt::format("{:.4f}", static_cast<double>(periodic[ir]) / ics), status[k]});
   }
   // Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas.
   std::vector<AtlasEntry> long_entries;
@@ -363,6 +375,7 @@ void stable_atlas(const AtlasRequest& req, AtlasResult& res, const DetectionRun*
       res.r_low.push_back(iv.lo);
       res.r_high.push_back(iv.hi);
       res.symbols.push_back(static_cast<double>(e.word.size()));
+      res.word.push_back(to_paper(e.word));
       res.stable.push_back(1);
     }
   }
@@ -383,6 +396,7 @@ void feasible_atlas(AtlasResult& res, const std::vector<std::vector<Followed>>& 
       res.r_low.push_back(iv.lo);
       res.r_high.push_back(iv.hi);
       res.symbols.push_back(static_cast<double>(e.word.size()));
+      res.word.push_back(to_paper(e.word));
       res.stable.push_back(iv.outcome == Outcome::stable ? 1 : 0);
     }
     res.stable_words += st;
@@ -531,6 +545,7 @@ void AtlasResult::describe(core::Contents& c) const {
   c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the intervals in r");
   c.array("symbols", symbols, {symbols.size()}, "interval", "symbols", "length of the interval's word");
   c.array("stable", stable, {stable.size()}, "interval", "1", "1: a stable periodic orbit on the interval, 0: unstable");
+  c.text("word", word, "interval", "word", "the interval's word in the paper's notation (e.g. 132^3312^3)");
   c.attr("max_length", request.max_length);
   c.attr("words", words_scanned);
   c.attr("words_scanned", words_scanned);

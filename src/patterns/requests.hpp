@@ -114,6 +114,7 @@ struct AtlasResult {
   core::Tables csv;  // (role, content) in writing order: NAME.csv, NAME_detected.csv, ...
   std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
   std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
+  std::vector<std::string> word;                          // per row: the word, paper notation
 
   core::Tables tables() const { return csv; }
   std::string summary() const;             // the lines the command line prints

@@ -34,8 +34,8 @@ void TradeoffRequest::validate() const {
   if (orbits < 1 || orbits > 4096) throw core::InvalidField("orbits", std::to_string(orbits), "1..4096");
   if (iterations < 10 || iterations > 1000000)
     throw core::InvalidField("iterations", std::to_string(iterations), "10..1000000");
-  if (r.empty()) throw core::InvalidField("r", "no value", "one or more r values in (0, 1)");
-  for (double v : r) core::require_r(v, "r");
+  if (r.empty()) throw core::InvalidField("r-values", "no value", "one or more r values in (0, 1)");
+  for (double v : r) core::require_r(v, "r-values");
   if (window_n.empty()) throw core::InvalidField("window-n", "no value", "one or more integers 2..400");
   for (double n : window_n)
     if (!(n >= 2 && n <= 400 && n == std::floor(n))) throw core::InvalidField("window-n", fmt::format("{}", n), "2..400");

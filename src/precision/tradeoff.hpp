@@ -26,7 +26,7 @@ struct TradeoffRequest {
   template <class V> void fields(V&& v) {
     v("orbits", orbits, "random initial conditions per r");
     v("iterations", iterations, "symbols compared per orbit");
-    v("r", r, "r values of the symbol comparison");
+    v("r-values", r, "r values of the symbol comparison");
     v("window-n", window_n, "window indices n tested near 7-4*sqrt(3)");
     v("seed", seed, "seed of the random initial conditions");
   }

@@ -162,7 +162,6 @@ void CorrelateResult::describe(core::Contents& c) const {
   if (fitted) {  // what the fit measured, only what it measured (stats.hpp, Decay)
     c.attr("decay_verdict", decay.verdict);
     c.attr("decay_reason", decay.reason);
-    c.attr("decays", std::string(decay.decays ? "yes" : "no"));
     c.attr("decay_windows", decay.windows);
     c.attr("decay_window_lags", request.window);
     c.attr("decay_fit_lags", request.fit_lags);

@@ -42,6 +42,8 @@ void TransferResult::describe(core::Contents& c) const {
   const std::vector<std::size_t> box_dims{static_cast<std::size_t>(part.n1), static_cast<std::size_t>(part.n2)};
   const std::string box_axes = "first chart coordinate, second chart coordinate";
   const bool spectrum = request.spectrum();  // eigenvalues 0: no spectrum, none of what needs eigenvectors
+  c.text("attractors_found", attractors_found, "attractor", "word",
+         "stable periodic attractors found in the closed classes (paper notation; without --cycle only)");
   if (spectrum) {
     c.array("density", density, box_dims, box_axes, "mass per box",
             "sum over the components of their Lebesgue fraction times their invariant density");

@@ -21,6 +21,7 @@
 #include "core/coords.hpp"
 #include "core/map.hpp"
 #include "iterate/ensemble.hpp"
+#include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
 #include "stats/stats.hpp"
 #include "transfer/transfer_impl.hpp"
@@ -711,6 +712,35 @@ stats::Measure coarsen(const stats::Measure& m, int b1, int b2) {
 }
 }  // namespace
 
+namespace {
+// The periodic attractor a closed class holds, named by its symbols: from the centre of the class's first box,
+// 20000 steps of P_r (the state renormalised each step); the eventual period (<= 1024) of the last 4096 symbols
+// gives the word, canonical and in the paper's notation.  "" when the symbols are not periodic (chaos) or the
+// word is not a stable periodic orbit at r (the invariant curves of P2 repeat the symbol 2 but are no cycle).
+std::string class_attractor(const Partition& part, Domain dom, const Decomposition& d, std::uint32_t cls, double r) {
+  long box = -1;
+  for (std::size_t i = 0; i < d.class_of_box.size() && box < 0; ++i)
+    if (d.class_of_box[i] == cls) box = static_cast<long>(i);
+  if (box < 0) return "";
+  const double a = part.lo1 + (static_cast<double>(box / part.n2) + 0.5) * (part.hi1 - part.lo1) / static_cast<double>(part.n1);
+  const double b = part.lo2 + (static_cast<double>(box % part.n2) + 0.5) * (part.hi2 - part.lo2) / static_cast<double>(part.n2);
+  core::Vec3<double> u;
+  chart_to_vector(dom, a, b, u(0), u(1), u(2));
+  constexpr long steps = 20000, kept = 4096;
+  std::vector<std::uint8_t> sym;
+  for (long k = 0; k < steps; ++k) {
+    const auto st = core::step<double>(u, r);
+    u = st.u / st.u.norm();
+    if (k >= steps - kept) sym.push_back(static_cast<std::uint8_t>(st.symbol));
+  }
+  const int p = patterns::eventual_period(sym.data(), kept, 1024);
+  if (p == 0) return "";
+  const patterns::Word w = patterns::canonical(patterns::Word{std::vector<std::uint8_t>(sym.end() - p, sym.end())});
+  if (patterns::analyse<double>(w, r).outcome != patterns::Outcome::stable) return "";
+  return patterns::to_paper(w);
+}
+}  // namespace
+
 TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   q.validate();
   const auto t0 = std::chrono::steady_clock::now();
@@ -936,8 +966,17 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
       break;
     }
   }
-  // Cycles: the boxes of the exact periodic points and the mass around them.
-  for (const auto& w : q.cycle_words()) {
+  // Cycles: the boxes of the exact periodic points and the mass around them; without --cycle, the stable
+  // periodic attractors the closed classes hold (class_attractor), each once.
+  std::vector<std::string> words = q.cycle_words();
+  if (q.cycles.empty())
+    for (std::uint32_t k = 1; k <= d.classes.size(); ++k) {
+      const std::string w = class_attractor(res.part, dom, d, k, q.r);
+      if (!w.empty() && std::find(res.attractors_found.begin(), res.attractors_found.end(), w) == res.attractors_found.end())
+        res.attractors_found.push_back(w);
+    }
+  if (q.cycles.empty()) words = res.attractors_found;
+  for (const auto& w : words) {
     CycleCheck cc;
     cc.word = w;
     const auto v = patterns::analyse<double>(patterns::parse_word(w, "cycle"), q.r);

@@ -215,6 +215,9 @@ struct TransferResult {
   long second_positive_boxes = 0, second_negative_boxes = 0;
   // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
   std::vector<CycleCheck> cycles;
+  // Without --cycle: the stable periodic attractors found in the closed classes (words, paper notation), which
+  // `cycles` then checks; empty when cycles were named or none was found.
+  std::vector<std::string> attractors_found;
   double tv_boxes = -1, tv_coarse = -1;
   long measure_points = 0;
   double seconds_matrix = 0, seconds_spectrum = 0, seconds_total = 0;

@@ -411,6 +411,8 @@ std::string verify_stem(const NRange& r) {
   return r.first == 2 && r.last == 125 ? std::string("verify") : fmt::format("verify_{}-{}", r.first, r.last);
 }
 
+std::string VerifyRequest::default_name() const { return verify_stem(parse_n_range(n, 2, "n")); }
+
 // ---- precision study of the lower bound ------------------------------------------------------------------
 void BoundPrecisionRequest::validate() const {
   (void)parse_n_range(n, 1, "n");

@@ -162,6 +162,8 @@ struct VerifyRequest {
 
   void validate() const;
   std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
+  // The file stem when none is given: verify for the committed n = 2..125, else verify_A-B (verify_stem).
+  std::string default_name() const;
   template <class V> void fields(V&& v) {
     v("n", n, "A..B, n >= 2");
     v("iterations", iterations, "iterations = this + per-n * n");
@@ -182,6 +184,7 @@ struct VerifyResult {
   std::vector<double> r, lower, upper;
 
   std::string csv() const;  // n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv
   void describe(core::Contents& c) const;
 };
 // Some n of the range (items ascending, n = first + item): their 4 rows each, item-major, and the seconds spent.
@@ -236,6 +239,7 @@ struct BoundPrecisionResult {
 
   std::string csv() const;          // precision,route,n,value,abs_error,correct_12,seconds
   std::string summary_csv() const;  // precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound
+  core::Tables tables() const { return {{"", csv()}, {"summary", summary_csv()}}; }  // NAME.csv, NAME_summary.csv
   void describe(core::Contents& c) const;
 };
 // Some n of the range (items ascending, n = first + item): per n its 10 bounds, route-major then precision (float,

@@ -1,0 +1,109 @@
+"""Self-describing files: every file a command writes is opened and checked.  Every HDF5 dataset states its unit and
+meaning (attributes units, description); every axis of a grid (a dataset of two or more dimensions) that runs over
+a coordinate has that coordinate attached as an HDF5 dimension scale (index axes such as "initial condition" have
+none); every CSV row has the header's width and ends with a newline; a manifest states each verdict once."""
+import csv
+import json
+import os
+import subprocess
+
+import h5py
+import pytest
+
+from conftest import exe
+
+# Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
+INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "interval", "line", "(r, colour)", "step",
+              "eigenvalue", "orbit", "group", "period", "event"}
+
+COMMANDS = {
+    "bifurcation": ["bifurcation", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "8", "--iterations", "200",
+                    "--tail", "20", "--bins", "16", "--overlay", "thresholds", "windows"],
+    "basins": ["basins", "--r", "0.2", "--grid", "sphere:8x6", "--replicates", "1", "--transient", "300",
+               "--iterations", "300", "--lyap-iterations", "400", "--lyap-transient", "50"],
+    "lyapunov-strip": ["lyapunov-strip", "--r", "0.3", "--grid", "strip:6x4", "--iterations", "300",
+                       "--transient", "50"],
+    "lyapunov-map": ["lyapunov-map", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "3", "--grid", "random:2",
+                     "--iterations", "300", "--transient", "50", "--overlay", "thresholds"],
+    "hyperbolicity": ["hyperbolicity", "--r", "0.2", "--grid", "strip:8x6"],
+    "correlate": ["correlate", "--r", "0.11", "--point", "1,-0.5,-1.1", "--n-max", "20", "--iterations", "2000"],
+    "pattern atlas": ["pattern", "atlas", "--max-length", "4", "--no-check"],
+    "particles": ["particles", "1133", "--r", "0.15", "--periods", "3"],
+}
+
+
+def check_h5(path, bad):
+    with h5py.File(path, "r") as f:
+        for name, ds in f.items():
+            if not isinstance(ds, h5py.Dataset):
+                continue
+            for key in ("units", "description"):
+                if not str(ds.attrs.get(key, "")):
+                    bad.append(f"{path}:{name}: no {key}")
+            if ds.ndim < 2:
+                continue
+            labels = [a.strip() for a in str(ds.attrs.get("axes", "")).split(",")]
+            labels = [l for l in labels if l]
+            if "(r, colour)" in str(ds.attrs.get("axes", "")):
+                continue
+            if len(labels) != ds.ndim:
+                bad.append(f"{path}:{name}: axes '{ds.attrs.get('axes')}' do not name its {ds.ndim} dimensions")
+                continue
+            for i, label in enumerate(labels):
+                if label not in INDEX_AXES and len(ds.dims[i]) == 0:
+                    bad.append(f"{path}:{name}: axis {i} ({label}) has no dimension scale")
+
+
+def check_csv(path, bad):
+    with open(path, newline="") as f:
+        text = f.read()
+    if text and not text.endswith("\n"):
+        bad.append(f"{path}: the last row does not end with a newline")
+    rows = list(csv.reader(text.splitlines()))
+    for i, row in enumerate(rows[1:], start=2):
+        if len(row) != len(rows[0]):
+            bad.append(f"{path}:{i}: {len(row)} fields, the header has {len(rows[0])}")
+
+
+def check_manifest(path, bad):
+    with open(path) as f:
+        m = json.load(f)
+    if "decays" in m and "decay_verdict" in m:
+        bad.append(f"{path}: two verdicts (decays and decay_verdict)")
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_file_describes_itself(command, tmp_path):
+    out = tmp_path / "out"
+    p = subprocess.run([exe(), *COMMANDS[command], "--out", str(out), "--no-plot", "--quiet", "--threads", "1"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    if p.stdout:
+        assert p.stdout.endswith("\n"), f"btob {command}: standard output does not end with a newline"
+    bad = []
+    files = sorted(os.listdir(out))
+    assert files
+    for name in files:
+        path = str(out / name)
+        if name.endswith(".h5"):
+            check_h5(path, bad)
+        elif name.endswith(".csv"):
+            check_csv(path, bad)
+        elif name.endswith(".json"):
+            check_manifest(path, bad)
+    assert not bad, "\n".join(bad)
+
+
+def test_the_checks_catch_an_undescribed_grid(tmp_path):
+    path = str(tmp_path / "x.h5")
+    with h5py.File(path, "w") as f:
+        f["image"] = [[1.0, 2.0], [3.0, 4.0]]
+        f["image"].attrs["axes"] = "r, theta bin"
+        f["image"].attrs["units"] = "count"
+    with open(tmp_path / "x.csv", "w") as f:
+        f.write("a,b\n1,2\n3")
+    bad = []
+    check_h5(path, bad)
+    check_csv(str(tmp_path / "x.csv"), bad)
+    assert any("no description" in b for b in bad) and any("no dimension scale" in b for b in bad)
+    assert any("newline" in b for b in bad) and any("fields" in b for b in bad)
