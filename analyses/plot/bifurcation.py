@@ -158,6 +158,14 @@ def draw(f):
             pad_axes(ax, r0, r1, a_lo, a_hi)
             ax.set_ylabel(AXIS.get(coord, coord))
             ax.ticklabel_format(axis="x", useOffset=False)
+        if stalled_m is not None and stalled_m.any():
+            # The paper's red dots: r values at which the program could not compute enough iterations (some orbit
+            # stopped producing b-collisions before the end of its tail: phi reached pi/2 exactly, where the printed
+            # code changes nothing).
+            red = r[stalled_m > 0]
+            axes[0].plot(red, np.full(red.shape, mlo + 0.02 * (mhi - mlo)), ".", color="#d62020", ms=2.5,
+                         label=f"r where some orbit stopped before {a['iterations']} iterations ({red.size} of {len(r)})")
+            axes[0].legend(fontsize=7, loc="upper right", markerscale=3)
         axes[0].axhline(hi, color="#1f4fd6", lw=0.8, ls="--")
         axes[0].text(r1, hi, f" {AXIS.get(coord, coord).split(' (')[0]} = {hi:.4g}: above, outside the physical range",
                      fontsize=7, color="#1f4fd6", ha="right", va="bottom")
@@ -172,12 +180,15 @@ def draw(f):
         ax = axes[2]
         ax.plot(r, 100 * complex_orbits / n_ic, color=COLOURS[0], lw=0.8, label="left acos's domain (complex)")
         ax.plot(r, 100 * broken / n_ic, color="k", lw=0.6, ls=":", label="stopped in (b) (any failure status)")
+        if stalled_m is not None:
+            ax.plot(r, 100 * stalled_m / (n_ic * float(a["tail"])), color="#d62020", lw=0.8,
+                    label="(a) tail states never reached: no more b-collisions (the paper's red dots)")
         ax.set_ylim(-3, 103)
         ax.set_xlim(axes[0].get_xlim())
         ax.set_ylabel("% of orbits")
         ax.set_xlabel("restitution coefficient $r$ (dimensionless)")
-        ax.set_title(f"(c) the algorithm's failure: share of the {n_ic} orbits per r whose acos argument left [-1, 1] "
-                     f"({n_complex} orbits in all)", fontsize=9)
+        ax.set_title(f"(c) the algorithm's failures per r: orbits whose acos argument left [-1, 1] ({n_complex} in all), "
+                     f"orbits stopped in (b), tail states (a) never reached", fontsize=9)
         ax.legend(fontsize=7, loc="upper right")
         cb = fig.colorbar(im, cax=fig.add_subplot(gs[0:2, 1]))
         cb.set_label("fraction of the tail points of each r (per bin)")
