@@ -108,6 +108,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   o.transient = req.transient;
   o.reorthonormalise = req.reorthonormalise;
   o.blocks = req.blocks;
+  o.cancel = control.cancel;
   // The orbit and the tangent frame are iterated in T, r is T's own value of the request's r (a float128 run
   // at r = 0.1 uses float128's 0.1 when the request came as text), the sums of log R_ii accumulated in long
   // double and the exponents reported in double.
