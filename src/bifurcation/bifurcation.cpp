@@ -73,6 +73,8 @@ template <class F> auto with_scalar(const core::Precision& p, F&& f) {
 void Request::validate() const {
   core::require_r(r_min, "r-min");
   core::require_r(r_max, "r-max");
+  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
+  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
   if (tail < 1 || tail > iterations)

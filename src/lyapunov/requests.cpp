@@ -138,6 +138,8 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
 void MapRequest::validate() const {
   core::require_r(r_min, "r-min");
   core::require_r(r_max, "r-max");
+  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
+  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
