@@ -68,6 +68,7 @@ interrupt INT classify "${orbit[@]}" --transient 1000000000000
 # Sweeps whose every item is one long orbit (a batch is polled inside, not only between batches).
 interrupt TERM bifurcation --r-count 2 --iterations 100000000000 --tail 100 --grid 1,-0.5,-1.1 --out @OUT --no-plot
 interrupt INT bifurcation --r-count 2 --iterations 100000000 --tail 100 --grid 1,-0.5,-1.1 --precision mpfr:30 --out @OUT --no-plot
+interrupt TERM bifurcation --algorithm trig --r-count 2 --iterations 100000000 --tail 100 --grid 1,-0.5,-1.1 --out @OUT --no-plot
 interrupt TERM lyapunov-map --r-count 2 --iterations 100000000000 --grid 1,-0.5,-1.1 --out @OUT --no-plot
 # The atlas (words), windows and their certificates (one n of exact arithmetic), transfer (matrix, Arnoldi), particles.
 interrupt INT pattern atlas --max-length 12 --out @OUT --no-plot

@@ -128,12 +128,13 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   } else if (req.algorithm == "trig") {
     control.check_cancelled();
     part.broken = prec.kind == core::Precision::Kind::f80
-                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
-                      : reference::trig_density<double>(ens, req.iterations, dens, threads);
+                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads, control.cancel)
+                      : reference::trig_density<double>(ens, req.iterations, dens, threads, control.cancel);
     // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
     control.check_cancelled();
     part.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
-                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads);
+                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads,
+                                                 control.cancel);
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }

@@ -257,7 +257,13 @@ void Progress::update(std::size_t done, std::size_t total) {
   if (el < 0.5 && p < 100) return;  // short runs stay quiet
   last_percent_ = p;
   const int w = 30, f = w * p / 100;
-  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s", label_, std::string(f, '#'), std::string(w - f, '.'), p, el);
+  // Remaining time at the rate so far (done units in el seconds); padded so that a shorter line covers a longer one.
+  const std::string left = p < 100 && done > 0
+                               ? fmt::format(", ~{:.0f}s left   ", el * static_cast<double>(total - done) /
+                                                                       static_cast<double>(done))
+                               : std::string(18, ' ');  // the end: blank what an earlier "left" wrote
+  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s{}", label_, std::string(f, '#'), std::string(w - f, '.'), p, el,
+                           left);
   open_ = p < 100;  // a finished bar ends its line at once: what the command prints next starts on a new one
   std::cerr << (open_ ? "" : "\n") << std::flush;
 }
