@@ -203,10 +203,15 @@ template <class Req> void bind(py::module_& m) {
         const int threads = threads_of(kw);
         req.validate();
         auto holder = std::make_shared<ResultOf<Res>>();
-        holder->extras = extras::of(req);  // overlays resolved before the run: unknown names fail first
+        extras::check(req);  // unknown overlay names fail before any work
         R::prepare(req);
-        run_released([&](const core::RunControl& c) { holder->res = run(req, c); }, threads,
-                     kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+        // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
+        // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
+        run_released([&](const core::RunControl& c) {
+          holder->res = run(req, c);
+          c.check_cancelled();
+          holder->extras = extras::of(req);
+        }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
         holder->res.describe(holder->contents);
         holder->extras.add_to(holder->contents);
         req.fields(ArgsWriter{&holder->request});

@@ -135,6 +135,16 @@ code=$?
 [ $code -eq 2 ] || fail "bad input on every rank: exit $code, expected 2"
 grep -c '^btob: error: r-min: got 2' "$TMP/err.txt" | grep -qx 1 || fail "bad input: not one line: $(cat "$TMP/err.txt")"
 [ ! -e "$TMP/bad" ] || fail "bad input: $TMP/bad was created"
+# The same for an input that only the pair of fields makes bad (r-min > r-max): btob's one line, said once, and no
+# MPI_ABORT banner (mpirun's own notice of a non-zero exit status remains: it is mpirun's, not btob's).
+for cmd in lyapunov-map bifurcation; do
+  "$MPIRUN" -n 2 "$BTOB" $cmd --r-min 0.3 --r-max 0.1 --out "$TMP/bad" > "$TMP/out.txt" 2> "$TMP/err.txt"
+  code=$?
+  [ $code -eq 2 ] || fail "$cmd r-min > r-max: exit $code, expected 2"
+  [ "$(grep '^btob' "$TMP/err.txt")" = "btob: error: r-max: got 0.1 < r-min = 0.3, expected r-min <= r-max" ] ||
+    fail "$cmd r-min > r-max: not one line: $(cat "$TMP/err.txt")"
+  ! grep -q MPI_ABORT "$TMP/err.txt" || fail "$cmd r-min > r-max: an MPI_ABORT banner"
+done
 
 # One rank fails before the work (its request is not the others'): one line naming rank 1, non-zero, no files.
 "$MPIRUN" -n 1 "$BTOB" bifurcation --r-count 50 --iterations 200 --tail 10 --out "$TMP/split" --quiet --no-plot : \
@@ -153,7 +163,8 @@ args=(bifurcation --r-count 2000 --iterations 4000 --tail 4000 --raw --out "$TMP
   > "$TMP/out.txt" 2> "$TMP/err.txt"
 code=$?
 [ $code -ne 0 ] || fail "out of memory on rank 1: exit 0"
-grep -q '^btob: rank 1: out of memory' "$TMP/err.txt" || fail "out of memory on rank 1: $(cat "$TMP/err.txt")"
+# The line names the rank and its items (cyclic: 1, 3, 5, ... of 2000 r values).
+grep -q '^btob: rank 1: items 1, 3, 5, \.\.\. of 2000: out of memory' "$TMP/err.txt" || fail "out of memory on rank 1: $(cat "$TMP/err.txt")"
 [ "$(ls "$TMP/kept")" = "x.h5" ] && [ "$(cat "$TMP/kept/x.h5")" = old ] || fail "out of memory: the old result changed"
 
 # `btob run SCENE.toml` splits the same way.

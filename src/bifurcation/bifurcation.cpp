@@ -73,6 +73,8 @@ template <class F> auto with_scalar(const core::Precision& p, F&& f) {
 void Request::validate() const {
   core::require_r(r_min, "r-min");
   core::require_r(r_max, "r-max");
+  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
+  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
   if (tail < 1 || tail > iterations)
@@ -126,12 +128,13 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   } else if (req.algorithm == "trig") {
     control.check_cancelled();
     part.broken = prec.kind == core::Precision::Kind::f80
-                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads)
-                      : reference::trig_density<double>(ens, req.iterations, dens, threads);
+                      ? reference::trig_density<long double>(ens, req.iterations, dens, threads, control.cancel)
+                      : reference::trig_density<double>(ens, req.iterations, dens, threads, control.cancel);
     // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
     control.check_cancelled();
     part.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
-                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads);
+                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads,
+                                                 control.cancel);
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }

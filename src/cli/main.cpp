@@ -3,6 +3,7 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
+#include "io/cancel.hpp"
 #include "io/io.hpp"
 
 #include <btob/build_info.hpp>
@@ -21,12 +22,19 @@ std::vector<Registrar>& registry() {
 }
 
 namespace {
-// SIGINT/SIGTERM: the first asks the running computation to stop at its next batch (its temporary files are
-// removed, nothing is written); a second one ends the process at once.
+// The signal that asked the run to stop (0: none yet); the exit status is 128 + its number, as a shell reports a
+// process that signal ended: 130 for SIGINT (Ctrl-C), 143 for SIGTERM (timeout, kill, a batch system).
+volatile std::sig_atomic_t stop_signal = 0;
+
+// SIGINT/SIGTERM: the first asks the running computation to stop (every long loop polls the token, see
+// core/cancel.hpp; its temporary files are removed, nothing is written); a second one ends the process at once.
 extern "C" void on_signal(int sig) {
+  stop_signal = sig;
   cancel_token().cancel();
   std::signal(sig, SIG_DFL);
 }
+// 128 + the signal that stopped the run (a Cancelled without a signal, e.g. a test's token: SIGINT's 130).
+int stop_status() { return 128 + (stop_signal ? static_cast<int>(stop_signal) : SIGINT); }
 }  // namespace
 }  // namespace btob::cli
 
@@ -53,6 +61,7 @@ int main(int argc, char** argv) {
   mpi::guard_root_only(app);
   std::signal(SIGINT, btob::cli::on_signal);
   std::signal(SIGTERM, btob::cli::on_signal);
+  btob::io::stop_on(&btob::cli::cancel_token());  // plots and commits obey the same token
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -66,7 +75,7 @@ int main(int argc, char** argv) {
     mpi::finalize();
     return 0;
   } catch (const btob::core::Cancelled&) {
-    failed("interrupted; nothing was written", 130, "");
+    failed("interrupted; nothing was written", btob::cli::stop_status(), "");
   } catch (const std::invalid_argument& e) {  // includes UsageError and core::InvalidField
     failed(e.what(), 2);
   } catch (const std::domain_error& e) {

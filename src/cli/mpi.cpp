@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <thread>
+#include <unistd.h>
 
 #ifdef BTOB_MPI
 #include <mpi.h>
@@ -22,6 +23,18 @@ struct State {
 State& state() {
   static State s;
   return s;
+}
+
+// One line on stderr in one write(2): the lines of several ranks sharing mpirun's stderr never interleave
+// ("btob: rank btob: rank 0: ...", which operator<<'s pieces gave).
+void say(const std::string& line) {
+  std::cerr.flush();
+  const std::string text = line + "\n";
+  for (std::size_t at = 0; at < text.size();) {
+    const ssize_t n = ::write(2, text.data() + at, text.size() - at);
+    if (n <= 0) break;
+    at += static_cast<std::size_t>(n);
+  }
 }
 
 [[noreturn]] void end(int code) {
@@ -118,7 +131,7 @@ void checkpoint() {
 void fail(const std::string& cause, int code, const std::string& label) {
   State& s = state();
   if (s.size == 1 || s.solo) {
-    std::cerr << "btob: " << label << cause << "\n";
+    say("btob: " + label + cause);
     end(code);
   }
 #ifdef BTOB_MPI
@@ -130,16 +143,16 @@ void fail(const std::string& cause, int code, const std::string& label) {
     MPI_Allreduce(&zero, &ranks_ok, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
     MPI_Allreduce(&s.rank, &first_bad, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
     if (s.rank == first_bad) {
-      if (ranks_ok == 0) std::cerr << "btob: " << label << cause << "\n";  // every rank: a bad input, said once
-      else std::cerr << "btob: rank " << s.rank << ": " << cause << "\n";
+      if (ranks_ok == 0) say("btob: " + label + cause);  // every rank: a bad input, said once
+      else say("btob: rank " + std::to_string(s.rank) + ": " + cause);
     }
     finalize();
     end(worst);
   }
-  // 130: SIGINT/SIGTERM stopped this rank.  mpirun sends SIGTERM to every rank when one of them aborted or when
+  // 130/143: SIGINT/SIGTERM stopped this rank.  mpirun sends SIGTERM to every rank when one of them aborted or when
   // the user interrupted mpirun: the job is ending and its cause said already; end quietly (nothing was written).
-  if (code == 130) end(code);
-  std::cerr << "btob: rank " << s.rank << ": " << cause << "\n";
+  if (code == 130 || code == 143) end(code);
+  say("btob: rank " + std::to_string(s.rank) + ": " + cause);
   std::cout.flush();
   std::cerr.flush();
   MPI_Abort(MPI_COMM_WORLD, code);

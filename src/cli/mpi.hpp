@@ -30,7 +30,7 @@ bool checked();
 
 // Reports an error and ends the process: the single process's line ("btob: " + label + cause) and exit `code`
 // when alone or when every rank failed the same way before the checkpoint; else `btob: rank K: <cause>` and
-// MPI_Abort (the job ends with a non-zero status).  Code 130 (SIGINT/SIGTERM) under mpirun ends quietly: mpirun
+// MPI_Abort (the job ends with a non-zero status).  Codes 130 and 143 (SIGINT, SIGTERM) under mpirun end quietly: mpirun
 // sends SIGTERM to every rank when one aborted or when it was interrupted, and the cause was said already.
 [[noreturn]] void fail(const std::string& cause, int code, const std::string& label = "error: ");
 

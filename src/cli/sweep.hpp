@@ -14,12 +14,39 @@
 
 #include <chrono>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 namespace btob::cli {
+
+namespace detail {
+// Runs f() (a rank's run_part) and, when it fails, says which items the rank was computing in the error's own
+// category (usage errors keep exit status 2): "items 1, 3, 5, ... of 100 (r-max: got ...)".
+template <class F> auto naming_items(const std::vector<std::size_t>& items, std::size_t total, F&& f) {
+  const auto where = [&] {
+    std::string s;
+    for (std::size_t i = 0; i < items.size() && i < 3; ++i) s += (i ? ", " : "") + std::to_string(items[i]);
+    if (items.size() > 3) s += ", ...";
+    return fmt::format("item{} {} of {}: ", items.size() == 1 ? "" : "s", items.empty() ? "none" : s, total);
+  };
+  try {
+    return f();
+  } catch (const core::Cancelled&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where() + e.what());
+  } catch (const std::domain_error& e) {
+    throw std::domain_error(where() + e.what());
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(where() + "out of memory");
+  } catch (const std::exception& e) {
+    throw std::runtime_error(where() + e.what());
+  }
+}
+}  // namespace detail
 
 template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   using Part = decltype(run_part(req, std::vector<std::size_t>{}, ctx.control));
@@ -29,7 +56,7 @@ template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto items = core::cyclic_items(req.work_items(), static_cast<std::size_t>(mpi::rank()),
                                         static_cast<std::size_t>(mpi::size()));
-  Part mine = run_part(req, items, ctx.control);
+  Part mine = detail::naming_items(items, req.work_items(), [&] { return run_part(req, items, ctx.control); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Rank 0 keeps its own part as it is; the others send theirs as bytes.
   std::vector<std::vector<char>> bytes = mpi::gather(mpi::rank() == 0 ? std::vector<char>{} : core::pack(mine), seconds);

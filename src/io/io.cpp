@@ -1,10 +1,13 @@
 // HDF5/CSV/manifest writers with provenance, and the progress bar.
 #include "io/io.hpp"
+#include "io/cancel.hpp"
 
 #include <btob/build_info.hpp>
 
 #include <H5Cpp.h>
 #include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -18,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
+#include <thread>
 
 #ifndef BTOB_SOURCE_DIR
 #define BTOB_SOURCE_DIR "."
@@ -253,7 +257,13 @@ void Progress::update(std::size_t done, std::size_t total) {
   if (el < 0.5 && p < 100) return;  // short runs stay quiet
   last_percent_ = p;
   const int w = 30, f = w * p / 100;
-  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s", label_, std::string(f, '#'), std::string(w - f, '.'), p, el);
+  // Remaining time at the rate so far (done units in el seconds); padded so that a shorter line covers a longer one.
+  const std::string left = p < 100 && done > 0
+                               ? fmt::format(", ~{:.0f}s left   ", el * static_cast<double>(total - done) /
+                                                                       static_cast<double>(done))
+                               : std::string(18, ' ');  // the end: blank what an earlier "left" wrote
+  std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s{}", label_, std::string(f, '#'), std::string(w - f, '.'), p, el,
+                           left);
   open_ = p < 100;  // a finished bar ends its line at once: what the command prints next starts on a new one
   std::cerr << (open_ ? "" : "\n") << std::flush;
 }
@@ -287,6 +297,18 @@ std::string data_text(const std::string& path, const std::string& default_rel) {
   return ss.str();
 }
 
+namespace {
+const core::CancelToken* stop_token = nullptr;
+}  // namespace
+
+void stop_on(const core::CancelToken* token) { stop_token = token; }
+void check_stop() {
+  if (stop_token && stop_token->cancelled()) throw core::Cancelled();
+}
+
+// The plot script runs as a child process (no shell: the arguments are passed as they are).  std::system would
+// ignore SIGINT in btob while it waits, so a Ctrl-C during a plot was lost; instead the wait polls the stop token
+// every 10 ms and, once it is set, ends the child (SIGTERM) and throws core::Cancelled.
 bool run_plot(const std::string& script, const std::vector<std::string>& args) {
   const char* env = std::getenv("BTOB_PYTHON");
   const std::string py = env && *env ? env : "/usr/bin/python3";
@@ -297,11 +319,30 @@ bool run_plot(const std::string& script, const std::vector<std::string>& args) {
     std::cerr << "btob: warning: " << e.what() << "; data were written without the figure\n";
     return false;
   }
-  std::string cmd = py + " '" + path.string() + "'";
-  for (const auto& a : args) cmd += " '" + a + "'";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    std::cerr << "btob: warning: plot script " << script << " failed (exit " << WEXITSTATUS(rc)
+  check_stop();
+  std::vector<std::string> argv_s{py, path.string()};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, py.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+    std::cerr << "btob: warning: plot script " << script << " could not start (" << py
+              << "); data were written, run analyses/plot/" << script << " by hand\n";
+    return false;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (stop_token && stop_token->cancelled()) {
+      kill(pid, SIGTERM);
+      waitpid(pid, &status, 0);
+      throw core::Cancelled();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::cerr << "btob: warning: plot script " << script << " failed (exit "
+              << (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status))
               << "); data were written, run analyses/plot/" << script << " by hand\n";
     return false;
   }

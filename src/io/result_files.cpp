@@ -1,5 +1,6 @@
 // ResultFiles: stage every file of a result in a temporary folder, move them into place together.
 #include "io/result_files.hpp"
+#include "io/cancel.hpp"
 
 #include <H5Cpp.h>
 #include <hdf5_hl.h>
@@ -252,6 +253,7 @@ bool ResultFiles::plot_figures(const std::string& script, const std::vector<std:
 }
 
 std::vector<fs::path> ResultFiles::commit() {
+  check_stop();  // a run stopped while its files were staged commits nothing (io/cancel.hpp)
   std::error_code ec;
   fs::create_directories(out_, ec);
   if (ec || !fs::is_directory(out_)) throw_file_error("out: cannot create folder", out_, ec);

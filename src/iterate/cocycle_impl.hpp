@@ -277,7 +277,9 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
     if (ci < cps.size() && cps[ci] == 0) record(0), ++ci;
     std::size_t redone_here = 0;
     long step = 0;
-    while (step < iterations) {
+    // Polled once per call of at most kFlush steps (about a millisecond): a cancelled run leaves the batch early
+    // and RunTally::finish throws once the parallel region is over.
+    while (step < iterations && !(opt.cancel && opt.cancel->cancelled())) {
       const long target = ci < cps.size() ? std::min(cps[ci], iterations) : iterations;
       // At most kFlush steps per call: T's sums of exponents (<= 2^6 per step) and counts stay exact integers.
       const long want = std::min<long>(target - step, kFlush);

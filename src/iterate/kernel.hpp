@@ -35,7 +35,9 @@ using core::ProgressSink;
 struct RunOptions {
   int threads = 0;
   ProgressSink* progress = nullptr;
-  const core::CancelToken* cancel = nullptr;  // checked before every batch; a cancelled run throws core::Cancelled
+  // Checked before every batch and inside one (every renormalisation block of the unrecorded steps, every
+  // core::cancel_stride recorded steps); a cancelled run throws core::Cancelled after the parallel region.
+  const core::CancelToken* cancel = nullptr;
   // When set, receives the number of orbits whose final state is not a finite non-zero vector (the
   // precision could not cope, e.g. float at extreme r); 0 on healthy runs.
   std::size_t* degenerate = nullptr;

@@ -1,6 +1,7 @@
 // Template bodies of the batched kernel; included only by src/iterate/kernel_*.cpp (kernel flags).
 #pragma once
 
+#include "core/cancel.hpp"
 #include "core/map.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/lanes.hpp"
@@ -306,16 +307,19 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
     // Phase 1: unrecorded steps, K at a time, then an exact power-of-two rescale.
     long step = 0;
     const long quiet = std::min(iterations, first - 1);
-    while (step < quiet) {
+    // A cancelled run leaves the batch early (a transient of 1e12 steps is one batch): polled once per K steps
+    // here and every core::cancel_stride steps below; the partial batch is discarded by RunTally::finish.
+    while (step < quiet && !(opt.cancel && opt.cancel->cancelled())) {
       const int n = static_cast<int>(std::min<long>(K, quiet - step));
       if constexpr (detail::has_simd<T>) detail::steps_simd<T, false>(x, y, z, r, a, k, sym, n);
       else detail::steps<T, B, false>(x, y, z, r, a, k, sym, n);
       detail::renormalise<T, B>(x, y, z);
       step += n;
     }
-    // Phase 2: recorded steps.
+    // Phase 2: recorded steps (none once cancelled: a recorder may only see steps from its first_step() on).
     int since = 0;
-    while (step < iterations) {
+    if (step < quiet) step = iterations;
+    while (step < iterations && !core::cancel_due(opt.cancel, step)) {
       if constexpr (detail::has_simd<T>) detail::steps_simd<T, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1);
       else detail::steps<T, B, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1);
       ++step;

@@ -49,6 +49,7 @@ FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, do
   double sum = 0;
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
+    core::poll_cancel(opt.cancel, k);
     const int s = core::branch(u, r), s2 = core::branch(v, r);
     u = detail::apply(s, u, r).normalized();
     v = detail::apply(s2, v, r).normalized();

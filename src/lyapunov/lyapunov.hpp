@@ -2,6 +2,7 @@
 // linear cocycle of the products of P_i along an orbit, both with QR (Benettin) re-orthonormalisation.
 #pragma once
 
+#include "core/cancel.hpp"
 #include "core/map.hpp"
 #include "core/result.hpp"
 
@@ -34,6 +35,7 @@ struct Options {
   long iterations = 100000;  // averaged steps, >= blocks
   int reorthonormalise = 1;  // QR every this many steps (also at the transient's end and block ends), >= 1
   int blocks = 20;           // batch-means blocks, >= 2
+  const core::CancelToken* cancel = nullptr;  // how to run, not what: polled every core::cancel_stride steps
 };
 
 // Throws std::invalid_argument "field: got X, expected Y" for non-positive lengths or blocks > iterations.

@@ -148,6 +148,7 @@ template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, cons
   ProjectiveResult res;
   const long keep = std::min<long>(opt.iterations, 4096);
   for (long k = 1; k <= total; ++k) {
+    core::poll_cancel(opt.cancel, k);
     const int s = core::branch(u, r);
     const Vec3<T> pu = detail::apply(s, u, r);
     const T g = pu.norm();
@@ -191,6 +192,7 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   Q.template rightCols<2>() = tangent_basis(u);
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
+    core::poll_cancel(opt.cancel, k);
     const int s = core::branch(u, r);
     const Vec3<T> pu = detail::apply(s, u, r);
     u = pu / pu.norm();  // the orbit, computed exactly as in the projective route

@@ -108,6 +108,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   o.transient = req.transient;
   o.reorthonormalise = req.reorthonormalise;
   o.blocks = req.blocks;
+  o.cancel = control.cancel;
   // The orbit and the tangent frame are iterated in T, r is T's own value of the request's r (a float128 run
   // at r = 0.1 uses float128's 0.1 when the request came as text), the sums of log R_ii accumulated in long
   // double and the exponents reported in double.
@@ -137,6 +138,8 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
 void MapRequest::validate() const {
   core::require_r(r_min, "r-min");
   core::require_r(r_max, "r-max");
+  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
+  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);

@@ -26,7 +26,8 @@ namespace btob::particles {
   BTOB_PARTICLES_INSTANTIATE_G(T, 1)   \
   BTOB_PARTICLES_INSTANTIATE_G(T, 2)   \
   BTOB_PARTICLES_INSTANTIATE_G(T, 3)   \
-  template PatternRun<T> simulate_pattern<T>(const Gaps<T, 3>&, const std::string&, const T&, long, bool, long);
+  template PatternRun<T> simulate_pattern<T>(const Gaps<T, 3>&, const std::string&, const T&, long, bool, long, \
+                                             const core::CancelToken*);
 BTOB_PARTICLES_INSTANTIATE(double)
 BTOB_PARTICLES_INSTANTIATE(long double)
 BTOB_PARTICLES_INSTANTIATE(core::float128)
@@ -144,7 +145,7 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
     long best = -1;
     for (int k = 0; k <= 41; ++k) {
       Gaps<T, 3> s{normal.p, Vec<T, 3>(normal.q - lambda * normal.p)};
-      const PatternRun<T> pr = simulate_pattern<T>(s, v.letters, r, probe, true);
+      const PatternRun<T> pr = simulate_pattern<T>(s, v.letters, r, probe, true, 0, control.cancel);
       if (pr.collisions > best) {
         best = pr.collisions;
         start = s;
@@ -156,15 +157,15 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   start.p /= detail::norm3(start.p);
   start.q /= detail::norm3(start.q);
 
-  // The rescaled run, in blocks so that a cancellation is seen between them.
+  // The rescaled run, polling the cancellation token every core::cancel_stride periods.
   PatternRun<T> run = simulate_pattern<T>(start, v.letters, r, std::min<long>(req.periods, req.diagram_periods), true,
-                                          req.diagram_periods);
+                                          req.diagram_periods, control.cancel);
   res.events = run.events;
   if (req.periods > req.diagram_periods && run.failure.empty()) {
     // The rest continues from scratch over all periods (the first diagram_periods are recomputed identically;
     // the cost is negligible) so that the run is one trajectory.
     control.check_cancelled();
-    run = simulate_pattern<T>(start, v.letters, r, req.periods, true, 0);
+    run = simulate_pattern<T>(start, v.letters, r, req.periods, true, 0, control.cancel);
   }
   if (control.progress) control.progress->update(1, 1);
   res.periods_ok = run.periods_ok;
@@ -208,7 +209,7 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   }
   // Without rescaling: the same run until the gaps underflow.
   {
-    const PatternRun<T> raw = simulate_pattern<T>(start, v.letters, r, req.periods, false, 0);
+    const PatternRun<T> raw = simulate_pattern<T>(start, v.letters, r, req.periods, false, 0, control.cancel);
     res.collisions_unrescaled = raw.collisions;
     res.unrescaled_end = raw.failure.empty() ? fmt::format("all {} periods reproduced", req.periods) : raw.failure;
     using std::log;

@@ -63,7 +63,7 @@ template <class T> struct PatternRun {
 };
 template <class T>
 PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods, bool rescale,
-                               long record_periods = 0);
+                               long record_periods = 0, const core::CancelToken* cancel = nullptr);
 
 // The self-similar start from the periodic point u (in Q) of a word with one period of letters `letters`:
 // p = (-z, 0, x) / |.| (u x e_y) and q the unit eigenvector, with q2 > 0, of K_w (the product of the collision

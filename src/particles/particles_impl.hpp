@@ -1,6 +1,7 @@
 // Template bodies of the particle simulator (include this for another scalar type than the instantiated ones).
 #pragma once
 
+#include "core/cancel.hpp"
 #include "particles/particles.hpp"
 
 #include <cmath>
@@ -80,7 +81,7 @@ template <class T> bool finite(const Vec<T, 3>& v) {
 
 template <class T>
 PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods, bool rescale,
-                               long record_periods) {
+                               long record_periods, const core::CancelToken* cancel) {
   using std::ldexp;
   PatternRun<T> out;
   Gaps<T, 3> s = start;
@@ -95,6 +96,7 @@ PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& lette
   T prev_t = T(0);
   long prev_d = 0;
   for (long n = 0; n < periods; ++n) {
+    core::poll_cancel(cancel, n);
     const T p0 = detail::norm3(s.p), q0 = detail::norm3(s.q);
     T t_period = T(0);
     if (n < record_periods) record(n, t_period, 0);

@@ -1,6 +1,7 @@
 // The atlas of stable patterns (OpenMP over words) and pattern detection with the batched iterator.
 #include "patterns/atlas.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 
 #include "patterns/analysis_impl.hpp"
@@ -21,7 +22,7 @@ std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>&
 }
 
 std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std::vector<double>& grid, double tol,
-                                      int threads) {
+                                      int threads, const core::CancelToken* cancel) {
   std::vector<AtlasEntry> out(words.size());
   const long n = static_cast<long>(words.size());
   const int nt = threads > 0 ? threads : omp_get_max_threads();
@@ -29,9 +30,11 @@ std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std:
   // iteration writes only its own entry.
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
   for (long i = 0; i < n; ++i) {
+    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
     out[i].word = words[i];
     out[i].intervals = stability_set<double>(words[i], grid, tol);
   }
+  core::check_cancel(cancel);
   return out;
 }
 
@@ -54,15 +57,17 @@ std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vec
 }
 
 std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
-                                                  double tol, int threads) {
+                                                  double tol, int threads, const core::CancelToken* cancel) {
   std::vector<FeasibleEntry> all(words.size());
   const long n = static_cast<long>(words.size());
   const int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
   for (long i = 0; i < n; ++i) {
+    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
     all[i].word = words[i];
     all[i].intervals = feasibility_set<double>(words[i], grid, tol);
   }
+  core::check_cancel(cancel);
   return all;
 }
 
@@ -139,7 +144,8 @@ std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_perio
   return followed_table(atlas, follow_unstable(atlas, max_periods, threads), max_periods, agree, checked);
 }
 
-std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads) {
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads,
+                                                   const core::CancelToken* cancel) {
   struct Row {
     const Word* w;
     double r;
@@ -159,12 +165,14 @@ std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEnt
   const int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
   for (long i = 0; i < n; ++i) {
+    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
     try {
       *rows[i].f = follow_periodic_orbit<double>(*rows[i].w, rows[i].r, max_periods);
     } catch (const std::invalid_argument&) {
       rows[i].f->periods = -1;  // not feasible at the midpoint (an interval narrower than the bisection noise)
     }
   }
+  core::check_cancel(cancel);
   return out;
 }
 
@@ -207,7 +215,7 @@ int eventual_period(const std::uint8_t* s, long n, int max_period) {
 }
 
 DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterations, long tail, std::uint64_t seed,
-                             int max_period, int threads) {
+                             int max_period, int threads, const core::CancelToken* cancel) {
   if (ics < 1) throw std::invalid_argument(fmt::format("ics: got {}, expected at least 1", ics));
   if (tail < 2 || tail > iterations)
     throw std::invalid_argument(fmt::format("tail: got {}, expected 2 <= tail <= iterations = {}", tail, iterations));
@@ -220,6 +228,7 @@ DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterat
   iterate::SymbolRecorder rec(ens.orbits(), iterations - tail + 1, iterations);
   iterate::RunOptions opt;
   opt.threads = threads;
+  opt.cancel = cancel;
   iterate::run<double>(ens, iterations, rec, opt);
   DetectionRun d;
   d.r = r;

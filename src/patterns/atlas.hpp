@@ -1,6 +1,7 @@
 // The atlas of stable periodic patterns over r, and its check against the batched iterator (Table 6.1).
 #pragma once
 
+#include "core/request.hpp"
 #include "patterns/patterns.hpp"
 
 #include <cstdint>
@@ -20,8 +21,9 @@ struct AtlasEntry {
 // order of enumerate_canonical; words never stable are included with no interval.
 std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>& grid, double tol, int threads);
 // The same for the given words, in their order (an entry depends on its word only: any subset gives its entries).
+// `cancel` (here and below): polled before every word (or row, or batch of orbits); throws core::Cancelled when set.
 std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std::vector<double>& grid, double tol,
-                                      int threads);
+                                      int threads, const core::CancelToken* cancel = nullptr);
 // CSV word,r_low,r_high,low_reason,high_reason: one row per interval, words in paper notation, 17 digits.
 std::string atlas_csv(const std::vector<AtlasEntry>& atlas);
 
@@ -37,7 +39,7 @@ std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vec
                                                   long* words_scanned = nullptr);
 // The same for the given words, in their order, words never feasible included (with no interval).
 std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
-                                                  double tol, int threads);
+                                                  double tol, int threads, const core::CancelToken* cancel = nullptr);
 // The scan grid of the feasible atlas: 1570 points on [0.02, 1), step 2e-4 on [0.02, 0.26) where the windows
 // are thin (1^7 3^7 is 3.6e-4 wide), 2e-3 on [0.26, 1).  Below 0.02 the subdominant eigenvalues of long words
 // fall below double's resolution relative to the dominant one (their eigenvectors are then unreliable).
@@ -69,7 +71,8 @@ template <class T> Followed follow_periodic_orbit(const Word& w, const T& r, lon
 std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked);
 // Its two halves: follow_unstable gives, entry by entry, the Followed of each unstable interval in order (periods
 // -1: not feasible at the midpoint; OpenMP over all of them); followed_table writes the CSV and the counts.
-std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads);
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads,
+                                                   const core::CancelToken* cancel = nullptr);
 std::string followed_table(const std::vector<FeasibleEntry>& atlas, const std::vector<std::vector<Followed>>& followed,
                            long max_periods, long* agree, long* checked);
 
@@ -89,7 +92,7 @@ struct DetectionRun {
   std::vector<Detected> found;    // sorted by r, then count (descending)
 };
 DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterations, long tail, std::uint64_t seed,
-                             int max_period, int threads);
+                             int max_period, int threads, const core::CancelToken* cancel = nullptr);
 // The eventual period of one symbol stream (0 when not periodic with period <= max_period).
 int eventual_period(const std::uint8_t* s, long n, int max_period);
 

@@ -445,10 +445,11 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
   part.items = items;
   auto t0 = std::chrono::steady_clock::now();
   if (!req.feasible) {
-    for (auto& e : compute_atlas(words, default_grid(), stable_tol, control.threads)) part.stable.push_back(std::move(e.intervals));
+    for (auto& e : compute_atlas(words, default_grid(), stable_tol, control.threads, control.cancel)) part.stable.push_back(std::move(e.intervals));
   } else {
-    const std::vector<FeasibleEntry> f = compute_feasible_atlas(words, feasible_grid(), feasible_tol, control.threads);
-    part.followed = follow_unstable(f, followed_max_periods, control.threads);
+    const std::vector<FeasibleEntry> f =
+        compute_feasible_atlas(words, feasible_grid(), feasible_tol, control.threads, control.cancel);
+    part.followed = follow_unstable(f, followed_max_periods, control.threads, control.cancel);
     for (const auto& e : f) part.feasible.push_back(e.intervals);
   }
   part.atlas_seconds = seconds_since(t0);
@@ -456,7 +457,7 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
   if (!rs.empty()) {
     t0 = std::chrono::steady_clock::now();
     const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
-                                           static_cast<int>(req.max_period), control.threads);
+                                           static_cast<int>(req.max_period), control.threads, control.cancel);
     part.periodic = d.periodic;
     part.found.resize(rs.size());
     for (const auto& f : d.found)  // sorted by r in the order of rs

@@ -30,8 +30,9 @@ BTOB_REFERENCE_INSTANTIATE(long double)
 BTOB_REFERENCE_INSTANTIATE(core::float128)
 #undef BTOB_REFERENCE_INSTANTIATE
 
-template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int);
+template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int,
+                                                          const core::CancelToken*);
 template std::vector<std::uint64_t> trig_density<long double>(const iterate::Ensemble&, long, iterate::DensityRecorder&,
-                                                               int);
+                                                               int, const core::CancelToken*);
 
 }  // namespace btob::reference

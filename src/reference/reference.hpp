@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>  // cross(); core/coords.hpp uses it without including it (see notes)
 
 #include "core/coords.hpp"
+#include "core/request.hpp"
 #include "core/map.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
@@ -128,8 +129,10 @@ template <class T> TrigCycle<T> trig_b_to_b(TrigState<T>& s, const T& r);
 // counts do not depend on the thread count.
 // Returns the number of broken orbits for each r value (index as ensemble.r).
 template <class T>
+// `cancel` (here and in trig_density_matlab): polled per orbit and every core::cancel_stride steps; a cancelled
+// run throws core::Cancelled after its parallel region.
 std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ensemble, long iterations, iterate::DensityRecorder& rec,
-                                        int threads = 0);
+                                        int threads = 0, const core::CancelToken* cancel = nullptr);
 
 // The same orbits with MATLAB's semantics, i.e. what the paper's code draws: acos of an argument outside
 // [-1, 1] returns a complex number (acos z = -i log(z + i sqrt(1 - z^2)), principal branches, as MATLAB) and
@@ -145,7 +148,7 @@ struct MatlabTrigImage {
   std::vector<std::uint64_t> stalled;         // per r: tail states never reached (no b-collision any more)
 };
 MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ensemble, long iterations, long tail, bool phi, int bins,
-                                    double lo, double hi, int threads = 0);
+                                    double lo, double hi, int threads = 0, const core::CancelToken* cancel = nullptr);
 
 #define BTOB_REFERENCE_EXTERN(T)                                                                                 \
   extern template Mat3<T> collision_matrix<T>(char, const T&);                                                    \
@@ -159,8 +162,10 @@ BTOB_REFERENCE_EXTERN(double)
 BTOB_REFERENCE_EXTERN(long double)
 BTOB_REFERENCE_EXTERN(core::float128)
 #undef BTOB_REFERENCE_EXTERN
-extern template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int);
+extern template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int,
+                                                                 const core::CancelToken*);
 extern template std::vector<std::uint64_t> trig_density<long double>(const iterate::Ensemble&, long,
-                                                                      iterate::DensityRecorder&, int);
+                                                                      iterate::DensityRecorder&, int,
+                                                                      const core::CancelToken*);
 
 }  // namespace btob::reference

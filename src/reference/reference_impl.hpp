@@ -1,6 +1,7 @@
 // Template bodies of btob::reference (include this to use another scalar type than the instantiated ones).
 #pragma once
 
+#include "core/cancel.hpp"
 #include "reference/reference.hpp"
 
 #include <omp.h>
@@ -254,7 +255,7 @@ template <class T> TrigCycle<T> trig_b_to_b(TrigState<T>& s, const T& r) {
 
 template <class T>
 std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& rec,
-                                        int threads) {
+                                        int threads, const core::CancelToken* cancel) {
   const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
   std::vector<std::uint8_t> broken(n_orbits, 0);
   const long first = std::max<long>(rec.first_step(), 1);
@@ -268,6 +269,7 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
     std::vector<double> buf(static_cast<std::size_t>(3 * std::max<long>(tail, 1)));
 #pragma omp for schedule(static)
     for (std::size_t o = 0; o < n_orbits; ++o) {
+      if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
       const T r = ens.r_at<T>(o / n_ic);  // T's r from the request's decimal
       const Vec3<double>& u0 = ens.initial[o % n_ic];
       Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
@@ -275,6 +277,7 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
       TrigState<T> s = trig_start<T>(core::theta<T>(u), core::phi<T>(u));
       bool ok = true;
       for (long k = 1; k <= iterations; ++k) {
+        if (core::cancel_due(cancel, k)) break;  // the partial orbit is discarded: Cancelled is thrown below
         const TrigCycle<T> c = trig_b_to_b(s, r);
         if (c.status != TrigStatus::ok) {
           ok = false;
@@ -298,6 +301,7 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
       }
     }
   }
+  core::check_cancel(cancel);
   std::vector<std::uint64_t> per_r(ens.r.size(), 0);
   for (std::size_t o = 0; o < n_orbits; ++o) per_r[o / n_ic] += broken[o];
   return per_r;

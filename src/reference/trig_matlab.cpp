@@ -1,5 +1,6 @@
 // Appendix A.1 with MATLAB's complex semantics: the paper's trigonometric code as it actually runs once acos
 // leaves [-1, 1] (Figure 4.7 shows what it draws).
+#include "core/cancel.hpp"
 #include "reference/reference.hpp"
 
 #include <omp.h>
@@ -100,7 +101,7 @@ void collision(State& s, double r, C& theta, C& phi) {
 }  // namespace
 
 MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iterations, long tail, bool want_phi, int bins,
-                                    double lo, double hi, int threads) {
+                                    double lo, double hi, int threads, const core::CancelToken* cancel) {
   const std::size_t n_r = ens.r.size(), n_ic = ens.initial.size();
   MatlabTrigImage img;
   img.counts.assign(n_r * static_cast<std::size_t>(bins), 0);
@@ -113,6 +114,7 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
   const double scale = bins / (hi - lo);
 #pragma omp parallel for schedule(static) num_threads(nt)
   for (std::size_t ir = 0; ir < n_r; ++ir) {
+    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
     const double r = ens.r[ir];
     std::uint32_t* col = &img.counts[ir * static_cast<std::size_t>(bins)];
     auto count = [&](double v) {
@@ -138,7 +140,7 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
       // NN = 4 x iterations collisions at most (a b-to-b step takes 2 or 3; the cap ends orbits stuck on a tie).
       long k = 0;
       C theta, phi;
-      for (long pass = 0; pass < 4 * iterations && k < iterations; ++pass) {
+      for (long pass = 0; pass < 4 * iterations && k < iterations && !core::cancel_due(cancel, pass); ++pass) {
         if (is_real) {
           TrigState<double> next = real;
           if (trig_collision<double>(next, r) == TrigStatus::ok) {
@@ -184,6 +186,7 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
       img.stalled[ir] += static_cast<std::uint64_t>(tail - std::clamp<long>(k - first + 1, 0, tail));
     }
   }
+  core::check_cancel(cancel);
   return img;
 }
 

@@ -1,5 +1,6 @@
 // Ulam's transfer operator of P^_r: partitions, ergodic decomposition, spectra (Eigen, Spectra), projections.
 #include "transfer/transfer.hpp"
+#include "core/cancel.hpp"
 
 #include <Spectra/GenEigsSolver.h>
 #include <Spectra/MatOp/SparseGenMatProd.h>
@@ -177,26 +178,40 @@ struct LocalPair {
   Eigen::VectorXcd vector;  // on the block's boxes
 };
 
+// Spectra's product operator, polling the run's cancellation token before every product (one sparse product of
+// the largest partitions takes milliseconds; the Arnoldi iteration takes up to 1000 restarts of ncv products).
+struct CancellableProd : Spectra::SparseGenMatProd<double> {
+  const core::CancelToken* cancel;
+  CancellableProd(const ColMat& A, const core::CancelToken* c) : Spectra::SparseGenMatProd<double>(A), cancel(c) {}
+  void perform_op(const double* x_in, double* y_out) const {
+    core::check_cancel(cancel);
+    Spectra::SparseGenMatProd<double>::perform_op(x_in, y_out);
+  }
+};
+
 std::vector<LocalPair> block_eigenpairs(const ColMat& A, int k, bool vectors, long dense_max,
-                                       Spectra::SortRule rule = Spectra::SortRule::LargestMagn) {
+                                       Spectra::SortRule rule = Spectra::SortRule::LargestMagn,
+                                       const core::CancelToken* cancel = nullptr) {
   const long m = A.rows();
   std::vector<LocalPair> out;
   if (m == 0) return out;
   bool dense = m <= dense_max || m < k + 3;
   if (!dense) {
-    Spectra::SparseGenMatProd<double> op(A);
+    CancellableProd op(A, cancel);
     const int nev = static_cast<int>(std::min<long>(k, m - 3));
     // Spectra's restarted Arnoldi can fail in its small Schur decomposition (clustered eigenvalues on the unit
     // circle); the attempt is repeated with a larger subspace, up to three times.
     for (int attempt = 0; attempt < 3; ++attempt) {
       const int ncv = static_cast<int>(std::min<long>(m, std::max(2 * nev + 1, nev + 40) + 16 * attempt));
-      Spectra::GenEigsSolver<Spectra::SparseGenMatProd<double>> eigs(op, nev, ncv);
+      Spectra::GenEigsSolver<CancellableProd> eigs(op, nev, ncv);
       eigs.init();
       const auto tt = std::chrono::steady_clock::now();
       try {
         // tol: Spectra's relative accuracy of the Ritz values; 1e-9 resolves eigenvalues 1e-6 apart (the smallest
         // distances this analysis reports are ~1e-4, the near-one and peripheral thresholds 1e-2).
         eigs.compute(rule, 1000, 1e-9);
+      } catch (const core::Cancelled&) {
+        throw;  // a runtime_error too: not a failed attempt
       } catch (const std::runtime_error& e) {
         if (std::getenv("BTOB_TRANSFER_DEBUG")) fmt::print(stderr, "spectra: m {} ncv {}: {}\n", m, ncv, e.what());
         continue;
@@ -221,6 +236,7 @@ std::vector<LocalPair> block_eigenpairs(const ColMat& A, int k, bool vectors, lo
     if (out.empty() && m <= 4000) dense = true;
   }
   if (dense) {
+    core::check_cancel(cancel);
     const Eigen::MatrixXd D(A);
     Eigen::EigenSolver<Eigen::MatrixXd> es(D, vectors);
     for (long i = 0; i < m; ++i) {
@@ -245,12 +261,13 @@ std::vector<std::vector<long>> block_indices(const Decomposition& d) {
 }  // namespace
 
 std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decomposition& d, int k, bool vectors,
-                                          long dense_max) {
+                                          long dense_max, const core::CancelToken* cancel) {
   const auto idx = block_indices(d);
   std::vector<Eigenpair> all;
   for (std::size_t b = 0; b < idx.size(); ++b) {
     if (idx[b].empty()) continue;
-    const auto pairs = block_eigenpairs(block_transpose(P, idx[b]), k, vectors, dense_max);
+    const auto pairs = block_eigenpairs(block_transpose(P, idx[b]), k, vectors, dense_max,
+                                        Spectra::SortRule::LargestMagn, cancel);
     for (std::size_t q = 0; q < pairs.size() && static_cast<int>(q) < k; ++q) {
       Eigenpair e;
       e.value = pairs[q].value;
@@ -276,10 +293,10 @@ std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decompositi
   return all;
 }
 
-std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k) {
+std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k, const core::CancelToken* cancel) {
   std::vector<long> idx(static_cast<std::size_t>(P.n));
   std::iota(idx.begin(), idx.end(), 0L);
-  const auto pairs = block_eigenpairs(block_transpose(P, idx), k, false, 0);
+  const auto pairs = block_eigenpairs(block_transpose(P, idx), k, false, 0, Spectra::SortRule::LargestMagn, cancel);
   std::vector<std::complex<double>> v;
   for (std::size_t q = 0; q < pairs.size() && static_cast<int>(q) < k; ++q) v.push_back(pairs[q].value);
   return v;
@@ -334,12 +351,13 @@ Eigen::MatrixXd pcca(const Eigen::MatrixXd& H) {
 }
 }  // namespace
 
-std::vector<double> class_density(const UlamMatrix& P, const Decomposition& d, int c) {
+std::vector<double> class_density(const UlamMatrix& P, const Decomposition& d, int c, const core::CancelToken* cancel) {
   std::vector<long> idx;
   for (std::size_t i = 0; i < d.class_of_box.size(); ++i)
     if (d.class_of_box[i] == static_cast<std::uint32_t>(c)) idx.push_back(static_cast<long>(i));
   const int period = d.classes[static_cast<std::size_t>(c - 1)].period;
-  const auto pairs = block_eigenpairs(block_transpose(P, idx), std::max(4, period + 2), true, 600);
+  const auto pairs = block_eigenpairs(block_transpose(P, idx), std::max(4, period + 2), true, 600,
+                                      Spectra::SortRule::LargestMagn, cancel);
   const auto local = density_of(pairs, idx.size());
   std::vector<double> out(static_cast<std::size_t>(P.n), 0);
   for (std::size_t j = 0; j < idx.size(); ++j) out[static_cast<std::size_t>(idx[j])] = local[j];
@@ -762,7 +780,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
   const Decomposition d = decompose(P);
   res.classes = d.classes;
   const bool spectrum = q.spectrum();
-  const auto pairs = spectrum ? leading_eigenpairs(P, d, q.eigenvalues, true) : std::vector<Eigenpair>{};
+  const auto pairs = spectrum ? leading_eigenpairs(P, d, q.eigenvalues, true, 600, c.cancel) : std::vector<Eigenpair>{};
   for (const auto& e : pairs) {
     res.eig_re.push_back(e.value.real());
     res.eig_im.push_back(e.value.imag());
@@ -770,7 +788,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
     if (std::abs(e.value - 1.0) <= q.near_one) ++res.near_one_count;
   }
   if (q.check_whole)
-    for (const auto& v : leading_eigenvalues_whole(P, q.eigenvalues)) {
+    for (const auto& v : leading_eigenvalues_whole(P, q.eigenvalues, c.cancel)) {
     res.whole_re.push_back(v.real());
     res.whole_im.push_back(v.imag());
   }
@@ -814,7 +832,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
         for (long i : ab.boxes) t += full[static_cast<std::size_t>(i)] = std::max(0.0, best->vector[static_cast<std::size_t>(i)].real() / sum);
         for (auto& x : full) x /= t;
       } else {
-        full = class_density(P, d, k);
+        full = class_density(P, d, k, c.cancel);
       }
       for (long i : ab.boxes) ab.density.push_back(full[static_cast<std::size_t>(i)]);
       absorbers.push_back(std::move(ab));
@@ -890,7 +908,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& c) {
         const ColMat A = block_transpose(P, ab.boxes);
         const ColMat Q = A.transpose();
         const int p = static_cast<int>(values.size());
-        auto right = block_eigenpairs(Q, p + 2, true, 600, Spectra::SortRule::LargestReal);
+        auto right = block_eigenpairs(Q, p + 2, true, 600, Spectra::SortRule::LargestReal, c.cancel);
         std::stable_sort(right.begin(), right.end(), [](const LocalPair& x, const LocalPair& y) { return x.value.real() > y.value.real(); });
         Eigen::MatrixXd H(static_cast<long>(ab.boxes.size()), p);
         int got = 0;
@@ -1114,7 +1132,7 @@ TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
     c.check_cancelled();
     const UlamMatrix P = ulam_btob(res.r[ir], dom, part, q.samples, q.route, inner);
     const Decomposition d = decompose(P);
-    const auto pairs = leading_eigenpairs(P, d, q.eigenvalues, false);
+    const auto pairs = leading_eigenpairs(P, d, q.eigenvalues, false, 600, c.cancel);
     int per = 0;
     double min_per = 2, max_rest = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t k = 0; k < pairs.size(); ++k) {

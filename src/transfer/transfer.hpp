@@ -77,13 +77,17 @@ struct Eigenpair {
   int block = 0;                          // 0: transient block, c >= 1: closed class c
   std::vector<std::complex<double>> vector;  // n entries
 };
+// `cancel` (here and below): polled before every matrix-vector product of the Arnoldi iteration; throws
+// core::Cancelled when set.
 std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decomposition& d, int k, bool vectors,
-                                          long dense_max = 600);
+                                          long dense_max = 600, const core::CancelToken* cancel = nullptr);
 // Spectra on the whole matrix (the cross-check of the block route; unreliable on repeated eigenvalues).
-std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k);
+std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k,
+                                                            const core::CancelToken* cancel = nullptr);
 
 // The invariant density of closed class c (mass per box, sum 1, zero outside the class).
-std::vector<double> class_density(const UlamMatrix& P, const Decomposition& d, int c);
+std::vector<double> class_density(const UlamMatrix& P, const Decomposition& d, int c,
+                                  const core::CancelToken* cancel = nullptr);
 
 // ---- The b-to-b map --------------------------------------------------------------------------------------
 enum class Domain { strip, angles };

@@ -1,5 +1,6 @@
 // Exact integer polynomials: arithmetic, exact signs at rationals, primitive Sturm sequences.
 #include "windows/polynomial.hpp"
+#include "core/cancel.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -153,7 +154,7 @@ IntPoly pseudo_remainder(const IntPoly& a, const IntPoly& b) {
   return IntPoly(std::move(r));
 }
 
-std::vector<IntPoly> sturm_sequence(const IntPoly& p) {
+std::vector<IntPoly> sturm_sequence(const IntPoly& p, const core::CancelToken* cancel) {
   std::vector<IntPoly> seq;
   if (p.is_zero()) return seq;
   seq.push_back(p.primitive());
@@ -161,6 +162,7 @@ std::vector<IntPoly> sturm_sequence(const IntPoly& p) {
   if (d.is_zero()) return seq;
   seq.push_back(d.primitive());
   while (true) {
+    core::check_cancel(cancel);
     const IntPoly& a = seq[seq.size() - 2];
     const IntPoly& b = seq.back();
     IntPoly pr = pseudo_remainder(a, b);
@@ -252,7 +254,8 @@ long variations_on_unit(const Coeffs& g) {
 }
 
 // Distinct roots of g in (0, 1) by bisection: g_L(y) = 2^d g(y/2) on (0, 1/2), g_R = g_L(y + 1) on (1/2, 1).
-long vca_unit(const Coeffs& g, int depth) {
+long vca_unit(const Coeffs& g, int depth, const core::CancelToken* cancel) {
+  core::check_cancel(cancel);
   const long v = variations_on_unit(g);
   if (v <= 1) return v;
   if (depth <= 0) return -1;
@@ -262,9 +265,9 @@ long vca_unit(const Coeffs& g, int depth) {
   Coeffs right(left);
   taylor_shift_one(right);
   const long at_midpoint = right[0] == 0 ? 1 : 0;  // the halves are open: a root at 1/2 is counted here
-  const long l = vca_unit(left, depth - 1);
+  const long l = vca_unit(left, depth - 1, cancel);
   if (l < 0) return -1;
-  const long r = vca_unit(right, depth - 1);
+  const long r = vca_unit(right, depth - 1, cancel);
   return r < 0 ? -1 : l + r + at_midpoint;
 }
 
@@ -298,7 +301,8 @@ long root_bound_exponent(const IntPoly& p) {
 }
 }  // namespace
 
-long descartes_count(const IntPoly& p, const mpq_class& a_in, const mpq_class& b_in, int max_depth) {
+long descartes_count(const IntPoly& p, const mpq_class& a_in, const mpq_class& b_in, int max_depth,
+                     const core::CancelToken* cancel) {
   mpq_class a = a_in, b = b_in;
   a.canonicalize();
   b.canonicalize();
@@ -310,10 +314,11 @@ long descartes_count(const IntPoly& p, const mpq_class& a_in, const mpq_class& b
   const mpz_class u = a.get_num() * (den / a.get_den()), v = b.get_num() * (den / b.get_den());
   Coeffs g = shifted_to(p, u, den);
   scale_and_reduce(g, v - u);
-  return vca_unit(g, max_depth);
+  return vca_unit(g, max_depth, cancel);
 }
 
-long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a_in, int max_depth) {
+long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a_in, int max_depth,
+                                 const core::CancelToken* cancel) {
   mpq_class a = a_in;
   a.canonicalize();
   if (p.is_zero()) throw std::invalid_argument("descartes_count: the zero polynomial");
@@ -323,22 +328,24 @@ long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a_in, int ma
   const long e = root_bound_exponent(p);
   mpz_class bound;
   mpz_ui_pow_ui(bound.get_mpz_t(), 2, static_cast<unsigned long>(e));
-  return a < bound ? descartes_count(p, a, mpq_class(bound), max_depth + static_cast<int>(e)) : 0;
+  return a < bound ? descartes_count(p, a, mpq_class(bound), max_depth + static_cast<int>(e), cancel) : 0;
 }
 
-long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache) {
+long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache,
+                const core::CancelToken* cancel) {
   if (p.sign_at(a) == 0 || p.sign_at(b) == 0) throw std::domain_error("root_count: an endpoint is a root of the polynomial");
-  const long d = descartes_count(p, a, b);
+  const long d = descartes_count(p, a, b, 64, cancel);
   if (d >= 0) return d;
-  if (seq_cache->empty()) *seq_cache = sturm_sequence(p);
+  if (seq_cache->empty()) *seq_cache = sturm_sequence(p, cancel);
   return sturm_count(*seq_cache, a, b);
 }
 
-long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache) {
+long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache,
+                            const core::CancelToken* cancel) {
   if (p.sign_at(a) == 0) throw std::domain_error("root_count: the endpoint is a root of the polynomial");
-  const long d = descartes_count_to_infinity(p, a);
+  const long d = descartes_count_to_infinity(p, a, 64, cancel);
   if (d >= 0) return d;
-  if (seq_cache->empty()) *seq_cache = sturm_sequence(p);
+  if (seq_cache->empty()) *seq_cache = sturm_sequence(p, cancel);
   return sturm_count_to_infinity(*seq_cache, a);
 }
 

@@ -1,6 +1,8 @@
 // Exact integer polynomials in one variable (GMP), their exact signs at rationals, and Sturm counts.
 #pragma once
 
+#include "core/request.hpp"
+
 #include <gmpxx.h>
 
 #include <cstddef>
@@ -58,7 +60,8 @@ IntPoly pseudo_remainder(const IntPoly& a, const IntPoly& b);
 // The Sturm sequence of p (p, p', -rem, ...) computed as a primitive pseudo-remainder sequence: every
 // term is a positive multiple of the classical term, so sign variations are those of the classical
 // sequence.  Exact; coefficient sizes grow roughly linearly along the sequence.
-std::vector<IntPoly> sturm_sequence(const IntPoly& p);
+// `cancel` (here and below): polled before every remainder or bisection step; throws core::Cancelled when set.
+std::vector<IntPoly> sturm_sequence(const IntPoly& p, const core::CancelToken* cancel = nullptr);
 
 // Number of distinct real roots of p in (a, b] from its Sturm sequence, a < b.  a and b must not be
 // roots of p (throws std::domain_error otherwise).  b_infinite counts on (a, +infinity).
@@ -71,15 +74,19 @@ long sturm_count_to_infinity(const std::vector<IntPoly>& seq, const mpq_class& a
 // root; otherwise the interval is halved (Taylor shifts on exact integers).  Endpoints may be roots (they
 // are not counted; a root at a bisection point is).  Returns -1 when it cannot decide within max_depth
 // halvings (a multiple root, or roots closer than (b - a) 2^-max_depth): callers then fall back to Sturm.
-long descartes_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, int max_depth = 64);
+long descartes_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, int max_depth = 64,
+                     const core::CancelToken* cancel = nullptr);
 // The same on (a, +infinity): x = a + t, then (a, B) with B a power of two above every root (Fujiwara's
 // bound) when that leaves two or more variations.
-long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a, int max_depth = 64);
+long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a, int max_depth = 64,
+                                 const core::CancelToken* cancel = nullptr);
 
 // Distinct real roots in (a, b) and in (a, +inf) (endpoints not roots, as sturm_count): Descartes first, the
 // Sturm sequence (computed once, on demand, in *seq_cache) when Descartes cannot decide.
-long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache);
-long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache);
+long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache,
+                const core::CancelToken* cancel = nullptr);
+long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<IntPoly>* seq_cache,
+                            const core::CancelToken* cancel = nullptr);
 
 // For a palindromic p of even degree 2m (c_i = c_{2m-i}): the R of degree m with p(x) = x^m R(x + 1/x).
 // Throws std::invalid_argument when p is not palindromic of even degree.

@@ -134,7 +134,7 @@ std::size_t BoundsRequest::work_items() const { return static_cast<std::size_t>(
 
 BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   return for_each_n<BoundsPart>(req, 1, items, control, [&](BoundsPart& part, int n) {
-    const mpfr_float lo = window_lower_bound(n, req.digits);
+    const mpfr_float lo = window_lower_bound(n, req.digits, control.cancel);
     part.lower_text.push_back(fixed(lo, req.digits));
     part.lower_bound.push_back(static_cast<double>(lo));
     if (n >= 2) {
@@ -146,7 +146,7 @@ BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& it
       part.upper_bound.push_back(std::nan(""));
     }
     if (req.certify) {
-      const Certificate cert = certify_lower_bound(n, req.digits);
+      const Certificate cert = certify_lower_bound(n, req.digits, control.cancel);
       part.a.push_back(cert.a.get_str());  // canonical p/q: mpq_class reads it back exactly
       part.b.push_back(cert.b.get_str());
       part.sign_a.push_back(cert.sign_a);

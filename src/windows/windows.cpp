@@ -1,5 +1,6 @@
 // Windows of stability: Q_n exact, its smallest positive root in MPFR, exact certificates, r_crit,2.
 #include "windows/windows.hpp"
+#include "core/cancel.hpp"
 
 #include <boost/math/tools/roots.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -60,8 +61,9 @@ Mat four_BA() {
   return mul(B2, A2);
 }
 
-// Numerators T_n = tr(J (4BA)^n), so P_n = T_n / 4^n.  Cached for all n computed so far.
-IntPoly trace_numerator(int n) {
+// Numerators T_n = tr(J (4BA)^n), so P_n = T_n / 4^n.  Cached for all n computed so far (a cancelled call leaves
+// the powers computed until then, each complete).
+IntPoly trace_numerator(int n, const core::CancelToken* cancel = nullptr) {
   static std::mutex mu;
   static std::vector<IntPoly> traces;  // traces[k] = T_{k+1}
   static Mat power;                    // (4BA)^(traces.size())
@@ -69,6 +71,7 @@ IntPoly trace_numerator(int n) {
   std::lock_guard<std::mutex> lock(mu);
   if (traces.empty()) power = base, traces.push_back(power[6] + power[4] + power[2]);
   while (static_cast<int>(traces.size()) < n) {
+    core::check_cancel(cancel);
     power = mul(base, power);
     traces.push_back(power[6] + power[4] + power[2]);  // tr(J M) = M_31 + M_22 + M_13
   }
@@ -136,13 +139,30 @@ RationalPoly trace_polynomial(int n) {
   return reduce(trace_numerator(n), pow2(2 * static_cast<unsigned long>(n)));
 }
 
-RationalPoly window_polynomial(int n) {
+namespace {
+// a * b as IntPoly's operator*, one row of a at a time with a poll between rows (the product of two degree-2n
+// polynomials with 4n-bit coefficients is the longest single step of a window at large n: seconds at n = 1000).
+IntPoly product(const IntPoly& a, const IntPoly& b, const core::CancelToken* cancel) {
+  if (a.is_zero() || b.is_zero()) return {};
+  const auto& ac = a.coefficients();
+  const auto& bc = b.coefficients();
+  std::vector<mpz_class> c(ac.size() + bc.size() - 1);
+  for (std::size_t i = 0; i < ac.size(); ++i) {
+    core::check_cancel(cancel);
+    if (ac[i] == 0) continue;
+    for (std::size_t j = 0; j < bc.size(); ++j) mpz_addmul(c[i + j].get_mpz_t(), ac[i].get_mpz_t(), bc[j].get_mpz_t());
+  }
+  return IntPoly(std::move(c));
+}
+}  // namespace
+
+RationalPoly window_polynomial(int n, const core::CancelToken* cancel) {
   validate_n(n);
   // P_n = T/4^n with deg T <= 2n, r^(2n) P_n(1/r) = rev_2n(T)/4^n, so
   // Q_n = (T(r) rev_2n(T)(r) - 16^n r^(2n)) / 16^n   (eq. 4.3).
-  const IntPoly t = trace_numerator(n);
+  const IntPoly t = trace_numerator(n, cancel);
   const unsigned long un = static_cast<unsigned long>(n);
-  const IntPoly prod = t * t.reversed(2 * n);
+  const IntPoly prod = product(t, t.reversed(2 * n), cancel);
   const IntPoly shift = IntPoly::constant(pow2(4 * un)).shifted(2 * n);
   return reduce(prod - shift, pow2(4 * un));
 }
@@ -207,7 +227,7 @@ namespace {
 
 // The smallest positive root of Q_n by bracketing (TOMS 748) at a working precision raised until the sign
 // change around the result is reliable.
-mpfr_float lower_bound_by_bracketing(const RationalPoly& q, int n, int decimals) {
+mpfr_float lower_bound_by_bracketing(const RationalPoly& q, int n, int decimals, const core::CancelToken* cancel) {
   // Q_n's integer numerator has coefficients up to ~2^(4n) times a polynomial factor; Horner at r ~ 0.07
   // cancels up to that many digits in the worst case.  Start with 20 guard digits and double them until
   // the running error bound shows a reliable sign change across the result.
@@ -216,7 +236,10 @@ mpfr_float lower_bound_by_bracketing(const RationalPoly& q, int n, int decimals)
     const unsigned work = static_cast<unsigned>(decimals) + guard;
     ScopedDigits sd(static_cast<int>(work));
     const std::vector<mpfr_float> c = to_mpfr(q);
-    auto f = [&](const mpfr_float& x) { return horner(c, x).value; };
+    auto f = [&](const mpfr_float& x) {
+      core::check_cancel(cancel);
+      return horner(c, x).value;
+    };
     // Bracket: Q_n > 0 at the three-particle threshold 7 - 4 sqrt(3) (there BA has a double eigenvalue)
     // and changes sign once before r_crit,2(n) (checked for n = 1..300 on a 400-point grid and by the
     // Sturm certificates).  n = 1: Q_1 = (r+1)^2 (r^2 - 6r + 1)/16, root 3 - 2 sqrt 2 < 1/2.
@@ -272,9 +295,9 @@ bool reliable_root(const std::vector<mpfr_float>& c, const mpfr_float& x, int de
 // Many decimals: Newton's iteration from the root to 30 decimals, at a working precision chosen once from
 // Horner's running error bound there (digits lost ~ log10(2 mu / |x Q'(x)|)), then the same reliability
 // check as the bracketing.  Returns false (and the caller brackets) when it does not converge near the seed.
-bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_float& out) {
+bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_float& out, const core::CancelToken* cancel) {
   const int seed_decimals = 30;
-  const mpfr_float seed = lower_bound_by_bracketing(q, n, seed_decimals);
+  const mpfr_float seed = lower_bound_by_bracketing(q, n, seed_decimals, cancel);
   int lost = 0;
   {
     ScopedDigits sd(static_cast<int>(seed.precision()));
@@ -291,6 +314,7 @@ bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_floa
   x.precision(static_cast<unsigned>(work));
   const mpfr_float stop = pow(mpfr_float(10), -(decimals + 8)), near = pow(mpfr_float(10), -(seed_decimals - 5));
   for (int it = 0; it < 40; ++it) {
+    core::check_cancel(cancel);
     const auto [v, dv] = horner_with_derivative(c, x);
     if (dv == 0) return false;
     const mpfr_float dx = v / dv;
@@ -305,16 +329,16 @@ bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_floa
 
 }  // namespace
 
-mpfr_float window_lower_bound(int n, int decimals) {
+mpfr_float window_lower_bound(int n, int decimals, const core::CancelToken* cancel) {
   validate_n(n);
   validate_digits(decimals, "digits");
-  const RationalPoly q = window_polynomial(n);
+  const RationalPoly q = window_polynomial(n, cancel);
   mpfr_float x;
-  if (decimals > 40 && lower_bound_by_newton(q, n, decimals, x)) return x;
-  return lower_bound_by_bracketing(q, n, decimals);
+  if (decimals > 40 && lower_bound_by_newton(q, n, decimals, x, cancel)) return x;
+  return lower_bound_by_bracketing(q, n, decimals, cancel);
 }
 
-Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in) {
+Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in, const core::CancelToken* cancel) {
   Certificate cert;
   cert.n = n;
   cert.a = a_in;
@@ -322,14 +346,16 @@ Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in
   cert.a.canonicalize();
   cert.b.canonicalize();
   if (!(cert.a > 0 && cert.a < cert.b)) return cert;  // invalid, counts stay -1
-  const RationalPoly q = window_polynomial(n);
+  const RationalPoly q = window_polynomial(n, cancel);
   cert.sign_a = q.numerator.sign_at(cert.a);
   cert.sign_b = q.numerator.sign_at(cert.b);
   // The Sturm counts run on the palindromic cofactor reduced to s = r + 1/r (degree about 2n instead of
   // 4n): r in (0, a] <-> s in [a + 1/a, inf), r in (a, b) <-> s in (b + 1/b, a + 1/a).  The factors
   // (r +- 1) have no root in (0, 1), so the cofactor has the same roots there as Q_n.
   if (cert.sign_a == 0 || cert.sign_b == 0 || cert.sign_a * cert.sign_b > 0) return cert;  // invalid, counts stay -1
+  core::check_cancel(cancel);
   Factorised f = factorise(q);
+  core::check_cancel(cancel);
   IntPoly p = f.cofactor;
   IntPoly reduced_poly;
   try {
@@ -342,18 +368,18 @@ Certificate certify_interval(int n, const mpq_class& a_in, const mpq_class& b_in
   std::vector<IntPoly> seq;
   if (!reduced_poly.is_zero()) {
     const mpq_class sa = cert.a + 1 / cert.a, sb = cert.b + 1 / cert.b;
-    cert.roots_0_a = root_count_to_infinity(reduced_poly, sa, &seq);
-    cert.roots_a_b = root_count(reduced_poly, sb, sa, &seq);
+    cert.roots_0_a = root_count_to_infinity(reduced_poly, sa, &seq, cancel);
+    cert.roots_a_b = root_count(reduced_poly, sb, sa, &seq, cancel);
   } else {
     // Not palindromic of even degree (never seen): count on Q_n itself.
-    cert.roots_0_a = root_count(q.numerator, mpq_class(0), cert.a, &seq);
-    cert.roots_a_b = root_count(q.numerator, cert.a, cert.b, &seq);
+    cert.roots_0_a = root_count(q.numerator, mpq_class(0), cert.a, &seq, cancel);
+    cert.roots_a_b = root_count(q.numerator, cert.a, cert.b, &seq, cancel);
   }
   return cert;
 }
 
-Certificate certify_lower_bound(int n, int decimals) {
-  const mpfr_float x = window_lower_bound(n, decimals);
+Certificate certify_lower_bound(int n, int decimals, const core::CancelToken* cancel) {
+  const mpfr_float x = window_lower_bound(n, decimals, cancel);
   mpz_class scale;
   mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(decimals));
   // k = floor(x 10^D): the D-decimal truncation of x.
@@ -363,7 +389,7 @@ Certificate certify_lower_bound(int n, int decimals) {
     const mpfr_float t = floor(x * mpfr_float(scale.get_mpz_t()));
     mpfr_get_z(k.get_mpz_t(), t.backend().data(), MPFR_RNDN);
   }
-  Certificate cert = certify_interval(n, mpq_class(k, scale), mpq_class(k + 1, scale));
+  Certificate cert = certify_interval(n, mpq_class(k, scale), mpq_class(k + 1, scale), cancel);
   cert.decimals = decimals;
   return cert;
 }

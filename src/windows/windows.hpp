@@ -40,14 +40,17 @@ struct Factorised {
 };
 
 RationalPoly trace_polynomial(int n);   // P_n = tr(J (BA)^n), degree 2n (Section 4)
-RationalPoly window_polynomial(int n);  // Q_n = r^(2n) P_n(r) P_n(1/r) - r^(2n), eq. (4.3), degree 4n
+// Q_n = r^(2n) P_n(r) P_n(1/r) - r^(2n), eq. (4.3), degree 4n; `cancel` polled at every matrix power and product row.
+RationalPoly window_polynomial(int n, const core::CancelToken* cancel = nullptr);
 Factorised factorise(const RationalPoly& q);
 
 // The lower bound of the n-th window: the smallest positive root of Q_n.  It lies in
 // (7 - 4 sqrt(3), r_crit,2(n)) (n >= 2) or (7 - 4 sqrt(3), 1/2) (n = 1), where Q_n has exactly one sign
 // change; the certificate below proves that no smaller positive root exists.  Returned with at least
 // `decimals` + 3 correct decimals (precision raised until the sign change around the result is reliable).
-mpfr_float window_lower_bound(int n, int decimals);
+// `cancel` (here and below): polled at every evaluation of Q_n, Newton step, bisection and remainder step; throws
+// core::Cancelled when set.
+mpfr_float window_lower_bound(int n, int decimals, const core::CancelToken* cancel = nullptr);
 
 // Exact certificate of window_lower_bound(n) to D decimals, all in rational arithmetic:
 //   a = k/10^D < b, Q_n(a) and Q_n(b) of opposite signs (so a root lies in (a, b)),
@@ -60,10 +63,10 @@ struct Certificate {
   long roots_0_a = -1, roots_a_b = -1;
   bool valid() const { return sign_a * sign_b < 0 && roots_0_a == 0 && roots_a_b == 1 && a < b && a > 0; }
 };
-Certificate certify_lower_bound(int n, int decimals);
+Certificate certify_lower_bound(int n, int decimals, const core::CancelToken* cancel = nullptr);
 // The same checks on a given bracket (a, b) (decimals = 0): valid() only if it proves that the smallest positive
 // root of Q_n lies in (a, b).  certify_lower_bound runs it on the D-decimal truncation of window_lower_bound(n).
-Certificate certify_interval(int n, const mpq_class& a, const mpq_class& b);
+Certificate certify_interval(int n, const mpq_class& a, const mpq_class& b, const core::CancelToken* cancel = nullptr);
 
 // r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.6); n >= 2.  `digits` significant.
 mpfr_float r_crit2(int n, int digits);

@@ -1,0 +1,59 @@
+"""Ctrl-C (SIGINT) stops every kind of run: single orbits in every precision, transients, sweeps whose items are
+long orbits, the atlas and windows certificates raise KeyboardInterrupt within a bound.  Each call below would run
+for minutes or hours if the signal were not seen inside its inner loop.  Each runs in a child interpreter, so that
+a run that ignored the signal fails the test (killed after a timeout) instead of hanging it.  The bound is 2 s so
+that a loaded machine does not fail the test; on an idle machine the latency is the binding's 50 ms poll."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+BOUND = 2.0  # seconds from SIGINT to the child's exit (the guarantee on an idle machine is 0.1 s)
+ORBIT = 'r=0.2, point="1,-0.5,-1.1"'
+RUNS = {
+    "lyapunov double": f"btob.lyapunov({ORBIT}, iterations=10**12)",
+    "lyapunov mpfr": f'btob.lyapunov({ORBIT}, iterations=10**9, precision="mpfr:40")',
+    "iterate": 'btob.iterate(0.2, [1, -0.5, -1.1], 10**11, record="final")',
+    "classify transient": f"btob.classify({ORBIT}, transient=10**12)",
+    "lyapunov_map": 'btob.lyapunov_map(r_count=2, iterations=10**11, grid="1,-0.5,-1.1")',
+    "bifurcation mpfr": 'btob.bifurcation(r_count=2, iterations=10**8, tail=100, grid="1,-0.5,-1.1", precision="mpfr:30")',
+    "pattern_atlas": "btob.pattern_atlas(max_length=12)",
+    "windows certificate": 'btob.windows_bounds(n="1000", certify=True)',
+}
+# The child: runs the call; on KeyboardInterrupt prints when it arrived (CLOCK_MONOTONIC, the parent's clock too),
+# checks that the next run works and exits 42.
+CHILD = """
+import sys, time, btob
+print("started", flush=True)
+try:
+    {call}
+except KeyboardInterrupt:
+    print(time.monotonic(), flush=True)
+    assert btob.lyapunov(r=0.2, point="1,-0.5,-1.1", iterations=1000).attrs["lambda1"] < 1
+    sys.exit(42)
+sys.exit(1)
+"""
+
+
+@pytest.mark.parametrize("name", list(RUNS))
+def test_keyboard_interrupt_stops_the_run(name):
+    child = subprocess.Popen([sys.executable, "-c", CHILD.format(call=RUNS[name])], stdout=subprocess.PIPE, text=True,
+                             env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(0.7)  # inside the computation
+    assert child.poll() is None, f"{name}: finished before the signal"
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    try:
+        rc = child.wait(timeout=10 * BOUND)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.wait()
+        pytest.fail(f"{name}: still running {10 * BOUND} s after SIGINT")
+    assert rc == 42, f"{name}: exit {rc}, expected KeyboardInterrupt (42)"
+    latency = float(child.stdout.readline()) - sent
+    print(f"{name}: KeyboardInterrupt {latency:.3f} s after SIGINT")
+    assert latency < BOUND, f"{name}: KeyboardInterrupt {latency:.3f} s after SIGINT"
