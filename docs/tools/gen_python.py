@@ -16,7 +16,7 @@ SMALL = {
     "bifurcation": dict(r_count=4, iterations=50, tail=10),
     "lyapunov": dict(r=0.15, point=(1, -0.5, -1.1), iterations=500, transient=10),
     "lyapunov_map": dict(r_min=0.1, r_max=0.2, r_count=2, grid="random:2", iterations=300, transient=10),
-    "lyapunov_strip": dict(r=0.3, n1=4, n2=4, iterations=300, transient=10),
+    "lyapunov_strip": dict(r=0.3, grid="strip:4x4", iterations=300, transient=10),
     "hyperbolicity": dict(r=0.3, grid="strip:4x4"),
     "hyperbolicity_orbits": dict(r_min=0.1, r_max=0.3, r_count=2, grid="random:2", iterations=300, transient=30,
                                  backward=30),
