@@ -38,11 +38,13 @@ PAPER = [
     ("fig4_7/fig4_7.png", "fig4_7/fig4_7.json", "Figure 4.7",
      f"Plot of the tails of the orbits of {P} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, relying on the "
      "trigonometric algorithm of Section A.1.",
-     "(a) btob's emulation of the paper's MATLAB code: orbits continued in complex arithmetic once acos leaves "
-     "[-1, 1] (real part plotted); (b) only the orbits that never left acos's domain; (c) share of orbits per r that "
-     "the emulation counts as complex. The printed code run in GNU Octave takes no complex acos on the grid at "
-     "r = 0.072-0.078 and freezes about half the orbits at phi = pi/2 (analyses/octave/README.md): (c) overstates "
-     "the share, and (a) is not yet what the paper's program draws."),
+     "(a) btob's emulation of the paper's MATLAB code (MATLAB's acos: real on [-1, 1], complex outside), red dots "
+     "where some orbit stopped producing b-collisions (the paper's red dots); (b) only the orbits that never left "
+     "acos's domain; (c) per r, the orbits that left it and the tail states never reached. Below r = 0.078 the "
+     "printed code draws no apparent chaos: orbits reach phi = pi/2 exactly and stop, or stay at theta = pi/2. GNU "
+     "Octave running the printed code agrees (no complex acos on the grid at r = 0.072-0.078, 15-20 of 32 orbits "
+     "stopped; analyses/octave/README.md), so the paper's panel was not drawn by the code as printed, run in IEEE "
+     "double."),
     ("fig6_1a/fig6_1a.png", "fig6_1a/fig6_1a.json", "Figure 6.1a",
      f"{TAILS} for 0.1 ≤ r ≤ 0.102. (a) p-th iterations of {P} for 4900 ≤ p ≤ 5000.",
      "phi; six accumulation values of (ab)^3(cb)^3 below 5-2√6 (red), apparent chaos above."),

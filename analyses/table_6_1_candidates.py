@@ -304,6 +304,9 @@ def write_atomic(path, text):
 
 
 def csv_text(rows):
+    """Rows as CSV that numpy.genfromtxt(names=True) reads as written: column names are identifiers ('-' becomes
+    '_'), and the candidates' descriptions (free text with commas) are left to the manifest's "candidates"."""
+    rows = [{k.replace("-", "_"): v for k, v in row.items() if k != "description"} for row in rows]
     keys = []
     for row in rows:
         keys += [k for k in row if k not in keys]

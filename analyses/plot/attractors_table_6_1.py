@@ -130,7 +130,7 @@ def draw_detection(d):
     edges = np.array([float(x["pixels_low"]) for x in hist] + [float(hist[-1]["pixels_high"])])
     for t, col in (("periodic", "#1f77b4"), ("quasi-periodic", "#17becf"), ("chaotic", "#8b0000"),
                    ("unresolved", "black")):
-        n = np.array([int(x[t]) for x in hist])
+        n = np.array([int(x[t.replace("-", "_")]) for x in hist])
         if n.sum():
             a.stairs(n, edges, label=f"btob: {t} ({n.sum()})", color=col, lw=1.5)
     n = np.array([int(x["rule_finite"]) for x in hist])

@@ -178,7 +178,7 @@ def draw(f):
                      f"{n_nan} NaN values not drawn{stalled_note}",
                      transform=axes[0].transAxes, fontsize=8, color="#b00000", va="top")
         ax = axes[2]
-        ax.plot(r, 100 * complex_orbits / n_ic, color=COLOURS[0], lw=0.8, label="left acos's domain (complex)")
+        ax.plot(r, 100 * complex_orbits / n_ic, color="#1f4fd6", lw=0.8, label="left acos's domain (complex)")
         ax.plot(r, 100 * broken / n_ic, color="k", lw=0.6, ls=":", label="stopped in (b) (any failure status)")
         if stalled_m is not None:
             ax.plot(r, 100 * stalled_m / (n_ic * float(a["tail"])), color="#d62020", lw=0.8,
