@@ -6,6 +6,7 @@
 #include "iterate/lanes.hpp"
 
 #include <Eigen/Dense>
+#include <immintrin.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -52,15 +53,69 @@ template <class T> inline T abs_of(const T& v) {
 }
 template <class T> inline T negabs_of(const T& v) { return -abs_of(v); }
 
+// a y - x rounded once, for a vector: the FMA instruction where the unit is compiled with it, so that the
+// value and its sign do not depend on what the compiler contracts (core::fms is the scalar form).  Without
+// FMA, a y - x is rounded twice; its sign is still exact unless the rounded product equals x, where the result
+// is 0 and settle_ties recomputes the lane (so both builds give every lane the same bits).
+template <class V> inline V fms(V a, V y, V x) {
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm512_fmsub_pd((__m512d)a, (__m512d)y, (__m512d)x);
+    else return (V)_mm512_fmsub_ps((__m512)a, (__m512)y, (__m512)x);
+  }
+#endif
+#if defined(__FMA__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm256_fmsub_pd((__m256d)a, (__m256d)y, (__m256d)x);
+    else return (V)_mm256_fmsub_ps((__m256)a, (__m256)y, (__m256)x);
+  }
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm_fmsub_pd((__m128d)a, (__m128d)y, (__m128d)x);
+    else return (V)_mm_fmsub_ps((__m128)a, (__m128)y, (__m128)x);
+  }
+#endif
+  const V ay = a * y;  // reached only without FMA, where nothing contracts
+  return ay - x;
+}
+// A zero a y - x is an exact tie (branch 2), a product rounded onto x (no FMA), or an exact value below the
+// smallest subnormal: lanes whose c1 or c3 is zero get the exact fused value and the exact sign (core::
+// sign_of_fms).  Such lanes are rare (ties are a set of measure zero), so the common path costs one test.
+template <class V, class M> inline void settle_ties(V x, V y, V z, V a, V& c1, V& c3, M& s1, M& s3) {
+  using T = std::remove_cvref_t<decltype(x[0])>;
+  constexpr int W = sizeof(V) / sizeof(T);
+  for (int l = 0; l < W; ++l) {
+    if (c1[l] == 0) {
+      c1[l] = core::fms<T>(a[l], y[l], x[l]);
+      s1[l] = core::sign_of_fms<T>(a[l], y[l], x[l], c1[l]) > 0 ? -1 : 0;
+    }
+    if (c3[l] == 0) {
+      c3[l] = core::fms<T>(a[l], y[l], z[l]);
+      s3[l] = core::sign_of_fms<T>(a[l], y[l], z[l], c3[l]) < 0 ? -1 : 0;
+    }
+  }
+}
+
 template <class V, class M>
 inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
-  // 4 multiply-class operations per lane (a y, r x, r z, one FMA) and 3 additions: on a core whose
-  // 512-bit multiplies and additions issue on separate pipes the step costs ~4 cycles per vector.
-  // V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
-  const V ay = a * y;
-  const V c1 = V(ay - x), c3 = V(ay - z);
-  s1 = c1 > V{};
-  s3 = c3 < V{};
+  // 4 multiply-class operations per lane (two fused a y - x, a y - z, r x, r z, one FMA) and 3 additions:
+  // on a core whose 512-bit multiplies and additions issue on separate pipes the step costs ~4 cycles per
+  // vector.  V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
+  // The branch is core::branch's rule: the exact signs of a y - x and a y - z (ties to symbol 2).
+  V c1, c3;
+  if constexpr (std::is_same_v<M, bool>) {
+    c1 = core::fms<V>(a, y, x);
+    c3 = core::fms<V>(a, y, z);
+    s1 = core::sign_of_fms<V>(a, y, x, c1) > 0;
+    s3 = core::sign_of_fms<V>(a, y, z, c3) < 0;
+  } else {
+    c1 = fms(a, y, x);
+    c3 = fms(a, y, z);
+    s1 = c1 > V{};
+    s3 = c3 < V{};
+    const M zero = (c1 == V{}) | (c3 == V{});
+    M none{};
+    if (__builtin_expect(std::memcmp(&zero, &none, sizeof zero) != 0, 0)) settle_ties(x, y, z, a, c1, c3, s1, s3);
+  }
   const V xn = s3 ? V(r * x) : V(abs_of(c1));
   const V zn = s1 ? V(r * z) : V(negabs_of(c3));
   const V sy = (s1 | s3) ? V(-y) : y;

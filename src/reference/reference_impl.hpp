@@ -76,8 +76,16 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u_in, c
     const Vec3<T> q = detail::cross_counted(p, u, out.condition);
     const Vec3<T> v = u - u.dot(e) * e;
     const T qv = q.dot(v);
-    if (qv == 0) out.degenerate = true;
-    contact = qv > 0 ? next_if_positive[i] : next_if_negative[i];
+    // At the second contact (a or c) the sign of q.v is the sign of alpha y - x (alpha y - z): the branch line.
+    // Where it is zero within this route's rounding (eps times the cross products' condition, 32 for the
+    // roundings of q, v and their dot product), the point is taken to lie on the line and goes where the map's
+    // tie rule sends it (core::branch: symbol 2, so the third letter: acb or cab).
+    using std::abs;
+    const T band = 32 * std::numeric_limits<T>::epsilon() * (1 + out.condition) * q.norm() * v.norm();
+    const bool tie = collisions == 1 && abs(qv) <= band;
+    if (qv == 0 || tie) out.degenerate = true;
+    if (tie) contact = contact == 'a' ? 'c' : 'a';
+    else contact = qv > 0 ? next_if_positive[i] : next_if_negative[i];
     const int j = detail::axis_of(contact);
     const Vec3<T> p1 = detail::cross_counted(detail::unit_vector<T>(j), u, out.condition);
     const Vec3<T> q1 = K[j] * q;
