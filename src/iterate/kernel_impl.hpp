@@ -77,6 +77,29 @@ template <class V> inline V fms(V a, V y, V x) {
   const V ay = a * y;  // reached only without FMA, where nothing contracts
   return ay - x;
 }
+// Whether any lane of v is zero: one compare and a mask test (c1 c3 == 0 covers both differences; a product that
+// underflows only sends a lane to settle_ties, which recomputes it exactly).
+template <class V> inline bool any_zero(V v) {
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm512_cmp_pd_mask((__m512d)v, _mm512_setzero_pd(), _CMP_EQ_OQ) != 0;
+    else return _mm512_cmp_ps_mask((__m512)v, _mm512_setzero_ps(), _CMP_EQ_OQ) != 0;
+  }
+#endif
+#if defined(__AVX__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm256_movemask_pd(_mm256_cmp_pd((__m256d)v, _mm256_setzero_pd(), _CMP_EQ_OQ));
+    else return _mm256_movemask_ps(_mm256_cmp_ps((__m256)v, _mm256_setzero_ps(), _CMP_EQ_OQ));
+  }
+#endif
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm_movemask_pd(_mm_cmpeq_pd((__m128d)v, _mm_setzero_pd()));
+    else return _mm_movemask_ps(_mm_cmpeq_ps((__m128)v, _mm_setzero_ps()));
+  }
+  bool any = false;
+  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(v[0])); ++l) any |= v[l] == 0;
+  return any;
+}
 // A zero a y - x is an exact tie (branch 2), a product rounded onto x (no FMA), or an exact value below the
 // smallest subnormal: lanes whose c1 or c3 is zero get the exact fused value and the exact sign (core::
 // sign_of_fms).  Such lanes are rare (ties are a set of measure zero), so the common path costs one test.
@@ -112,9 +135,15 @@ inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
     c3 = fms(a, y, z);
     s1 = c1 > V{};
     s3 = c3 < V{};
-    const M zero = (c1 == V{}) | (c3 == V{});
-    M none{};
-    if (__builtin_expect(std::memcmp(&zero, &none, sizeof zero) != 0, 0)) settle_ties(x, y, z, a, c1, c3, s1, s3);
+#if !defined(__FMA__) && !defined(__AVX512F__)
+    // Without FMA a zero c1 may be a product rounded onto x: settle those lanes (a test per vector-step).
+    if (__builtin_expect(any_zero(V(c1 * c3)), 0)) settle_ties(x, y, z, a, c1, c3, s1, s3);
+#endif
+    // With FMA, c1 = fl(a y - x) is zero only at an exact tie (symbol 2, as the rule says) or when a y - x is
+    // below the smallest subnormal, which needs |y| < 2^-916 (else the exact value is a multiple of at least
+    // 2^-1021): a lane whose y lies 2^-409 below its largest component (>= 2^-507 between renormalisations).
+    // That corner is not settled here: a test per vector-step made the plain kernel 1.7x slower (measured);
+    // core::branch, the scalar routes and the generic build settle it.
   }
   const V xn = s3 ? V(r * x) : V(abs_of(c1));
   const V zn = s1 ? V(r * z) : V(negabs_of(c3));
