@@ -1,5 +1,5 @@
 // One orbit, one verdict: every route takes the same branch (exactly), every tool reports the same exponents
-// and the same stability word for the same orbit.  Seeded; about 10 s in the release build.
+// and the same stability word for the same orbit.  Seeded; about 6 s in the release build.
 #include "attractors/attractors.hpp"
 #include "attractors/requests.hpp"
 #include "core/fields.hpp"
@@ -229,4 +229,17 @@ TEST(OneOrbit, BasinsLabelIsClassifyOfThePoint) {
       EXPECT_EQ(attractors::attractor_key(v), key) << "r = " << r << " point " << pts[i].transpose();
     }
   }
+}
+
+// No collapse above 7 - 4 sqrt(3) (decided exactly): an orbit double's range put on the plane x = 0 is undecided
+// in double; just below the threshold the collapse stays a verdict.
+TEST(OneOrbit, NoCollapseAboveTheThreshold) {
+  attractors::Options opt;
+  opt.run.threads = 1;
+  const Vec3<double> u(1, -0.5, -1.1);
+  const attractors::OrbitVerdict above = attractors::classify_point(u, 0.0717967697245, opt);  // 9e-15 above
+  EXPECT_NE(above.type, attractors::Type::collapse);
+  EXPECT_EQ(above.detail.rfind("undecided in double", 0), 0u) << above.detail;
+  const attractors::OrbitVerdict below = attractors::classify_point(u, 0.07179676972449, opt);  // 8e-16 below
+  EXPECT_EQ(below.type, attractors::Type::collapse) << below.detail;
 }
