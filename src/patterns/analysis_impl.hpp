@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace btob::patterns {
 namespace detail {
@@ -300,6 +301,9 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
       v.lyapunov2 = (lm[0] - lm[k]) / p;
       v.lyapunov3 = (lm[j] - lm[k]) / p;
     }
+    // lambda1 >= lambda2 always: where the two other moduli are equal (a complex pair) the two formulas' roundings
+    // may order them either way.
+    if (v.lyapunov2 < v.lyapunov3) std::swap(v.lyapunov2, v.lyapunov3);
     // Neutral: an orbit that is not stable whose larger exponent is zero within the moduli's tie tolerance (an
     // elliptic point: a complex pair on the circle of the orbit's own eigenvalue, Section 6); unstable when it is
     // positive (a saddle or a source).
