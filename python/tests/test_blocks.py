@@ -102,3 +102,33 @@ def test_iterate_owns_its_arrays():
 def test_block_errors(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_map_step_and_iterate_take_one_branch_on_the_branch_lines():
+    # Points next to and on the lines alpha y = x and alpha y = z (alpha = (1 + r) / 2 exact for r = k / 256):
+    # the rounded product alpha y and its two neighbours as x (or z).  The rule's signs are exact, so Map.step,
+    # one step of iterate and the exact rational sign agree, and a point times 2^k takes the same branch.
+    from fractions import Fraction
+    rng = np.random.default_rng(5)
+    for k in (19, 44, 64, 100, 200):
+        r = k / 256
+        a = (1 + r) / 2
+        pts = []
+        for y in rng.uniform(0.05, 1, 20):
+            for d in (-np.inf, 0, np.inf):
+                x = a * y if d == 0 else np.nextafter(a * y, d)
+                pts.append([x, y, -0.7])
+                z = -a * y if d == 0 else np.nextafter(-a * y, d)
+                pts.append([0.3, -y, z])
+        pts = np.array(pts)
+        want = []
+        for x, y, z in pts:
+            fa, fy = Fraction(a), Fraction(y)
+            want.append(1 if fa * fy - Fraction(x) > 0 else (3 if fa * fy - Fraction(z) < 0 else 2))
+        _u, s = btob.Map(r).step(pts)
+        assert list(s) == want, r
+        sym = btob.iterate(r, pts, iterations=1, record="symbols", tail=1)
+        assert list(sym[:, 0]) == want, r
+        for e in (-1000, -3, 7, 900):
+            _u, s2 = btob.Map(r).step(np.ldexp(pts, e))
+            assert list(s2) == want, (r, e)

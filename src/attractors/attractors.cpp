@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 #include <boost/math/distributions/binomial.hpp>
+#include <boost/multiprecision/gmp.hpp>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -29,8 +30,16 @@ namespace btob::attractors {
 namespace {
 
 // r <= 7 - 4 sqrt(3): the eigenvalues of P1 and P3 are real and the collapse z = 0 (x = 0) attracts
-// (Section 5.2).  A relative margin of 1e-12 absorbs the rounding of the constant.
-const double kCollapseMaxR = 7 - 4 * std::numbers::sqrt3;
+// (Section 5.2).  Decided exactly: for the double r, 7 - r > 0 and (7 - r)^2 >= 48 in rational arithmetic (no
+// margin: a collapse verdict above the threshold is one the paper rules out).
+// The verdict's first words when double's range cannot follow an orbit (the refinement pass leaves it).
+constexpr const char* kUndecidedInDouble = "undecided in double";
+
+bool collapse_possible(double r) {
+  using Q = boost::multiprecision::mpq_rational;
+  const Q d = Q(7) - Q(r);
+  return d * d >= 48;
+}
 
 // Order 1 < 3 < 2 of patterns::canonical.
 int rank(std::uint8_t s) { return s == 1 ? 0 : (s == 3 ? 1 : 2); }
@@ -84,7 +93,7 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
     v.p2_region = rec.n1[o] == 0 && rec.n3[o] == 0;
     // Three-particle collapse (Section 5.2): symbol 1 (3) over the whole window and theta -> 0 (pi/2).
     const double th = core::theta<double>(fin);
-    if (r <= kCollapseMaxR * (1 + 1e-12)) {
+    if (collapse_possible(r)) {
       if (rec.n1[o] == opt.window && th < opt.collapse_theta) {
         v.type = Type::collapse, v.period = 1, v.word.s = {1}, v.key = "C1";
         v.lambda1 = patterns::analyse<double>(v.word, r).lyapunov2;  // exponent of P1 on z = 0 (exact)
@@ -98,6 +107,18 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
                                std::numbers::pi / 2 - th, v.iterations);
         continue;
       }
+    }
+    // Above 7 - 4 sqrt(3) no orbit collapses; an orbit whose x (z) became exactly 0 from a start off that plane
+    // passed closer to it than double's range (x = 0 is invariant under P3, z = 0 under P1) and was then followed
+    // on the plane: not the dynamics.  Undecided in double, and said so.
+    const Vec3<double>& u0 = ens.initial[o % ens.initial.size()];
+    if (!collapse_possible(r) && ((fin(0) == 0 && u0(0) != 0) || (fin(2) == 0 && u0(2) != 0))) {
+      v.type = Type::unresolved;
+      v.detail = fmt::format("{}: {} underflowed to 0 (the orbit passes closer to the invariant "
+                             "plane {} = 0 than double's range, near r = 7 - 4 sqrt(3)); follow it with "
+                             "`btob lyapunov --precision mpfr:50`, whose exponent range keeps it",
+                             kUndecidedInDouble, fin(0) == 0 ? "x" : "z", fin(0) == 0 ? "x" : "z");
+      continue;
     }
     const int p = rec.period[o];
     if (p > 0) {
@@ -290,10 +311,11 @@ std::vector<OrbitVerdict> classify_from(const iterate::Ensemble& ens, const Opti
   run_pass(ens, opt.transient - done, opt, out, latest, exact);
   for (auto& v : out) v.iterations += done;
   if (opt.refine_factor > 0) {
-    // Refinement: continue only the unresolved orbits, with refine_factor times the transient.
+    // Refinement: continue only the unresolved orbits, with refine_factor times the transient; not those double
+    // cannot follow (more steps in double would start from the plane its rounding put them on).
     std::vector<std::size_t> idx;
     for (std::size_t o = 0; o < out.size(); ++o)
-      if (out[o].type == Type::unresolved) idx.push_back(o);
+      if (out[o].type == Type::unresolved && out[o].detail.rfind(kUndecidedInDouble, 0) != 0) idx.push_back(o);
     if (!idx.empty()) {
       iterate::Ensemble e2;
       e2.r = ens.r;
@@ -525,7 +547,7 @@ std::optional<Cone> make_cone(const std::string& key, const patterns::Word& w, d
   if (p < 1 || p > opt.max_period || exact_points.empty()) return std::nullopt;
   bool all1 = true, all3 = true;
   for (auto s : w.s) all1 &= s == 1, all3 &= s == 3;
-  if ((all1 || all3) && r <= kCollapseMaxR * (1 + 1e-12)) return std::nullopt;  // the collapse test comes first
+  if ((all1 || all3) && collapse_possible(r)) return std::nullopt;  // the collapse test comes first
   Eigen::Matrix3d M[4];
   for (int s = 1; s <= 3; ++s) M[s] = core::P<double>(s, r) / r;
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();

@@ -3,6 +3,7 @@
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
+#include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
 #include "patterns/patterns.hpp"
 
@@ -51,8 +52,14 @@ void threshold_attrs(core::Contents& c, const Options& o) {
 }  // namespace
 
 // ---- classify ----
+// The exponent-reporting tools share lyapunov's domain: r from the smallest that double's exponents resolve.
+static void require_r_double(double r, const char* field) {
+  core::require_r(r, field);
+  core::require_r_exponents(r, core::parse_precision("double"), field);
+}
+
 void ClassifyRequest::validate() const {
-  core::require_r(r, "r");
+  require_r_double(r, "r");
   core::parse_point(point, "point");
   attractors::validate(thresholds);
 }
@@ -95,7 +102,7 @@ Grid BasinsRequest::parsed_grid() const {
 }
 
 void BasinsRequest::validate() const {
-  core::require_r(r, "r");
+  require_r_double(r, "r");
   if (w1_range.size() != 2)
     throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
   if (!(std::isfinite(w1_range[0]) && std::isfinite(w1_range[1]) && w1_range[0] < w1_range[1]))  // any grid kind
@@ -259,12 +266,12 @@ void BasinsRRequest::validate() const {
   if (r_count < 0 || r_count > 100000)
     throw core::InvalidField("r-count", std::to_string(r_count), "0 (no range) .. 100000");
   if (r_count > 0) {
-    core::require_r(r_min, "r-min");
-    core::require_r(r_max, "r-max");
+    require_r_double(r_min, "r-min");
+    require_r_double(r_max, "r-max");
   }
   const std::vector<double> rs = all_r();
   if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1), a range (r-min, r-max, r-count) or --table");
-  for (double r : rs) core::require_r(r, "r-values");
+  for (double r : rs) require_r_double(r, "r-values");
   const auto pts = iterate::parse_grid(grid, seed, "grid");
   if (pts.empty()) throw core::InvalidField("grid", "'" + grid + "' with no points", "at least one");
   iterate::checked_bytes(pts.size(), 800, "grid");

@@ -1,6 +1,8 @@
 // Field parsers of requests (core/fields.hpp).
 #include "core/fields.hpp"
 
+#include "core/scalar.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -235,6 +237,41 @@ Vec3<double> parse_point(std::string_view text, const std::string& field) {
 
 void require_r(double r, const std::string& field) {
   if (!(r > 0 && r < 1)) throw InvalidField(field, fmt::format("{}", r), "a value in the open interval (0, 1)");
+}
+
+// The smallest r whose exponents precision p resolves.  One step of the derivative cocycle contracts the tangent
+// plane by about r^2 relative to the orbit direction, and D(u) V = (P V - w (w . P V)) / |P u| recovers that
+// part by cancellation from vectors of size ~1: its relative error is ~eps / r^2, so the per-step log-stretch
+// errs by that much.  Asking eps / r^2 <= 1e-3 (exponents to about 1e-3 absolute) gives r >= sqrt(1e3 eps):
+// 0.011 in float, 4.7e-7 in double, 1.0e-8 in long double, 4.4e-16 in float128, 10^-(D-3)/2 in mpfr:D.
+// Below it the cancellation leaves nothing (r = 1e-20 in double gives lambda2 = NaN), so it is refused.
+double smallest_r_exponents(const Precision& p) {
+  double eps = 0;
+  switch (p.kind) {
+    case Precision::Kind::f32: eps = std::numeric_limits<float>::epsilon(); break;
+    case Precision::Kind::f64: eps = std::numeric_limits<double>::epsilon(); break;
+    case Precision::Kind::f80: eps = static_cast<double>(std::numeric_limits<long double>::epsilon()); break;
+    case Precision::Kind::f128: eps = 0x1p-112; break;
+    case Precision::Kind::mpfr: eps = std::pow(10.0, -p.mpfr_digits); break;
+  }
+  return std::sqrt(1e3 * eps);
+}
+
+void require_r_exponents(double r, const Precision& p, const std::string& field) {
+  const double lo = smallest_r_exponents(p);
+  if (r < lo) {
+    // The narrowest precision that resolves this r.
+    std::string fix = "mpfr:" + std::to_string(static_cast<int>(std::ceil(3 - 2 * std::log10(r))) + 1);
+    for (const char* name : {"double", "long-double", "float128"})
+      if (r >= smallest_r_exponents(parse_precision(name))) {
+        fix = name;
+        break;
+      }
+    throw InvalidField(field, fmt::format("{}", r),
+                             fmt::format("r >= {:.2g} in {} (the tangent plane's contraction r^2 is lost in rounding "
+                                         "below); use --precision {}",
+                                         lo, p.name(), fix));
+  }
 }
 
 std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field) {

@@ -46,6 +46,12 @@ std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, c
 
 // r in the open interval (0, 1), else InvalidField naming `field`.
 void require_r(double r, const std::string& field);
+// The smallest r whose Lyapunov exponents precision p resolves (sqrt(1e3 eps): 4.7e-7 in double), and r in
+// [that, 1) else InvalidField naming `field`, the precision and the narrowest precision that resolves r.  Every
+// tool that reports an exponent (lyapunov, classify, basins) accepts this one domain.
+struct Precision;
+double smallest_r_exponents(const Precision& p);
+void require_r_exponents(double r, const Precision& p, const std::string& field);
 
 // The Decimals' values (a list of r for code that computes in double).
 std::vector<double> values(const std::vector<Decimal>& v);

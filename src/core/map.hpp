@@ -79,11 +79,45 @@ template <class T> Vec3<T> to_quadrant(const Vec3<T>& u) {
   return u;
 }
 
-// The branch 1, 2 or 3 of a vector already in Q.
+// a y - x rounded once (a fused multiply-subtract): zero only when a y = x exactly or when the exact value
+// lies below the precision's smallest subnormal (sign_of_fms settles that case).  The same bits in every
+// route: the batched kernel computes the same fused value (iterate/kernel_impl.hpp, fms), whatever the
+// compiler contracts elsewhere.
+// always_inline (here and below): the kernel units call these too, compiled for the host's instruction set
+// (docs/ARCHITECTURE.md, "Determinism"); each caller gets its own unit's code.
+template <class T> [[gnu::always_inline]] inline T fms(const T& a, const T& y, const T& x) {
+  using std::fma;  // and fmaq / mpfr_fma for Boost.Multiprecision's float128 and mpfr_float (by ADL)
+  return T(fma(a, y, T(-x)));
+}
+// The exact sign (-1, 0, +1) of a y - x, given d = fms(a, y, x).  A correctly rounded value has the sign of the
+// exact one unless it underflows to zero; then a y - x is recomputed with x and y scaled up by the same power of
+// two (exact: no bit is lost scaling up, and the sign of a y - x does not change).
+template <class T> [[gnu::always_inline]] inline int sign_of_fms(const T& a, const T& y, const T& x, const T& d) {
+  if (d > 0) return 1;
+  if (d < 0) return -1;
+  using std::fabs;
+  using std::frexp;
+  using std::ldexp;
+  const T m = fabs(x) > fabs(y) ? T(fabs(x)) : T(fabs(y));
+  int e = 0;
+  frexp(m, &e);
+  if (m == 0 || e > -16) return 0;  // no underflow possible: a y = x exactly
+  const T d2 = fms(a, T(ldexp(y, -e)), T(ldexp(x, -e)));
+  return (d2 > 0) - (d2 < 0);
+}
+// The exact sign of a y - x.
+template <class T> [[gnu::always_inline]] inline int exact_sign(const T& a, const T& y, const T& x) {
+  return sign_of_fms(a, y, x, fms(a, y, x));
+}
+
+// The branch 1, 2 or 3 of a vector already in Q: 1 when a y - x > 0, 3 when a y - z < 0, 2 otherwise (ties
+// included), with a = alpha(r) in T and the signs exact (not the signs of rounded differences: a rounded
+// product a y can equal x when a y - x is not zero, and which of the two roundings the compiler keeps would
+// decide the branch).  This is the branch rule of every route and every precision.
 template <class T> int branch(const Vec3<T>& u, const T& r) {
   const T a = alpha(r);
-  if (a * u(1) - u(0) > 0) return 1;
-  if (a * u(1) - u(2) < 0) return 3;
+  if (exact_sign(a, T(u(1)), T(u(0))) > 0) return 1;
+  if (exact_sign(a, T(u(1)), T(u(2))) < 0) return 3;
   return 2;
 }
 

@@ -7,6 +7,7 @@
 #include "iterate/lanes.hpp"
 
 #include <Eigen/Dense>
+#include <immintrin.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -53,15 +54,98 @@ template <class T> inline T abs_of(const T& v) {
 }
 template <class T> inline T negabs_of(const T& v) { return -abs_of(v); }
 
+// a y - x rounded once, for a vector: the FMA instruction where the unit is compiled with it, so that the
+// value and its sign do not depend on what the compiler contracts (core::fms is the scalar form).  Without
+// FMA, a y - x is rounded twice; its sign is still exact unless the rounded product equals x, where the result
+// is 0 and settle_ties recomputes the lane (so both builds give every lane the same bits).
+template <class V> inline V fms(V a, V y, V x) {
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm512_fmsub_pd((__m512d)a, (__m512d)y, (__m512d)x);
+    else return (V)_mm512_fmsub_ps((__m512)a, (__m512)y, (__m512)x);
+  }
+#endif
+#if defined(__FMA__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm256_fmsub_pd((__m256d)a, (__m256d)y, (__m256d)x);
+    else return (V)_mm256_fmsub_ps((__m256)a, (__m256)y, (__m256)x);
+  }
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm_fmsub_pd((__m128d)a, (__m128d)y, (__m128d)x);
+    else return (V)_mm_fmsub_ps((__m128)a, (__m128)y, (__m128)x);
+  }
+#endif
+  const V ay = a * y;  // reached only without FMA, where nothing contracts
+  return ay - x;
+}
+// Whether any lane of v is zero: one compare and a mask test (c1 c3 == 0 covers both differences; a product that
+// underflows only sends a lane to settle_ties, which recomputes it exactly).
+template <class V> inline bool any_zero(V v) {
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm512_cmp_pd_mask((__m512d)v, _mm512_setzero_pd(), _CMP_EQ_OQ) != 0;
+    else return _mm512_cmp_ps_mask((__m512)v, _mm512_setzero_ps(), _CMP_EQ_OQ) != 0;
+  }
+#endif
+#if defined(__AVX__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm256_movemask_pd(_mm256_cmp_pd((__m256d)v, _mm256_setzero_pd(), _CMP_EQ_OQ));
+    else return _mm256_movemask_ps(_mm256_cmp_ps((__m256)v, _mm256_setzero_ps(), _CMP_EQ_OQ));
+  }
+#endif
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (std::is_same_v<V, vf64>) return _mm_movemask_pd(_mm_cmpeq_pd((__m128d)v, _mm_setzero_pd()));
+    else return _mm_movemask_ps(_mm_cmpeq_ps((__m128)v, _mm_setzero_ps()));
+  }
+  bool any = false;
+  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(v[0])); ++l) any |= v[l] == 0;
+  return any;
+}
+// A zero a y - x is an exact tie (branch 2), a product rounded onto x (no FMA), or an exact value below the
+// smallest subnormal: lanes whose c1 or c3 is zero get the exact fused value and the exact sign (core::
+// sign_of_fms).  Such lanes are rare (ties are a set of measure zero), so the common path costs one test.
+template <class V, class M> inline void settle_ties(V x, V y, V z, V a, V& c1, V& c3, M& s1, M& s3) {
+  using T = std::remove_cvref_t<decltype(x[0])>;
+  constexpr int W = sizeof(V) / sizeof(T);
+  for (int l = 0; l < W; ++l) {
+    if (c1[l] == 0) {
+      c1[l] = core::fms<T>(a[l], y[l], x[l]);
+      s1[l] = core::sign_of_fms<T>(a[l], y[l], x[l], c1[l]) > 0 ? -1 : 0;
+    }
+    if (c3[l] == 0) {
+      c3[l] = core::fms<T>(a[l], y[l], z[l]);
+      s3[l] = core::sign_of_fms<T>(a[l], y[l], z[l], c3[l]) < 0 ? -1 : 0;
+    }
+  }
+}
+
 template <class V, class M>
 inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
-  // 4 multiply-class operations per lane (a y, r x, r z, one FMA) and 3 additions: on a core whose
-  // 512-bit multiplies and additions issue on separate pipes the step costs ~4 cycles per vector.
-  // V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
-  const V ay = a * y;
-  const V c1 = V(ay - x), c3 = V(ay - z);
-  s1 = c1 > V{};
-  s3 = c3 < V{};
+  // 4 multiply-class operations per lane (two fused a y - x, a y - z, r x, r z, one FMA) and 3 additions:
+  // on a core whose 512-bit multiplies and additions issue on separate pipes the step costs ~4 cycles per
+  // vector.  V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
+  // The branch is core::branch's rule: the exact signs of a y - x and a y - z (ties to symbol 2).
+  V c1, c3;
+  if constexpr (std::is_same_v<M, bool>) {
+    c1 = core::fms<V>(a, y, x);
+    c3 = core::fms<V>(a, y, z);
+    s1 = core::sign_of_fms<V>(a, y, x, c1) > 0;
+    s3 = core::sign_of_fms<V>(a, y, z, c3) < 0;
+  } else {
+    c1 = fms(a, y, x);
+    c3 = fms(a, y, z);
+    s1 = c1 > V{};
+    s3 = c3 < V{};
+#if !defined(__FMA__) && !defined(__AVX512F__)
+    // Without FMA a zero c1 may be a product rounded onto x: settle those lanes (a test per vector-step).
+    if (__builtin_expect(any_zero(V(c1 * c3)), 0)) settle_ties(x, y, z, a, c1, c3, s1, s3);
+#endif
+    // With FMA, c1 = fl(a y - x) is zero only at an exact tie (symbol 2, as the rule says) or when a y - x is
+    // below the smallest subnormal, which needs |y| < 2^-916 (else the exact value is a multiple of at least
+    // 2^-1021): a lane whose y lies 2^-409 below its largest component (>= 2^-507 between renormalisations).
+    // That corner is not settled here: a test per vector-step made the plain kernel 1.7x slower (measured);
+    // core::branch, the scalar routes and the generic build settle it.
+  }
   const V xn = s3 ? V(r * x) : V(abs_of(c1));
   const V zn = s1 ? V(r * z) : V(negabs_of(c3));
   const V sy = (s1 | s3) ? V(-y) : y;

@@ -107,6 +107,20 @@ template <class T> Estimate with_rounding_floor(Estimate e) {
   return e;
 }
 
+// u scaled by an exact power of two so that its largest component lies in [1, 2): the same direction to the last
+// bit, so the branches are those of the user's point (a division by |u| rounds it, and a point on or next to a
+// branch line could change side: core::branch decides on exact signs).
+template <class T> Vec3<T> pow2_scaled(const Vec3<T>& u) {
+  using std::fabs;
+  using std::frexp;
+  using std::ldexp;
+  const T m = fabs(u(0)) > fabs(u(1)) ? (fabs(u(0)) > fabs(u(2)) ? T(fabs(u(0))) : T(fabs(u(2))))
+                                      : (fabs(u(1)) > fabs(u(2)) ? T(fabs(u(1))) : T(fabs(u(2))));
+  int e = 0;
+  frexp(m, &e);
+  return Vec3<T>(T(ldexp(u(0), 1 - e)), T(ldexp(u(1), 1 - e)), T(ldexp(u(2), 1 - e)));
+}
+
 template <class T> void check_start(const Vec3<T>& u0, const T& r) {
   core::validate_r(r);
   core::validate_point(static_cast<double>(u0(0)), static_cast<double>(u0(1)), static_cast<double>(u0(2)), "point");
@@ -141,9 +155,9 @@ template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, cons
   const detail::Schedule sc(opt);
   detail::Accumulator<2> acc(sc);
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
-  Vec3<T> u = core::to_quadrant<T>(u0);
-  u /= u.norm();
-  Eigen::Matrix<T, 3, 2> V = tangent_basis(u);
+  // The point is kept scaled by powers of two (detail::pow2_scaled), never divided by its norm.
+  Vec3<T> u = detail::pow2_scaled<T>(core::to_quadrant<T>(u0));
+  Eigen::Matrix<T, 3, 2> V = tangent_basis(Vec3<T>(u / u.norm()));
   const long total = opt.transient + opt.iterations;
   ProjectiveResult res;
   const long keep = std::min<long>(opt.iterations, 4096);
@@ -153,11 +167,12 @@ template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, cons
     const Vec3<T> pu = detail::apply(s, u, r);
     const T g = pu.norm();
     const Vec3<T> w = pu / g;
-    // D(u) V = (P V - w (w . P V)) / |P u| (Section 8.1 (3): the derivative cocycle on tangent planes).
+    // D(u) V = (P V - w (w . P V)) |u| / |P u| (Section 8.1 (3): the derivative cocycle on tangent planes, at the
+    // unit point u / |u|).
     Eigen::Matrix<T, 3, 2> W = Pm[s - 1] * V;
     W -= w * (w.transpose() * W);
-    V = W / g;
-    u = w;
+    V = W * T(u.norm() / g);
+    u = detail::pow2_scaled<T>(pu);
     if (k > total - keep) res.symbols_tail.push_back(s);
     if (sc.qr_at(k, acc.next_cp)) {  // Gram-Schmidt QR of the two tangent vectors
       const T n1 = V.col(0).norm();
@@ -170,9 +185,16 @@ template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, cons
   }
   res.lambda = {detail::with_rounding_floor<T>(acc.estimate(0)), detail::with_rounding_floor<T>(acc.estimate(1))};
   res.weighted = {acc.weighted(0), acc.weighted(1)};
+  // lambda1 >= lambda2: the first QR vector's growth converges to the larger exponent, but where the two are equal
+  // (a complex pair, an elliptic point) the finite-time estimates may come out in either order.
+  if (res.lambda[0].value < res.lambda[1].value) {
+    std::swap(res.lambda[0], res.lambda[1]);
+    std::swap(res.weighted[0], res.weighted[1]);
+  }
   res.iterations = opt.iterations;
   res.blocks = opt.blocks;
   res.convergence = acc.conv;
+  u /= u.norm();
   res.final_point = Vec3<double>(static_cast<double>(u(0)), static_cast<double>(u(1)), static_cast<double>(u(2)));
   return res;
 }
@@ -185,17 +207,16 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   const detail::Schedule sc(opt);
   detail::Accumulator<3> acc(sc);
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
-  Vec3<T> u = core::to_quadrant<T>(u0);
-  u /= u.norm();
+  Vec3<T> u = detail::pow2_scaled<T>(core::to_quadrant<T>(u0));  // branches of the user's point, to the last bit
   Mat3<T> Q;
-  Q.col(0) = u;
+  Q.col(0) = u / u.norm();
   Q.template rightCols<2>() = tangent_basis(u);
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
     core::poll_cancel(opt.cancel, k);
     const int s = core::branch(u, r);
     const Vec3<T> pu = detail::apply(s, u, r);
-    u = pu / pu.norm();  // the orbit, computed exactly as in the projective route
+    u = detail::pow2_scaled<T>(pu);  // the orbit, computed exactly as in the projective route
     Q = Pm[s - 1] * Q;   // the linear cocycle: products of P_i along the orbit
     if (sc.qr_at(k, acc.next_cp)) {
       const Eigen::HouseholderQR<Mat3<T>> qr(Q);
@@ -205,7 +226,7 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
       for (int i = 0; i < 3; ++i) logs[i] = log(abs(R(i, i)));
       // The first column is the orbit vector (Q.col(0) = +-u up to rounding): pin it to the orbit so that
       // rounding in the frame cannot drift it away from the orbit on chaotic orbits.
-      Qn.col(0) = u;
+      Qn.col(0) = u / u.norm();
       Q = Qn;
       acc.add(k, logs);
     }

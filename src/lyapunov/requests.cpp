@@ -47,41 +47,6 @@ void check_kernel_precision(const std::string& p) {
     throw core::InvalidField("precision", "'" + p + "'", "float or double (the batched tangent kernel)");
 }
 
-// The smallest r whose exponents precision p resolves.  One step of the derivative cocycle contracts the tangent
-// plane by about r^2 relative to the orbit direction, and D(u) V = (P V - w (w . P V)) / |P u| recovers that
-// part by cancellation from vectors of size ~1: its relative error is ~eps / r^2, so the per-step log-stretch
-// errs by that much.  Asking eps / r^2 <= 1e-3 (exponents to about 1e-3 absolute) gives r >= sqrt(1e3 eps):
-// 0.011 in float, 4.7e-7 in double, 1.0e-8 in long double, 4.4e-16 in float128, 10^-(D-3)/2 in mpfr:D.
-// Below it the cancellation leaves nothing (r = 1e-20 in double gives lambda2 = NaN), so it is refused.
-double smallest_r(const core::Precision& p) {
-  double eps = 0;
-  switch (p.kind) {
-    case core::Precision::Kind::f32: eps = std::numeric_limits<float>::epsilon(); break;
-    case core::Precision::Kind::f64: eps = std::numeric_limits<double>::epsilon(); break;
-    case core::Precision::Kind::f80: eps = static_cast<double>(std::numeric_limits<long double>::epsilon()); break;
-    case core::Precision::Kind::f128: eps = 0x1p-112; break;
-    case core::Precision::Kind::mpfr: eps = std::pow(10.0, -p.mpfr_digits); break;
-  }
-  return std::sqrt(1e3 * eps);
-}
-
-void check_range(double r, const core::Precision& p, const std::string& field) {
-  const double lo = smallest_r(p);
-  if (r < lo) {
-    // The narrowest precision that resolves this r.
-    std::string fix = "mpfr:" + std::to_string(static_cast<int>(std::ceil(3 - 2 * std::log10(r))) + 1);
-    for (const char* name : {"double", "long-double", "float128"})
-      if (r >= smallest_r(core::parse_precision(name))) {
-        fix = name;
-        break;
-      }
-    throw core::InvalidField(field, fmt::format("{}", r),
-                             fmt::format("r >= {:.2g} in {} (the tangent plane's contraction r^2 is lost in rounding "
-                                         "below); use --precision {}",
-                                         lo, p.name(), fix));
-  }
-}
-
 template <class T> void all_finite(const T& values, const std::string& what) {
   for (double v : values)
     if (!std::isfinite(v))
@@ -96,7 +61,7 @@ void OrbitRequest::validate() const {
   check_lengths(iterations, transient, blocks);
   if (reorthonormalise < 1) throw core::InvalidField("reorthonormalise", std::to_string(reorthonormalise), "at least 1");
   (void)core::parse_point(point, "point");
-  check_range(r, core::parse_precision(precision, "precision"), "r");
+  core::require_r_exponents(r, core::parse_precision(precision, "precision"), "r");
 }
 
 ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
@@ -143,7 +108,7 @@ void MapRequest::validate() const {
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  check_range(std::min(r_min, r_max), core::parse_precision(precision), r_min <= r_max ? "r-min" : "r-max");
+  core::require_r_exponents(std::min(r_min, r_max), core::parse_precision(precision), r_min <= r_max ? "r-min" : "r-max");
   (void)iterate::parse_grid(grid, seed, "grid");
 }
 
@@ -156,7 +121,7 @@ void StripRequest::validate() const {
     throw core::InvalidField("grid", "'" + grid + "'", "strip:NxM:w1min:w1max with w1min < w1max");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  check_range(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
+  core::require_r_exponents(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
   iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 200, "grid");
 }
 

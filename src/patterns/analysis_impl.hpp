@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace btob::patterns {
 namespace detail {
@@ -286,8 +287,28 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
     const T log_l1 = log_(sm.mod[0]) + sm.A.log_scale;
     const T log_l1l2 = log_(rho_c) + C.log_scale;
     const T p = T(static_cast<long>(w.size()));
-    v.lyapunov2 = (log_l1l2 - 2 * log_l1) / p;
-    v.lyapunov3 = (log_det - log_l1l2 - log_l1) / p;
+    // log |mu_j| of M_w: log_l1, log_l1l2 - log_l1, log_det - log_l1l2.  The orbit's own exponents are those of
+    // the projective map's tangent directions at its point, log(|mu_j| / |mu_k|) / p for the two j other than the
+    // orbit's eigenvalue k, largest first (at a saddle k = 1: one positive, one negative).  Without an orbit they
+    // are measured against the dominant eigenvalue (k = 0), as for a stable orbit.
+    const std::array<T, 3> lm = {log_l1, T(log_l1l2 - log_l1), T(log_det - log_l1l2)};
+    const int k = std::max(v.orbit_eigen, 0);
+    if (k == 0) {  // written as before: the second exterior power's value, accurate when |l2/l1| underflows
+      v.lyapunov2 = (log_l1l2 - 2 * log_l1) / p;
+      v.lyapunov3 = (log_det - log_l1l2 - log_l1) / p;
+    } else {
+      const int j = k == 1 ? 2 : 1;  // the other two are 0 and j, by decreasing modulus
+      v.lyapunov2 = (lm[0] - lm[k]) / p;
+      v.lyapunov3 = (lm[j] - lm[k]) / p;
+    }
+    // lambda1 >= lambda2 always: where the two other moduli are equal (a complex pair) the two formulas' roundings
+    // may order them either way.
+    if (v.lyapunov2 < v.lyapunov3) std::swap(v.lyapunov2, v.lyapunov3);
+    // Neutral: an orbit that is not stable whose larger exponent is zero within the moduli's tie tolerance (an
+    // elliptic point: a complex pair on the circle of the orbit's own eigenvalue, Section 6); unstable when it is
+    // positive (a saddle or a source).
+    using std::abs;
+    if (v.outcome == Outcome::unstable && abs(v.lyapunov2) * p <= tie_tol<T>()) v.outcome = Outcome::neutral;
   }
   return v;
 }

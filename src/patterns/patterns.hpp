@@ -50,7 +50,10 @@ bool is_J_square(const Word& w);
 std::vector<Word> enumerate_canonical(int max_length);
 
 // Outcome of the periodic-orbit analysis of a word at one r.
-enum class Outcome { none, unstable, stable };
+// stable: attracting (both exponents < 0); unstable: a saddle or a source (an exponent > 0); neutral: elliptic
+// (the larger exponent zero within the eigenvalue moduli's tie tolerance).  analyse() gives all four; the
+// atlas's intervals (classify) know stable and unstable only.
+enum class Outcome { none, unstable, stable, neutral };
 const char* outcome_name(Outcome o);
 
 // One eigenvalue of the analysed matrix (M_w, or J M_h when w = h J(h)), with its eigenvector when real.

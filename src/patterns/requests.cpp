@@ -159,11 +159,18 @@ std::string verdict_text(const WordResult& res) {
     }
     s += "\n";
   }
-  s += fmt::format("verdict     {}{}\n", res.outcome,
-                   res.reason.empty() ? "" : fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason)));
+  std::string why;
+  if (res.outcome == outcome_name(Outcome::neutral))
+    why = " (elliptic: both exponents zero within 64 eps; neither attracting nor repelling)";
+  else if (res.outcome == outcome_name(Outcome::unstable))
+    why = " (a saddle or a source: lambda1 > 0)";
+  else if (!res.reason.empty())
+    why = fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason));
+  s += fmt::format("verdict     {}{}\n", res.outcome, why);
   if (res.orbit.empty()) return s;  // no periodic point: the period matrix's exponents describe no orbit
-  s += fmt::format("exponents   log(|mu2|/|mu1|)/p = {}, log(|mu3|/|mu1|)/p = {} (the orbit's projective Lyapunov "
-                   "exponents, per iteration, natural log)\n",
+  s += fmt::format("exponents   lambda1 = {}, lambda2 = {} (the orbit's projective Lyapunov exponents along its two "
+                   "tangent directions, log(|mu_j|/|mu_k|)/p for the eigenvalues mu_j other than the orbit's own mu_k, "
+                   "lambda1 >= lambda2, per iteration, natural log)\n",
                    res.lyapunov2, res.lyapunov3);
   s += fmt::format("letters     {} ({} collisions)\n", res.letters, collisions(u));
   s += "orbit       k symbol x y z theta w1 w2\n";

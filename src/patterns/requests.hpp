@@ -54,9 +54,9 @@ struct WordResult {
   std::string r;                      // r as the precision holds it
   bool reduced = false;               // analysed through J M_h (Section 7.1)
   std::vector<EigenText> spectrum;    // by decreasing modulus
-  std::string outcome, reason;        // stable / unstable / none; why not stable
-  std::string lyapunov2, lyapunov3;   // log(|mu2|/|mu1|)/p, log(|mu3|/|mu1|)/p (natural log, per iteration); the
-                                      // orbit's exponents when it has a periodic point (orbit not empty)
+  std::string outcome, reason;        // stable / unstable / neutral / none; why not stable
+  std::string lyapunov2, lyapunov3;   // the orbit's exponents lambda1 >= lambda2 along its tangent directions,
+                                      // log(|mu_j|/|mu_k|)/p (natural log, per iteration; patterns::Verdict)
   std::string letters;                // collision letters of the periodic orbit (when there is one)
   std::vector<std::array<std::string, 7>> orbit;  // k-th point: x y z theta w1 w2 (text) and its symbol first
   std::vector<double> eigen_re, eigen_im, eigen_modulus, orbit_xyz;  // numeric views [3], [3], [3], [p, 3]

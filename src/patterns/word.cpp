@@ -246,6 +246,7 @@ const char* outcome_name(Outcome o) {
     case Outcome::none: return "no periodic orbit";
     case Outcome::unstable: return "unstable orbit";
     case Outcome::stable: return "stable orbit";
+    case Outcome::neutral: return "neutral orbit";
   }
   return "?";
 }

@@ -38,8 +38,9 @@ template <class T> Mat3<T> collision_matrix(char letter, const T& r);
 template <class T> struct CrossProductImage {
   Vec3<T> u;            // u' = q' x p' of the last step, unit length, exactly as the algorithm returns it
   std::string letters;  // "ab", "acb", "cab" or "cb"
-  bool degenerate;      // the input had x, y or z == 0, or a sign test q.v was exactly 0 (excluded by
-                        // the definition; the algorithm then took the q.v < 0 branch)
+  bool degenerate;      // the input had x, y or z == 0, or a sign test q.v was 0 (excluded by the definition;
+                        // the algorithm then took the q.v < 0 branch), or the second contact's q.v was zero
+                        // within rounding (on the branch line: the map's tie rule, symbol 2, was taken)
   T condition;          // sum over the cross products a x b of |a| |b| / |a x b| (>= 1): rounding errors
                         // of u' are about eps * condition radians (large near x, y or z = 0)
 };

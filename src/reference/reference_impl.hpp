@@ -70,6 +70,7 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u_in, c
   constexpr char next_if_positive[3] = {'b', 'c', 'a'};  // after a, b, c
   constexpr char next_if_negative[3] = {'c', 'a', 'b'};
   char contact = 'b';  // step 2
+  bool tied = false;   // the second contact was a tie: the third goes to b
   for (int collisions = 0; collisions < 4; ++collisions) {
     const int i = detail::axis_of(contact);
     const Vec3<T> e = detail::unit_vector<T>(i);
@@ -77,8 +78,18 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u_in, c
     const Vec3<T> q = detail::cross_counted(p, u, out.condition);
     const Vec3<T> v = u - u.dot(e) * e;
     const T qv = q.dot(v);
-    if (qv == 0) out.degenerate = true;
-    contact = qv > 0 ? next_if_positive[i] : next_if_negative[i];
+    // At the second contact (a or c) the sign of q.v is the sign of alpha y - x (alpha y - z): the branch line.
+    // Where it is zero within this route's rounding (4 eps times the cross products' condition, relative to
+    // |q| |v|), the point is taken to lie on the line and goes where the map's tie rule sends it (core::branch:
+    // symbol 2), through the third letter and then b: acb or cab.
+    using std::abs;
+    const T band = 4 * std::numeric_limits<T>::epsilon() * out.condition * q.norm() * v.norm();
+    const bool tie = collisions == 1 && abs(qv) <= band;
+    if (qv == 0 || tie) out.degenerate = true;
+    if (tie) contact = contact == 'a' ? 'c' : 'a';
+    else if (tied) contact = 'b';
+    else contact = qv > 0 ? next_if_positive[i] : next_if_negative[i];
+    tied = tied || tie;
     const int j = detail::axis_of(contact);
     const Vec3<T> p1 = detail::cross_counted(detail::unit_vector<T>(j), u, out.condition);
     const Vec3<T> q1 = K[j] * q;

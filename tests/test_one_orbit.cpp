@@ -1,0 +1,245 @@
+// One orbit, one verdict: every route takes the same branch (exactly), every tool reports the same exponents
+// and the same stability word for the same orbit.  Seeded; about 6 s in the release build.
+#include "attractors/attractors.hpp"
+#include "attractors/requests.hpp"
+#include "core/fields.hpp"
+#include "core/map.hpp"
+#include "core/scalar.hpp"
+#include "iterate/ensemble.hpp"
+#include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "patterns/patterns.hpp"
+#include "reference/reference.hpp"
+#include "tolerance.hpp"
+
+#include <boost/multiprecision/gmp.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace btob;
+using Q = boost::multiprecision::mpq_rational;
+using core::Vec3;
+
+namespace {
+
+// r = k / 256: alpha = (256 + k) / 512 is exact in every precision (9 bits), so every route sees one map.
+struct Case {
+  double r;
+  Vec3<double> u;  // in Q = {x >= 0, z <= 0}
+  const char* kind;
+};
+
+// The branch by the rule's definition, in exact rational arithmetic: 1 if a y - x > 0, 3 if a y - z < 0, else 2.
+int exact_branch(const Vec3<double>& u, double r) {
+  const Q a = (Q(1) + Q(r)) / 2;
+  if (a * Q(u(1)) - Q(u(0)) > 0) return 1;
+  if (a * Q(u(1)) - Q(u(2)) < 0) return 3;
+  return 2;
+}
+
+// Random r in (7 - 4 sqrt(3), 1) as k / 256, and points: random, on the branch lines a y = x and a y = z
+// (the rounded product a y and its two neighbours: an exact tie when a y is a double, else the nearest
+// non-ties), on the invariant planes x = 0 and z = 0, and near 7 - 4 sqrt(3) and 3 - 2 sqrt(2).
+std::vector<Case> cases(std::mt19937_64& g, int n) {
+  std::uniform_int_distribution<int> K(19, 255);  // 19 / 256 > 7 - 4 sqrt(3) = 0.0718
+  std::uniform_real_distribution<double> U(0.05, 1);
+  std::vector<Case> out;
+  const int ks[] = {19, 44};                      // 0.0742 (near 7 - 4 sqrt 3), 0.1719 (near 3 - 2 sqrt 2)
+  for (int i = 0; i < n; ++i) {
+    const double r = i % 8 < 2 ? ks[i % 2] / 256.0 : K(g) / 256.0;
+    const double a = (1 + r) / 2;
+    const double y = U(g), x = U(g), z = -U(g);
+    const double ay = a * y, ayn = a * -y;
+    for (double d : {-1.0, 0.0, 1.0}) {
+      out.push_back({r, {std::nextafter(ay, ay + d), y, z}, "a y = x"});
+      out.push_back({r, {x, -y, std::nextafter(ayn, ayn + d)}, "a y = z"});
+    }
+    out.push_back({r, {x, y * (i % 2 ? 1 : -1), z}, "random"});
+    out.push_back({r, {0.0, y, z}, "x = 0"});
+    out.push_back({r, {x, y, 0.0}, "z = 0"});
+  }
+  return out;
+}
+
+template <class T> std::vector<int> kernel_symbols(const std::vector<Case>& cs, std::size_t i0, std::size_t n) {
+  iterate::Ensemble e;
+  e.r = {cs[i0].r};
+  for (std::size_t i = i0; i < i0 + n; ++i) e.initial.push_back(cs[i].u);
+  iterate::SymbolRecorder rec(n, 1, 1);
+  iterate::run<T>(e, 1, rec, {});
+  return std::vector<int>(rec.out.begin(), rec.out.end());
+}
+
+int def21_symbol(const Vec3<double>& u, double r) {
+  using F = core::float128;
+  const auto img = reference::cross_product_map<F>(Vec3<F>(F(u(0)), F(u(1)), F(u(2))), F(r));
+  if (img.letters == "ab") return 1;
+  if (img.letters == "cb") return 3;
+  return 2;
+}
+
+}  // namespace
+
+// Map.step (core::step), core::branch in every precision, one step of the kernel in every precision and
+// Definition 2.1 (float128) take the branch of the exact rule; a point scaled by 2^k takes the same branch.
+TEST(OneOrbit, EveryRouteTakesTheExactBranch) {
+  std::mt19937_64 g(5);
+  const std::vector<Case> cs = cases(g, 200);
+  core::MpfrDigits digits(40);
+  const std::size_t group = 9;  // cases() emits 9 points per r (one r per group)
+  std::size_t ties = 0;
+  for (std::size_t i0 = 0; i0 < cs.size(); i0 += group) {
+    const std::vector<int> kf = kernel_symbols<float>(cs, i0, group), kd = kernel_symbols<double>(cs, i0, group),
+                           kl = kernel_symbols<long double>(cs, i0, group),
+                           kq = kernel_symbols<core::float128>(cs, i0, group),
+                           km = kernel_symbols<core::mpfr_float>(cs, i0, group);
+    for (std::size_t j = 0; j < group; ++j) {
+      const Case& c = cs[i0 + j];
+      SCOPED_TRACE(::testing::Message() << c.kind << " r = " << c.r << " u = (" << std::hexfloat << c.u(0) << ", "
+                                        << c.u(1) << ", " << c.u(2) << ")");
+      const int want = exact_branch(c.u, c.r);
+      ties += want == 2 && std::string(c.kind).find('=') != std::string::npos;
+      EXPECT_EQ(core::step<double>(c.u, c.r).symbol, want) << "Map.step";
+      EXPECT_EQ(core::branch<long double>(c.u.cast<long double>(), (long double)c.r), want) << "long double";
+      using F = core::float128;
+      EXPECT_EQ(core::branch<F>(Vec3<F>(F(c.u(0)), F(c.u(1)), F(c.u(2))), F(c.r)), want) << "float128";
+      using M = core::mpfr_float;
+      EXPECT_EQ(core::branch<M>(Vec3<M>(M(c.u(0)), M(c.u(1)), M(c.u(2))), M(c.r)), want) << "mpfr";
+      EXPECT_EQ(kd[j], want) << "kernel double";
+      EXPECT_EQ(kl[j], want) << "kernel long double";
+      EXPECT_EQ(kq[j], want) << "kernel float128";
+      EXPECT_EQ(km[j], want) << "kernel mpfr";
+      // float: only where the point is a float (the kernel reads the double point rounded to float).
+      const Vec3<float> uf = c.u.cast<float>();
+      if (uf.cast<double>() == c.u) {
+        EXPECT_EQ(kf[j], want) << "kernel float";
+        EXPECT_EQ(core::branch<float>(uf, float(c.r)), want) << "core float";
+      }
+      // Definition 2.1 in float128: a double point's a y - x is 0 or at least 2^-107 |x|, far outside its band.
+      if (c.u(0) != 0 && c.u(2) != 0) EXPECT_EQ(def21_symbol(c.u, c.r), want) << "Definition 2.1";
+      for (int k : {-1000, -500, -7, 9, 500, 900}) {
+        const Vec3<double> s(std::ldexp(c.u(0), k), std::ldexp(c.u(1), k), std::ldexp(c.u(2), k));
+        EXPECT_EQ(core::step<double>(s, c.r).symbol, want) << "scaled by 2^" << k;
+      }
+    }
+  }
+  EXPECT_GT(ties, 50u);  // the exact ties a y = x are there (a y is a double for many y)
+}
+
+// classify's lambda1 equals lyapunov's (single orbit, projective cocycle) within their stated errors, and on a
+// periodic point classify names its word, at random r and points; scaling a point by 2^k changes no bit.
+TEST(OneOrbit, ClassifyAndLyapunovReportOneExponent) {
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> R(0.08, 0.95), U(0.05, 1);
+  attractors::Options opt;
+  opt.run.threads = 1;
+  lyapunov::Options lo;
+  lo.transient = 2000;
+  lo.iterations = 20000;
+  int checked = 0;
+  for (int i = 0; i < 16; ++i) {
+    const double r = i == 0 ? 0.1 : (i == 1 ? 0.25 : R(g));
+    const Vec3<double> u = i == 0 ? Vec3<double>(1, 0, -1) : (i == 1 ? Vec3<double>(0.5, 0.8, -1)
+                                                                    : Vec3<double>(U(g), U(g) - 0.5, -U(g)));
+    SCOPED_TRACE(::testing::Message() << "r = " << r << " u = " << u.transpose());
+    const attractors::OrbitVerdict v = attractors::classify_point(u, r, opt);
+    const attractors::OrbitVerdict v2 = attractors::classify_point(std::ldexp(1.0, -600) * u, r, opt);
+    EXPECT_EQ(v.lambda1, v2.lambda1);
+    EXPECT_EQ(v.key, v2.key);
+    EXPECT_EQ(v.point, v2.point);
+    const lyapunov::ProjectiveResult p = lyapunov::projective_exponents<double>(u, r, lo);
+    EXPECT_GE(p.lambda[0].value, p.lambda[1].value);
+    if (v.type == attractors::Type::unresolved || v.type == attractors::Type::quasi_periodic) continue;
+    // lyapunov's error bar (batch means, at least 4 eps |lambda|) and classify's (0 on a cycle: exact), plus
+    // the transient's bias on a cycle: the tangent vector aligns like exp((lambda2 - lambda1) n), gone after 2000
+    // steps; 5 sigma + 1e-9.
+    const double tol = 5 * (p.lambda[0].error + v.err1) + 1e-9;
+    EXPECT_NEAR(v.lambda1, p.lambda[0].value, tol) << attractors::type_name(v.type) << " " << v.key;
+    if (v.type == attractors::Type::periodic) {
+      const patterns::Verdict<double> pv = patterns::analyse<double>(v.word, r);
+      EXPECT_NEAR(v.lambda1, pv.lyapunov2, 1e-12);  // classify analyses the word's smallest rotation: 64 eps
+      // The orbit's stability word agrees with the exponents' signs.
+      if (pv.lyapunov2 > 1e-9) EXPECT_EQ(pv.outcome, patterns::Outcome::unstable);
+      if (pv.lyapunov2 < -1e-9) EXPECT_EQ(pv.outcome, patterns::Outcome::stable);
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
+
+// pattern's verdict on the P2 fixed point u = (1, 0, -1): a saddle for r < 3 - 2 sqrt(2) (lambda1 = -lambda2 =
+// log(|mu_other| / r) > 0, from M = P2's eigenvalues computed independently: r and the roots of
+// mu^2 + (2 a^2 - 2 r) mu + r^2 - ... as the characteristic polynomial factors), neutral (elliptic) above.
+TEST(OneOrbit, PatternVerdictOnTheP2FixedPointFollowsTheExponents) {
+  for (double r : {0.05, 0.1, 0.15, 0.17, 0.175, 0.2, 0.3, 0.5, 0.9}) {
+    SCOPED_TRACE(::testing::Message() << "r = " << r);
+    const patterns::Verdict<double> v = patterns::analyse<double>(patterns::parse_word("2"), r);
+    ASSERT_GE(v.orbit_eigen, 0);
+    // The tangent plane at (1, 0, -1)/sqrt 2 is spanned by (0, 1, 0) and (1, 0, 1); P2 maps that plane to
+    // itself (P2 (1,0,1) = (r, 2a, r), P2 (0,1,0) = (-r a, r - 2a^2, -r a)): the 2x2 block, divided by the orbit's
+    // eigenvalue r, is the projective Jacobian.  Its eigenvalues, in long double, give the exponents.
+    const long double a = (1 + (long double)r) / 2, rr = r;
+    // Block in the basis e = (1,0,1), f = (0,1,0): P2 e = r e + 2a f, P2 f = -r a e + (r - 2a^2) f.
+    const long double tr = (rr + (rr - 2 * a * a)) / rr, det = (rr * (rr - 2 * a * a) + 2 * a * rr * a) / (rr * rr);
+    const long double disc = tr * tr - 4 * det;
+    long double l1, l2;
+    if (disc >= 0) {
+      const long double m1 = std::fabs((tr + std::sqrt(disc)) / 2), m2 = std::fabs((tr - std::sqrt(disc)) / 2);
+      l1 = std::log(std::max(m1, m2)), l2 = std::log(std::min(m1, m2));
+    } else {
+      l1 = l2 = std::log(det) / 2;
+    }
+    EXPECT_NEAR(v.lyapunov2, (double)l1, 1e-12);
+    EXPECT_NEAR(v.lyapunov3, (double)l2, 1e-12);
+    const double threshold = 3 - 2 * std::sqrt(2.0);
+    if (r < threshold) EXPECT_EQ(v.outcome, patterns::Outcome::unstable);
+    else EXPECT_EQ(v.outcome, patterns::Outcome::neutral);
+  }
+}
+
+// Every exponent-reporting tool accepts the same r: classify refuses below lyapunov's smallest r in double.
+TEST(OneOrbit, OneDomainOfR) {
+  const double lo = core::smallest_r_exponents(core::parse_precision("double"));
+  EXPECT_NEAR(lo, 4.7e-7, 0.05e-7);
+  attractors::ClassifyRequest c;
+  c.point = "1,0,-1";
+  c.r = lo * 0.99;
+  EXPECT_THROW(c.validate(), core::InvalidField);
+  c.r = lo * 1.01;
+  EXPECT_NO_THROW(c.validate());
+}
+
+// basins' label of a grid point is classify's verdict on that point (the early exit proves the full-length verdict).
+TEST(OneOrbit, BasinsLabelIsClassifyOfThePoint) {
+  attractors::Options opt;
+  opt.run.threads = 1;
+  for (double r : {0.15, 0.25, 0.4}) {
+    const attractors::Grid g = attractors::parse_grid("sphere:6x6", -2, 2);
+    const attractors::Basins b = attractors::basins(r, g, 0, 1, opt);
+    const std::vector<Vec3<double>> pts = attractors::grid_points(g);
+    ASSERT_EQ(pts.size(), b.labels.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const attractors::OrbitVerdict v = attractors::classify_point(pts[i], r, opt);
+      const std::uint32_t label = b.labels[i];
+      const std::string key = label == 0 ? "" : b.attractors[label - 1].key;
+      EXPECT_EQ(attractors::attractor_key(v), key) << "r = " << r << " point " << pts[i].transpose();
+    }
+  }
+}
+
+// No collapse above 7 - 4 sqrt(3) (decided exactly): an orbit double's range put on the plane x = 0 is undecided
+// in double; just below the threshold the collapse stays a verdict.
+TEST(OneOrbit, NoCollapseAboveTheThreshold) {
+  attractors::Options opt;
+  opt.run.threads = 1;
+  const Vec3<double> u(1, -0.5, -1.1);
+  const attractors::OrbitVerdict above = attractors::classify_point(u, 0.0717967697245, opt);  // 9e-15 above
+  EXPECT_NE(above.type, attractors::Type::collapse);
+  EXPECT_EQ(above.detail.rfind("undecided in double", 0), 0u) << above.detail;
+  const attractors::OrbitVerdict below = attractors::classify_point(u, 0.07179676972449, opt);  // 8e-16 below
+  EXPECT_EQ(below.type, attractors::Type::collapse) << below.detail;
+}
