@@ -1,8 +1,8 @@
 // The plain kernel on Figure 4.1's workload (bm_iterate's batched/double), registered again in the programs whose
 // workloads are quoted against it (the speed ratios: the cocycle, the covariant vectors, the classification).
 // analyses/benchmarks.sh runs those programs with five repetitions in random interleaving, so a workload and this
-// reference are measured in the same minutes: on a shared machine whose speed moved by 2x between two programs of
-// one run (2026-11-27), a ratio of rates from different programs measured the machine as much as the code.
+// reference are measured in the same minutes: on a shared machine whose speed can move by 2x between two programs
+// of one run, a ratio of rates from different programs measures the machine as much as the code.
 // analyses/benchmark_ratios.py divides each workload's best (and median) repetition by this reference's, from the same
 // program.
 #pragma once

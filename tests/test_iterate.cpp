@@ -346,10 +346,9 @@ TEST(Kernel, TailHistogramsAgreeWithScalarLoopAtEveryR) {
   }
   // Tail points of one orbit are correlated, so the effective sample is between the 32 orbits and the
   // 3200 points: the two-sample KS distance exceeds 0.34 (n = 32) or 0.034 (n = 3200) with probability
-  // 5%.  Measured: worst 0.033, mean 0.008 (Zen 4, 2026-11-22); worst 0.070 on Zen 5 (2026-11-23).  The bounds below leave room for noise but
+  // 5%.  The bounds below, about twice the largest distance seen on two processor generations, leave room for noise but
   // fail on any systematic difference (a wrong branch, a lost rescale, a skipped step).
   std::printf("binned KS distance batched vs scalar: worst %.3f, mean %.3f over %zu r values\n", worst, mean, e.r.size());
-  // About twice the largest measured (worst 0.070, mean 0.010, Zen 5, 2026-11-23; the bounds were 0.15 and 0.04).
   EXPECT_SMALL(worst, statistical(0.14, "KS distance of correlated samples: twice the largest measured"))
       << "mean KS distance " << mean;
   EXPECT_SMALL(mean, statistical(0.02, "mean KS distance: twice the largest measured"));

@@ -31,9 +31,9 @@ TEST(LongCorrelation, FftEqualsDirectAtFullSize) {
     scale = std::max(scale, std::fabs(d[n]));
   }
   std::printf("N = 1e6, n_max = 1e4, r = 0.11, phi: max |fft - direct| / max |C_N| = %.3g\n", diff / scale);
-  // Measured 1.95e-16 here (L = fast_fft_length(1.01e6)) and 4.9e-17 with n_max = 1e5 (another L), 2026-11-23:
-  // both routes round at about eps of max |C_N| (compensated sums in the direct route, FFTW's O(eps log L) in the
-  // other); 4e-16 (1.8 eps), about twice the larger, catches any lost or misplaced term (was 1e-12).
+  // Measured 1.95e-16 here (L = fast_fft_length(1.01e6)) and 4.9e-17 with n_max = 1e5 (another L): both routes
+  // round at about eps of max |C_N| (compensated sums in the direct route, FFTW's O(eps log L) in the other); 4e-16
+  // (1.8 eps), about twice the larger, catches any lost or misplaced term.
   EXPECT_SMALL(diff / scale, ulps(1.8, "both routes round at about eps of max |C_N|; twice the measured 0.88 eps"));
 }
 
