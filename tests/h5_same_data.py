@@ -2,7 +2,8 @@
 """Whether two HDF5 result files hold the same datasets, bitwise.
 
 Usage: h5_same_data.py A.h5 B.h5.  Every dataset of either file must exist in the other with the same dtype, shape
-and bytes (NaN payloads and signed zeros included: the raw bytes are compared, not the values).  Attributes are
+and bytes (NaN payloads and signed zeros included: the raw bytes are compared, not the values; strings by their
+encoded bytes).  Attributes are
 not compared: they hold provenance (dates, command lines, timings, MPI ranks) that differs between runs.  Prints
 one line per difference and exits 1, or prints the number of datasets compared and exits 0.
 """
@@ -17,6 +18,16 @@ def datasets(f):
     return out
 
 
+def raw(d):
+    """The dataset's contents as bytes: the raw buffer for numbers, the encoded strings (each with its length) for
+    variable-length strings, whose numpy array holds pointers to Python objects rather than the data."""
+    v = d[()]
+    if h5py.check_string_dtype(d.dtype) is not None or getattr(v, "dtype", None) == object:
+        items = v.ravel().tolist() if hasattr(v, "ravel") else [v]
+        return b"".join(len(x).to_bytes(8, "little") + (x if isinstance(x, bytes) else str(x).encode()) for x in items)
+    return v.tobytes()
+
+
 def main(a_path, b_path):
     bad = []
     with h5py.File(a_path, "r") as fa, h5py.File(b_path, "r") as fb:
@@ -28,7 +39,7 @@ def main(a_path, b_path):
             x, y = a[name], b[name]
             if x.dtype != y.dtype or x.shape != y.shape:
                 bad.append(f"{name}: {x.dtype}{x.shape} against {y.dtype}{y.shape}")
-            elif x[()].tobytes() != y[()].tobytes():
+            elif raw(x) != raw(y):
                 bad.append(f"{name}: same shape {x.shape}, different bytes")
         if not a:
             bad.append("no datasets")
