@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <httplib.h>
+#include <mpfr.h>
 #include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <spawn.h>
@@ -235,6 +236,12 @@ void page_routes(httplib::Server& svr) {
   });
   svr.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (res.body.empty()) res.set_content(ex::error_json(fmt::format("HTTP {} for {}", res.status, req.path)), "application/json");
+  });
+  // MPFR keeps its constants (pi, log 2) in caches local to the thread that computed them; the server's worker
+  // threads compute window bounds and classifications in MPFR and then end with the server, so each request frees
+  // its thread's caches instead of leaving them to a thread exit that never frees them.
+  svr.set_post_routing_handler([](const httplib::Request&, httplib::Response&) {
+    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
   });
 }
 
