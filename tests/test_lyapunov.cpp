@@ -371,19 +371,33 @@ TEST(Lyapunov, FloatCocycleAgreesWithDouble) {
   mo.run.redone = &redone;
   const auto f = lyapunov::map_exponents(e, mo);
   int classes_differ = 0;
+  double chaotic_diff = 0, chaotic_var = 0;
   for (std::size_t k = 0; k < e.orbits(); ++k) {
     const double r = e.r[k / e.initial.size()];
-    // Regular orbits: the same attractor; float's cocycle rounds ~1e-6 away (measured 1.05e-6 at r = 0.0717,
-    // 5e-7 at 0.15: ~16 float epsilons of |lambda|, the projections' rounding).  Chaotic (0.11): other orbits, so
-    // error bars only (measured at most 0.68 of the allowance).
-    EXPECT_CLOSE(f.lambda1[k], d.lambda1[k],
-                 statistical(3 * std::hypot(f.err1[k], d.err1[k]) + 5e-6,
-                             "3 error bars + float's rounding of the cocycle (~16 eps_f |lambda|)"))
-        << "orbit " << k << " r " << r;
+    const double bars = std::hypot(f.err1[k], d.err1[k]);
     classes_differ += lyapunov::classify(f.lambda1[k], f.err1[k], mo.iterations) !=
                       lyapunov::classify(d.lambda1[k], d.err1[k], mo.iterations);
+    if (r == 0.11) {
+      // Chaotic: float and double follow other orbits after a few dozen steps, so the two exponents are independent
+      // estimates of one value, each with a batch-means error bar from 10 blocks (Student's t with 9 degrees of
+      // freedom).  Per orbit, 6 bars: P(|t_9| > 6) ~ 2e-4, below 1% for the 32 orbits together (3 bars leave
+      // P(|t_9| > 3) ~ 1.5% per orbit, a false failure in about a third of the runs); and the mean over the 32
+      // within 3 standard errors, which still sees a systematic shift of float's exponents.
+      EXPECT_CLOSE(f.lambda1[k], d.lambda1[k], statistical(6 * bars, "6 error bars of t_9 over 32 orbits"))
+          << "orbit " << k << " r " << r;
+      chaotic_diff += f.lambda1[k] - d.lambda1[k];
+      chaotic_var += bars * bars;
+      continue;
+    }
+    // Regular orbits: the same attractor; float's cocycle rounds ~1e-6 away (measured 1.05e-6 at r = 0.0717,
+    // 5e-7 at 0.15: ~16 float epsilons of |lambda|, the projections' rounding).
+    EXPECT_CLOSE(f.lambda1[k], d.lambda1[k],
+                 statistical(3 * bars + 5e-6, "3 error bars + float's rounding of the cocycle (~16 eps_f |lambda|)"))
+        << "orbit " << k << " r " << r;
   }
   EXPECT_EQ(classes_differ, 0);
+  EXPECT_CLOSE(chaotic_diff, 0.0, statistical(3 * std::sqrt(chaotic_var), "3 standard errors of the 32 orbits' sum"))
+      << "mean float - double exponent over the chaotic orbits";
   EXPECT_LT(redone, e.orbits() * 11000 / 8 / 100) << "more than 1% of float blocks redone";
 }
 
