@@ -108,7 +108,7 @@ void MapRequest::validate() const {
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  core::require_r_exponents(std::min(r_min, r_max), core::parse_precision(precision), r_min <= r_max ? "r-min" : "r-max");
+  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min");  // r-min <= r-max from here on
   (void)iterate::parse_grid(grid, seed, "grid");
 }
 
