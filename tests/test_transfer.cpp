@@ -3,6 +3,7 @@
 // hand-made chain, the block spectrum against Spectra on the whole matrix, the two routes of P^_r against each
 // other, thread independence, and the request's errors.
 #include "transfer/transfer.hpp"
+#include "transfer/stages.hpp"
 #include "transfer/transfer_impl.hpp"
 
 #include "csv_cells.hpp"
@@ -138,6 +139,49 @@ TEST(Transfer, DecompositionOfAHandMadeChain) {
   }
   EXPECT_EQ(ones, 2);
   EXPECT_EQ(roots, 4);
+}
+
+namespace {
+// Boxes 0 -> 1 -> 2 -> 0 (a cycle of period 3), 3 -> {0, 4} (half each), 4 -> 4 (a fixed point), 5 -> 3.
+UlamMatrix hand_made_chain() {
+  UlamMatrix P;
+  P.n = 6;
+  P.row_ptr = {0, 1, 2, 3, 5, 6, 7};
+  P.col = {1, 2, 0, 0, 4, 4, 3};
+  P.val = {1, 1, 1, 0.5, 0.5, 1, 1};
+  return P;
+}
+}  // namespace
+
+TEST(TransferStages, AbsorbersProjectionAndBasinsOfAHandMadeChainAlone) {
+  // The stages of `btob transfer` run alone on the chain: the closed classes {0, 1, 2} and {4} absorb; Lebesgue
+  // measure (1/6 per box) started on box 3 splits in halves, box 5's reaches box 3 after one step and splits too.
+  const UlamMatrix P = hand_made_chain();
+  const Decomposition d = decompose(P);
+  const Absorbers absorbers = find_absorbers(P, d, {}, 1e-2, nullptr);
+  ASSERT_EQ(absorbers.list.size(), 2u);
+  EXPECT_EQ(absorbers.list[0].boxes, (std::vector<long>{0, 1, 2}));
+  EXPECT_EQ(absorbers.of_box, (std::vector<std::uint32_t>{1, 1, 1, 0, 2, 0}));
+  for (double m : absorbers.list[0].density)  // the 3-cycle's invariant density is uniform (dense eigensolver)
+    EXPECT_CLOSE(m, 1.0 / 3, ulps(64, "a 3x3 dense eigenvector, normalised: rounding only"));
+  const std::vector<double> mu(6, 1.0 / 6);
+  const Projection projection = project_lebesgue(P, absorbers, mu, nullptr);
+  const std::vector<double> entry{1.0 / 3, 1.0 / 6, 1.0 / 6, 0, 1.0 / 3, 0};
+  for (std::size_t i = 0; i < entry.size(); ++i)
+    EXPECT_CLOSE(projection.entry[i], entry[i], ulps(4, "sums of three halvings of 1/6")) << "box " << i;
+  EXPECT_EQ(projection.unabsorbed, 0.0);  // everything is absorbed after two steps
+  // Basins with the fixed point as the only target: boxes 3 and 5 reach it with probability 1/2.
+  BasinTargets targets;
+  targets.basins.resize(1);
+  targets.basins[0].attractor = "fixed point";
+  targets.of_box = {0, 0, 0, 0, 1, 0};
+  const Basins basins = absorb(P, targets, mu);
+  EXPECT_EQ(basins.basin_of_box, (std::vector<std::uint32_t>{0, 0, 0, 1, 1, 1}));
+  const std::vector<double> probability{0, 0, 0, 0.5, 1, 0.5};
+  for (std::size_t i = 0; i < probability.size(); ++i)
+    EXPECT_CLOSE(basins.basin_probability[i], probability[i], bound(1e-12, "BiCGSTAB's relative residual")) << i;
+  EXPECT_CLOSE(basins.basins[0].fraction, 1.0 / 3, bound(1e-12, "BiCGSTAB's relative residual"));
+  EXPECT_CLOSE(basins.unabsorbed, 2.0 / 3, bound(1e-12, "BiCGSTAB's relative residual"));
 }
 
 TEST(Transfer, BlockSpectrumAgreesWithSpectraOnTheWholeMatrix) {

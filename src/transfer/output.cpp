@@ -38,81 +38,88 @@ std::string num(double v) { return core::csv_number(v); }
 
 // ---- btob transfer ----------------------------------------------------------------------------------------
 
-void TransferResult::describe(core::Contents& c) const {
-  const std::vector<std::size_t> box_dims{static_cast<std::size_t>(part.n1), static_cast<std::size_t>(part.n2)};
-  const std::string box_axes = "first chart coordinate, second chart coordinate";
-  const bool spectrum = request.spectrum();  // eigenvalues 0: no spectrum, none of what needs eigenvectors
-  c.text("attractors_found", attractors_found, "attractor", "word",
+namespace {
+
+const char* const kBoxAxes = "first chart coordinate, second chart coordinate";
+
+// The arrays over the boxes and the spectrum's arrays (those that need eigenvectors only with a spectrum).
+void describe_arrays(const TransferResult& res, core::Contents& c) {
+  const std::vector<std::size_t> box_dims{static_cast<std::size_t>(res.part.n1), static_cast<std::size_t>(res.part.n2)};
+  c.text("attractors_found", res.attractors_found, "attractor", "word",
          "stable periodic attractors found in the closed classes (paper notation; without --cycle only)");
-  if (spectrum) {
-    c.array("density", density, box_dims, box_axes, "mass per box",
+  if (res.request.spectrum()) {
+    c.array("density", res.density, box_dims, kBoxAxes, "mass per box",
             "sum over the components of their Lebesgue fraction times their invariant density");
-    c.array("second", second, box_dims, box_axes, "1",
+    c.array("second", res.second, box_dims, kBoxAxes, "1",
             "leading real eigenvector with 0 < lambda < 1 (real part, max |.| = 1; all 0 when there is none)");
-    c.array("component", component_of_box, box_dims, box_axes, "index",
+    c.array("component", res.component_of_box, box_dims, kBoxAxes, "index",
             "component of each box (1-based, as in components.csv), 0 for none");
-    c.array("eig_re", eig_re, {eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
-    c.array("eig_im", eig_im, {eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
-    c.array("lebesgue", lebesgue, {lebesgue.size()}, "component", "1",
+    c.array("eig_re", res.eig_re, {res.eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
+    c.array("eig_im", res.eig_im, {res.eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
+    c.array("lebesgue", res.lebesgue, {res.lebesgue.size()}, "component", "1",
             "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
   }
-  c.array("cycle_points", cycle_points, {cycle_points.size() / 2, 2}, "cycle point, (a, b)", "rad, 1",
+  c.array("cycle_points", res.cycle_points, {res.cycle_points.size() / 2, 2}, "cycle point, (a, b)", "rad, 1",
           "chart coordinates of every point of every requested cycle, the cycles in order");
-  if (!basins.empty()) {
-    c.array("basin", basin_of_box, box_dims, box_axes, "index",
-            "attractor (1-based, as in basins.csv) with the largest absorption probability of the box, 0 for none");
-    c.array("basin_probability", basin_probability, box_dims, box_axes, "1",
-            "that absorption probability (1 on the attractor's own boxes)");
-    c.array("basin_fraction", basin_fraction, {basin_fraction.size()}, "attractor", "1",
-            "fraction of the Lebesgue measure of the chart rectangle absorbed by each attractor's boxes");
+  if (res.basins.empty()) return;
+  c.array("basin", res.basin_of_box, box_dims, kBoxAxes, "index",
+          "attractor (1-based, as in basins.csv) with the largest absorption probability of the box, 0 for none");
+  c.array("basin_probability", res.basin_probability, box_dims, kBoxAxes, "1",
+          "that absorption probability (1 on the attractor's own boxes)");
+  c.array("basin_fraction", res.basin_fraction, {res.basin_fraction.size()}, "attractor", "1",
+          "fraction of the Lebesgue measure of the chart rectangle absorbed by each attractor's boxes");
+}
+
+// The partition, the matrix and its closed classes.
+void describe_matrix(const TransferResult& res, core::Contents& c) {
+  c.attr("n1", res.part.n1);
+  c.attr("n2", res.part.n2);
+  c.attr("lo1", res.part.lo1);
+  c.attr("hi1", res.part.hi1);
+  c.attr("lo2", res.part.lo2);
+  c.attr("hi2", res.part.hi2);
+  c.attr("nnz", res.nnz);
+  c.attr("lost_samples", static_cast<long>(res.lost));
+  c.attr("matrix_bytes", static_cast<long>(res.matrix_bytes));
+  c.attr("closed_classes", static_cast<long>(res.closed_classes()));
+  for (std::size_t k = 0; k < res.classes.size(); ++k) {
+    c.attr(fmt::format("closed_class_{}_boxes", k + 1), res.classes[k].boxes);
+    c.attr(fmt::format("closed_class_{}_period", k + 1), static_cast<long>(res.classes[k].period));
   }
-  request_attrs(request, c);
-  c.attr("n1", part.n1);
-  c.attr("n2", part.n2);
-  c.attr("lo1", part.lo1);
-  c.attr("hi1", part.hi1);
-  c.attr("lo2", part.lo2);
-  c.attr("hi2", part.hi2);
-  c.attr("nnz", nnz);
-  c.attr("lost_samples", static_cast<long>(lost));
-  c.attr("matrix_bytes", static_cast<long>(matrix_bytes));
-  c.attr("closed_classes", static_cast<long>(closed_classes()));
-  for (std::size_t k = 0; k < classes.size(); ++k) {
-    c.attr(fmt::format("closed_class_{}_boxes", k + 1), classes[k].boxes);
-    c.attr(fmt::format("closed_class_{}_period", k + 1), static_cast<long>(classes[k].period));
+}
+
+// The summary numbers of the spectrum, the components and the comparison with the empirical measure.
+void describe_spectrum(const TransferResult& res, core::Contents& c) {
+  c.attr("near_one_count", static_cast<long>(res.near_one_count));
+  c.attr("components", static_cast<long>(res.components.size()));
+  c.attr("unabsorbed", res.unabsorbed);
+  c.attr("second_value", res.second_value);
+  c.attr("second_block", static_cast<long>(res.second_block));
+  c.attr("second_positive_mass", res.second_positive_mass);
+  c.attr("second_negative_mass", res.second_negative_mass);
+  c.attr("second_positive_boxes", res.second_positive_boxes);
+  c.attr("second_negative_boxes", res.second_negative_boxes);
+  c.attr("tv_boxes", res.tv_boxes);
+  c.attr("tv_coarse", res.tv_coarse);
+  c.attr("measure_points", res.measure_points);
+}
+
+// The basins' and the cycles' summary attributes, and which CSV cells may be empty.
+void describe_basins_and_cycles(const TransferResult& res, core::Contents& c) {
+  const bool spectrum = res.request.spectrum();
+  c.attr("basins", static_cast<long>(res.basins.size()));
+  if (!res.basins.empty()) {
+    c.attr("basin_unabsorbed", res.basin_unabsorbed);
+    c.attr("basin_residual", res.basin_residual);
+    c.attr("basin_iterations", res.basin_iterations);
+    c.attr("seconds_basins", res.seconds_basins);
+    for (std::size_t k = 0; k < res.basins.size(); ++k) c.attr(fmt::format("basin_{}", k + 1), res.basins[k].attractor);
   }
-  if (spectrum) {
-    c.attr("near_one_count", static_cast<long>(near_one_count));
-    c.attr("components", static_cast<long>(components.size()));
-    c.attr("unabsorbed", unabsorbed);
-    c.attr("second_value", second_value);
-    c.attr("second_block", static_cast<long>(second_block));
-    c.attr("second_positive_mass", second_positive_mass);
-    c.attr("second_negative_mass", second_negative_mass);
-    c.attr("second_positive_boxes", second_positive_boxes);
-    c.attr("second_negative_boxes", second_negative_boxes);
-    c.attr("tv_boxes", tv_boxes);
-    c.attr("tv_coarse", tv_coarse);
-    c.attr("measure_points", measure_points);
-  }
-  // JSON has no NaN: the P2 angle is recorded only where the P2 curves exist (r >= 3 - 2 sqrt 2).
-  if (const double beta = p2_rotation_angle(request.r); std::isfinite(beta)) c.attr("p2_beta", beta);
-  c.attr("seconds_matrix", seconds_matrix);
-  if (spectrum) c.attr("seconds_spectrum", seconds_spectrum);
-  c.attr("seconds", seconds_total);
-  c.attr("basins", static_cast<long>(basins.size()));
-  if (!basins.empty()) {
-    c.attr("basin_unabsorbed", basin_unabsorbed);
-    c.attr("basin_residual", basin_residual);
-    c.attr("basin_iterations", basin_iterations);
-    c.attr("seconds_basins", seconds_basins);
-    for (std::size_t k = 0; k < basins.size(); ++k) c.attr(fmt::format("basin_{}", k + 1), basins[k].attractor);
-  }
-  for (std::size_t k = 0; k < cycles.size(); ++k) {
-    c.attr(fmt::format("cycle_{}", k + 1), cycles[k].word);
+  for (std::size_t k = 0; k < res.cycles.size(); ++k) {
+    c.attr(fmt::format("cycle_{}", k + 1), res.cycles[k].word);
     if (!spectrum) continue;
-    c.attr(fmt::format("cycle_{}_mass_boxes", k + 1), cycles[k].mass_boxes);
-    c.attr(fmt::format("cycle_{}_mass_neighbourhood", k + 1), cycles[k].mass_neighbourhood);
+    c.attr(fmt::format("cycle_{}_mass_boxes", k + 1), res.cycles[k].mass_boxes);
+    c.attr(fmt::format("cycle_{}_mass_neighbourhood", k + 1), res.cycles[k].mass_neighbourhood);
   }
   c.attr("csv_empty_cells",
          spectrum ? std::string("spectrum.csv: whole_re, whole_im, whole_modulus beyond the eigenvalues of the "
@@ -122,6 +129,21 @@ void TransferResult::describe(core::Contents& c) const {
                                 "radius99_component (eigenvalues 0: no spectrum, no density; component is then the "
                                 "closed class holding every box of the cycle, 0 for none); basins.csv: exact except for the P2 region on the strip; any empty cell: "
                                 "not a finite number"));
+}
+
+}  // namespace
+
+void TransferResult::describe(core::Contents& c) const {
+  describe_arrays(*this, c);
+  request_attrs(request, c);
+  describe_matrix(*this, c);
+  if (request.spectrum()) describe_spectrum(*this, c);
+  // JSON has no NaN: the P2 angle is recorded only where the P2 curves exist (r >= 3 - 2 sqrt 2).
+  if (const double beta = p2_rotation_angle(request.r); std::isfinite(beta)) c.attr("p2_beta", beta);
+  c.attr("seconds_matrix", seconds_matrix);
+  if (request.spectrum()) c.attr("seconds_spectrum", seconds_spectrum);
+  c.attr("seconds", seconds_total);
+  describe_basins_and_cycles(*this, c);
 }
 
 std::string TransferResult::spectrum_csv() const {

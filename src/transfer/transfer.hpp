@@ -72,6 +72,11 @@ Decomposition decompose(const UlamMatrix& P);
 // block goes to Eigen's dense solver when small (<= dense_max boxes), else to Spectra::GenEigsSolver
 // (implicitly restarted Arnoldi, SparseGenMatProd, largest magnitude).  Eigenvectors are those of P^T
 // (densities), on the boxes of their block, zero elsewhere.
+//
+// The default dense_max: a dense solve of m boxes costs ~10 m^3 flops and 8 m^2 bytes (600 boxes: 2.9 MB) and
+// returns every eigenvalue with nothing to converge; Arnoldi's Krylov basis (ncv >= k + 40 vectors, 16 more per
+// retry) would be a tenth of such a block, and above it the dense cost grows as m^3 against Arnoldi's m ncv^2.
+constexpr long kDenseMaxBoxes = 600;
 struct Eigenpair {
   std::complex<double> value;
   int block = 0;                          // 0: transient block, c >= 1: closed class c
@@ -80,7 +85,7 @@ struct Eigenpair {
 // `cancel` (here and below): polled before every matrix-vector product of the Arnoldi iteration; throws
 // core::Cancelled when set.
 std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decomposition& d, int k, bool vectors,
-                                          long dense_max = 600, const core::CancelToken* cancel = nullptr);
+                                          long dense_max = kDenseMaxBoxes, const core::CancelToken* cancel = nullptr);
 // Spectra on the whole matrix (the cross-check of the block route; unreliable on repeated eigenvalues).
 std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k,
                                                             const core::CancelToken* cancel = nullptr);
