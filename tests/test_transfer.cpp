@@ -3,6 +3,8 @@
 // hand-made chain, the block spectrum against Spectra on the whole matrix, the two routes of P^_r against each
 // other, thread independence, and the request's errors.
 #include "transfer/transfer.hpp"
+#include "attractors/attractors.hpp"
+#include "iterate/ensemble.hpp"
 #include "transfer/stages.hpp"
 #include "transfer/transfer_impl.hpp"
 
@@ -13,6 +15,7 @@
 
 #include "tolerance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -66,8 +69,54 @@ TEST(Transfer, FindsAndNamesItsPeriodicAttractorsWithoutCycles) {
   ASSERT_EQ(res.cycles.size(), 1u);
   EXPECT_EQ(res.cycles[0].word, "1133");
   EXPECT_EQ(res.cycles[0].outcome, "stable orbit");
+  // The class is named by classify's verdict on its boxes' centres: every one reaches the sink.
+  EXPECT_EQ(res.class_names.name, std::vector<std::string>{"1133"});
+  EXPECT_EQ(res.class_names.verdict, std::vector<std::string>{"stable"});
+  ASSERT_EQ(res.class_names.reached.size(), 1u);
+  EXPECT_EQ(res.class_names.majority, res.class_names.classified);
   q.cycles = {"1133"};
-  EXPECT_TRUE(run(q).attractors_found.empty());  // named cycles: nothing searched
+  const auto named = run(q);
+  EXPECT_TRUE(named.attractors_found.empty());  // named cycles: nothing searched
+  EXPECT_TRUE(named.class_names.name.empty());
+  EXPECT_EQ(named.classes_csv(), "");
+}
+
+TEST(Transfer, NamesTheSinksThatClassifyFindsWithoutCycles) {
+  // r = 0.21: three sinks (132^2, its mirror 312^2, 132^3312^3) and the P2 invariant curves share one closed class
+  // at 32 x 32 boxes.  Transfer without --cycle must name the stable periodic words that attractors::classify finds
+  // from a 16 x 16 strip grid of its own (the counting route of `btob basins`), and target each in its basins.
+  TransferRequest q;
+  q.r = 0.21;
+  q.boxes = "32x32";
+  q.samples = 16;
+  q.eigenvalues = 0;
+  q.measure_orbits = 0;
+  q.tv_bins = 16;
+  const auto res = run(q);
+  iterate::Ensemble grid;
+  grid.r = {q.r};
+  grid.initial = iterate::strip_grid(16, 16, -2, 2);
+  std::vector<std::string> sinks;
+  for (const auto& a : attractors::collect(attractors::classify(grid, attractors::Options{}), q.r, nullptr))
+    if (a.type == attractors::Type::periodic) sinks.push_back(a.pattern);
+  ASSERT_EQ(sinks.size(), 3u);
+  auto found = res.attractors_found;
+  std::sort(found.begin(), found.end());
+  std::sort(sinks.begin(), sinks.end());
+  EXPECT_EQ(found, sinks);
+  for (const auto& w : res.attractors_found)
+    EXPECT_TRUE(std::any_of(res.basins.begin(), res.basins.end(), [&](const BasinInfo& b) { return b.attractor == w; }))
+        << w;
+  // No attractor holds a majority of the class's starts: its name is undecided, and classes.csv lists them all.
+  EXPECT_EQ(res.class_names.name, std::vector<std::string>{"undecided"});
+  EXPECT_EQ(res.class_names.verdict, std::vector<std::string>{"undecided"});
+  long starts = 0;
+  for (const auto& a : res.class_names.reached) {
+    starts += a.starts;
+    EXPECT_TRUE(a.verdict == "stable" || a.verdict == "neutral" || a.verdict == "undecided") << a.attractor;
+  }
+  EXPECT_EQ(starts, static_cast<long>(res.class_names.classified[0]));
+  EXPECT_EQ(btob::testing::csv_cells(res.classes_csv()).size(), res.class_names.reached.size() + 1);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// `btob transfer`: flags -> transfer::TransferRequest -> run -> spectrum.csv, components.csv, cycles.csv (when
-// cycles were asked for), basins.csv (when the request names an attractor), NAME.h5, NAME.json, NAME.png: Ulam's
+// `btob transfer`: flags -> transfer::TransferRequest -> run -> spectrum.csv, components.csv, cycles.csv (cycles
+// asked for or found), basins.csv (when there is an attractor), classes.csv (without --cycle), NAME.h5, NAME.json,
+// NAME.png: Ulam's
 // transfer operator at one r (spectrum, invariant densities, Lebesgue projection, TV to the empirical measure; with
 // --eigenvalues 0 only the basins: cycles.csv, basins.csv and the files).  `btob
 // transfer-r`: flags -> transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json,
@@ -50,8 +51,9 @@ struct Registration {
         "transfer",
         "Ulam's transfer operator of P^_r on a box partition (Section 8): leading spectrum (Spectra), closed classes "
         "and invariant densities, projection of Lebesgue measure, almost-invariant sets, TV distance to the empirical "
-        "measure, basins from the Ulam graph (absorption into the named attractors); writes spectrum.csv, "
-        "components.csv, cycles.csv, basins.csv, NAME.h5/.json/.png",
+        "measure, basins from the Ulam graph (absorption into the named attractors; without --cycle, into those found by "
+        "classifying the closed classes' boxes); writes spectrum.csv, components.csv, cycles.csv, basins.csv, "
+        "classes.csv, NAME.h5/.json/.png",
         Output{"results/transfer/r0.15", "transfer", "", 0, false, false}, transfer_body);
     command<transfer::TransferRRequest>(
         "transfer-r",

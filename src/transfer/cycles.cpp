@@ -1,10 +1,7 @@
-// Stage 8 of `btob transfer` (stages.hpp): periodic cycles located in the boxes, the density's mass around them,
-// and the stable periodic attractors the closed classes hold.
+// Stage 8 of `btob transfer` (stages.hpp): periodic cycles located in the boxes and the density's mass around them.
 #include "transfer/detail.hpp"
 #include "transfer/stages.hpp"
 
-#include "core/map.hpp"
-#include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
 
 #include <algorithm>
@@ -111,44 +108,6 @@ CycleCheck check_cycle(const std::string& word, double r, Domain dom, const Part
   }
   measure_cycle(cc, mark_boxes(cc.boxes, part), *density, densities, part);
   return cc;
-}
-
-namespace {
-// The periodic attractor a closed class holds, named by its symbols: from the centre of the class's first box,
-// 20000 steps of P_r (the state renormalised each step); the eventual period (<= 1024) of the last 4096 symbols
-// gives the word, canonical and in the paper's notation.  "" when the symbols are not periodic (chaos) or the
-// word is not a stable periodic orbit at r (the invariant curves of P2 repeat the symbol 2 but are no cycle).
-std::string class_attractor(const Partition& part, Domain dom, const Decomposition& d, std::uint32_t cls, double r) {
-  long box = -1;
-  for (std::size_t i = 0; i < d.class_of_box.size() && box < 0; ++i)
-    if (d.class_of_box[i] == cls) box = static_cast<long>(i);
-  if (box < 0) return "";
-  const double a = part.lo1 + (static_cast<double>(box / part.n2) + 0.5) * (part.hi1 - part.lo1) / static_cast<double>(part.n1);
-  const double b = part.lo2 + (static_cast<double>(box % part.n2) + 0.5) * (part.hi2 - part.lo2) / static_cast<double>(part.n2);
-  core::Vec3<double> u;
-  chart_to_vector(dom, a, b, u(0), u(1), u(2));
-  constexpr long steps = 20000, kept = 4096;
-  std::vector<std::uint8_t> sym;
-  for (long k = 0; k < steps; ++k) {
-    const auto st = core::step<double>(u, r);
-    u = st.u / st.u.norm();
-    if (k >= steps - kept) sym.push_back(static_cast<std::uint8_t>(st.symbol));
-  }
-  const int p = patterns::eventual_period(sym.data(), kept, 1024);
-  if (p == 0) return "";
-  const patterns::Word w = patterns::canonical(patterns::Word{std::vector<std::uint8_t>(sym.end() - p, sym.end())});
-  if (patterns::analyse<double>(w, r).outcome != patterns::Outcome::stable) return "";
-  return patterns::to_paper(w);
-}
-}  // namespace
-
-std::vector<std::string> find_attractors(const Partition& part, Domain dom, const Decomposition& d, double r) {
-  std::vector<std::string> found;
-  for (std::uint32_t k = 1; k <= d.classes.size(); ++k) {
-    const std::string w = class_attractor(part, dom, d, k, r);
-    if (!w.empty() && std::find(found.begin(), found.end(), w) == found.end()) found.push_back(w);
-  }
-  return found;
 }
 
 }  // namespace btob::transfer

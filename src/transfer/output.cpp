@@ -42,11 +42,31 @@ namespace {
 
 const char* const kBoxAxes = "first chart coordinate, second chart coordinate";
 
+// Without --cycle: how the closed classes were named (classes.csv lists every attractor each class reaches).
+void describe_class_names(const ClassNames& names, core::Contents& c) {
+  const std::size_t classes = names.name.size();
+  c.text("class_attractor", names.name, "closed class", "word",
+         fmt::format("attractor reached from more than half of the classified box centres of each closed class "
+                     "(attractors::classify with btob classify's default thresholds, at most {} boxes a class, "
+                     "evenly strided): a periodic word in paper notation, 1 or 3 (collapse), P2 invariant curves, "
+                     "invariant curves, chaotic; undecided when no attractor has a majority",
+                     kNameSamples));
+  c.text("class_verdict", names.verdict, "closed class", "verdict",
+         "that attractor's verdict: stable (a stable periodic orbit), collapse, neutral (invariant curves, lambda1 = "
+         "0), unstable (chaotic, lambda1 > 0), undecided");
+  c.array("class_classified", names.classified, {classes}, "closed class", "count",
+          "box centres of the class classified (its boxes, or kNameSamples of them evenly strided)");
+  c.array("class_majority", names.majority, {classes}, "closed class", "count",
+          "classified box centres that reach the class's attractor (0 when undecided)");
+  c.attr("attractors_method", std::string("closed classes named by attractors::classify from their box centres"));
+}
+
 // The arrays over the boxes and the spectrum's arrays (those that need eigenvectors only with a spectrum).
 void describe_arrays(const TransferResult& res, core::Contents& c) {
   const std::vector<std::size_t> box_dims{static_cast<std::size_t>(res.part.n1), static_cast<std::size_t>(res.part.n2)};
   c.text("attractors_found", res.attractors_found, "attractor", "word",
          "stable periodic attractors found in the closed classes (paper notation; without --cycle only)");
+  if (res.request.cycles.empty()) describe_class_names(res.class_names, c);
   if (res.request.spectrum()) {
     c.array("density", res.density, box_dims, kBoxAxes, "mass per box",
             "sum over the components of their Lebesgue fraction times their invariant density");
@@ -201,6 +221,32 @@ std::string TransferResult::basins_csv() const {
   return t.text();
 }
 
+std::string TransferResult::classes_csv() const {
+  if (!request.cycles.empty()) return "";
+  core::CsvTable t("closed_class,attractor,type,verdict,starts");
+  for (const ClassAttractor& a : class_names.reached)
+    t.line(fmt::format("{},{},{},{},{}", a.closed_class, core::csv_text(a.attractor), core::csv_text(a.type),
+                       core::csv_text(a.verdict), a.starts));
+  return t.text();
+}
+
+namespace {
+// Without --cycle: one line per closed class, its name and what its starts reached.
+std::string class_lines(const ClassNames& names) {
+  std::string s;
+  for (std::size_t k = 0; k < names.name.size(); ++k) {
+    std::string reached;
+    for (const ClassAttractor& a : names.reached)
+      if (a.closed_class == static_cast<int>(k + 1))
+        reached += fmt::format("{}{} {}", reached.empty() ? "" : ", ", a.attractor, a.starts);
+    const std::string verdict = names.name[k] == names.verdict[k] ? "" : " (" + names.verdict[k] + ")";
+    s += fmt::format("  closed class {}: {}{}; of {} box centres classified: {}\n", k + 1, names.name[k], verdict,
+                     names.classified[k], reached);
+  }
+  return s;
+}
+}  // namespace
+
 std::string TransferResult::summary() const {
   const TransferRequest& q = request;
   std::string s;
@@ -234,6 +280,7 @@ std::string TransferResult::summary() const {
                        "component {} (99% of it within {} boxes)\n",
                        c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
   }
+  if (q.cycles.empty()) s += class_lines(class_names);
   for (const BasinInfo& b : basins)
     s += fmt::format("  basin of {} ({}, {} target boxes): Lebesgue fraction {:.4f}{}\n", b.attractor, b.kind,
                      b.target_boxes, b.fraction,

@@ -7,7 +7,8 @@
 //   5. projection   project_lebesgue            where the Lebesgue measure of the request enters the absorbers
 //   6. components   split_components            PCCA+ parts of absorbers, their densities and Lebesgue fractions
 //   7. second       second_eigenvector          sign structure of the leading real eigenvector below 1
-//   8. cycles       check_cycles                the named (or found) cycles' boxes and the density's mass there
+//   8. cycles       name_closed_classes         without --cycle: the attractors of the closed classes (classify)
+//                   check_cycle                 the named (or found) cycles' boxes and the density's mass there
 //   9. basins       ulam_basins                 absorption probabilities into the attractors' boxes
 //  10. comparison   compare_with_empirical      total variation to the empirical measure of orbits
 #pragma once
@@ -83,8 +84,10 @@ SecondEigenvector second_eigenvector(const std::vector<Eigenpair>& pairs, long n
 // density, the closed class holding it).  `densities` are the components' (empty without a spectrum).
 CycleCheck check_cycle(const std::string& word, double r, Domain dom, const Partition& part, const Decomposition& d,
                        const std::vector<double>* density, const std::vector<std::vector<double>>& densities);
-// The stable periodic attractors the closed classes hold, each once (paper notation).
-std::vector<std::string> find_attractors(const Partition& part, Domain dom, const Decomposition& d, double r);
+// Without --cycle: the closed classes named by the attractors their boxes' orbits reach (ClassNames in
+// transfer.hpp); its stable_words are the cycles to check.
+ClassNames name_closed_classes(const Partition& part, Domain dom, const Decomposition& d, double r,
+                               const core::RunControl& control);
 
 // 9. Basins from the Ulam graph (BasinInfo in transfer.hpp): the targets, then the absorption probabilities.
 struct BasinTargets {

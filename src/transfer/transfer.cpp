@@ -263,11 +263,15 @@ std::vector<std::vector<double>> component_stages(const UlamMatrix& P, const Dec
   return std::move(components.densities);
 }
 
-// Stage 8: the named cycles, or without --cycle the stable periodic attractors the closed classes hold.
+// Stage 8: the named cycles, or without --cycle the stable periodic attractors found in the closed classes.
 void cycle_stage(const TransferRequest& q, Domain dom, const Decomposition& d,
-                 const std::vector<std::vector<double>>& densities, TransferResult& res) {
+                 const std::vector<std::vector<double>>& densities, const core::RunControl& control,
+                 TransferResult& res) {
   std::vector<std::string> words = q.cycle_words();
-  if (q.cycles.empty()) words = res.attractors_found = find_attractors(res.part, dom, d, q.r);
+  if (q.cycles.empty()) {
+    res.class_names = name_closed_classes(res.part, dom, d, q.r, control);
+    words = res.attractors_found = res.class_names.stable_words;
+  }
   const std::vector<double>* density = q.spectrum() ? &res.density : nullptr;
   for (const auto& w : words) res.cycles.push_back(check_cycle(w, q.r, dom, res.part, d, density, densities));
 }
@@ -319,7 +323,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& control) {
   const std::vector<double> mu = lebesgue(res.part, dom, q.w1_range);
   std::vector<std::vector<double>> densities;  // per component: its density over all boxes
   if (q.spectrum()) densities = component_stages(P, d, spectrum, mu, q, control, res);
-  cycle_stage(q, dom, d, densities, res);
+  cycle_stage(q, dom, d, densities, control, res);
   basin_stage(P, q, dom, mu, control, res);
   if (q.measure_orbits > 0 && q.spectrum()) {  // (nothing to compare it with without the density)
     const MeasureComparison cmp = compare_with_empirical(q, dom, res.part, res.density, control.threads);

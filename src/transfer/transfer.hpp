@@ -200,6 +200,28 @@ struct BasinInfo {
   double exact = -1;    // P2 region: the Lebesgue measure of R itself (closed form by quadrature), -1 else
 };
 
+// Without --cycle: the attractors of the closed classes, found by classifying (attractors::classify with
+// `btob classify`'s default thresholds) the orbits started at the centres of a class's boxes (at most
+// kNameSamples of them, evenly strided in box order).  Verdicts are those of "one orbit, one verdict": stable (a
+// stable periodic orbit), collapse, neutral (invariant curves, lambda1 = 0), unstable (chaotic, lambda1 > 0),
+// undecided (the classifier's budget ran out, or no attractor holds a majority of the starts).
+constexpr std::size_t kNameSamples = 256;  // starts per closed class: each costs ~10^4 map steps
+struct ClassAttractor {
+  int closed_class = 0;   // 1-based
+  std::string attractor;  // periodic: its word in paper notation (mirror-aware); collapse: "1" or "3";
+                          // "P2 invariant curves", "invariant curves", "chaotic"; "undecided" for unresolved starts
+  std::string type;       // attractors::type_name: periodic, collapse, quasi-periodic, chaotic, unresolved
+  std::string verdict;    // stable, collapse, neutral, unstable or undecided
+  long starts = 0;        // starts of the class whose orbit reaches it
+};
+struct ClassNames {
+  std::vector<std::string> name, verdict;  // per closed class: the attractor more than half its starts reach, or
+                                           // "undecided"
+  std::vector<std::uint32_t> classified, majority;  // per closed class: starts classified, starts reaching it
+  std::vector<ClassAttractor> reached;     // every attractor each class's starts reach, by class, then by count
+  std::vector<std::string> stable_words;   // the distinct stable periodic words, in order of first class
+};
+
 struct TransferResult {
   TransferRequest request;
   Partition part;
@@ -225,8 +247,9 @@ struct TransferResult {
   // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
   std::vector<CycleCheck> cycles;
   // Without --cycle: the stable periodic attractors found in the closed classes (words, paper notation), which
-  // `cycles` then checks; empty when cycles were named or none was found.
+  // `cycles` then checks and `basins` targets; empty when cycles were named or none was found.
   std::vector<std::string> attractors_found;
+  ClassNames class_names;              // without --cycle: how the closed classes were named (empty with --cycle)
   double tv_boxes = -1, tv_coarse = -1;
   long measure_points = 0;
   double seconds_matrix = 0, seconds_spectrum = 0, seconds_total = 0;
@@ -251,11 +274,14 @@ struct TransferResult {
   std::string components_csv() const;  // component,kind,boxes,period,rho,lebesgue_fraction,centre_a,centre_b,w1,w2
   std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
   std::string basins_csv() const;      // attractor,kind,target_boxes,fraction,exact; "" when there is no target
-  core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some)
+  std::string classes_csv() const;     // closed_class,attractor,type,verdict,starts; "" with --cycle
+  core::Tables tables() const {  // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some),
+                                 // classes.csv (without --cycle)
     core::Tables t;
     if (request.spectrum()) t = {{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
     if (!cycles.empty()) t.emplace_back("cycles.csv", cycles_csv());
     if (!basins.empty()) t.emplace_back("basins.csv", basins_csv());
+    if (request.cycles.empty()) t.emplace_back("classes.csv", classes_csv());
     return t;
   }
   std::string summary() const;         // the lines printed on stderr
