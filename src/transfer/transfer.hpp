@@ -73,9 +73,11 @@ Decomposition decompose(const UlamMatrix& P);
 // (implicitly restarted Arnoldi, SparseGenMatProd, largest magnitude).  Eigenvectors are those of P^T
 // (densities), on the boxes of their block, zero elsewhere.
 //
-// The default dense_max: a dense solve of m boxes costs ~10 m^3 flops and 8 m^2 bytes (600 boxes: 2.9 MB) and
-// returns every eigenvalue with nothing to converge; Arnoldi's Krylov basis (ncv >= k + 40 vectors, 16 more per
-// retry) would be a tenth of such a block, and above it the dense cost grows as m^3 against Arnoldi's m ncv^2.
+// The default dense_max is not a speed crossover (Arnoldi on a closed class of a few hundred boxes is two orders
+// of magnitude faster than the dense solve): it bounds the price paid for robustness.  The dense solve returns every
+// eigenvalue with nothing to converge (no failure on the clustered peripheral eigenvalues of a periodic class, where
+// Arnoldi's small Schur step can fail, and no k + 3 <= m condition), at ~10 m^3 flops and 8 m^2 bytes: seconds and
+// 2.9 MB at 600 boxes, where the m^3 growth makes each further doubling of the block cost eight times more.
 constexpr long kDenseMaxBoxes = 600;
 struct Eigenpair {
   std::complex<double> value;
