@@ -53,6 +53,8 @@ void TransferResult::describe(core::Contents& c) const {
             "component of each box (1-based, as in components.csv), 0 for none");
     c.array("eig_re", eig_re, {eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
     c.array("eig_im", eig_im, {eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
+    c.array("eig_block", eig_block, {eig_block.size()}, "eigenvalue", "index",
+            "block of each eigenvalue: 0 the transient block, c >= 1 closed class c");
     c.array("lebesgue", lebesgue, {lebesgue.size()}, "component", "1",
             "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
   }
