@@ -210,7 +210,7 @@ template <class Req> void bind(py::module_& m) {
         run_released([&](const core::RunControl& c) {
           holder->res = run(req, c);
           c.check_cancelled();
-          holder->extras = extras::of(req);
+          holder->extras = extras::of(req, holder->res, c);
         }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
         holder->res.describe(holder->contents);
         holder->extras.add_to(holder->contents);

@@ -1,5 +1,6 @@
 // Building blocks for one's own analyses: btob.Map(r) (one step of P_r on N points, vectorised) and btob.iterate
-// (the batched kernel of src/iterate with its generic recorders: tails of a coordinate, symbols, final states).
+// (the batched kernel of src/iterate with its generic recorders: tails of a coordinate, symbols, final states, and
+// the whole tail of states and branches from one run).
 #include "bind.hpp"
 #include "core/map.hpp"
 #include "iterate/kernel.hpp"
@@ -76,7 +77,7 @@ void run_precision(const std::string& precision, const iterate::Ensemble& e, lon
   else throw core::InvalidField("precision", "'" + precision + "'", "float, double or long-double");
 }
 
-py::array iterate_orbits(py::handle r, py::handle points, long iterations, const std::string& record,
+py::object iterate_orbits(py::handle r, py::handle points, long iterations, const std::string& record,
                          const std::string& coord, long tail, const std::string& precision, int threads,
                          py::object progress) {
   iterate::Ensemble e;
@@ -124,7 +125,26 @@ py::array iterate_orbits(py::handle r, py::handle points, long iterations, const
     shape.push_back(3);
     return owned(std::move(flat), shape);
   }
-  throw core::InvalidField("record", "'" + record + "'", "tail, symbols or final");
+  if (record == "orbit") {
+    // The whole tail of every orbit from one kernel run: one recorder per quantity, all fed by the same steps
+    // (iterate::Both), so each array is bit for bit that of its own record (tail of theta / phi, symbols, final).
+    iterate::StateTailRecorder states(e.orbits(), iterations, tail);
+    iterate::TailRecorder theta(iterate::Coord::theta, e.orbits(), iterations, tail);
+    iterate::TailRecorder phi(iterate::Coord::phi, e.orbits(), iterations, tail);
+    iterate::SymbolRecorder branch(e.orbits(), iterations - tail + 1, iterations);
+    iterate::OrbitRecorders rec(states, theta, phi, branch);
+    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, t, progress);
+    shape.push_back(tail);
+    py::dict out;
+    out["x"] = owned(std::move(states.x), shape);
+    out["y"] = owned(std::move(states.y), shape);
+    out["z"] = owned(std::move(states.z), shape);
+    out["branch"] = owned(std::move(branch.out), shape);
+    out["theta"] = owned(std::move(theta.out), shape);
+    out["phi"] = owned(std::move(phi.out), shape);
+    return std::move(out);
+  }
+  throw core::InvalidField("record", "'" + record + "'", "tail, symbols, final or orbit");
 }
 
 }  // namespace

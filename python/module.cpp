@@ -70,9 +70,9 @@ BTOB_ROUTE(stats::CorrelateRequest, "correlate", "correlate", "correlate", "corr
 BTOB_ROUTE(windows::VerifyRequest, "windows_verify", "windows verify", "windows_verify", "verify", "",
            "Iterate the Section 4 grid inside and below each window: is the pattern (ab)^n(cb)^n reached?")
 #undef BTOB_ROUTE_BODY
-// The strip orbits' figure reads NAME.h5 and NAME.csv (the verdicts), as the command line gives them.
+// The strip orbits' figure: the script reads the saved NAME.h5 (verdicts included), as the command line runs it.
 #define BTOB_ROUTE_BODY \
-  static std::vector<std::string> plot_inputs() { return {".h5", ".csv"}; }
+  static std::vector<std::string> plot_inputs() { return {".h5"}; }
 BTOB_ROUTE(orbits::StripOrbitsRequest, "strip_orbits", "strip-orbits", "strip-orbits", "strip_orbits", "strip_orbits.py",
            "Tails of orbits at one r in the strip (w1, w2), each classified (Figures 6.9-6.11)")
 #undef BTOB_ROUTE_BODY
@@ -114,7 +114,7 @@ BTOB_ROUTE(patterns::AtlasRequest, "pattern_atlas", "pattern atlas", "patterns-a
 #undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \
   template <class Res> static std::string scalar(const auto&, const Res&) { return "double (spectrum in long double)"; } \
-  static std::vector<std::string> plot_inputs() { return {".h5", "_critical.csv"}; }                                   \
+  static std::vector<std::string> plot_inputs() { return {".h5"}; }                                                   \
   static constexpr bool plot_many = true;
 BTOB_ROUTE(patterns::CurvesRequest, "pattern_curves", "pattern-curves", "pattern-curves", "curves", "pattern_curves.py",
            "Spectrum and feasibility quantities of a word's period matrix against r (Figures 7.1-7.8)")

@@ -24,6 +24,9 @@ expect_error "bins" "${b[@]}" --bins 0
 expect_error "overlay" "${b[@]}" --overlay nonsense
 expect_error "threads" "${b[@]}" --threads -1
 expect_error "r-count" "${b[@]}" --r-count 100000000000
+expect_error "attractors: got with float" "${b[@]}" --attractors --precision float
+expect_error "attractors: got with double and algorithm trig" "${b[@]}" --attractors --algorithm trig
+expect_error "attractors: got with tail = iterations" "${b[@]}" --attractors --tail 50
 [ -e "$out/b" ] && [ -n "$(ls -A "$out/b")" ] && { echo "FAIL: output written despite errors: $(ls "$out/b")"; fail=1; }
 
 printf 'command = "bifurcation"\n[args]\nr-mni = 0.1\n' >"$out/bad_key.toml"

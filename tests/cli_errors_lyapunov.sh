@@ -27,6 +27,8 @@ expect_error "blocks" "${m[@]}" --blocks 1
 expect_error "grid" "${m[@]}" --grid "1,0.1,1"
 expect_error "precision" "${m[@]}" --precision quad
 expect_error "threads" "${m[@]}" --threads -1
+expect_error "attractors: got with precision float" "${m[@]}" --attractors --precision float
+expect_error "attractors: got with transient 0" "${m[@]}" --attractors --transient 0
 [ -e "$out/m" ] && [ -n "$(ls -A "$out/m")" ] && { echo "FAIL: lyapunov-map output written despite errors"; fail=1; }
 
 # btob lyapunov-strip

@@ -1,7 +1,7 @@
 """Figures 7.1-7.8: eigenvalues (when real) and moduli of a word's period matrix against r, and the feasibility
-quantities of its tracked eigenvector.  Usage: pattern_curves.py RESULT.h5 CRITICAL.csv OUTDIR
+quantities of its tracked eigenvector.  Usage: pattern_curves.py RESULT.h5 OUTDIR (reads only the HDF5 file: the
+critical r values are its critical_r and critical_what)
 Writes the paper's figures for 132312 (7.1-7.5) and 13223122 (7.6-7.8), or generic names for other words."""
-import csv
 import os
 import sys
 
@@ -59,15 +59,16 @@ def robust_ylim(y, x, lo_r=None):
     return lo, hi, int(((y < lo) | (y > hi)).sum())
 
 
-def main(h5path, critpath, outdir):
+def main(h5path, outdir):
     with h5py.File(h5path, "r") as f:
         a = attrs(f)
         r = f["r"][()]
         re, im, mod = f["eig_re"][()], f["eig_im"][()], f["modulus"][()]
         feas = f["feas"][()]
+        critical = list(zip(f["critical_what"].asstr()[()], f["critical_r"][()]))
     names = a["feas_names"].split(",")
     word = a["word"]
-    crit = [(row["what"], float(row["r"])) for row in csv.DictReader(open(critpath)) if float(row["r"]) >= CRIT_MIN_R]
+    crit = [(what, float(rc)) for what, rc in critical if float(rc) >= CRIT_MIN_R]
     spec = PAPER.get(word, {"matrix": "A", "fig": [(f"{a['name']}_eig", "eig", 0.3, None),
                                                      (f"{a['name']}_mod", "mod", 0.3, None),
                                                      (f"{a['name']}_feas", "feas", None,
@@ -166,4 +167,6 @@ def main(h5path, critpath, outdir):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

@@ -1,6 +1,6 @@
 """Tails of individual orbits in the strip (w1, w2), one panel per orbit, titled by the classifier's verdict
-(Figures 6.9-6.11).  Usage: strip_orbits.py RESULT.h5 RESULT.csv OUT.png"""
-import csv
+(Figures 6.9-6.11).  Usage: strip_orbits.py RESULT.h5 OUT.png (reads only the HDF5 file: the verdicts are its
+verdict, pattern, period and rotation datasets)"""
 import sys
 
 import h5py
@@ -10,11 +10,13 @@ import numpy as np
 from plotlib import attrs, save_atomic
 
 
-def main(h5path, csvpath, dst):
+def main(h5path, dst):
     with h5py.File(h5path, "r") as f:
         a = attrs(f)
         w1, w2 = f["w1"][()], f["w2"][()]
-    rows = list(csv.DictReader(open(csvpath)))
+        rows = [{"verdict": v, "pattern": p, "period": int(n), "rotation": float(t)}
+                for v, p, n, t in zip(f["verdict"].asstr()[()], f["pattern"].asstr()[()], f["period"][()],
+                                      f["rotation"][()])]
     r = float(a["r"])
     alpha = (1 + r) / 2
     lim = float(a.get("plot_w1", 2))  # the command line's --plot-w1 and --only (Python results: their defaults)
@@ -71,4 +73,6 @@ def main(h5path, csvpath, dst):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

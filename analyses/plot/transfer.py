@@ -1,8 +1,7 @@
 """Ulam's transfer operator at one r: invariant density (Lebesgue projection), components, the sign structure of
 the leading real eigenvector below 1, and the spectrum in the complex plane; the basins from the Ulam graph when the
-request names attractors.  Usage: transfer.py H5 SPECTRUM.csv PNG, or transfer.py H5 PNG for a run without a
-spectrum (--eigenvalues 0: the basins' two panels alone)."""
-import csv
+request names attractors.  Usage: transfer.py H5 PNG.  Reads only the HDF5 file (the spectrum is its eig_re, eig_im
+and eig_block); a run without a spectrum (--eigenvalues 0) gets the basins' two panels alone."""
 import sys
 
 import h5py
@@ -68,9 +67,12 @@ def basin_panels(fig, axb, axp, a, basin, basin_p, basin_f, cyc, ext, strip):
                 axx.axvline(np.arctan(w), color="k", lw=0.6, ls="--")
 
 
-def main(h5path, spec_path, png):
+def main(h5path, png):
     with h5py.File(h5path, "r") as f:
+        if "eig_re" not in f:
+            return basins_only(h5path, png)
         a = attrs(f)
+        re, im, block = f["eig_re"][...], f["eig_im"][...], f["eig_block"][...]
         dens = f["density"][...]
         second = f["second"][...]
         comp = f["component"][...]
@@ -79,10 +81,6 @@ def main(h5path, spec_path, png):
         basin = f["basin"][...] if "basin" in f else None
         basin_p = f["basin_probability"][...] if "basin" in f else None
         basin_f = f["basin_fraction"][...] if "basin" in f else None
-    rows = list(csv.DictReader(open(spec_path)))
-    re = np.array([float(r["re"]) for r in rows])
-    im = np.array([float(r["im"]) for r in rows])
-    block = np.array([int(r["block"]) for r in rows])
     n1, n2 = int(a["n1"]), int(a["n2"])
     ext = [a["lo1"], a["hi1"], a["lo2"], a["hi2"]]
     strip = a["domain"] == "strip"
@@ -172,7 +170,6 @@ def main(h5path, spec_path, png):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3:
-        basins_only(*sys.argv[1:3])
-    else:
-        main(*sys.argv[1:4])
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

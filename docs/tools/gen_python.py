@@ -13,9 +13,10 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # One small, fast request per function (seconds in all): the arrays and attributes a result holds do not depend on
 # the sizes, only on the request's options.
 SMALL = {
-    "bifurcation": dict(r_count=4, iterations=50, tail=10),
+    "bifurcation": dict(r_count=4, iterations=50, tail=10, attractors=True),
     "lyapunov": dict(r=0.15, point=(1, -0.5, -1.1), iterations=500, transient=10),
-    "lyapunov_map": dict(r_min=0.1, r_max=0.2, r_count=2, grid="random:2", iterations=300, transient=10),
+    "lyapunov_map": dict(r_min=0.1, r_max=0.2, r_count=2, grid="random:2", iterations=300, transient=10,
+                         attractors=True),
     "lyapunov_strip": dict(r=0.3, grid="strip:4x4", iterations=300, transient=10),
     "hyperbolicity": dict(r=0.3, grid="strip:4x4"),
     "hyperbolicity_orbits": dict(r_min=0.1, r_max=0.3, r_count=2, grid="random:2", iterations=300, transient=30,

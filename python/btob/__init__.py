@@ -63,10 +63,10 @@ def iterate(r, points, iterations, record="tail", coord="theta", tail=None, prec
       shape (N, tail) (or (R, N, tail) for a sequence of r), float64;
     - record="symbols": the branch 1/2/3 of the last `tail` steps, same shape, uint8;
     - record="final": the final direction (unit vector), shape (N, 3) (or (R, N, 3));
-    - record="orbit": the whole orbit over the last `tail` steps, a dict of arrays of the tail's shape: "x", "y", "z"
-      the unit direction after each step, "branch" the branch 1/2/3 that step took, "theta" and "phi" its angles
-      (radians).  The direction is (sin phi cos theta, -cos phi, -sin phi sin theta) of the recorded angles (the
-      kernel keeps unnormalised states): it agrees with the state normalised to a few units in the last place.
+    - record="orbit": the whole orbit over the last `tail` steps from ONE kernel run, a dict of arrays of the tail's
+      shape: "x", "y", "z" the state after each step normalised to a unit vector (float64; the last column is
+      record="final" bit for bit), "branch" the branch 1/2/3 that step took (uint8; record="symbols"), "theta" and
+      "phi" its angles in radians (record="tail" with coord="theta" / "phi", bit for bit).
 
     tail defaults to min(100, iterations).  precision: float, double or long-double.  threads: OpenMP threads (0:
     all cores); progress: False, True (a tqdm bar) or a callable(done, total).  The arrays own their data (no copy
@@ -76,16 +76,5 @@ def iterate(r, points, iterations, record="tail", coord="theta", tail=None, prec
         tail = min(100, int(iterations))
     if not isinstance(threads, int) or isinstance(threads, bool) or not 0 <= threads <= 1024:
         raise ValueError(f"threads: got {threads}, expected 0 (all cores) or 1..1024")
-    if record == "orbit":
-        import numpy as np
-
-        def run(rec, c="theta"):
-            return iterate(r, points, iterations, record=rec, coord=c, tail=tail, precision=precision,
-                           threads=threads, progress=progress)
-
-        theta, phi, branch = run("tail", "theta"), run("tail", "phi"), run("symbols")
-        s = np.sin(phi)
-        return {"x": s * np.cos(theta), "y": -np.cos(phi), "z": -s * np.sin(theta), "branch": branch,
-                "theta": theta, "phi": phi}
     with _progress.sink(progress, "iterate") as cb:
         return _btob._iterate(r, points, int(iterations), record, coord, int(tail), precision, threads, cb)

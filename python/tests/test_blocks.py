@@ -77,6 +77,23 @@ def test_iterate_orbit_records_states_and_branches_per_step():
         assert np.allclose(got, u, rtol=0, atol=1e-12), k
 
 
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_iterate_orbit_is_the_separate_records_from_one_kernel_run(precision):
+    kw = dict(iterations=50, tail=20, precision=precision, threads=2)
+    ends = []
+    orbit = btob.iterate([0.2, 0.35], POINTS, record="orbit",
+                         progress=lambda done, total: ends.append(done) if done == total else None, **kw)
+    # One run of the kernel: its progress reaches its total once (three runs reached it three times).
+    assert len(ends) == 1
+    # Bit for bit the arrays of the separate records, which each run the kernel on their own.
+    assert np.array_equal(orbit["theta"], btob.iterate([0.2, 0.35], POINTS, record="tail", coord="theta", **kw))
+    assert np.array_equal(orbit["phi"], btob.iterate([0.2, 0.35], POINTS, record="tail", coord="phi", **kw))
+    assert np.array_equal(orbit["branch"], btob.iterate([0.2, 0.35], POINTS, record="symbols", **kw))
+    final = btob.iterate([0.2, 0.35], POINTS, record="final", **kw)
+    assert np.array_equal(np.stack([orbit[k][..., -1] for k in "xyz"], axis=-1), final)
+    assert orbit["branch"].dtype == np.uint8 and orbit["x"].dtype == np.float64
+
+
 def test_iterate_float_and_long_double():
     d = btob.iterate(0.2, POINTS, iterations=30, record="symbols", tail=30)
     for p in ("float", "long-double"):
@@ -93,7 +110,7 @@ def test_iterate_owns_its_arrays():
     (lambda: btob.Map(1.5), "^r: got 1.5, expected a value in the open interval"),
     (lambda: btob.Map(0.2).step([1.0, 2.0]), "^points: got"),
     (lambda: btob.Map(0.2).step([1.0, 0.5, 1.0]), "x\\*z > 0"),
-    (lambda: btob.iterate(0.2, POINTS, 10, record="nope"), "^record: got 'nope', expected tail, symbols or final"),
+    (lambda: btob.iterate(0.2, POINTS, 10, record="nope"), "^record: got 'nope', expected tail, symbols, final or orbit"),
     (lambda: btob.iterate(0.2, POINTS, 10, tail=11), "^tail: got 11, expected 1..iterations = 10"),
     (lambda: btob.iterate(0, POINTS, 10), "^r: got 0"),
     (lambda: btob.iterate(0.2, POINTS, 10, precision="quad"), "^precision: got 'quad'"),

@@ -18,13 +18,13 @@ INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "in
 
 COMMANDS = {
     "bifurcation": ["bifurcation", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "8", "--iterations", "200",
-                    "--tail", "20", "--bins", "16", "--overlay", "thresholds", "windows"],
+                    "--tail", "20", "--bins", "16", "--overlay", "thresholds", "windows", "--attractors"],
     "basins": ["basins", "--r", "0.2", "--grid", "sphere:8x6", "--replicates", "1", "--transient", "300",
                "--iterations", "300", "--lyap-iterations", "400", "--lyap-transient", "50"],
     "lyapunov-strip": ["lyapunov-strip", "--r", "0.3", "--grid", "strip:6x4", "--iterations", "300",
                        "--transient", "50"],
     "lyapunov-map": ["lyapunov-map", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "3", "--grid", "random:2",
-                     "--iterations", "300", "--transient", "50", "--overlay", "thresholds"],
+                     "--iterations", "300", "--transient", "50", "--overlay", "thresholds", "--attractors"],
     "hyperbolicity": ["hyperbolicity", "--r", "0.2", "--grid", "strip:8x6"],
     "correlate": ["correlate", "--r", "0.11", "--point", "1,-0.5,-1.1", "--n-max", "20", "--iterations", "2000"],
     "pattern atlas": ["pattern", "atlas", "--max-length", "4", "--no-check"],

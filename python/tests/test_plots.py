@@ -91,3 +91,42 @@ def test_figures_from_files_are_the_command_lines_pixel_for_pixel(function, comm
     assert tables and sorted(os.path.basename(f) for f in tables) == sorted(res.tables)
     for f in tables:
         assert open(f).read() == (tmp_path / os.path.basename(f)).read_text(), f
+
+
+# Scripts that once needed a CSV beside the HDF5 file: each runs alone on the HDF5 file, in a folder holding nothing
+# else, as `python3 analyses/plot/SCRIPT.py NAME.h5 OUT` (OUT a PNG, or a folder for pattern_curves' figures).
+ALONE = [
+    ("strip-orbits", "strip_orbits.py", ["--r", "0.2", "--orbits", "3", "--iterations", "1500", "--tail", "200"]),
+    ("pattern-curves", "pattern_curves.py", ["--word", "132312", "--r-min", "0.3", "--r-max", "0.6", "--r-count", "60"]),
+    ("transfer", "transfer.py", ["--r", "0.21", "--boxes", "16x16", "--samples", "4", "--eigenvalues", "4",
+                                 "--measure-orbits", "2", "--measure-iterations", "200", "--tv-bins", "8"]),
+    ("transfer", "transfer.py", ["--r", "0.21", "--boxes", "16x16", "--samples", "4", "--eigenvalues", "0",
+                                 "--tv-bins", "8", "--cycle", "1322"]),
+    ("lyapunov-map", "orbit_attractors.py", ["--r-min", "0.1", "--r-max", "0.2", "--r-count", "6", "--grid", "random:4",
+                                             "--iterations", "600", "--transient", "100", "--attractors"]),
+]
+
+
+@pytest.mark.parametrize("command,script,args", ALONE, ids=[f"{a[1]}-{i}" for i, a in enumerate(ALONE)])
+def test_plot_script_runs_alone_on_its_hdf5(command, script, args, tmp_path):
+    import glob
+    import shutil
+    import subprocess
+    import sys
+
+    from conftest import ROOT, exe
+    p = subprocess.run([exe(), command] + args + ["--out", str(tmp_path / "run"), "--name", "x", "--no-plot",
+                                                   "--quiet"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    shutil.copy(tmp_path / "run" / "x.h5", alone / "x.h5")  # the HDF5 file and nothing else
+    many = script == "pattern_curves.py"
+    out = alone / "figures" if many else alone / "x.png"
+    if many:
+        out.mkdir()
+    p = subprocess.run([sys.executable, os.path.join(ROOT, "analyses", "plot", script), str(alone / "x.h5"), str(out)],
+                       capture_output=True, text=True, cwd=alone)
+    assert p.returncode == 0, p.stderr
+    pngs = glob.glob(str(out / "*.png")) if many else [str(out)]
+    assert pngs and all(os.path.getsize(f) > 10000 for f in pngs)

@@ -24,9 +24,11 @@ VOLATILE = ("date", "command", "seconds", "per_second", "threads", "git", "compi
             "host", "name")
 # One small request per function, each well under a second.
 CASES = {
-    "bifurcation": dict(r_min=0.1, r_max=0.12, r_count=12, iterations=300, tail=20, bins=32, overlay=[]),
+    "bifurcation": dict(r_min=0.1, r_max=0.12, r_count=12, iterations=300, tail=20, bins=32, overlay=[],
+                        attractors=True),
     "lyapunov": dict(r=0.2, point=P, iterations=2000, transient=100),
-    "lyapunov_map": dict(r_min=0.1, r_max=0.2, r_count=4, grid="random:3", iterations=500, transient=100),
+    "lyapunov_map": dict(r_min=0.1, r_max=0.2, r_count=4, grid="random:3", iterations=500, transient=100,
+                         attractors=True),
     "lyapunov_strip": dict(r=0.3, grid="strip:6x4", iterations=400, transient=100),
     "hyperbolicity": dict(r=0.2, grid="strip:8x6"),
     "hyperbolicity_orbits": dict(r_min=0.1, r_max=0.2, r_count=2, grid="random:2", iterations=200, transient=50,

@@ -95,6 +95,15 @@ void Request::validate() const {
   if (raw)
     iterate::checked_bytes(static_cast<std::size_t>(r_count) * probe.initial.size() * static_cast<std::size_t>(tail), 8,
                            "r-count x grid x tail (raw)");
+  if (attractors) {  // classify runs in double, on the linear map, from transient iterations - tail >= 1
+    if (prec.kind != core::Precision::Kind::f64 || algorithm != "linear")
+      throw core::InvalidField("attractors", "with " + std::string(prec.name()) + " and algorithm " + algorithm,
+                               "precision double and algorithm linear (classify's)");
+    if (tail >= iterations)
+      throw core::InvalidField("attractors", fmt::format("with tail = iterations = {}", iterations),
+                               "tail < iterations (classify's transient iterations - tail >= 1)");
+    core::require_r_exponents(r_min, prec, "r-min");
+  }
 }
 
 Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control) {

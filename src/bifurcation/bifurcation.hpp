@@ -31,6 +31,9 @@ struct Request {
   std::vector<std::string> overlay;       // named overlays (presentation; the command line resolves them)
   std::string algorithm = "linear";       // linear (Theorem 3.1, batched kernel) or trig (Appendix A.1)
   bool raw = false;                       // also keep the raw tails (r x initial condition x tail)
+  // Also classify every orbit (`btob classify` with transient iterations - tail, iterations tail, in double): what
+  // extras::of adds after the run (src/extras), so the diagram's run and its speed are the same without it.
+  bool attractors = false;
 
   void validate() const;
   std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
@@ -51,6 +54,7 @@ struct Request {
     v("overlay", overlay, "named overlays (thresholds, windows, stripes)");
     v("algorithm", algorithm, "linear (Theorem 3.1, batched kernel) or trig (Appendix A.1, per collision)");
     v("raw", raw, "also store the raw tails in the HDF5 file");
+    v("attractors", attractors, "also record each orbit's attractor (classify over the tail)");
   }
 };
 

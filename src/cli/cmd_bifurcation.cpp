@@ -40,7 +40,7 @@ void body(const bifurcation::Request& req, const Output& o, const Context& ctx) 
   const auto got = sweep(req, run_ctx);  // every MPI rank computes its share; rank 0 writes
   if (!got) return;
   const bifurcation::Result& res = *got;
-  const extras::Extras ex = extras::of(req);
+  const extras::Extras ex = extras::of(req, res, ctx.control);  // the attractors field classifies every orbit here
   warn(req, res);
   core::Contents c;
   res.describe(c);

@@ -61,7 +61,7 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   else got = lyapunov::run(req, run_ctx.control);
   if (!got) return;
   const lyapunov::MapResult& res = *got;
-  const extras::Extras ex = extras::of(req);
+  const extras::Extras ex = extras::of(req, res, ctx.control);  // the attractors field classifies every orbit here
   core::Contents c;
   res.describe(c);
   ex.add_to(c);

@@ -23,7 +23,7 @@ void body(const patterns::CurvesRequest& req, const Output& o, const Context& ct
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_figures("pattern_curves.py", {o.name + ".h5", o.name + "_critical.csv"});
+  if (!o.no_plot) files.plot_figures("pattern_curves.py", {o.name + ".h5"});  // the script reads NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet)
     std::cerr << fmt::format("btob: {} ({}analysed as {}) at {} r values; {} critical r; wrote {}\n", res.word,

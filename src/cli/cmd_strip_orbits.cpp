@@ -42,7 +42,7 @@ void body(const StripOrbitsCommand& req, const Output& o, const Context& ctx) {
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_inputs("strip_orbits.py", {o.name + ".h5", o.name + ".csv"});
+  if (!o.no_plot) files.plot("strip_orbits.py");  // the script reads NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet)
     std::cerr << fmt::format("btob: r = {}: {} orbits x {} iterations, {} periodic, {} quasi-periodic, {} other ({:.2f} s); "

@@ -23,10 +23,7 @@ void transfer_body(const transfer::TransferRequest& req, const Output& o, const 
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) {  // without a spectrum (eigenvalues 0) the figure is the basins' alone
-    if (req.spectrum()) files.plot_inputs("transfer.py", {o.name + ".h5", "spectrum.csv"});
-    else files.plot_inputs("transfer.py", {o.name + ".h5"});
-  }
+  if (!o.no_plot) files.plot("transfer.py");  // the script reads NAME.h5 alone (no spectrum: the basins' panels)
   const auto written = files.commit();
   if (!o.quiet) std::cerr << res.summary() << "btob: wrote " << listing(written) << "\n";
 }

@@ -1,6 +1,7 @@
 // The overlays and per-command attributes of extras.hpp.
 #include "extras/extras.hpp"
 
+#include "attractors/requests.hpp"
 #include "core/map.hpp"
 #include "core/request.hpp"
 #include "windows/overlays.hpp"
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <tuple>
 
 namespace btob::extras {
 namespace {
@@ -89,6 +91,7 @@ std::vector<double> overlay_values(const std::vector<std::string>& names, double
 }
 
 void Extras::add_to(core::Contents& c) const {
+  if (has_attractors) attractors.add_to(c);
   if (!has_overlay) return;
   c.array("overlay_lines", overlay_lines, {overlay_lines.size() / 2, 2}, "line, (r, colour)", "1",
           "r values of the named overlays (column 0) and their colour code (column 1: 0 red, 1 blue, 2 grey); "
@@ -125,6 +128,108 @@ Extras of(const lyapunov::MapRequest& req) {
   e.has_overlay = true;
   e.overlay_lines = overlay_values(names, req.r_min, req.r_max, &e.overlay_labels);
   e.attrs["overlays"] = fmt::format("{}", fmt::join(names, ","));
+  return e;
+}
+
+// ---- per-orbit attractors ----
+OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::Options& options,
+                                 const core::RunControl& control) {
+  attractors::Options opt = attractors::run_options(options, control);
+  opt.run.progress = nullptr;  // the run's own progress has finished; this pass is the classification's
+  attractors::validate(opt);
+  OrbitAttractors out;
+  out.options = options;
+  const std::size_t R = e.r.size(), I = e.initial.size();
+  out.r_count = R, out.n_ic = I;
+  // Per r: classify's verdicts and collect's attractors; then one index per (type, key) over every r.
+  std::vector<std::vector<attractors::Attractor>> found(R);
+  std::vector<std::vector<std::uint32_t>> ids(R);
+  std::map<std::pair<int, std::string>, std::uint32_t> index;
+  for (std::size_t i = 0; i < R; ++i) {
+    iterate::Ensemble one;
+    one.r = {e.r[i]};
+    one.initial = e.initial;
+    found[i] = attractors::collect(attractors::classify(one, opt), e.r[i], &ids[i]);
+    for (const auto& a : found[i]) index.emplace(std::make_pair(static_cast<int>(a.type), a.key), 0);
+  }
+  out.name = {"unresolved"};
+  out.type = {attractors::type_name(attractors::Type::unresolved)};
+  out.period = {0};
+  for (auto& [k, v] : index) {
+    v = static_cast<std::uint32_t>(out.name.size());
+    out.name.emplace_back();
+    out.type.emplace_back(attractors::type_name(static_cast<attractors::Type>(k.first)));
+    out.period.push_back(0);
+  }
+  const std::size_t A = out.name.size();
+  out.label.assign(R * I, 0);
+  out.count.assign(R * A, 0);
+  for (std::size_t i = 0; i < R; ++i) {
+    std::vector<std::uint32_t> global(found[i].size() + 1, 0);  // collect's id (1-based, 0 unresolved) -> index
+    for (const auto& a : found[i]) {
+      const std::uint32_t g = index.at({static_cast<int>(a.type), a.key});
+      global[static_cast<std::size_t>(a.id)] = g;
+      out.name[g] = a.pattern;  // the same key has the same pattern at every r (attractors::attractor_key)
+      out.period[g] = static_cast<std::uint32_t>(a.period);
+    }
+    for (std::size_t j = 0; j < I; ++j) {
+      const std::uint32_t g = global[ids[i][j]];
+      out.label[i * I + j] = g;
+      ++out.count[i * A + g];
+    }
+  }
+  return out;
+}
+
+void OrbitAttractors::add_to(core::Contents& c) const {
+  const std::size_t A = name.size();
+  c.array("attractor", label, {r_count, n_ic}, "r, initial condition", "index",
+          "the orbit's attractor: an index into attractor_name (0 unresolved), classify's verdict on the orbit");
+  c.array("attractor_count", count, {r_count, A}, "r, attractor", "count", "orbits of each attractor at each r");
+  c.array("attractor_period", period, {A}, "attractor", "iterations",
+          "map iterations per period of each attractor (1 for a collapse, 0 for none)");
+  c.text("attractor_name", name, "attractor", "name",
+         "each attractor as btob classify names it: its pattern (paper notation), P2 invariant curves, chaotic, "
+         "or unresolved");
+  c.text("attractor_type", type, "attractor", "name", "classify's type of each attractor");
+  c.attr("attractor_transient", options.transient);
+  c.attr("attractor_iterations", options.window);
+  c.attr("attractor_max_period", static_cast<long>(options.max_period));
+  c.attr("attractor_classification",
+         std::string("btob classify --r R --point P --transient T --iterations W --max-period M, the other thresholds "
+                     "at classify's defaults (T, W, M: attractor_transient, attractor_iterations, "
+                     "attractor_max_period)"));
+}
+
+attractors::Options attractor_options(const lyapunov::MapRequest& req) {
+  attractors::Options o;
+  o.transient = req.transient;
+  o.window = req.iterations;
+  o.max_period = static_cast<int>(std::min<long>(o.max_period, o.window));
+  return o;
+}
+
+attractors::Options attractor_options(const bifurcation::Request& req) {
+  attractors::Options o;
+  o.transient = req.iterations - req.tail;
+  o.window = req.tail;
+  o.max_period = static_cast<int>(std::min<long>(o.max_period, o.window));
+  return o;
+}
+
+Extras of(const lyapunov::MapRequest& req, const lyapunov::MapResult& res, const core::RunControl& control) {
+  Extras e = of(req);
+  if (!req.attractors) return e;
+  e.has_attractors = true;
+  e.attractors = orbit_attractors(res.ensemble, attractor_options(req), control);
+  return e;
+}
+
+Extras of(const bifurcation::Request& req, const bifurcation::Result& res, const core::RunControl& control) {
+  Extras e = of(req);
+  if (!req.attractors) return e;
+  e.has_attractors = true;
+  e.attractors = orbit_attractors(res.ensemble, attractor_options(req), control);
   return e;
 }
 

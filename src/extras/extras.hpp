@@ -1,9 +1,13 @@
 // What a command adds to a result beyond its describe(), where it needs the request: the named r overlays drawn
-// on figures (thresholds, windows, stripes) and per-command attributes.  The one route of the command line and
-// the Python binding, so both write the same arrays and attributes.
+// on figures (thresholds, windows, stripes), per-command attributes, and the attractor of every orbit of
+// lyapunov-map and bifurcation (their `attractors` field: classify's verdict, floor 4, which their own floor-3 runs
+// cannot call).  The one route of the command line and the Python binding, so both write the same arrays and
+// attributes.
 #pragma once
 
+#include "attractors/attractors.hpp"
 #include "bifurcation/bifurcation.hpp"
+#include "core/request.hpp"
 #include "core/result.hpp"
 #include "lyapunov/requests.hpp"
 #include "precision/tradeoff.hpp"
@@ -23,8 +27,32 @@ std::string overlay_names();
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
                                    std::vector<std::string>* labels = nullptr);
 
+// The attractor of every orbit of an ensemble (orbit o = r index * initial conditions + initial condition index):
+// attractors::classify at each r with `options`, the orbit's verdict named as `btob classify` names it (its pattern:
+// "132^2", "1" for a collapse, "P2 invariant curves", "chaotic"; "unresolved" when classify could not decide).
+// Attractors are indexed over the whole ensemble: 0 is "unresolved", then one per (type, key) of classify's verdicts
+// in that order (attractors::collect's order at one r), the same index at every r.
+struct OrbitAttractors {
+  std::vector<std::uint32_t> label;   // [r, initial condition]: the index of the orbit's attractor
+  std::vector<std::uint32_t> count;   // [r, attractor]: orbits of each attractor at each r
+  std::vector<std::string> name, type;  // [attractor]: classify's pattern and type (attractors::type_name)
+  std::vector<std::uint32_t> period;  // [attractor]: map iterations per period (1 for a collapse, 0 when none)
+  std::size_t r_count = 0, n_ic = 0;  // the ensemble's r values and initial conditions
+  attractors::Options options;        // what classify ran with
+  void add_to(core::Contents& c) const;
+};
+OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::Options& options,
+                                 const core::RunControl& control);
+// classify's options of the attractors field: lyapunov-map's transient and iterations, bifurcation's transient
+// iterations - tail and iterations tail; max-period min(256, iterations) (a period longer than the window cannot
+// return within it), the other thresholds at classify's defaults.
+attractors::Options attractor_options(const lyapunov::MapRequest& req);
+attractors::Options attractor_options(const bifurcation::Request& req);
+
 struct Extras {
   bool has_overlay = false;
+  bool has_attractors = false;
+  OrbitAttractors attractors;         // when has_attractors (the attractors arrays view it)
   std::vector<double> overlay_lines;  // the storage the overlay_lines array views: keep Extras alive with the Contents
   std::vector<std::string> overlay_labels;  // what each line is (the overlay_labels texts view it)
   core::Attrs attrs;                  // set after the provenance and kind/name/... attributes (they override)
@@ -51,5 +79,11 @@ Extras of(const lyapunov::MapRequest& req);
 Extras of(const lyapunov::StripRequest& req);
 Extras of(const precision::TradeoffRequest& req);
 Extras of(const windows::BoundPrecisionRequest& req);
+// After the run, with its result: of(req) (the overloads above: a call in a template binds to those declared before
+// it), and where the request asks for them (lyapunov-map and bifurcation with `attractors`) the attractor of every
+// orbit of the result's ensemble, classified with `control`'s threads.
+template <class Req, class Res> Extras of(const Req& req, const Res&, const core::RunControl&) { return of(req); }
+Extras of(const lyapunov::MapRequest& req, const lyapunov::MapResult& res, const core::RunControl& control);
+Extras of(const bifurcation::Request& req, const bifurcation::Result& res, const core::RunControl& control);
 
 }  // namespace btob::extras

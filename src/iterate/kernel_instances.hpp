@@ -19,6 +19,7 @@
                                                             Both<FinalRecorder, SymbolRecorder>&, const RunOptions&); \
   template void run<T, Both<TailRecorder, TailRecorder>>(const Ensemble&, long,                              \
                                                          Both<TailRecorder, TailRecorder>&, const RunOptions&); \
+  template void run<T, OrbitRecorders>(const Ensemble&, long, OrbitRecorders&, const RunOptions&);            \
   template void run_scalar<T, TailRecorder>(const Ensemble&, long, TailRecorder&);                            \
   template void run_scalar<T, SymbolRecorder>(const Ensemble&, long, SymbolRecorder&);                        \
   template void run_scalar<T, FinalRecorder>(const Ensemble&, long, FinalRecorder&);                          \

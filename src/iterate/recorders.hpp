@@ -180,6 +180,29 @@ struct FinalRecorder {
   }
 };
 
+// Keeps the unit state of the last `tail` states of every orbit, in double: x[o * tail + j] (and y, z) is the state
+// after step iterations - tail + 1 + j normalised as FinalRecorder normalises (u / |u|), so its last column is
+// FinalRecorder's state bit for bit.
+struct StateTailRecorder {
+  static constexpr bool needs_symbols = false;
+  long iterations, tail;
+  std::vector<double> x, y, z;
+  StateTailRecorder(std::size_t orbits, long iterations_, long tail_)
+      : iterations(iterations_), tail(tail_),
+        x(checked_bytes(orbits, 3 * sizeof(double) * tail_, "states") / (3 * sizeof(double))), y(x.size()), z(x.size()) {}
+  long first_step() const { return iterations - tail + 1; }
+  template <class T>
+  void record(std::size_t o0, int lanes, long k, const T* px, const T* py, const T* pz, const std::uint8_t*) {
+    const std::size_t j = static_cast<std::size_t>(k - first_step()), stride = static_cast<std::size_t>(tail);
+    for (int l = 0; l < lanes; ++l) {
+      Vec3<double> u(static_cast<double>(px[l]), static_cast<double>(py[l]), static_cast<double>(pz[l]));
+      u = u / u.norm();
+      const std::size_t at = (o0 + static_cast<std::size_t>(l)) * stride + j;
+      x[at] = u(0), y[at] = u(1), z[at] = u(2);
+    }
+  }
+};
+
 // The density image of a bifurcation diagram: counts[col * bins + bin] of the tail values of one
 // coordinate, one column per r value, `bins` equal bins over [lo, hi] (hi in the last bin).  Values outside (and -inf of
 // log10(0)) go to the under/overflow counters.  Each thread counts into its own image; merge() adds
@@ -314,5 +337,8 @@ template <class... R> struct Both {
     std::apply([&](auto&... p) { ((k >= p.first_step() ? p.record(o0, lanes, k, x, y, z, s) : void()), ...); }, parts);
   }
 };
+
+// The whole tail of an orbit from one run: unit states, theta, phi and branches (Python's iterate(record="orbit")).
+using OrbitRecorders = Both<StateTailRecorder, TailRecorder, TailRecorder, SymbolRecorder>;
 
 }  // namespace btob::iterate

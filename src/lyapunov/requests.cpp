@@ -110,6 +110,11 @@ void MapRequest::validate() const {
   check_kernel_precision(precision);
   core::require_r_exponents(r_min, core::parse_precision(precision), "r-min");  // r-min <= r-max from here on
   (void)iterate::parse_grid(grid, seed, "grid");
+  // classify runs in double from transient >= 1 (attractors::validate refuses the rest of its options).
+  if (attractors && precision != "double")
+    throw core::InvalidField("attractors", "with precision " + precision, "precision double (classify's precision)");
+  if (attractors && transient < 1)
+    throw core::InvalidField("attractors", "with transient 0", "transient >= 1 (classify's transient)");
 }
 
 void StripRequest::validate() const {

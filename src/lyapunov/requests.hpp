@@ -56,6 +56,9 @@ struct MapRequest {
   int blocks = 10;
   std::string precision = "double";    // float or double: the whole cocycle (point, tangent vector, projections)
   std::vector<std::string> overlay;    // named r overlays drawn on the figure (not part of the computation)
+  // Also classify every orbit (`btob classify` with this transient and iterations, in double): what extras::of adds
+  // after the run (src/extras), so the exponents' run and its speed are the same with or without it.
+  bool attractors = false;
 
   void validate() const;
   std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
@@ -70,6 +73,7 @@ struct MapRequest {
     v("blocks", blocks, "batch-means blocks for the error bars");
     v("precision", precision, "cocycle precision: float or double (point and tangent vector)");
     v("overlay", overlay, "named r overlays (default: thresholds, windows)");
+    v("attractors", attractors, "also record each orbit's attractor (classify with this transient and iterations)");
   }
 };
 

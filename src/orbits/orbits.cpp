@@ -84,6 +84,9 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   res.verdicts = attractors::classify(ens, opt);
   for (const auto& v : res.verdicts) {
     res.pattern.push_back(v.type == attractors::Type::periodic ? patterns::to_paper(patterns::canonical(v.word)) : "");
+    res.verdict.emplace_back(panel_word(v.type));
+    res.period.push_back(static_cast<std::uint32_t>(v.period));
+    res.rotation.push_back(v.rotation);
     if (v.type == attractors::Type::periodic) ++res.periodic;
     else if (v.type == attractors::Type::quasi_periodic) ++res.quasi_periodic;
     else ++res.other;
@@ -111,6 +114,12 @@ void StripOrbitsResult::describe(core::Contents& c) const {
   c.array("w2", w2, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w2 of eq. (6.4), in (-1, 1)");
   c.array("start_w1", start_w1, {n}, "orbit", "1", "initial w1");
   c.array("start_w2", start_w2, {n}, "orbit", "1", "initial w2");
+  // The classifier's verdict on each orbit (the panel titles; also NAME.csv).
+  c.text("verdict", verdict, "orbit", "name", "the classifier's verdict: periodic, quasi-periodic, chaotic, collapse or unresolved");
+  c.text("pattern", pattern, "orbit", "name", "paper notation of the periodic word (canonical; empty when not periodic)");
+  c.array("period", period, {n}, "orbit", "iterations", "period of a periodic verdict in map iterations (0 otherwise)");
+  c.array("rotation", rotation, {n}, "orbit", "turns/iteration",
+          "weighted Birkhoff rotation number about the P2 centre (quasi-periodic verdicts; 0 when not computed)");
   c.attr("r", request.r);
   c.attr("orbits", request.orbits);
   c.attr("iterations", request.iterations);

@@ -44,6 +44,9 @@ struct StripOrbitsResult {
   std::vector<double> w1, w2;              // [orbits x tail], row-major: orbit o, state iterations - tail + 1 + j
   std::vector<attractors::OrbitVerdict> verdicts;  // [orbits]: the classifier's verdict (transient = iterations)
   std::vector<std::string> pattern;        // [orbits]: paper notation of the periodic word ("" otherwise)
+  std::vector<std::string> verdict;        // [orbits]: panel_word of the verdict (the panel titles)
+  std::vector<std::uint32_t> period;       // [orbits]: the verdict's period (map iterations; 0 when none)
+  std::vector<double> rotation;            // [orbits]: the verdict's rotation number (turns per iteration; 0 when none)
   std::size_t periodic = 0, quasi_periodic = 0, other = 0;  // summary counts
   double seconds = 0;                      // wall time of iteration and classification
 

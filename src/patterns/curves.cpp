@@ -150,7 +150,10 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
   });
   crit("dominance", [&](double r) { return at(h, res.reduced, r, negative).dominance; });
-  for (const auto& c : res.critical) res.critical_r.push_back(c.r);
+  for (const auto& c : res.critical) {
+    res.critical_r.push_back(c.r);
+    res.critical_what.push_back(c.what);
+  }
   if (control.progress) control.progress->update(1, 1);
   return res;
 }
@@ -174,6 +177,8 @@ void CurvesResult::describe(core::Contents& c) const {
           "u_z, then y, alpha y - x, alpha y - z of v_0 .. v_{p-1} (eigenvector normalised by u_x = 1)");
   c.array("critical_r", critical_r, {critical_r.size()}, "critical value", "1",
           "r where u_x = 0, u_z = 0 or dominance changes (bisected to 1e-15)");
+  c.text("critical_what", critical_what, "critical value", "name",
+         "what changes at each critical_r: u_x = 0, u_z = 0 (u leaves the domain) or dominance");
   std::string names;
   for (const auto& f : feas_names) names += (names.empty() ? "" : ",") + f;
   c.attr("feas_names", names);

@@ -56,6 +56,7 @@ struct CurvesResult {
   };
   std::vector<Critical> critical;   // bisected to 1e-15 from the grid's sign changes
   std::vector<double> critical_r;   // [critical]: their r
+  std::vector<std::string> critical_what;  // [critical]: what changes there (Critical::what)
 
   std::string critical_csv() const;  // what,r (16 decimals)
   core::Tables tables() const { return {{"critical", critical_csv()}}; }  // NAME_critical.csv

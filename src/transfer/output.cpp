@@ -76,6 +76,8 @@ void describe_arrays(const TransferResult& res, core::Contents& c) {
             "component of each box (1-based, as in components.csv), 0 for none");
     c.array("eig_re", res.eig_re, {res.eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
     c.array("eig_im", res.eig_im, {res.eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
+    c.array("eig_block", res.eig_block, {res.eig_block.size()}, "eigenvalue", "index",
+            "block of each eigenvalue: 0 the transient block, c >= 1 closed class c");
     c.array("lebesgue", res.lebesgue, {res.lebesgue.size()}, "component", "1",
             "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
   }

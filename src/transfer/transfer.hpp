@@ -230,7 +230,7 @@ struct TransferResult {
   long nnz = 0;
   std::uint64_t lost = 0;
   std::vector<double> eig_re, eig_im;  // K leading eigenvalues by decreasing modulus (block route)
-  std::vector<int> eig_block;          // their blocks (0 transient, c closed class)
+  std::vector<std::uint32_t> eig_block;  // their blocks (0 transient, c closed class)
   std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
   std::vector<ClassInfo> classes;      // the closed classes' sizes and periods (class c = classes[c - 1])
   int closed_classes() const { return static_cast<int>(classes.size()); }
