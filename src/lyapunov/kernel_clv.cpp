@@ -25,7 +25,6 @@
 // The expanding flag s1 >= 1 of D: with F = s1^2 + s2^2 = |D g1|^2 + |D g2|^2 and Dt = s1 s2 = det M c^3,
 // s1 >= 1 exactly when Dt >= 1 or F >= 1 + Dt^2 ((1 - s1^2)(1 - s2^2) = 1 - F + Dt^2).
 #include "iterate/cocycle_impl.hpp"
-#include "core/request.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/hyperbolicity.hpp"
 
@@ -63,7 +62,10 @@ int clv_interval(double r) {
   const double h = std::max(grow, shrink);
   for (int K = 16; K >= 1; --K)
     if (2 * (K * (K + 2) * h + 3 * K) <= 980) return K;
-  throw core::InvalidField("r", fmt::format("{}", r), "r whose matrices keep the CLV frame in double's range");
+  // A plain invalid_argument with InvalidField's message: constructing InvalidField here would emit its inline
+  // constructor in a kernel unit (check_kernel_symbols).
+  throw std::invalid_argument(
+      fmt::format("r: got {}, expected r whose matrices keep the CLV frame in double's range", r));
 }
 
 struct Regs {
