@@ -54,6 +54,7 @@ TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
   EXPECT_EQ(failing_field([&] { lyapunov::validate(c); }), "window");
   EXPECT_EQ(failing_field([] { iterate::linspace_r(0.1, 0.2, 0); }), "r-count");
   EXPECT_EQ(failing_field([] { iterate::strip_grid(0, 3); }), "grid");
+  EXPECT_EQ(failing_field([] { iterate::parse_grid("strip:axb", 1, "grid"); }), "grid");
   EXPECT_EQ(failing_field([] { stats::parse_chart("polar", "coords"); }), "coords");
   EXPECT_EQ(failing_field([] { stats::measure_frame(stats::Chart::strip, 0, 10); }), "bins");
   EXPECT_EQ(failing_field([] { windows::validate_digits(5); }), "digits");
@@ -62,6 +63,11 @@ TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
     lyapunov::validate(o);
   } catch (const std::exception& e) {
     EXPECT_STREQ(e.what(), "blocks: got 1, expected at least 2");
+  }
+  try {
+    iterate::parse_grid("strip:axb", 1, "grid");
+  } catch (const std::exception& e) {
+    EXPECT_STREQ(e.what(), "grid: got 'a' in 'strip:axb', expected a whole number");
   }
 }
 

@@ -188,14 +188,14 @@ double parse_double(std::string_view s, const char* field, std::string_view whol
   double v = 0;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size())
-    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a number", field, s, whole));
+    throw core::InvalidField(field, fmt::format("'{}' in '{}'", s, whole), "a number");
   return v;
 }
 long parse_long(std::string_view s, const char* field, std::string_view whole) {
   long v = 0;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size())
-    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a whole number", field, s, whole));
+    throw core::InvalidField(field, fmt::format("'{}' in '{}'", s, whole), "a whole number");
   return v;
 }
 std::vector<std::string_view> split(std::string_view s, char sep) {

@@ -69,7 +69,7 @@ FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, do
 
 std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r) {
   core::validate_r(r);
-  if (period_symbols.empty()) throw std::invalid_argument("period: got an empty word, expected symbols 1, 2, 3");
+  if (period_symbols.empty()) throw core::InvalidField("period", "an empty word", "symbols 1, 2, 3");
   Mat3<double> M = Mat3<double>::Identity();
   double log_det = 0;
   for (int s : period_symbols) {

@@ -108,7 +108,7 @@ std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const s
 template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, long max_periods) {
   const Verdict<T> v = analyse<T>(w0, r);
   Followed f;
-  if (v.orbit_eigen < 0) throw std::invalid_argument("word: got a word with no feasible periodic point at this r");
+  if (v.orbit_eigen < 0) throw core::InvalidField("word", "a word with no feasible periodic point at this r", "a feasible word");
   const Word& w = v.word;
   // Expansion per period of M_w (moduli squared when analysed through J M_h).
   const T lo = v.spectrum[v.orbit_eigen].modulus, l1 = v.spectrum[0].modulus;
