@@ -37,7 +37,7 @@ namespace py = pybind11;
 std::string keyword(const std::string& flag);
 
 // What Python holds of one result: its Contents (views into the derived object's members) and attributes.
-using Args = std::vector<std::pair<std::string, std::vector<std::string>>>;  // fields as a manifest records them
+using Args = core::Args;  // fields as a manifest records them (core/fields.hpp)
 struct ResultBase {
   core::Contents contents;
   core::Attrs attrs;
@@ -100,25 +100,9 @@ struct KwargsApplier {
   }
 };
 
-// "name: type = default  help" lines for the docstring.
-struct DocWriter {
-  std::string* doc;
-  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
-    std::string d;
-    for (const auto& t : core::field_text(member)) d += (d.empty() ? "" : " ") + t;
-    constexpr bool required = ((std::is_same_v<Tag, core::Required> || std::is_same_v<Tag, core::Positional>) || ...);
-    *doc += "    " + keyword(name) + (required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " +
-            help + "\n";
-  }
-};
+// "name = default: help" lines for the docstring, from core's documentation of the fields.
+std::string field_doc_lines(const std::vector<core::FieldDoc>& docs);
 
-// The request's fields as (flag, text values), as the command line's manifest records them.
-struct ArgsWriter {
-  Args* out;
-  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
-    out->emplace_back(name, core::field_text(member));
-  }
-};
 // "btob.f(k='v', flag=True, values=['1', '2'], ...)": the provenance attribute `command` of a Python result, a
 // call that pasted into Python reproduces the request (text values in quotes, lists for list fields, booleans
 // as True/False: every form the keyword parser reads back to the same field).
@@ -178,65 +162,75 @@ template <class Req, class Derived> struct RouteBase {
   static constexpr bool plot_many = false;
 };
 
-// Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
-template <class Req> void bind(py::module_& m) {
+namespace detail {
+
+// The request of a call: Route<Req>::defaults() with the keywords applied; an unknown keyword or a missing required
+// one is a TypeError naming it (threads and progress are the call's, not the request's).
+template <class Req> Req request_of(const py::kwargs& kw) {
+  using R = Route<Req>;
+  Req req = R::defaults();
+  std::set<std::string> used{"threads", "progress"}, missing;
+  req.fields(KwargsApplier{&kw, &used, &missing});
+  for (auto item : kw) {
+    const std::string k = item.first.cast<std::string>();
+    if (!used.count(k)) throw py::type_error(std::string(R::function) + "() got an unexpected keyword argument '" + k + "'");
+  }
+  if (!missing.empty())
+    throw py::type_error(std::string(R::function) + "() missing required keyword argument '" + *missing.begin() + "'");
+  return req;
+}
+
+// The result's Python face: contents (with the extras), the request as text, the provenance attributes, the route's
+// names and the CSV tables.
+template <class Req, class Res> void present(Req& req, int threads, ResultOf<Res>& holder) {
+  using R = Route<Req>;
+  holder.res.describe(holder.contents);
+  holder.extras.add_to(holder.contents);
+  req.fields(core::ArgsWriter{&holder.request});
+  const long used_threads = threads > 0 ? threads : default_threads();
+  std::string call;
+  req.fields(CallWriter{&call});
+  holder.attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder.contents, R::kind_of(req),
+                                  R::name_of(req), "", R::scalar(req, holder.res), used_threads);
+  holder.extras.apply(holder.attrs);
+  holder.function = R::function;
+  holder.command = R::command;
+  holder.plot = R::plot_of(req);
+  holder.plot_inputs = R::plot_inputs();
+  holder.plot_many = R::plot_many;
+  if constexpr (requires { holder.res.tables(); }) holder.tables = holder.res.tables();
+}
+
+// One call of btob.<function>(**kw): request -> validate -> run (released) -> Result.
+template <class Req> py::object call(py::kwargs kw) {
   using R = Route<Req>;
   using Res = std::decay_t<decltype(run(std::declval<const Req&>(), std::declval<const core::RunControl&>()))>;
-  std::string doc = std::string(R::help) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
-  Req defaults = R::defaults();
-  defaults.fields(DocWriter{&doc});
-  doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
-  m.def(
-      R::function,
-      [](py::kwargs kw) -> py::object {
-        Req req = R::defaults();
-        std::set<std::string> used{"threads", "progress"}, missing;
-        req.fields(KwargsApplier{&kw, &used, &missing});
-        for (auto item : kw) {
-          const std::string k = item.first.cast<std::string>();
-          if (!used.count(k))
-            throw py::type_error(std::string(R::function) + "() got an unexpected keyword argument '" + k + "'");
-        }
-        if (!missing.empty())
-          throw py::type_error(std::string(R::function) + "() missing required keyword argument '" + *missing.begin() +
-                               "'");
-        const int threads = threads_of(kw);
-        req.validate();
-        auto holder = std::make_shared<ResultOf<Res>>();
-        extras::check(req);  // unknown overlay names fail before any work
-        R::prepare(req);
-        // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
-        // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
-        run_released([&](const core::RunControl& c) {
-          holder->res = run(req, c);
-          c.check_cancelled();
-          holder->extras = extras::of(req, holder->res, c);
-        }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
-        holder->res.describe(holder->contents);
-        holder->extras.add_to(holder->contents);
-        req.fields(ArgsWriter{&holder->request});
-        const long used_threads = threads > 0 ? threads : default_threads();
-        std::string call;
-        req.fields(CallWriter{&call});
-        holder->attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder->contents, R::kind_of(req),
-                                         R::name_of(req), "", R::scalar(req, holder->res), used_threads);
-        holder->extras.apply(holder->attrs);
-        holder->function = R::function;
-        holder->command = R::command;
-        holder->plot = R::plot_of(req);
-        holder->plot_inputs = R::plot_inputs();
-        holder->plot_many = R::plot_many;
-        if constexpr (requires { holder->res.tables(); }) holder->tables = holder->res.tables();
-        return py::cast(std::static_pointer_cast<ResultBase>(holder));
-      },
-      doc.c_str());
-  // The bound functions, their commands and keyword arguments with their defaults as text, for tests that must
-  // cover every request ({function: command}, {function: [(keyword, default)]}).
+  Req req = request_of<Req>(kw);
+  const int threads = threads_of(kw);
+  req.validate();
+  auto holder = std::make_shared<ResultOf<Res>>();
+  extras::check(req);  // unknown overlay names fail before any work
+  R::prepare(req);
+  // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
+  // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
+  run_released([&](const core::RunControl& c) {
+    holder->res = run(req, c);
+    c.check_cancelled();
+    holder->extras = extras::of(req, holder->res, c);
+  }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+  present(req, threads, *holder);
+  return py::cast(std::static_pointer_cast<ResultBase>(holder));
+}
+
+// The bound functions, their commands and keyword arguments with their defaults as text, for tests that must
+// cover every request ({function: command}, {function: [(keyword, default)]}).
+template <class Req> void list_function(py::module_& m, Req defaults) {
+  using R = Route<Req>;
   if (!py::hasattr(m, "_commands")) m.attr("_commands") = py::dict();
   if (!py::hasattr(m, "_fields")) m.attr("_fields") = py::dict();
   m.attr("_commands")[R::function] = R::command;
   Args fields;
-  defaults.fields(ArgsWriter{&fields});
+  defaults.fields(core::ArgsWriter{&fields});
   py::list kws;
   for (const auto& [name, values] : fields) {
     py::list texts;
@@ -244,6 +238,21 @@ template <class Req> void bind(py::module_& m) {
     kws.append(py::make_tuple(py::str(keyword(name)), texts));
   }
   m.attr("_fields")[R::function] = kws;
+}
+
+}  // namespace detail
+
+// Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
+template <class Req> void bind(py::module_& m) {
+  using R = Route<Req>;
+  std::string doc = std::string(R::help) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
+  Req defaults = R::defaults();
+  std::vector<core::FieldDoc> docs;
+  defaults.fields(core::DocLister{&docs});
+  doc += field_doc_lines(docs);
+  doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
+  m.def(R::function, &detail::call<Req>, doc.c_str());
+  detail::list_function(m, defaults);
 }
 
 }  // namespace btob::python

@@ -70,6 +70,17 @@ py::array array_view(const core::ArrayView& a, py::handle owner) {
       a.data);
 }
 
+std::string field_doc_lines(const std::vector<core::FieldDoc>& docs) {
+  std::string doc;
+  for (const auto& f : docs) {
+    std::string d;
+    for (const auto& t : f.defaults) d += (d.empty() ? "" : " ") + t;
+    doc += "    " + keyword(f.name) + (f.required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " +
+           f.help + "\n";
+  }
+  return doc;
+}
+
 py::object attr_value(const core::AttrValue& v) {
   return std::visit([](const auto& x) -> py::object { return py::cast(x); }, v);
 }
@@ -188,122 +199,123 @@ void run_released(const std::function<void(const core::RunControl&)>& work, int 
   if (!progress.is_none()) forward();
 }
 
+namespace {
+
+// res.NAME: an array (numpy view), a decimal column (decimal.Decimal, None for an empty cell), a string array or
+// an attribute, in that order.
+py::object result_attribute(py::object self, const std::string& name) {
+  const auto& r = self.cast<const ResultBase&>();
+  if (const core::ArrayView* a = r.contents.find(name)) return array_view(*a, self);
+  for (const auto& d : r.contents.decimals)
+    if (d.name == name) {
+      const py::object dec = py::module_::import("decimal").attr("Decimal");
+      py::list out;
+      for (const auto& s : *d.data) out.append(s.empty() ? py::object(py::none()) : dec(s));
+      return std::move(out);
+    }
+  for (const auto& t : r.contents.texts)
+    if (t.name == name) return py::cast(*t.data);
+  if (auto it = r.attrs.find(name); it != r.attrs.end()) return attr_value(it->second);
+  throw py::attribute_error(fmt::format("btob.{} result has no attribute '{}'", r.function, name));
+}
+
+py::dict attrs_dict(const ResultBase& r) {
+  py::dict d;
+  for (const auto& [k, v] : r.attrs) d[py::str(k)] = attr_value(v);
+  return d;
+}
+
+// The names of a list of Contents entries (arrays, decimals, texts).
+template <class List> py::list names_of(const List& list) {
+  py::list l;
+  for (const auto& a : list) l.append(a.name);
+  return l;
+}
+
+py::dict array_info(const ResultBase& r, const std::string& name) {
+  for (const auto& a : r.contents.arrays)
+    if (a.name == name)
+      return py::dict(py::arg("dims") = py::tuple(py::cast(a.dims)), py::arg("axes") = a.axes,
+                      py::arg("units") = a.units, py::arg("description") = a.description);
+  for (const auto& d : r.contents.decimals)
+    if (d.name == name)
+      return py::dict(py::arg("axes") = d.axes, py::arg("units") = d.units, py::arg("description") = d.description);
+  throw py::key_error(name);
+}
+
+py::dict request_dict(const ResultBase& r) {
+  py::dict d;
+  for (const auto& [k, v] : r.request) d[py::str(keyword(k))] = py::cast(v);
+  return d;
+}
+
+// save() with the GIL released: the plot script is a subprocess.
+std::vector<std::string> save_released(const ResultBase& r, const std::string& out, const std::string& name,
+                                       const std::string& title, bool plot) {
+  py::gil_scoped_release nogil;
+  return save(r, out, name, title, plot);
+}
+
+// {file name: CSV text}, named by the result's name attribute ("result" without one).
+py::dict tables_dict(const ResultBase& r) {
+  py::dict d;
+  const auto it = r.attrs.find("name");
+  const std::string name = it != r.attrs.end() && std::holds_alternative<std::string>(it->second)
+                               ? std::get<std::string>(it->second)
+                               : std::string("result");
+  for (const auto& [role, text] : r.tables) d[py::str(core::table_file(name, role))] = text;
+  return d;
+}
+
+py::list result_dir(const ResultBase& r) {
+  py::list l;
+  for (const auto& a : r.contents.arrays) l.append(a.name);
+  for (const auto& d : r.contents.decimals) l.append(d.name);
+  for (const auto& [k, v] : r.attrs) l.append(k);
+  for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function", "tables"}) l.append(k);
+  return l;
+}
+
+std::string result_repr(const ResultBase& r) {
+  std::string s;
+  for (const auto& a : r.contents.arrays) {
+    std::string dims;
+    for (auto d : a.dims) dims += (dims.empty() ? "" : "x") + std::to_string(d);
+    s += (s.empty() ? "" : ", ") + a.name + "[" + dims + "]";
+  }
+  return fmt::format("<btob.{} result: {}>", r.function, s.empty() ? std::string("attributes only") : s);
+}
+
+}  // namespace
+
 void bind_result(py::module_& m) {
   py::class_<ResultBase, std::shared_ptr<ResultBase>>(
       m, "Result",
       "A result: its arrays (numpy views of the C++ result, read-only, no copy), exact decimals and attributes are "
       "attributes of this object; res.attrs is the provenance the command line writes to HDF5.")
-      .def("__getattr__",
-           [](py::object self, const std::string& name) -> py::object {
-             const auto& r = self.cast<const ResultBase&>();
-             if (const core::ArrayView* a = r.contents.find(name)) return array_view(*a, self);
-             for (const auto& d : r.contents.decimals)
-               if (d.name == name) {
-                 const py::object dec = py::module_::import("decimal").attr("Decimal");
-                 py::list out;
-                 for (const auto& s : *d.data) out.append(s.empty() ? py::object(py::none()) : dec(s));
-                 return std::move(out);
-               }
-             for (const auto& t : r.contents.texts)
-               if (t.name == name) return py::cast(*t.data);
-             if (auto it = r.attrs.find(name); it != r.attrs.end()) return attr_value(it->second);
-             throw py::attribute_error(fmt::format("btob.{} result has no attribute '{}'", r.function, name));
-           })
-      .def_property_readonly("attrs",
-                             [](const ResultBase& r) {
-                               py::dict d;
-                               for (const auto& [k, v] : r.attrs) d[py::str(k)] = attr_value(v);
-                               return d;
-                             },
+      .def("__getattr__", &result_attribute)
+      .def_property_readonly("attrs", &attrs_dict,
                              "provenance and summary: the attributes the command line writes to NAME.h5 (a dict)")
-      .def_property_readonly("arrays",
-                             [](const ResultBase& r) {
-                               py::list l;
-                               for (const auto& a : r.contents.arrays) l.append(a.name);
-                               return l;
-                             },
+      .def_property_readonly("arrays", [](const ResultBase& r) { return names_of(r.contents.arrays); },
                              "names of the result's arrays (each is also an attribute: res.NAME, a numpy view)")
-      .def_property_readonly("decimals",
-                             [](const ResultBase& r) {
-                               py::list l;
-                               for (const auto& d : r.contents.decimals) l.append(d.name);
-                               return l;
-                             },
+      .def_property_readonly("decimals", [](const ResultBase& r) { return names_of(r.contents.decimals); },
                              "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
-      .def_property_readonly("texts",
-                             [](const ResultBase& r) {
-                               py::list l;
-                               for (const auto& d : r.contents.texts) l.append(d.name);
-                               return l;
-                             },
+      .def_property_readonly("texts", [](const ResultBase& r) { return names_of(r.contents.texts); },
                              "names of the string arrays (word names, overlay names): res.<name> is a list of str")
-      .def("info",
-           [](const ResultBase& r, const std::string& name) {
-             for (const auto& a : r.contents.arrays)
-               if (a.name == name)
-                 return py::dict(py::arg("dims") = py::tuple(py::cast(a.dims)), py::arg("axes") = a.axes,
-                                 py::arg("units") = a.units, py::arg("description") = a.description);
-             for (const auto& d : r.contents.decimals)
-               if (d.name == name)
-                 return py::dict(py::arg("axes") = d.axes, py::arg("units") = d.units,
-                                 py::arg("description") = d.description);
-             throw py::key_error(name);
-           },
-           "dims, axes, units and description of an array (or decimals)")
+      .def("info", &array_info, "dims, axes, units and description of an array (or decimals)")
       .def_property_readonly("function", [](const ResultBase& r) { return r.function; },
                              "the Python function that made this result (e.g. 'bifurcation')")
       .def_property_readonly("command", [](const ResultBase& r) { return r.command; },
                              "the command line's subcommand of the same request (e.g. 'lyapunov-map')")
-      .def_property_readonly("request",
-                             [](const ResultBase& r) {
-                               py::dict d;
-                               for (const auto& [k, v] : r.request) d[py::str(keyword(k))] = py::cast(v);
-                               return d;
-                             },
-                             "the request's fields as text (what the manifest records)")
-      .def("_save", [](const ResultBase& r, const std::string& out, const std::string& name, const std::string& title,
-                       bool plot) {
-        std::vector<std::string> w;
-        {
-          py::gil_scoped_release nogil;  // the plot script is a subprocess
-          w = save(r, out, name, title, plot);
-        }
-        return w;
-      })
+      .def_property_readonly("request", &request_dict, "the request's fields as text (what the manifest records)")
+      .def("_save", &save_released)
       .def_property_readonly("plot_script", [](const ResultBase& r) { return r.plot; })
       .def_property_readonly("plots_from_files", [](const ResultBase& r) { return !r.plot_inputs.empty(); },
                              "True when the figure's script reads the command line's files (plot() saves the result "
                              "to a temporary folder and shows the PNGs it writes)")
-      .def_property_readonly(
-          "tables",
-          [](const ResultBase& r) {
-            py::dict d;
-            const auto it = r.attrs.find("name");
-            const std::string name = it != r.attrs.end() && std::holds_alternative<std::string>(it->second)
-                                         ? std::get<std::string>(it->second)
-                                         : std::string("result");
-            for (const auto& [role, text] : r.tables) d[py::str(core::table_file(name, role))] = text;
-            return d;
-          },
-          "the command line's CSV files of this result: {file name: text}")
-      .def("__dir__",
-           [](const ResultBase& r) {
-             py::list l;
-             for (const auto& a : r.contents.arrays) l.append(a.name);
-             for (const auto& d : r.contents.decimals) l.append(d.name);
-             for (const auto& [k, v] : r.attrs) l.append(k);
-             for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function", "tables"}) l.append(k);
-             return l;
-           })
-      .def("__repr__", [](const ResultBase& r) {
-        std::string s;
-        for (const auto& a : r.contents.arrays) {
-          std::string dims;
-          for (auto d : a.dims) dims += (dims.empty() ? "" : "x") + std::to_string(d);
-          s += (s.empty() ? "" : ", ") + a.name + "[" + dims + "]";
-        }
-        return fmt::format("<btob.{} result: {}>", r.function, s.empty() ? std::string("attributes only") : s);
-      });
+      .def_property_readonly("tables", &tables_dict, "the command line's CSV files of this result: {file name: text}")
+      .def("__dir__", &result_dir)
+      .def("__repr__", &result_repr);
 }
 
 }  // namespace btob::python

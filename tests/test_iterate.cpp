@@ -2,6 +2,7 @@
 // periodic orbits of Section 4, renormalisation at the extremes, recorders and ensembles.
 #include "core/coords.hpp"
 #include "iterate/kernel.hpp"
+#include "iterate/parallel.hpp"
 #include "iterate/recorders.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include "tolerance.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -424,4 +426,27 @@ TEST(Build, RecorderVectorCodeIsInlinedIntoEachCaller) {
   EXPECT_EQ(pclose(p), 0);
   EXPECT_GT(symbols, 1000);  // nm read btob's symbol table
   EXPECT_EQ(found, "") << "out-of-line copies of vectorising recorder code in btob";
+}
+
+// ---- iterate::parallel_for: the analyses' one parallel loop -----------------------------------------------------
+
+// Every item is visited exactly once whatever the thread count and the chunk (0: contiguous blocks, 1: round robin),
+// and per-thread scratch is made once per thread, never more than the threads asked for.
+TEST(ParallelFor, EveryItemOnceForEveryScheduleAndThreadCount) {
+  for (std::size_t n : {0, 1, 7, 1000})
+    for (int threads : {1, 2, 3})
+      for (std::size_t chunk : {0, 1, 5}) {
+        std::vector<int> seen(n, 0);
+        iterate::parallel_for(n, threads, chunk, [&](std::size_t i) { ++seen[i]; });
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(n)) << n << " " << threads << " " << chunk;
+      }
+  for (int threads : {1, 2, 3}) {
+    std::vector<int> seen(100, 0);
+    std::atomic<int> made{0};
+    iterate::parallel_for_scratch(
+        seen.size(), threads, [&] { return ++made; }, [&](int& scratch, std::size_t i) { seen[i] += scratch > 0; });
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 100);
+    EXPECT_GE(made.load(), 1);
+    EXPECT_LE(made.load(), threads);
+  }
 }

@@ -6,7 +6,12 @@
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
+#include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/lyapunov.hpp"
 #include "lyapunov/requests.hpp"
+#include "patterns/patterns.hpp"
+#include "stats/stats.hpp"
+#include "windows/windows.hpp"
 
 #include <boost/lexical_cast.hpp>
 #include <climits>
@@ -38,6 +43,57 @@ template <class F> std::string failing_field(F&& f) {
 }
 
 // ------------------------------------------------------------------------------------------------ fields
+// Every check of user input below the requests throws core::InvalidField naming its field (a bare
+// std::invalid_argument would lose the field), with the message the command line prints.
+TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
+  lyapunov::Options o;
+  o.blocks = 1;
+  EXPECT_EQ(failing_field([&] { lyapunov::validate(o); }), "blocks");
+  lyapunov::ClvOptions c;
+  c.window = 0;
+  EXPECT_EQ(failing_field([&] { lyapunov::validate(c); }), "window");
+  EXPECT_EQ(failing_field([] { iterate::linspace_r(0.1, 0.2, 0); }), "r-count");
+  EXPECT_EQ(failing_field([] { iterate::strip_grid(0, 3); }), "grid");
+  EXPECT_EQ(failing_field([] { iterate::parse_grid("strip:axb", 1, "grid"); }), "grid");
+  EXPECT_EQ(failing_field([] { stats::parse_chart("polar", "coords"); }), "coords");
+  EXPECT_EQ(failing_field([] { stats::measure_frame(stats::Chart::strip, 0, 10); }), "bins");
+  EXPECT_EQ(failing_field([] { windows::validate_digits(5); }), "digits");
+  EXPECT_EQ(failing_field([] { patterns::analyse<double>(patterns::Word{}, 0.3); }), "word");
+  try {
+    lyapunov::validate(o);
+  } catch (const std::exception& e) {
+    EXPECT_STREQ(e.what(), "blocks: got 1, expected at least 2");
+  }
+  try {
+    iterate::parse_grid("strip:axb", 1, "grid");
+  } catch (const std::exception& e) {
+    EXPECT_STREQ(e.what(), "grid: got 'a' in 'strip:axb', expected a whole number");
+  }
+}
+
+// One vocabulary of fields: ArgsWriter lists every field as text in declaration order, DocLister the same names
+// with their help and whether they must be given (a positional field is required everywhere but the command line).
+TEST(Fields, ArgsWriterAndDocListerListTheSameFields) {
+  lyapunov::OrbitRequest req;
+  core::Args args;
+  req.fields(core::ArgsWriter{&args});
+  std::vector<core::FieldDoc> docs;
+  req.fields(core::DocLister{&docs});
+  ASSERT_EQ(args.size(), docs.size());
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    EXPECT_EQ(args[i].first, docs[i].name);
+    EXPECT_EQ(args[i].second, docs[i].defaults);
+    EXPECT_FALSE(docs[i].help.empty()) << docs[i].name;
+  }
+  const auto r = std::find_if(docs.begin(), docs.end(), [](const auto& d) { return d.name == "r"; });
+  ASSERT_NE(r, docs.end());
+  EXPECT_TRUE(r->required);
+  EXPECT_FALSE(r->positional);
+  const auto it = std::find_if(docs.begin(), docs.end(), [](const auto& d) { return d.name == "iterations"; });
+  ASSERT_NE(it, docs.end());
+  EXPECT_FALSE(it->required);
+}
+
 TEST(Fields, PointsAcceptSubnormalsAndHugeValuesAndScaleExactly) {
   // 1e-320 is subnormal: strtod flags ERANGE but returns the number; the direction is kept to the last bit.
   const auto p = core::parse_point("1e-320,-3e-320,-1e-320");

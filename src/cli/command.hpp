@@ -31,8 +31,8 @@
 
 namespace btob::cli {
 
-// A request's fields as (name, text values), in declaration order: what a manifest records and a scene holds.
-using Args = std::vector<std::pair<std::string, std::vector<std::string>>>;
+// A request's fields as (name, text values): core's one vocabulary of fields (core/fields.hpp).
+using Args = core::Args;
 
 // How and where a result is written: not part of what is computed, and no result depends on it.
 struct Output {
@@ -178,13 +178,7 @@ struct ArgsApplier {
   }
 };
 
-// Lists the fields as Args (the manifest's record) and their names.
-struct ArgsWriter {
-  Args* out;
-  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
-    out->emplace_back(name, core::field_text(member));
-  }
-};
+// Lists the fields' names.
 struct NameLister {
   std::string* names;
   template <class T, class... Tag> void operator()(const std::string& name, T&, const std::string&, Tag...) {
@@ -224,76 +218,108 @@ CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& 
 Context make_context(const std::string& command, const Output& o, const std::string& invocation, Args request_args);
 }  // namespace detail
 
+namespace detail {
+template <class Req> using Body = std::function<void(const Req&, const Output&, const Context&)>;
+
+// The output's defaults a request fills in: its own file stem (e.g. hyperbolicity_strip_r<r>) for a file command,
+// the command's last word for a stdout command ("windows bounds" -> bounds); then the output checked.
+template <class Req> void complete_output(const std::string& name, const Req& req, Output& out, bool threads_given) {
+  if constexpr (requires { { req.default_name() } -> std::convertible_to<std::string>; })
+    if (out.files && out.name.empty()) out.name = req.default_name();
+  if (!out.files && out.name.empty()) out.name = name.substr(name.rfind(' ') + 1);
+  validate_output(out, threads_given);
+}
+
+// The request as the manifest records it: its fields, and name and title when the run writes files (what the
+// figure says belongs to the record; where it went and how fast does not).
+template <class Req> Args recorded_request(Req& req, const Output& out) {
+  Args recorded;
+  req.fields(core::ArgsWriter{&recorded});
+  if (out.writes()) {
+    recorded.emplace_back("name", std::vector<std::string>{out.name});
+    recorded.emplace_back("title", std::vector<std::string>{out.title});
+  }
+  return recorded;
+}
+
+// validate -> output -> record -> (MPI checkpoint) -> the body, or the files of a stdout command given --out.
+template <class Req>
+void execute(const std::string& name, const Body<Req>& body, Req req, Output out, bool threads_given,
+             const std::string& invocation) {
+  req.validate();
+  complete_output(name, req, out, threads_given);
+  Args recorded = recorded_request(req, out);
+  // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks
+  // (its body calls cli::sweep); any other request runs on rank 0 alone.  Only rank 0 speaks.
+  mpi::checkpoint();
+  if (mpi::rank() != 0) {
+    if constexpr (!core::Sweep<Req>) return;
+    out.quiet = true;
+  }
+  Context ctx = make_context(name, out, invocation, std::move(recorded));
+  if (!out.files && !out.out.empty()) {
+    std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
+    std::replace(kind.begin(), kind.end(), ' ', '_');
+    if (mpi::rank() == 0) write_files(req, out, ctx, kind);
+    return;
+  }
+  body(req, out, ctx);
+}
+
+// The subcommand on the command line: a flag per field of the request and of the output, applied when it runs.
+template <class Req>
+void add_flags_command(CLI::App& app, const std::string& name, const std::string& help, const Body<Req>& body,
+                       const Req& request_defaults, const Output& output_defaults) {
+  struct State {
+    Req req;
+    Output out;
+    std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
+    std::map<std::string, CLI::Option*> opts;
+  };
+  auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
+  CLI::App* c = add_nested(app, name, help);
+  mpi::request_apps().push_back(c);
+  s->req.fields(FlagBinder{c, &s->raw, &s->opts});
+  s->out.fields(FlagBinder{c, &s->raw, &s->opts});
+  c->callback([s, name, body, c] {
+    if (!c->get_subcommands().empty()) return;  // `btob pattern atlas` runs the atlas, not `pattern`
+    s->req.fields(FlagApplier{&s->raw, &s->opts});
+    s->out.fields(FlagApplier{&s->raw, &s->opts});
+    execute<Req>(name, body, s->req, s->out, s->opts["threads"]->count() > 0, invocation());
+  });
+}
+
+// The command from a scene or a manifest: fields set by name; a key that is no field is an error listing the known.
+template <class Req>
+void run_from_args(const std::string& name, const Body<Req>& body, Req req, Output out, const Args& args,
+                   const std::string& invocation) {
+  std::vector<bool> used(args.size(), false);
+  req.fields(ArgsApplier{&args, &used});
+  out.fields(ArgsApplier{&args, &used});
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (!used[i]) {
+      std::string known;
+      req.fields(NameLister{&known});
+      out.fields(NameLister{&known});
+      throw UsageError(fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, name, known));
+    }
+  bool threads_given = false;
+  for (const auto& a : args) threads_given |= a.first == "threads";
+  execute<Req>(name, body, std::move(req), std::move(out), threads_given, invocation);
+}
+}  // namespace detail
+
 // Registers subcommand `name` for a request type Req (fields(), validate()) and its body.  `name` may be a
 // subcommand of a subcommand, "windows bounds": the command line then reads `btob windows bounds ...`, and scenes
 // and manifests name it in full (command = "windows bounds").
 template <class Req>
 void command(const std::string& name, const std::string& help, Output output_defaults,
              std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
-  const auto execute = [name, body](Req req, Output out, bool threads_given, const std::string& invocation) {
-    req.validate();
-    // A request may name its own file stem for when none is given (e.g. hyperbolicity_strip_r<r>).
-    if constexpr (requires { { req.default_name() } -> std::convertible_to<std::string>; })
-      if (out.files && out.name.empty()) out.name = req.default_name();
-    if (!out.files && out.name.empty()) out.name = name.substr(name.rfind(' ') + 1);  // "windows bounds" -> bounds
-    detail::validate_output(out, threads_given);
-    Args recorded;
-    req.fields(detail::ArgsWriter{&recorded});
-    if (out.writes()) {  // what the figure says belongs to the record; where it went and how fast does not
-      recorded.emplace_back("name", std::vector<std::string>{out.name});
-      recorded.emplace_back("title", std::vector<std::string>{out.title});
-    }
-    // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks
-    // (its body calls cli::sweep); any other request runs on rank 0 alone.  Only rank 0 speaks.
-    mpi::checkpoint();
-    if (mpi::rank() != 0) {
-      if constexpr (!core::Sweep<Req>) return;
-      out.quiet = true;
-    }
-    Context ctx = detail::make_context(name, out, invocation, std::move(recorded));
-    if (!out.files && !out.out.empty()) {
-      std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
-      std::replace(kind.begin(), kind.end(), ' ', '_');
-      if (mpi::rank() == 0) detail::write_files(req, out, ctx, kind);
-      return;
-    }
-    body(req, out, ctx);
-  };
   registry().push_back([=](CLI::App& app) {
-    struct State {
-      Req req;
-      Output out;
-      std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
-      std::map<std::string, CLI::Option*> opts;
-    };
-    auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
-    CLI::App* c = detail::add_nested(app, name, help);
-    mpi::request_apps().push_back(c);
-    s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
-    s->out.fields(detail::FlagBinder{c, &s->raw, &s->opts});
-    c->callback([s, execute, c] {
-      if (!c->get_subcommands().empty()) return;  // `btob pattern atlas` runs the atlas, not `pattern`
-      s->req.fields(detail::FlagApplier{&s->raw, &s->opts});
-      s->out.fields(detail::FlagApplier{&s->raw, &s->opts});
-      execute(s->req, s->out, s->opts["threads"]->count() > 0, invocation());
-    });
+    detail::add_flags_command<Req>(app, name, help, body, request_defaults, output_defaults);
   });
   scene_commands()[name] = SceneCommand{[=](const Args& args, const std::string& inv) {
-    Req req = request_defaults;
-    Output out = output_defaults;
-    std::vector<bool> used(args.size(), false);
-    req.fields(detail::ArgsApplier{&args, &used});
-    out.fields(detail::ArgsApplier{&args, &used});
-    for (std::size_t i = 0; i < args.size(); ++i)
-      if (!used[i]) {
-        std::string known;
-        req.fields(detail::NameLister{&known});
-        out.fields(detail::NameLister{&known});
-        throw UsageError(fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, name, known));
-      }
-    bool threads_given = false;
-    for (const auto& a : args) threads_given |= a.first == "threads";
-    execute(req, out, threads_given, inv);
+    detail::run_from_args<Req>(name, body, request_defaults, output_defaults, args, inv);
   }, output_defaults.files};
 }
 

@@ -301,7 +301,7 @@ namespace {
 std::string scene_text(const View& v, const std::string& stem) {
   Args args;
   bifurcation::Request req = to_request(v);
-  req.fields(detail::ArgsWriter{&args});
+  req.fields(core::ArgsWriter{&args});
   std::string s = fmt::format("# A view of `btob explore`; `btob run {}.toml` computes its density again.\n", stem);
   s += "command = \"bifurcation\"\n";
   s += fmt::format("title = {}\n", json(fmt::format("explore: {} over r in [{}, {}]", v.coord, v.r_min, v.r_max)).dump());

@@ -56,4 +56,36 @@ void require_r_exponents(double r, const Precision& p, const std::string& field)
 // The Decimals' values (a list of r for code that computes in double).
 std::vector<double> values(const std::vector<Decimal>& v);
 
+// ---- one vocabulary of fields for every front end (command line, scenes, manifests, the explorer, Python) ----
+
+// A request's fields as (name, text values), in declaration order: what a manifest records, a scene holds and a
+// Python result keeps as its request.
+using Args = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+// A field visitor (Request::fields) that lists the fields as Args: req.fields(core::ArgsWriter{&args}).
+struct ArgsWriter {
+  Args* out;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string&, Tag...) {
+    out->emplace_back(name, field_text(member));
+  }
+};
+
+// The documentation of one field: its name (the flag), default as text, help, and whether it must be given
+// (core::required, or core::positional: an argument on the command line, a required key everywhere else).
+struct FieldDoc {
+  std::string name;
+  std::vector<std::string> defaults;
+  std::string help;
+  bool required = false, positional = false;
+};
+// A field visitor that lists the fields' documentation: req.fields(core::DocLister{&docs}).
+struct DocLister {
+  std::vector<FieldDoc>* out;
+  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
+    constexpr bool positional = (std::is_same_v<Tag, Positional> || ...);
+    constexpr bool required = positional || (std::is_same_v<Tag, Required> || ...);
+    out->push_back(FieldDoc{name, field_text(member), help, required, positional});
+  }
+};
+
 }  // namespace btob::core

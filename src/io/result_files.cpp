@@ -1,5 +1,6 @@
 // ResultFiles: stage every file of a result in a temporary folder, move them into place together.
 #include "io/result_files.hpp"
+#include "core/request.hpp"
 #include "io/cancel.hpp"
 
 #include <H5Cpp.h>
@@ -36,10 +37,10 @@ std::atomic<int> counter{0};
 
 ResultFiles::ResultFiles(fs::path out, std::string name) : out_(std::move(out)), name_(std::move(name)) {
   if (name_.empty() || name_.find('/') != std::string::npos)
-    throw std::invalid_argument(fmt::format("name: got '{}', expected a file stem without '/'", name_));
+    throw core::InvalidField("name", fmt::format("'{}'", name_), "a file stem without '/'");
   std::error_code ec;
   if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
-    throw std::invalid_argument(fmt::format("out: got '{}', expected a folder (it is a file)", out_.string()));
+    throw core::InvalidField("out", fmt::format("'{}'", out_.string()), "a folder (it is a file)");
   const fs::path base = existing_ancestor(out_);
   tmp_ = base / fmt::format(".btob-tmp-{}-{}-{}", name_, getpid(), counter.fetch_add(1));
   if (!fs::create_directory(tmp_, ec) || ec) throw_file_error("out: cannot write in", base, ec);
@@ -137,66 +138,83 @@ void attach_scales(H5::H5File& file, const core::Contents& c) {
     }
   }
 }
+
+// The file's root attributes: strings, doubles and longs as scalars.
+void write_root_attrs(H5::H5File& file, const Attrs& attrs) {
+  H5::Group root = file.openGroup("/");
+  for (const auto& [k, v] : attrs) {
+    H5::DataSpace scalar(H5S_SCALAR);
+    if (const auto* s = std::get_if<std::string>(&v)) string_attr(root, k, *s);
+    else if (const auto* d = std::get_if<double>(&v))
+      root.createAttribute(k, H5::PredType::NATIVE_DOUBLE, scalar).write(H5::PredType::NATIVE_DOUBLE, d);
+    else {
+      const long l = std::get<long>(v);
+      root.createAttribute(k, H5::PredType::NATIVE_LONG, scalar).write(H5::PredType::NATIVE_LONG, &l);
+    }
+  }
+}
+
+// The creation properties of an array of `total` elements with dimensions d: chunked (chunks of at most 2^18
+// elements, halving each dimension in turn) and deflated from 4096 elements on (density images are mostly empty).
+H5::DSetCreatPropList array_layout(const std::vector<hsize_t>& d, std::size_t total) {
+  H5::DSetCreatPropList plist;
+  if (total < 4096) return plist;
+  std::vector<hsize_t> chunk = d;
+  std::size_t n = total;
+  for (auto& x : chunk)
+    while (n > (1u << 18) && x > 1) {
+      n /= 2;
+      x = (x + 1) / 2;
+    }
+  plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
+  plist.setDeflate(4);
+  return plist;
+}
+
+// One array of the result as a dataset with its units, axes and description.
+void write_array(H5::H5File& file, const core::ArrayView& a) {
+  std::visit(
+      [&](const auto* vec) {
+        using V = typename std::decay_t<decltype(*vec)>::value_type;
+        std::vector<hsize_t> d(a.dims.begin(), a.dims.end());
+        std::size_t total = 1;
+        for (auto x : a.dims) total *= x;
+        if (total != vec->size())
+          throw std::logic_error(fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
+        H5::DataSpace space(static_cast<int>(d.size()), d.data());
+        H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, array_layout(d, total));
+        if (total > 0) ds.write(vec->data(), h5_type<V>());
+        string_attr(ds, "units", a.units);
+        string_attr(ds, "axes", a.axes);
+        string_attr(ds, "description", a.description);
+      },
+      a.data);
+}
+
+// An HDF5 file that its guard destroys quietly: after a failed write (disk full) its destructor's close fails too,
+// and the error is reported once, by the caller.
+struct QuietFile {
+  H5::H5File* f = nullptr;
+  ~QuietFile() {
+    std::streambuf* old = std::cerr.rdbuf(nullptr);
+    delete f;
+    std::cerr.rdbuf(old);
+  }
+};
+
 }  // namespace
 
+// attributes -> arrays -> decimals and texts -> dimension scales; an HDF5 failure is one line naming the file.
 void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
   const std::string filename = name_ + ".h5";
   const fs::path p = staged(filename);
   H5::Exception::dontPrint();
   try {
-    // Owned by a guard that destroys it quietly: after a failed write (disk full) its destructor's close fails too,
-    // and the error is reported once, below.
-    struct Guard {
-      H5::H5File* f = nullptr;
-      ~Guard() {
-        std::streambuf* old = std::cerr.rdbuf(nullptr);
-        delete f;
-        std::cerr.rdbuf(old);
-      }
-    } guard;
+    QuietFile guard;
     guard.f = new H5::H5File(p.string(), H5F_ACC_TRUNC);
     H5::H5File& file = *guard.f;
-    H5::Group root = file.openGroup("/");
-    for (const auto& [k, v] : attrs) {
-      H5::DataSpace scalar(H5S_SCALAR);
-      if (const auto* s = std::get_if<std::string>(&v)) string_attr(root, k, *s);
-      else if (const auto* d = std::get_if<double>(&v))
-        root.createAttribute(k, H5::PredType::NATIVE_DOUBLE, scalar).write(H5::PredType::NATIVE_DOUBLE, d);
-      else {
-        const long l = std::get<long>(v);
-        root.createAttribute(k, H5::PredType::NATIVE_LONG, scalar).write(H5::PredType::NATIVE_LONG, &l);
-      }
-    }
-    for (const auto& a : c.arrays) {
-      std::visit(
-          [&](const auto* vec) {
-            using V = typename std::decay_t<decltype(*vec)>::value_type;
-            std::vector<hsize_t> d(a.dims.begin(), a.dims.end());
-            std::size_t total = 1;
-            for (auto x : a.dims) total *= x;
-            if (total != vec->size())
-              throw std::logic_error(fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
-            H5::DataSpace space(static_cast<int>(d.size()), d.data());
-            H5::DSetCreatPropList plist;
-            if (total >= 4096) {  // chunked + deflate: density images are mostly empty
-              std::vector<hsize_t> chunk = d;
-              std::size_t n = total;
-              for (auto& x : chunk)
-                while (n > (1u << 18) && x > 1) {
-                  n /= 2;
-                  x = (x + 1) / 2;
-                }
-              plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
-              plist.setDeflate(4);
-            }
-            H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, plist);
-            if (total > 0) ds.write(vec->data(), h5_type<V>());
-            string_attr(ds, "units", a.units);
-            string_attr(ds, "axes", a.axes);
-            string_attr(ds, "description", a.description);
-          },
-          a.data);
-    }
+    write_root_attrs(file, attrs);
+    for (const auto& a : c.arrays) write_array(file, a);
     for (const auto* list : {&c.decimals, &c.texts})
       for (const auto& d : *list) string_dataset(file, d);
     attach_scales(file, c);

@@ -215,22 +215,106 @@ template <class T> inline void cocycle_start(const Vec3<double>& u0, T& x, T& y,
   vx = static_cast<T>(v(0)), vy = static_cast<T>(v(1)), vz = static_cast<T>(v(2));
 }
 
-}  // namespace detail
+// One batch of B lanes in flight: the state and its copy before the block, r and the branch constants, the
+// per-call sums and their double accumulators (log2 |u|, log2 |v|, symbols 1 and 3).
+template <class T> struct CocycleBatchState {
+  using L = CocycleLanes<T>;
+  static constexpr int B = L::B;
+  L cur, pre;
+  alignas(64) T r[B], a[B], k[B], acc[3 * B], blk[3 * B];
+  alignas(64) std::int64_t loss[B];
+  alignas(64) double lu[B], lv[B], n13[B];
+  std::size_t o0 = 0;
+  int lanes = 0;
+};
 
-template <class T, CocycleRecorder Rec>
-void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
-  static_assert(detail::has_simd<T>, "the cocycle kernel is written for float and double");
-  using L = detail::CocycleLanes<T>;
-  constexpr int B = L::B;
+// The batch of orbits o0..: every lane's start (a partial batch padded with its last orbit), r, alpha = (1 + r) / 2
+// and alpha / r in T, the sums at zero.
+template <class T> void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, CocycleBatchState<T>& b) {
+  constexpr int B = CocycleBatchState<T>::B;
+  const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
+  b.o0 = o0;
+  b.lanes = static_cast<int>(std::min<std::size_t>(B, n_orbits - o0));
+  for (int l = 0; l < B; ++l) {
+    const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, b.lanes - 1));  // pad with the last orbit
+    CocycleLanes<T>& c = b.cur;
+    cocycle_start<T>(ens.initial[o % n_ic], c.x[l], c.y[l], c.z[l], c.vx[l], c.vy[l], c.vz[l]);
+    b.r[l] = r_t[o / n_ic];
+    b.a[l] = (T(1) + b.r[l]) / T(2);
+    b.k[l] = b.a[l] / b.r[l];
+    b.lu[l] = b.lv[l] = b.n13[l] = 0;
+  }
+  renormalise<T, B>(b.cur.x, b.cur.y, b.cur.z);  // float: rounding may have carried the largest to 2
+}
+
+// Adds T's per-call sums (exact integers) into the double accumulators.
+template <class T> inline void cocycle_flush(CocycleBatchState<T>& b, const T* s) {
+  constexpr int B = CocycleBatchState<T>::B;
+#pragma omp simd
+  for (int l = 0; l < B; ++l) {
+    b.lu[l] += static_cast<double>(s[l]);
+    b.lv[l] += static_cast<double>(s[B + l]);
+    b.n13[l] += static_cast<double>(s[2 * B + l]);
+  }
+}
+
+// The batch at a checkpoint, handed to the recorder.
+template <class T, class Rec> inline void cocycle_record(Rec& rec, CocycleBatchState<T>& b, long step) {
+  CocycleBatch<T> v;
+  v.orbit0 = b.o0, v.lanes = b.lanes, v.step = step;
+  v.x = b.cur.x, v.y = b.cur.y, v.z = b.cur.z, v.vx = b.cur.vx, v.vy = b.cur.vy, v.vz = b.cur.vz;
+  v.log2u = b.lu, v.log2v = b.lv, v.n13 = b.n13;
+  rec.record(v);
+}
+
+// The batch's steps 1..iterations in calls of at most kFlush steps, each a run of blocks of K steps (cocycle_blocks)
+// and, where a block lost more than the budget, that block redone per step for the lanes that lost
+// (cocycle_redo); recorded at the recorder's checkpoints.  Polled once per call (about a millisecond): a cancelled
+// run leaves the batch early.  Returns the lanes redone.
+template <class T, class Rec>
+std::size_t cocycle_batch(CocycleBatchState<T>& b, long iterations, Rec& rec, const RunOptions& opt) {
+  constexpr int B = CocycleBatchState<T>::B;
   constexpr int K = cocycle_interval<T>();
   constexpr int budget = cocycle_loss_budget<T>();
   constexpr long kFlush = 1L << 16;
-  const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
+  const std::vector<long>& cps = rec.checkpoints();
+  std::size_t ci = 0;
+  if (ci < cps.size() && cps[ci] == 0) cocycle_record<T>(rec, b, 0), ++ci;
+  std::size_t redone = 0;
+  long step = 0;
+  while (step < iterations && !(opt.cancel && opt.cancel->cancelled())) {
+    const long target = ci < cps.size() ? std::min(cps[ci], iterations) : iterations;
+    // At most kFlush steps per call: T's sums of exponents (<= 2^6 per step) and counts stay exact integers.
+    const long want = std::min<long>(target - step, kFlush);
+    std::fill(b.acc, b.acc + 3 * B, T(0));
+    bool failed = false;
+    const long done = cocycle_blocks<T>(b.cur, b.pre, b.r, b.a, b.k, want, K, budget, b.acc, b.blk, b.loss, failed);
+    cocycle_flush<T>(b, b.acc);
+    step += done;
+    if (failed) {
+      const int n = static_cast<int>(std::min<long>(K, want - done));
+      redone += static_cast<std::size_t>(cocycle_redo<T>(b.cur, b.pre, b.r, b.a, b.k, n, budget, b.blk, b.loss, b.lanes));
+      cocycle_flush<T>(b, b.blk);
+      step += n;
+    }
+    if (ci < cps.size() && step == cps[ci]) cocycle_record<T>(rec, b, step), ++ci;
+  }
+  return redone;
+}
+
+}  // namespace detail
+
+// Batches of B orbits over the threads (static schedule: each batch writes only its own lanes' records): start,
+// step with the recorder at its checkpoints, tally (RunTally: progress, degenerate lanes, cancellation).
+template <class T, CocycleRecorder Rec>
+void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+  static_assert(detail::has_simd<T>, "the cocycle kernel is written for float and double");
+  constexpr int B = detail::CocycleLanes<T>::B;
+  const std::size_t n_orbits = ens.orbits();
   if (n_orbits == 0 || iterations < 0) return;
   if (!cocycle_accepts<T>(ens.r))
     throw std::invalid_argument("r: too small for the cocycle kernel in this precision (the state would leave the "
                                 "normal range within one projection interval)");
-  const std::vector<long>& cps = rec.checkpoints();
   const std::size_t n_batches = (n_orbits + B - 1) / B;
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   detail::RunTally tally;
@@ -242,64 +326,13 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
     if (opt.cancel && opt.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
-    L cur, pre;
-    alignas(64) T r[B], a[B], k[B], acc[3 * B], blk[3 * B];
-    alignas(64) std::int64_t loss[B];
-    alignas(64) double lu[B], lv[B], n13[B];
-    const std::size_t o0 = b * B;
-    const int lanes = static_cast<int>(std::min<std::size_t>(B, n_orbits - o0));
-    for (int l = 0; l < B; ++l) {
-      const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
-      detail::cocycle_start<T>(ens.initial[o % n_ic], cur.x[l], cur.y[l], cur.z[l], cur.vx[l], cur.vy[l], cur.vz[l]);
-      r[l] = r_t[o / n_ic];
-      a[l] = (T(1) + r[l]) / T(2);
-      k[l] = a[l] / r[l];
-      lu[l] = lv[l] = n13[l] = 0;
-    }
-    detail::renormalise<T, B>(cur.x, cur.y, cur.z);  // float: rounding may have carried the largest to 2
-    // Adds T's per-call sums (exact integers) into the double accumulators.
-    const auto flush = [&](const T* s) {
-#pragma omp simd
-      for (int l = 0; l < B; ++l) {
-        lu[l] += static_cast<double>(s[l]);
-        lv[l] += static_cast<double>(s[B + l]);
-        n13[l] += static_cast<double>(s[2 * B + l]);
-      }
-    };
-    const auto record = [&](long step) {
-      CocycleBatch<T> v;
-      v.orbit0 = o0, v.lanes = lanes, v.step = step;
-      v.x = cur.x, v.y = cur.y, v.z = cur.z, v.vx = cur.vx, v.vy = cur.vy, v.vz = cur.vz;
-      v.log2u = lu, v.log2v = lv, v.n13 = n13;
-      rec.record(v);
-    };
-    std::size_t ci = 0;
-    if (ci < cps.size() && cps[ci] == 0) record(0), ++ci;
-    std::size_t redone_here = 0;
-    long step = 0;
-    // Polled once per call of at most kFlush steps (about a millisecond): a cancelled run leaves the batch early
-    // and RunTally::finish throws once the parallel region is over.
-    while (step < iterations && !(opt.cancel && opt.cancel->cancelled())) {
-      const long target = ci < cps.size() ? std::min(cps[ci], iterations) : iterations;
-      // At most kFlush steps per call: T's sums of exponents (<= 2^6 per step) and counts stay exact integers.
-      const long want = std::min<long>(target - step, kFlush);
-      std::fill(acc, acc + 3 * B, T(0));
-      bool failed = false;
-      const long done = detail::cocycle_blocks<T>(cur, pre, r, a, k, want, K, budget, acc, blk, loss, failed);
-      flush(acc);
-      step += done;
-      if (failed) {
-        const int n = static_cast<int>(std::min<long>(K, want - done));
-        redone_here += static_cast<std::size_t>(detail::cocycle_redo<T>(cur, pre, r, a, k, n, budget, blk, loss, lanes));
-        flush(blk);
-        step += n;
-      }
-      if (ci < cps.size() && step == cps[ci]) record(step), ++ci;
-    }
+    detail::CocycleBatchState<T> st;
+    detail::cocycle_batch_start<T>(ens, r_t, b * B, st);
+    const std::size_t redone_here = detail::cocycle_batch<T>(st, iterations, rec, opt);
     if (redone_here) redone.fetch_add(redone_here, std::memory_order_relaxed);
-    tally.batch_end(opt, n_batches, lanes, [&](int l) {
-      return detail::degenerate_vector(cur.x[l], cur.y[l], cur.z[l]) ||
-             detail::degenerate_vector(cur.vx[l], cur.vy[l], cur.vz[l]);
+    tally.batch_end(opt, n_batches, st.lanes, [&](int l) {
+      return detail::degenerate_vector(st.cur.x[l], st.cur.y[l], st.cur.z[l]) ||
+             detail::degenerate_vector(st.cur.vx[l], st.cur.vy[l], st.cur.vz[l]);
     });
   }
   tally.finish(opt, n_batches);

@@ -15,10 +15,10 @@
 namespace btob::iterate {
 
 std::vector<double> linspace_r(double a, double b, long n) {
-  if (n < 1) throw std::invalid_argument(fmt::format("r-count: got {}, expected at least 1", n));
+  if (n < 1) throw core::InvalidField("r-count", fmt::format("{}", n), "at least 1");
   core::validate_r(a, "r-min");
   core::validate_r(b, "r-max");
-  if (b < a) throw std::invalid_argument(fmt::format("r-max: got {} < r-min = {}, expected r-min <= r-max", b, a));
+  if (b < a) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", b, a), "r-min <= r-max");
   checked_bytes(static_cast<std::size_t>(n), sizeof(double), "r-count");
   std::vector<double> r(static_cast<std::size_t>(n));
   for (long i = 0; i < n; ++i) r[i] = n == 1 ? a : a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1);
@@ -140,9 +140,9 @@ std::vector<Vec3<double>> paper_grid() {
 
 std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_max) {
   if (n1 < 1 || n2 < 1)
-    throw std::invalid_argument(fmt::format("grid: got strip:{}x{}, expected at least 1x1 points", n1, n2));
+    throw core::InvalidField("grid", fmt::format("strip:{}x{}", n1, n2), "at least 1x1 points");
   if (!(w1_min < w1_max) || !std::isfinite(w1_min) || !std::isfinite(w1_max))
-    throw std::invalid_argument(fmt::format("grid: got w1 range [{}, {}], expected finite w1-min < w1-max", w1_min, w1_max));
+    throw core::InvalidField("grid", fmt::format("w1 range [{}, {}]", w1_min, w1_max), "finite w1-min < w1-max");
   const std::size_t n = checked_bytes(static_cast<std::size_t>(n1), static_cast<std::size_t>(n2), sizeof(Vec3<double>),
                                       "grid") / sizeof(Vec3<double>);
   std::vector<Vec3<double>> g;
@@ -168,7 +168,7 @@ double unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0
 }  // namespace
 
 std::vector<Vec3<double>> random_points(long n, std::uint64_t seed) {
-  if (n < 1) throw std::invalid_argument(fmt::format("grid: got random:{}, expected at least 1 point", n));
+  if (n < 1) throw core::InvalidField("grid", fmt::format("random:{}", n), "at least 1 point");
   checked_bytes(static_cast<std::size_t>(n), sizeof(Vec3<double>), "grid");
   std::vector<Vec3<double>> g;
   g.reserve(static_cast<std::size_t>(n));
@@ -188,14 +188,14 @@ double parse_double(std::string_view s, const char* field, std::string_view whol
   double v = 0;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size())
-    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a number", field, s, whole));
+    throw core::InvalidField(field, fmt::format("'{}' in '{}'", s, whole), "a number");
   return v;
 }
 long parse_long(std::string_view s, const char* field, std::string_view whole) {
   long v = 0;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size())
-    throw std::invalid_argument(fmt::format("{}: cannot read '{}' in '{}' as a whole number", field, s, whole));
+    throw core::InvalidField(field, fmt::format("'{}' in '{}'", s, whole), "a whole number");
   return v;
 }
 std::vector<std::string_view> split(std::string_view s, char sep) {

@@ -71,7 +71,7 @@ std::vector<Vec3<double>> random_points(long n, std::uint64_t seed);
 
 // A strip grid's spec "strip:NxM[:w1min:w1max]" read without building the grid: the one reader of that grammar
 // (parse_grid uses it).  has_range is false when the range is omitted (then w1 in [-2, 2]).  Sizes and ranges
-// are not checked here (strip_grid does); a spec of another form throws std::invalid_argument naming `field`.
+// are not checked here (strip_grid does); a spec of another form throws core::InvalidField naming `field`.
 struct StripSpec {
   long n1 = 0, n2 = 0;
   double w1_min = -2, w1_max = 2;

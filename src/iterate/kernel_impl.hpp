@@ -170,8 +170,8 @@ inline void steps(T* __restrict x, T* __restrict y, T* __restrict z, const T* __
 }
 
 // SIMD lanes for float/double: GCC vectors of kVectorBytes (one AVX-512, AVX or SSE2 register).
-// NV independent vectors are kept in registers for the n steps between renormalisations: one step's
-// dependency chain is ~20 cycles and its issue cost ~3-5, so kVectorsInFlight (lanes.hpp) vectors hide the latency.
+// NV = kVectorsInFlight (lanes.hpp: 6) independent vectors are kept in registers for the n steps between
+// renormalisations: lanes.hpp gives the step's latency and issue cost that this count hides.
 template <class T> struct SimdTypes;
 template <> struct SimdTypes<double> {
   using V = vf64;

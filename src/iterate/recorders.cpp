@@ -1,6 +1,8 @@
 // Non-template parts of the recorders.
 #include "iterate/recorders.hpp"
 
+#include "core/request.hpp"
+
 #include <fmt/format.h>
 
 namespace btob::iterate {
@@ -11,7 +13,7 @@ Coord parse_coord(const std::string& name, const char* field) {
   if (name == "phi") return Coord::phi;
   if (name == "w1") return Coord::w1;
   if (name == "w2") return Coord::w2;
-  throw std::invalid_argument(fmt::format("{}: got '{}', expected theta, log10-theta, phi, w1 or w2", field, name));
+  throw core::InvalidField(field, fmt::format("'{}'", name), "theta, log10-theta, phi, w1 or w2");
 }
 
 const char* coord_name(Coord c) {
@@ -29,10 +31,10 @@ DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, l
                                  double hi_, int threads)
     : coord(c), iterations(iterations_), tail(tail_), n_ic(e.initial.size()), columns(e.r.size()), bins(bins_), lo(lo_),
       hi(hi_) {
-  if (bins < 1) throw std::invalid_argument(fmt::format("bins: got {}, expected at least 1", bins));
+  if (bins < 1) throw core::InvalidField("bins", fmt::format("{}", bins), "at least 1");
   if (bins > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-    throw std::invalid_argument(fmt::format("bins: got {}, expected at most {}", bins, std::numeric_limits<std::int32_t>::max()));
-  if (!(lo < hi)) throw std::invalid_argument(fmt::format("range: got [{}, {}], expected lo < hi", lo, hi));
+    throw core::InvalidField("bins", fmt::format("{}", bins), fmt::format("at most {}", std::numeric_limits<std::int32_t>::max()));
+  if (!(lo < hi)) throw core::InvalidField("range", fmt::format("[{}, {}]", lo, hi), "lo < hi");
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
   // Each thread zeroes (first-touches) its own image: no serial memset and copy of nt images.

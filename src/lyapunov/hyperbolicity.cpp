@@ -2,6 +2,8 @@
 // explicit instantiations (double, long double).
 #include "lyapunov/hyperbolicity_impl.hpp"
 
+#include "core/request.hpp"
+
 #include <fmt/format.h>
 
 #include <limits>
@@ -9,11 +11,11 @@
 namespace btob::lyapunov {
 
 void validate(const ClvOptions& o) {
-  if (o.transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected at least 0", o.transient));
-  if (o.window < 1) throw std::invalid_argument(fmt::format("window: got {}, expected at least 1", o.window));
+  if (o.transient < 0) throw core::InvalidField("transient", fmt::format("{}", o.transient), "at least 0");
+  if (o.window < 1) throw core::InvalidField("window", fmt::format("{}", o.window), "at least 1");
   if (o.backward_transient < 1)
-    throw std::invalid_argument(fmt::format("backward-transient: got {}, expected at least 1", o.backward_transient));
-  if (o.bins < 1) throw std::invalid_argument(fmt::format("bins: got {}, expected at least 1", o.bins));
+    throw core::InvalidField("backward-transient", fmt::format("{}", o.backward_transient), "at least 1");
+  if (o.bins < 1) throw core::InvalidField("bins", fmt::format("{}", o.bins), "at least 1");
 }
 
 StepSingularValues step_singular_values(const Vec3<double>& u, double r) {

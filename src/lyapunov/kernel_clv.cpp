@@ -62,6 +62,8 @@ int clv_interval(double r) {
   const double h = std::max(grow, shrink);
   for (int K = 16; K >= 1; --K)
     if (2 * (K * (K + 2) * h + 3 * K) <= 980) return K;
+  // A plain invalid_argument with InvalidField's message: constructing InvalidField here would emit its inline
+  // constructor in a kernel unit (check_kernel_symbols).
   throw std::invalid_argument(
       fmt::format("r: got {}, expected r whose matrices keep the CLV frame in double's range", r));
 }
@@ -340,39 +342,258 @@ void add_histogram(const double* key, std::size_t n, int bins, double* hist) {
   }
 }
 
+// ---- the stages of covariant_vectors_batched --------------------------------------------------------------------
+
+// One batch in registers: up to B consecutive orbits at one r, the frame and the sums of clv_phase.
+struct Lanes {
+  Regs s;
+  Sums w;
+  V r[NV], a[NV], k[NV];
+};
+
+// Per lane, |u|^2 and |e1|^2 at one end of the window.
+struct NormsAt {
+  alignas(64) double uu[B], q1[B];
+};
+
+// Per lane, at the window's end: the norms and the sums the exponents read (in the order of Sums: pm, em, n13,
+// nexp, eu, ef, rho, iq1, iq2).
+struct WindowEnd {
+  NormsAt norms;
+  alignas(64) double sums[9][B];
+};
+
+// Per lane, the smallest and largest key of the window.
+struct KeyRange {
+  alignas(64) double lo[B], hi[B];
+};
+
+// The lanes' starts: the unit point and the first tangent vector of orbits o0.., a partial batch padded with its
+// last orbit (every lane steps like a full batch's).
+void load_lanes(const std::vector<Vec3<double>>& initial, std::size_t o0, int lanes, double r, Lanes& b) {
+  alignas(64) double L[9][B], rv[B], av[B], kv[B];
+  for (int l = 0; l < B; ++l) {
+    const Vec3<double> q = iterate::detail::unit_start(initial[o0 + static_cast<std::size_t>(std::min(l, lanes - 1))]);
+    const Eigen::Matrix<double, 3, 2> f = tangent_basis<double>(q.normalized());
+    for (int c = 0; c < 3; ++c) L[c][l] = q(c), L[3 + c][l] = f(c, 0);
+    rv[l] = r, av[l] = (1 + r) / 2, kv[l] = av[l] / r;
+  }
+  Regs& s = b.s;
+  for (int j = 0; j < NV; ++j) {
+    s.x[j] = S::load(L[0] + j * W), s.y[j] = S::load(L[1] + j * W), s.z[j] = S::load(L[2] + j * W);
+    s.ax[j] = S::load(L[3] + j * W), s.ay[j] = S::load(L[4] + j * W), s.az[j] = S::load(L[5] + j * W);
+    b.r[j] = S::load(rv + j * W), b.a[j] = S::load(av + j * W), b.k[j] = S::load(kv + j * W);
+  }
+}
+
+// The window's start: e2 = u x e1, and the norms the window's sums start from.
+NormsAt start_window(Lanes& b) {
+  Regs& s = b.s;
+  Sums& w = b.w;
+  NormsAt start;
+  for (int j = 0; j < NV; ++j) {
+    s.bx[j] = s.y[j] * s.az[j] - s.z[j] * s.ay[j];
+    s.by[j] = s.z[j] * s.ax[j] - s.x[j] * s.az[j];
+    s.bz[j] = s.x[j] * s.ay[j] - s.y[j] * s.ax[j];
+    const V q1 = s.ax[j] * s.ax[j] + s.ay[j] * s.ay[j] + s.az[j] * s.az[j];
+    const V q2 = s.bx[j] * s.bx[j] + s.by[j] * s.by[j] + s.bz[j] * s.bz[j];
+    const V uu = s.x[j] * s.x[j] + s.y[j] * s.y[j] + s.z[j] * s.z[j];
+    w.rho[j] = q1 / q2, w.iq1[j] = one() / q1, w.iq2[j] = one() / q2;
+    w.pm[j] = one(), w.em[j] = w.n13[j] = w.nexp[j] = w.eu[j] = w.ef[j] = V{};
+    S::store(start.uu + j * W, uu), S::store(start.q1 + j * W, q1);
+  }
+  return start;
+}
+
+// The window's end: the norms and the window's sums, per lane.
+WindowEnd end_window(const Lanes& b) {
+  const Regs& s = b.s;
+  const Sums& w = b.w;
+  WindowEnd end;
+  for (int j = 0; j < NV; ++j) {
+    S::store(end.norms.uu + j * W, s.x[j] * s.x[j] + s.y[j] * s.y[j] + s.z[j] * s.z[j]);
+    S::store(end.norms.q1 + j * W, s.ax[j] * s.ax[j] + s.ay[j] * s.ay[j] + s.az[j] * s.az[j]);
+    const V* v[9] = {w.pm, w.em, w.n13, w.nexp, w.eu, w.ef, w.rho, w.iq1, w.iq2};
+    for (int q = 0; q < 9; ++q) S::store(end.sums[q] + j * W, v[q][j]);
+  }
+  return end;
+}
+
+// Forward over transient, window and backward transient: the window's coefficients stored in st, the window's sums
+// and ends, and in b.w.beta tau at the window's end (tau = 0 after the last step, where the second CLV is e2).
+WindowEnd forward_pass(Lanes& b, long transient, long window, long backward, int K, bool keep_steps, const Store& st,
+                       NormsAt& start) {
+  clv_phase<false, false, false>(b.s, b.w, b.r, b.a, b.k, transient, 0, K, st);
+  start = start_window(b);
+  if (keep_steps)
+    clv_phase<true, true, true>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
+  else
+    clv_phase<true, true, false>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
+  const WindowEnd end = end_window(b);
+  // The backward transient composes its steps' maps into t -> alpha t + beta.
+  for (int j = 0; j < NV; ++j) b.w.alpha[j] = one(), b.w.beta[j] = V{};
+  clv_phase<true, false, false>(b.s, b.w, b.r, b.a, b.k, backward, window, K, st);
+  return end;
+}
+
+// Back over the window from tau = beta: the key of every step, written to keys[l * window + step] for the batch's
+// lanes, and each lane's smallest and largest key.
+KeyRange backward_keys(const Sums& w, const Store& st, long window, int lanes, double* keys) {
+  const std::size_t Nz = static_cast<std::size_t>(window);
+  V tau[NV], kmin[NV], kmax[NV];
+  for (int v = 0; v < NV; ++v)
+    tau[v] = w.beta[v], kmin[v] = V{} + std::numeric_limits<double>::infinity(), kmax[v] = V{};
+  for (long j = window - 1; j >= 0; --j) {
+    const long row = j * B;
+    alignas(64) double kk[B];
+    for (int v = 0; v < NV; ++v) {
+      tau[v] = S::load(st.A + row + v * W) * tau[v] - S::load(st.Bc + row + v * W);
+      const V key = tau[v] * tau[v] * S::load(st.rho + row + v * W);
+      kmin[v] = key < kmin[v] ? key : kmin[v];
+      kmax[v] = key > kmax[v] ? key : kmax[v];
+      S::store(kk + v * W, key);
+    }
+    for (int l = 0; l < lanes; ++l) keys[static_cast<std::size_t>(l) * Nz + static_cast<std::size_t>(j)] = kk[l];
+  }
+  KeyRange range;
+  for (int v = 0; v < NV; ++v) S::store(range.lo + v * W, kmin[v]), S::store(range.hi + v * W, kmax[v]);
+  return range;
+}
+
+// Lane l's exponents, expanding fraction and degeneracy from the window's sums (the integer exponents added
+// first: exact).
+void lane_exponents(const NormsAt& start, const WindowEnd& end, int l, double r, long window, ClvResult& c) {
+  const double(&sums)[9][B] = end.sums;
+  const double n = static_cast<double>(window);
+  // Sum of log r11 and of log det D over the window.
+  const double e1 = -sums[4][l] + sums[5][l] - sums[1][l];
+  const double s11 = 0.5 * (std::log(start.uu[l]) - std::log(end.norms.uu[l]) + std::log(end.norms.q1[l]) -
+                            std::log(start.q1[l])) +
+                     e1 * ln2 - std::log(sums[0][l]);
+  const double sdet =
+      sums[2][l] * std::log(r) + 1.5 * (std::log(start.uu[l]) - std::log(end.norms.uu[l]) - 2 * ln2 * sums[4][l]);
+  c.lambda = {s11 / n, (sdet - s11) / n};
+  c.degenerate = c.lambda[0] - c.lambda[1] < 10.0 / n;  // as covariant_vectors
+  c.expanding_fraction = sums[3][l] / n;
+}
+
+// Lane l's per-step angles, symbols and expanding flags (keep_steps).
+void lane_steps(const double* key, const Store& st, int l, std::size_t window, ClvResult& c) {
+  c.angle.resize(window);
+  c.symbols.resize(window);
+  c.expanding.resize(window);
+  for (std::size_t j = 0; j < window; ++j) {
+    c.angle[j] = angle_of(key[j]);
+    c.symbols[j] = st.sym[j * B + static_cast<std::size_t>(l)];
+    c.expanding[j] = st.expd[j * B + static_cast<std::size_t>(l)];
+  }
+}
+
+// A thread's buffers: one batch's stored window (A, B and rho per step; symbols and flags with keep_steps) and the
+// scratch of the order statistics.
+struct ThreadStore {
+  std::vector<double> A, Bc, rho;
+  std::vector<std::uint8_t> sym, expd;
+  std::vector<std::uint32_t> count;  // select_keys' buckets and gathered keys
+  std::vector<double> gather;
+  ThreadStore(std::size_t window, bool keep_steps)
+      : A(window * B), Bc(A.size()), rho(window * B), sym(keep_steps ? window * B : 0), expd(sym.size()) {}
+  Store store() { return {A.data(), Bc.data(), rho.data(), sym.data(), expd.data()}; }
+};
+
+// The keys of the r values in flight (r-major, then orbit-major, window keys each) and each orbit's extreme keys.
+struct RoundKeys {
+  std::size_t orbits = 0, window = 0;
+  std::vector<double> key, lo, hi;
+  RoundKeys(std::size_t rs, std::size_t orbits, std::size_t window)
+      : orbits(orbits), window(window), key(rs * orbits * window), lo(rs * orbits), hi(rs * orbits) {}
+  double* of(std::size_t ir, std::size_t o) { return key.data() + (ir * orbits + o) * window; }
+};
+
+// One batch of orbits o0.. at r: forward, backward, then each lane's result; its keys go to keys (slot ir of the
+// round) and the statistics of its own angles to its ClvResult.
+void run_batch(const std::vector<Vec3<double>>& initial, std::size_t o0, double r, int K, const ClvOptions& opt,
+               bool keep_steps, ThreadStore& ts, RoundKeys& keys, std::size_t ir, ClvRow& row) {
+  const long N = opt.window;
+  const std::size_t Nz = static_cast<std::size_t>(N), I0 = initial.size();
+  const int lanes = static_cast<int>(std::min<std::size_t>(B, I0 - o0));
+  const Store st = ts.store();
+  Lanes b;
+  load_lanes(initial, o0, lanes, r, b);
+  NormsAt start;
+  const WindowEnd end = forward_pass(b, opt.transient, N, opt.backward_transient, K, keep_steps, st, start);
+  const KeyRange range = backward_keys(b.w, st, N, lanes, keys.of(ir, o0));
+  for (int l = 0; l < lanes; ++l) {
+    const std::size_t o = o0 + static_cast<std::size_t>(l);
+    ClvResult& c = row.orbit[o];
+    lane_exponents(start, end, l, r, N, c);
+    double* key = keys.of(ir, o);
+    if (keep_steps) lane_steps(key, st, l, Nz, c);
+    // A degenerate orbit's angles are undefined (hyperbolicity.hpp): nothing of them is kept.
+    if (c.degenerate) {
+      c.median_angle = c.q05_angle = c.min_angle = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    c.histogram.assign(static_cast<std::size_t>(opt.bins), 0.0);
+    add_histogram(key, Nz, opt.bins, c.histogram.data());
+    KeyRows own{{key}, Nz, range.lo[l], range.hi[l]};
+    keys.lo[ir * I0 + o] = range.lo[l];
+    keys.hi[ir * I0 + o] = range.hi[l];
+    angle_stats(own, c.median_angle, c.q05_angle, c.min_angle, ts.count, ts.gather);
+  }
+}
+
+// An r's statistics pooled over its non-degenerate orbits, in orbit order (their keys moved to the front).
+void pool_row(RoundKeys& keys, std::size_t ir, std::size_t bins, ThreadStore& ts, ClvRow& row) {
+  KeyRows pooled;
+  pooled.len = keys.window;
+  row.histogram.assign(bins, 0.0);
+  for (std::size_t o = 0; o < keys.orbits; ++o) {
+    const ClvResult& c = row.orbit[o];
+    if (c.degenerate) continue;
+    pooled.row.push_back(keys.of(ir, o));
+    pooled.lo = std::min(pooled.lo, keys.lo[ir * keys.orbits + o]);
+    pooled.hi = std::max(pooled.hi, keys.hi[ir * keys.orbits + o]);
+    for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
+  }
+  if (!pooled.row.empty())
+    angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, ts.count, ts.gather);
+  else
+    row.median_angle = row.q05_angle = row.min_angle = std::numeric_limits<double>::quiet_NaN();
+}
+
+// The inputs checked (r, points, the options) and the memory of the threads' windows refused when too large.
+void check_batched(const std::vector<double>& rs, const std::vector<Vec3<double>>& initial, const ClvOptions& opt,
+                   int threads) {
+  validate(opt);
+  for (double r : rs) core::validate_r(r);
+  for (const auto& u : initial) core::validate_point(u(0), u(1), u(2), "point");
+  const std::size_t Nz = static_cast<std::size_t>(opt.window);
+  iterate::checked_bytes(static_cast<std::size_t>(threads) * B, sizeof(double) * 3 * Nz, "window");
+  iterate::checked_bytes(initial.size(), sizeof(double) * Nz, "window");
+}
+
 }  // namespace
 
 ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vector<Vec3<double>>& initial,
                                   const ClvOptions& opt, const iterate::RunOptions& run, bool keep_steps) {
-  validate(opt);
-  for (double r : rs) core::validate_r(r);
-  for (const auto& u : initial) core::validate_point(u(0), u(1), u(2), "point");
-  const long T0 = opt.transient, N = opt.window, Nb = opt.backward_transient;
-  const std::size_t I0 = initial.size(), n_batches = (I0 + B - 1) / B, Nz = static_cast<std::size_t>(N);
-  const std::size_t bins = static_cast<std::size_t>(opt.bins);
   const int threads = run.threads > 0 ? run.threads : omp_get_max_threads();
-  iterate::checked_bytes(static_cast<std::size_t>(threads) * B,
-                         sizeof(double) * static_cast<std::size_t>(3 * N), "window");
-  iterate::checked_bytes(I0, sizeof(double) * Nz, "window");
-  std::vector<int> K(rs.size());
-  for (std::size_t i = 0; i < rs.size(); ++i) K[i] = clv_interval(rs[i]);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  ClvRows rows(rs.size());
   // r values in rounds of 4 per thread: the batches of a round's r values on every thread, then each r's pooled
   // statistics on one thread (in parallel; dynamic schedules: no bit depends on which thread runs what, and a
-  // thread the machine delays holds the others less).  keys: the round's keys, r-major then orbit-major.
+  // thread the machine delays holds the others less).
   const std::size_t G = 4 * static_cast<std::size_t>(threads);
+  check_batched(rs, initial, opt, threads);
+  const std::size_t I0 = initial.size(), n_batches = (I0 + B - 1) / B, Nz = static_cast<std::size_t>(opt.window);
+  std::vector<int> K(rs.size());
+  for (std::size_t i = 0; i < rs.size(); ++i) K[i] = clv_interval(rs[i]);
   iterate::checked_bytes(G * I0, sizeof(double) * Nz, "window");
-  std::vector<double> keys(G * I0 * Nz), key_lo(G * I0), key_hi(G * I0);  // and each orbit's extreme keys
+  ClvRows rows(rs.size());
+  RoundKeys keys(G, I0, Nz);
   bool stop = false;
 
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<double> A(Nz * B), Bc(A.size()), rho(Nz * B);
-    std::vector<std::uint8_t> sym(keep_steps ? Nz * B : 0), expd(sym.size());
-    std::vector<std::uint32_t> count;  // select_keys' buckets and gathered keys
-    std::vector<double> gather;
-    const Store st{A.data(), Bc.data(), rho.data(), sym.data(), expd.data()};
+    ThreadStore ts(Nz, keep_steps);
     for (std::size_t r0 = 0; r0 < rs.size(); r0 += G) {
       const std::size_t g = std::min(G, rs.size() - r0);
 #pragma omp single
@@ -383,130 +604,11 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
       if (stop) break;  // read by every thread after the single's barrier: all leave at the same round
 #pragma omp for schedule(dynamic)
       for (std::size_t t = 0; t < g * n_batches; ++t) {
-        const std::size_t ir = r0 + t / n_batches, o0 = t % n_batches * B;
-        ClvRow& row = rows[ir];
-        const double r = rs[ir];
-        double* const round_keys = keys.data() + (ir - r0) * I0 * Nz;
-        const int lanes = static_cast<int>(std::min<std::size_t>(B, I0 - o0));
-        alignas(64) double L[9][B], rv[B], av[B], kv[B];
-        for (int l = 0; l < B; ++l) {
-          const Vec3<double> q =
-              iterate::detail::unit_start(initial[o0 + static_cast<std::size_t>(std::min(l, lanes - 1))]);
-          const Eigen::Matrix<double, 3, 2> f = tangent_basis<double>(q.normalized());
-          for (int c = 0; c < 3; ++c) L[c][l] = q(c), L[3 + c][l] = f(c, 0);
-          rv[l] = r, av[l] = (1 + r) / 2, kv[l] = av[l] / r;
-        }
-        Regs s;
-        Sums w;
-        V vr[NV], va[NV], vk[NV];
-        for (int j = 0; j < NV; ++j) {
-          s.x[j] = S::load(L[0] + j * W), s.y[j] = S::load(L[1] + j * W), s.z[j] = S::load(L[2] + j * W);
-          s.ax[j] = S::load(L[3] + j * W), s.ay[j] = S::load(L[4] + j * W), s.az[j] = S::load(L[5] + j * W);
-          vr[j] = S::load(rv + j * W), va[j] = S::load(av + j * W), vk[j] = S::load(kv + j * W);
-        }
-        clv_phase<false, false, false>(s, w, vr, va, vk, T0, 0, K[ir], st);
-        // The window's start: e2 = u x e1, the norms the window's sums start from.
-        alignas(64) double lu0[B], lq0[B];
-        for (int j = 0; j < NV; ++j) {
-          s.bx[j] = s.y[j] * s.az[j] - s.z[j] * s.ay[j];
-          s.by[j] = s.z[j] * s.ax[j] - s.x[j] * s.az[j];
-          s.bz[j] = s.x[j] * s.ay[j] - s.y[j] * s.ax[j];
-          const V q1 = s.ax[j] * s.ax[j] + s.ay[j] * s.ay[j] + s.az[j] * s.az[j];
-          const V q2 = s.bx[j] * s.bx[j] + s.by[j] * s.by[j] + s.bz[j] * s.bz[j];
-          const V uu = s.x[j] * s.x[j] + s.y[j] * s.y[j] + s.z[j] * s.z[j];
-          w.rho[j] = q1 / q2, w.iq1[j] = one() / q1, w.iq2[j] = one() / q2;
-          w.pm[j] = one(), w.em[j] = w.n13[j] = w.nexp[j] = w.eu[j] = w.ef[j] = V{};
-          S::store(lu0 + j * W, uu), S::store(lq0 + j * W, q1);
-        }
-        if (keep_steps)
-          clv_phase<true, true, true>(s, w, vr, va, vk, N, 0, K[ir], st);
-        else
-          clv_phase<true, true, false>(s, w, vr, va, vk, N, 0, K[ir], st);
-        alignas(64) double lu1[B], lq1[B], sums[9][B];
-        for (int j = 0; j < NV; ++j) {
-          S::store(lu1 + j * W, s.x[j] * s.x[j] + s.y[j] * s.y[j] + s.z[j] * s.z[j]);
-          S::store(lq1 + j * W, s.ax[j] * s.ax[j] + s.ay[j] * s.ay[j] + s.az[j] * s.az[j]);
-          const V* v[9] = {w.pm, w.em, w.n13, w.nexp, w.eu, w.ef, w.rho, w.iq1, w.iq2};
-          for (int q = 0; q < 9; ++q) S::store(sums[q] + j * W, v[q][j]);
-        }
-        // The backward transient composes its steps' maps: tau at the window's end is beta (tau = 0 after the last
-        // step, where the second CLV is e2).  Then back over the window, with the keys of its steps.
-        for (int j = 0; j < NV; ++j) w.alpha[j] = one(), w.beta[j] = V{};
-        clv_phase<true, false, false>(s, w, vr, va, vk, Nb, N, K[ir], st);
-        V tau[NV], kmin[NV], kmax[NV];
-        for (int v = 0; v < NV; ++v)
-          tau[v] = w.beta[v], kmin[v] = V{} + std::numeric_limits<double>::infinity(), kmax[v] = V{};
-        for (long j = N - 1; j >= 0; --j) {
-          const long row = j * B;
-          alignas(64) double kk[B];
-          for (int v = 0; v < NV; ++v) {
-            tau[v] = S::load(A.data() + row + v * W) * tau[v] - S::load(Bc.data() + row + v * W);
-            const V key = tau[v] * tau[v] * S::load(rho.data() + row + v * W);
-            kmin[v] = key < kmin[v] ? key : kmin[v];
-            kmax[v] = key > kmax[v] ? key : kmax[v];
-            S::store(kk + v * W, key);
-          }
-          for (int l = 0; l < lanes; ++l)
-            round_keys[(o0 + static_cast<std::size_t>(l)) * Nz + static_cast<std::size_t>(j)] = kk[l];
-        }
-        alignas(64) double klo[B], khi[B];
-        for (int v = 0; v < NV; ++v) S::store(klo + v * W, kmin[v]), S::store(khi + v * W, kmax[v]);
-        for (int l = 0; l < lanes; ++l) {
-          ClvResult& c = row.orbit[o0 + static_cast<std::size_t>(l)];
-          const double n = static_cast<double>(N);
-          // Sum of log r11 and of log det D over the window (the integer exponents added first: exact).
-          const double e1 = -sums[4][l] + sums[5][l] - sums[1][l];
-          const double s11 = 0.5 * (std::log(lu0[l]) - std::log(lu1[l]) + std::log(lq1[l]) - std::log(lq0[l])) +
-                             e1 * ln2 - std::log(sums[0][l]);
-          const double sdet =
-              sums[2][l] * std::log(r) + 1.5 * (std::log(lu0[l]) - std::log(lu1[l]) - 2 * ln2 * sums[4][l]);
-          c.lambda = {s11 / n, (sdet - s11) / n};
-          c.degenerate = c.lambda[0] - c.lambda[1] < 10.0 / n;  // as covariant_vectors
-          c.expanding_fraction = sums[3][l] / n;
-          double* key = round_keys + (o0 + static_cast<std::size_t>(l)) * Nz;
-          if (keep_steps) {
-            c.angle.resize(Nz);
-            c.symbols.resize(Nz);
-            c.expanding.resize(Nz);
-            for (std::size_t j = 0; j < Nz; ++j) {
-              c.angle[j] = angle_of(key[j]);
-              c.symbols[j] = sym[j * B + static_cast<std::size_t>(l)];
-              c.expanding[j] = expd[j * B + static_cast<std::size_t>(l)];
-            }
-          }
-          // A degenerate orbit's angles are undefined (hyperbolicity.hpp): nothing of them is kept.
-          if (c.degenerate) {
-            c.median_angle = c.q05_angle = c.min_angle = nan;
-            continue;
-          }
-          c.histogram.assign(bins, 0.0);
-          add_histogram(key, Nz, opt.bins, c.histogram.data());
-          KeyRows own{{key}, Nz, klo[l], khi[l]};
-          key_lo[o0 + static_cast<std::size_t>(l) + (ir - r0) * I0] = klo[l];
-          key_hi[o0 + static_cast<std::size_t>(l) + (ir - r0) * I0] = khi[l];
-          angle_stats(own, c.median_angle, c.q05_angle, c.min_angle, count, gather);
-        }
+        const std::size_t ir = r0 + t / n_batches;
+        run_batch(initial, t % n_batches * B, rs[ir], K[ir], opt, keep_steps, ts, keys, ir - r0, rows[ir]);
       }
-      // Pooled over the non-degenerate orbits, in orbit order (their keys moved to the front), one r per thread.
 #pragma omp for schedule(dynamic)
-      for (std::size_t i = 0; i < g; ++i) {
-        ClvRow& row = rows[r0 + i];
-        KeyRows pooled;
-        pooled.len = Nz;
-        row.histogram.assign(bins, 0.0);
-        for (std::size_t o = 0; o < I0; ++o) {
-          const ClvResult& c = row.orbit[o];
-          if (c.degenerate) continue;
-          pooled.row.push_back(keys.data() + (i * I0 + o) * Nz);
-          pooled.lo = std::min(pooled.lo, key_lo[i * I0 + o]);
-          pooled.hi = std::max(pooled.hi, key_hi[i * I0 + o]);
-          for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
-        }
-        if (!pooled.row.empty())
-          angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, count, gather);
-        else
-          row.median_angle = row.q05_angle = row.min_angle = nan;
-      }
+      for (std::size_t i = 0; i < g; ++i) pool_row(keys, i, static_cast<std::size_t>(opt.bins), ts, rows[r0 + i]);
 #pragma omp single nowait
       if (run.progress) run.progress->update(r0 + g, rs.size());
     }

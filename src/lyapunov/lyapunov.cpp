@@ -1,6 +1,8 @@
 // Non-template parts of the Lyapunov module and the explicit instantiations (double, long double).
 #include "lyapunov/lyapunov_impl.hpp"
 
+#include "core/request.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
@@ -10,13 +12,13 @@
 namespace btob::lyapunov {
 
 void validate(const Options& o) {
-  if (o.iterations < 1) throw std::invalid_argument(fmt::format("iterations: got {}, expected at least 1", o.iterations));
-  if (o.transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected at least 0", o.transient));
+  if (o.iterations < 1) throw core::InvalidField("iterations", fmt::format("{}", o.iterations), "at least 1");
+  if (o.transient < 0) throw core::InvalidField("transient", fmt::format("{}", o.transient), "at least 0");
   if (o.reorthonormalise < 1)
-    throw std::invalid_argument(fmt::format("reorthonormalise: got {}, expected at least 1", o.reorthonormalise));
-  if (o.blocks < 2) throw std::invalid_argument(fmt::format("blocks: got {}, expected at least 2", o.blocks));
+    throw core::InvalidField("reorthonormalise", fmt::format("{}", o.reorthonormalise), "at least 1");
+  if (o.blocks < 2) throw core::InvalidField("blocks", fmt::format("{}", o.blocks), "at least 2");
   if (o.blocks > o.iterations)
-    throw std::invalid_argument(fmt::format("blocks: got {}, expected at most iterations = {}", o.blocks, o.iterations));
+    throw core::InvalidField("blocks", fmt::format("{}", o.blocks), fmt::format("at most iterations = {}", o.iterations));
 }
 
 namespace detail {
@@ -42,7 +44,7 @@ Estimate batch_means(const std::vector<double>& cum, const std::vector<long>& bl
 FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, double delta, const Options& opt) {
   validate(opt);
   detail::check_start(u0, r);
-  if (!(delta > 0 && delta < 1)) throw std::invalid_argument(fmt::format("delta: got {}, expected 0 < delta < 1", delta));
+  if (!(delta > 0 && delta < 1)) throw core::InvalidField("delta", fmt::format("{}", delta), "0 < delta < 1");
   Vec3<double> u = core::to_quadrant<double>(u0).normalized();
   Vec3<double> v = (u + delta * tangent_basis(u).col(0)).normalized();
   FiniteDifference fd;
@@ -67,7 +69,7 @@ FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, do
 
 std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols, double r) {
   core::validate_r(r);
-  if (period_symbols.empty()) throw std::invalid_argument("period: got an empty word, expected symbols 1, 2, 3");
+  if (period_symbols.empty()) throw core::InvalidField("period", "an empty word", "symbols 1, 2, 3");
   Mat3<double> M = Mat3<double>::Identity();
   double log_det = 0;
   for (int s : period_symbols) {

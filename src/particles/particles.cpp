@@ -98,11 +98,10 @@ template bool self_similar_start<core::mpfr_float>(const core::Vec3<core::mpfr_f
 
 namespace {
 
-template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const core::RunControl& control) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const T r = core::from_decimal<T>(req.r.text);  // T nearest the decimal, not double's value widened
-  const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r);
-  ParticlesResult res;
+// The word's verdict at r as the result's header: names, moduli of M_w (squares of those of J M_h when
+// w = h J(h)), and whether K_w predicts a self-similar collapse.  Returns the moduli in T.
+template <class T> std::vector<T> pattern_header(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
+                                                 ParticlesResult& res) {
   res.word = patterns::to_paper(v.word);
   res.digits = patterns::to_digits(v.word);
   res.letters = v.letters;
@@ -111,12 +110,18 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   res.periods = req.periods;
   res.precision = req.precision;
   res.start = req.start;
-  // Moduli of M_w (squares of those of J M_h when w = h J(h)).
   std::vector<T> mod;
   for (const auto& e : v.spectrum) mod.push_back(v.reduced ? T(e.modulus * e.modulus) : e.modulus);
   for (const auto& m : mod) res.moduli.push_back(static_cast<double>(m));
   res.orbit_eigen = v.orbit_eigen;
   res.collapse = patterns::classify<T>(v.word, r).collapse;
+  return mod;
+}
+
+// The contractions per period of length, velocity and time that the period matrix predicts for a collapse (NaN
+// and the reason otherwise).
+template <class T> void predict_contractions(const patterns::Verdict<T>& v, const T& r, const std::vector<T>& mod,
+                                             ParticlesResult& res) {
   if (res.collapse) {
     const int o = v.orbit_eigen, ia = o == 0 ? 1 : 0, ib = o == 2 ? 1 : 2;
     long n2 = 0;
@@ -131,15 +136,18 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
     res.failure = "no collapse: the eigenvalues of K_w on the orbit's plane are not real with a positive dominant one "
                   "(M_w's other two eigenvalues are not real, or tie); started normal";
   }
-  // The start right after the b-collision of the periodic point u (in Q): p = u x e_y = (-z, 0, x).
+}
+
+// The start right after the b-collision of the periodic point u (in Q), p = u x e_y = (-z, 0, x), unit gaps: the
+// exact self-similar collapse when asked and predicted, else the best of q - lambda p for lambda = 0, then
+// 4^k |q| / |p| (k = 0..40): the first that reproduces three periods (or fewer if asked), else the one that
+// reproduces the most collisions.
+template <class T> Gaps<T, 3> pattern_start(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
+                                            bool collapse, const core::RunControl& control) {
   const Vec<T, 3> u = v.orbit.front();
   const core::Particles<T> normal = core::to_particles<T>(u);
   Gaps<T, 3> start{normal.p, normal.q};
-  if (req.start == "self-similar" && res.collapse && self_similar_start<T>(u, v.letters, r, start)) {
-    // the exact self-similar collapse
-  } else {
-    // q - lambda p for lambda = 0, then 4^k |q| / |p| (k = 0..40): the first that reproduces three periods (or
-    // fewer if asked), else the one that reproduces the most collisions.
+  if (!(req.start == "self-similar" && collapse && self_similar_start<T>(u, v.letters, r, start))) {
     const long probe = std::min<long>(3, req.periods);
     T lambda = T(0);
     long best = -1;
@@ -156,18 +164,31 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   }
   start.p /= detail::norm3(start.p);
   start.q /= detail::norm3(start.q);
+  return start;
+}
 
-  // The rescaled run, polling the cancellation token every core::cancel_stride periods.
-  PatternRun<T> run = simulate_pattern<T>(start, v.letters, r, std::min<long>(req.periods, req.diagram_periods), true,
+// The rescaled run, polling the cancellation token every core::cancel_stride periods: the first diagram_periods
+// with their events (kept in res.events), then, when more are asked, all periods again from the start (the first
+// diagram_periods recomputed identically; the cost is negligible) so that the run is one trajectory.
+template <class T> PatternRun<T> rescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start,
+                                              const std::string& letters, const T& r, const core::RunControl& control,
+                                              ParticlesResult& res) {
+  PatternRun<T> run = simulate_pattern<T>(start, letters, r, std::min<long>(req.periods, req.diagram_periods), true,
                                           req.diagram_periods, control.cancel);
   res.events = run.events;
   if (req.periods > req.diagram_periods && run.failure.empty()) {
-    // The rest continues from scratch over all periods (the first diagram_periods are recomputed identically;
-    // the cost is negligible) so that the run is one trajectory.
     control.check_cancelled();
-    run = simulate_pattern<T>(start, v.letters, r, req.periods, true, 0, control.cancel);
+    run = simulate_pattern<T>(start, letters, r, req.periods, true, 0, control.cancel);
   }
   if (control.progress) control.progress->update(1, 1);
+  return run;
+}
+
+// The measured contractions: per-period ratios, their last values, the spread of the length ratio over the second
+// half, and the time to collapse (the simulated periods plus the geometric tail with the last ratio; NaN when the
+// particles left the pattern).
+template <class T> void measured_contractions(const ParticlesRequest& req, const PatternRun<T>& run,
+                                              ParticlesResult& res) {
   res.periods_ok = run.periods_ok;
   res.sequence_ok = run.periods_ok == req.periods;
   if (!run.failure.empty()) res.failure = res.failure.empty() ? run.failure : res.failure + "; " + run.failure;
@@ -182,43 +203,60 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
     res.time_contraction = N > 1 ? res.time_ratio.back() : std::nan("");
     for (std::size_t n = N / 2; n < N; ++n)
       res.length_spread = std::max(res.length_spread, std::abs(run.length_ratio[n] / res.length_contraction - 1));
-    // Time to collapse: the simulated periods, plus the geometric tail with the last ratio.
     const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
     res.time_to_collapse = static_cast<double>(run.total_time) + (q < 1 ? run.duration.back() * q / (1 - q) : INFINITY);
   }
   if (N == 0) res.length_contraction = res.velocity_contraction = res.time_contraction = res.energy_ratio = std::nan("");
-  if (!res.sequence_ok) res.time_to_collapse = std::nan("");  // the particles left the pattern: no collapse along it
-  // Events: time since the start and time to collapse (the rest of their period, the later periods and the
-  // geometric tail; NaN when the particles left the pattern).
-  {
-    std::vector<double> after(N + 1, 0.0), before(N + 1, 0.0);  // time from the end / up to the start of period n
-    const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
-    after[N] = N > 0 && q < 1 ? run.duration.back() * q / (1 - q) : 0.0;
-    for (std::size_t n = N; n-- > 0;) after[n] = after[n + 1] + run.duration[n];
-    for (std::size_t n = 0; n < N; ++n) before[n + 1] = before[n] + run.duration[n];
-    std::vector<double> ev;
-    for (std::size_t e = 0; e + 7 <= res.events.size(); e += 7) {
-      const auto n = static_cast<std::size_t>(res.events[e]);
-      const double offset = res.events[e + 1];
-      ev.push_back(res.events[e]);
-      ev.push_back(before[std::min(n, N)] + offset);
-      ev.push_back(res.sequence_ok && n < N ? (run.duration[n] - offset) + after[n + 1] : std::nan(""));
-      for (int k = 2; k < 7; ++k) ev.push_back(res.events[e + k]);
-    }
-    res.events = ev;
+  if (!res.sequence_ok) res.time_to_collapse = std::nan("");
+}
+
+// The diagram's events with their times: since the start and to collapse (the rest of their period, the later
+// periods and the geometric tail; NaN when the particles left the pattern).  7 values per event in, 8 out.
+template <class T> std::vector<double> timed_events(const PatternRun<T>& run, const ParticlesResult& res) {
+  const std::size_t N = run.length_ratio.size();
+  std::vector<double> after(N + 1, 0.0), before(N + 1, 0.0);  // time from the end / up to the start of period n
+  const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
+  after[N] = N > 0 && q < 1 ? run.duration.back() * q / (1 - q) : 0.0;
+  for (std::size_t n = N; n-- > 0;) after[n] = after[n + 1] + run.duration[n];
+  for (std::size_t n = 0; n < N; ++n) before[n + 1] = before[n] + run.duration[n];
+  std::vector<double> ev;
+  for (std::size_t e = 0; e + 7 <= res.events.size(); e += 7) {
+    const auto n = static_cast<std::size_t>(res.events[e]);
+    const double offset = res.events[e + 1];
+    ev.push_back(res.events[e]);
+    ev.push_back(before[std::min(n, N)] + offset);
+    ev.push_back(res.sequence_ok && n < N ? (run.duration[n] - offset) + after[n + 1] : std::nan(""));
+    for (int k = 2; k < 7; ++k) ev.push_back(res.events[e + k]);
   }
-  // Without rescaling: the same run until the gaps underflow.
-  {
-    const PatternRun<T> raw = simulate_pattern<T>(start, v.letters, r, req.periods, false, 0, control.cancel);
-    res.collisions_unrescaled = raw.collisions;
-    res.unrescaled_end = raw.failure.empty() ? fmt::format("all {} periods reproduced", req.periods) : raw.failure;
-    using std::log;
-    const double lmin = static_cast<double>(T(log(std::numeric_limits<T>::min())));
-    res.collisions_limit_predicted =
-        res.length_predicted > 0 && res.length_predicted < 1
-            ? lmin / std::log(res.length_predicted) * static_cast<double>(v.letters.size())
-            : INFINITY;
-  }
+  return ev;
+}
+
+// Without rescaling: the same run until the gaps underflow, against the collisions T's range predicts.
+template <class T> void unrescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start, const std::string& letters,
+                                       const T& r, const core::RunControl& control, ParticlesResult& res) {
+  const PatternRun<T> raw = simulate_pattern<T>(start, letters, r, req.periods, false, 0, control.cancel);
+  res.collisions_unrescaled = raw.collisions;
+  res.unrescaled_end = raw.failure.empty() ? fmt::format("all {} periods reproduced", req.periods) : raw.failure;
+  using std::log;
+  const double lmin = static_cast<double>(T(log(std::numeric_limits<T>::min())));
+  res.collisions_limit_predicted = res.length_predicted > 0 && res.length_predicted < 1
+                                       ? lmin / std::log(res.length_predicted) * static_cast<double>(letters.size())
+                                       : INFINITY;
+}
+
+// header -> predictions -> start -> rescaled run -> contractions -> timed events -> unrescaled run.
+template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const core::RunControl& control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const T r = core::from_decimal<T>(req.r.text);  // T nearest the decimal, not double's value widened
+  const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r);
+  ParticlesResult res;
+  const std::vector<T> mod = pattern_header<T>(req, v, r, res);
+  predict_contractions<T>(v, r, mod, res);
+  const Gaps<T, 3> start = pattern_start<T>(req, v, r, res.collapse, control);
+  const PatternRun<T> run = rescaled_run<T>(req, start, v.letters, r, control, res);
+  measured_contractions<T>(req, run, res);
+  res.events = timed_events<T>(run, res);
+  unrescaled_run<T>(req, start, v.letters, r, control, res);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

@@ -3,6 +3,8 @@
 
 #include "patterns/patterns.hpp"
 
+#include "core/request.hpp"
+
 #include <boost/multiprecision/eigen.hpp>
 
 #include <fmt/format.h>
@@ -212,9 +214,9 @@ template <class T> std::string stability_reason(const Word& w, const T& r, bool 
 }
 
 template <class T> void check_inputs(const Word& w, const T& r) {
-  if (w.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  if (w.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   for (auto c : w.s)
-    if (c < 1 || c > 3) throw std::invalid_argument(fmt::format("word: got symbol {}, expected 1, 2 or 3", int(c)));
+    if (c < 1 || c > 3) throw core::InvalidField("word", fmt::format("symbol {}", int(c)), "1, 2 or 3");
   core::validate_r(r, "r");
 }
 
@@ -225,15 +227,12 @@ template <class T> bool is_stable(const Word& w0, const T& r) {
   return detail::stability_reason(w, r, is_J_square(w)).empty();
 }
 
-template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
-  using namespace detail;
-  check_inputs(w0, r);
-  Verdict<T> v;
-  v.word = primitive_root(w0);
-  v.r = r;
-  v.reduced = is_J_square(v.word);
-  const Word& w = v.word;
-  const Spectrum<T> s = spectrum(w, r, v.reduced);
+namespace detail {
+
+// The eigenvalues of M_w (of A = J M_h when reduced), unnormalised, by decreasing modulus; each real one with its
+// eigenvector in Q and the first feasibility condition it fails.
+template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s) {
+  std::vector<EigenInfo<T>> out;
   const T scale = exp_(s.A.log_scale);  // eigenvalues of the unnormalised matrix
   for (int i = 0; i < 3; ++i) {
     EigenInfo<T> e;
@@ -247,69 +246,108 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;
     }
-    v.spectrum.push_back(e);
+    out.push_back(e);
   }
-  v.reason = stability_reason(w, r, v.reduced);
+  return out;
+}
+
+// Stable (the dominant eigenvalue's orbit), else unstable on the first feasible eigenvector, else no orbit.
+template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
+  v.reason = stability_reason(v.word, r, v.reduced);
   if (v.reason.empty()) {
     v.outcome = Outcome::stable;
     v.orbit_eigen = 0;
+    return;
+  }
+  for (int i = 0; i < 3; ++i)
+    if (v.spectrum[i].feasible) {
+      v.outcome = Outcome::unstable;
+      v.orbit_eigen = i;
+      return;
+    }
+}
+
+// The periodic orbit's points (unit, in Q) and its letters, from the orbit's eigenvector.
+template <class T> void periodic_orbit(const T& r, Verdict<T>& v) {
+  if (v.orbit_eigen < 0) return;
+  Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  for (auto c : v.word.s) {
+    v.orbit.push_back(u);
+    v.letters += core::letters<T>(c, u);
+    u = core::to_quadrant<T>(P[c - 1] * u);
+    u /= u.norm();
+  }
+}
+
+// log |mu_1|, log |mu_1 mu_2| and log |det| of M_w (= A^2 when reduced): from its spectrum and its second exterior
+// power (cofactor matrix, Lambda^2).
+template <class T> struct LogModuli {
+  T l1, l1l2, det;
+};
+template <class T> LogModuli<T> log_moduli(const Word& w, const T& r) {
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  Scaled<T> C;
+  T log_det = T(0);
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
+    C.normalise();
+    log_det += log_(abs_<T>(det3<T>(P[w.s[k] - 1])));
+  }
+  const Spectrum<T> sm = spectrum(w, r, false);
+  const T tr = C.m.trace();
+  const T minors = C.m(0, 0) * C.m(1, 1) - C.m(0, 1) * C.m(1, 0) + C.m(0, 0) * C.m(2, 2) - C.m(0, 2) * C.m(2, 0) +
+                   C.m(1, 1) * C.m(2, 2) - C.m(1, 2) * C.m(2, 1);
+  auto rc = cubic_roots<T>(-tr, minors, T(-det3<T>(C.m)));
+  T rho_c = T(0);
+  for (auto& x : rc) rho_c = std::max<T>(rho_c, modulus(x));
+  const T log_l1 = log_(sm.mod[0]) + sm.A.log_scale;
+  const T log_l1l2 = log_(rho_c) + C.log_scale;
+  return {log_l1, log_l1l2, log_det};
+}
+
+// The orbit's own exponents lambda1 >= lambda2 (Verdict::lyapunov2, lyapunov3) and neutral for an elliptic orbit.
+template <class T> void orbit_exponents(const LogModuli<T>& lg, Verdict<T>& v) {
+  const T &log_l1 = lg.l1, &log_l1l2 = lg.l1l2, &log_det = lg.det;
+  const T p = T(static_cast<long>(v.word.size()));
+  // log |mu_j| of M_w: log_l1, log_l1l2 - log_l1, log_det - log_l1l2.  The orbit's own exponents are those of
+  // the projective map's tangent directions at its point, log(|mu_j| / |mu_k|) / p for the two j other than the
+  // orbit's eigenvalue k, largest first (at a saddle k = 1: one positive, one negative).  Without an orbit they
+  // are measured against the dominant eigenvalue (k = 0), as for a stable orbit.
+  const std::array<T, 3> lm = {log_l1, T(log_l1l2 - log_l1), T(log_det - log_l1l2)};
+  const int k = std::max(v.orbit_eigen, 0);
+  if (k == 0) {  // written as before: the second exterior power's value, accurate when |l2/l1| underflows
+    v.lyapunov2 = (log_l1l2 - 2 * log_l1) / p;
+    v.lyapunov3 = (log_det - log_l1l2 - log_l1) / p;
   } else {
-    for (int i = 0; i < 3; ++i)
-      if (v.spectrum[i].feasible) { v.outcome = Outcome::unstable; v.orbit_eigen = i; break; }
+    const int j = k == 1 ? 2 : 1;  // the other two are 0 and j, by decreasing modulus
+    v.lyapunov2 = (lm[0] - lm[k]) / p;
+    v.lyapunov3 = (lm[j] - lm[k]) / p;
   }
-  if (v.orbit_eigen >= 0) {
-    Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
-    const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-    for (auto c : w.s) {
-      v.orbit.push_back(u);
-      v.letters += core::letters<T>(c, u);
-      u = core::to_quadrant<T>(P[c - 1] * u);
-      u /= u.norm();
-    }
-  }
-  // Exponents from M_w (= A^2 when reduced) and its second exterior power (cofactor matrix, Lambda^2).
-  {
-    const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-    Scaled<T> C;
-    T log_det = T(0);
-    for (std::size_t k = 0; k < w.size(); ++k) {
-      C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
-      C.normalise();
-      log_det += log_(abs_<T>(det3<T>(P[w.s[k] - 1])));
-    }
-    const Spectrum<T> sm = spectrum(w, r, false);
-    const T tr = C.m.trace();
-    const T minors = C.m(0, 0) * C.m(1, 1) - C.m(0, 1) * C.m(1, 0) + C.m(0, 0) * C.m(2, 2) - C.m(0, 2) * C.m(2, 0) +
-                     C.m(1, 1) * C.m(2, 2) - C.m(1, 2) * C.m(2, 1);
-    auto rc = cubic_roots<T>(-tr, minors, T(-det3<T>(C.m)));
-    T rho_c = T(0);
-    for (auto& x : rc) rho_c = std::max<T>(rho_c, modulus(x));
-    const T log_l1 = log_(sm.mod[0]) + sm.A.log_scale;
-    const T log_l1l2 = log_(rho_c) + C.log_scale;
-    const T p = T(static_cast<long>(w.size()));
-    // log |mu_j| of M_w: log_l1, log_l1l2 - log_l1, log_det - log_l1l2.  The orbit's own exponents are those of
-    // the projective map's tangent directions at its point, log(|mu_j| / |mu_k|) / p for the two j other than the
-    // orbit's eigenvalue k, largest first (at a saddle k = 1: one positive, one negative).  Without an orbit they
-    // are measured against the dominant eigenvalue (k = 0), as for a stable orbit.
-    const std::array<T, 3> lm = {log_l1, T(log_l1l2 - log_l1), T(log_det - log_l1l2)};
-    const int k = std::max(v.orbit_eigen, 0);
-    if (k == 0) {  // written as before: the second exterior power's value, accurate when |l2/l1| underflows
-      v.lyapunov2 = (log_l1l2 - 2 * log_l1) / p;
-      v.lyapunov3 = (log_det - log_l1l2 - log_l1) / p;
-    } else {
-      const int j = k == 1 ? 2 : 1;  // the other two are 0 and j, by decreasing modulus
-      v.lyapunov2 = (lm[0] - lm[k]) / p;
-      v.lyapunov3 = (lm[j] - lm[k]) / p;
-    }
-    // lambda1 >= lambda2 always: where the two other moduli are equal (a complex pair) the two formulas' roundings
-    // may order them either way.
-    if (v.lyapunov2 < v.lyapunov3) std::swap(v.lyapunov2, v.lyapunov3);
-    // Neutral: an orbit that is not stable whose larger exponent is zero within the moduli's tie tolerance (an
-    // elliptic point: a complex pair on the circle of the orbit's own eigenvalue, Section 6); unstable when it is
-    // positive (a saddle or a source).
-    using std::abs;
-    if (v.outcome == Outcome::unstable && abs(v.lyapunov2) * p <= tie_tol<T>()) v.outcome = Outcome::neutral;
-  }
+  // lambda1 >= lambda2 always: where the two other moduli are equal (a complex pair) the two formulas' roundings
+  // may order them either way.
+  if (v.lyapunov2 < v.lyapunov3) std::swap(v.lyapunov2, v.lyapunov3);
+  // Neutral: an orbit that is not stable whose larger exponent is zero within the moduli's tie tolerance (an
+  // elliptic point: a complex pair on the circle of the orbit's own eigenvalue, Section 6); unstable when it is
+  // positive (a saddle or a source).
+  using std::abs;
+  if (v.outcome == Outcome::unstable && abs(v.lyapunov2) * p <= tie_tol<T>()) v.outcome = Outcome::neutral;
+}
+
+}  // namespace detail
+
+// primitive root -> spectrum -> outcome -> periodic orbit -> exponents.
+template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
+  using namespace detail;
+  check_inputs(w0, r);
+  Verdict<T> v;
+  v.word = primitive_root(w0);
+  v.r = r;
+  v.reduced = is_J_square(v.word);
+  v.spectrum = eigen_infos(v.word, r, spectrum(v.word, r, v.reduced));
+  verdict_outcome(r, v);
+  periodic_orbit(r, v);
+  orbit_exponents(log_moduli(v.word, r), v);
   return v;
 }
 
@@ -358,7 +396,7 @@ template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quant
 template <class T>
 std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
   using namespace detail;
-  if (w0.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   const bool red = is_J_square(w);
   std::vector<Interval<T>> out;
@@ -424,7 +462,7 @@ template <class T> Classification classify(const Word& w0, const T& r) {
 template <class T>
 std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
   using namespace detail;
-  if (w0.s.empty()) throw std::invalid_argument("word: got an empty word, expected at least one symbol 1, 2 or 3");
+  if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   std::vector<Classification> o(grid.size());
   for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]));

@@ -7,10 +7,10 @@
 #include "patterns/analysis_impl.hpp"
 
 #include "iterate/kernel.hpp"
+#include "iterate/parallel.hpp"
 #include "iterate/recorders.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <map>
@@ -24,16 +24,13 @@ std::vector<AtlasEntry> compute_atlas(int max_length, const std::vector<double>&
 std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std::vector<double>& grid, double tol,
                                       int threads, const core::CancelToken* cancel) {
   std::vector<AtlasEntry> out(words.size());
-  const long n = static_cast<long>(words.size());
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
   // Interleaved static schedule: words are sorted by length, so chunks of 1 balance the load; each
   // iteration writes only its own entry.
-#pragma omp parallel for schedule(static, 1) num_threads(nt)
-  for (long i = 0; i < n; ++i) {
-    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
+  iterate::parallel_for(words.size(), threads, 1, [&](std::size_t i) {
+    if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
     out[i].word = words[i];
     out[i].intervals = stability_set<double>(words[i], grid, tol);
-  }
+  });
   core::check_cancel(cancel);
   return out;
 }
@@ -59,14 +56,11 @@ std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vec
 std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
                                                   double tol, int threads, const core::CancelToken* cancel) {
   std::vector<FeasibleEntry> all(words.size());
-  const long n = static_cast<long>(words.size());
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(static, 1) num_threads(nt)
-  for (long i = 0; i < n; ++i) {
-    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
+  iterate::parallel_for(words.size(), threads, 1, [&](std::size_t i) {
+    if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
     all[i].word = words[i];
     all[i].intervals = feasibility_set<double>(words[i], grid, tol);
-  }
+  });
   core::check_cancel(cancel);
   return all;
 }
@@ -114,7 +108,7 @@ std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const s
 template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, long max_periods) {
   const Verdict<T> v = analyse<T>(w0, r);
   Followed f;
-  if (v.orbit_eigen < 0) throw std::invalid_argument("word: got a word with no feasible periodic point at this r");
+  if (v.orbit_eigen < 0) throw core::InvalidField("word", "a word with no feasible periodic point at this r", "a feasible word");
   const Word& w = v.word;
   // Expansion per period of M_w (moduli squared when analysed through J M_h).
   const T lo = v.spectrum[v.orbit_eigen].modulus, l1 = v.spectrum[0].modulus;
@@ -161,17 +155,14 @@ std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEnt
     for (const auto& iv : atlas[k].intervals)
       if (iv.outcome == Outcome::unstable) rows.push_back({&atlas[k].word, (iv.lo + iv.hi) / 2, &out[k][j++]});
   }
-  const long n = static_cast<long>(rows.size());
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(static, 1) num_threads(nt)
-  for (long i = 0; i < n; ++i) {
-    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
+  iterate::parallel_for(rows.size(), threads, 1, [&](std::size_t i) {
+    if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
     try {
       *rows[i].f = follow_periodic_orbit<double>(*rows[i].w, rows[i].r, max_periods);
     } catch (const std::invalid_argument&) {
       rows[i].f->periods = -1;  // not feasible at the midpoint (an interval narrower than the bisection noise)
     }
-  }
+  });
   core::check_cancel(cancel);
   return out;
 }
@@ -216,9 +207,9 @@ int eventual_period(const std::uint8_t* s, long n, int max_period) {
 
 DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterations, long tail, std::uint64_t seed,
                              int max_period, int threads, const core::CancelToken* cancel) {
-  if (ics < 1) throw std::invalid_argument(fmt::format("ics: got {}, expected at least 1", ics));
+  if (ics < 1) throw core::InvalidField("ics", fmt::format("{}", ics), "at least 1");
   if (tail < 2 || tail > iterations)
-    throw std::invalid_argument(fmt::format("tail: got {}, expected 2 <= tail <= iterations = {}", tail, iterations));
+    throw core::InvalidField("tail", fmt::format("{}", tail), fmt::format("2 <= tail <= iterations = {}", iterations));
   iterate::Ensemble ens;
   ens.r = r;
   for (double v : r) core::validate_r(v, "r");

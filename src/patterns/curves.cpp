@@ -2,6 +2,7 @@
 #include "patterns/curves.hpp"
 
 #include "core/csv.hpp"
+#include "iterate/parallel.hpp"
 
 #include "patterns/analysis_impl.hpp"
 
@@ -10,8 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <omp.h>
 
 namespace btob::patterns {
 namespace {
@@ -74,22 +73,25 @@ void CurvesRequest::validate() const {
     throw core::InvalidField("track", "'" + track + "'", "dominant or negative");
 }
 
-CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
-  q.validate();
-  control.check_cancelled();
-  CurvesResult res;
-  res.request = q;
+namespace {
+
+// The word analysed: its primitive root w, and h = the half of w when w = h J(h) (reduced), else w; the names of
+// the result and of the feasibility columns.
+Word analysed_word(const CurvesRequest& q, CurvesResult& res) {
   const Word w = primitive_root(parse_word(q.word, "word"));
   res.word = to_paper(w);
   res.reduced = is_J_square(w);
   Word h;
   h.s.assign(w.s.begin(), w.s.begin() + static_cast<long>(res.reduced ? w.size() / 2 : w.size()));
   res.analysed = to_digits(h);
-  const bool negative = q.track == "negative";
-  const std::size_t n = static_cast<std::size_t>(q.r_count), p = h.size(), nf = 1 + 3 * p;
   res.feas_names.push_back("u_z");
-  for (std::size_t k = 0; k < p; ++k)
+  for (std::size_t k = 0; k < h.size(); ++k)
     for (const char* s : {"y", "ay-x", "ay-z"}) res.feas_names.push_back(fmt::format("{}(v{})", s, k));
+  return h;
+}
+
+// The arrays of n r values, NaN where a value may stay undefined.
+void allocate_curves(std::size_t n, std::size_t nf, CurvesResult& res) {
   res.r.resize(n);
   res.eig_re.assign(3 * n, 0);
   res.eig_im.assign(3 * n, 0);
@@ -97,63 +99,91 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   res.tracked.assign(n, std::numeric_limits<double>::quiet_NaN());
   res.dominance.assign(n, std::numeric_limits<double>::quiet_NaN());
   res.feas.assign(n * nf, std::numeric_limits<double>::quiet_NaN());
-#pragma omp parallel for schedule(static) num_threads(control.threads > 0 ? control.threads : omp_get_max_threads())
-  for (std::size_t i = 0; i < n; ++i) {
-    const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
-    res.r[i] = r;
-    const Point pt = at(h, res.reduced, r, negative);
-    for (int j = 0; j < 3; ++j) {
-      res.eig_re[3 * i + j] = static_cast<double>(pt.roots[j].re);
-      res.eig_im[3 * i + j] = pt.roots[j].real ? 0.0 : static_cast<double>(pt.roots[j].im);
-      res.modulus[3 * i + j] = static_cast<double>(detail::modulus(pt.roots[j]));
-    }
-    if (pt.tracked < 0) continue;
-    res.tracked[i] = static_cast<double>(pt.roots[pt.tracked].re);
-    res.dominance[i] = pt.dominance;
-    if (pt.u(0) == 0) continue;
-    Vec3<L> v = pt.u / pt.u(0);  // the paper's normalisation u_x = 1
-    const L rl = r, a = core::alpha(rl);
-    const std::array<Mat3<L>, 3> P = {core::P1(rl), core::P2(rl), core::P3(rl)};
-    double* f = &res.feas[i * nf];
-    f[0] = static_cast<double>(v(2));
-    for (std::size_t k = 0; k < p; ++k) {
-      f[1 + 3 * k] = static_cast<double>(v(1));
-      f[2 + 3 * k] = static_cast<double>(a * v(1) - v(0));
-      f[3 + 3 * k] = static_cast<double>(a * v(1) - v(2));
-      v = P[h.s[k] - 1] * v;
-    }
+}
+
+// Row i of the curves at r: the spectrum, the tracked eigenvalue and its dominance, and the feasibility quantities
+// along the orbit of its eigenvector (the paper's normalisation u_x = 1).
+void curve_row(const Word& h, bool negative, std::size_t i, double r, CurvesResult& res) {
+  const std::size_t p = h.size(), nf = 1 + 3 * p;
+  res.r[i] = r;
+  const Point pt = at(h, res.reduced, r, negative);
+  for (int j = 0; j < 3; ++j) {
+    res.eig_re[3 * i + j] = static_cast<double>(pt.roots[j].re);
+    res.eig_im[3 * i + j] = pt.roots[j].real ? 0.0 : static_cast<double>(pt.roots[j].im);
+    res.modulus[3 * i + j] = static_cast<double>(detail::modulus(pt.roots[j]));
   }
-  control.check_cancelled();
-  // Critical r: sign changes of -u_x u_z (sign-free: u_x = 0 or u_z = 0, where u leaves the domain)
-  // and of the dominance margin, bisected on the same functions down to 1e-15 (a few ulps of r).
-  auto crit = [&](const char* what, auto f) {
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-      double a = res.r[i], b = res.r[i + 1], fa = f(a), fb = f(b);
-      if (!(std::isfinite(fa) && std::isfinite(fb)) || (fa > 0) == (fb > 0)) continue;
-      while (b - a > 1e-15) {
-        const double m = 0.5 * (a + b), fm = f(m);
-        if (!std::isfinite(fm)) break;
-        if ((fm > 0) == (fa > 0)) a = m, fa = fm;
-        else b = m;
-      }
-      const double rc = 0.5 * (a + b);
-      std::string name = what;
-      if (name == "domain") {  // which component vanishes: u_x (the x = 1 normalisation blows up) or u_z
-        const Point pt = at(h, res.reduced, rc, negative);
-        name = std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0";
-      }
-      res.critical.push_back({name, rc});
+  if (pt.tracked < 0) return;
+  res.tracked[i] = static_cast<double>(pt.roots[pt.tracked].re);
+  res.dominance[i] = pt.dominance;
+  if (pt.u(0) == 0) return;
+  Vec3<L> v = pt.u / pt.u(0);
+  const L rl = r, a = core::alpha(rl);
+  const std::array<Mat3<L>, 3> P = {core::P1(rl), core::P2(rl), core::P3(rl)};
+  double* f = &res.feas[i * nf];
+  f[0] = static_cast<double>(v(2));
+  for (std::size_t k = 0; k < p; ++k) {
+    f[1 + 3 * k] = static_cast<double>(v(1));
+    f[2 + 3 * k] = static_cast<double>(a * v(1) - v(0));
+    f[3 + 3 * k] = static_cast<double>(a * v(1) - v(2));
+    v = P[h.s[k] - 1] * v;
+  }
+}
+
+// The roots of f between consecutive r of the grid where its sign changes (both ends finite), bisected on f down
+// to 1e-15 (a few ulps of r).
+template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f) {
+  std::vector<double> roots;
+  for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+    double a = grid[i], b = grid[i + 1], fa = f(a), fb = f(b);
+    if (!(std::isfinite(fa) && std::isfinite(fb)) || (fa > 0) == (fb > 0)) continue;
+    while (b - a > 1e-15) {
+      const double m = 0.5 * (a + b), fm = f(m);
+      if (!std::isfinite(fm)) break;
+      if ((fm > 0) == (fa > 0)) a = m, fa = fm;
+      else b = m;
     }
-  };
-  crit("domain", [&](double r) {
+    roots.push_back(0.5 * (a + b));
+  }
+  return roots;
+}
+
+// Critical r: sign changes of -u_x u_z (sign-free: u_x = 0 or u_z = 0, where u leaves the domain; named by the
+// component that vanishes), then of the dominance margin.
+void critical_points(const Word& h, bool negative, CurvesResult& res) {
+  const auto domain = [&](double r) {
     const Point pt = at(h, res.reduced, r, negative);
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
-  });
-  crit("dominance", [&](double r) { return at(h, res.reduced, r, negative).dominance; });
+  };
+  for (double rc : sign_changes(res.r, domain)) {
+    const Point pt = at(h, res.reduced, rc, negative);
+    res.critical.push_back({std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
+  }
+  for (double rc : sign_changes(res.r, [&](double r) { return at(h, res.reduced, r, negative).dominance; }))
+    res.critical.push_back({"dominance", rc});
   for (const auto& c : res.critical) {
     res.critical_r.push_back(c.r);
     res.critical_what.push_back(c.what);
   }
+}
+
+}  // namespace
+
+// word -> arrays -> a row per r (in parallel) -> critical r.
+CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
+  q.validate();
+  control.check_cancelled();
+  CurvesResult res;
+  res.request = q;
+  const Word h = analysed_word(q, res);
+  const bool negative = q.track == "negative";
+  const std::size_t n = static_cast<std::size_t>(q.r_count);
+  allocate_curves(n, 1 + 3 * h.size(), res);
+  iterate::parallel_for(n, control.threads, [&](std::size_t i) {
+    const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
+    curve_row(h, negative, i, r, res);
+  });
+  control.check_cancelled();
+  critical_points(h, negative, res);
   if (control.progress) control.progress->update(1, 1);
   return res;
 }

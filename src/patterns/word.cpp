@@ -41,17 +41,19 @@ std::size_t min_rotation(const Word& w) {
                            cut == std::string::npos ? "a word over 1, 2, 3" : what.substr(what.find("expected ", cut) + 9));
 }
 
-}  // namespace
+constexpr const char* kExpectedWord = "expected a word over 1, 2, 3 such as 132312, 132^3312^3, (ab)(cb)(acb) or abcbacb";
 
-Word parse_word(std::string_view text, const char* field) {
-  const std::string expected =
-      "expected a word over 1, 2, 3 such as 132312, 132^3312^3, (ab)(cb)(acb) or abcbacb";
-  if (text.empty()) bad(field, text, "an empty word; " + expected);
-  Word w;
+// The paper's notation read left to right: units (a symbol, a group in parentheses, or letters), each with an
+// optional exponent; spaces and dots are skipped.  Errors are core::InvalidField naming `field`.
+struct WordReader {
+  std::string_view text;
+  const char* field;
   std::size_t i = 0;
-  const auto letters_at = [&](std::size_t& k, std::vector<std::uint8_t>& out) -> bool {
-    // Greedy letter parsing: ab -> 1, cb -> 3, acb / cab -> 2.
-    auto at = [&](std::size_t j) { return j < text.size() ? text[j] : '\0'; };
+
+  char at(std::size_t j) const { return j < text.size() ? text[j] : '\0'; }
+
+  // Greedy letter parsing at k: ab -> 1, cb -> 3, acb / cab -> 2; false when none starts there.
+  bool letters_at(std::size_t& k, std::vector<std::uint8_t>& out) const {
     if (at(k) == 'a' && at(k + 1) == 'b') { out.push_back(1); k += 2; return true; }
     if (at(k) == 'c' && at(k + 1) == 'b') { out.push_back(3); k += 2; return true; }
     if ((at(k) == 'a' && at(k + 1) == 'c' && at(k + 2) == 'b') || (at(k) == 'c' && at(k + 1) == 'a' && at(k + 2) == 'b')) {
@@ -60,8 +62,24 @@ Word parse_word(std::string_view text, const char* field) {
       return true;
     }
     return false;
-  };
-  while (i < text.size()) {
+  }
+
+  // A group (...) of symbols and letters, i past its '('.
+  std::vector<std::uint8_t> group() {
+    std::vector<std::uint8_t> unit;
+    while (i < text.size() && text[i] != ')') {
+      if (text[i] >= '1' && text[i] <= '3') unit.push_back(static_cast<std::uint8_t>(text[i++] - '0'));
+      else if (!letters_at(i, unit))
+        bad(field, text, fmt::format("unexpected '{}' at position {}; {}", text[i], i + 1, kExpectedWord));
+    }
+    if (i >= text.size()) bad(field, text, std::string("an unclosed '('; ") + kExpectedWord);
+    if (unit.empty()) bad(field, text, std::string("an empty group '()'; ") + kExpectedWord);
+    ++i;
+    return unit;
+  }
+
+  // The unit at i (empty at a space or a dot, which is skipped).
+  std::vector<std::uint8_t> unit() {
     std::vector<std::uint8_t> unit;
     const char c = text[i];
     if (c >= '1' && c <= '3') {
@@ -69,58 +87,75 @@ Word parse_word(std::string_view text, const char* field) {
       ++i;
     } else if (c == '(') {
       ++i;
-      while (i < text.size() && text[i] != ')') {
-        if (text[i] >= '1' && text[i] <= '3') unit.push_back(static_cast<std::uint8_t>(text[i++] - '0'));
-        else if (!letters_at(i, unit)) bad(field, text, fmt::format("unexpected '{}' at position {}; {}", text[i], i + 1, expected));
-      }
-      if (i >= text.size()) bad(field, text, "an unclosed '('; " + expected);
-      if (unit.empty()) bad(field, text, "an empty group '()'; " + expected);
-      ++i;
+      unit = group();
     } else if (c == ' ' || c == '.') {
       ++i;
-      continue;
     } else if (c == 'a' || c == 'c') {
       if (!letters_at(i, unit)) bad(field, text, fmt::format("letters at position {} that are not ab, cb, acb or cab", i + 1));
     } else {
-      bad(field, text, fmt::format("unexpected '{}' at position {}; {}", c, i + 1, expected));
+      bad(field, text, fmt::format("unexpected '{}' at position {}; {}", c, i + 1, kExpectedWord));
     }
-    long times = 1;
-    if (i < text.size() && text[i] == '^') {
-      ++i;
-      std::string_view e;
-      if (i < text.size() && text[i] == '{') {  // LaTeX 2^{36}: unambiguous
-        const std::size_t close = text.find('}', i);
-        if (close == std::string_view::npos) bad(field, text, "an unclosed '^{'");
-        e = text.substr(i + 1, close - i - 1);
-        i = close + 1;
-      } else {
-        // The paper writes 132^3312^3 for 132^{3}312^{3}: a digit run followed by another '^' also holds the
-        // next symbols.  The exponent is then the string's last exponent if the run starts with it (the
-        // paper's families 132^n312^n, 131312^n313132^n), else the run minus its last digit.
-        std::size_t end = i;
-        while (end < text.size() && text[end] >= '0' && text[end] <= '9') ++end;
-        std::size_t len = end - i;
-        if (end < text.size() && text[end] == '^' && len >= 2) {
-          const std::size_t last = text.rfind('^');
-          std::string_view tail = text.substr(last + 1);
-          if (!tail.empty() && tail.front() == '{') tail = tail.substr(1, tail.find('}') == std::string_view::npos ? 0 : tail.find('}') - 1);
-          const std::string_view run = text.substr(i, len);
-          len = (!tail.empty() && tail.size() < len && run.substr(0, tail.size()) == tail) ? tail.size() : len - 1;
-        }
-        e = text.substr(i, len);
-        i += len;
-      }
-      times = 0;
-      for (char d : e) {
-        if (d < '0' || d > '9' || times > 100000) { times = -1; break; }
-        times = times * 10 + (d - '0');
-      }
-      if (e.empty() || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
+    return unit;
+  }
+
+  // The digits of an exponent written without braces, i at its first digit.  The paper writes 132^3312^3 for
+  // 132^{3}312^{3}: a digit run followed by another '^' also holds the next symbols.  The exponent is then the
+  // string's last exponent if the run starts with it (the paper's families 132^n312^n, 131312^n313132^n), else the
+  // run minus its last digit.
+  std::size_t bare_exponent_length() const {
+    std::size_t end = i;
+    while (end < text.size() && text[end] >= '0' && text[end] <= '9') ++end;
+    std::size_t len = end - i;
+    if (end < text.size() && text[end] == '^' && len >= 2) {
+      const std::size_t last = text.rfind('^');
+      std::string_view tail = text.substr(last + 1);
+      if (!tail.empty() && tail.front() == '{') tail = tail.substr(1, tail.find('}') == std::string_view::npos ? 0 : tail.find('}') - 1);
+      const std::string_view run = text.substr(i, len);
+      len = (!tail.empty() && tail.size() < len && run.substr(0, tail.size()) == tail) ? tail.size() : len - 1;
     }
+    return len;
+  }
+
+  // The exponent after a unit: 1 without '^', else an integer in 1..10000 (^n, or LaTeX's unambiguous ^{n}).
+  long exponent() {
+    if (!(i < text.size() && text[i] == '^')) return 1;
+    ++i;
+    std::string_view e;
+    if (i < text.size() && text[i] == '{') {
+      const std::size_t close = text.find('}', i);
+      if (close == std::string_view::npos) bad(field, text, "an unclosed '^{'");
+      e = text.substr(i + 1, close - i - 1);
+      i = close + 1;
+    } else {
+      const std::size_t len = bare_exponent_length();
+      e = text.substr(i, len);
+      i += len;
+    }
+    long times = 0;
+    for (char d : e) {
+      if (d < '0' || d > '9' || times > 100000) { times = -1; break; }
+      times = times * 10 + (d - '0');
+    }
+    if (e.empty() || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
+    return times;
+  }
+};
+
+}  // namespace
+
+Word parse_word(std::string_view text, const char* field) {
+  if (text.empty()) bad(field, text, std::string("an empty word; ") + kExpectedWord);
+  Word w;
+  WordReader in{text, field};
+  while (in.i < text.size()) {
+    const char c = text[in.i];
+    const std::vector<std::uint8_t> unit = in.unit();
+    if (c == ' ' || c == '.') continue;
+    const long times = in.exponent();
     for (long t = 0; t < times; ++t) w.s.insert(w.s.end(), unit.begin(), unit.end());
     if (w.size() > 100000) bad(field, text, "a word longer than 100000 symbols");
   }
-  if (w.s.empty()) bad(field, text, "no symbol (only spaces or dots); " + expected);  // " " gave an empty word
+  if (w.s.empty()) bad(field, text, std::string("no symbol (only spaces or dots); ") + kExpectedWord);  // " " gave an empty word
   return w;
 }
 
@@ -214,7 +249,7 @@ bool is_J_square(const Word& w) {
 
 std::vector<Word> enumerate_canonical(int max_length) {
   if (max_length < 1 || max_length > 18)
-    throw std::invalid_argument(fmt::format("max-length: got {}, expected 1..18", max_length));
+    throw core::InvalidField("max-length", fmt::format("{}", max_length), "1..18");
   std::vector<Word> out;
   for (int n = 1; n <= max_length; ++n) {
     // Odometer over {1,2,3}^n; keep canonical primitive words.  A canonical word starts with its

@@ -2,6 +2,8 @@
 #pragma once
 
 #include "core/cancel.hpp"
+#include "core/request.hpp"
+#include "iterate/parallel.hpp"
 #include "reference/reference.hpp"
 
 #include <omp.h>
@@ -264,6 +266,33 @@ template <class T> TrigCycle<T> trig_b_to_b(TrigState<T>& s, const T& r) {
 
 // ---- Figure 4.7 driver ----
 
+// Orbit o of the ensemble by the trigonometric algorithm: the points of steps first..iterations, x y z per step, in
+// buf.  False when a step failed (the orbit is broken); a cancelled orbit stops early (Cancelled is thrown by the
+// caller).
+template <class T>
+bool trig_orbit_tail(const iterate::Ensemble& ens, std::size_t o, long iterations, long first,
+                     const core::CancelToken* cancel, std::vector<double>& buf) {
+  const std::size_t n_ic = ens.initial.size();
+  const T r = ens.r_at<T>(o / n_ic);  // T's r from the request's decimal
+  const Vec3<double>& u0 = ens.initial[o % n_ic];
+  Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
+  u = core::to_quadrant<T>(u / u.norm());
+  TrigState<T> s = trig_start<T>(core::theta<T>(u), core::phi<T>(u));
+  for (long k = 1; k <= iterations; ++k) {
+    if (core::cancel_due(cancel, k)) break;  // the partial orbit is discarded: Cancelled is thrown by the caller
+    const TrigCycle<T> c = trig_b_to_b(s, r);
+    if (c.status != TrigStatus::ok) return false;
+    if (k >= first) {
+      const Vec3<T> w = core::from_angles<T>(c.theta, c.phi);
+      const std::size_t j = static_cast<std::size_t>(3 * (k - first));
+      buf[j] = static_cast<double>(w(0));
+      buf[j + 1] = static_cast<double>(w(1));
+      buf[j + 2] = static_cast<double>(w(2));
+    }
+  }
+  return true;
+}
+
 template <class T>
 std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& rec,
                                         int threads, const core::CancelToken* cancel) {
@@ -273,45 +302,22 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
   const long tail = iterations >= first ? iterations - first + 1 : 0;
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   if (static_cast<std::size_t>(nt) > rec.per_thread.size())
-    throw std::invalid_argument("threads: got " + std::to_string(nt) + ", expected at most the " +
-                                std::to_string(rec.per_thread.size()) + " threads the density recorder was made for");
-#pragma omp parallel num_threads(nt)
-  {
-    std::vector<double> buf(static_cast<std::size_t>(3 * std::max<long>(tail, 1)));
-#pragma omp for schedule(static)
-    for (std::size_t o = 0; o < n_orbits; ++o) {
-      if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
-      const T r = ens.r_at<T>(o / n_ic);  // T's r from the request's decimal
-      const Vec3<double>& u0 = ens.initial[o % n_ic];
-      Vec3<T> u(T(u0(0)), T(u0(1)), T(u0(2)));
-      u = core::to_quadrant<T>(u / u.norm());
-      TrigState<T> s = trig_start<T>(core::theta<T>(u), core::phi<T>(u));
-      bool ok = true;
-      for (long k = 1; k <= iterations; ++k) {
-        if (core::cancel_due(cancel, k)) break;  // the partial orbit is discarded: Cancelled is thrown below
-        const TrigCycle<T> c = trig_b_to_b(s, r);
-        if (c.status != TrigStatus::ok) {
-          ok = false;
-          break;
+    throw core::InvalidField("threads", std::to_string(nt),
+                             "at most the " + std::to_string(rec.per_thread.size()) +
+                                 " threads the density recorder was made for");
+  iterate::parallel_for_scratch(
+      n_orbits, nt, [&] { return std::vector<double>(static_cast<std::size_t>(3 * std::max<long>(tail, 1))); },
+      [&](std::vector<double>& buf, std::size_t o) {
+        if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
+        if (!trig_orbit_tail<T>(ens, o, iterations, first, cancel, buf)) {
+          broken[o] = 1;
+          return;
         }
-        if (k >= first) {
-          const Vec3<T> w = core::from_angles<T>(c.theta, c.phi);
+        for (long k = first; k <= iterations; ++k) {
           const std::size_t j = static_cast<std::size_t>(3 * (k - first));
-          buf[j] = static_cast<double>(w(0));
-          buf[j + 1] = static_cast<double>(w(1));
-          buf[j + 2] = static_cast<double>(w(2));
+          rec.record(o, 1, k, &buf[j], &buf[j + 1], &buf[j + 2], nullptr);
         }
-      }
-      if (!ok) {
-        broken[o] = 1;
-        continue;
-      }
-      for (long k = first; k <= iterations; ++k) {
-        const std::size_t j = static_cast<std::size_t>(3 * (k - first));
-        rec.record(o, 1, k, &buf[j], &buf[j + 1], &buf[j + 2], nullptr);
-      }
-    }
-  }
+      });
   core::check_cancel(cancel);
   std::vector<std::uint64_t> per_r(ens.r.size(), 0);
   for (std::size_t o = 0; o < n_orbits; ++o) per_r[o / n_ic] += broken[o];

@@ -1,9 +1,8 @@
 // Appendix A.1 with MATLAB's complex semantics: the paper's trigonometric code as it actually runs once acos
 // leaves [-1, 1] (Figure 4.7 shows what it draws).
 #include "core/cancel.hpp"
+#include "iterate/parallel.hpp"
 #include "reference/reference.hpp"
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -98,8 +97,103 @@ void collision(State& s, double r, C& theta, C& phi) {
   s.contact = letter - 'a' + 1;
 }
 
+// An orbit as the MATLAB code steps it: in real arithmetic (trig_collision) while the state is real and every acos
+// argument lies in (-1, 1), where MATLAB's arithmetic is the real one; in complex arithmetic from the first pass
+// that leaves that domain on.
+struct MatlabOrbit {
+  TrigState<double> real;
+  bool is_real = true;
+  State s;
+};
+
+// Leaves real arithmetic: the complex state starts from the real one.
+void go_complex(MatlabOrbit& o) {
+  o.is_real = false;
+  o.s.X = o.real.X.cast<C>();
+  o.s.V = o.real.V.cast<C>();
+  o.s.contact = o.real.contact;
+}
+
+// One pass of the MATLAB while-loop: the real collision while it reports ok, the complex one otherwise.
+void matlab_pass(MatlabOrbit& o, double r) {
+  C theta, phi;
+  if (o.is_real) {
+    TrigState<double> next = o.real;
+    if (trig_collision<double>(next, r) == TrigStatus::ok) {
+      o.real = next;
+      o.s.contact = o.real.contact;
+      return;
+    }
+    go_complex(o);
+  }
+  collision(o.s, r, theta, phi);
+}
+
+// At a b-collision of a real orbit: the angle the next pass reads (theta, or phi when want_phi) when both acos
+// arguments lie in (-1, 1); false (and no angle) otherwise.
+bool real_angle(const MatlabOrbit& o, bool want_phi, double& angle) {
+  const double x3 = o.real.X(2);
+  if (!(x3 > -1 && x3 < 1)) return false;
+  const double th = std::acos(x3), cp = o.real.V(0) / std::cos(th);
+  if (!(cp > -1 && cp < 1)) return false;
+  angle = want_phi ? std::acos(cp) : th;
+  return true;
+}
+
+// The bins of one r's column: a value outside [lo, hi] or not finite is counted apart.
+struct MatlabColumn {
+  std::uint32_t* col;
+  std::uint64_t &nan_points, &outside;
+  int bins;
+  double lo, hi, scale;
+  void operator()(double v) const {
+    if (!std::isfinite(v)) {
+      ++nan_points;
+      return;
+    }
+    if (v < lo || v > hi) {
+      ++outside;
+      return;
+    }
+    ++col[std::min(bins - 1, static_cast<int>((v - lo) * scale))];
+  }
+};
+
+// One orbit from u: up to 4 x iterations collisions (a b-to-b step takes 2 or 3; the cap ends orbits stuck on a
+// tie), its b-collisions k >= first counted by angle.  Returns the b-collisions reached; `complex` says whether
+// the orbit left real arithmetic.
+long matlab_orbit(Vec3<double> u, double r, long iterations, long first, bool want_phi, const MatlabColumn& count,
+                  const core::CancelToken* cancel, bool& complex) {
+  u = core::to_quadrant<double>(u / u.norm());
+  MatlabOrbit o;
+  o.real = trig_start<double>(core::theta<double>(u), core::phi<double>(u));
+  long k = 0;
+  for (long pass = 0; pass < 4 * iterations && k < iterations && !core::cancel_due(cancel, pass); ++pass) {
+    matlab_pass(o, r);
+    if (o.s.contact != 2) continue;
+    if (o.is_real) {
+      double angle = 0;
+      if (real_angle(o, want_phi, angle)) {
+        ++k;
+        if (k >= first) count(angle);
+        continue;
+      }
+      go_complex(o);  // the next pass will leave the domain: continue in complex arithmetic from here
+    }
+    ++k;
+    // The angles the next pass reads (contact 2), as MATLAB computes them.
+    const C th = acos_matlab(o.s.X(2));
+    const C ph = acos_matlab(o.s.V(0) / std::cos(th));
+    if (th.imag() != 0 || ph.imag() != 0) o.s.complex = true;
+    if (k >= first) count(want_phi ? ph.real() : th.real());
+  }
+  complex = o.s.complex;
+  return k;
+}
+
 }  // namespace
 
+// Per r (in parallel, each r its own column): every orbit of the grid through matlab_orbit.
 MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iterations, long tail, bool want_phi, int bins,
                                     double lo, double hi, int threads, const core::CancelToken* cancel) {
   const std::size_t n_r = ens.r.size(), n_ic = ens.initial.size();
@@ -110,82 +204,20 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
   img.outside.assign(n_r, 0);
   img.stalled.assign(n_r, 0);
   const long first = std::max<long>(iterations - tail + 1, 1);
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
   const double scale = bins / (hi - lo);
-#pragma omp parallel for schedule(static) num_threads(nt)
-  for (std::size_t ir = 0; ir < n_r; ++ir) {
-    if (cancel && cancel->cancelled()) continue;  // no exception may leave an OpenMP region
-    const double r = ens.r[ir];
-    std::uint32_t* col = &img.counts[ir * static_cast<std::size_t>(bins)];
-    auto count = [&](double v) {
-      if (!std::isfinite(v)) {
-        ++img.nan_points[ir];
-        return;
-      }
-      if (v < lo || v > hi) {
-        ++img.outside[ir];
-        return;
-      }
-      ++col[std::min(bins - 1, static_cast<int>((v - lo) * scale))];
-    };
+  iterate::parallel_for(n_r, threads, [&](std::size_t ir) {
+    if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
+    const MatlabColumn count{&img.counts[ir * static_cast<std::size_t>(bins)], img.nan_points[ir], img.outside[ir],
+                             bins, lo, hi, scale};
     for (std::size_t ic = 0; ic < n_ic; ++ic) {
-      Vec3<double> u = ens.initial[ic];
-      u = core::to_quadrant<double>(u / u.norm());
-      const TrigState<double> s0 = trig_start<double>(core::theta<double>(u), core::phi<double>(u));
-      // Fast path: while the state is real and every acos argument lies in (-1, 1), MATLAB's arithmetic is the
-      // real one, i.e. trig_collision; the first time it reports anything but ok, the orbit moves to complex.
-      TrigState<double> real = s0;
-      bool is_real = true;
-      State s;
-      // NN = 4 x iterations collisions at most (a b-to-b step takes 2 or 3; the cap ends orbits stuck on a tie).
-      long k = 0;
-      C theta, phi;
-      for (long pass = 0; pass < 4 * iterations && k < iterations && !core::cancel_due(cancel, pass); ++pass) {
-        if (is_real) {
-          TrigState<double> next = real;
-          if (trig_collision<double>(next, r) == TrigStatus::ok) {
-            real = next;
-            s.contact = real.contact;
-          } else {
-            is_real = false;
-            s.X = real.X.cast<C>();
-            s.V = real.V.cast<C>();
-            s.contact = real.contact;
-            collision(s, r, theta, phi);
-          }
-        } else {
-          collision(s, r, theta, phi);
-        }
-        if (s.contact != 2) continue;
-        if (is_real) {  // the angles the next pass reads, real and in the domain
-          const double x3 = real.X(2);
-          if (x3 > -1 && x3 < 1) {
-            const double th = std::acos(x3), cp = real.V(0) / std::cos(th);
-            if (cp > -1 && cp < 1) {
-              ++k;
-              if (k >= first) count(want_phi ? std::acos(cp) : th);
-              continue;
-            }
-          }
-          // The next pass will leave the domain: continue in complex arithmetic from here.
-          is_real = false;
-          s.X = real.X.cast<C>();
-          s.V = real.V.cast<C>();
-          s.contact = real.contact;
-        }
-        ++k;
-        // The angles the next pass reads (contact 2), as MATLAB computes them.
-        const C th = acos_matlab(s.X(2));
-        const C ph = acos_matlab(s.V(0) / std::cos(th));
-        if (th.imag() != 0 || ph.imag() != 0) s.complex = true;
-        if (k >= first) count(want_phi ? ph.real() : th.real());
-      }
-      img.complex_orbits[ir] += s.complex ? 1 : 0;
+      bool complex = false;
+      const long k = matlab_orbit(ens.initial[ic], ens.r[ir], iterations, first, want_phi, count, cancel, complex);
+      img.complex_orbits[ir] += complex ? 1 : 0;
       // Orbits that stop producing b-collisions (a tie, or a complex state cycling among a and c) within the
       // 4 x iterations collisions: the tail states they never reached.
       img.stalled[ir] += static_cast<std::uint64_t>(tail - std::clamp<long>(k - first + 1, 0, tail));
     }
-  }
+  });
   core::check_cancel(cancel);
   return img;
 }

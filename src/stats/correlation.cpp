@@ -2,6 +2,9 @@
 // double, long double.
 #include "stats/stats.hpp"
 
+#include "core/request.hpp"
+#include "iterate/parallel.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -25,16 +28,16 @@ template <class T> T mean(const std::vector<T>& x, long N) {
 }
 
 void check_sizes(long N, long n_max) {
-  if (N < 1) throw std::invalid_argument(fmt::format("iterations: got N = {}, expected N >= 1", N));
+  if (N < 1) throw core::InvalidField("iterations", fmt::format("N = {}", N), "N >= 1");
   if (n_max < 0 || n_max >= N)
-    throw std::invalid_argument(fmt::format("n-max: got {}, expected 0 <= n-max < N = {}", n_max, N));
+    throw core::InvalidField("n-max", fmt::format("{}", n_max), fmt::format("0 <= n-max < N = {}", N));
 }
 
 template <class T> void check_series(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max) {
   check_sizes(N, n_max);
   if (static_cast<long>(phi.size()) < N || static_cast<long>(psi.size()) < N + n_max)
-    throw std::invalid_argument(fmt::format("series: got {} and {} values, expected at least N = {} and N + n-max = {}",
-                                            phi.size(), psi.size(), N, N + n_max));
+    throw core::InvalidField("series", fmt::format("{} and {} values", phi.size(), psi.size()),
+                             fmt::format("at least N = {} and N + n-max = {}", N, N + n_max));
 }
 
 long checked_fft_length(long N, long n_max) {
@@ -58,8 +61,7 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
   std::vector<T> c(static_cast<std::size_t>(n_max + 1));
   constexpr long block = 1024;  // rounding per block ~ 128 eps (8 partial sums of 128 products each)
   const T* pa = a.data();
-#pragma omp parallel for schedule(static)
-  for (long n = 0; n <= n_max; ++n) {
+  iterate::parallel_for(static_cast<std::size_t>(n_max + 1), 0, [&](std::size_t n) {
     const T* pb = b.data() + n;
     T total = 0, comp = 0, wt = 0, wc = 0;
     for (long k0 = 0; k0 < N; k0 += block) {
@@ -81,7 +83,7 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
       add(wt, wc, sw);
     }
     c[n] = (total + comp) / static_cast<T>(N) + mp * ((wt + wc) / static_cast<T>(N));
-  }
+  });
   return c;
 }
 
@@ -122,12 +124,12 @@ template <class T> std::vector<T> Correlator<T>::operator()(const std::vector<T>
 }
 
 template <class T> Periodogram<T>::Periodogram(long N) : N_(N), fft_(std::max<long>(N, 1)) {
-  if (N < 2) throw std::invalid_argument(fmt::format("iterations: got N = {}, expected N >= 2 for a spectrum", N));
+  if (N < 2) throw core::InvalidField("iterations", fmt::format("N = {}", N), "N >= 2 for a spectrum");
 }
 
 template <class T> std::vector<T> Periodogram<T>::operator()(const std::vector<T>& x) {
   if (static_cast<long>(x.size()) < N_)
-    throw std::invalid_argument(fmt::format("series: got {} values, expected at least N = {}", x.size(), N_));
+    throw core::InvalidField("series", fmt::format("{} values", x.size()), fmt::format("at least N = {}", N_));
   const T m = mean(x, N_);
   T* d = fft_.data();
   for (long k = 0; k < N_; ++k) d[k] = x[k] - m;

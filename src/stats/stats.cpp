@@ -2,6 +2,7 @@
 #include "stats/stats.hpp"
 
 #include "core/coords.hpp"
+#include "core/request.hpp"
 #include "iterate/kernel.hpp"
 #include "stats/series.hpp"
 
@@ -29,9 +30,9 @@ std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<
                                       long length, const iterate::RunOptions& opt) {
   core::validate_r(r, "r");
   for (const auto& u : u0) core::validate_point(u(0), u(1), u(2), "point");
-  if (transient < 0) throw std::invalid_argument(fmt::format("transient: got {}, expected >= 0", transient));
-  if (length < 1) throw std::invalid_argument(fmt::format("iterations: got {}, expected >= 1", length));
-  if (u0.empty()) throw std::invalid_argument("grid: got no initial condition, expected at least one");
+  if (transient < 0) throw core::InvalidField("transient", fmt::format("{}", transient), ">= 0");
+  if (length < 1) throw core::InvalidField("iterations", fmt::format("{}", length), ">= 1");
+  if (u0.empty()) throw core::InvalidField("grid", "no initial condition", "at least one");
   iterate::Ensemble e;
   e.r = {r};
   e.initial = u0;
@@ -69,7 +70,7 @@ std::string observable_names() { return "theta, phi, w1, w2, cos-phi, symbol1, s
 Observable parse_observable(const std::string& name, const char* field) {
   const auto it = observable_table().find(name);
   if (it == observable_table().end())
-    throw std::invalid_argument(fmt::format("{}: got '{}', expected one of {}", field, name, observable_names()));
+    throw core::InvalidField(field, fmt::format("'{}'", name), fmt::format("one of {}", observable_names()));
   return it->second;
 }
 
@@ -110,7 +111,7 @@ std::vector<double> observe(const OrbitSeries& s, const StateFunction& f) {
 }
 
 std::vector<double> envelope(const std::vector<double>& c, long window) {
-  if (window < 1) throw std::invalid_argument(fmt::format("window: got {}, expected >= 1", window));
+  if (window < 1) throw core::InvalidField("window", fmt::format("{}", window), ">= 1");
   std::vector<double> e;
   for (long start = 1; start + window <= static_cast<long>(c.size()); start += window) {
     double m = 0;
@@ -178,8 +179,8 @@ void decide(Decay& d, double span) {
 
 Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double floor) {
   if (window < 1 || n_fit < window || n_fit >= static_cast<long>(c.size()))
-    throw std::invalid_argument(
-        fmt::format("n-fit: got {} with window {} for {} lags, expected window <= n-fit < lags", n_fit, window, c.size()));
+    throw core::InvalidField("n-fit", fmt::format("{} with window {} for {} lags", n_fit, window, c.size()),
+                             "window <= n-fit < lags");
   const std::vector<double> env = envelope(std::vector<double>(c.begin(), c.begin() + n_fit + 1), window);
   std::vector<double> xs, ys;
   Decay d;
@@ -204,7 +205,7 @@ Decay fit_decay(const std::vector<double>& c, long n_fit, long window, double fl
 Chart parse_chart(const std::string& name, const char* field) {
   if (name == "strip") return Chart::strip;
   if (name == "angles") return Chart::angles;
-  throw std::invalid_argument(fmt::format("{}: got '{}', expected strip or angles", field, name));
+  throw core::InvalidField(field, fmt::format("'{}'", name), "strip or angles");
 }
 std::string chart_name(Chart c) { return c == Chart::strip ? "strip" : "angles"; }
 
@@ -224,7 +225,7 @@ std::vector<double> Measure::marginal_v() const {
 namespace {
 void check_bins(int bins_u, int bins_v) {
   if (bins_u < 1 || bins_v < 1 || bins_u > 100000 || bins_v > 100000)
-    throw std::invalid_argument(fmt::format("bins: got {}x{}, expected 1..100000 in each direction", bins_u, bins_v));
+    throw core::InvalidField("bins", fmt::format("{}x{}", bins_u, bins_v), "1..100000 in each direction");
 }
 }  // namespace
 
@@ -241,8 +242,7 @@ Measure measure_frame(Chart chart, int bins_u, int bins_v, const std::vector<dou
   }
   if (!extent.empty()) {
     if (extent.size() != 4 || !(extent[0] < extent[1]) || !(extent[2] < extent[3]))
-      throw std::invalid_argument(fmt::format("extent: got {} values, expected u_lo < u_hi, v_lo < v_hi",
-                                              extent.size()));
+      throw core::InvalidField("extent", fmt::format("{} values", extent.size()), "u_lo < u_hi, v_lo < v_hi");
     m.u_lo = extent[0], m.u_hi = extent[1], m.v_lo = extent[2], m.v_hi = extent[3];
   }
   return m;
@@ -252,8 +252,8 @@ namespace {
 void check_range(long first, long& count, long n_all) {
   if (count < 0) count = n_all - first;
   if (first < 0 || count < 1 || first + count > n_all)
-    throw std::invalid_argument(
-        fmt::format("iterations: got points [{}, {}) of {}, expected a non-empty range", first, first + count, n_all));
+    throw core::InvalidField("iterations", fmt::format("points [{}, {}) of {}", first, first + count, n_all),
+                             "a non-empty range");
 }
 
 // Calls cell(c) with the bin i * bins_v + j of each point first..first+count-1 of s, or -1 outside the extent.
@@ -302,7 +302,7 @@ Measure empirical_measure(const OrbitSeries& s, Chart chart, int bins_u, int bin
 
 std::vector<std::int32_t> measure_cells(const OrbitSeries& s, const Measure& frame, bool whole) {
   if (static_cast<long>(frame.bins_u) * frame.bins_v > std::numeric_limits<std::int32_t>::max())
-    throw std::invalid_argument(fmt::format("bins: got {}x{}, expected at most 2^31 - 1 cells", frame.bins_u, frame.bins_v));
+    throw core::InvalidField("bins", fmt::format("{}x{}", frame.bins_u, frame.bins_v), "at most 2^31 - 1 cells");
   std::vector<std::int32_t> cells;
   cells.reserve(static_cast<std::size_t>(s.size()));
   each_cell(s, frame, whole, 0, s.size(), [&](long c) { cells.push_back(static_cast<std::int32_t>(c)); });
@@ -310,7 +310,7 @@ std::vector<std::int32_t> measure_cells(const OrbitSeries& s, const Measure& fra
 }
 
 Measure measure_of_cells(const Measure& frame, const std::int32_t* cells, long count) {
-  if (count < 1) throw std::invalid_argument(fmt::format("iterations: got {} points, expected at least 1", count));
+  if (count < 1) throw core::InvalidField("iterations", fmt::format("{} points", count), "at least 1");
   Measure m = frame;
   std::vector<long> counts(static_cast<std::size_t>(m.bins_u) * static_cast<std::size_t>(m.bins_v), 0);
   long out = 0;
@@ -345,7 +345,7 @@ double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b
 }
 
 std::vector<int> group_measures(const std::vector<Measure>& ms, double tv_same) {
-  if (!(tv_same > 0 && tv_same <= 1)) throw std::invalid_argument(fmt::format("tv-same: got {}, expected in (0, 1]", tv_same));
+  if (!(tv_same > 0 && tv_same <= 1)) throw core::InvalidField("tv-same", fmt::format("{}", tv_same), "in (0, 1]");
   std::vector<int> label(ms.size(), -1);
   std::vector<std::size_t> heads;  // first member of each group
   for (std::size_t i = 0; i < ms.size(); ++i) {

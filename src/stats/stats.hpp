@@ -24,7 +24,7 @@ struct OrbitSeries {
   iterate::Vec3<double> state(long k) const { return {x[k], y[k], z[k]}; }
 };
 // Validates r, u0 (domain x z <= 0), transient >= 0, length >= 1 and the memory (25 bytes per point);
-// throws std::invalid_argument / std::domain_error / std::length_error naming the field.
+// throws core::InvalidField / std::domain_error / std::length_error naming the field.
 OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length);
 // Many initial conditions at one r in one OpenMP run (threads <= 0: OpenMP's default; results do not
 // depend on it).
@@ -52,7 +52,7 @@ std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
 // ---- Correlation functions C_N (Section 8.1 (2)) ---------------------------------------------------
 //     C_N(phi, psi; n) = (1/N) sum_{k<N} phi_k psi_{k+n} - ((1/N) sum_{k<N} phi_k) ((1/N) sum_{k<N} psi_k)
 // for lags n = 0..n_max: phi needs N values, psi needs N + n_max (both means over k < N, as printed).
-// Both routes throw std::invalid_argument naming the field: "n-max: got M, expected 0 <= n-max < N = ..."
+// Both routes throw core::InvalidField naming the field: "n-max: got M, expected 0 <= n-max < N = ..."
 // (n_max >= N is rejected: fewer than half the pairs would be averaged), "iterations" for N < 1,
 // "series" for too short inputs.  T = float, double, long double (all arithmetic in T).
 

@@ -1,6 +1,7 @@
 // The iterator's check of the windows of stability.
 #include "windows/verify.hpp"
 
+#include "core/request.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
@@ -29,11 +30,10 @@ std::vector<VerifyRow> verify_windows(int first, int last, const VerifyOptions& 
   validate_n(first, 2, "n");  // n = 1 (abcb) is never stable and has no r_crit,2
   validate_n(last, first, "n");
   if (opt.base_iterations < 100)
-    throw std::invalid_argument("iterations: got " + std::to_string(opt.base_iterations) + ", expected at least 100");
-  if (opt.per_n < 0) throw std::invalid_argument("per-n: got " + std::to_string(opt.per_n) + ", expected at least 0");
+    throw core::InvalidField("iterations", std::to_string(opt.base_iterations), "at least 100");
+  if (opt.per_n < 0) throw core::InvalidField("per-n", std::to_string(opt.per_n), "at least 0");
   if (opt.tail < 1 || opt.tail >= opt.base_iterations)
-    throw std::invalid_argument("tail: got " + std::to_string(opt.tail) + ", expected 1..iterations-1 = " +
-                                std::to_string(opt.base_iterations - 1));
+    throw core::InvalidField("tail", std::to_string(opt.tail), "1..iterations-1 = " + std::to_string(opt.base_iterations - 1));
   const std::vector<core::Vec3<double>> grid = iterate::paper_grid();
   const char* names[4] = {"below", "inside_25", "inside_50", "inside_75"};
   std::vector<VerifyRow> rows;

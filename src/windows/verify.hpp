@@ -31,7 +31,7 @@ struct VerifyRow {
   template <class A> void members(A& a) { a(n, position, r, lower, upper, iterations, orbits, on_pattern, expected_on); }
 };
 
-// Rows for n = first..last (2 <= first <= last); throws std::invalid_argument naming the field.
+// Rows for n = first..last (2 <= first <= last); throws core::InvalidField naming the field.
 std::vector<VerifyRow> verify_windows(int first, int last, const VerifyOptions& opt = {});
 
 // True when s[0..len) is periodic with period 2n and one period is a rotation of 1^n 3^n.

@@ -1,6 +1,7 @@
 // Windows of stability: Q_n exact, its smallest positive root in MPFR, exact certificates, r_crit,2.
 #include "windows/windows.hpp"
 #include "core/cancel.hpp"
+#include "core/request.hpp"
 
 #include <boost/math/tools/roots.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -21,16 +22,16 @@ void validate_n(long n, long min_n, const char* field) {
   const bool is_n = std::string(field) == "n";
   const long max_n = is_n ? 5000 : 100000;
   if (n < min_n || n > max_n)
-    throw std::invalid_argument(std::string(field) + ": got " + std::to_string(n) + ", expected an integer in " +
-                                std::to_string(min_n) + ".." + std::to_string(max_n) +
-                                (is_n ? " (Q_n costs minutes at n = 5000)" : ""));
+    throw core::InvalidField(field, std::to_string(n),
+                             "an integer in " + std::to_string(min_n) + ".." + std::to_string(max_n) +
+                                 (is_n ? " (Q_n costs minutes at n = 5000)" : ""));
 }
 
 void validate_digits(long digits, const char* field) {
   // Below 10 digits the double overlays would be coarser than the paper's table; above 10000 the
   // polynomial evaluations take minutes per root for no reader.
   if (digits < 10 || digits > 10000)
-    throw std::invalid_argument(std::string(field) + ": got " + std::to_string(digits) + ", expected 10..10000");
+    throw core::InvalidField(field, std::to_string(digits), "10..10000");
 }
 
 namespace {

@@ -17,7 +17,7 @@ using core::mpfr_float;
 // Conventions.
 //  * A, B are the collision matrices of eq. (2.7) with alpha = (1 + r)/2:
 //      A = [[-r,0,0],[alpha,1,0],[0,0,1]],  B = [[1,alpha,0],[0,-r,0],[0,alpha,1]];  J swaps x and z (4.2).
-//  * n >= 1 (the pattern (ab)^n(cb)^n); functions throw std::invalid_argument "n: got X, expected ..."
+//  * n >= 1 (the pattern (ab)^n(cb)^n); functions throw core::InvalidField "n: got X, expected ..."
 //    on n < 1 (n < 2 for r_crit,2) and on digits outside 10..10000.
 //  * "decimals" D means D digits after the decimal point (the paper prints 12).
 
