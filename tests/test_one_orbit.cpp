@@ -1,6 +1,7 @@
 // One orbit, one verdict: every route takes the same branch (exactly), every tool reports the same exponents
 // and the same stability word for the same orbit.  Seeded; about 6 s in the release build.
 #include "attractors/attractors.hpp"
+#include "attractors/recorders.hpp"
 #include "attractors/requests.hpp"
 #include "core/fields.hpp"
 #include "core/map.hpp"
@@ -242,4 +243,66 @@ TEST(OneOrbit, NoCollapseAboveTheThreshold) {
   EXPECT_EQ(above.detail.rfind("undecided in double", 0), 0u) << above.detail;
   const attractors::OrbitVerdict below = attractors::classify_point(u, 0.07179676972449, opt);  // 8e-16 below
   EXPECT_EQ(below.type, attractors::Type::collapse) << below.detail;
+}
+
+namespace {
+// A corner point: x and y below 2^-969 next to z, where the vector step's fused a y - x underflows to 0 (its
+// sign lost) although the exact value is not 0.
+std::vector<Case> corner_cases(std::mt19937_64& g, int n) {
+  std::uniform_int_distribution<int> K(19, 255);
+  std::uniform_real_distribution<double> U(0.05, 1);
+  std::vector<Case> out;
+  for (int i = 0; i < n; ++i) {
+    const double r = K(g) / 256.0, a = (1 + r) / 2;
+    const double y = std::ldexp(U(g), -1030), ay = a * y;
+    for (double d : {-1.0, 0.0, 1.0}) out.push_back({r, {std::nextafter(ay, ay + d), y, -U(g)}, "corner"});
+  }
+  return out;
+}
+
+// The point as the kernel starts it: in Q, scaled by 2^(1 - e) so that its largest component lies in [1, 2).
+Vec3<double> kernel_start(const Vec3<double>& u) {
+  int e = 0;
+  std::frexp(u.cwiseAbs().maxCoeff(), &e);
+  const Vec3<double> q = core::to_quadrant<double>(u);
+  return {std::ldexp(q(0), 1 - e), std::ldexp(q(1), 1 - e), std::ldexp(q(2), 1 - e)};
+}
+}  // namespace
+
+// Map.step (iterate::kernel_step, called here from a unit compiled without the kernel's instruction set as the
+// Python module is) equals one step of the batched kernel bit for bit, on random points, points on and next to the
+// branch lines, on the invariant planes and in the underflow corner; both take the exact branch; a point scaled
+// by 2^k gives the image scaled by 2^k.
+TEST(OneOrbit, MapStepIsOneKernelStepBitwise) {
+  std::mt19937_64 g(29);
+  std::vector<Case> cs = cases(g, 40);
+  const std::vector<Case> cc = corner_cases(g, 20);
+  cs.insert(cs.end(), cc.begin(), cc.end());
+  int corner_zero = 0;
+  for (const Case& c : cs) {
+    SCOPED_TRACE(::testing::Message() << c.kind << " r = " << c.r << " u = (" << std::hexfloat << c.u(0) << ", "
+                                      << c.u(1) << ", " << c.u(2) << ")");
+    iterate::Ensemble e;
+    e.r = {c.r};
+    e.initial = {c.u};
+    attractors::StateRecorder st(1, 1);
+    iterate::SymbolRecorder sy(1, 1, 1);
+    iterate::run<double>(e, 1, st, {});
+    iterate::run<double>(e, 1, sy, {});
+    const core::Step<double> m = iterate::kernel_step(kernel_start(c.u), c.r);
+    const int want = exact_branch(c.u, c.r);
+    EXPECT_EQ(m.symbol, want);
+    EXPECT_EQ(int(sy.out[0]), want) << "kernel";
+    EXPECT_EQ(m.u, st.state[0]) << "kernel " << st.state[0].transpose() << " Map.step " << m.u.transpose();
+    const double a = (1 + c.r) / 2;
+    corner_zero += c.kind[0] == 'c' && std::fma(a, c.u(1), -c.u(0)) == 0 && want != 2;
+    for (int k : {-7, 9, 300}) {
+      if (c.kind[0] == 'c' && k < 0) continue;  // a subnormal point scaled down loses bits: another point
+      const Vec3<double> s(std::ldexp(c.u(0), k), std::ldexp(c.u(1), k), std::ldexp(c.u(2), k));
+      const core::Step<double> ms = iterate::kernel_step(s, c.r);
+      EXPECT_EQ(ms.symbol, want) << "scaled by 2^" << k;
+      if (c.kind[0] != 'c') EXPECT_EQ(ms.u, std::ldexp(1.0, k) * iterate::kernel_step(c.u, c.r).u) << k;
+    }
+  }
+  EXPECT_GT(corner_zero, 5);  // the corner is exercised: fused values that underflowed to 0 on a non-tie
 }
