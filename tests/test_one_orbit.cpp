@@ -9,6 +9,7 @@
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
+#include "lyapunov/hyperbolicity.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "patterns/patterns.hpp"
 #include "reference/reference.hpp"
@@ -352,4 +353,43 @@ TEST(OneOrbit, MapStepIsOneKernelStepBitwise) {
     }
   }
   EXPECT_GT(corner_zero, 5);  // the corner is exercised: fused values that underflowed to 0 on a non-tie
+}
+
+// The scalar routes of hyperbolicity (step_singular_values, covariant_vectors) and finite_difference_exponent
+// branch on the point itself, kept scaled by powers of two, not on its rounded unit vector: on and next to the
+// branch lines their first branch is the exact rule's, and a point times 2^k (k = -600: its squared norm would
+// underflow) changes no output bit.
+TEST(OneOrbit, ScalarRoutesBranchOnThePointNotItsUnitVector) {
+  std::mt19937_64 g(31);
+  const std::vector<Case> cs = cases(g, 24);
+  lyapunov::ClvOptions co;
+  co.transient = 0;
+  co.window = 20;
+  co.backward_transient = 20;
+  lyapunov::Options fo;
+  fo.transient = 0;
+  fo.iterations = 40;
+  fo.blocks = 2;
+  for (const Case& c : cs) {
+    if (c.u(0) == 0 && c.u(2) == 0) continue;
+    SCOPED_TRACE(::testing::Message() << c.kind << " r = " << c.r << " u = (" << std::hexfloat << c.u(0) << ", "
+                                      << c.u(1) << ", " << c.u(2) << ")");
+    const int want = exact_branch(c.u, c.r);
+    const lyapunov::StepSingularValues sv = lyapunov::step_singular_values(c.u, c.r);
+    const lyapunov::ClvResult cv = lyapunov::covariant_vectors<double>(c.u, c.r, co);
+    const lyapunov::FiniteDifference fd = lyapunov::finite_difference_exponent(c.u, c.r, 1e-7, fo);
+    EXPECT_EQ(sv.symbol, want) << "step_singular_values";
+    ASSERT_FALSE(cv.symbols.empty());
+    EXPECT_EQ(int(cv.symbols[0]), want) << "covariant_vectors";
+    for (int k : {-600, 9, 600}) {
+      const Vec3<double> s(std::ldexp(c.u(0), k), std::ldexp(c.u(1), k), std::ldexp(c.u(2), k));
+      const lyapunov::StepSingularValues sv2 = lyapunov::step_singular_values(s, c.r);
+      EXPECT_TRUE(sv2.symbol == sv.symbol && sv2.s1 == sv.s1 && sv2.s2 == sv.s2) << "step_singular_values 2^" << k;
+      const lyapunov::ClvResult cv2 = lyapunov::covariant_vectors<double>(s, c.r, co);
+      EXPECT_TRUE(cv2.symbols == cv.symbols && cv2.angle == cv.angle && cv2.lambda == cv.lambda)
+          << "covariant_vectors 2^" << k;
+      const lyapunov::FiniteDifference fd2 = lyapunov::finite_difference_exponent(s, c.r, 1e-7, fo);
+      EXPECT_TRUE(fd2.lambda1 == fd.lambda1 && fd2.straddles == fd.straddles) << "finite differences 2^" << k;
+    }
+  }
 }
