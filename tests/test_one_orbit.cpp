@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -391,5 +392,38 @@ TEST(OneOrbit, ScalarRoutesBranchOnThePointNotItsUnitVector) {
       const lyapunov::FiniteDifference fd2 = lyapunov::finite_difference_exponent(s, c.r, 1e-7, fo);
       EXPECT_TRUE(fd2.lambda1 == fd.lambda1 && fd2.straddles == fd.straddles) << "finite differences 2^" << k;
     }
+  }
+}
+
+// One vocabulary: the atlas's interval word (patterns::classify) is pattern's verdict (patterns::analyse) on the
+// same word and r, neutral on the P2 fixed point above 3 - 2 sqrt(2) included; at the double nearest 3 - 2 sqrt(2),
+// where the complex pair merges into a real double eigenvalue of the orbit's modulus, the verdict is neutral when
+// the tying eigenvalue came out complex and undecided when it came out real (double cannot order the moduli).
+TEST(OneOrbit, AtlasIntervalsAndPatternSayTheSameWord) {
+  const char* words[] = {"2", "12", "132", "1133", "132312", "1232", "13", "2232"};
+  std::mt19937_64 g(37);
+  std::uniform_real_distribution<double> R(0.01, 0.99);
+  int neutral = 0;
+  for (const char* w : words) {
+    const patterns::Word word = patterns::parse_word(w);
+    for (int i = 0; i < 40; ++i) {
+      const double r = R(g);
+      const patterns::Verdict<double> v = patterns::analyse<double>(word, r);
+      const patterns::Classification c = patterns::classify<double>(word, r);
+      EXPECT_EQ(patterns::outcome_name(c.outcome), patterns::outcome_name(v.outcome)) << w << " r = " << r;
+      neutral += v.outcome == patterns::Outcome::neutral;
+    }
+  }
+  EXPECT_GT(neutral, 10);
+  const double t = 3 - 2 * std::sqrt(2.0);
+  for (double r : {std::nextafter(t, 0.0), t, std::nextafter(t, 1.0)}) {
+    const patterns::Verdict<double> v = patterns::analyse<double>(patterns::parse_word("2"), r);
+    ASSERT_GE(v.orbit_eigen, 0);
+    const bool real = v.spectrum[v.orbit_eigen == 0 ? 1 : 0].real;
+    // 64 eps: the eigenvalue moduli's tie tolerance of analyse (period 1).
+    if (std::abs(v.lyapunov2) <= 64 * std::numeric_limits<double>::epsilon())
+      EXPECT_EQ(v.outcome, real ? patterns::Outcome::undecided : patterns::Outcome::neutral) << "r = " << r;
+    else
+      EXPECT_EQ(v.outcome, patterns::Outcome::unstable) << "r = " << r << " lambda1 = " << v.lyapunov2;
   }
 }

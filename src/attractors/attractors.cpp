@@ -235,7 +235,7 @@ const char* type_name(Type t) {
     case Type::periodic: return "periodic";
     case Type::quasi_periodic: return "quasi-periodic";
     case Type::chaotic: return "chaotic";
-    default: return "unresolved";
+    default: return "undecided";  // Type::unresolved: the window cannot decide
   }
 }
 

@@ -596,7 +596,7 @@ void ulam_basins(const UlamMatrix& P, const Partition& part, Domain dom, const T
     if (cc.outcome != "stable orbit") continue;  // an unstable or absent cycle attracts nothing
     BasinInfo b;
     b.attractor = cc.word;
-    b.kind = "sink";
+    b.kind = "stable";  // an attracting cycle (the verdict words of docs/ARCHITECTURE.md)
     const auto id = static_cast<std::uint32_t>(res.basins.size() + 1);
     for (long box : cc.boxes)
       if (box >= 0 && target[sz(box)] == 0) target[sz(box)] = id, ++b.target_boxes;
@@ -608,7 +608,7 @@ void ulam_basins(const UlamMatrix& P, const Partition& part, Domain dom, const T
     // (atan w1, w2) or (theta, phi); on the strip a box is a rectangle in (w1, w2) too, so the test is exact there).
     BasinInfo b;
     b.attractor = "P2 region";
-    b.kind = "P2 invariant curves";
+    b.kind = "neutral";  // the P2 invariant curves: elliptic, neither attracting nor repelling
     const auto id = static_cast<std::uint32_t>(res.basins.size() + 1);
     const double h1 = (part.hi1 - part.lo1) / static_cast<double>(part.n1),
                  h2 = (part.hi2 - part.lo2) / static_cast<double>(part.n2);
