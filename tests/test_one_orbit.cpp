@@ -292,6 +292,13 @@ TEST(OneOrbit, AnOrbitBelowDoublesRangeInXIsFollowedInDouble) {
   const lyapunov::ProjectiveResult p = lyapunov::projective_exponents<M>(Vec3<M>(M(1), M(-0.5), M(-1.1)), M(r), lo);
   // Both are batch-means estimates of one finite-time average (error bars of 10 blocks): 5 sigma of the two.
   EXPECT_NEAR(v.lambda1, p.lambda[0].value, 5 * (v.err1 + p.lambda[0].error)) << v.detail;
+  // With the refinement pass (66000 steps) the orbit returns within return-tol after one step near the rotation's
+  // slow direction, but no periodic orbit of the word 3 exists at this r: measured like an orbit without a period.
+  opt.refine_factor = attractors::Options{}.refine_factor;
+  const attractors::OrbitVerdict refined = attractors::classify_point(u, r, opt);
+  EXPECT_NE(refined.type, attractors::Type::periodic) << refined.detail;
+  EXPECT_NE(refined.type, attractors::Type::collapse) << refined.detail;
+  EXPECT_GT(refined.err1, 0) << refined.detail;
 }
 
 namespace {

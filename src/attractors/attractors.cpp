@@ -132,8 +132,17 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
       const Exact& e = it->second;
       v.lambda1 = e.verdict.lyapunov2;  // the cycle's exponent log|l2/l1|/p from the pattern tool (exact)
       if (e.points.empty()) {
-        // No feasible real eigenvector: a numerically periodic orbit the pattern tool cannot confirm
-        // (e.g. a rational P2 rotation, Section 5.2, whose cycles are neutral).  Reported, not hidden.
+        // No feasible real eigenvector: a numerically periodic orbit the pattern tool cannot confirm.  In the P2
+        // region a rational P2 rotation (Section 5.2, whose cycles are neutral): periodic, reported, not hidden.
+        // Elsewhere a slow passage that no periodic orbit explains (e.g. near 7 - 4 sqrt(3), where P3's (y, z)
+        // rotation turns by ~1e-9 per step near its slow direction): measured in pass 2 like an orbit without a
+        // period.
+        if (!v.p2_region) {
+          v.period = 0, v.word = {}, v.lambda1 = 0;
+          v.residual = rec.best_d[o], v.closest_return = rec.best_j[o];
+          rest.push_back(o);
+          continue;
+        }
         v.type = Type::periodic, v.key = key;
         v.detail = fmt::format("no exact orbit for this word at r ({}: {})",
                                patterns::outcome_name(e.verdict.outcome), e.verdict.reason);
