@@ -343,8 +343,10 @@ TEST(OneOrbit, MapStepIsOneKernelStepBitwise) {
     e.initial = {c.u};
     attractors::StateRecorder st(1, 1);
     iterate::SymbolRecorder sy(1, 1, 1);
-    iterate::run<double>(e, 1, st, {});
-    iterate::run<double>(e, 1, sy, {});
+    iterate::RunOptions one;
+    one.threads = 1;  // 480 one-orbit runs: an OpenMP team each would cost seconds on a loaded machine
+    iterate::run<double>(e, 1, st, one);
+    iterate::run<double>(e, 1, sy, one);
     const core::Step<double> m = iterate::kernel_step(kernel_start(c.u), c.r);
     const int want = exact_branch(c.u, c.r);
     EXPECT_EQ(m.symbol, want);
