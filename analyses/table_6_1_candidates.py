@@ -255,7 +255,7 @@ def histogram_rows(pixels_by_type):
     """Orbits per class of btob's classifier, and those the paper's rule calls finite, in log-spaced bins of distinct
     pixels [low, high)."""
     edges = np.unique(np.round(np.logspace(0, math.log10(PAPER_TAIL + 1), 36)).astype(int))
-    types = ["periodic", "quasi-periodic", "chaotic", "collapse", "unresolved", "rule_finite"]
+    types = ["periodic", "quasi-periodic", "chaotic", "collapse", "undecided", "rule_finite"]
     counts = {t: np.histogram(pixels_by_type.get(t, []), bins=edges)[0] for t in types}
     return [{"pixels_low": int(edges[i]), "pixels_high": int(edges[i + 1]), **{t: int(counts[t][i]) for t in types}}
             for i in range(len(edges) - 1)]

@@ -31,7 +31,8 @@ struct Map {
   double r;
   explicit Map(double r_) : r(r_) { core::require_r(r, "r"); }
 
-  // One step u -> P_s u (not normalised, in the quadrant Q) of every row, and the branch s of each.
+  // One step u -> M_s u = P_s u / r (not normalised, in the quadrant Q) of every row, and the branch s of each:
+  // the batched kernel's step bit for bit (iterate::kernel_step).
   py::tuple step(py::handle points) const {
     const auto a = points_of(points, "points");
     const std::size_t n = a.ndim() == 2 ? static_cast<std::size_t>(a.shape(0)) : 1;
@@ -42,7 +43,7 @@ struct Map {
     {
       py::gil_scoped_release nogil;
       for (std::size_t i = 0; i < n; ++i) {
-        const auto s = core::step<double>(core::Vec3<double>(p[3 * i], p[3 * i + 1], p[3 * i + 2]), r);
+        const auto s = iterate::kernel_step(core::Vec3<double>(p[3 * i], p[3 * i + 1], p[3 * i + 2]), r);
         for (int k = 0; k < 3; ++k) out[3 * i + k] = s.u(k);
         sym[i] = static_cast<std::uint8_t>(s.symbol);
       }
@@ -154,8 +155,9 @@ void bind_blocks(py::module_& m) {
       .def(py::init<double>(), py::arg("r"))
       .def_readonly("r", &Map::r, "the restitution coefficient r, in (0, 1)")
       .def("step", &Map::step, py::arg("points"),
-           "One step of every row x,y,z (an (N, 3) array, or one point (3,)): returns (P_s u, s), the image not "
-           "normalised and in the quadrant Q = {x >= 0, z <= 0}, and the branch s in {1, 2, 3} (uint8) of each row")
+           "One step of every row x,y,z (an (N, 3) array, or one point (3,)): returns (P_s u / r, s), the image not "
+           "normalised and in the quadrant Q = {x >= 0, z <= 0}, bit for bit the batched kernel's step (which "
+           "divides P_s by r: same direction), and the branch s in {1, 2, 3} (uint8) of each row")
       .def("matrix", &Map::matrix, py::arg("i"), "The matrix P_i (i = 1, 2, 3) at this r")
       .def("__repr__", [](const Map& mp) { return fmt::format("btob.Map(r={})", core::field_text(mp.r).front()); });
   m.def("_iterate", &iterate_orbits, py::arg("r"), py::arg("points"), py::arg("iterations"), py::arg("record"),

@@ -21,7 +21,7 @@ def rows_of(f):
         pattern, _, kind = a[f"legend_{i}"].rpartition(" (")
         out.append({"attractor": i, "type": kind.rstrip(")"), "pattern": pattern, "fraction": fr, "ci_low": lo,
                     "ci_high": hi})
-    out.append({"attractor": 0, "type": "unresolved", "pattern": "", "fraction": a["unresolved_fraction"],
+    out.append({"attractor": 0, "type": "undecided", "pattern": "", "fraction": a["unresolved_fraction"],
                 "ci_low": a.get("unresolved_ci_low", float("nan")), "ci_high": a.get("unresolved_ci_high", float("nan"))})
     return out
 

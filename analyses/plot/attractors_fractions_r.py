@@ -21,8 +21,8 @@ def draw(f):
     # Colours: one distinct hue per pattern family (a pattern and its J-mirror, 132^n / 312^n, share it; the
     # mirror is hatched), so that different patterns never get near-identical shades; every segment taller than
     # 6% is labelled on the bar itself.  Quasi-periodic teal, chaotic dark red (hatched), collapse grey,
-    # unresolved black.
-    fixed = {"quasi-periodic": "#17becf", "chaotic": "#8b0000", "collapse": "#7f7f7f", "unresolved": "#000000"}
+    # undecided black.
+    fixed = {"quasi-periodic": "#17becf", "chaotic": "#8b0000", "collapse": "#7f7f7f", "undecided": "#000000"}
 
     def family(n):
         p = n.split(" (")[0]
@@ -42,7 +42,7 @@ def draw(f):
         kind = next((t for t in fixed if n.endswith(f"({t})") or n == t), None)
         cols.append(fixed[kind] if kind else hues[fams.index(family(n)) % len(hues)])
         hatches.append("//" if kind == "chaotic" else ("..." if mirrored(n) else None))
-    rank = {"quasi-periodic": 1, "chaotic": 2, "collapse": 3, "unresolved": 4}
+    rank = {"quasi-periodic": 1, "chaotic": 2, "collapse": 3, "undecided": 4}
     order = sorted(range(len(names)), key=lambda j: (next((v for t, v in rank.items() if t in names[j]), 0),
                                                      fams.index(family(names[j])) if family(names[j]) in fams else 0, j))
     names, cols, hatches, frac = ([names[j] for j in order], [cols[j] for j in order], [hatches[j] for j in order],

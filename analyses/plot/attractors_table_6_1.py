@@ -129,7 +129,7 @@ def draw_detection(d):
     fig, (a, b) = plt.subplots(1, 2, figsize=(15, 5.5), constrained_layout=True, gridspec_kw={"width_ratios": [1, 2]})
     edges = np.array([float(x["pixels_low"]) for x in hist] + [float(hist[-1]["pixels_high"])])
     for t, col in (("periodic", "#1f77b4"), ("quasi-periodic", "#17becf"), ("chaotic", "#8b0000"),
-                   ("unresolved", "black")):
+                   ("undecided", "black")):
         n = np.array([int(x[t.replace("-", "_")]) for x in hist])
         if n.sum():
             a.stairs(n, edges, label=f"btob: {t} ({n.sum()})", color=col, lw=1.5)

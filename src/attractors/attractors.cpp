@@ -32,8 +32,6 @@ namespace {
 // r <= 7 - 4 sqrt(3): the eigenvalues of P1 and P3 are real and the collapse z = 0 (x = 0) attracts
 // (Section 5.2).  Decided exactly: for the double r, 7 - r > 0 and (7 - r)^2 >= 48 in rational arithmetic (no
 // margin: a collapse verdict above the threshold is one the paper rules out).
-// The verdict's first words when double's range cannot follow an orbit (the refinement pass leaves it).
-constexpr const char* kUndecidedInDouble = "undecided in double";
 
 bool collapse_possible(double r) {
   using Q = boost::multiprecision::mpq_rational;
@@ -108,18 +106,11 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
         continue;
       }
     }
-    // Above 7 - 4 sqrt(3) no orbit collapses; an orbit whose x (z) became exactly 0 from a start off that plane
-    // passed closer to it than double's range (x = 0 is invariant under P3, z = 0 under P1) and was then followed
-    // on the plane: not the dynamics.  Undecided in double, and said so.
-    const Vec3<double>& u0 = ens.initial[o % ens.initial.size()];
-    if (!collapse_possible(r) && ((fin(0) == 0 && u0(0) != 0) || (fin(2) == 0 && u0(2) != 0))) {
-      v.type = Type::unresolved;
-      v.detail = fmt::format("{}: {} underflowed to 0 (the orbit passes closer to the invariant "
-                             "plane {} = 0 than double's range, near r = 7 - 4 sqrt(3)); follow it with "
-                             "`btob lyapunov --precision mpfr:50`, whose exponent range keeps it",
-                             kUndecidedInDouble, fin(0) == 0 ? "x" : "z", fin(0) == 0 ? "x" : "z");
-      continue;
-    }
+    // Above 7 - 4 sqrt(3) no orbit collapses, and an orbit whose x (z) underflowed to 0 from a start off that plane
+    // is still followed faithfully: 0 is x rounded to double (x far below the other components' last bit), every
+    // later rounded value is the one the exact x would give (x enters a y - x, r x and a x only, next to terms
+    // 2^-400 times larger or more), and the plane is left when the (y, z) rotation of P3 leaves the cone a y < z,
+    // which does not depend on x.  The verdict is that of the orbit, from the steps below.
     const int p = rec.period[o];
     if (p > 0) {
       patterns::Word w;
@@ -141,8 +132,17 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
       const Exact& e = it->second;
       v.lambda1 = e.verdict.lyapunov2;  // the cycle's exponent log|l2/l1|/p from the pattern tool (exact)
       if (e.points.empty()) {
-        // No feasible real eigenvector: a numerically periodic orbit the pattern tool cannot confirm
-        // (e.g. a rational P2 rotation, Section 5.2, whose cycles are neutral).  Reported, not hidden.
+        // No feasible real eigenvector: a numerically periodic orbit the pattern tool cannot confirm.  In the P2
+        // region a rational P2 rotation (Section 5.2, whose cycles are neutral): periodic, reported, not hidden.
+        // Elsewhere a slow passage that no periodic orbit explains (e.g. near 7 - 4 sqrt(3), where P3's (y, z)
+        // rotation turns by ~1e-9 per step near its slow direction): measured in pass 2 like an orbit without a
+        // period.
+        if (!v.p2_region) {
+          v.period = 0, v.word = {}, v.lambda1 = 0;
+          v.residual = rec.best_d[o], v.closest_return = rec.best_j[o];
+          rest.push_back(o);
+          continue;
+        }
         v.type = Type::periodic, v.key = key;
         v.detail = fmt::format("no exact orbit for this word at r ({}: {})",
                                patterns::outcome_name(e.verdict.outcome), e.verdict.reason);
@@ -244,7 +244,7 @@ const char* type_name(Type t) {
     case Type::periodic: return "periodic";
     case Type::quasi_periodic: return "quasi-periodic";
     case Type::chaotic: return "chaotic";
-    default: return "unresolved";
+    default: return "undecided";  // Type::unresolved: the window cannot decide
   }
 }
 
@@ -311,11 +311,10 @@ std::vector<OrbitVerdict> classify_from(const iterate::Ensemble& ens, const Opti
   run_pass(ens, opt.transient - done, opt, out, latest, exact);
   for (auto& v : out) v.iterations += done;
   if (opt.refine_factor > 0) {
-    // Refinement: continue only the unresolved orbits, with refine_factor times the transient; not those double
-    // cannot follow (more steps in double would start from the plane its rounding put them on).
+    // Refinement: continue only the unresolved orbits, with refine_factor times the transient.
     std::vector<std::size_t> idx;
     for (std::size_t o = 0; o < out.size(); ++o)
-      if (out[o].type == Type::unresolved && out[o].detail.rfind(kUndecidedInDouble, 0) != 0) idx.push_back(o);
+      if (out[o].type == Type::unresolved) idx.push_back(o);
     if (!idx.empty()) {
       iterate::Ensemble e2;
       e2.r = ens.r;

@@ -97,7 +97,7 @@ void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Co
 struct Registration {
   Registration() {
     command<attractors::ClassifyRequest>(
-        "classify", "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or unresolved", Output::to_stdout(),
+        "classify", "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or undecided", Output::to_stdout(),
         classify);
     command<attractors::BasinsRequest>(
         "basins",

@@ -1,6 +1,7 @@
 // The batched iterator of P_r: structure-of-arrays SIMD kernel, OpenMP driver, and its scalar reference.
 #pragma once
 
+#include "core/map.hpp"
 #include "core/request.hpp"
 #include "iterate/ensemble.hpp"
 
@@ -54,6 +55,11 @@ template <class T> int renormalisation_interval(const std::vector<double>& r);
 // double with SIMD; long double, float128, MPFR per lane).  Each orbit starts from its initial vector
 // scaled by a power of two (exact), in the quadrant Q.
 template <class T, Recorder Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
+
+// One step of the double kernel from one point, bit for bit a lane of the batched step (compiled in the kernel's
+// unit with its instruction set): u brought into Q, then M_s u = P_s u / r (not normalised) and the branch s.
+// A point and the same point times 2^k (no underflow) give images that differ by 2^k exactly.
+core::Step<double> kernel_step(const core::Vec3<double>& u, double r);
 
 // The scalar reference: one orbit at a time, the paper's matrices P1/P2/P3 chosen with branches and
 // the vector normalised every step (Appendix A.2).  Same recorder interface, lanes = 1.

@@ -78,6 +78,29 @@ template <class V> inline V fms(V a, V y, V x) {
   const V ay = a * y;  // reached only without FMA, where nothing contracts
   return ay - x;
 }
+// k s + t rounded once where the unit has FMA (the instruction GCC's default contraction chose here before: written
+// out so that the scalar lane step, lane_step, rounds it the same way), else rounded twice.
+template <class V> inline V fma_add(V k, V s, V t) {
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm512_fmadd_pd((__m512d)k, (__m512d)s, (__m512d)t);
+    else return (V)_mm512_fmadd_ps((__m512)k, (__m512)s, (__m512)t);
+  }
+#endif
+#if defined(__FMA__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm256_fmadd_pd((__m256d)k, (__m256d)s, (__m256d)t);
+    else return (V)_mm256_fmadd_ps((__m256)k, (__m256)s, (__m256)t);
+  }
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (std::is_same_v<V, vf64>) return (V)_mm_fmadd_pd((__m128d)k, (__m128d)s, (__m128d)t);
+    else return (V)_mm_fmadd_ps((__m128)k, (__m128)s, (__m128)t);
+  }
+  if constexpr (std::is_same_v<V, double> || std::is_same_v<V, float>) return std::fma(k, s, t);
+#endif
+  const V ks = k * s;  // without FMA nothing contracts
+  return ks + t;
+}
 // Whether any lane of v is zero: one compare and a mask test (c1 c3 == 0 covers both differences; a product that
 // underflows only sends a lane to settle_ties, which recomputes it exactly).
 template <class V> inline bool any_zero(V v) {
@@ -126,7 +149,20 @@ inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
   // vector.  V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
   // The branch is core::branch's rule: the exact signs of a y - x and a y - z (ties to symbol 2).
   V c1, c3;
-  if constexpr (std::is_same_v<M, bool>) {
+  if constexpr (std::is_same_v<M, bool> && (std::is_same_v<V, double> || std::is_same_v<V, float>)) {
+    // A lane of the vector step below, in scalar code (lane_step): the same roundings, exact signs everywhere.
+#if defined(__FMA__) || defined(__AVX512F__)
+    c1 = core::fms<V>(a, y, x);
+    c3 = core::fms<V>(a, y, z);
+#else
+    c1 = fms(a, y, x);
+    c3 = fms(a, y, z);
+    if (c1 == 0) c1 = core::fms<V>(a, y, x);  // as settle_ties
+    if (c3 == 0) c3 = core::fms<V>(a, y, z);
+#endif
+    s1 = core::sign_of_fms<V>(a, y, x, c1) > 0;
+    s3 = core::sign_of_fms<V>(a, y, z, c3) < 0;
+  } else if constexpr (std::is_same_v<M, bool>) {
     c1 = core::fms<V>(a, y, x);
     c3 = core::fms<V>(a, y, z);
     s1 = core::sign_of_fms<V>(a, y, x, c1) > 0;
@@ -143,13 +179,18 @@ inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
     // With FMA, c1 = fl(a y - x) is zero only at an exact tie (symbol 2, as the rule says) or when a y - x is
     // below the smallest subnormal, which needs |y| < 2^-916 (else the exact value is a multiple of at least
     // 2^-1021): a lane whose y lies 2^-409 below its largest component (>= 2^-507 between renormalisations).
-    // That corner is not settled here: a test per vector-step made the plain kernel 1.7x slower (measured);
-    // core::branch, the scalar routes and the generic build settle it.
+    // That corner is not settled here (a test per vector-step made the plain kernel 1.7x slower): run() steps a
+    // batch whose start has such a lane lane by lane (first_step_exact), and one step leaves the corner.  The
+    // dynamics re-enter it only within 2^-409 of the direction (0, 0, 1), which no orbit from another start
+    // reaches except through the exact preimages of that direction.
   }
   const V xn = s3 ? V(r * x) : V(abs_of(c1));
   const V zn = s1 ? V(r * z) : V(negabs_of(c3));
   const V sy = (s1 | s3) ? V(-y) : y;
-  return {xn, V(k * (xn + zn) + sy), zn};
+  if constexpr (std::is_same_v<V, double> || std::is_same_v<V, float> || !std::is_same_v<M, bool>)
+    return {xn, fma_add(k, V(xn + zn), sy), zn};
+  else
+    return {xn, V(k * (xn + zn) + sy), zn};
 }
 
 // Generic lanes (long double, or any T without a vector type): the per-lane loop.
@@ -238,6 +279,33 @@ inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, con
 }
 
 template <class T> constexpr bool has_simd = std::is_same_v<T, float> || std::is_same_v<T, double>;
+
+// Whether a lane of a batch starts where the vector step's fused a y - x (a y - z) may underflow to 0 although the
+// exact value is not 0: with the largest component in [1, 2), the exact value is a multiple of 2^(e - 2 p + 2)
+// (e the exponent of y, p the precision's digits; a = (1 + r) / 2 is a multiple of 2^-p), below the smallest
+// subnormal 2^(m - p) (m = min_exponent) only when |y| < 2^(m + p - 2).  One test per batch, not per step.
+template <class T, int B> inline bool start_in_corner(const T* y) {
+  const T lim = std::ldexp(T(1), std::numeric_limits<T>::min_exponent + std::numeric_limits<T>::digits);
+  bool any = false;
+  for (int l = 0; l < B; ++l) any |= std::fabs(y[l]) < lim;
+  return any;
+}
+// n steps of a batch: the vector step, or lane by lane with exact signs (steps, map_step<T, bool>: the same
+// roundings) for the batch's first step when a lane starts in the corner above; one step leaves it (the image's y
+// is its largest component within a factor 1 / alpha when x and y were tiny).
+template <class T, int B, bool Sym>
+inline void advance(T* __restrict x, T* __restrict y, T* __restrict z, const T* __restrict r, const T* __restrict a,
+                    const T* __restrict k, std::uint8_t* __restrict sym, int n, bool exact_first) {
+  if constexpr (has_simd<T>) {
+    if (exact_first) {
+      steps<T, B, Sym>(x, y, z, r, a, k, sym, 1);
+      if (--n == 0) return;
+    }
+    steps_simd<T, Sym>(x, y, z, r, a, k, sym, n);
+  } else {
+    steps<T, B, Sym>(x, y, z, r, a, k, sym, n);
+  }
+}
 
 // Exact rescaling by a power of two so that max(|x|,|y|,|z|) lies in [1, 2): the symbols are exactly
 // those of the unnormalised iteration.  float/double: exponent-bit arithmetic (vectorises);
@@ -388,6 +456,8 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
       k[l] = a[l] / r[l];
     }
     detail::renormalise<T, B>(x, y, z);
+    bool corner = false;  // the other precisions' per-lane step settles every lane
+    if constexpr (detail::has_simd<T>) corner = detail::start_in_corner<T, B>(y);
     // Phase 1: unrecorded steps, K at a time, then an exact power-of-two rescale.
     long step = 0;
     const long quiet = std::min(iterations, first - 1);
@@ -395,8 +465,7 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
     // here and every core::cancel_stride steps below; the partial batch is discarded by RunTally::finish.
     while (step < quiet && !(opt.cancel && opt.cancel->cancelled())) {
       const int n = static_cast<int>(std::min<long>(K, quiet - step));
-      if constexpr (detail::has_simd<T>) detail::steps_simd<T, false>(x, y, z, r, a, k, sym, n);
-      else detail::steps<T, B, false>(x, y, z, r, a, k, sym, n);
+      detail::advance<T, B, false>(x, y, z, r, a, k, sym, n, corner && step == 0);
       detail::renormalise<T, B>(x, y, z);
       step += n;
     }
@@ -404,8 +473,7 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
     int since = 0;
     if (step < quiet) step = iterations;
     while (step < iterations && !core::cancel_due(opt.cancel, step)) {
-      if constexpr (detail::has_simd<T>) detail::steps_simd<T, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1);
-      else detail::steps<T, B, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1);
+      detail::advance<T, B, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1, corner && step == 0);
       ++step;
       if (++since == K) {
         detail::renormalise<T, B>(x, y, z);

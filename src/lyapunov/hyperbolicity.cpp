@@ -19,8 +19,9 @@ void validate(const ClvOptions& o) {
 }
 
 StepSingularValues step_singular_values(const Vec3<double>& u, double r) {
-  const Vec3<double> q = core::to_quadrant<double>(u).normalized();
-  const int s = core::branch(q, r);
+  const Vec3<double> p = core::to_quadrant<double>(u);
+  const int s = core::branch(p, r);  // of the point itself: its unit vector's rounding can cross a branch line
+  const Vec3<double> q = detail::pow2_scaled<double>(p).normalized();
   const double det = s == 2 ? r * r * r : r * r * r * r;  // det P2 = r^3, det P1 = det P3 = r^4
   const auto sv = singular_values<double>(core::P<double>(s, r), det, q);
   return {sv[0], sv[1], s};

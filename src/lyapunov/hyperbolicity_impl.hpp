@@ -74,9 +74,11 @@ template <class T> GinelliForward<T> ginelli_forward(const Vec3<T>& u0, const T&
   const long T0 = opt.transient, N = opt.window, Nb = opt.backward_transient, K = T0 + N + Nb;
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
   const T r3 = r * r * r, dets[3] = {r3 * r, r3, r3 * r};  // det P1 = det P3 = r^4, det P2 = r^3 (Section 5.1)
-  Vec3<T> u = core::to_quadrant<T>(u0);
-  u /= u.norm();
-  Eigen::Matrix<T, 3, 2> V = tangent_basis(u);
+  // The point is kept scaled by powers of two (detail::pow2_scaled), never divided by its norm: the branches are
+  // those of the user's point to the last bit (a unit vector's rounding can cross a branch line); the derivative
+  // and the singular values are taken at the unit point u / |u|.
+  Vec3<T> u = detail::pow2_scaled<T>(core::to_quadrant<T>(u0));
+  Eigen::Matrix<T, 3, 2> V = tangent_basis(Vec3<T>(u / u.norm()));
   GinelliForward<T> fw;
   fw.R.resize(static_cast<std::size_t>(N + Nb));
   res.expanding.reserve(static_cast<std::size_t>(N));
@@ -84,16 +86,18 @@ template <class T> GinelliForward<T> ginelli_forward(const Vec3<T>& u0, const T&
   for (long k = 0; k < K; ++k) {
     const int s = core::branch(u, r);
     const Vec3<T> pu = apply(s, u, r);
-    const T g = pu.norm();
-    const Vec3<T> w = pu / g;
+    const T nu = u.norm(), npu = pu.norm();
+    const T g = npu / nu;  // |P u| at the unit point
+    const Vec3<T> w = pu / npu;
     const bool in_window = k >= T0 && k < T0 + N;
     if (in_window) {
-      const bool e = singular_values<T>(Pm[s - 1], dets[s - 1], u)[0] >= 1;
+      const Vec3<T> unit = u / nu;
+      const bool e = singular_values<T>(Pm[s - 1], dets[s - 1], unit)[0] >= 1;
       res.expanding.push_back(e);
       res.symbols.push_back(static_cast<std::uint8_t>(s));
       fw.n_expanding += e;
       if (opt.keep_vectors) {
-        res.points.emplace_back(u.template cast<double>());
+        res.points.emplace_back(unit.template cast<double>());
         fw.frames.push_back(V);
       }
     }
@@ -104,7 +108,7 @@ template <class T> GinelliForward<T> ginelli_forward(const Vec3<T>& u0, const T&
       fw.log_sum[1] += static_cast<long double>(log(q.R[2]));
     }
     V = q.V;
-    u = w;
+    u = detail::pow2_scaled<T>(pu);
   }
   return fw;
 }

@@ -45,23 +45,27 @@ FiniteDifference finite_difference_exponent(const Vec3<double>& u0, double r, do
   validate(opt);
   detail::check_start(u0, r);
   if (!(delta > 0 && delta < 1)) throw core::InvalidField("delta", fmt::format("{}", delta), "0 < delta < 1");
-  Vec3<double> u = core::to_quadrant<double>(u0).normalized();
-  Vec3<double> v = (u + delta * tangent_basis(u).col(0)).normalized();
+  // The reference orbit is kept scaled by powers of two (detail::pow2_scaled), never divided by its norm: its
+  // branches are those of the user's point to the last bit; distances are measured between unit vectors.
+  Vec3<double> u = detail::pow2_scaled<double>(core::to_quadrant<double>(u0));
+  Vec3<double> unit = u.normalized();
+  Vec3<double> v = (unit + delta * tangent_basis(unit).col(0)).normalized();
   FiniteDifference fd;
   double sum = 0;
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
     core::poll_cancel(opt.cancel, k);
     const int s = core::branch(u, r), s2 = core::branch(v, r);
-    u = detail::apply(s, u, r).normalized();
+    u = detail::pow2_scaled<double>(detail::apply(s, u, r));
+    unit = u.normalized();
     v = detail::apply(s2, v, r).normalized();
-    const Vec3<double> d = v - u;
+    const Vec3<double> d = v - unit;
     const double dist = d.norm();
     if (k > opt.transient) {
       sum += std::log(dist / delta);
       fd.straddles += (s != s2);
     }
-    v = (u + delta * d / dist).normalized();  // re-place the partner at distance ~delta along the separation
+    v = (unit + delta * d / dist).normalized();  // re-place the partner at distance ~delta along the separation
   }
   fd.lambda1 = sum / static_cast<double>(opt.iterations);
   return fd;

@@ -44,7 +44,7 @@ const char* panel_word(attractors::Type t) {
     case attractors::Type::quasi_periodic: return "quasi-periodic";
     case attractors::Type::chaotic: return "chaotic";
     case attractors::Type::collapse: return "collapse";
-    default: return "unresolved";
+    default: return "undecided";
   }
 }
 

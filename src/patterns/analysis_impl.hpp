@@ -227,6 +227,13 @@ template <class T> bool is_stable(const Word& w0, const T& r) {
   return detail::stability_reason(w, r, is_J_square(w)).empty();
 }
 
+// An orbit that is not stable whose larger exponent is zero within the tie tolerance: neutral when the eigenvalue
+// tying with the orbit's is one of a complex pair (elliptic: the pair's modulus equals the orbit's), undecided
+// when it is real (two real moduli equal to within 64 eps may be ordered either way below the precision).
+inline Outcome tie_outcome(bool tying_eigenvalue_real) {
+  return tying_eigenvalue_real ? Outcome::undecided : Outcome::neutral;
+}
+
 namespace detail {
 
 // The eigenvalues of M_w (of A = J M_h when reduced), unnormalised, by decreasing modulus; each real one with its
@@ -331,7 +338,9 @@ template <class T> void orbit_exponents(const LogModuli<T>& lg, Verdict<T>& v) {
   // elliptic point: a complex pair on the circle of the orbit's own eigenvalue, Section 6); unstable when it is
   // positive (a saddle or a source).
   using std::abs;
-  if (v.outcome == Outcome::unstable && abs(v.lyapunov2) * p <= tie_tol<T>()) v.outcome = Outcome::neutral;
+  // Undecided instead of neutral when the eigenvalue that ties with the orbit's is real (tie_outcome).
+  if (v.outcome == Outcome::unstable && abs(v.lyapunov2) * p <= tie_tol<T>())
+    v.outcome = tie_outcome(v.spectrum[v.orbit_eigen == 0 ? 1 : 0].real);
 }
 
 }  // namespace detail
@@ -453,8 +462,14 @@ template <class T> Classification classify(const Word& w0, const T& r) {
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
   for (int i = 0; i < 3; ++i) {
     if (!s.roots[i].real) continue;
-    if (feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) < 0)
-      return {i == 0 && dominant ? Outcome::stable : Outcome::unstable, collapses(w, r, s, i, reduced)};
+    if (feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) >= 0) continue;
+    if (i == 0 && dominant) return {Outcome::stable, collapses(w, r, s, i, reduced)};
+    // analyse's neutral / undecided: the largest other modulus j against the orbit's i (M_w = A^2 when reduced).
+    using std::abs;
+    const int j = i == 0 ? 1 : 0;
+    const T ratio = T(log_<T>(T(s.mod[j] / s.mod[i])) * T(reduced ? 2 : 1));
+    const Outcome o = abs(ratio) <= tie_tol<T>() ? tie_outcome(s.roots[j].real) : Outcome::unstable;
+    return {o, collapses(w, r, s, i, reduced)};
   }
   return {};
 }

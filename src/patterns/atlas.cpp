@@ -89,7 +89,7 @@ std::string feasible_csv(const std::vector<FeasibleEntry>& atlas) {
 std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r) {
   core::CsvTable s("r,stable,unstable,feasible,stable_collapse,unstable_collapse");
   for (double x : r) {
-    long st = 0, un = 0, stc = 0, unc = 0;
+    long st = 0, un = 0, fe = 0, stc = 0, unc = 0;  // fe: every feasible entry (neutral and undecided too)
     for (const auto& e : atlas) {
       const FeasibleInterval<double>* in = nullptr;
       for (const auto& iv : e.intervals)
@@ -97,10 +97,11 @@ std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const s
       if (!in) continue;
       st += in->outcome == Outcome::stable;
       un += in->outcome == Outcome::unstable;
+      fe += in->outcome != Outcome::none;
       stc += in->outcome == Outcome::stable && in->collapse;
       unc += in->outcome == Outcome::unstable && in->collapse;
     }
-    s.line(fmt::format("{:.6g},{},{},{},{},{}", x, st, un, st + un, stc, unc));
+    s.line(fmt::format("{:.6g},{},{},{},{},{}", x, st, un, fe, stc, unc));
   }
   return s.text();
 }

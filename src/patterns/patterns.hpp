@@ -51,9 +51,11 @@ std::vector<Word> enumerate_canonical(int max_length);
 
 // Outcome of the periodic-orbit analysis of a word at one r.
 // stable: attracting (both exponents < 0); unstable: a saddle or a source (an exponent > 0); neutral: elliptic
-// (the larger exponent zero within the eigenvalue moduli's tie tolerance).  analyse() gives all four; the
-// atlas's intervals (classify) know stable and unstable only.
-enum class Outcome { none, unstable, stable, neutral };
+// (the larger exponent zero within the eigenvalue moduli's tie tolerance, the tying eigenvalue one of a complex
+// pair, whose modulus is the orbit's); undecided: the same tie with a real eigenvalue, which the precision cannot
+// order (the exponent is zero within its error and the eigenvalue test cannot decide).  analyse() and the atlas's
+// intervals (classify) give the same words.
+enum class Outcome { none, unstable, stable, neutral, undecided };
 const char* outcome_name(Outcome o);
 
 // One eigenvalue of the analysed matrix (M_w, or J M_h when w = h J(h)), with its eigenvector when real.

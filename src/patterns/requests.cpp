@@ -164,6 +164,10 @@ std::string verdict_text(const WordResult& res) {
     why = " (elliptic: both exponents zero within 64 eps; neither attracting nor repelling)";
   else if (res.outcome == outcome_name(Outcome::unstable))
     why = " (a saddle or a source: lambda1 > 0)";
+  else if (res.outcome == outcome_name(Outcome::undecided))
+    why = fmt::format(" (undecided in {}: the orbit's eigenvalue and another real one have equal moduli within 64 "
+                      "eps, so lambda1 is zero within its error and the eigenvalue test cannot order them; use a "
+                      "longer precision, --precision mpfr:<digits>)", res.scalar_type);
   else if (!res.reason.empty())
     why = fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason));
   s += fmt::format("verdict     {}{}\n", res.outcome, why);

@@ -54,7 +54,7 @@ struct WordResult {
   std::string r;                      // r as the precision holds it
   bool reduced = false;               // analysed through J M_h (Section 7.1)
   std::vector<EigenText> spectrum;    // by decreasing modulus
-  std::string outcome, reason;        // stable / unstable / neutral / none; why not stable
+  std::string outcome, reason;        // stable / unstable / neutral / undecided / none; why not stable
   std::string lyapunov2, lyapunov3;   // the orbit's exponents lambda1 >= lambda2 along its tangent directions,
                                       // log(|mu_j|/|mu_k|)/p (natural log, per iteration; patterns::Verdict)
   std::string letters;                // collision letters of the periodic orbit (when there is one)

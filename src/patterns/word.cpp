@@ -282,6 +282,7 @@ const char* outcome_name(Outcome o) {
     case Outcome::unstable: return "unstable orbit";
     case Outcome::stable: return "stable orbit";
     case Outcome::neutral: return "neutral orbit";
+    case Outcome::undecided: return "undecided orbit";
   }
   return "?";
 }

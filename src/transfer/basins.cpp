@@ -69,7 +69,7 @@ void add_p2_region(const Partition& part, Domain dom, const TransferRequest& q, 
   if (!(cmax > 0)) return;
   BasinInfo b;
   b.attractor = "P2 region";
-  b.kind = "P2 invariant curves";
+  b.kind = "neutral";  // the P2 invariant curves: elliptic, neither attracting nor repelling
   const auto id = static_cast<std::uint32_t>(t.basins.size() + 1);
   const double h1 = (part.hi1 - part.lo1) / static_cast<double>(part.n1),
                h2 = (part.hi2 - part.lo2) / static_cast<double>(part.n2);
@@ -100,7 +100,7 @@ BasinTargets basin_targets(const std::vector<CycleCheck>& cycles, const Partitio
     if (cc.outcome != "stable orbit") continue;  // an unstable or absent cycle attracts nothing
     BasinInfo b;
     b.attractor = cc.word;
-    b.kind = "sink";
+    b.kind = "stable";  // an attracting cycle (the verdict words of docs/ARCHITECTURE.md)
     const auto id = static_cast<std::uint32_t>(t.basins.size() + 1);
     for (long box : cc.boxes)
       if (box >= 0 && t.of_box[at(box)] == 0) t.of_box[at(box)] = id, ++b.target_boxes;

@@ -196,7 +196,7 @@ struct CycleCheck {
 // transfer operator gives to attractor k, the counterpart of `btob basins`' counted fractions.
 struct BasinInfo {
   std::string attractor;  // the cycle's word, or "P2 region"
-  std::string kind;       // "sink" or "P2 invariant curves"
+  std::string kind;       // "stable" (a sink) or "neutral" (the P2 invariant curves)
   long target_boxes = 0;
   double fraction = 0;  // of the Lebesgue measure of the request
   double exact = -1;    // P2 region: the Lebesgue measure of R itself (closed form by quadrature), -1 else
