@@ -152,7 +152,11 @@ std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_
   if (n1 < 1 || n2 < 1)
     throw core::InvalidField("grid", fmt::format("strip:{}x{}", n1, n2), "at least 1x1 points");
   core::Grid g = core::make_grid(core::GridKind::strip, n1, n2);
-  g.set_range1(w1_min, w1_max, "grid");
+  try {
+    g.set_range1(w1_min, w1_max, "grid");
+  } catch (const core::InvalidField&) {
+    throw core::InvalidField("grid", fmt::format("w1 range [{}, {}]", w1_min, w1_max), "finite w1-min < w1-max");
+  }
   return strip_grid(g);
 }
 
