@@ -78,6 +78,9 @@ TEST(Grid, ReadsAStripRangeOnlyWhereTheSyntaxAllowsIt) {
   g.set_range1(0.5, 3, "w1-range");
   EXPECT_EQ(g.axis1.lo, 0.5);
   EXPECT_EQ(error_of([&] { g.set_range1(3, 0.5, "w1-range"); }), "w1-range: got [3, 0.5], expected finite a < b");
+  // A range whose width overflows: every centre would be infinite or NaN.
+  EXPECT_EQ(error_of([&] { g.set_range1(-1e308, 1e308, "w1-range"); }),
+            "w1-range: got [-1e+308, 1e+308], expected finite a < b");
 }
 
 TEST(Grid, RefusesMalformedSpecsNamingTheFieldAndTheAcceptedForms) {
@@ -86,7 +89,7 @@ TEST(Grid, RefusesMalformedSpecsNamingTheFieldAndTheAcceptedForms) {
   syntax.expected = "KIND:NxM with 1 <= N, M <= 100";
   for (const char* bad : {"", "disk:3x3", "strip:", "strip:3", "strip:3x", "strip:x3", "strip:0x3", "strip:3x-1",
                           "strip:3x4x5", "strip:+3x4", "strip: 3x4", "strip:101x3", "3x101", "strip:3x4:1",
-                          "strip:3x4:2:1", "strip:3x4:0:inf", "strip:3x4:a:b", "strip:3x4:1:2:3", "x", "sphere:3.5x4"})
+                          "strip:3x4:2:1", "strip:3x4:0:inf", "strip:3x4:-1e308:1e308", "strip:3x4:a:b", "strip:3x4:1:2:3", "x", "sphere:3.5x4"})
     EXPECT_EQ(error_of([&] { parse_grid(bad, syntax, "cells"); }),
               std::string("cells: got '") + bad + "', expected KIND:NxM with 1 <= N, M <= 100")
         << bad;

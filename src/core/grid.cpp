@@ -75,6 +75,9 @@ std::optional<GridKind> kind_of(std::string_view name) {
   return std::nullopt;
 }
 
+// a < b with a, b and the width b - a finite (the centres' formula multiplies by b - a).
+bool finite_range(double a, double b) { return std::isfinite(a) && std::isfinite(b) && a < b && std::isfinite(b - a); }
+
 template <class T> std::optional<T> number(std::string_view s) {
   T v{};
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -91,8 +94,7 @@ Grid make_grid(GridKind kind, long n1, long n2) {
 }
 
 void Grid::set_range1(double lo, double hi, const char* field) {
-  if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi))
-    throw InvalidField(field, fmt::format("[{}, {}]", lo, hi), "finite a < b");
+  if (!finite_range(lo, hi)) throw InvalidField(field, fmt::format("[{}, {}]", lo, hi), "finite a < b");
   axis1.lo = lo, axis1.hi = hi;
 }
 
@@ -122,7 +124,7 @@ Grid parse_grid(std::string_view spec, const GridSyntax& syntax, const char* fie
     const auto colon = range.find(':');
     if (!syntax.ranges || g.kind != GridKind::strip || colon == std::string_view::npos) throw bad();
     const auto a = number<double>(range.substr(0, colon)), b = number<double>(range.substr(colon + 1));
-    if (!a || !b || !(std::isfinite(*a) && std::isfinite(*b) && *a < *b)) throw bad();
+    if (!a || !b || !finite_range(*a, *b)) throw bad();
     g.axis1.lo = *a, g.axis1.hi = *b, g.has_range = true;
   }
   return g;

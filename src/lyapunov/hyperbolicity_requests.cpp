@@ -24,7 +24,7 @@ core::Grid HyperbolicityRequest::strip() const {
   core::Grid s = core::parse_grid(grid, cells, "grid");
   std::vector<double> range;
   core::set_field(range, {w1_range}, "w1-range");  // finite numbers, split at the comma
-  if (range.size() != 2 || !(range[0] < range[1]))
+  if (range.size() != 2 || !(range[0] < range[1]) || !std::isfinite(range[1] - range[0]))  // the width too
     throw core::InvalidField("w1-range", "'" + w1_range + "'", "two finite numbers a,b with a < b");
   s.axis1.lo = range[0];
   s.axis1.hi = range[1];
