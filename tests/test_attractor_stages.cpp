@@ -1,17 +1,16 @@
 // Tests of the attractors module's stages alone (attractors/stages.hpp, attractors/certify.hpp): the certificates of
 // early exits against independent routes (the scalar map core::step, the pattern tool's exact cycles), the decision
 // type, the one merge of the curve ranges, the smallest rotation of a word.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
 #include "attractors/certify.hpp"
 #include "attractors/stages.hpp"
 #include "core/map.hpp"
 #include "patterns/patterns.hpp"
-
-#include <gtest/gtest.h>
-
 #include "tolerance.hpp"
-
-#include <cmath>
-#include <limits>
 
 using btob::test::ulps;
 
@@ -66,7 +65,8 @@ TEST(AttractorStages, P2TrapHoldsUnderTheScalarMap) {
 }
 
 TEST(AttractorStages, DecisionsKeepTheirKindApart) {
-  const Decision full = Decision::full_length(), p2 = Decision::p2_curve(), c0 = Decision::cone(0), c3 = Decision::cone(3);
+  const Decision full = Decision::full_length(), p2 = Decision::p2_curve(), c0 = Decision::cone(0),
+                 c3 = Decision::cone(3);
   EXPECT_TRUE(full.is_full_length());
   EXPECT_TRUE(Decision{}.is_full_length());
   EXPECT_TRUE(p2.is_p2_curve());

@@ -1,16 +1,16 @@
 // Tests of btob::core's grid type: the one grammar KIND:NxM[:a:b] and its parser (each kind, ranges, errors), cell
 // centres and edges against the formula in exact rational arithmetic, the charts' points, and the fields that
 // read grids through it (basins, lyapunov-strip, hyperbolicity, transfer's boxes).
-#include "core/coords.hpp"
-#include "core/grid.hpp"
-#include "core/request.hpp"
-
-#include <boost/multiprecision/gmp.hpp>
 #include <gtest/gtest.h>
 
+#include <boost/multiprecision/gmp.hpp>
 #include <cmath>
 #include <numbers>
 #include <string>
+
+#include "core/coords.hpp"
+#include "core/grid.hpp"
+#include "core/request.hpp"
 
 namespace {
 
@@ -21,7 +21,8 @@ const GridSyntax kAll{grid_kinds({GridKind::strip, GridKind::sphere, GridKind::a
                       "every form"};
 
 // The message of the InvalidField f throws (empty, and a failure, if it throws nothing or another type).
-template <class F> std::string error_of(F f) {
+template <class F>
+std::string error_of(F f) {
   try {
     f();
   } catch (const InvalidField& e) {
@@ -87,9 +88,27 @@ TEST(Grid, RefusesMalformedSpecsNamingTheFieldAndTheAcceptedForms) {
   GridSyntax syntax = kAll;
   syntax.max_side = 100;
   syntax.expected = "KIND:NxM with 1 <= N, M <= 100";
-  for (const char* bad : {"", "disk:3x3", "strip:", "strip:3", "strip:3x", "strip:x3", "strip:0x3", "strip:3x-1",
-                          "strip:3x4x5", "strip:+3x4", "strip: 3x4", "strip:101x3", "3x101", "strip:3x4:1",
-                          "strip:3x4:2:1", "strip:3x4:0:inf", "strip:3x4:-1e308:1e308", "strip:3x4:a:b", "strip:3x4:1:2:3", "x", "sphere:3.5x4"})
+  for (const char* bad : {"",
+                          "disk:3x3",
+                          "strip:",
+                          "strip:3",
+                          "strip:3x",
+                          "strip:x3",
+                          "strip:0x3",
+                          "strip:3x-1",
+                          "strip:3x4x5",
+                          "strip:+3x4",
+                          "strip: 3x4",
+                          "strip:101x3",
+                          "3x101",
+                          "strip:3x4:1",
+                          "strip:3x4:2:1",
+                          "strip:3x4:0:inf",
+                          "strip:3x4:-1e308:1e308",
+                          "strip:3x4:a:b",
+                          "strip:3x4:1:2:3",
+                          "x",
+                          "sphere:3.5x4"})
     EXPECT_EQ(error_of([&] { parse_grid(bad, syntax, "cells"); }),
               std::string("cells: got '") + bad + "', expected KIND:NxM with 1 <= N, M <= 100")
         << bad;
@@ -115,7 +134,8 @@ TEST(Grid, CentresAndEdgesFollowTheFormula) {
       for (long i = 0; i < ax->cells; ++i) {
         for (double shift : {0.0, 0.25, -0.45}) {
           const Q exact = Q(ax->lo) + (Q(i) + Q(1, 2) + Q(shift)) * (Q(ax->hi) - Q(ax->lo)) / ax->cells;
-          EXPECT_LE(std::fabs(static_cast<double>(Q(ax->centre(i, shift)) - exact)), 5 * eps * scale) << spec << " " << i;
+          EXPECT_LE(std::fabs(static_cast<double>(Q(ax->centre(i, shift)) - exact)), 5 * eps * scale)
+              << spec << " " << i;
         }
         const Q exact_edge = Q(ax->lo) + Q(i) * (Q(ax->hi) - Q(ax->lo)) / ax->cells;
         EXPECT_LE(std::fabs(static_cast<double>(Q(edges[static_cast<std::size_t>(i)]) - exact_edge)), 4 * eps * scale);
@@ -128,12 +148,14 @@ TEST(Grid, CentresAndEdgesFollowTheFormula) {
 
 // A cell's point is its chart's point at the cell centre, bit for bit (the grids of every command are these points).
 TEST(Grid, CellPointsAreTheChartsPointsAtTheCentres) {
-  const Grid s = parse_grid("strip:6x4:-1:3", kAll), h = parse_grid("sphere:6x4", kAll), a = parse_grid("angles:6x4", kAll);
+  const Grid s = parse_grid("strip:6x4:-1:3", kAll), h = parse_grid("sphere:6x4", kAll),
+             a = parse_grid("angles:6x4", kAll);
   for (long i = 0; i < 6; ++i)
     for (long j = 0; j < 4; ++j) {
       const double w1 = s.axis1.centre(i, 0.1), w2 = s.axis2.centre(j, -0.2);
       EXPECT_EQ(s.cell_point(i, j, 0.1, -0.2), from_strip<double>(w1, w2));
-      EXPECT_EQ(s.cell_point(i, j), Vec3<double>((1 + s.axis2.centre(j)) / 2, s.axis1.centre(i), (s.axis2.centre(j) - 1) / 2));
+      EXPECT_EQ(s.cell_point(i, j),
+                Vec3<double>((1 + s.axis2.centre(j)) / 2, s.axis1.centre(i), (s.axis2.centre(j) - 1) / 2));
       EXPECT_EQ(h.cell_point(i, j), from_height<double>(h.axis1.centre(i), h.axis2.centre(j)));
       EXPECT_EQ(a.cell_point(i, j), from_angles<double>(a.axis1.centre(i), a.axis2.centre(j)));
     }

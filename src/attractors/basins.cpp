@@ -1,11 +1,4 @@
 // Basins over grids (attractors.hpp): the grids, the sweep of rows with early exits, and the merge of its parts.
-#include "attractors/certify.hpp"
-#include "attractors/recorders.hpp"
-#include "attractors/stages.hpp"
-
-#include "core/coords.hpp"
-#include "core/sweep.hpp"
-
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -17,6 +10,12 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+
+#include "attractors/certify.hpp"
+#include "attractors/recorders.hpp"
+#include "attractors/stages.hpp"
+#include "core/coords.hpp"
+#include "core/sweep.hpp"
 
 namespace btob::attractors {
 
@@ -61,9 +60,12 @@ double sphere_share(const Grid& g) {
 
 std::string measure_name(const Grid& g) {
   switch (g.kind) {
-    case core::GridKind::sphere: return "uniform on the sphere of directions of the domain (equal-area grid)";
-    case core::GridKind::strip: return strip_measure_name(g.axis1.lo, g.axis1.hi);
-    default: return "uniform in the angles (theta, phi), not the sphere's area";
+    case core::GridKind::sphere:
+      return "uniform on the sphere of directions of the domain (equal-area grid)";
+    case core::GridKind::strip:
+      return strip_measure_name(g.axis1.lo, g.axis1.hi);
+    default:
+      return "uniform in the angles (theta, phi), not the sphere's area";
   }
 }
 
@@ -197,7 +199,8 @@ const ChunkVerdicts& classify_early(const iterate::Ensemble& ens, const Options&
 
 // Full-length verdicts of a few starts, in whole batches of 128 (a multiple of every kernel width): each runs
 // through the recorders' full-width path, as in a whole-grid run.
-std::vector<OrbitVerdict> classify_whole_batches(double r, const std::vector<Vec3<double>>& starts, const Options& opt) {
+std::vector<OrbitVerdict> classify_whole_batches(double r, const std::vector<Vec3<double>>& starts,
+                                                 const Options& opt) {
   iterate::Ensemble e;
   e.r = {r};
   e.initial = starts;
@@ -211,21 +214,20 @@ std::vector<OrbitVerdict> classify_whole_batches(double r, const std::vector<Vec
 
 void expect_verdict(const OrbitVerdict& full, Type type, const std::string& key, double r) {
   if (full.type != type || full.key != key)
-    throw std::logic_error(fmt::format("basins: early exit said {} {} for an orbit the full-length classification "
-                                       "calls {} {} at r = {} (a certification bound is wrong)",
-                                       type_name(type), key, type_name(full.type), full.key, r));
+    throw std::logic_error(
+        fmt::format("basins: early exit said {} {} for an orbit the full-length classification "
+                    "calls {} {} at r = {} (a certification bound is wrong)",
+                    type_name(type), key, type_name(full.type), full.key, r));
 }
 
 void check_basins(double r, const Grid& g, int replicates, const Options& opt) {
   validate(opt);
   core::validate_r(r, "r");
-  if (replicates < 0 || replicates > 100)
-    throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
+  if (replicates < 0 || replicates > 100) throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
   // Per point of the main grid: its label in a part and in the merged result; the work runs in chunks of at most
   // kChunk orbits (see there).
   iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 8, "grid");
 }
-
 
 // ---- a part of a basin run: its classes as its orbits are folded in ----
 
@@ -433,7 +435,8 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
   BasinRows part;
   part.items = items;
   part.unresolved.assign(grids, 0);
-  part.labels.reserve(static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [&](auto i) { return i < n2; })) * n1);
+  part.labels.reserve(
+      static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [&](auto i) { return i < n2; })) * n1);
   ClassBook book{part, grids};
   const Certificates cert = make_certificates(r, opt);
   CertifiedClasses certified{std::vector<std::size_t>(cert.cones.size(), npos)};
@@ -472,7 +475,8 @@ using JoinedClasses = std::map<ClassKey, BasinClass>;
 // Class c of a part joined into j (the same attractor): lowest-index first orbit, counts, ranges, lowest and
 // highest I.
 void join_class(BasinClass& j, const BasinClass& c, std::size_t grids) {
-  if (c.first_index < j.first_index) j.first = c.first, j.first_index = c.first_index, j.first_pending = c.first_pending;
+  if (c.first_index < j.first_index)
+    j.first = c.first, j.first_index = c.first_index, j.first_pending = c.first_pending;
   for (std::size_t k = 0; k < grids; ++k) j.count[k] += c.count[k];
   widen_curve_ranges(j, c.rotation_min, c.rotation_max, c.invariant_min, c.invariant_max);
   keep_lowest_invariant(j.lo, c.lo);
@@ -529,8 +533,9 @@ void settle_pending(JoinedClasses& joined, double r, const Options& opt) {
 }
 
 // The attractors of the joined classes (ids by sorted key), their main-grid fractions and replicate fractions.
-std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined, const std::vector<std::size_t>& unresolved,
-                                                  double r, std::size_t n, Basins& b) {
+std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined,
+                                                  const std::vector<std::size_t>& unresolved, double r, std::size_t n,
+                                                  Basins& b) {
   std::map<ClassKey, std::uint32_t> id_of;
   const std::size_t grids = unresolved.size();
   for (const auto& [k, c] : joined) {
@@ -547,7 +552,8 @@ std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined, c
     b.fractions.push_back(fraction(c.count[0], n));
   }
   std::vector<double> per_grid(grids);
-  for (std::size_t kk = 0; kk < grids; ++kk) per_grid[kk] = static_cast<double>(unresolved[kk]) / static_cast<double>(n);
+  for (std::size_t kk = 0; kk < grids; ++kk)
+    per_grid[kk] = static_cast<double>(unresolved[kk]) / static_cast<double>(n);
   b.replicate_fractions.push_back(std::move(per_grid));
   b.unresolved = fraction(unresolved[0], n);
   return id_of;

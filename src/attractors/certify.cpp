@@ -1,16 +1,16 @@
 // The certification of early exits (attractors/certify.hpp): trapping cones of stable cycles, the P2 ellipses.
 #include "attractors/certify.hpp"
 
-#include "attractors/recorders.hpp"
-#include "attractors/stages.hpp"
-#include "core/coords.hpp"
-#include "core/grid.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <set>
+
+#include "attractors/recorders.hpp"
+#include "attractors/stages.hpp"
+#include "core/coords.hpp"
+#include "core/grid.hpp"
 
 namespace btob::attractors::stages {
 namespace {
@@ -198,7 +198,8 @@ std::optional<double> p2_rotation_angle(const Eigen::Matrix3d& P2, const Eigen::
 // vectors' max-norm distance >= that sine / sqrt(3).  The constant return_k of P2Trap.
 double return_constant(const Eigen::Matrix2d& T, double beta, int max_period) {
   double smin = kInf;
-  for (int j = 1; j <= max_period; ++j) smin = std::min(smin, std::fabs(2 * std::sin(static_cast<double>(j) * beta / 2)));
+  for (int j = 1; j <= max_period; ++j)
+    smin = std::min(smin, std::fabs(2 * std::sin(static_cast<double>(j) * beta / 2)));
   Eigen::Matrix<double, 3, 2> L;
   const Eigen::Matrix2d Ti = T.inverse();  // (xi, eta) -> (s, y)
   L << Ti(0, 0) / 2, Ti(0, 1) / 2, Ti(1, 0), Ti(1, 1), Ti(0, 0) / 2, Ti(0, 1) / 2;

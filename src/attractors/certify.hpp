@@ -2,14 +2,13 @@
 // invariant ellipses.  Internal to the attractors module; declared here so that each stage can be tested alone.
 #pragma once
 
-#include "attractors/attractors.hpp"
-
 #include <Eigen/Dense>
-
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "attractors/attractors.hpp"
 
 namespace btob::attractors::stages {
 

@@ -1,24 +1,23 @@
 // Per-orbit classification on the batched kernel (Section 8.1 (1)): pass 1 (return, collapse), pass 2 (lambda1, the
 // P2 rotation number), refinement; attractor identity and collection.
-#include "attractors/stages.hpp"
-
-#include "attractors/recorders.hpp"
-#include "core/coords.hpp"
-#include "iterate/cocycle.hpp"
-#include "iterate/recorders.hpp"
-#include "lyapunov/maps.hpp"
-#include "lyapunov/tangent.hpp"
-
-#include <boost/math/distributions/binomial.hpp>
-#include <boost/multiprecision/gmp.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
+#include <boost/multiprecision/gmp.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+
+#include "attractors/recorders.hpp"
+#include "attractors/stages.hpp"
+#include "core/coords.hpp"
+#include "iterate/cocycle.hpp"
+#include "iterate/recorders.hpp"
+#include "lyapunov/maps.hpp"
+#include "lyapunov/tangent.hpp"
 
 namespace btob::attractors {
 namespace stages {
@@ -94,10 +93,11 @@ bool collapse_verdict(const ReturnRecorder& rec, std::size_t o, double r, const 
 bool underflow_verdict(const Vec3<double>& u0, const Vec3<double>& fin, OrbitVerdict& v) {
   if (!((fin(0) == 0 && u0(0) != 0) || (fin(2) == 0 && u0(2) != 0))) return false;
   v.type = Type::unresolved;
-  v.detail = fmt::format("{}: {} underflowed to 0 (the orbit passes closer to the invariant "
-                         "plane {} = 0 than double's range, near r = 7 - 4 sqrt(3)); follow it with "
-                         "`btob lyapunov --precision mpfr:50`, whose exponent range keeps it",
-                         kUndecidedInDouble, fin(0) == 0 ? "x" : "z", fin(0) == 0 ? "x" : "z");
+  v.detail = fmt::format(
+      "{}: {} underflowed to 0 (the orbit passes closer to the invariant "
+      "plane {} = 0 than double's range, near r = 7 - 4 sqrt(3)); follow it with "
+      "`btob lyapunov --precision mpfr:50`, whose exponent range keeps it",
+      kUndecidedInDouble, fin(0) == 0 ? "x" : "z", fin(0) == 0 ? "x" : "z");
   return true;
 }
 
@@ -114,8 +114,8 @@ const ExactCycle& exact_cycle(const std::string& key, const patterns::Word& key_
 }
 
 // An orbit that returned after p steps: periodic if its point lies on the exact cycle of its word.
-void periodic_verdict(const ReturnRecorder& rec, std::size_t o, int p, double r, const Options& opt,
-                      ExactCycles& exact, OrbitVerdict& v) {
+void periodic_verdict(const ReturnRecorder& rec, std::size_t o, int p, double r, const Options& opt, ExactCycles& exact,
+                      OrbitVerdict& v) {
   patterns::Word w;
   for (int j = 1; j <= p; ++j) w.s.push_back(static_cast<std::uint8_t>(rec.symbol(o, j)));
   v.period = p;
@@ -220,8 +220,10 @@ PassTwo run_pass_two(const iterate::Ensemble& pass_two, const Options& opt) {
   PassTwo two;
   two.rotation_index.assign(pass_two.initial.size(), PassTwo::none);
   two.last.resize(pass_two.initial.size());
-  if (iterate::cocycle_accepts<double>(pass_two.r)) pass_two_fused(pass_two, opt, two);
-  else pass_two_plain(pass_two, opt, two);
+  if (iterate::cocycle_accepts<double>(pass_two.r))
+    pass_two_fused(pass_two, opt, two);
+  else
+    pass_two_plain(pass_two, opt, two);
   return two;
 }
 
@@ -242,9 +244,10 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
     v.type = Type::chaotic, v.key = "X";
     v.detail = lam + " > 0";
   } else if (sign < 0) {
-    v.detail = fmt::format("{} < 0 but no return within {} steps (closest {:.2g} at {}): slow convergence or a "
-                           "longer period",
-                           lam, opt.max_period, v.residual, v.closest_return);
+    v.detail = fmt::format(
+        "{} < 0 but no return within {} steps (closest {:.2g} at {}): slow convergence or a "
+        "longer period",
+        lam, opt.max_period, v.residual, v.closest_return);
   } else if (!RotationRecorder::defined(r)) {
     v.detail = lam + " is zero, but r <= 3 - 2 sqrt(2): no P2 rotation to test";
   } else if (v.rotation_delta < opt.rotation_tol) {
@@ -300,12 +303,15 @@ void refine(const iterate::Ensemble& ens, const Options& opt, const std::vector<
     const std::string first = v.detail;
     v = std::move(refined[i]);
     v.iterations += before;
-    if (v.type == Type::unresolved) v.detail += " (also after refinement)";
-    else v.detail += " (after refinement; first pass: " + first + ")";
+    if (v.type == Type::unresolved)
+      v.detail += " (also after refinement)";
+    else
+      v.detail += " (after refinement; first pass: " + first + ")";
   }
 }
 
-template <class F> void check(bool ok, const char* field, F&& got, const std::string& expected) {
+template <class F>
+void check(bool ok, const char* field, F&& got, const std::string& expected) {
   if (!ok) throw core::InvalidField(field, got(), expected);
 }
 
@@ -326,11 +332,16 @@ std::vector<OrbitVerdict> stages::classify_from(const iterate::Ensemble& ens, co
 
 const char* type_name(Type t) {
   switch (t) {
-    case Type::collapse: return "collapse";
-    case Type::periodic: return "periodic";
-    case Type::quasi_periodic: return "quasi-periodic";
-    case Type::chaotic: return "chaotic";
-    default: return "unresolved";
+    case Type::collapse:
+      return "collapse";
+    case Type::periodic:
+      return "periodic";
+    case Type::quasi_periodic:
+      return "quasi-periodic";
+    case Type::chaotic:
+      return "chaotic";
+    default:
+      return "unresolved";
   }
 }
 
@@ -341,7 +352,8 @@ void validate(const Options& o) {
   check(o.window >= o.max_period, "window", str(o.window), fmt::format("at least max-period = {}", o.max_period));
   check(o.return_tol > 0 && o.return_tol <= 1e-3, "return-tol", str(o.return_tol), "a value in (0, 1e-3]");
   check(o.point_tol > 0 && o.point_tol <= 1e-2, "point-tol", str(o.point_tol), "a value in (0, 1e-2]");
-  check(o.collapse_theta > 0 && o.collapse_theta <= 0.1, "collapse-theta", str(o.collapse_theta), "a value in (0, 0.1]");
+  check(o.collapse_theta > 0 && o.collapse_theta <= 0.1, "collapse-theta", str(o.collapse_theta),
+        "a value in (0, 0.1]");
   check(o.lyap_transient >= 1, "lyap-transient", str(o.lyap_transient), "at least 1");
   check(o.lyap_blocks >= 2 && o.lyap_blocks <= 1000, "lyap-blocks", str(o.lyap_blocks), "2..1000");
   check(o.lyap_iterations >= 10L * o.lyap_blocks, "lyap-iterations", str(o.lyap_iterations),

@@ -2,12 +2,12 @@
 // can be called and tested alone.  Not part of the module's public API (attractors.hpp).
 #pragma once
 
-#include "attractors/attractors.hpp"
-
 #include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "attractors/attractors.hpp"
 
 namespace btob::attractors::stages {
 
@@ -49,7 +49,8 @@ void widen_curve_ranges(Ranges& into, double rot_lo, double rot_hi, double inv_l
   into.invariant_max = std::max(into.invariant_max, inv_hi);
 }
 // By one verdict's values.
-template <class Ranges> void widen_curve_ranges(Ranges& into, const OrbitVerdict& v) {
+template <class Ranges>
+void widen_curve_ranges(Ranges& into, const OrbitVerdict& v) {
   widen_curve_ranges(into, v.rotation, v.rotation, v.invariant, v.invariant);
 }
 

@@ -1,9 +1,6 @@
 // The grid type's parser, axes and points (core/grid.hpp).
 #include "core/grid.hpp"
 
-#include "core/coords.hpp"
-#include "core/request.hpp"
-
 #include <fmt/format.h>
 
 #include <charconv>
@@ -11,14 +8,21 @@
 #include <numbers>
 #include <optional>
 
+#include "core/coords.hpp"
+#include "core/request.hpp"
+
 namespace btob::core {
 
 const char* grid_kind_name(GridKind kind) {
   switch (kind) {
-    case GridKind::strip: return "strip";
-    case GridKind::sphere: return "sphere";
-    case GridKind::angles: return "angles";
-    default: return "boxes";
+    case GridKind::strip:
+      return "strip";
+    case GridKind::sphere:
+      return "sphere";
+    case GridKind::angles:
+      return "angles";
+    default:
+      return "boxes";
   }
 }
 
@@ -36,9 +40,12 @@ std::vector<double> GridAxis::edges() const {
 
 Vec3<double> Grid::point(double a, double b) const {
   switch (kind) {
-    case GridKind::strip: return from_strip<double>(a, b);
-    case GridKind::sphere: return from_height<double>(a, b);
-    default: return from_angles<double>(a, b);
+    case GridKind::strip:
+      return from_strip<double>(a, b);
+    case GridKind::sphere:
+      return from_height<double>(a, b);
+    default:
+      return from_angles<double>(a, b);
   }
 }
 
@@ -57,7 +64,8 @@ void set_axes(Grid& g, long n1, long n2) {
       break;
     case GridKind::sphere:
       g.axis1 = axis(n1, 0, kHalfPi, "theta", "rad", "polar angle theta in [0, pi/2], cell centres");
-      g.axis2 = axis(n2, -1, 1, "y", "1", "height y = -cos(phi) in [-1, 1] (equal-area chart of the sphere), cell centres");
+      g.axis2 =
+          axis(n2, -1, 1, "y", "1", "height y = -cos(phi) in [-1, 1] (equal-area chart of the sphere), cell centres");
       break;
     case GridKind::angles:
       g.axis1 = axis(n1, 0, kHalfPi, "theta", "rad", "polar angle theta in [0, pi/2], cell centres");
@@ -78,7 +86,8 @@ std::optional<GridKind> kind_of(std::string_view name) {
 // a < b with a, b and the width b - a finite (the centres' formula multiplies by b - a).
 bool finite_range(double a, double b) { return std::isfinite(a) && std::isfinite(b) && a < b && std::isfinite(b - a); }
 
-template <class T> std::optional<T> number(std::string_view s) {
+template <class T>
+std::optional<T> number(std::string_view s) {
   T v{};
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size() || s.empty()) return std::nullopt;
@@ -113,7 +122,8 @@ Grid parse_grid(std::string_view spec, const GridSyntax& syntax, const char* fie
   if (!syntax.accepts(g.kind)) throw bad();
   // rest = NxM[:a:b]
   std::string_view dims = rest, range;
-  if (const auto colon = rest.find(':'); colon != std::string_view::npos) dims = rest.substr(0, colon), range = rest.substr(colon + 1);
+  if (const auto colon = rest.find(':'); colon != std::string_view::npos)
+    dims = rest.substr(0, colon), range = rest.substr(colon + 1);
   const auto x = dims.find('x');
   if (x == std::string_view::npos) throw bad();
   const auto n1 = number<long>(dims.substr(0, x)), n2 = number<long>(dims.substr(x + 1));

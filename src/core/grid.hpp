@@ -1,12 +1,12 @@
 // The grid type: N x M cells over a chart of the quadrant Q, one grammar KIND:NxM[:ranges], one parser.
 #pragma once
 
-#include "core/map.hpp"
-
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/map.hpp"
 
 namespace btob::core {
 
