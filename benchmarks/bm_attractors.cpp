@@ -26,10 +26,10 @@ void BM_basins(benchmark::State& st) {
   for (auto _ : st) {
     auto b = attractors::basins(r, g, replicates, 1, o);
     benchmark::DoNotOptimize(b.labels.data());
-    st.counters["certified"] = static_cast<double>(b.certified) / static_cast<double>(g.n1 * g.n2 * (replicates + 1));
+    st.counters["certified"] = static_cast<double>(b.certified) / static_cast<double>(g.axis1.cells * g.axis2.cells * (replicates + 1));
     st.counters["map_iterations"] = static_cast<double>(b.iterations_total);
   }
-  st.SetItemsProcessed(st.iterations() * g.n1 * g.n2 * (replicates + 1));
+  st.SetItemsProcessed(st.iterations() * g.axis1.cells * g.axis2.cells * (replicates + 1));
 }
 
 // Pass 1 alone, batched vs scalar: items = map iterations.

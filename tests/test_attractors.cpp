@@ -293,7 +293,7 @@ TEST(Basins, EarlyExitGivesTheFullLengthVerdicts) {
     q.r = r, q.grid = "strip:33x21", q.replicates = 2, q.seed = 3;
     const BasinsResult res = run(q);
     const Grid g = q.parsed_grid();
-    const std::size_t n = static_cast<std::size_t>(g.n1 * g.n2);
+    const std::size_t n = static_cast<std::size_t>(g.axis1.cells * g.axis2.cells);
     std::mt19937_64 rng(q.seed);
     std::uniform_real_distribution<double> shift(-0.45, 0.45);
     std::vector<OrbitVerdict> all;
@@ -525,7 +525,7 @@ TEST(Errors, NameTheField) {
     return std::string("no exception");
   };
   EXPECT_THROW(parse_grid("strip:0x10", -2, 2), std::invalid_argument);
-  EXPECT_NE(msg([] { parse_grid("strip:0x10", -2, 2); }).find("grid: got 0 x 10"), std::string::npos);
+  EXPECT_NE(msg([] { parse_grid("strip:0x10", -2, 2); }).find("grid: got 'strip:0x10', expected sphere:NxM, strip:NxM or angles:NxM with N, M >= 1"), std::string::npos);
   EXPECT_THROW(parse_grid("strip:10", -2, 2), std::invalid_argument);
   EXPECT_THROW(parse_grid("disk:10x10", -2, 2), std::invalid_argument);
   // 2^32 x 2^32 cells: the point count wrapped to 0 in size_t, passed the memory check and wrote past the end.

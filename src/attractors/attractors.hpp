@@ -2,6 +2,7 @@
 // with frequencies and confidence intervals, basin fractions across r (Table 6.1 with many orbits).
 #pragma once
 
+#include "core/grid.hpp"
 #include "core/map.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
@@ -130,19 +131,16 @@ struct Fraction {
 };
 Fraction fraction(std::size_t successes, std::size_t trials, double confidence = 0.95);
 
-// A grid of initial conditions, cell centres shifted by (du, dv) cells (|du|, |dv| <= 1/2; replicate grids):
+// A grid of initial conditions (core/grid.hpp), cell centres shifted by (du, dv) cells (|du|, |dv| <= 1/2; replicate
+// grids):
 //   "sphere:NxM"  theta in [0, pi/2] x y in [-1, 1] (the equal-area chart, core::from_height): every cell holds the
 //                 same solid angle, so a fraction of the points is a fraction of the uniform measure on the sphere
 //                 of directions restricted to the domain (the quarter-sphere Q, solid angle pi);
 //   "strip:NxM"   w1 in [w1_min, w1_max] x w2 in [-1, 1]: Lebesgue measure on that rectangle of the plane x - z = 1
 //                 (its points are far from uniform on the sphere: a cell holds the solid angle dw1 dw2 / (2|u|^3));
 //   "angles:NxM"  theta in [0, pi/2] x phi in [0, pi]: the measure dtheta dphi (the sphere's is sin(phi) dtheta dphi).
-// Throws std::invalid_argument naming `field` for an empty or malformed grid.
-struct Grid {
-  std::string kind;  // "sphere", "strip" or "angles"
-  long n1 = 0, n2 = 0;  // columns (theta or w1) x rows (y, w2 or phi)
-  double lo1 = -2, hi1 = 2, lo2 = -1, hi2 = 1;
-};
+// parse_grid throws core::InvalidField naming `field` for an empty or malformed grid, "w1-range" for a bad range.
+using Grid = core::Grid;
 // The measure whose fractions a grid's counts estimate, in words (every output names it).
 std::string measure_name(const Grid& g);
 // The share of the sphere measure of the domain (uniform on the directions of Q) that the grid's region holds: 1 for

@@ -112,7 +112,7 @@ void BasinsRequest::validate() const {
     throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
   const Grid g = parsed_grid();
   // Per point of the main grid: its label in a part and in the merged result (the work runs in bounded chunks).
-  iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 8, "grid");
+  iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 8, "grid");
 }
 
 std::size_t BasinsRequest::work_items() const { return basin_items(parsed_grid(), replicates); }
@@ -146,30 +146,11 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
     res.replicate_sd.push_back(v.size() > 1 ? std::sqrt(s / static_cast<double>(v.size() - 1)) : 0.0);
   }
   for (auto l : b.labels) res.unresolved_count += l == 0;
-  const Grid& g = b.grid;  // cell centres of the main (unshifted) grid, as attractors.cpp places its points
-  for (long i = 0; i < g.n1; ++i)
-    res.axis1.push_back(g.lo1 + (static_cast<double>(i) + 0.5) * (g.hi1 - g.lo1) / static_cast<double>(g.n1));
-  for (long j = 0; j < g.n2; ++j)
-    res.axis2.push_back(g.lo2 + (static_cast<double>(j) + 0.5) * (g.hi2 - g.lo2) / static_cast<double>(g.n2));
+  res.axis1 = b.grid.axis1.centres();  // cell centres of the main (unshifted) grid, where its points lie
+  res.axis2 = b.grid.axis2.centres();
   return res;
 }
 
-namespace {
-// The names, units and meanings of a basin grid's two axes, by grid kind.
-struct GridAxis {
-  const char *name, *units, *meaning;
-};
-std::pair<GridAxis, GridAxis> grid_axes(const std::string& kind) {
-  if (kind == "strip")
-    return {{"w1", "1", "strip coordinate w1 (eq. (6.4)), cell centres"},
-            {"w2", "1", "strip coordinate w2 in [-1, 1] (eq. (6.4)), cell centres"}};
-  if (kind == "sphere")
-    return {{"theta", "rad", "polar angle theta in [0, pi/2], cell centres"},
-            {"y", "1", "height y = -cos(phi) in [-1, 1] (equal-area chart of the sphere), cell centres"}};
-  return {{"theta", "rad", "polar angle theta in [0, pi/2], cell centres"},
-          {"phi", "rad", "angle phi in [0, pi], cell centres"}};
-}
-}  // namespace
 
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
@@ -178,10 +159,10 @@ BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
 void BasinsResult::describe(core::Contents& c) const {
   const Basins& b = basins;
   const Grid& g = b.grid;
-  const auto [ax1, ax2] = grid_axes(g.kind);
+  const core::GridAxis &ax1 = g.axis1, &ax2 = g.axis2;  // names, units and meanings of the coordinate scales
   c.array(ax1.name, axis1, {axis1.size()}, ax1.name, ax1.units, ax1.meaning);
   c.array(ax2.name, axis2, {axis2.size()}, ax2.name, ax2.units, ax2.meaning);
-  c.array("labels", b.labels, {static_cast<std::size_t>(g.n2), static_cast<std::size_t>(g.n1)},
+  c.array("labels", b.labels, {static_cast<std::size_t>(ax2.cells), static_cast<std::size_t>(ax1.cells)},
           fmt::format("{}, {}", ax2.name, ax1.name), "attractor id",
           "attractor of each grid point (0 = unresolved; legend_<id>)");
   c.array("fraction", fraction, {fraction.size()}, "attractor", "1", "fraction of the main grid in each basin");
@@ -197,13 +178,13 @@ void BasinsResult::describe(core::Contents& c) const {
   const std::size_t n = points();
   c.attr("r", request.r);
   c.attr("grid", request.grid);
-  c.attr("n1", static_cast<long>(g.n1));
-  c.attr("n2", static_cast<long>(g.n2));
-  c.attr("axis1_lo", g.lo1);
-  c.attr("axis1_hi", g.hi1);
-  c.attr("axis2_lo", g.lo2);
-  c.attr("axis2_hi", g.hi2);
-  c.attr("grid_kind", g.kind);
+  c.attr("n1", ax1.cells);
+  c.attr("n2", ax2.cells);
+  c.attr("axis1_lo", ax1.lo);
+  c.attr("axis1_hi", ax1.hi);
+  c.attr("axis2_lo", ax2.lo);
+  c.attr("axis2_hi", ax2.hi);
+  c.attr("grid_kind", std::string(core::grid_kind_name(g.kind)));
   c.attr("measure", measure_name(g));
   c.attr("measure_sphere_share", sphere_share(g));  // share of the sphere measure of the domain the grid covers
   c.attr("replicates", static_cast<long>(request.replicates));
@@ -406,8 +387,8 @@ BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts) {
 std::string grid_measure(const std::string& spec) {
   if (spec.starts_with("random:")) return "uniform on the sphere of directions of the domain (random points)";
   if (spec.starts_with("strip:")) {
-    const iterate::StripSpec s = iterate::parse_strip(spec, "grid");
-    return strip_measure_name(s.w1_min, s.w1_max);
+    const core::Grid s = iterate::parse_strip(spec, "grid");
+    return strip_measure_name(s.axis1.lo, s.axis1.hi);
   }
   if (spec == "paper") return "the 32 points of the Section 4 grid (fractions of orbits, no measure)";
   return "the listed points (fractions of orbits, no measure)";

@@ -54,7 +54,7 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   if (o.quiet) return;
   // Each attractor's fraction with its 95% interval (sampling only), of the measure the grid samples.
   std::cerr << "  fractions of the measure: " << attractors::measure_name(b.grid) << "\n";
-  if (b.grid.kind == "strip")
+  if (b.grid.kind == core::GridKind::strip)
     std::cerr << fmt::format("  the rectangle leaves out {:.4f} of the uniform measure on the sphere of directions "
                              "(sphere:NxM counts that measure)\n",
                              1 - attractors::sphere_share(b.grid));

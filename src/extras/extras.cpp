@@ -236,9 +236,9 @@ Extras of(const bifurcation::Request& req, const bifurcation::Result& res, const
 Extras of(const lyapunov::StripRequest& req) {
   Extras e = lyapunov_common(req);
   e.attrs["r"] = req.r;
-  const iterate::StripSpec g = req.spec();
-  e.attrs["w1_min"] = g.w1_min;
-  e.attrs["w1_max"] = g.w1_max;
+  const core::Grid g = req.spec();
+  e.attrs["w1_min"] = g.axis1.lo;
+  e.attrs["w1_max"] = g.axis1.hi;
   e.attrs["alpha"] = core::alpha(req.r);
   return e;
 }

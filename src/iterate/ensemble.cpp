@@ -138,22 +138,26 @@ std::vector<Vec3<double>> paper_grid() {
   return g;
 }
 
+std::vector<Vec3<double>> strip_grid(const core::Grid& g) {
+  const std::size_t n = checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells),
+                                      sizeof(Vec3<double>), "grid") / sizeof(Vec3<double>);
+  std::vector<Vec3<double>> pts;
+  pts.reserve(n);
+  for (long i = 0; i < g.axis1.cells; ++i)
+    for (long j = 0; j < g.axis2.cells; ++j) pts.push_back(g.cell_point(i, j));
+  return pts;
+}
+
 std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_max) {
   if (n1 < 1 || n2 < 1)
     throw core::InvalidField("grid", fmt::format("strip:{}x{}", n1, n2), "at least 1x1 points");
-  if (!(w1_min < w1_max) || !std::isfinite(w1_min) || !std::isfinite(w1_max))
+  core::Grid g = core::make_grid(core::GridKind::strip, n1, n2);
+  try {
+    g.set_range1(w1_min, w1_max, "grid");
+  } catch (const core::InvalidField&) {
     throw core::InvalidField("grid", fmt::format("w1 range [{}, {}]", w1_min, w1_max), "finite w1-min < w1-max");
-  const std::size_t n = checked_bytes(static_cast<std::size_t>(n1), static_cast<std::size_t>(n2), sizeof(Vec3<double>),
-                                      "grid") / sizeof(Vec3<double>);
-  std::vector<Vec3<double>> g;
-  g.reserve(n);
-  for (long i = 0; i < n1; ++i)
-    for (long j = 0; j < n2; ++j) {
-      const double w1 = w1_min + (w1_max - w1_min) * (i + 0.5) / n1;
-      const double w2 = -1.0 + 2.0 * (j + 0.5) / n2;
-      g.emplace_back((1 + w2) / 2, w1, (w2 - 1) / 2);
-    }
-  return g;
+  }
+  return strip_grid(g);
 }
 
 namespace {
@@ -218,29 +222,17 @@ core::InvalidField grid_usage(std::string_view spec, const char* field) {
 }
 }  // namespace
 
-StripSpec parse_strip(std::string_view spec, const char* field) {
+core::Grid parse_strip(std::string_view spec, const char* field) {
+  static const core::GridSyntax syntax{core::grid_kinds({core::GridKind::strip}), true, 0,
+                                       "strip:NxM[:w1min:w1max] with N, M >= 1 and finite w1min < w1max"};
   if (!spec.starts_with("strip:")) throw grid_usage(spec, field);
-  const auto parts = split(spec.substr(6), ':');
-  const auto dims = split(parts[0], 'x');
-  if (dims.size() != 2 || (parts.size() != 1 && parts.size() != 3)) throw grid_usage(spec, field);
-  StripSpec s;
-  s.n1 = parse_long(dims[0], field, spec);
-  s.n2 = parse_long(dims[1], field, spec);
-  if (parts.size() == 3) {
-    s.w1_min = parse_double(parts[1], field, spec);
-    s.w1_max = parse_double(parts[2], field, spec);
-    s.has_range = true;
-  }
-  return s;
+  return core::parse_grid(spec, syntax, field);
 }
 
 std::vector<Vec3<double>> parse_grid(std::string_view spec, std::uint64_t seed, const char* field) {
   const auto usage = [&] { return grid_usage(spec, field); };
   if (spec == "paper") return paper_grid();
-  if (spec.starts_with("strip:")) {
-    const StripSpec s = parse_strip(spec, field);
-    return strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
-  }
+  if (spec.starts_with("strip:")) return strip_grid(parse_strip(spec, field));
   if (spec.starts_with("random:")) return random_points(parse_long(spec.substr(7), field, spec), seed);
   if (spec.find(',') != std::string_view::npos) {
     std::vector<Vec3<double>> g;

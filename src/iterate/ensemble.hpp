@@ -1,6 +1,7 @@
 // Ensembles of orbits: r values x initial conditions (the Section 4 grid, strip grids, seeded random, lists).
 #pragma once
 
+#include "core/grid.hpp"
 #include "core/map.hpp"
 #include "core/request.hpp"
 
@@ -69,15 +70,12 @@ std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min = -2, doubl
 // counter-based generator seeded by (seed, index): the same seed gives the same points on any thread count.
 std::vector<Vec3<double>> random_points(long n, std::uint64_t seed);
 
-// A strip grid's spec "strip:NxM[:w1min:w1max]" read without building the grid: the one reader of that grammar
-// (parse_grid uses it).  has_range is false when the range is omitted (then w1 in [-2, 2]).  Sizes and ranges
-// are not checked here (strip_grid does); a spec of another form throws core::InvalidField naming `field`.
-struct StripSpec {
-  long n1 = 0, n2 = 0;
-  double w1_min = -2, w1_max = 2;
-  bool has_range = false;
-};
-StripSpec parse_strip(std::string_view spec, const char* field = "grid");
+// A strip grid's spec "strip:NxM[:w1min:w1max]" read as a core::Grid (core/grid.hpp's parser with the strip syntax;
+// has_range is false when the range is omitted, then w1 in [-2, 2]).  Throws core::InvalidField naming `field` for
+// a spec of another form, N or M < 1, or a range that is not finite a < b.
+core::Grid parse_strip(std::string_view spec, const char* field = "grid");
+// The cells' points of a strip grid, w1-major (cell (i, j) at i n2 + j), as strip_grid(n1, n2, w1_min, w1_max).
+std::vector<Vec3<double>> strip_grid(const core::Grid& g);
 
 // Parses a grid spec: "paper", "strip:NxM[:w1min:w1max]", "random:N", or a list "x,y,z;x,y,z;...".
 // Throws std::invalid_argument naming `field` and the accepted forms.

@@ -18,45 +18,40 @@ namespace btob::lyapunov {
 
 // ---- hyperbolicity (strip image) ----------------------------------------------------------------------------
 
-iterate::StripSpec HyperbolicityRequest::strip() const {
-  iterate::StripSpec s;
-  const std::string cells = "strip:NxM with N, M >= 1 (the w1 range is the field w1-range)";
-  try {
-    s = iterate::parse_strip(grid, "grid");
-  } catch (const std::invalid_argument&) {
-    throw core::InvalidField("grid", "'" + grid + "'", cells);
-  }
-  if (s.has_range || s.n1 < 1 || s.n2 < 1) throw core::InvalidField("grid", "'" + grid + "'", cells);
+core::Grid HyperbolicityRequest::strip() const {
+  static const core::GridSyntax cells{core::grid_kinds({core::GridKind::strip}), false, 0,
+                                      "strip:NxM with N, M >= 1 (the w1 range is the field w1-range)"};
+  core::Grid s = core::parse_grid(grid, cells, "grid");
   std::vector<double> range;
   core::set_field(range, {w1_range}, "w1-range");  // finite numbers, split at the comma
-  if (range.size() != 2 || !(range[0] < range[1]))
+  if (range.size() != 2 || !(range[0] < range[1]) || !std::isfinite(range[1] - range[0]))  // the width too
     throw core::InvalidField("w1-range", "'" + w1_range + "'", "two finite numbers a,b with a < b");
-  s.w1_min = range[0];
-  s.w1_max = range[1];
+  s.axis1.lo = range[0];
+  s.axis1.hi = range[1];
   return s;
 }
 
 void HyperbolicityRequest::validate() const {
   core::require_r(r, "r");
-  const iterate::StripSpec s = strip();
+  const core::Grid s = strip();
   // The grid, the four images and the symbols.
-  iterate::checked_bytes(static_cast<std::size_t>(s.n1) * static_cast<std::size_t>(s.n2),
+  iterate::checked_bytes(s.cells(),
                          sizeof(iterate::Vec3<double>) + 4 * sizeof(double) + 1, "grid");
 }
 
 std::string HyperbolicityRequest::default_name() const { return fmt::format("hyperbolicity_strip_r{}", r); }
 
-std::size_t HyperbolicityRequest::work_items() const { return static_cast<std::size_t>(strip().n1); }
+std::size_t HyperbolicityRequest::work_items() const { return static_cast<std::size_t>(strip().axis1.cells); }
 
 HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
                            const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
-  const iterate::StripSpec s = req.strip();
+  const core::Grid s = req.strip();
   const auto t0 = std::chrono::steady_clock::now();
   // Cell (i, j) at i * n2 + j, as strip_singular_values (hyperbolicity.cpp) walks it: each cell the same call.
-  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
-  const std::size_t n2 = static_cast<std::size_t>(s.n2);
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
+  const std::size_t n2 = static_cast<std::size_t>(s.axis2.cells);
   HyperbolicityPart p;
   p.items = items;
   for (auto* v : {&p.s1, &p.s2}) v->reserve(items.size() * n2);
@@ -74,22 +69,22 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
 
 HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts) {
   req.validate();
-  const iterate::StripSpec s = req.strip();
-  const std::size_t n2 = static_cast<std::size_t>(s.n2);
+  const core::Grid s = req.strip();
+  const std::size_t n2 = static_cast<std::size_t>(s.axis2.cells);
   const auto order = core::item_order(parts, req.work_items());
   HyperbolicityResult res;
   res.request = req;
   StripSingularValues& m = res.image;
-  m.n1 = s.n1;
-  m.n2 = s.n2;
-  m.w1_min = s.w1_min;
-  m.w1_max = s.w1_max;
+  m.n1 = s.axis1.cells;
+  m.n2 = s.axis2.cells;
+  m.w1_min = s.axis1.lo;
+  m.w1_max = s.axis1.hi;
   using V = std::vector<double>;
   m.s1 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s1; });
   m.s2 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s2; });
   m.symbol = core::merge_rows<HyperbolicityPart, std::uint8_t>(
       parts, order, n2, [](const HyperbolicityPart& p) -> const std::vector<std::uint8_t>& { return p.symbol; });
-  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s.n1, s.n2, s.w1_min, s.w1_max);
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
   m.w1.resize(grid.size());
   m.w2.resize(grid.size());
   long expanding = 0;
@@ -98,8 +93,8 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
     expanding += m.s1[i] >= 1;
   }
   m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
-  for (long i = 0; i < s.n1; ++i) res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.n2)]);  // (i, j) at i n2 + j
-  for (long j = 0; j < s.n2; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
+  for (long i = 0; i < s.axis1.cells; ++i) res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
+  for (long j = 0; j < s.axis2.cells; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
   for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
   return res;
 }

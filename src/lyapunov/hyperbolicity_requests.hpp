@@ -19,7 +19,7 @@ namespace btob::lyapunov {
 // ---- singular values over a strip grid (`btob hyperbolicity`) -----------------------------------------------
 struct HyperbolicityRequest {
   double r = 0;                       // restitution coefficient, in (0, 1)
-  std::string grid = "strip:400x200"; // strip:NxM, cells along w1 x w2 (iterate::parse_strip; no range here)
+  std::string grid = "strip:400x200"; // strip:NxM, cells along w1 x w2 (core::parse_grid; no range here)
   std::string w1_range = "-2,2";      // w1 range a,b of the image, finite, a < b (w2 runs over [-1, 1])
 
   void validate() const;
@@ -31,7 +31,7 @@ struct HyperbolicityRequest {
   }
   // The file stem when none is given: hyperbolicity_strip_r<r>.
   std::string default_name() const;
-  iterate::StripSpec strip() const;  // the grid with the range of w1-range (validated)
+  core::Grid strip() const;  // the grid with the range of w1-range (validated)
 };
 
 struct HyperbolicityResult {

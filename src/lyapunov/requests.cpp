@@ -119,15 +119,11 @@ void MapRequest::validate() const {
 
 void StripRequest::validate() const {
   core::require_r(r, "r");
-  const iterate::StripSpec g = spec();
-  if (g.n1 < 1 || g.n2 < 1)
-    throw core::InvalidField("grid", "'" + grid + "'", "strip:NxM[:w1min:w1max] with N, M >= 1");
-  if (!(g.w1_min < g.w1_max))
-    throw core::InvalidField("grid", "'" + grid + "'", "strip:NxM:w1min:w1max with w1min < w1max");
+  const core::Grid g = spec();  // N, M >= 1 and the range checked by the parser
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
   core::require_r_exponents(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
-  iterate::checked_bytes(static_cast<std::size_t>(g.n1), static_cast<std::size_t>(g.n2), 200, "grid");
+  iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 200, "grid");
 }
 
 namespace {
@@ -227,9 +223,9 @@ MapResult run(const MapRequest& req, const core::RunControl& control) {
 
 MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  const iterate::StripSpec g = req.spec();
-  const auto grid = iterate::strip_grid(g.n1, g.n2, g.w1_min, g.w1_max);  // cell (i, j) at i * n2 + j
-  const std::size_t n2 = static_cast<std::size_t>(g.n2);
+  const core::Grid g = req.spec();
+  const auto grid = iterate::strip_grid(g);  // cell (i, j) at i * n2 + j
+  const std::size_t n2 = static_cast<std::size_t>(g.axis2.cells);
   iterate::Ensemble ens;
   ens.set_r_list({req.r});
   for (std::size_t i : items)
@@ -241,14 +237,14 @@ MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items,
 
 MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {
   req.validate();
-  const iterate::StripSpec g = req.spec();
-  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(g.n2), req.iterations, req.blocks);
+  const core::Grid g = req.spec();
+  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(g.axis2.cells), req.iterations, req.blocks);
   iterate::Ensemble& ens = res.ensemble;
   ens.set_r_list({req.r});
-  ens.initial = iterate::strip_grid(g.n1, g.n2, g.w1_min, g.w1_max);
-  ens.grid_description = fmt::format("strip:{}x{}:{}:{}", g.n1, g.n2, g.w1_min, g.w1_max);
-  res.n1 = static_cast<std::size_t>(g.n1);
-  res.n2 = static_cast<std::size_t>(g.n2);
+  ens.initial = iterate::strip_grid(g);
+  ens.grid_description = core::grid_spec(g);
+  res.n1 = static_cast<std::size_t>(g.axis1.cells);
+  res.n2 = static_cast<std::size_t>(g.axis2.cells);
   res.w1.resize(res.ensemble.initial.size());
   res.w2.resize(res.ensemble.initial.size());
   for (std::size_t i = 0; i < res.ensemble.initial.size(); ++i)

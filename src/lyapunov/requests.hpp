@@ -85,9 +85,9 @@ struct StripRequest {
   std::string precision = "double";
 
   void validate() const;
-  // The grid as numbers: "strip:NxM[:w1min:w1max]" (iterate::parse_strip, the grid grammar's one reader).
-  iterate::StripSpec spec() const { return iterate::parse_strip(grid, "grid"); }
-  std::size_t work_items() const { return static_cast<std::size_t>(spec().n1); }  // columns of w1 cells (core/sweep.hpp)
+  // The grid: "strip:NxM[:w1min:w1max]" (iterate::parse_strip: core::parse_grid with the strip syntax).
+  core::Grid spec() const { return iterate::parse_strip(grid, "grid"); }
+  std::size_t work_items() const { return static_cast<std::size_t>(spec().axis1.cells); }  // columns of w1 cells (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("grid", grid, "strip:NxM[:w1min:w1max]: N cells along w1 x M along w2 (w2 in [-1, 1], w1 by default in [-2, 2])");

@@ -2,6 +2,8 @@
 // `btob transfer` (its stages in stages.hpp) and `btob transfer-r`.
 #include "transfer/transfer.hpp"
 
+#include "core/grid.hpp"
+
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -122,18 +124,10 @@ void check_size(long n, long samples) {
 }  // namespace
 
 std::pair<long, long> parse_boxes(const std::string& s, const char* field) {
-  const auto x = s.find('x');
-  const std::string expected = fmt::format("NxM with 1 <= N, M <= {}", kMaxSide);
-  if (x == std::string::npos) throw core::InvalidField(field, "'" + s + "'", expected);
-  try {
-    std::size_t p1 = 0, p2 = 0;
-    const long n1 = std::stol(s.substr(0, x), &p1), n2 = std::stol(s.substr(x + 1), &p2);
-    if (p1 != x || p2 != s.size() - x - 1 || n1 < 1 || n2 < 1 || n1 > kMaxSide || n2 > kMaxSide)
-      throw core::InvalidField(field, "'" + s + "'", expected);
-    return {n1, n2};
-  } catch (const std::logic_error&) {
-    throw core::InvalidField(field, "'" + s + "'", expected);
-  }
+  static const core::GridSyntax boxes{core::grid_kinds({core::GridKind::boxes}), false, kMaxSide,
+                                      fmt::format("NxM with 1 <= N, M <= {}", kMaxSide)};
+  const core::Grid g = core::parse_grid(s, boxes, field);
+  return {g.axis1.cells, g.axis2.cells};
 }
 
 Domain parse_domain(const std::string& s, const char* field) {
