@@ -9,6 +9,7 @@
 #pragma once
 
 #include "cli/app.hpp"
+#include "cli/checkpoint.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
 #include "core/fields.hpp"
@@ -41,6 +42,8 @@ struct Output {
   std::string title;  // figure title
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
+  bool resume = false;  // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
+  bool sweep = false;   // the request is a sweep (core/sweep.hpp): it has --resume
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
   // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
   bool files = true;
@@ -64,6 +67,14 @@ struct Output {
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
     v("quiet", quiet, "no progress or summary on stderr");
+    if (sweep)
+      v("resume", resume,
+        "keep finished items in OUT/NAME.checkpoint (./NAME.checkpoint when printing) while running, and continue "
+        "from that file when it exists (made by the same request and btob build); removed once the result is written");
+  }
+  // Where --resume keeps the finished items: beside the result's files.
+  io::fs::path checkpoint_path() const {
+    return writes() ? io::fs::path(out) / (name + ".checkpoint") : io::fs::path(name + ".checkpoint");
   }
 };
 
@@ -74,6 +85,7 @@ struct Context {
   Args request_args;         // the request as recorded in the manifest
   std::string command;       // the subcommand
   bool quiet = false;        // --quiet (and every MPI rank but 0)
+  std::shared_ptr<Checkpoint> checkpoint;  // --resume: the sweep's checkpoint (every rank), else null
   // The manifest's request record: {"command": command, "args": request_args}.
   void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
     files.manifest(attrs, command, request_args);
@@ -99,6 +111,8 @@ template <class Req> auto run_with_progress(const Req& req, const Output& o, con
   core::RunControl control = ctx.control;
   const auto bar = terminal_progress(label);
   if (!o.quiet) control.progress = bar.get();
+  if constexpr (core::Sweep<Req>)
+    if (ctx.checkpoint) return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
   return run(req, control);
 }
 
@@ -251,13 +265,24 @@ void command(const std::string& name, const std::string& help, Output output_def
       out.quiet = true;
     }
     Context ctx = detail::make_context(name, out, invocation, std::move(recorded));
-    if (!out.files && !out.out.empty()) {
-      std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
-      std::replace(kind.begin(), kind.end(), ' ', '_');
-      if (mpi::rank() == 0) detail::write_files(req, out, ctx, kind);
-      return;
+    if constexpr (core::Sweep<Req>)  // a collective under mpirun: rank 0 reads the file, every rank its items
+      if (out.resume) ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
+    try {
+      if (!out.files && !out.out.empty()) {
+        std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
+        std::replace(kind.begin(), kind.end(), ' ', '_');
+        if (mpi::rank() == 0) detail::write_files(req, out, ctx, kind);
+      } else {
+        body(req, out, ctx);
+      }
+    } catch (const core::Cancelled&) {
+      if (ctx.checkpoint && mpi::rank() == 0 && !out.quiet)
+        std::cerr << "btob: the finished items are kept in " << ctx.checkpoint->path.string()
+                  << "; the same command with --resume continues\n";
+      throw;
     }
-    body(req, out, ctx);
+    // The result is written (or printed): the finished items are no longer needed.
+    if (ctx.checkpoint && mpi::rank() == 0) remove_checkpoint(*ctx.checkpoint);
   };
   registry().push_back([=](CLI::App& app) {
     struct State {
@@ -266,7 +291,9 @@ void command(const std::string& name, const std::string& help, Output output_def
       std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
       std::map<std::string, CLI::Option*> opts;
     };
-    auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
+    Output defaults = output_defaults;
+    defaults.sweep = core::Sweep<Req>;
+    auto s = std::make_shared<State>(State{request_defaults, defaults, {}, {}});
     CLI::App* c = detail::add_nested(app, name, help);
     mpi::request_apps().push_back(c);
     s->req.fields(detail::FlagBinder{c, &s->raw, &s->opts});
@@ -281,6 +308,7 @@ void command(const std::string& name, const std::string& help, Output output_def
   scene_commands()[name] = SceneCommand{[=](const Args& args, const std::string& inv) {
     Req req = request_defaults;
     Output out = output_defaults;
+    out.sweep = core::Sweep<Req>;
     std::vector<bool> used(args.size(), false);
     req.fields(detail::ArgsApplier{&args, &used});
     out.fields(detail::ArgsApplier{&args, &used});
