@@ -439,7 +439,7 @@ std::size_t AtlasRequest::work_items() const {
 AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
-  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length));
+  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
   const std::vector<double> table = req.checks() ? table_6_1_r() : std::vector<double>{};
   std::vector<Word> words;
   std::vector<double> rs;

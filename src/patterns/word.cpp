@@ -1,6 +1,7 @@
 // Words over {1,2,3}: parsing the paper's notation, printing, rotations, J, canonical forms, enumeration.
 #include "patterns/patterns.hpp"
 
+#include "core/cancel.hpp"
 #include "core/request.hpp"
 
 #include <fmt/format.h>
@@ -212,7 +213,7 @@ bool is_J_square(const Word& w) {
   return true;
 }
 
-std::vector<Word> enumerate_canonical(int max_length) {
+std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* cancel) {
   if (max_length < 1 || max_length > 18)
     throw std::invalid_argument(fmt::format("max-length: got {}, expected 1..18", max_length));
   std::vector<Word> out;
@@ -221,7 +222,8 @@ std::vector<Word> enumerate_canonical(int max_length) {
     // smallest symbol in the order 1 < 3 < 2, so starting with 1 suffices unless the word has no 1 and no 3.
     Word w{std::vector<std::uint8_t>(static_cast<std::size_t>(n), 1)};
     std::vector<Word> level;
-    while (true) {
+    for (long step = 1;; ++step) {
+      core::poll_cancel(cancel, step);
       if (w.s[0] == 1 || n == 1) {
         if (is_primitive(w) && canonical(w) == w) level.push_back(w);
       }
