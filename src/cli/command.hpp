@@ -10,6 +10,7 @@
 
 #include "cli/app.hpp"
 #include "cli/checkpoint.hpp"
+#include "cli/estimate.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
 #include "core/fields.hpp"
@@ -42,6 +43,7 @@ struct Output {
   std::string title;  // figure title
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
+  bool dry_run = false;  // predict the cost from a sample of the items, write nothing (cli/estimate.hpp)
   bool resume = false;  // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
   bool sweep = false;   // the request is a sweep (core/sweep.hpp): it has --resume
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
@@ -67,6 +69,10 @@ struct Output {
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
     v("quiet", quiet, "no progress or summary on stderr");
+    if (sweep)
+      v("dry-run", dry_run,
+        "print the work (items), the predicted time on this machine, the data size and rank 0's peak memory, "
+        "calibrated by running a ~0.2 s sample of this request's own items; write nothing");
     if (sweep)
       v("resume", resume,
         "keep finished items in OUT/NAME.checkpoint (./NAME.checkpoint when printing) while running, and continue "
@@ -265,6 +271,13 @@ void command(const std::string& name, const std::string& help, Output output_def
       out.quiet = true;
     }
     Context ctx = detail::make_context(name, out, invocation, std::move(recorded));
+    if constexpr (core::Sweep<Req>)
+      if (out.dry_run) {
+        const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+        if (mpi::rank() == 0)
+          std::cout << estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
+        return;
+      }
     if constexpr (core::Sweep<Req>)  // a collective under mpirun: rank 0 reads the file, every rank its items
       if (out.resume) ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
     try {
