@@ -6,6 +6,7 @@
 // its decimals (multiprecision values as decimal.Decimal) and its attributes.
 #pragma once
 
+#include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
@@ -178,6 +179,40 @@ template <class Req, class Derived> struct RouteBase {
   static constexpr bool plot_many = false;
 };
 
+// A sweep's cost from a ~0.2 s sample of its own items (core/estimate.hpp), for btob.estimate(function, **kwargs):
+// _btob._estimators[function](**kwargs) -> dict(items, sampled, sample_seconds, predicted_seconds, bytes,
+// peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.
+template <class Req> void bind_estimate(py::module_& m) {
+  using R = Route<Req>;
+  if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
+  m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
+    Req req = R::defaults();
+    std::set<std::string> used{"threads"}, missing;
+    req.fields(KwargsApplier{&kw, &used, &missing});
+    for (auto item : kw)
+      if (!used.count(item.first.cast<std::string>()))
+        throw py::type_error("estimate(" + std::string(R::function) + ") got an unexpected keyword argument '" +
+                             item.first.cast<std::string>() + "'");
+    if (!missing.empty())
+      throw py::type_error("estimate(" + std::string(R::function) + ") missing required keyword argument '" +
+                           *missing.begin() + "'");
+    const int threads = threads_of(kw);
+    req.validate();
+    R::prepare(req);
+    core::SweepEstimate e;
+    const auto start = static_cast<std::size_t>(threads > 0 ? threads : default_threads());
+    run_released([&](const core::RunControl& c) { e = core::estimate_sweep(req, c, 1, start); }, threads, py::none());
+    py::dict d;
+    d["items"] = e.items;
+    d["sampled"] = e.sampled;
+    d["sample_seconds"] = e.sample_seconds;
+    d["predicted_seconds"] = e.predicted_seconds;
+    d["bytes"] = e.bytes;
+    d["peak_bytes"] = 2 * e.bytes;
+    return d;
+  });
+}
+
 // Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
 template <class Req> void bind(py::module_& m) {
   using R = Route<Req>;
@@ -244,6 +279,7 @@ template <class Req> void bind(py::module_& m) {
     kws.append(py::make_tuple(py::str(keyword(name)), texts));
   }
   m.attr("_fields")[R::function] = kws;
+  if constexpr (core::Sweep<Req>) bind_estimate<Req>(m);
 }
 
 }  // namespace btob::python

@@ -10,9 +10,9 @@
 
 #include "cli/app.hpp"
 #include "cli/checkpoint.hpp"
-#include "cli/estimate.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
+#include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/sweep.hpp"
@@ -20,6 +20,7 @@
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <concepts>
@@ -43,7 +44,7 @@ struct Output {
   std::string title;  // figure title
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
-  bool dry_run = false;  // predict the cost from a sample of the items, write nothing (cli/estimate.hpp)
+  bool dry_run = false;  // predict the cost from a sample of the items, write nothing (core/estimate.hpp)
   bool resume = false;  // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
   bool sweep = false;   // the request is a sweep (core/sweep.hpp): it has --resume
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
@@ -275,7 +276,7 @@ void command(const std::string& name, const std::string& help, Output output_def
       if (out.dry_run) {
         const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
         if (mpi::rank() == 0)
-          std::cout << estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
+          std::cout << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
         return;
       }
     if constexpr (core::Sweep<Req>)  // a collective under mpirun: rank 0 reads the file, every rank its items

@@ -1,4 +1,5 @@
-// `--dry-run` of a sweep (core/sweep.hpp): the cost of the request predicted from a sample of its own items.
+// The cost of a sweep (core/sweep.hpp) predicted from a sample of its own items: the command line's `--dry-run` and
+// Python's btob.estimate().
 //
 // The program calibrates on the request itself rather than on a table of rates: it runs run_part on a few items
 // spread evenly over 0..n-1 (items i*n/m, so costs that grow along the sweep, as a window's with n, are sampled
@@ -12,7 +13,6 @@
 #include "core/sweep.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace btob::cli {
+namespace btob::core {
 
 struct SweepEstimate {
   std::size_t items = 0, sampled = 0;
@@ -40,7 +40,8 @@ struct SweepEstimate {
   }
 };
 
-// The sample: m items spread over 0..n-1, m doubled (from `start`) until it took `target` seconds or covers n.
+// The sample: m items spread over 0..n-1, m doubled (from `start`, the threads: every thread gets an item) until it
+// took `target` seconds or covers n.  `ranks`: the processes the prediction divides the work over.
 template <core::Sweep Req>
 SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, int ranks, std::size_t start,
                              double target = 0.2) {
@@ -61,4 +62,4 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
   return e;
 }
 
-}  // namespace btob::cli
+}  // namespace btob::core
