@@ -529,6 +529,8 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
 }
 
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
+  // The words first, polling the token (work_items() cannot): every later enumeration finds them listed.
+  enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
   return merge(req, {run_part(req, core::all_items(req), control)});
 }
 

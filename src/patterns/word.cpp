@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 namespace btob::patterns {
@@ -213,9 +215,32 @@ bool is_J_square(const Word& w) {
   return true;
 }
 
+namespace {
+// The words of every length enumerated so far: a sweep asks for them several times (its item count, each part, the
+// merge; each round of a resumed run), and the odometer over 3^16 words takes seconds.  Only whole lists are kept.
+std::mutex canonical_mutex;
+std::map<int, std::vector<Word>>& canonical_lists() {
+  static std::map<int, std::vector<Word>> m;
+  return m;
+}
+std::vector<Word> enumerate_canonical_uncached(int max_length, const core::CancelToken* cancel);
+}  // namespace
+
 std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* cancel) {
   if (max_length < 1 || max_length > 18)
     throw std::invalid_argument(fmt::format("max-length: got {}, expected 1..18", max_length));
+  {
+    const std::lock_guard<std::mutex> lock(canonical_mutex);
+    if (const auto it = canonical_lists().find(max_length); it != canonical_lists().end()) return it->second;
+  }
+  std::vector<Word> out = enumerate_canonical_uncached(max_length, cancel);
+  const std::lock_guard<std::mutex> lock(canonical_mutex);
+  canonical_lists().emplace(max_length, out);
+  return out;
+}
+
+namespace {
+std::vector<Word> enumerate_canonical_uncached(int max_length, const core::CancelToken* cancel) {
   std::vector<Word> out;
   for (int n = 1; n <= max_length; ++n) {
     // Odometer over {1,2,3}^n; keep canonical primitive words.  A canonical word starts with its
@@ -242,6 +267,7 @@ std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* c
   }
   return out;
 }
+}  // namespace
 
 const char* outcome_name(Outcome o) {
   switch (o) {
