@@ -102,8 +102,9 @@ template <class F> auto naming_items(const std::vector<std::size_t>& items, std:
   }
 }
 
-// A round's progress (done of total within its run_part) as the whole run's: `before` items already finished, the
-// round's `width` items (over every rank) out of `total`.
+// A round's progress (done of total within its run_part) as the run's: `before` items finished by this run's earlier
+// rounds, the round's `width` items (over every rank) out of `total`, the items this run computes (not those a
+// resumed checkpoint held: the remaining time is then at this run's own rate).
 struct RoundProgress : core::ProgressSink {
   core::ProgressSink* sink = nullptr;
   std::size_t before = 0, width = 0, total = 0;
@@ -133,13 +134,13 @@ template <core::Sweep Req> auto run_checkpointed(const Req& req, const core::Run
   cp.parts.clear();
   detail::RoundProgress progress;
   progress.sink = control.progress;
-  progress.total = n;
+  progress.total = left.size();  // this run's own work: the bar's remaining time is at this run's rate
   for (std::size_t at = 0; at < share; at += chunk) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<std::size_t> slice(mine.begin() + static_cast<std::ptrdiff_t>(std::min(at, mine.size())),
                                          mine.begin() + static_cast<std::ptrdiff_t>(std::min(at + chunk, mine.size())));
-    progress.before = cp.done.size() + at * ranks;
-    progress.width = std::min(chunk, share - at) * ranks;
+    progress.before = std::min(at * ranks, left.size());
+    progress.width = std::min(std::min(chunk, share - at) * ranks, left.size() - progress.before);
     core::RunControl c = control;
     c.progress = &progress;
     std::optional<Part> p;
