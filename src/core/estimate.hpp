@@ -24,9 +24,9 @@ namespace btob::core {
 
 struct SweepEstimate {
   std::size_t items = 0, sampled = 0;
-  double sample_seconds = 0;   // the sample's wall time
+  double sample_seconds = 0;     // the sample's wall time
   double predicted_seconds = 0;  // the whole request on `ranks` processes of the sample's threads
-  double bytes = 0;            // the parts' packed bytes, scaled to every item
+  double bytes = 0;              // the parts' packed bytes, scaled to every item
   int ranks = 1;
   std::string text(const std::string& command, int threads) const {
     return fmt::format(
