@@ -45,8 +45,8 @@ struct Output {
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
   bool dry_run = false;  // predict the cost from a sample of the items, write nothing (core/estimate.hpp)
-  bool resume = false;  // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
-  bool sweep = false;   // the request is a sweep (core/sweep.hpp): it has --resume
+  bool resume = false;   // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
+  bool sweep = false;    // the request is a sweep (core/sweep.hpp): it has --dry-run and --resume
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
   // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
   bool files = true;
