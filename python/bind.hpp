@@ -6,6 +6,7 @@
 // its decimals (multiprecision values as decimal.Decimal) and its attributes.
 #pragma once
 
+#include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
@@ -240,6 +241,31 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
   m.attr("_fields")[R::function] = kws;
 }
 
+// A sweep's cost from a ~0.2 s sample of its own items (core/estimate.hpp), for btob.estimate(function, **kwargs):
+// _btob._estimators[function](**kwargs) -> dict(items, sampled, sample_seconds, predicted_seconds, bytes,
+// peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.
+template <class Req> void bind_estimate(py::module_& m) {
+  using R = Route<Req>;
+  if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
+  m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
+    Req req = request_of<Req>(kw);
+    const int threads = threads_of(kw);
+    req.validate();
+    R::prepare(req);
+    core::SweepEstimate e;
+    const auto start = static_cast<std::size_t>(threads > 0 ? threads : default_threads());
+    run_released([&](const core::RunControl& c) { e = core::estimate_sweep(req, c, 1, start); }, threads, py::none());
+    py::dict d;
+    d["items"] = e.items;
+    d["sampled"] = e.sampled;
+    d["sample_seconds"] = e.sample_seconds;
+    d["predicted_seconds"] = e.predicted_seconds;
+    d["bytes"] = e.bytes;
+    d["peak_bytes"] = 2 * e.bytes;
+    return d;
+  });
+}
+
 }  // namespace detail
 
 // Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
@@ -253,6 +279,7 @@ template <class Req> void bind(py::module_& m) {
   doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
   m.def(R::function, &detail::call<Req>, doc.c_str());
   detail::list_function(m, defaults);
+  if constexpr (core::Sweep<Req>) detail::bind_estimate<Req>(m);
 }
 
 }  // namespace btob::python

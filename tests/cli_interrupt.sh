@@ -72,6 +72,8 @@ interrupt TERM bifurcation --algorithm trig --r-count 2 --iterations 100000000 -
 interrupt TERM lyapunov-map --r-count 2 --iterations 100000000000 --grid 1,-0.5,-1.1 --out @OUT --no-plot
 # The atlas (words), windows and their certificates (one n of exact arithmetic), transfer (matrix, Arnoldi), particles.
 interrupt INT pattern atlas --max-length 12 --out @OUT --no-plot
+# Inside the enumeration of the words (3^16 of length 16 alone: seconds before the first word is analysed).
+interrupt TERM pattern atlas --max-length 16 --no-check --out @OUT --no-plot
 interrupt TERM windows bounds --n 1000 --certify
 interrupt INT transfer --r 0.3 --boxes 1024x1024 --out @OUT --no-plot
 interrupt TERM particles 1133 --r 0.15 --periods 100000000 --precision mpfr:40 --out @OUT --no-plot

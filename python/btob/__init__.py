@@ -48,6 +48,18 @@ for _name in FUNCTIONS:
     globals()[_name] = _wrap(_name)
 del _name
 
+def estimate(function, **kwargs):
+    """The cost of a sweep request before it runs: ``btob.estimate("bifurcation", r_count=10**6, ...)`` takes the
+    function's name and its keywords, runs a ~0.2 s sample of the request's own items (spread over the sweep) and
+    returns a dict: items, sampled, sample_seconds, predicted_seconds (the whole request on this machine with these
+    threads), bytes (the result's data) and peak_bytes.  Nothing else is computed or written.  The sweeps:
+    ``sorted(btob._btob._estimators)``; other functions raise ValueError."""
+    name = getattr(function, "__name__", function)
+    if name not in _btob._estimators:
+        raise ValueError(f"estimate: got {name!r}, expected one of {', '.join(sorted(_btob._estimators))}")
+    return _btob._estimators[name](**kwargs)
+
+
 Result.plot = plotting.plot
 Result.save = plotting.save
 Result.savefig = plotting.savefig

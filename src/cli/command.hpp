@@ -9,8 +9,10 @@
 #pragma once
 
 #include "cli/app.hpp"
+#include "cli/checkpoint.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
+#include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/sweep.hpp"
@@ -18,6 +20,7 @@
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <concepts>
@@ -41,6 +44,9 @@ struct Output {
   std::string title;  // figure title
   int threads = 0;    // 0: all cores
   bool no_plot = false, quiet = false;
+  bool dry_run = false;  // predict the cost from a sample of the items, write nothing (core/estimate.hpp)
+  bool resume = false;   // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
+  bool sweep = false;    // the request is a sweep (core/sweep.hpp): it has --dry-run and --resume
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
   // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
   bool files = true;
@@ -64,6 +70,18 @@ struct Output {
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
     v("quiet", quiet, "no progress or summary on stderr");
+    if (sweep)
+      v("dry-run", dry_run,
+        "print the work (items), the predicted time on this machine, the data size and rank 0's peak memory, "
+        "calibrated by running a ~0.2 s sample of this request's own items; write nothing");
+    if (sweep)
+      v("resume", resume,
+        "keep finished items in OUT/NAME.checkpoint (./NAME.checkpoint when printing) while running, and continue "
+        "from that file when it exists (made by the same request and btob build); removed once the result is written");
+  }
+  // Where --resume keeps the finished items: beside the result's files.
+  io::fs::path checkpoint_path() const {
+    return writes() ? io::fs::path(out) / (name + ".checkpoint") : io::fs::path(name + ".checkpoint");
   }
 };
 
@@ -74,6 +92,7 @@ struct Context {
   Args request_args;         // the request as recorded in the manifest
   std::string command;       // the subcommand
   bool quiet = false;        // --quiet (and every MPI rank but 0)
+  std::shared_ptr<Checkpoint> checkpoint;  // --resume: the sweep's checkpoint (every rank), else null
   // The manifest's request record: {"command": command, "args": request_args}.
   void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
     files.manifest(attrs, command, request_args);
@@ -99,6 +118,8 @@ template <class Req> auto run_with_progress(const Req& req, const Output& o, con
   core::RunControl control = ctx.control;
   const auto bar = terminal_progress(label);
   if (!o.quiet) control.progress = bar.get();
+  if constexpr (core::Sweep<Req>)
+    if (ctx.checkpoint) return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
   return run(req, control);
 }
 
@@ -242,7 +263,26 @@ template <class Req> Args recorded_request(Req& req, const Output& out) {
   return recorded;
 }
 
-// validate -> output -> record -> (MPI checkpoint) -> the body, or the files of a stdout command given --out.
+// --dry-run: the sweep's predicted cost from a sample of its own items, on rank 0's stdout; nothing written.
+template <class Req> void print_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  if (mpi::rank() == 0)
+    std::cout << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
+}
+
+// The body, or the files of a stdout command given --out.
+template <class Req>
+void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
+  if (!out.files && !out.out.empty()) {
+    std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
+    std::replace(kind.begin(), kind.end(), ' ', '_');
+    if (mpi::rank() == 0) write_files(req, out, ctx, kind);
+    return;
+  }
+  body(req, out, ctx);
+}
+
+// validate -> output -> record -> (MPI checkpoint) -> --dry-run, or --resume's checkpoint -> the body.
 template <class Req>
 void execute(const std::string& name, const Body<Req>& body, Req req, Output out, bool threads_given,
              const std::string& invocation) {
@@ -257,13 +297,21 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
     out.quiet = true;
   }
   Context ctx = make_context(name, out, invocation, std::move(recorded));
-  if (!out.files && !out.out.empty()) {
-    std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
-    std::replace(kind.begin(), kind.end(), ' ', '_');
-    if (mpi::rank() == 0) write_files(req, out, ctx, kind);
-    return;
+  if constexpr (core::Sweep<Req>) {
+    if (out.dry_run) return print_estimate(name, req, out, ctx);
+    if (out.resume)  // a collective under mpirun: rank 0 reads the file, every rank its items
+      ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
   }
-  body(req, out, ctx);
+  try {
+    run_body(name, body, req, out, ctx);
+  } catch (const core::Cancelled&) {
+    if (ctx.checkpoint && mpi::rank() == 0 && !out.quiet)
+      std::cerr << "btob: the finished items are kept in " << ctx.checkpoint->path.string()
+                << "; the same command with --resume continues\n";
+    throw;
+  }
+  // The result is written (or printed): the finished items are no longer needed.
+  if (ctx.checkpoint && mpi::rank() == 0) remove_checkpoint(*ctx.checkpoint);
 }
 
 // The subcommand on the command line: a flag per field of the request and of the output, applied when it runs.
@@ -276,7 +324,9 @@ void add_flags_command(CLI::App& app, const std::string& name, const std::string
     std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
     std::map<std::string, CLI::Option*> opts;
   };
-  auto s = std::make_shared<State>(State{request_defaults, output_defaults, {}, {}});
+  Output defaults = output_defaults;
+  defaults.sweep = core::Sweep<Req>;
+  auto s = std::make_shared<State>(State{request_defaults, defaults, {}, {}});
   CLI::App* c = add_nested(app, name, help);
   mpi::request_apps().push_back(c);
   s->req.fields(FlagBinder{c, &s->raw, &s->opts});
@@ -293,6 +343,7 @@ void add_flags_command(CLI::App& app, const std::string& name, const std::string
 template <class Req>
 void run_from_args(const std::string& name, const Body<Req>& body, Req req, Output out, const Args& args,
                    const std::string& invocation) {
+  out.sweep = core::Sweep<Req>;
   std::vector<bool> used(args.size(), false);
   req.fields(ArgsApplier{&args, &used});
   out.fields(ArgsApplier{&args, &used});

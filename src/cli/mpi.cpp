@@ -160,6 +160,24 @@ void fail(const std::string& cause, int code, const std::string& label) {
   end(code);
 }
 
+void fail_everywhere(const std::string& cause, int code, const std::string& label) {
+  if (state().rank == 0) say("btob: " + label + cause);
+  finalize();
+  end(code);
+}
+
+std::vector<char> broadcast(std::vector<char> bytes) {
+#ifdef BTOB_MPI
+  if (state().size == 1) return bytes;
+  std::uint64_t n = bytes.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(static_cast<std::size_t>(n));
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece)
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+#endif
+  return bytes;
+}
+
 std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_seconds) {
   State& s = state();
   std::vector<std::vector<char>> all;

@@ -34,6 +34,13 @@ bool checked();
 // sends SIGTERM to every rank when one aborted or when it was interrupted, and the cause was said already.
 [[noreturn]] void fail(const std::string& cause, int code, const std::string& label = "error: ");
 
+// Every rank fails the same way at the same point after the checkpoint (rank 0 found a checkpoint of another
+// request and told every rank): rank 0 says the single process's one line, every rank ends with `code`, no abort.
+[[noreturn]] void fail_everywhere(const std::string& cause, int code, const std::string& label = "error: ");
+
+// Rank 0's bytes on every rank (a collective: every rank calls it; the others' `bytes` are ignored).
+std::vector<char> broadcast(std::vector<char> bytes);
+
 // Rank 0 receives every rank's bytes (index = rank, its own moved in); the other ranks send theirs and get {}.
 // `compute_seconds` is this rank's work time, kept for the statistics below.
 std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_seconds);

@@ -5,8 +5,10 @@
 //
 // Rank k computes the items of part k of a cyclic split (core::cyclic_items), with its own OpenMP threads; rank 0
 // gathers the parts (core/pack.hpp) and merges them.  One process (no MPI, or mpirun -n 1) runs run(req) itself.
+// With --resume (ctx.checkpoint), the items run in rounds whose parts are kept in a checkpoint (cli/checkpoint.hpp).
 #pragma once
 
+#include "cli/checkpoint.hpp"
 #include "cli/command.hpp"
 #include "cli/mpi.hpp"
 #include "core/pack.hpp"
@@ -22,36 +24,11 @@
 
 namespace btob::cli {
 
-namespace detail {
-// Runs f() (a rank's run_part) and, when it fails, says which items the rank was computing in the error's own
-// category (usage errors keep exit status 2): "items 1, 3, 5, ... of 100 (r-max: got ...)".
-template <class F> auto naming_items(const std::vector<std::size_t>& items, std::size_t total, F&& f) {
-  const auto where = [&] {
-    std::string s;
-    for (std::size_t i = 0; i < items.size() && i < 3; ++i) s += (i ? ", " : "") + std::to_string(items[i]);
-    if (items.size() > 3) s += ", ...";
-    return fmt::format("item{} {} of {}: ", items.size() == 1 ? "" : "s", items.empty() ? "none" : s, total);
-  };
-  try {
-    return f();
-  } catch (const core::Cancelled&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(where() + e.what());
-  } catch (const std::domain_error& e) {
-    throw std::domain_error(where() + e.what());
-  } catch (const std::bad_alloc&) {
-    throw std::runtime_error(where() + "out of memory");
-  } catch (const std::exception& e) {
-    throw std::runtime_error(where() + e.what());
-  }
-}
-}  // namespace detail
-
 template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   using Part = decltype(run_part(req, std::vector<std::size_t>{}, ctx.control));
   using Result = decltype(merge(req, std::vector<Part>{}));
   if (!mpi::checked()) throw std::logic_error("cli::sweep before the checkpoint of cli::command");
+  if (ctx.checkpoint) return run_checkpointed(req, ctx.control, *ctx.checkpoint, true);  // --resume: in rounds
   if (mpi::size() == 1) return std::optional<Result>(run(req, ctx.control));
   const auto t0 = std::chrono::steady_clock::now();
   const auto items = core::cyclic_items(req.work_items(), static_cast<std::size_t>(mpi::rank()),

@@ -250,7 +250,17 @@ Progress::~Progress() {
   if (open_) std::cerr << "\n";
 }
 void Progress::update(std::size_t done, std::size_t total) {
-  if (!tty_ || total == 0) return;
+  if (total == 0) return;
+  if (!noted_ && done > 0 && done < total) {
+    const double el = seconds_now() - start_, left = el * static_cast<double>(total - done) / static_cast<double>(done);
+    if (el >= 2 && left > 600) {  // 2 s: enough items for a rate; 10 min: worth knowing before waiting for it
+      noted_ = true;
+      std::cerr << fmt::format("{}btob: {}: about {:.0f} min left at the rate so far (--dry-run predicts before a run)\n",
+                               open_ ? "\n" : "", label_, left / 60) << std::flush;
+      open_ = false;
+    }
+  }
+  if (!tty_) return;
   const int p = static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total));
   if (p == last_percent_) return;
   const double el = seconds_now() - start_;

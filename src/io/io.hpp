@@ -64,7 +64,8 @@ void write_text_atomic(const fs::path& path, const std::string& text);
 // A manifest (key: value lines, JSON object) beside a result.
 void write_manifest(const fs::path& path, const Attrs& a);
 
-// A progress bar on stderr, shown only when stderr is a terminal; quiet otherwise.
+// A progress bar on stderr, shown only when stderr is a terminal; quiet otherwise.  A run that, after 2 s, has more
+// than 10 minutes left at the rate so far says so once, terminal or not ("btob: LABEL: about N min left").
 class Progress {
  public:
   explicit Progress(std::string label);
@@ -76,6 +77,7 @@ class Progress {
   bool tty_;
   int last_percent_ = -1;
   bool open_ = false;  // a bar is drawn on the current line (ended by 100% or the destructor)
+  bool noted_ = false;  // the long run's remaining time was said
   double start_;
 };
 

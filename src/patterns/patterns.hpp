@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/map.hpp"
+#include "core/request.hpp"
 
 #include <array>
 #include <cstdint>
@@ -46,8 +47,10 @@ bool is_primitive(const Word& w);
 Word canonical(const Word& w);          // smallest rotation of w and J(w), order 1 < 3 < 2
 // w = h J(h) (Section 7.1): then M_w = (J M_h)^2 and the reduced matrix J M_h is studied instead.
 bool is_J_square(const Word& w);
-// Every primitive canonical word of length 1..max_length (sorted by length, then canonical order).
-std::vector<Word> enumerate_canonical(int max_length);
+// Every primitive canonical word of length 1..max_length (sorted by length, then canonical order).  The odometer
+// visits 3^n words of each length (3^16 = 4.3e7: seconds), so it polls `cancel` (core/cancel.hpp; throws
+// core::Cancelled).
+std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* cancel = nullptr);
 
 // Outcome of the periodic-orbit analysis of a word at one r.
 // stable: attracting (both exponents < 0); unstable: a saddle or a source (an exponent > 0); neutral: elliptic

@@ -443,7 +443,7 @@ std::size_t AtlasRequest::work_items() const {
 AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
-  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length));
+  const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
   const std::vector<double> table = req.checks() ? table_6_1_r() : std::vector<double>{};
   std::vector<Word> words;
   std::vector<double> rs;
@@ -533,6 +533,8 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
 }
 
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
+  // The words first, polling the token (work_items() cannot): every later enumeration finds them listed.
+  enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
   return merge(req, {run_part(req, core::all_items(req), control)});
 }
 

@@ -1,11 +1,14 @@
 // Words over {1,2,3}: parsing the paper's notation, printing, rotations, J, canonical forms, enumeration.
 #include "patterns/patterns.hpp"
 
+#include "core/cancel.hpp"
 #include "core/request.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 namespace btob::patterns {
@@ -247,16 +250,40 @@ bool is_J_square(const Word& w) {
   return true;
 }
 
-std::vector<Word> enumerate_canonical(int max_length) {
+namespace {
+// The words of every length enumerated so far: a sweep asks for them several times (its item count, each part, the
+// merge; each round of a resumed run), and the odometer over 3^16 words takes seconds.  Only whole lists are kept.
+std::mutex canonical_mutex;
+std::map<int, std::vector<Word>>& canonical_lists() {
+  static std::map<int, std::vector<Word>> m;
+  return m;
+}
+std::vector<Word> enumerate_canonical_uncached(int max_length, const core::CancelToken* cancel);
+}  // namespace
+
+std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* cancel) {
   if (max_length < 1 || max_length > 18)
     throw core::InvalidField("max-length", fmt::format("{}", max_length), "1..18");
+  {
+    const std::lock_guard<std::mutex> lock(canonical_mutex);
+    if (const auto it = canonical_lists().find(max_length); it != canonical_lists().end()) return it->second;
+  }
+  std::vector<Word> out = enumerate_canonical_uncached(max_length, cancel);
+  const std::lock_guard<std::mutex> lock(canonical_mutex);
+  canonical_lists().emplace(max_length, out);
+  return out;
+}
+
+namespace {
+std::vector<Word> enumerate_canonical_uncached(int max_length, const core::CancelToken* cancel) {
   std::vector<Word> out;
   for (int n = 1; n <= max_length; ++n) {
     // Odometer over {1,2,3}^n; keep canonical primitive words.  A canonical word starts with its
     // smallest symbol in the order 1 < 3 < 2, so starting with 1 suffices unless the word has no 1 and no 3.
     Word w{std::vector<std::uint8_t>(static_cast<std::size_t>(n), 1)};
     std::vector<Word> level;
-    while (true) {
+    for (long step = 1;; ++step) {
+      core::poll_cancel(cancel, step);
       if (w.s[0] == 1 || n == 1) {
         if (is_primitive(w) && canonical(w) == w) level.push_back(w);
       }
@@ -275,6 +302,7 @@ std::vector<Word> enumerate_canonical(int max_length) {
   }
   return out;
 }
+}  // namespace
 
 const char* outcome_name(Outcome o) {
   switch (o) {

@@ -1,6 +1,8 @@
 // The precision study (precision/tradeoff.hpp): every method against a 256-digit MPFR run of the same orbits.
 #include "precision/tradeoff.hpp"
 
+#include "core/cancel.hpp"
+
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/map.hpp"
@@ -63,7 +65,7 @@ template <class T> std::vector<std::uint8_t> symbols(const Ensemble& e, long ite
 
 // The same with the trigonometric algorithm of Appendix A.1 (double); a broken orbit's remaining symbols are 0
 // (never equal to the reference).
-Trace trig_trace(const Ensemble& e, long iterations, const RunOptions&) {
+Trace trig_trace(const Ensemble& e, long iterations, const RunOptions& ro) {
   Trace t;
   t.symbols.assign(e.orbits() * static_cast<std::size_t>(iterations), 0);
   t.final.assign(e.orbits(), Vec3<double>::Constant(std::numeric_limits<double>::quiet_NaN()));
@@ -74,6 +76,7 @@ Trace trig_trace(const Ensemble& e, long iterations, const RunOptions&) {
     const Vec3<double> u = core::to_quadrant<double>(e.initial[o % n_ic] / e.initial[o % n_ic].norm());
     auto s = reference::trig_start<double>(std::atan2(-u(2), u(0)), std::atan2(std::hypot(u(0), u(2)), -u(1)));
     for (long k = 0; k < iterations; ++k) {
+      core::poll_cancel(ro.cancel, k);  // one orbit's scalar loop, outside any OpenMP region
       const auto c = reference::trig_b_to_b<double>(s, r);
       if (c.status != reference::TrigStatus::ok) break;
       out[o * iterations + k] = c.letters == "ab" ? 1 : (c.letters == "cb" ? 3 : 2);

@@ -103,7 +103,8 @@ struct Basins {
   double unabsorbed = 0, residual = 0;
   long iterations = 0;
 };
-Basins absorb(const UlamMatrix& P, BasinTargets targets, const std::vector<double>& mu);
+Basins absorb(const UlamMatrix& P, BasinTargets targets, const std::vector<double>& mu,
+              const core::CancelToken* cancel = nullptr);
 
 // The request's Lebesgue measure as box masses (sum 1): on the strip the rectangle w1 in [a, b] x w2 in [-1, 1],
 // uniform on the angles.

@@ -274,7 +274,7 @@ void cycle_stage(const TransferRequest& q, Domain dom, const Decomposition& d,
 void basin_stage(const UlamMatrix& P, const TransferRequest& q, Domain dom, const std::vector<double>& mu,
                  const core::RunControl& control, TransferResult& res) {
   const auto started = std::chrono::steady_clock::now();
-  Basins basins = absorb(P, basin_targets(res.cycles, res.part, dom, q), mu);
+  Basins basins = absorb(P, basin_targets(res.cycles, res.part, dom, q), mu, control.cancel);
   res.basins = std::move(basins.basins);
   for (const auto& b : res.basins) res.basin_fraction.push_back(b.fraction);
   res.basin_of_box = std::move(basins.basin_of_box);
