@@ -67,7 +67,8 @@ TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
   try {
     iterate::parse_grid("strip:axb", 1, "grid");
   } catch (const std::exception& e) {
-    EXPECT_STREQ(e.what(), "grid: got 'a' in 'strip:axb', expected a whole number");
+    EXPECT_STREQ(e.what(), "grid: got 'strip:axb', expected strip:NxM[:w1min:w1max] with N, M >= 1 and finite w1min < "
+                           "w1max");
   }
 }
 
