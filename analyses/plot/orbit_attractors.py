@@ -76,7 +76,7 @@ def layers_of(f):
     if u >= 0 and count[:, u].sum() > 0:
         layers.append(share[:, u])
         colours.append(FIXED["unresolved"])
-        legend.append("unresolved (classify could not decide)")
+        legend.append("undecided (classify could not decide)")
     return layers, colours, legend
 
 

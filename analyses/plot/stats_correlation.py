@@ -46,7 +46,7 @@ def draw(f):
         nfit = np.linspace(1, 1 + w * a["decay_windows"], 50)
         bx.semilogy(nfit, a["envelope_first"] * np.exp(-a["decay_rate"] * (nfit - nfit[0])), "k:", lw=1.2,
                     label=f"fit: rate {a['decay_rate']:.3g} ± {a['decay_rate_error']:.2g} /iteration "
-                          f"({a.get('decay_verdict', 'decaying' if a['decays'] == 'yes' else 'no decay')})")
+                          f"({a['decay_verdict']})")
     bx.set_ylim(bottom=floor_draw / 2)
     if hidden:
         bx.text(0.99, 0.02, f"{hidden} of {len(ac)} lags have |C_N| < noise floor / 1000 (rounding level): not drawn",

@@ -22,7 +22,8 @@ CASES = [
                     lyap_transient=100)),
     ("basins_r", dict(r_values=[0.2, 0.3], grid="random:8", transient=500, iterations=300, lyap_iterations=400,
                       lyap_transient=100)),
-    ("correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=40, iterations=4000)),
+    # long enough for three windows above the noise floor: the fit and its verdict are drawn
+    ("correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=400, iterations=1000000)),
     ("measure", dict(r=0.2, grid="random:3", iterations=2000, transient=100, bins=16)),
 ]
 
