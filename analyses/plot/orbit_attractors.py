@@ -8,12 +8,11 @@ Usage: orbit_attractors.py DATA.h5 OUT.png
 The attractors are classify's verdicts (attractor_name, attractor_type); the most frequent ones get a colour each, the
 rest are drawn together as "other".  Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
 """
-import os
 import sys
 
 import h5py
 
-import plotlib  # noqa: F401  (Agg for the command line; a Python session keeps its backend)
+import plotlib  # Agg for the command line (a Python session keeps its backend); atomic PNG writes
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -137,9 +136,7 @@ def main(src, dst):
         if "attractor_count" not in f:
             sys.exit(f"orbit_attractors.py: {src} has no per-orbit attractors (run the command with --attractors)")
         fig = draw(f)
-    tmp = f"{dst}.tmp-{os.getpid()}.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, dst)
+    plotlib.save_atomic(fig, dst, dpi=130)
 
 
 if __name__ == "__main__":

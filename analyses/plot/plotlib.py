@@ -15,8 +15,9 @@ def attrs(h5obj):
     return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5obj.attrs.items()}
 
 
-def save_atomic(fig, dst):
-    """Writes the figure to a temporary file beside dst, then renames it (no partial PNG)."""
+def save_atomic(fig, dst, **savefig_kw):
+    """Writes the figure to a temporary file beside dst (savefig_kw: matplotlib's, e.g. dpi), then renames it (no
+    partial PNG)."""
     tmp = f"{dst}.tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
+    fig.savefig(tmp, **savefig_kw)
     os.replace(tmp, dst)
