@@ -78,11 +78,10 @@ void run_precision(const std::string& precision, const iterate::Ensemble& e, lon
   else throw core::InvalidField("precision", "'" + precision + "'", "float, double or long-double");
 }
 
-py::object iterate_orbits(py::handle r, py::handle points, long iterations, const std::string& record,
-                         const std::string& coord, long tail, const std::string& precision, int threads,
-                         py::object progress) {
+// The orbits of btob.iterate, every r against every point, each checked as the command line checks it; also
+// refuses the run's sizes and precision before any work.
+iterate::Ensemble orbits_of(py::handle r, py::handle points, long iterations, long tail, const std::string& precision) {
   iterate::Ensemble e;
-  const bool scalar_r = !PySequence_Check(r.ptr()) && !py::isinstance<py::array>(r);
   for (const auto& t : items_of(r, true, true)) {
     e.r.push_back(core::parse_double(t, "r"));
     core::require_r(e.r.back(), "r");
@@ -101,25 +100,36 @@ py::object iterate_orbits(py::handle r, py::handle points, long iterations, cons
     throw core::InvalidField("tail", std::to_string(tail), fmt::format("1..iterations = {}", iterations));
   if (precision != "float" && precision != "double" && precision != "long-double")
     throw core::InvalidField("precision", "'" + precision + "'", "float, double or long-double");
+  return e;
+}
+
+py::object iterate_orbits(py::handle r, py::handle points, long iterations, const std::string& record,
+                         const std::string& coord, long tail, const std::string& precision, int threads,
+                         py::object progress) {
+  const iterate::Ensemble e = orbits_of(r, points, iterations, tail, precision);
+  const bool scalar_r = !PySequence_Check(r.ptr()) && !py::isinstance<py::array>(r);
   std::vector<py::ssize_t> shape;
   if (!scalar_r) shape.push_back(static_cast<py::ssize_t>(e.r.size()));
   shape.push_back(static_cast<py::ssize_t>(e.initial.size()));
-  const int t = threads;
+  // One kernel run in the requested precision, feeding `rec`, with the GIL released and Ctrl-C watched.
+  const auto run = [&](auto& rec) {
+    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, threads, progress);
+  };
   if (record == "tail") {
     iterate::TailRecorder rec(iterate::parse_coord(coord, "coord"), e.orbits(), iterations, tail);
-    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, t, progress);
+    run(rec);
     shape.push_back(tail);
     return owned(std::move(rec.out), shape);
   }
   if (record == "symbols") {
     iterate::SymbolRecorder rec(e.orbits(), iterations - tail + 1, iterations);
-    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, t, progress);
+    run(rec);
     shape.push_back(tail);
     return owned(std::move(rec.out), shape);
   }
   if (record == "final") {
     iterate::FinalRecorder rec(e.orbits(), iterations);
-    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, t, progress);
+    run(rec);
     std::vector<double> flat(3 * rec.out.size());
     for (std::size_t o = 0; o < rec.out.size(); ++o)
       for (int k = 0; k < 3; ++k) flat[3 * o + k] = rec.out[o](k);
@@ -134,7 +144,7 @@ py::object iterate_orbits(py::handle r, py::handle points, long iterations, cons
     iterate::TailRecorder phi(iterate::Coord::phi, e.orbits(), iterations, tail);
     iterate::SymbolRecorder branch(e.orbits(), iterations - tail + 1, iterations);
     iterate::OrbitRecorders rec(states, theta, phi, branch);
-    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, t, progress);
+    run(rec);
     shape.push_back(tail);
     py::dict out;
     out["x"] = owned(std::move(states.x), shape);
