@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev                          # manifests: a result records its request, `btob run NAME.json` reads it back
   libgtest-dev libbenchmark-dev               # tests and benchmarks
   python3 python3-matplotlib python3-numpy python3-h5py  # plots
+  python3-mpmath                              # tests: an independent 50-digit eigensolver for pattern-curves
   clang-14 libfuzzer-14-dev                   # fuzzing the parsers of user input (tests/fuzz, libFuzzer; .ci/run)
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars

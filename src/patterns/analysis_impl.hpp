@@ -83,24 +83,36 @@ template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, co
     }
     return l;
   };
-  std::array<Root<T>, 3> r;
-  if (D <= 0 && p < 0) {
+  // The root of largest modulus l: Viete's trigonometric form when D <= 0 (three real roots), else stable Cardano
+  // (one real root, or a triple root when p = q = 0).  Then the other two from the quadratic factor, never from
+  // the trigonometric form: its roots carry an absolute error of a few ulps of the largest, so two roots far
+  // below it come out as noise (D's sign itself is cancellation there, and a clamped arccos argument makes them
+  // an exact double root).
+  T l;
+  const bool three_real = D <= 0 && p < 0;
+  if (three_real) {
     const T m = 2 * sqrt_<T>(-p / 3);
     T arg = 3 * q / (p * m);
     arg = std::clamp<T>(arg, T(-1), T(1));
     const T th = acos_<T>(arg) / 3;
     const T two_pi_3 = 2 * acos_<T>(T(-1)) / 3;
-    for (int k = 0; k < 3; ++k) r[k] = {polish(m * cos_<T>(th - two_pi_3 * k) - a / 3), T(0), true};
-    return r;
+    l = m * cos_<T>(th) - a / 3;
+    for (int k = 1; k < 3; ++k) {
+      const T x = m * cos_<T>(th - two_pi_3 * k) - a / 3;
+      if (abs_<T>(x) > abs_<T>(l)) l = x;
+    }
+    l = polish(l);
+  } else {
+    const T s = sqrt_<T>(std::max<T>(D, T(0)));
+    const T u = cbrt_<T>(-q / 2 - (q < 0 ? T(-s) : s));
+    const T t = u == 0 ? T(0) : T(u - p / (3 * u));
+    l = polish(t - a / 3);
   }
-  // One real root (or a triple root when p = q = 0): stable Cardano, then the quadratic factor.
-  const T s = sqrt_<T>(std::max<T>(D, T(0)));
-  const T u = cbrt_<T>(-q / 2 - (q < 0 ? T(-s) : s));
-  const T t = u == 0 ? T(0) : T(u - p / (3 * u));
-  const T l = polish(t - a / 3);
+  std::array<Root<T>, 3> r;
   const T S = -a - l;                                // sum of the other two roots
   const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // their product (l dominant: -c/l has no cancellation)
-  const T disc = S * S - 4 * P;
+  // Three real roots: a negative discriminant of the factor is rounding (a near-double root), kept real.
+  const T disc = three_real ? std::max<T>(S * S - 4 * P, T(0)) : T(S * S - 4 * P);
   r[0] = {l, T(0), true};
   if (disc < 0) {
     const T im = sqrt_<T>(-disc) / 2;

@@ -23,6 +23,7 @@ struct Point {
   int tracked = -1;
   double dominance = std::numeric_limits<double>::quiet_NaN();
   Vec3<L> u;  // tracked eigenvector, unit
+  L u_error = 0;  // bound on the error of u's components (eigenvector_error)
 };
 
 Mat3<L> analysed(const Word& h, bool reduced, L r) {
@@ -32,14 +33,61 @@ Mat3<L> analysed(const Word& h, bool reduced, L r) {
   return reduced ? Mat3<L>(core::J<L>() * M) : M;
 }
 
+// The characteristic polynomial l^3 - tr l^2 + c2 l - det of A = [J] P_{h_n} ... P_{h_1}, with c2 and det not
+// taken from A's entries.  A's entries are O(1) while det A = -r^11 or -r^14 for the words of Section 7, so det3(A)
+// is cancellation noise (an absolute error of eps x max |A_ij|, ~1e-19 in long double against det ~ 1e-30 at
+// r = 0.008) and so is the smallest root; the roots then cross and the negative root tracked flips sign (the
+// "critical r" below 0.01 of 13223122 were that noise; 60-digit MPFR has none there).  Instead:
+//   det A = det(J)^[reduced] prod det P_{h_k},  det P1 = det P3 = r^4,  det P2 = r^3,  det J = -1
+// (expand P1 along its last row: r^2 ((-r)(a^2 - r) + r a^2) = r^4; P2 along its first column: r^3), and
+//   c2 = trace adj(A),  adj(A) = adj(P_{h_1}) ... adj(P_{h_n}) [adj(J) = -J]
+// (adj(XY) = adj(Y) adj(X)): each factor's cofactors are products of the factor's O(r) entries with at most one
+// cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3 + l2 l3 keeps its relative
+// accuracy where A's 2x2 minors cancel to it.
+struct CharPoly {
+  L tr, c2, det;
+};
+CharPoly char_poly(const Word& h, bool reduced, L r, const Mat3<L>& A) {
+  const std::array<Mat3<L>, 3> adjP = {Mat3<L>(detail::cofactor<L>(core::P1(r)).transpose()),
+                                       Mat3<L>(detail::cofactor<L>(core::P2(r)).transpose()),
+                                       Mat3<L>(detail::cofactor<L>(core::P3(r)).transpose())};
+  Mat3<L> adj = Mat3<L>::Identity();
+  L det = 1;
+  for (auto s : h.s) {
+    adj = adj * adjP[s - 1];
+    det *= s == 2 ? r * r * r : r * r * r * r;
+  }
+  if (reduced) {
+    adj = adj * Mat3<L>(-core::J<L>());
+    det = -det;
+  }
+  return {A.trace(), adj.trace(), det};
+}
+
+// A bound on the error of the unit eigenvector of the simple eigenvalue l computed from A: a perturbation of
+// size eps x max |A_ij| (A's rounding, and l's) turns it by about that over the distance from l to the nearest
+// other eigenvalue; the factor 64 covers the products forming A, the cross product and the non-normality of these
+// matrices (tests/pattern_curves_mpmath.py checks it against mpmath's 50-digit eigenvectors, for 132312 and
+// 13223122 over r in [0.0005, 0.9995]).  Infinite for a multiple eigenvalue.
+L eigenvector_error(const Mat3<L>& A, const std::array<detail::Root<L>, 3>& roots, int tracked) {
+  L gap = std::numeric_limits<L>::infinity();
+  for (int i = 0; i < 3; ++i)
+    if (i != tracked)
+      gap = std::min<L>(gap, std::hypot(roots[i].re - roots[tracked].re, roots[i].real ? L(0) : roots[i].im));
+  return 64 * std::numeric_limits<L>::epsilon() * A.cwiseAbs().maxCoeff() / gap;
+}
+
+// Whether long double decides the tracked eigenvector: its direction to better than kResolved.  Below that the
+// feasibility quantities are not computed (NaN) and a sign change of u_x or u_z is reported as undecided.
+constexpr double kResolved = 1e-3;
+bool resolved(const Point& p) { return p.tracked >= 0 && p.u_error < kResolved; }
+
 Point at(const Word& h, bool reduced, double r_, bool negative) {
   Point p;
   const L r = r_;
   const Mat3<L> A = analysed(h, reduced, r);
-  const L tr = A.trace();
-  const L minors = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0) + A(0, 0) * A(2, 2) - A(0, 2) * A(2, 0) +
-                   A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
-  p.roots = detail::cubic_roots<L>(-tr, minors, -detail::det3<L>(A));
+  const CharPoly cp = char_poly(h, reduced, r, A);
+  p.roots = detail::cubic_roots<L>(-cp.tr, cp.c2, -cp.det);
   std::sort(p.roots.begin(), p.roots.end(), [](const auto& a, const auto& b) {
     if (a.real != b.real) return a.real;
     return a.real ? a.re < b.re : a.im < b.im;
@@ -54,6 +102,7 @@ Point at(const Word& h, bool reduced, double r_, bool negative) {
     if (i != p.tracked) other = std::max(other, detail::modulus(p.roots[i]));
   p.dominance = static_cast<double>((best - other) / best);
   p.u = detail::eigenvector<L>(A, p.roots[p.tracked].re);
+  p.u_error = eigenvector_error(A, p.roots, p.tracked);
   return p;
 }
 
@@ -99,6 +148,8 @@ void allocate_curves(std::size_t n, std::size_t nf, CurvesResult& res) {
   res.tracked.assign(n, std::numeric_limits<double>::quiet_NaN());
   res.dominance.assign(n, std::numeric_limits<double>::quiet_NaN());
   res.feas.assign(n * nf, std::numeric_limits<double>::quiet_NaN());
+  res.u_error.assign(n, std::numeric_limits<double>::quiet_NaN());
+  res.resolved.assign(n, 0);
 }
 
 // Row i of the curves at r: the spectrum, the tracked eigenvalue and its dominance, and the feasibility quantities
@@ -115,7 +166,9 @@ void curve_row(const Word& h, bool negative, std::size_t i, double r, CurvesResu
   if (pt.tracked < 0) return;
   res.tracked[i] = static_cast<double>(pt.roots[pt.tracked].re);
   res.dominance[i] = pt.dominance;
-  if (pt.u(0) == 0) return;
+  res.u_error[i] = static_cast<double>(pt.u_error);
+  res.resolved[i] = resolved(pt);
+  if (pt.u(0) == 0 || !res.resolved[i]) return;
   Vec3<L> v = pt.u / pt.u(0);
   const L rl = r, a = core::alpha(rl);
   const std::array<Mat3<L>, 3> P = {core::P1(rl), core::P2(rl), core::P3(rl)};
@@ -148,15 +201,24 @@ template <class F> std::vector<double> sign_changes(const std::vector<double>& g
 }
 
 // Critical r: sign changes of -u_x u_z (sign-free: u_x = 0 or u_z = 0, where u leaves the domain; named by the
-// component that vanishes), then of the dominance margin.
+// component that vanishes), then of the dominance margin.  A sign change is decided when, at both grid values
+// around it, the eigenvector is resolved and |u_x u_z| exceeds its error bound (the signs are then those of the
+// exact eigenvector, and it crosses in between); otherwise it is "undecided in long double" (at r near 0, where
+// the tracked eigenvalue falls to ~1e-17 of the largest, its eigenvector is rounding).
 void critical_points(const Word& h, bool negative, CurvesResult& res) {
   const auto domain = [&](double r) {
     const Point pt = at(h, res.reduced, r, negative);
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
   };
+  const auto certain = [&](double r) {
+    const Point pt = at(h, res.reduced, r, negative);
+    return resolved(pt) && std::abs(pt.u(0) * pt.u(2)) > pt.u_error;
+  };
   for (double rc : sign_changes(res.r, domain)) {
     const Point pt = at(h, res.reduced, rc, negative);
-    res.critical.push_back({std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
+    const auto i = static_cast<std::size_t>(std::upper_bound(res.r.begin(), res.r.end(), rc) - res.r.begin());
+    const bool decided = i > 0 && i < res.r.size() && certain(res.r[i - 1]) && certain(res.r[i]);
+    res.critical.push_back({!decided ? "undecided in long double" : std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
   }
   for (double rc : sign_changes(res.r, [&](double r) { return at(h, res.reduced, r, negative).dominance; }))
     res.critical.push_back({"dominance", rc});
@@ -204,11 +266,18 @@ void CurvesResult::describe(core::Contents& c) const {
   c.array("tracked", tracked, {n}, "r", "1", "the tracked eigenvalue (NaN where it is not real or not negative)");
   c.array("dominance", dominance, {n}, "r", "1", "(|tracked| - max |other|) / |tracked|: > 0 where it dominates");
   c.array("feas", feas, {n, feas_names.size()}, "r, quantity (feas_names)", "1",
-          "u_z, then y, alpha y - x, alpha y - z of v_0 .. v_{p-1} (eigenvector normalised by u_x = 1)");
+          "u_z, then y, alpha y - x, alpha y - z of v_0 .. v_{p-1} (eigenvector normalised by u_x = 1; NaN where "
+          "not resolved)");
+  c.array("u_error", u_error, {n}, "r", "1",
+          "bound on the error of the tracked unit eigenvector's components in long double: 64 eps max|A_ij| / "
+          "distance to the nearest other eigenvalue");
+  c.array("resolved", resolved, {n}, "r", "1 (boolean)",
+          "1 where u_error < 1e-3: the eigenvector, hence the feasibility quantities, decided in long double");
   c.array("critical_r", critical_r, {critical_r.size()}, "critical value", "1",
           "r where u_x = 0, u_z = 0 or dominance changes (bisected to 1e-15)");
   c.text("critical_what", critical_what, "critical value", "name",
-         "what changes at each critical_r: u_x = 0, u_z = 0 (u leaves the domain) or dominance");
+         "what changes at each critical_r: u_x = 0, u_z = 0 (u leaves the domain), dominance, or undecided in "
+         "long double (a sign change of u_x u_z where the eigenvector is not resolved)");
   std::string names;
   for (const auto& f : feas_names) names += (names.empty() ? "" : ",") + f;
   c.attr("feas_names", names);

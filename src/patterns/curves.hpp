@@ -7,6 +7,7 @@
 #include "core/result.hpp"
 #include "patterns/patterns.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -49,9 +50,12 @@ struct CurvesResult {
   std::vector<double> dominance;    // [n] (|tracked| - max |other|) / |tracked|: > 0 where it dominates
   std::vector<double> feas;         // [n x (1 + 3 p)] row-major: u_z, then y, ay-x, ay-z of v_0 .. v_{p-1}
   std::vector<std::string> feas_names;  // [1 + 3 p]: "u_z", "y(v0)", "ay-x(v0)", "ay-z(v0)", ...
+  std::vector<double> u_error;      // [n] bound on the error of the tracked unit eigenvector (NaN: none tracked)
+  std::vector<std::uint8_t> resolved;  // [n] 1 where u_error < 1e-3: the feasibility quantities are computed
   struct Critical {
-    std::string what;  // "u_x = 0", "u_z = 0" (u leaves the domain) or "dominance" (the tracked eigenvalue
-                       // stops or starts dominating)
+    std::string what;  // "u_x = 0", "u_z = 0" (u leaves the domain), "dominance" (the tracked eigenvalue
+                       // stops or starts dominating) or "undecided in long double" (a sign change of u_x u_z
+                       // where the eigenvector is below long double's resolution)
     double r = 0;
   };
   std::vector<Critical> critical;   // bisected to 1e-15 from the grid's sign changes
