@@ -25,10 +25,6 @@ PAPER = {
             ("fig7_6", "eig", 0.3, None), ("fig7_7", "mod", 0.3, None),
             ("fig7_8", "feas", None, [("u_z", "1st: $(u)_z$"), ("ay-x(v0)", r"2nd: $\alpha (u)_y - (u)_x$")])]},
 }
-# Below this r the eigenvector's small components are at rounding level (even in long double): their sign
-# changes there are noise, not drawn or annotated.
-CRIT_MIN_R = 0.02
-
 
 
 def symlog_ticks(ax, lin, lo, hi):
@@ -68,13 +64,17 @@ def main(h5path, outdir):
         critical = list(zip(f["critical_what"].asstr()[()], f["critical_r"][()]))
     names = a["feas_names"].split(",")
     word = a["word"]
-    crit = [(what, float(rc)) for what, rc in critical if float(rc) >= CRIT_MIN_R]
+    # Sign changes where long double does not resolve the eigenvector are not drawn; the subtitle counts them.
+    crit = [(what, float(rc)) for what, rc in critical if not what.startswith("undecided")]
+    undecided = [float(rc) for what, rc in critical if what.startswith("undecided")]
     spec = PAPER.get(word, {"matrix": "A", "fig": [(f"{a['name']}_eig", "eig", 0.3, None),
                                                      (f"{a['name']}_mod", "mod", 0.3, None),
                                                      (f"{a['name']}_feas", "feas", None,
                                                       [(n, n) for n in names[:2]])]})
     reduced = "J M_h" if int(a["reduced"]) else "M_w"
-    sub = f"word {word}, matrix {spec['matrix'] if word in PAPER else reduced}; {len(r)} values of r; double"
+    sub = (f"word {word}, matrix {spec['matrix'] if word in PAPER else reduced}; {len(r)} values of r; "
+           f"spectrum in long double" + (f"; {len(undecided)} sign changes of $u_x u_z$ undecided in long double "
+                                         f"(r <= {max(undecided):.4g}), not drawn" if undecided else ""))
 
     def vlines(ax, only=None):
         for what, rc in crit:
@@ -145,7 +145,7 @@ def main(h5path, outdir):
                 dr = r[1] - r[0]
                 poles = [c for w, c in crit if w == "u_x = 0"]
                 for i in np.nonzero(np.isfinite(y[:-1]) & np.isfinite(y[1:]) & (np.sign(y[:-1]) != np.sign(y[1:])))[0]:
-                    if r[i] < CRIT_MIN_R or any(abs(r[i] - c) < 3 * dr for c in poles):
+                    if any(abs(r[i] - c) < 3 * dr for c in poles):
                         continue
                     rz = r[i] - y[i] * dr / (y[i + 1] - y[i])
                     ax.plot([rz], [0], "kv", ms=6)
