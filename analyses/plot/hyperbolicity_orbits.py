@@ -5,13 +5,12 @@ beside the median largest Lyapunov exponent, from a `btob hyperbolicity-orbits` 
 Usage: hyperbolicity_orbits.py DATA.h5 OUT.png
 Reads only the HDF5 file; writes OUT.png atomically.
 """
-import os
 import sys
 
 import h5py
 import matplotlib
 
-import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
+import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
@@ -91,9 +90,7 @@ def draw(f):
 def main(src, dst):
     with h5py.File(src, "r") as f:
         fig = draw(f)
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    os.replace(tmp, dst)
+    plotlib.save_atomic(fig, dst, dpi=120, bbox_inches="tight")
 
 
 if __name__ == "__main__":

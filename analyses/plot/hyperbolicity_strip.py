@@ -6,13 +6,11 @@ Usage: hyperbolicity_strip.py DATA.h5 OUT.png
 Overlays the partition boundaries of the strip (eq. (6.4): w2 = 2 alpha w1 -+ 1, w1 = 0) and the contour s1 = 1
 (expanding where s1 >= 1).  Reads only the HDF5 file; writes OUT.png atomically.
 """
-import os
 import sys
 
 import h5py
-import matplotlib
 
-import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
+import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -32,7 +30,6 @@ def draw(f):
     w1lo, w1hi, alpha = float(a["w1_min"]), float(a["w1_max"]), float(a["alpha"])
     ls = np.log10(s1)
     fig, ax = plt.subplots(figsize=(9, 5.5))
-    lim = max(0.05, float(np.nanmax(np.abs(ls))))
     im = ax.imshow(ls.T, origin="lower", extent=[w1lo, w1hi, -1, 1], aspect="auto", cmap="RdBu_r",
                    norm=mcolors.TwoSlopeNorm(vmin=min(-0.05, float(ls.min())), vcenter=0.0,
                                              vmax=max(0.05, float(ls.max()))))
@@ -59,9 +56,7 @@ def draw(f):
 def main(src, dst):
     with h5py.File(src, "r") as f:
         fig = draw(f)
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, dst)
+    plotlib.save_atomic(fig, dst, dpi=130)
 
 
 if __name__ == "__main__":

@@ -7,13 +7,11 @@ Top: lambda1 of every orbit (dots), min/median/max per r, vertical lines at the 
 Bottom: fraction of orbits whose lambda1 is clearly positive / zero / negative given its error bar.
 Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
 """
-import os
 import sys
 
 import h5py
-import matplotlib
 
-import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
+import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -80,9 +78,7 @@ def draw(f):
 def main(src, dst):
     with h5py.File(src, "r") as f:
         fig = draw(f)
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, dst)
+    plotlib.save_atomic(fig, dst, dpi=130)
 
 
 if __name__ == "__main__":

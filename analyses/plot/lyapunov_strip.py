@@ -6,13 +6,11 @@ The partition boundaries of the strip (eq. (6.4)) are overlaid: w2 = 2 alpha w1 
 below it), w2 = 2 alpha w1 + 1 (alpha y = z: branch 3 above it) and w1 = 0.
 Reads only the HDF5 file; writes OUT.png atomically.
 """
-import os
 import sys
 
 import h5py
-import matplotlib
 
-import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
+import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -52,9 +50,7 @@ def draw(f):
 def main(src, dst):
     with h5py.File(src, "r") as f:
         fig = draw(f)
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, dst)
+    plotlib.save_atomic(fig, dst, dpi=130)
 
 
 if __name__ == "__main__":
