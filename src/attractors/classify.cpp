@@ -235,6 +235,10 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
   }
   const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
   const std::string lam = fmt::format("lambda1 = {:.3g} +- {:.2g}", v.lambda1, v.err1);
+  // "zero" means within lyapunov::classify's bar, which the detail states: three standard errors plus the
+  // finite-time floor 10 / n, so that an exponent many standard errors from 0 but under the floor reads as such.
+  const std::string zero = fmt::format("{} is zero within 3 err + 10/n = {:.2g}", lam,
+                                       3 * v.err1 + 10.0 / static_cast<double>(opt.lyap_iterations));
   if (sign > 0) {
     v.type = Type::chaotic, v.key = "X";
     v.detail = lam + " > 0";
@@ -244,14 +248,14 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
         "longer period",
         lam, opt.max_period, v.residual, v.closest_return);
   } else if (!RotationRecorder::defined(r)) {
-    v.detail = lam + " is zero, but r <= 3 - 2 sqrt(2): no P2 rotation to test";
+    v.detail = zero + ", but r <= 3 - 2 sqrt(2): no P2 rotation to test";
   } else if (v.rotation_delta < opt.rotation_tol) {
     v.type = Type::quasi_periodic;
     v.key = v.p2_region ? "Q2" : "Q";
-    v.detail = fmt::format("{} is zero; rotation {:.10f} turns (half-record change {:.2g}), I = {:.6g}", lam,
-                           v.rotation, v.rotation_delta, v.invariant);
+    v.detail = fmt::format("{}; rotation {:.10f} turns (half-record change {:.2g}), I = {:.6g}", zero, v.rotation,
+                           v.rotation_delta, v.invariant);
   } else {
-    v.detail = fmt::format("{} is zero but the weighted rotation number did not converge (change {:.2g})", lam,
+    v.detail = fmt::format("{}, but the weighted rotation number did not converge (change {:.2g})", zero,
                            v.rotation_delta);
   }
 }
