@@ -293,6 +293,25 @@ TEST(Windows, PrecisionsAgree) {
   }
 }
 
+TEST(Spectrum, SmallEigenvaluesKeepTheirRelativeAccuracy) {
+  // 13223122 at small r: mu2 ~ 1e-10 mu1 and mu3 ~ 1e-15 mu1.  From the product's entries (det3 and the 2x2 minors)
+  // they were noise (mu3 = 2.3e-14 at r = 0.0075 where it is 9.58e-17); from the exact determinant, the product of
+  // the factors' cofactors (detail::char_poly) and the quadratic factor with S = (c2 - P) / mu1 (cubic_roots) each
+  // keeps its relative accuracy in double: c2's relative error is eps / (4 r) <= 2e-14 here (its factors' one
+  // cancellation), plus a few ulps per product (measured: 2e-15 against 50-digit MPFR).
+  const btob::core::MpfrDigits digits(50);
+  for (double r : {0.003, 0.0075, 0.02, 0.05}) {
+    const auto d = analyse<double>(W("13223122"), r);
+    const auto m = analyse<mpfr_float>(W("13223122"), mpfr_float(r));
+    for (int i = 0; i < 3; ++i) {
+      const double want = static_cast<double>(m.spectrum[i].modulus);
+      EXPECT_CLOSE(d.spectrum[i].modulus, want,
+                   bound(1e-13 * want, "c2's relative error eps / (4 r) <= 2e-14 and a few ulps per product"))
+          << "mu" << i + 1 << " at r = " << r;
+    }
+  }
+}
+
 // ---------------------------------------------------------------- Table 6.1
 TEST(Table61, EveryPatternIsStableWhereThePaperSawIt) {
   const std::vector<std::pair<const char*, double>> seen = {

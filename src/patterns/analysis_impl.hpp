@@ -109,8 +109,10 @@ template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, co
     l = polish(t - a / 3);
   }
   std::array<Root<T>, 3> r;
-  const T S = -a - l;                                // sum of the other two roots
-  const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // their product (l dominant: -c/l has no cancellation)
+  const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // product of the other two (l dominant: -c/l has no cancellation)
+  // Their sum S: -a - l carries an absolute error of eps |l|, all of S's when the two are far below l; then
+  // b = l S + P with |P| << |b| gives S = (b - P) / l to b's relative accuracy instead.
+  const T S = l != 0 && abs_<T>(P) <= abs_<T>(b) / 2 ? T((b - P) / l) : T(-a - l);
   // Three real roots: a negative discriminant of the factor is rounding (a near-double root), kept real.
   const T disc = three_real ? std::max<T>(S * S - 4 * P, T(0)) : T(S * S - 4 * P);
   r[0] = {l, T(0), true};
@@ -191,20 +193,58 @@ template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::ve
   return fail;
 }
 
+// A bound on the error of the unit eigenvector (eigenvector()) of the simple root i of a normalised matrix
+// (max |m_ij| = 1): a perturbation of eps |m| (m's rounding and the root's) turns it by about that over the root's
+// distance to the nearest other root; 64 covers the products forming m, the cross product and the non-normality of
+// these matrices (tests/pattern_curves_mpmath.py checks it against mpmath's 50-digit eigenvectors).  Infinite for
+// a multiple root.
+template <class T> T eigenvector_error(const std::array<Root<T>, 3>& roots, int i) {
+  T gap = std::numeric_limits<T>::infinity();
+  for (int j = 0; j < 3; ++j)
+    if (j != i) {
+      const T dr = roots[j].re - roots[i].re, di = (roots[j].real ? T(0) : roots[j].im) - (roots[i].real ? T(0) : roots[i].im);
+      gap = std::min<T>(gap, sqrt_<T>(dr * dr + di * di));
+    }
+  return 64 * eps_<T>() / gap;
+}
+
 template <class T> struct Spectrum {
   std::array<Root<T>, 3> roots;  // by decreasing modulus
   std::array<T, 3> mod;
   Scaled<T> A;
 };
+// The characteristic polynomial l^3 - tr l^2 + c2 l - det of the normalised analysed matrix m = A e^-s
+// (A = analysed_matrix), with c2 and det not taken from m's entries.  Those are O(1) while det A = -r^14 for 13223122
+// (J M_h, h = 1322), ~1e-30 at r = 0.008, so det3(m) is cancellation noise (eps against ~1e-30) and so are the small roots.  Instead:
+//   det A = det(J)^[reduced] prod det P_{w_k},  det P1 = det P3 = r^4, det P2 = r^3, det J = -1
+// (expand P1 along its last row: r^2 ((-r)(a^2 - r) + r a^2) = r^4; P2 along its first column: r^3), and
+//   c2 = trace cof(A),  cof(A) = cof(J)^[reduced] cof(P_{w_n}) ... cof(P_{w_1}),  cof(J) = -J
+// (cofactor matrices multiply like the matrices: cof(X) = det(X) X^-T): each factor's cofactors are products of its
+// own O(r) entries with at most one cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3
+// + l2 l3 keeps its relative accuracy where m's 2x2 minors cancel down to it.
+template <class T> std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A) {
+  const std::size_t n = reduced ? w.size() / 2 : w.size();
+  const std::array<Mat3<T>, 3> C = {cofactor<T>(core::P1(r)), cofactor<T>(core::P2(r)), cofactor<T>(core::P3(r))};
+  Scaled<T> cof;
+  T log_det = T(0);
+  const T log_r = log_(r);
+  for (std::size_t k = 0; k < n; ++k) {
+    cof.m = C[w.s[k] - 1] * cof.m;
+    if (k % 8 == 7) cof.normalise();  // renormalised as analysed_matrix does, far from underflow
+    log_det += (w.s[k] == 2 ? 3 : 4) * log_r;
+  }
+  if (reduced) cof.m = Mat3<T>(-core::J<T>()) * cof.m;
+  cof.normalise();
+  const T c2 = cof.m.trace() * exp_(T(cof.log_scale - 2 * A.log_scale));
+  const T det = (reduced ? T(-1) : T(1)) * exp_(T(log_det - 3 * A.log_scale));
+  return {A.m.trace(), c2, det};
+}
+
 template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced) {
   Spectrum<T> s;
   s.A = analysed_matrix(w, r, reduced);
-  const Mat3<T>& m = s.A.m;
-  const T tr = m.trace();
-  const T minors = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) + m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0) +
-                   m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1);
-  const T det = det3<T>(m);
-  s.roots = cubic_roots<T>(-tr, minors, -det);
+  const std::array<T, 3> cp = char_poly(w, r, reduced, s.A);
+  s.roots = cubic_roots<T>(-cp[0], cp[1], -cp[2]);
   std::sort(s.roots.begin(), s.roots.end(), [](const Root<T>& x, const Root<T>& y) { return modulus(x) > modulus(y); });
   for (int i = 0; i < 3; ++i) s.mod[i] = modulus(s.roots[i]);
   return s;

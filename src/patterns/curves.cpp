@@ -16,78 +16,31 @@ namespace btob::patterns {
 namespace {
 
 // The spectrum is computed in long double: the smallest eigenvalues of these products are ~1e-13 of the
-// largest at r ~ 0.005 (det = -r^11 or -r^14), below what the cubic formula resolves in double.
+// largest at r ~ 0.005 (det = -r^11 or -r^14), and the tracked eigenvector's error grows as eps over its
+// eigenvalue's distance to the others (eigenvector_error), so long double resolves it down to r = 0.0005 or so.
 using L = long double;
 struct Point {
   std::array<detail::Root<L>, 3> roots;  // real ascending, then complex
   int tracked = -1;
   double dominance = std::numeric_limits<double>::quiet_NaN();
   Vec3<L> u;  // tracked eigenvector, unit
-  L u_error = 0;  // bound on the error of u's components (eigenvector_error)
+  L u_error = 0;  // bound on the error of u's components (detail::eigenvector_error)
 };
-
-Mat3<L> analysed(const Word& h, bool reduced, L r) {
-  const std::array<Mat3<L>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-  Mat3<L> M = Mat3<L>::Identity();
-  for (auto s : h.s) M = P[s - 1] * M;
-  return reduced ? Mat3<L>(core::J<L>() * M) : M;
-}
-
-// The characteristic polynomial l^3 - tr l^2 + c2 l - det of A = [J] P_{h_n} ... P_{h_1}, with c2 and det not
-// taken from A's entries.  A's entries are O(1) while det A = -r^11 or -r^14 for the words of Section 7, so det3(A)
-// is cancellation noise (an absolute error of eps x max |A_ij|, ~1e-19 in long double against det ~ 1e-30 at
-// r = 0.008) and so is the smallest root; the roots then cross and the negative root tracked flips sign (the
-// "critical r" below 0.01 of 13223122 were that noise; 60-digit MPFR has none there).  Instead:
-//   det A = det(J)^[reduced] prod det P_{h_k},  det P1 = det P3 = r^4,  det P2 = r^3,  det J = -1
-// (expand P1 along its last row: r^2 ((-r)(a^2 - r) + r a^2) = r^4; P2 along its first column: r^3), and
-//   c2 = trace adj(A),  adj(A) = adj(P_{h_1}) ... adj(P_{h_n}) [adj(J) = -J]
-// (adj(XY) = adj(Y) adj(X)): each factor's cofactors are products of the factor's O(r) entries with at most one
-// cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3 + l2 l3 keeps its relative
-// accuracy where A's 2x2 minors cancel to it.
-struct CharPoly {
-  L tr, c2, det;
-};
-CharPoly char_poly(const Word& h, bool reduced, L r, const Mat3<L>& A) {
-  const std::array<Mat3<L>, 3> adjP = {Mat3<L>(detail::cofactor<L>(core::P1(r)).transpose()),
-                                       Mat3<L>(detail::cofactor<L>(core::P2(r)).transpose()),
-                                       Mat3<L>(detail::cofactor<L>(core::P3(r)).transpose())};
-  Mat3<L> adj = Mat3<L>::Identity();
-  L det = 1;
-  for (auto s : h.s) {
-    adj = adj * adjP[s - 1];
-    det *= s == 2 ? r * r * r : r * r * r * r;
-  }
-  if (reduced) {
-    adj = adj * Mat3<L>(-core::J<L>());
-    det = -det;
-  }
-  return {A.trace(), adj.trace(), det};
-}
-
-// A bound on the error of the unit eigenvector of the simple eigenvalue l computed from A: a perturbation of
-// size eps x max |A_ij| (A's rounding, and l's) turns it by about that over the distance from l to the nearest
-// other eigenvalue; the factor 64 covers the products forming A, the cross product and the non-normality of these
-// matrices (tests/pattern_curves_mpmath.py checks it against mpmath's 50-digit eigenvectors, for 132312 and
-// 13223122 over r in [0.0005, 0.9995]).  Infinite for a multiple eigenvalue.
-L eigenvector_error(const Mat3<L>& A, const std::array<detail::Root<L>, 3>& roots, int tracked) {
-  L gap = std::numeric_limits<L>::infinity();
-  for (int i = 0; i < 3; ++i)
-    if (i != tracked)
-      gap = std::min<L>(gap, std::hypot(roots[i].re - roots[tracked].re, roots[i].real ? L(0) : roots[i].im));
-  return 64 * std::numeric_limits<L>::epsilon() * A.cwiseAbs().maxCoeff() / gap;
-}
 
 // Whether long double decides the tracked eigenvector: its direction to better than kResolved.  Below that the
 // feasibility quantities are not computed (NaN) and a sign change of u_x or u_z is reported as undecided.
 constexpr double kResolved = 1e-3;
 bool resolved(const Point& p) { return p.tracked >= 0 && p.u_error < kResolved; }
 
-Point at(const Word& h, bool reduced, double r_, bool negative) {
+// The spectrum of the analysed matrix at r (the word w is the primitive root; its half when reduced): the roots of
+// the normalised matrix m's characteristic polynomial with exact coefficients (detail::char_poly); the tracked
+// eigenvector and its error bound from m; the roots scaled back to the paper's unnormalised matrix.
+Point at(const Word& w, bool reduced, double r_, bool negative) {
   Point p;
   const L r = r_;
-  const Mat3<L> A = analysed(h, reduced, r);
-  const CharPoly cp = char_poly(h, reduced, r, A);
-  p.roots = detail::cubic_roots<L>(-cp.tr, cp.c2, -cp.det);
+  const detail::Scaled<L> A = detail::analysed_matrix<L>(w, r, reduced);
+  const std::array<L, 3> cp = detail::char_poly<L>(w, r, reduced, A);
+  p.roots = detail::cubic_roots<L>(-cp[0], cp[1], -cp[2]);
   std::sort(p.roots.begin(), p.roots.end(), [](const auto& a, const auto& b) {
     if (a.real != b.real) return a.real;
     return a.real ? a.re < b.re : a.im < b.im;
@@ -96,13 +49,16 @@ Point at(const Word& h, bool reduced, double r_, bool negative) {
   for (int i = 0; i < 3; ++i)
     if (p.roots[i].real && (!negative || p.roots[i].re < 0) && std::abs(p.roots[i].re) > best)
       best = std::abs(p.roots[i].re), p.tracked = i;
-  if (p.tracked < 0) return p;
-  L other = 0;
-  for (int i = 0; i < 3; ++i)
-    if (i != p.tracked) other = std::max(other, detail::modulus(p.roots[i]));
-  p.dominance = static_cast<double>((best - other) / best);
-  p.u = detail::eigenvector<L>(A, p.roots[p.tracked].re);
-  p.u_error = eigenvector_error(A, p.roots, p.tracked);
+  if (p.tracked >= 0) {
+    L other = 0;
+    for (int i = 0; i < 3; ++i)
+      if (i != p.tracked) other = std::max(other, detail::modulus(p.roots[i]));
+    p.dominance = static_cast<double>((best - other) / best);
+    p.u = detail::eigenvector<L>(A.m, p.roots[p.tracked].re);
+    p.u_error = detail::eigenvector_error<L>(p.roots, p.tracked);  // A.m is normalised: max |A_ij| = 1
+  }
+  const L scale = std::exp(A.log_scale);
+  for (auto& x : p.roots) x.re *= scale, x.im *= scale;
   return p;
 }
 
@@ -124,8 +80,8 @@ void CurvesRequest::validate() const {
 
 namespace {
 
-// The word analysed: its primitive root w, and h = the half of w when w = h J(h) (reduced), else w; the names of
-// the result and of the feasibility columns.
+// The word analysed: its primitive root w (returned), and h = the half of w when w = h J(h) (reduced), else w; the
+// names of the result and of the feasibility columns.
 Word analysed_word(const CurvesRequest& q, CurvesResult& res) {
   const Word w = primitive_root(parse_word(q.word, "word"));
   res.word = to_paper(w);
@@ -136,7 +92,7 @@ Word analysed_word(const CurvesRequest& q, CurvesResult& res) {
   res.feas_names.push_back("u_z");
   for (std::size_t k = 0; k < h.size(); ++k)
     for (const char* s : {"y", "ay-x", "ay-z"}) res.feas_names.push_back(fmt::format("{}(v{})", s, k));
-  return h;
+  return w;
 }
 
 // The arrays of n r values, NaN where a value may stay undefined.
@@ -153,11 +109,11 @@ void allocate_curves(std::size_t n, std::size_t nf, CurvesResult& res) {
 }
 
 // Row i of the curves at r: the spectrum, the tracked eigenvalue and its dominance, and the feasibility quantities
-// along the orbit of its eigenvector (the paper's normalisation u_x = 1).
-void curve_row(const Word& h, bool negative, std::size_t i, double r, CurvesResult& res) {
-  const std::size_t p = h.size(), nf = 1 + 3 * p;
+// along the orbit of its eigenvector over the analysed word h (the paper's normalisation u_x = 1).
+void curve_row(const Word& w, bool negative, std::size_t i, double r, CurvesResult& res) {
+  const std::size_t p = res.reduced ? w.size() / 2 : w.size(), nf = 1 + 3 * p;
   res.r[i] = r;
-  const Point pt = at(h, res.reduced, r, negative);
+  const Point pt = at(w, res.reduced, r, negative);
   for (int j = 0; j < 3; ++j) {
     res.eig_re[3 * i + j] = static_cast<double>(pt.roots[j].re);
     res.eig_im[3 * i + j] = pt.roots[j].real ? 0.0 : static_cast<double>(pt.roots[j].im);
@@ -178,7 +134,7 @@ void curve_row(const Word& h, bool negative, std::size_t i, double r, CurvesResu
     f[1 + 3 * k] = static_cast<double>(v(1));
     f[2 + 3 * k] = static_cast<double>(a * v(1) - v(0));
     f[3 + 3 * k] = static_cast<double>(a * v(1) - v(2));
-    v = P[h.s[k] - 1] * v;
+    v = P[w.s[k] - 1] * v;
   }
 }
 
@@ -205,22 +161,22 @@ template <class F> std::vector<double> sign_changes(const std::vector<double>& g
 // around it, the eigenvector is resolved and |u_x u_z| exceeds its error bound (the signs are then those of the
 // exact eigenvector, and it crosses in between); otherwise it is "undecided in long double" (at r near 0, where
 // the tracked eigenvalue falls to ~1e-17 of the largest, its eigenvector is rounding).
-void critical_points(const Word& h, bool negative, CurvesResult& res) {
+void critical_points(const Word& w, bool negative, CurvesResult& res) {
   const auto domain = [&](double r) {
-    const Point pt = at(h, res.reduced, r, negative);
+    const Point pt = at(w, res.reduced, r, negative);
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
   };
   const auto certain = [&](double r) {
-    const Point pt = at(h, res.reduced, r, negative);
+    const Point pt = at(w, res.reduced, r, negative);
     return resolved(pt) && std::abs(pt.u(0) * pt.u(2)) > pt.u_error;
   };
   for (double rc : sign_changes(res.r, domain)) {
-    const Point pt = at(h, res.reduced, rc, negative);
+    const Point pt = at(w, res.reduced, rc, negative);
     const auto i = static_cast<std::size_t>(std::upper_bound(res.r.begin(), res.r.end(), rc) - res.r.begin());
     const bool decided = i > 0 && i < res.r.size() && certain(res.r[i - 1]) && certain(res.r[i]);
     res.critical.push_back({!decided ? "undecided in long double" : std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
   }
-  for (double rc : sign_changes(res.r, [&](double r) { return at(h, res.reduced, r, negative).dominance; }))
+  for (double rc : sign_changes(res.r, [&](double r) { return at(w, res.reduced, r, negative).dominance; }))
     res.critical.push_back({"dominance", rc});
   for (const auto& c : res.critical) {
     res.critical_r.push_back(c.r);
@@ -236,16 +192,16 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   control.check_cancelled();
   CurvesResult res;
   res.request = q;
-  const Word h = analysed_word(q, res);
+  const Word w = analysed_word(q, res);
   const bool negative = q.track == "negative";
   const std::size_t n = static_cast<std::size_t>(q.r_count);
-  allocate_curves(n, 1 + 3 * h.size(), res);
+  allocate_curves(n, res.feas_names.size(), res);
   iterate::parallel_for(n, control.threads, [&](std::size_t i) {
     const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
-    curve_row(h, negative, i, r, res);
+    curve_row(w, negative, i, r, res);
   });
   control.check_cancelled();
-  critical_points(h, negative, res);
+  critical_points(w, negative, res);
   if (control.progress) control.progress->update(1, 1);
   return res;
 }
