@@ -6,6 +6,7 @@ Reads DIR/events.csv (period,time,time_to_collapse,x1..x4,letter: the start of e
 the first periods, positions in the centre-of-mass frame, unit |p0|; time_to_collapse empty without a collapse) and
 MANIFEST (default DIR/particles.json, written by `btob particles`); writes DIR/spacetime.png and DIR/animation.gif
 (Pillow writer) atomically.
+One command's figures that still read its CSV table and manifest: `btob particles` writes no HDF5 file yet.
 Between events the particles fly freely: positions are linear in time, hence in the time to collapse tau.
 """
 import csv

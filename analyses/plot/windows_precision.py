@@ -2,7 +2,8 @@
 """Precision study of the window lower bounds: correct decimals and time per bound against n.
 
 Usage: windows_precision.py results/windows/precision.csv results/windows/precision.png
-Reads only the CSV written by `btob windows precision`.
+Reads only the CSV written by `btob windows precision` (NAME.h5 holds the same numbers, but the precision and
+route of each row only as one attribute, not yet as string datasets).
 """
 import csv
 import math
