@@ -141,7 +141,7 @@ BTOB_ROUTE(precision::TradeoffRequest, "precision_study", "precision", "precisio
   template <class Res> static std::string scalar(const auto& req, const Res&) {                   \
     return fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits);            \
   }                                                                                               \
-  static std::vector<std::string> plot_inputs() { return {".csv"}; }
+  static std::vector<std::string> plot_inputs() { return {".h5"}; }
 BTOB_ROUTE(windows::BoundPrecisionRequest, "windows_precision", "windows precision", "windows_precision", "precision", "windows_precision.py",
            "Largest n with a 12-decimal window bound per precision and route")
 #undef BTOB_ROUTE_BODY

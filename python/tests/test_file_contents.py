@@ -30,6 +30,7 @@ COMMANDS = {
     "pattern atlas": ["pattern", "atlas", "--max-length", "4", "--ics", "20", "--iterations", "400", "--tail", "100",
                       "--max-period", "50"],
     "pattern atlas --feasible": ["pattern", "atlas", "--feasible", "--max-length", "3"],
+    "windows precision": ["windows", "precision", "--n", "2..4"],
     "transfer-r": ["transfer-r", "--r-min", "0.15", "--r-max", "0.3", "--r-count", "2", "--boxes", "8x8", "--samples",
                    "2", "--eigenvalues", "3"],
     "particles": ["particles", "1133", "--r", "0.15", "--periods", "3"],
@@ -44,6 +45,7 @@ REQUIRED = {
     "pattern atlas --feasible": ["word", "stable", "count_r", "count_stable", "count_unstable", "count_feasible",
                                  "count_stable_collapse", "count_unstable_collapse"],
     "transfer-r": ["r", "re", "im", "peripheral_count", "gap", "p2_beta", "window_lower", "window_upper"],
+    "windows precision": ["n", "precision", "route", "row", "abs_error", "seconds"],
 }
 # Names that are data (words, verdicts, reasons) are string datasets, not numbers or CSV text.
 TEXT_SUFFIXES = ("word", "status", "reason")

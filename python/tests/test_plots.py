@@ -110,6 +110,7 @@ ALONE = [
     ("pattern atlas", "patterns_atlas.py", ["--max-length", "5", "--ics", "20", "--iterations", "400", "--tail", "100",
                                             "--max-period", "50"]),
     ("pattern atlas", "patterns_feasible.py", ["--feasible", "--max-length", "3"]),
+    ("windows precision", "windows_precision.py", ["--n", "2..6"]),
     ("basins", "attractors_basins.py", ["--r", "0.2", "--grid", "strip:12x10", "--replicates", "0", "--transient", "300",
                                         "--iterations", "300", "--lyap-iterations", "400", "--lyap-transient", "50"]),
 ]
