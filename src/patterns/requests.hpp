@@ -115,7 +115,7 @@ struct AtlasResult {
   std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
   std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
   std::vector<std::string> word;                          // per row: the word, paper notation
-  std::vector<std::string> low_reason, high_reason;       // per row: what ends the interval (the CSV's columns)
+  std::vector<std::string> low_reason, high_reason;       // per row: what begins / ends the interval (CSV columns)
   // The iterator check's tables as arrays (NAME_detected.csv, NAME_long_windows.csv, NAME_missed.csv: the same
   // rows and values), and the feasible atlas's counts (NAME_counts.csv), so that NAME.h5 holds every table.
   struct Detections {

@@ -541,7 +541,7 @@ void BoundPrecisionResult::describe(core::Contents& c) const {
   const std::string axes = "precision and route, n";
   c.array("n", n, {N}, "n", "1", "window index n");
   c.text("precision", precision, "precision and route", "scalar type",
-         "the row's scalar type: float, double, long-double, float128 or mpfr:<digits>");
+         "the row's scalar type: float, double, long-double, float128 or mpfr:DIGITS");
   c.text("route", route, "precision and route", "route",
          "the row's route: matrix (powers of the period matrix) or polynomial (Horner on Q_n's coefficients)");
   c.text("row", row, "precision and route", "text", "the row's scalar type and route, the coordinates of that axis");
