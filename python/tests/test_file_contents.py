@@ -14,7 +14,7 @@ from conftest import exe
 
 # Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
 INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "interval", "line", "(r, colour)", "step",
-              "eigenvalue", "orbit", "group", "period", "event"}
+              "eigenvalue", "orbit", "group", "period", "event", "particle"}
 
 COMMANDS = {
     "bifurcation": ["bifurcation", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "8", "--iterations", "200",
@@ -46,9 +46,10 @@ REQUIRED = {
                                  "count_stable_collapse", "count_unstable_collapse"],
     "transfer-r": ["r", "re", "im", "peripheral_count", "gap", "p2_beta", "window_lower", "window_upper"],
     "windows precision": ["n", "precision", "route", "row", "abs_error", "seconds"],
+    "particles": ["event_period", "event_time", "event_time_to_collapse", "event_x", "event_letter"],
 }
-# Names that are data (words, verdicts, reasons) are string datasets, not numbers or CSV text.
-TEXT_SUFFIXES = ("word", "status", "reason")
+# Names that are data (words, verdicts, reasons, collision letters) are string datasets, not numbers or CSV text.
+TEXT_SUFFIXES = ("word", "status", "reason", "letter")
 
 
 def check_h5(path, bad):

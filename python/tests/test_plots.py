@@ -111,6 +111,7 @@ ALONE = [
                                             "--max-period", "50"]),
     ("pattern atlas", "patterns_feasible.py", ["--feasible", "--max-length", "3"]),
     ("windows precision", "windows_precision.py", ["--n", "2..6"]),
+    ("particles", "particles.py", ["1133", "--r", "0.15", "--periods", "3"]),
     ("basins", "attractors_basins.py", ["--r", "0.2", "--grid", "strip:12x10", "--replicates", "0", "--transient", "300",
                                         "--iterations", "300", "--lyap-iterations", "400", "--lyap-transient", "50"]),
 ]
@@ -130,7 +131,7 @@ def test_plot_script_runs_alone_on_its_hdf5(command, script, args, tmp_path):
     alone = tmp_path / "alone"
     alone.mkdir()
     shutil.copy(tmp_path / "run" / "x.h5", alone / "x.h5")  # the HDF5 file and nothing else
-    many = script == "pattern_curves.py"
+    many = script in ("pattern_curves.py", "particles.py")  # scripts that write several figures into a folder
     out = alone / "figures" if many else alone / "x.png"
     if many:
         out.mkdir()
