@@ -31,8 +31,7 @@ void bind_blocks(py::module_& m);
     BTOB_ROUTE_BODY                                                 \
   };
 
-// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.  (The basins'
-// script draws the legend from NAME.h5 alone; the command line also gives it NAME_fractions.csv, the same numbers.)
+// Routes whose scalar_type attribute is "double" (the default) and need nothing before the run.
 #define BTOB_ROUTE_BODY
 BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "attractors_basins.py",
            "Basins of the attractors at one r over a grid: labels image and fractions with Clopper-Pearson 95% intervals")
@@ -108,7 +107,7 @@ BTOB_ROUTE(patterns::WordRequest, "pattern", "pattern", "pattern", "pattern", ""
   static std::string plot_of(const auto& req) {                                                   \
     return req.feasible ? "patterns_feasible.py" : "patterns_atlas.py";                           \
   }                                                                                               \
-  static std::vector<std::string> plot_inputs() { return {".json"}; }
+  static std::vector<std::string> plot_inputs() { return {".h5"}; }
 BTOB_ROUTE(patterns::AtlasRequest, "pattern_atlas", "pattern atlas", "patterns-atlas", "", "",
            "Every canonical primitive word up to a length: stability sets, checked against the iterator")
 #undef BTOB_ROUTE_BODY
@@ -142,7 +141,7 @@ BTOB_ROUTE(precision::TradeoffRequest, "precision_study", "precision", "precisio
   template <class Res> static std::string scalar(const auto& req, const Res&) {                   \
     return fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits);            \
   }                                                                                               \
-  static std::vector<std::string> plot_inputs() { return {".csv"}; }
+  static std::vector<std::string> plot_inputs() { return {".h5"}; }
 BTOB_ROUTE(windows::BoundPrecisionRequest, "windows_precision", "windows precision", "windows_precision", "precision", "windows_precision.py",
            "Largest n with a 12-decimal window bound per precision and route")
 #undef BTOB_ROUTE_BODY

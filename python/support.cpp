@@ -237,9 +237,11 @@ py::dict array_info(const ResultBase& r, const std::string& name) {
     if (a.name == name)
       return py::dict(py::arg("dims") = py::tuple(py::cast(a.dims)), py::arg("axes") = a.axes,
                       py::arg("units") = a.units, py::arg("description") = a.description);
-  for (const auto& d : r.contents.decimals)
-    if (d.name == name)
-      return py::dict(py::arg("axes") = d.axes, py::arg("units") = d.units, py::arg("description") = d.description);
+  for (const auto* list : {&r.contents.decimals, &r.contents.texts})
+    for (const auto& d : *list)
+      if (d.name == name)
+        return py::dict(py::arg("dims") = py::make_tuple(d.data->size()), py::arg("axes") = d.axes,
+                        py::arg("units") = d.units, py::arg("description") = d.description);
   throw py::key_error(name);
 }
 
@@ -271,8 +273,9 @@ py::list result_dir(const ResultBase& r) {
   py::list l;
   for (const auto& a : r.contents.arrays) l.append(a.name);
   for (const auto& d : r.contents.decimals) l.append(d.name);
+  for (const auto& t : r.contents.texts) l.append(t.name);
   for (const auto& [k, v] : r.attrs) l.append(k);
-  for (const char* k : {"attrs", "arrays", "decimals", "info", "plot", "save", "function", "tables"}) l.append(k);
+  for (const char* k : {"attrs", "arrays", "decimals", "texts", "info", "plot", "save", "function", "tables"}) l.append(k);
   return l;
 }
 
@@ -302,7 +305,7 @@ void bind_result(py::module_& m) {
                              "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
       .def_property_readonly("texts", [](const ResultBase& r) { return names_of(r.contents.texts); },
                              "names of the string arrays (word names, overlay names): res.<name> is a list of str")
-      .def("info", &array_info, "dims, axes, units and description of an array (or decimals)")
+      .def("info", &array_info, "dims, axes, units and description of an array, a decimal column or a string array")
       .def_property_readonly("function", [](const ResultBase& r) { return r.function; },
                              "the Python function that made this result (e.g. 'bifurcation')")
       .def_property_readonly("command", [](const ResultBase& r) { return r.command; },

@@ -1,5 +1,6 @@
-"""Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions."""
-import csv
+"""Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions.
+Usage: attractors_basins.py NAME.h5 OUT.png   (reads NAME.h5 alone: labels, fraction, ci_low, ci_high and the
+attributes; NAME_fractions.csv holds the same numbers as a table)."""
 import sys
 import textwrap
 
@@ -13,7 +14,7 @@ from plotlib import attrs, save_atomic
 
 
 def rows_of(f):
-    """The legend's rows (the columns of fractions.csv it uses) from the result itself: attractor ids 1..n with
+    """The legend's rows (the columns of NAME_fractions.csv it uses) from the result itself: attractor ids 1..n with
     fraction and 95% interval, then the unresolved points (id 0)."""
     a = attrs(f)
     out = []
@@ -26,26 +27,17 @@ def rows_of(f):
     return out
 
 
-def main(h5_path, csv_path, png_path=None):
-    """main(NAME.h5, NAME_fractions.csv, NAME.png), or main(NAME.h5, NAME.png) with the legend from NAME.h5."""
-    if png_path is None:
-        csv_path, png_path = None, csv_path
+def main(h5_path, png_path):
     with h5py.File(h5_path, "r") as f:
-        rows = None
-        if csv_path is not None:
-            with open(csv_path) as c:
-                rows = list(csv.DictReader(c))
-        fig = draw(f, rows)
+        fig = draw(f)
     save_atomic(fig, png_path)
 
 
-def draw(f, rows=None):
-    """The figure of an h5py-like f (an h5py.File or a btob Python result); the legend from `rows` (fractions.csv)
-    or, without it, from the result itself."""
+def draw(f):
+    """The figure of an h5py-like f (an h5py.File or a btob Python result)."""
     a = attrs(f)
     labels = f["labels"][...]
-    if rows is None:
-        rows = rows_of(f)
+    rows = rows_of(f)
     n_att = int(a["attractors"])
     # Colours: unresolved black, then a qualitative palette by id (ids are sorted keys: stable across runs).
     palette = plt.get_cmap("tab20").colors
@@ -83,6 +75,6 @@ def draw(f, rows=None):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (3, 4):
-        sys.exit("usage: attractors_basins.py NAME.h5 [NAME_fractions.csv] NAME.png")
+    if len(sys.argv) != 3:
+        sys.exit("usage: attractors_basins.py NAME.h5 OUT.png")
     main(*sys.argv[1:])

@@ -2,7 +2,9 @@
 against each candidate's expected count with its 95% predictive interval, the rows' p-values and the table's
 log-likelihood per candidate; and the detection check (the paper's pixel rule against btob's classifier).
 Usage: attractors_table_6_1.py DIR   (reads DIR/*.csv and the manifest, writes DIR/table_6_1_candidates.png and
-DIR/detection.png)"""
+DIR/detection.png)
+An analysis's figures (its tables against the paper's), not one command's: it reads the analysis's CSV files and
+manifest as that script writes them."""
 import csv
 import json
 import os

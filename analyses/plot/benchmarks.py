@@ -3,6 +3,7 @@
 of Appendix A.2 measured in the same run, and the estimated hardware limit of the double kernel.
 
 Usage: benchmarks.py BM.json OUT.png
+Google Benchmark's own JSON (analyses/benchmarks.sh), not a btob result: there is no HDF5 file to read.
 """
 import json
 import os

@@ -4,6 +4,7 @@
 Per r: the Kolmogorov-Smirnov distance between the two binned theta distributions (700 bins), and the
 number of occupied bins (1 to a few on sinks, hundreds on chaotic r).  Writes distance.csv and
 float_vs_double.png to OUTDIR.  Usage: float_vs_double.py FLOAT.h5 DOUBLE.h5 OUTDIR
+A comparison of two runs (analyses/float_vs_double.sh), not one command's figure: it reads both HDF5 files.
 """
 import json
 import os

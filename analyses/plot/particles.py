@@ -1,37 +1,33 @@
 #!/usr/bin/env python3
 """Space-time diagram and animation of four particles collapsing along a periodic pattern.
 
-Usage: particles.py [MANIFEST] DIR
-Reads DIR/events.csv (period,time,time_to_collapse,x1..x4,letter: the start of each period and every collision of
-the first periods, positions in the centre-of-mass frame, unit |p0|; time_to_collapse empty without a collapse) and
-MANIFEST (default DIR/particles.json, written by `btob particles`); writes DIR/spacetime.png and DIR/animation.gif
-(Pillow writer) atomically.
+Usage: particles.py NAME.h5 DIR
+Reads NAME.h5 alone (written by `btob particles`): the events event_period, event_time, event_time_to_collapse,
+event_x (x1..x4), event_letter (the start of each period and every collision of the first periods, positions in the
+centre-of-mass frame, unit |p0|; time to collapse NaN without a collapse; events.csv is the same table) and the
+attributes; writes DIR/spacetime.png and DIR/animation.gif (Pillow writer) atomically.
 Between events the particles fly freely: positions are linear in time, hence in the time to collapse tau.
 """
-import csv
-import json
 import math
 import os
 import sys
 
-from plotlib import save_atomic
+import h5py
+
+from plotlib import attrs, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import animation  # noqa: E402
 
 COLORS = ["#1f4fd6", "#2ca02c", "#d62728", "#9467bd"]
 
 
-def number(cell):
-    """A CSV cell as a float: an empty cell (a value that is not defined) is NaN."""
-    return float(cell) if cell not in ("", None) else math.nan
-
-
-def read(folder, manifest):
-    with open(os.path.join(folder, "events.csv"), newline="") as f:
-        ev = [dict(period=int(r["period"]), t=float(r["time"]), tau=number(r["time_to_collapse"]),
-                   x=[float(r[f"x{i}"]) for i in range(1, 5)], letter=r["letter"]) for r in csv.DictReader(f)]
-    with open(manifest) as f:
-        meta = json.load(f)
+def read(h5_path):
+    with h5py.File(h5_path, "r") as f:
+        letters = [t.decode() if isinstance(t, bytes) else str(t) for t in f["event_letter"][()]]
+        ev = [dict(period=int(p), t=float(t), tau=float(tau), x=[float(v) for v in x], letter=letter)
+              for p, t, tau, x, letter in zip(f["event_period"][()], f["event_time"][()],
+                                              f["event_time_to_collapse"][()], f["event_x"][()], letters)]
+        meta = attrs(f)
     collapse = all(math.isfinite(e["tau"]) for e in ev)
     if not collapse:  # no collapse: the time axis is the time before the last recorded collision
         t_end = ev[-1]["t"]
@@ -50,11 +46,10 @@ def positions_at(ev, tau):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
-        sys.exit("usage: particles.py [MANIFEST] DIR")
-    folder = sys.argv[-1]
-    manifest = sys.argv[1] if len(sys.argv) == 3 else os.path.join(folder, "particles.json")
-    ev, meta, collapse = read(folder, manifest)
+    if len(sys.argv) != 3:
+        sys.exit("usage: particles.py NAME.h5 DIR")
+    folder = sys.argv[2]
+    ev, meta, collapse = read(sys.argv[1])
     rho, tq = float(meta["length_contraction"]), float(meta["time_contraction"])
     gamma = math.log(rho) / math.log(tq) if 0 < tq < 1 and 0 < rho < 1 else 1.0
     title = (f"{meta['word']} at r = {meta['r']:g}: letters {meta['letters']} per period; {meta['periods_ok']} of "

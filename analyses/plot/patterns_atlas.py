@@ -1,44 +1,56 @@
 #!/usr/bin/env python3
 """Draws the atlas of stable periodic patterns against r, with the iterator's detections overlaid.
 
-Usage: patterns_atlas.py DIR/NAME.json OUT.png
-Reads DIR/NAME.csv (word,r_low,r_high,low_reason,high_reason), DIR/NAME_long_windows.csv, DIR/NAME_detected.csv
-and the manifest DIR/NAME.json (written by `btob pattern atlas`, NAME = atlas by default); writes OUT.png atomically (temporary file, then rename).  One horizontal bar per
-pattern; when there are more than MAX_ROWS patterns, the ones with the widest windows are shown (and the title
-says so), plus every pattern the iterator found.
+Usage: patterns_atlas.py NAME.h5 OUT.png
+Reads NAME.h5 alone (written by `btob pattern atlas`, NAME = atlas by default): the atlas's intervals (word, r_low,
+r_high), the found patterns longer than L (long_word, long_r_low, long_r_high), the iterator's detections
+(detected_word, detected_r, detected_status) and the check's attributes; writes OUT.png atomically (temporary file,
+then rename).  One horizontal bar per pattern; when there are more than MAX_ROWS patterns, the ones with the widest
+windows are shown (and the title says so), plus every pattern the iterator found.
 """
-import csv
-import json
-import os
 import sys
 
-import matplotlib
+import h5py
 
-matplotlib.use("Agg")
+from plotlib import attrs, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 MAX_ROWS = 40
 
 
-def read_csv(path):
-    if not os.path.exists(path):
+def texts(f, name):
+    """A string dataset as a list of str (an h5py file, or a btob result whose texts are lists already)."""
+    d = f[name]
+    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
+
+
+def is_text(d):
+    return d.dtype.kind in "OSU" if hasattr(d, "dtype") else all(isinstance(t, str) for t in d)
+
+
+def table(f, columns):
+    """The table whose columns are the datasets `columns` (key: dataset) as a list of dicts; [] when absent (an
+    atlas without the iterator check has no detected_* datasets)."""
+    if any(name not in f for name in columns.values()):
         return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    cols = {k: texts(f, name) if is_text(f[name]) else [float(x) for x in f[name][()]] for k, name in columns.items()}
+    return [dict(zip(cols, values)) for values in zip(*cols.values())]
 
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit("usage: patterns_atlas.py DIR/NAME.json OUT.png")
-    manifest, out = sys.argv[1], sys.argv[2]
-    stem = manifest[:-len(".json")] if manifest.endswith(".json") else manifest
-    atlas = read_csv(stem + ".csv")
-    long_windows = read_csv(stem + "_long_windows.csv")
-    detected = read_csv(stem + "_detected.csv")
-    meta = {}
-    if os.path.exists(stem + ".json"):
-        with open(stem + ".json") as f:
-            meta = json.load(f)
+        sys.exit("usage: patterns_atlas.py NAME.h5 OUT.png")
+    with h5py.File(sys.argv[1], "r") as f:
+        fig = draw(f)
+    save_atomic(fig, sys.argv[2], dpi=130)
+
+
+def draw(f):
+    """The figure of an h5py-like f (the datasets and attributes `btob pattern atlas` writes)."""
+    atlas = table(f, {"word": "word", "r_low": "r_low", "r_high": "r_high"})
+    long_windows = table(f, {"word": "long_word", "r_low": "long_r_low", "r_high": "long_r_high"})
+    detected = table(f, {"word": "detected_word", "r": "detected_r", "status": "detected_status"})
+    meta = attrs(f)
     intervals = {}
     for row in atlas:
         intervals.setdefault(row["word"], []).append((float(row["r_low"]), float(row["r_high"])))
@@ -59,7 +71,7 @@ def main():
     fig, axes = plt.subplots(1, 2, figsize=(14, max(4.5, 0.28 * len(rows) + 1.8)), sharey=True,
                              gridspec_kw={"width_ratios": [1, 1.4]})
     for ax, (x0, x1) in zip(axes, [(0, 1), (0.07, 0.27)]):
-        draw(ax, rows, intervals, detected, found_words, x0, x1)
+        draw_panel(ax, rows, intervals, detected, found_words, x0, x1)
     axes[0].set_ylabel("pattern (1 = ab, 3 = cb, 2 = acb/cab), canonical up to rotation and J")
     axes[1].set_title("zoom on r in [0.07, 0.27]", fontsize=9)
     n_words = len(width)
@@ -75,12 +87,10 @@ def main():
                   f"symbols; top rows: symbol-periodic but no sink (word 2: P2 rotation); bottom rows: found patterns longer than L")
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
-    tmp = out + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, out)
+    return fig
 
 
-def draw(ax, rows, intervals, detected, found_words, x0, x1):
+def draw_panel(ax, rows, intervals, detected, found_words, x0, x1):
     for i, w in enumerate(rows):
         for lo, hi in intervals.get(w, []):
             ax.barh(i, hi - lo, left=lo, height=0.6, color="#1f4fd6" if w in found_words else "#9ab0e6")

@@ -1,37 +1,35 @@
 #!/usr/bin/env python3
 """Draws the number of feasible periodic words (stable and unstable) of length <= L against r.
 
-Usage: patterns_feasible.py DIR/NAME.json OUT.png
-Reads DIR/NAME_counts.csv (r,stable,unstable,feasible,stable_collapse,unstable_collapse) and the manifest DIR/NAME.json
-(written by `btob pattern atlas --feasible`, NAME = feasible by default); writes OUT.png atomically.  Left: the counts over (0, 1) on a log scale; right:
-a zoom on 0.15 <= r <= 0.6 with r_crit ~ 0.1917 (the earlier literature's bound) and 2^(2/3) - 1 (no collapse above).
+Usage: patterns_feasible.py NAME.h5 OUT.png
+Reads NAME.h5 alone (written by `btob pattern atlas --feasible`, NAME = feasible by default): the counts count_r,
+count_stable, count_unstable, count_feasible, count_stable_collapse, count_unstable_collapse (the columns of
+NAME_counts.csv) and the attributes max_length, words_scanned, feasible_words; writes OUT.png atomically.  Left: the
+counts over (0, 1) on a log scale; right: a zoom on 0.15 <= r <= 0.6 with r_crit ~ 0.1917 (the earlier literature's
+bound) and 2^(2/3) - 1 (no collapse above).
 """
-import csv
-import json
-import os
 import sys
 
-from plotlib import save_atomic
+import h5py
+
+from plotlib import attrs, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit("usage: patterns_feasible.py DIR/NAME.json OUT.png")
-    manifest, out = sys.argv[1], sys.argv[2]
-    stem = manifest[:-len(".json")] if manifest.endswith(".json") else manifest
-    with open(stem + "_counts.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
-    meta = {}
-    if os.path.exists(stem + ".json"):
-        with open(stem + ".json") as f:
-            meta = json.load(f)
-    r = [float(x["r"]) for x in rows]
-    st = [int(x["stable"]) for x in rows]
-    un = [int(x["unstable"]) for x in rows]
-    tot = [int(x["feasible"]) for x in rows]
-    stc = [int(x["stable_collapse"]) for x in rows]
-    unc = [int(x["unstable_collapse"]) for x in rows]
+        sys.exit("usage: patterns_feasible.py NAME.h5 OUT.png")
+    with h5py.File(sys.argv[1], "r") as f:
+        fig = draw(f)
+    save_atomic(fig, sys.argv[2])
+
+
+def draw(f):
+    """The figure of an h5py-like f (the datasets and attributes `btob pattern atlas --feasible` writes)."""
+    meta = attrs(f)
+    r = [float(x) for x in f["count_r"][()]]
+    st, un, tot, stc, unc = ([int(x) for x in f["count_" + k][()]]
+                             for k in ("stable", "unstable", "feasible", "stable_collapse", "unstable_collapse"))
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     for ax, (x0, x1) in zip(axes, [(0.0, 1.0), (0.15, 0.6)]):
         ax.axvspan(0, 0.02, color="0.9", lw=0)  # not scanned
@@ -59,7 +57,7 @@ def main():
                  f"dashed: the periodic orbits four particles can follow in a collapse (K_w real on the orbit's plane)",
                  fontsize=9)
     fig.tight_layout()
-    save_atomic(fig, out)
+    return fig
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ Four panels, each against iterations per second: how long the symbol sequence ag
 (median over orbits) at each r; the final-state error; the Lyapunov exponent's error on periodic sinks; the
 largest window (ab)^n(cb)^n resolved.
 Usage: precision_tradeoff.py tradeoff.csv OUT.png
+One command's figure that still reads its CSV table: `btob precision` writes no HDF5 file yet.
 """
 import csv
 import json

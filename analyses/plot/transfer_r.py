@@ -1,26 +1,35 @@
-"""Peripheral spectrum of Ulam's operator across r with the gap, the thresholds and the windows.
-Usage: transfer_r.py SPECTRUM_R.csv PERIPHERAL_R.csv WINDOWS.csv MANIFEST.json PNG  (boxes, samples and peripheral
-from the manifest), or transfer_r.py SPECTRUM_R.csv PERIPHERAL_R.csv WINDOWS.csv PNG BOXES SAMPLES PERIPHERAL.
-Empty cells (undefined values: no gap, no P2 angle, no upper end of the window n = 1) load as NaN."""
-import json
+"""Peripheral spectrum of Ulam's operator across r with the gap, the thresholds and the windows (btob transfer-r).
+Usage: transfer_r.py NAME.h5 OUT.png   (reads NAME.h5 alone: r, re, im, gap, peripheral_count, window_lower,
+window_upper and the attributes boxes, samples, peripheral).  NaN values (no gap, no upper end of the window n = 1)
+are undefined values; eigenvalues that did not converge (NaN) are left out."""
 import sys
 
+import h5py
 import numpy as np
 
-from plotlib import save_atomic
+from plotlib import attrs, save_atomic
 
 import matplotlib.pyplot as plt
 
 
-def load(path):
-    return np.genfromtxt(path, delimiter=",", names=True)
+def main(h5_path, png):
+    with h5py.File(h5_path, "r") as f:
+        fig = draw(f)
+    save_atomic(fig, png)
 
 
-def main(spec, per, win, png, boxes, samples, tol):
-    tol = float(tol)
-    s = load(spec)
-    p = load(per)
-    w = load(win)
+def draw(f):
+    """The figure of an h5py-like f (the datasets and attributes `btob transfer-r` writes)."""
+    a = attrs(f)
+    boxes, samples, tol = a["boxes"], a["samples"], float(a["peripheral"])
+    r = np.asarray(f["r"][...])
+    re, im = np.asarray(f["re"][...]), np.asarray(f["im"][...])  # r x K, NaN where fewer converged
+    ok = np.isfinite(re)
+    s = {"r": np.repeat(r, re.shape[1]).reshape(re.shape)[ok], "re": re[ok], "im": im[ok]}
+    s["modulus"] = np.hypot(s["re"], s["im"])
+    p = {"r": r, "gap": np.asarray(f["gap"][...]), "peripheral_count": np.asarray(f["peripheral_count"][...])}
+    lower = np.asarray(f["window_lower"][...])
+    w = {"n": np.arange(1, len(lower) + 1), "lower": lower, "upper": np.asarray(f["window_upper"][...])}
     rmin, rmax = p["r"].min(), p["r"].max()
     fig, ax = plt.subplots(3, 1, figsize=(12, 11), sharex=True)
     periph = 1 - s["modulus"] < tol
@@ -63,16 +72,13 @@ def main(spec, per, win, png, boxes, samples, tol):
                 a.axvspan(max(lo, rmin), min(hi, rmax), color="tab:blue", alpha=0.12, lw=0)
     ax[0].text(7 - 4 * np.sqrt(3), 1.0, " 7-4sqrt3", fontsize=8, va="bottom")
     ax[0].text(3 - 2 * np.sqrt(2), 1.0, " 3-2sqrt2", fontsize=8, va="bottom")
-    ax[0].set_title(f"Ulam operator of P_r across r: {boxes} boxes (strip), {samples} samples per box, {len(p)} r values\n"
+    ax[0].set_title(f"Ulam operator of P_r across r: {boxes} boxes (strip), {samples} samples per box, {len(r)} r values\n"
                     f"dashed: 7-4sqrt3, 3-2sqrt2; shaded: windows [root of Q_n, r_crit,2(n)] of (ab)^n(cb)^n, n = 2..12")
     fig.tight_layout()
-    save_atomic(fig, png)
+    return fig
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 6:
-        with open(sys.argv[4]) as f:
-            m = json.load(f)
-        main(*sys.argv[1:4], sys.argv[5], m["boxes"], m["samples"], m["peripheral"])
-    else:
-        main(*sys.argv[1:8])
+    if len(sys.argv) != 3:
+        sys.exit("usage: transfer_r.py NAME.h5 OUT.png")
+    main(sys.argv[1], sys.argv[2])

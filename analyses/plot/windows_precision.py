@@ -1,37 +1,51 @@
 #!/usr/bin/python3
 """Precision study of the window lower bounds: correct decimals and time per bound against n.
 
-Usage: windows_precision.py results/windows/precision.csv results/windows/precision.png
-Reads only the CSV written by `btob windows precision`.
+Usage: windows_precision.py NAME.h5 OUT.png
+Reads NAME.h5 alone (written by `btob windows precision`, NAME = precision by default): n, abs_error and seconds
+(rows x n) and the rows' precision and route (string datasets); NAME.csv is the same table.
 """
-import csv
 import math
 import sys
 
-import matplotlib
+import h5py
 
-matplotlib.use("Agg")
+from plotlib import save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def texts(f, name):
+    """A string dataset as a list of str (an h5py file, or a btob result whose texts are lists already)."""
+    d = f[name]
+    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
+
+
 def main(src, dst):
-    rows = list(csv.DictReader(open(src)))
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
+    save_atomic(fig, dst, dpi=130)
+
+
+def draw(f):
+    """The figure of an h5py-like f (the datasets `btob windows precision` writes)."""
+    n_all = [int(x) for x in f["n"][()]]
+    abs_error, seconds = f["abs_error"][()], f["seconds"][()]
     series = {}
-    for r in rows:
-        key = (r["precision"], r["route"])
-        err = float(r["abs_error"])
-        # Correct decimals: -log10 |error|; a failed bound (NaN) or an error >= 1 counts as 0 decimals.
-        dec = 0.0 if not math.isfinite(err) or err >= 1 else (60.0 if err == 0 else -math.log10(err))
-        series.setdefault(key, ([], [], []))
-        series[key][0].append(int(r["n"]))
-        series[key][1].append(min(dec, 60.0))
-        series[key][2].append(float(r["seconds"]))
+    for i, key in enumerate(zip(texts(f, "precision"), texts(f, "route"))):
+        for j, n in enumerate(n_all):
+            err = float(abs_error[i][j])
+            # Correct decimals: -log10 |error|; a failed bound (NaN) or an error >= 1 counts as 0 decimals.
+            dec = 0.0 if not math.isfinite(err) or err >= 1 else (60.0 if err == 0 else -math.log10(err))
+            series.setdefault(key, ([], [], []))
+            series[key][0].append(n)
+            series[key][1].append(min(dec, 60.0))
+            series[key][2].append(float(seconds[i][j]))
     precisions = []
     for p, _ in series:
         if p not in precisions:
             precisions.append(p)
     colours = dict(zip(precisions, ["tab:grey", "tab:blue", "tab:green", "tab:orange", "tab:red", "tab:purple"]))
-    ns = [int(r["n"]) for r in rows]
+    ns = n_all
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 6))
     for (p, route), (n, dec, sec) in series.items():
         style = "-" if route == "matrix" else "--"
@@ -60,8 +74,10 @@ def main(src, dst):
     handles, labels = ax1.get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=5, fontsize=8, frameon=False)
     fig.tight_layout(rect=(0, 0.1, 1, 0.95))
-    fig.savefig(dst, dpi=130)
+    return fig
 
 
 if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: windows_precision.py NAME.h5 OUT.png")
     main(sys.argv[1], sys.argv[2])

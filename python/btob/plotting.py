@@ -1,6 +1,6 @@
 """Figures of btob results, drawn by the command line's own scripts (analyses/plot/*.py, shipped in btob/data/plot).
 Most scripts have draw(f) -> matplotlib Figure for an h5py-like f, which a Result stands in for here.  The scripts
-of strip_orbits, pattern_curves (the saved HDF5 file) and pattern_atlas (the manifest) read the command line's files:
+of strip_orbits, pattern_curves and pattern_atlas read the saved HDF5 file, as the command line runs them:
 for those, plot() saves the result to a temporary folder exactly as the command line writes it, runs the script as
 the command line does and returns a figure showing the PNGs it wrote, pixel for pixel."""
 import importlib

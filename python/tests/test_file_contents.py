@@ -14,7 +14,7 @@ from conftest import exe
 
 # Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
 INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "interval", "line", "(r, colour)", "step",
-              "eigenvalue", "orbit", "group", "period", "event"}
+              "eigenvalue", "orbit", "group", "period", "event", "particle"}
 
 COMMANDS = {
     "bifurcation": ["bifurcation", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "8", "--iterations", "200",
@@ -27,9 +27,29 @@ COMMANDS = {
                      "--iterations", "300", "--transient", "50", "--overlay", "thresholds", "--attractors"],
     "hyperbolicity": ["hyperbolicity", "--r", "0.2", "--grid", "strip:8x6"],
     "correlate": ["correlate", "--r", "0.11", "--point", "1,-0.5,-1.1", "--n-max", "20", "--iterations", "2000"],
-    "pattern atlas": ["pattern", "atlas", "--max-length", "4", "--no-check"],
+    "pattern atlas": ["pattern", "atlas", "--max-length", "4", "--ics", "20", "--iterations", "400", "--tail", "100",
+                      "--max-period", "50"],
+    "pattern atlas --feasible": ["pattern", "atlas", "--feasible", "--max-length", "3"],
+    "windows precision": ["windows", "precision", "--n", "2..4"],
+    "transfer-r": ["transfer-r", "--r-min", "0.15", "--r-max", "0.3", "--r-count", "2", "--boxes", "8x8", "--samples",
+                   "2", "--eigenvalues", "3"],
     "particles": ["particles", "1133", "--r", "0.15", "--periods", "3"],
 }
+
+
+# The tables a plot script draws from, which NAME.h5 must hold beside its CSV files (the script reads NAME.h5 alone).
+REQUIRED = {
+    "pattern atlas": ["word", "r_low", "r_high", "low_reason", "high_reason", "detected_r", "detected_word",
+                      "detected_status", "detected_count", "long_word", "long_r_low", "long_r_high", "missed_r",
+                      "missed_word"],
+    "pattern atlas --feasible": ["word", "stable", "count_r", "count_stable", "count_unstable", "count_feasible",
+                                 "count_stable_collapse", "count_unstable_collapse"],
+    "transfer-r": ["r", "re", "im", "peripheral_count", "gap", "p2_beta", "window_lower", "window_upper"],
+    "windows precision": ["n", "precision", "route", "row", "abs_error", "seconds"],
+    "particles": ["event_period", "event_time", "event_time_to_collapse", "event_x", "event_letter"],
+}
+# Names that are data (words, verdicts, reasons, collision letters) are string datasets, not numbers or CSV text.
+TEXT_SUFFIXES = ("word", "status", "reason", "letter")
 
 
 def check_h5(path, bad):
@@ -37,6 +57,8 @@ def check_h5(path, bad):
         for name, ds in f.items():
             if not isinstance(ds, h5py.Dataset):
                 continue
+            if name.endswith(TEXT_SUFFIXES) and ds.dtype.kind not in "OSU":
+                bad.append(f"{path}:{name}: a name that is data stored as {ds.dtype}, not as strings")
             for key in ("units", "description"):
                 if not str(ds.attrs.get(key, "")):
                     bad.append(f"{path}:{name}: no {key}")
@@ -91,6 +113,12 @@ def test_every_file_describes_itself(command, tmp_path):
             check_csv(path, bad)
         elif name.endswith(".json"):
             check_manifest(path, bad)
+    required = REQUIRED.get(command, [])
+    if required:
+        h5 = [name for name in files if name.endswith(".h5")]
+        assert h5, f"btob {command}: no HDF5 file among {files}"
+        with h5py.File(out / h5[0], "r") as f:
+            bad += [f"{h5[0]}: no dataset {name}" for name in required if name not in f]
     assert not bad, "\n".join(bad)
 
 
@@ -102,8 +130,21 @@ def test_the_checks_catch_an_undescribed_grid(tmp_path):
         f["image"].attrs["units"] = "count"
     with open(tmp_path / "x.csv", "w") as f:
         f.write("a,b\n1,2\n3")
+    with h5py.File(path, "a") as f:
+        f["word"] = [132.0]
     bad = []
     check_h5(path, bad)
     check_csv(str(tmp_path / "x.csv"), bad)
     assert any("no description" in b for b in bad) and any("no dimension scale" in b for b in bad)
+    assert any("not as strings" in b for b in bad)
     assert any("newline" in b for b in bad) and any("fields" in b for b in bad)
+
+
+def test_string_arrays_describe_themselves_in_python():
+    """res.info(name) describes a string array as it does an array (what the generated outputs pages list)."""
+    import btob
+    res = btob.pattern_atlas(max_length=4, no_check=True)
+    assert "word" in res.texts and "word" not in res.arrays
+    info = res.info("word")
+    assert info["units"] == "word" and info["description"] and info["dims"] == (len(res.word),)
+    assert "word" in dir(res)

@@ -94,8 +94,8 @@ def test_figures_from_files_are_the_command_lines_pixel_for_pixel(function, comm
         assert open(f).read() == (tmp_path / os.path.basename(f)).read_text(), f
 
 
-# Scripts that once needed a CSV beside the HDF5 file: each runs alone on the HDF5 file, in a folder holding nothing
-# else, as `python3 analyses/plot/SCRIPT.py NAME.h5 OUT` (OUT a PNG, or a folder for pattern_curves' figures).
+# Scripts that once needed a CSV or the manifest beside the HDF5 file: each runs alone on the HDF5 file, in a folder
+# holding nothing else, as `python3 analyses/plot/SCRIPT.py NAME.h5 OUT` (OUT a PNG, or a folder for pattern_curves' figures).
 ALONE = [
     ("strip-orbits", "strip_orbits.py", ["--r", "0.2", "--orbits", "3", "--iterations", "1500", "--tail", "200"]),
     ("pattern-curves", "pattern_curves.py", ["--word", "132312", "--r-min", "0.3", "--r-max", "0.6", "--r-count", "60"]),
@@ -105,6 +105,15 @@ ALONE = [
                                  "--tv-bins", "8", "--cycle", "1322"]),
     ("lyapunov-map", "orbit_attractors.py", ["--r-min", "0.1", "--r-max", "0.2", "--r-count", "6", "--grid", "random:4",
                                              "--iterations", "600", "--transient", "100", "--attractors"]),
+    ("transfer-r", "transfer_r.py", ["--r-min", "0.15", "--r-max", "0.3", "--r-count", "3", "--boxes", "12x12",
+                                     "--samples", "2", "--eigenvalues", "4"]),
+    ("pattern atlas", "patterns_atlas.py", ["--max-length", "5", "--ics", "20", "--iterations", "400", "--tail", "100",
+                                            "--max-period", "50"]),
+    ("pattern atlas", "patterns_feasible.py", ["--feasible", "--max-length", "3"]),
+    ("windows precision", "windows_precision.py", ["--n", "2..6"]),
+    ("particles", "particles.py", ["1133", "--r", "0.15", "--periods", "3"]),
+    ("basins", "attractors_basins.py", ["--r", "0.2", "--grid", "strip:12x10", "--replicates", "0", "--transient", "300",
+                                        "--iterations", "300", "--lyap-iterations", "400", "--lyap-transient", "50"]),
 ]
 
 
@@ -116,13 +125,13 @@ def test_plot_script_runs_alone_on_its_hdf5(command, script, args, tmp_path):
     import sys
 
     from conftest import ROOT, exe
-    p = subprocess.run([exe(), command] + args + ["--out", str(tmp_path / "run"), "--name", "x", "--no-plot",
+    p = subprocess.run([exe()] + command.split() + args + ["--out", str(tmp_path / "run"), "--name", "x", "--no-plot",
                                                    "--quiet"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     alone = tmp_path / "alone"
     alone.mkdir()
     shutil.copy(tmp_path / "run" / "x.h5", alone / "x.h5")  # the HDF5 file and nothing else
-    many = script == "pattern_curves.py"
+    many = script in ("pattern_curves.py", "particles.py")  # scripts that write several figures into a folder
     out = alone / "figures" if many else alone / "x.png"
     if many:
         out.mkdir()

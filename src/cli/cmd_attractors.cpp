@@ -40,7 +40,7 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_inputs("attractors_basins.py", {o.name + ".h5", o.name + "_fractions.csv"});
+  if (!o.no_plot) files.plot("attractors_basins.py");  // the script reads NAME.h5 alone
   const auto written = files.commit();
   const attractors::Basins& b = res.basins;
   const std::size_t n = res.points();

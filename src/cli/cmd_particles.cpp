@@ -27,8 +27,9 @@ void body(const ParticlesCommand& req, const Output& o, const Context& ctx) {
   const io::Attrs at = ctx.attrs(o, c, "particles", res.precision);
   io::ResultFiles files(o.out, o.name);
   files.tables(res.tables());
-  ctx.manifest(files, at);  // before the plot, which reads it
-  if (!o.no_plot) files.plot_figures("particles.py", {o.name + ".json"});
+  files.h5(c, at);
+  ctx.manifest(files, at);
+  if (!o.no_plot) files.plot_figures("particles.py", {o.name + ".h5"});  // the script reads NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet) std::cerr << res.summary();
   if (!res.failure.empty()) std::cerr << "btob: warning: " << res.failure << "\n";  // even with --quiet

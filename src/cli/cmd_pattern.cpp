@@ -33,7 +33,7 @@ void atlas_body(const patterns::AtlasRequest& req, const Output& o, const Contex
   files.h5(c, at);
   at["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot_inputs(req.feasible ? "patterns_feasible.py" : "patterns_atlas.py", {o.name + ".json"});
+  if (!o.no_plot) files.plot(req.feasible ? "patterns_feasible.py" : "patterns_atlas.py");  // NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet) std::cerr << "btob: wrote " << listing(written) << "\n";
 }

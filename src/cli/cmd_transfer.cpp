@@ -3,8 +3,8 @@
 // NAME.png: Ulam's
 // transfer operator at one r (spectrum, invariant densities, Lebesgue projection, TV to the empirical measure; with
 // --eigenvalues 0 only the basins: cycles.csv, basins.csv and the files).  `btob
-// transfer-r`: flags -> transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json,
-// NAME.png: the peripheral spectrum and its gap across r.  Section 8's programme.
+// transfer-r`: flags -> transfer::TransferRRequest -> run -> spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.h5,
+// NAME.json, NAME.png: the peripheral spectrum and its gap across r.  Section 8's programme.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "transfer/transfer.hpp"
@@ -35,9 +35,9 @@ void transfer_r_body(const transfer::TransferRRequest& req, const Output& o, con
   const io::Attrs at = ctx.attrs(o, c, "transfer-r", "double");
   io::ResultFiles files(o.out, o.name);
   files.tables(res.tables());
-  ctx.manifest(files, at);  // before the plot, which reads boxes, samples and peripheral from it
-  if (!o.no_plot)
-    files.plot_inputs("transfer_r.py", {"spectrum_r.csv", "peripheral_r.csv", "windows.csv", o.name + ".json"});
+  files.h5(c, at);
+  ctx.manifest(files, at);
+  if (!o.no_plot) files.plot("transfer_r.py");  // the script reads NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet) std::cerr << res.summary() << "btob: wrote " << listing(written) << "\n";
 }
@@ -55,7 +55,7 @@ struct Registration {
     command<transfer::TransferRRequest>(
         "transfer-r",
         "Peripheral spectrum of Ulam's operator across r (eigenvalues within --peripheral of the unit circle) and its gap "
-        "to the rest; writes spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.json, NAME.png",
+        "to the rest; writes spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.h5/.json/.png",
         Output{"results/transfer/r_scan", "transfer_r", "", 0, false, false}, transfer_r_body);
   }
 } registration;

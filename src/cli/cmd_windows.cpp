@@ -62,7 +62,7 @@ void precision(const windows::BoundPrecisionRequest& req, const Output& o, const
   files.tables(res.tables());
   files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot("windows_precision.py", o.name + ".csv");
+  if (!o.no_plot) files.plot("windows_precision.py");  // the script reads NAME.h5 alone
   files.commit();
   std::cout << res.summary_csv();
 }

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace btob::io {
 
@@ -115,8 +116,17 @@ std::vector<std::string> axis_labels(const std::string& axes) {
   return out;
 }
 
-// Dimension scales: each axis of each dataset whose coordinates are an array of the result (the axis label
-// itself, or Contents::coordinates[label]) gets that array attached as its H5DS scale, named by the label.
+// The length of the 1-D array or string dataset `name` of c (none: no such 1-D dataset).
+std::optional<std::size_t> coordinate_length(const core::Contents& c, const std::string& name) {
+  if (const core::ArrayView* s = c.find(name))
+    return s->dims.size() == 1 ? std::optional<std::size_t>(s->dims[0]) : std::nullopt;
+  for (const auto& t : c.texts)
+    if (t.name == name) return t.data->size();
+  return std::nullopt;
+}
+
+// Dimension scales: each axis of each dataset whose coordinates are an array or a string dataset of the result (the
+// axis label itself, or Contents::coordinates[label]) gets it attached as its H5DS scale, named by the label.
 void attach_scales(H5::H5File& file, const core::Contents& c) {
   std::map<std::string, bool> is_scale;
   for (const auto& a : c.arrays) {
@@ -125,8 +135,7 @@ void attach_scales(H5::H5File& file, const core::Contents& c) {
     for (std::size_t i = 0; i < labels.size(); ++i) {
       const auto it = c.coordinates.find(labels[i]);
       const std::string coord = it != c.coordinates.end() ? it->second : labels[i];
-      const core::ArrayView* s = c.find(coord);
-      if (!s || s == &a || s->dims.size() != 1 || s->dims[0] != a.dims[i]) continue;
+      if (coord == a.name || coordinate_length(c, coord) != a.dims[i]) continue;
       H5::DataSet scale = file.openDataSet(coord), ds = file.openDataSet(a.name);
       if (!is_scale[coord] && H5DSset_scale(scale.getId(), labels[i].c_str()) < 0)
         throw H5::DataSetIException("H5DSset_scale", coord);

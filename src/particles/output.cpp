@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstddef>
 
 namespace btob::particles {
 
@@ -59,15 +60,36 @@ std::string ParticlesResult::convergence_csv() const {
   return t.text();
 }
 
+namespace {
+std::string letter_name(double code) {  // 0 start, 1 a, 2 b, 3 c
+  const int l = static_cast<int>(code);
+  return l == 0 ? "start" : std::string(1, static_cast<char>('a' + l - 1));
+}
+}  // namespace
+
 std::string ParticlesResult::events_csv() const {
   core::CsvTable t("period,time,time_to_collapse,x1,x2,x3,x4,letter");
-  for (std::size_t i = 0; i + 8 <= events.size(); i += 8) {
-    const int l = static_cast<int>(events[i + 7]);
+  for (std::size_t i = 0; i + 8 <= events.size(); i += 8)
     t.line(fmt::format("{},{},{},{},{},{},{},{}", static_cast<long>(events[i]), g17(events[i + 1]), g17(events[i + 2]),
                        g17(events[i + 3]), g17(events[i + 4]), g17(events[i + 5]), g17(events[i + 6]),
-                       l == 0 ? "start" : std::string(1, static_cast<char>('a' + l - 1))));
-  }
+                       letter_name(events[i + 7])));
   return t.text();
+}
+
+void ParticlesResult::split_events() {
+  event_period.clear();
+  event_time.clear();
+  event_time_to_collapse.clear();
+  event_x.clear();
+  event_letter.clear();
+  for (std::size_t i = 0; i + 8 <= events.size(); i += 8) {
+    event_period.push_back(static_cast<std::uint32_t>(events[i]));
+    event_time.push_back(events[i + 1]);
+    event_time_to_collapse.push_back(events[i + 2]);
+    event_x.insert(event_x.end(), events.begin() + static_cast<std::ptrdiff_t>(i + 3),
+                   events.begin() + static_cast<std::ptrdiff_t>(i + 7));
+    event_letter.push_back(letter_name(events[i + 7]));
+  }
 }
 
 void ParticlesResult::describe(core::Contents& c) const {
@@ -75,9 +97,15 @@ void ParticlesResult::describe(core::Contents& c) const {
   c.array("length_ratio", length_ratio, {N}, "period", "1", "|p| after / before each period");
   c.array("velocity_ratio", velocity_ratio, {N}, "period", "1", "|q| after / before each period");
   c.array("time_ratio", time_ratio, {N}, "period", "1", "duration / previous duration (NaN for the first period)");
-  c.array("events", events, {events.size() / 8, 8},
-          "event, (period, time, time to collapse, x1, x2, x3, x4, letter)", "|p0|/|q0| (times), |p0| (positions)",
-          "events of the first periods (letter 0 start, 1 a, 2 b, 3 c; time to collapse NaN without a collapse)");
+  const std::size_t E = event_period.size();
+  c.array("event_period", event_period, {E}, "event", "1", "period of the event (0: the first), first periods only");
+  c.array("event_time", event_time, {E}, "event", "|p0|/|q0|", "time since the start");
+  c.array("event_time_to_collapse", event_time_to_collapse, {E}, "event", "|p0|/|q0|",
+          "time left to the collapse (NaN without a collapse along the pattern)");
+  c.array("event_x", event_x, {E, 4}, "event, particle", "|p0|",
+          "positions x1..x4 in the centre-of-mass frame (collapse point 0)");
+  c.text("event_letter", event_letter, "event", "letter",
+         "the collision at the event: a, b or c (paper's letters), or start (the start of a period)");
   c.array("moduli", moduli, {moduli.size()}, "eigenvalue", "1", "moduli of the eigenvalues of M_w, decreasing");
   // JSON has no NaN or infinity: such values are recorded as the strings "nan", "inf".
   const auto num = [](double v) -> core::AttrValue {

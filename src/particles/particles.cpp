@@ -256,6 +256,7 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   const PatternRun<T> run = rescaled_run<T>(req, start, v.letters, r, control, res);
   measured_contractions<T>(req, run, res);
   res.events = timed_events<T>(run, res);
+  res.split_events();
   unrescaled_run<T>(req, start, v.letters, r, control, res);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -125,7 +126,14 @@ struct ParticlesResult {
   // without a collapse), x1..x4, letter (0 start, 1 a, 2 b, 3 c); times in units |p0|/|q0|, positions in units
   // |p0| (centre-of-mass frame, collapse point 0).
   std::vector<double> events;
+  // The same events as columns (split_events), the datasets of NAME.h5 and the columns of events.csv: positions
+  // [event, particle] row-major, letters "start", "a", "b", "c".
+  std::vector<std::uint32_t> event_period;
+  std::vector<double> event_time, event_time_to_collapse, event_x;
+  std::vector<std::string> event_letter;
   double seconds = 0;
+
+  void split_events();              // fills the event_* columns from `events`
 
   // What `btob particles` writes (output.cpp); every value that is not a finite number is an empty cell.
   static const char* row_header();  // word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse
@@ -137,7 +145,7 @@ struct ParticlesResult {
   core::Tables tables() const {     // NAME.csv, convergence.csv, events.csv
     return {{"", csv()}, {"convergence.csv", convergence_csv()}, {"events.csv", events_csv()}};
   }
-  // Arrays length_ratio, velocity_ratio, time_ratio, events, moduli; the summary as attributes (JSON has no NaN:
+  // Arrays length_ratio, velocity_ratio, time_ratio, the event_* columns, moduli; the summary as attributes (JSON has no NaN:
   // a value that is not finite is the string "nan", "inf" or "-inf").
   void describe(core::Contents& c) const;
   std::string summary() const;      // the line printed on stderr

@@ -86,10 +86,11 @@ std::string feasible_csv(const std::vector<FeasibleEntry>& atlas) {
   return s.text();
 }
 
-std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r) {
-  core::CsvTable s("r,stable,unstable,feasible,stable_collapse,unstable_collapse");
+FeasibleCounts feasible_counts(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r) {
+  FeasibleCounts c;
+  c.r = r;
   for (double x : r) {
-    long st = 0, un = 0, fe = 0, stc = 0, unc = 0;  // fe: every feasible entry (neutral and undecided too)
+    std::uint32_t st = 0, un = 0, fe = 0, stc = 0, unc = 0;  // fe: every feasible entry (neutral and undecided too)
     for (const auto& e : atlas) {
       const FeasibleInterval<double>* in = nullptr;
       for (const auto& iv : e.intervals)
@@ -101,8 +102,20 @@ std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const s
       stc += in->outcome == Outcome::stable && in->collapse;
       unc += in->outcome == Outcome::unstable && in->collapse;
     }
-    s.line(fmt::format("{:.6g},{},{},{},{},{}", x, st, un, fe, stc, unc));
+    c.stable.push_back(st);
+    c.unstable.push_back(un);
+    c.feasible.push_back(fe);
+    c.stable_collapse.push_back(stc);
+    c.unstable_collapse.push_back(unc);
   }
+  return c;
+}
+
+std::string feasible_counts_csv(const FeasibleCounts& c) {
+  core::CsvTable s("r,stable,unstable,feasible,stable_collapse,unstable_collapse");
+  for (std::size_t i = 0; i < c.r.size(); ++i)
+    s.line(fmt::format("{:.6g},{},{},{},{},{}", c.r[i], c.stable[i], c.unstable[i], c.feasible[i], c.stable_collapse[i],
+                       c.unstable_collapse[i]));
   return s.text();
 }
 

@@ -46,10 +46,16 @@ std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words
 std::vector<double> feasible_grid();
 // CSV word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason: one row per interval.
 std::string feasible_csv(const std::vector<FeasibleEntry>& atlas);
-// CSV r,stable,unstable,feasible,stable_collapse,unstable_collapse: at each r of `r`, the number of words of the
-// atlas with a stable / an unstable feasible periodic point (classify's choice), their sum, and those of them
-// that four particles can follow in a collapse (Classification::collapse).
-std::string feasible_counts_csv(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r);
+// At each r of `r`, the number of words of the atlas with a stable / an unstable feasible periodic point
+// (classify's choice), their sum (every feasible entry, neutral and undecided too), and those of them that four
+// particles can follow in a collapse (Classification::collapse).
+struct FeasibleCounts {
+  std::vector<double> r;
+  std::vector<std::uint32_t> stable, unstable, feasible, stable_collapse, unstable_collapse;
+};
+FeasibleCounts feasible_counts(const std::vector<FeasibleEntry>& atlas, const std::vector<double>& r);
+// The same as CSV r,stable,unstable,feasible,stable_collapse,unstable_collapse (r to 6 significant digits).
+std::string feasible_counts_csv(const FeasibleCounts& counts);
 
 // An unstable periodic orbit followed by the map: core::step in T (double or long double) from the periodic
 // point of analyse<T>(w, r) (which must be feasible), the number of whole periods whose symbols are w's before

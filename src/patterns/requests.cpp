@@ -346,6 +346,15 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
              fmt::format("{}", collisions(f.word)), fmt::format("{}", f.count), fmt::format("{}", d.ics),
              fmt::format("{:.4f}", static_cast<double>(d.periodic[ir]) / ics),
              fmt::format("{:.4f}", static_cast<double>(periodic[ir]) / ics), status[k]});
+    AtlasResult::Detections& a = res.detections;
+    a.r.push_back(f.r);
+    a.word.push_back(to_paper(f.word));
+    a.symbols.push_back(static_cast<double>(f.word.size()));
+    a.collisions.push_back(static_cast<std::uint32_t>(collisions(f.word)));
+    a.count.push_back(static_cast<std::uint32_t>(f.count));
+    a.symbol_periodic_fraction.push_back(static_cast<double>(d.periodic[ir]) / ics);
+    a.periodic_fraction.push_back(static_cast<double>(periodic[ir]) / ics);
+    a.status.push_back(status[k]);
   }
   // Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas.
   std::vector<AtlasEntry> long_entries;
@@ -353,6 +362,13 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
     if (static_cast<long>(f.word.size()) > req.max_length &&
         std::none_of(long_entries.begin(), long_entries.end(), [&](const AtlasEntry& e) { return e.word == f.word; }))
       long_entries.push_back({f.word, stability_set<double>(f.word, grid, res.tol)});
+  for (const auto& e : long_entries)
+    for (const auto& iv : e.intervals) {
+      res.long_windows.word.push_back(to_paper(e.word));
+      res.long_windows.symbols.push_back(static_cast<double>(e.word.size()));
+      res.long_windows.r_low.push_back(iv.lo);
+      res.long_windows.r_high.push_back(iv.hi);
+    }
   core::CsvTable missed("r,word,symbols,r_low,r_high");
   for (double r : rs)
     for (const auto& e : res.entries)
@@ -360,6 +376,11 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
         if (iv.lo < r && r < iv.hi && !seen.count({r, e.word})) {
           missed.row({fmt::format("{}", r), to_paper(e.word), fmt::format("{}", e.word.size()), fmt::format("{:.17g}", iv.lo),
                       fmt::format("{:.17g}", iv.hi)});
+          res.missed_entries.r.push_back(r);
+          res.missed_entries.word.push_back(to_paper(e.word));
+          res.missed_entries.symbols.push_back(static_cast<double>(e.word.size()));
+          res.missed_entries.r_low.push_back(iv.lo);
+          res.missed_entries.r_high.push_back(iv.hi);
           ++res.missed;
         }
   res.csv.emplace_back("detected", det.text());
@@ -388,6 +409,8 @@ void stable_atlas(const AtlasRequest& req, AtlasResult& res, const DetectionRun*
       res.symbols.push_back(static_cast<double>(e.word.size()));
       res.word.push_back(to_paper(e.word));
       res.stable.push_back(1);
+      res.low_reason.push_back(iv.lo_reason);
+      res.high_reason.push_back(iv.hi_reason);
     }
   }
   res.csv.emplace_back("", atlas_csv(res.entries));
@@ -409,12 +432,15 @@ void feasible_atlas(AtlasResult& res, const std::vector<std::vector<Followed>>& 
       res.symbols.push_back(static_cast<double>(e.word.size()));
       res.word.push_back(to_paper(e.word));
       res.stable.push_back(iv.outcome == Outcome::stable ? 1 : 0);
+      res.low_reason.push_back(iv.lo_reason);
+      res.high_reason.push_back(iv.hi_reason);
     }
     res.stable_words += st;
     res.unstable_only_words += !st;
   }
   res.csv.emplace_back("", feasible_csv(res.feasible_entries));
-  res.csv.emplace_back("counts", feasible_counts_csv(res.feasible_entries, rs));
+  res.counts = feasible_counts(res.feasible_entries, rs);
+  res.csv.emplace_back("counts", feasible_counts_csv(res.counts));
   res.csv.emplace_back("unstable_followed", followed_table(res.feasible_entries, followed, followed_max_periods,
                                                           &res.followed_agree, &res.followed_checked));
 }
@@ -554,12 +580,60 @@ std::string AtlasResult::summary() const {
   return s;
 }
 
+// The iterator check's tables (NAME_detected.csv, NAME_long_windows.csv, NAME_missed.csv) as datasets.
+void AtlasResult::describe_check(core::Contents& c) const {
+  const Detections& d = detections;
+  const std::size_t n = d.r.size();
+  c.array("detected_r", d.r, {n}, "detection", "1", "r of the (r, pattern) pair: one of Table 6.1's r values");
+  c.text("detected_word", d.word, "detection", "word", "the pattern the iterator found at r, paper notation");
+  c.array("detected_symbols", d.symbols, {n}, "detection", "symbols", "length of the pattern's word");
+  c.array("detected_collisions", d.collisions, {n}, "detection", "collisions", "collisions in one period of the word");
+  c.array("detected_count", d.count, {n}, "detection", "orbits", "random initial points whose tail has this pattern");
+  c.array("detected_symbol_periodic_fraction", d.symbol_periodic_fraction, {n}, "detection", "1",
+          "fraction of the initial points at r whose symbol sequence is eventually periodic (P2's curves included)");
+  c.array("detected_periodic_fraction", d.periodic_fraction, {n}, "detection", "1",
+          "fraction of the initial points at r on a pattern whose status is not quasi-periodic (periodic orbits)");
+  c.text("detected_status", d.status, "detection", "text",
+         "the pattern against the atlas: stable in atlas; NOT stable in atlas (verdict); quasi-periodic (neutral "
+         "period matrix); longer than L: stable or NOT stable (verdict)");
+  const LongWindows& l = long_windows;
+  c.text("long_word", l.word, "long interval", "word",
+         "a found pattern longer than max_length (not in the atlas), one row per interval of its stability set");
+  c.array("long_symbols", l.symbols, {l.r_low.size()}, "long interval", "symbols", "length of the word");
+  c.array("long_r_low", l.r_low, {l.r_low.size()}, "long interval", "1", "lower end of the stability interval in r");
+  c.array("long_r_high", l.r_high, {l.r_high.size()}, "long interval", "1", "upper end of the stability interval in r");
+  const Missed& m = missed_entries;
+  c.array("missed_r", m.r, {m.r.size()}, "missed", "1",
+          "a Table 6.1 r inside a stability interval of an atlas word the iterator did not find there");
+  c.text("missed_word", m.word, "missed", "word", "that word, paper notation");
+  c.array("missed_symbols", m.symbols, {m.r.size()}, "missed", "symbols", "length of the word");
+  c.array("missed_r_low", m.r_low, {m.r.size()}, "missed", "1", "lower end of the interval containing r");
+  c.array("missed_r_high", m.r_high, {m.r.size()}, "missed", "1", "upper end of the interval containing r");
+}
+
 void AtlasResult::describe(core::Contents& c) const {
   c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the intervals in r (all words, CSV order)");
   c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the intervals in r");
   c.array("symbols", symbols, {symbols.size()}, "interval", "symbols", "length of the interval's word");
   c.array("stable", stable, {stable.size()}, "interval", "1", "1: a stable periodic orbit on the interval, 0: unstable");
   c.text("word", word, "interval", "word", "the interval's word in the paper's notation (e.g. 132^3312^3)");
+  c.text("low_reason", low_reason, "interval", "text", "what begins the interval at r_low (the analysis's words)");
+  c.text("high_reason", high_reason, "interval", "text", "what ends the interval at r_high");
+  if (feasible) {
+    c.array("count_r", counts.r, {counts.r.size()}, "count_r", "1",
+            "restitution coefficients of the counts (0.001, 0.002, ..., 0.999)");
+    c.array("count_stable", counts.stable, {counts.r.size()}, "count_r", "words",
+            "words with a stable feasible periodic point at r");
+    c.array("count_unstable", counts.unstable, {counts.r.size()}, "count_r", "words",
+            "words with an unstable feasible periodic point at r");
+    c.array("count_feasible", counts.feasible, {counts.r.size()}, "count_r", "words",
+            "words with a feasible periodic point at r (stable, unstable, neutral or undecided)");
+    c.array("count_stable_collapse", counts.stable_collapse, {counts.r.size()}, "count_r", "words",
+            "of count_stable, the orbits four particles can follow in a collapse");
+    c.array("count_unstable_collapse", counts.unstable_collapse, {counts.r.size()}, "count_r", "words",
+            "of count_unstable, the orbits four particles can follow in a collapse");
+  }
+  if (checked) describe_check(c);
   c.attr("max_length", request.max_length);
   c.attr("words", words_scanned);
   c.attr("words_scanned", words_scanned);

@@ -115,10 +115,28 @@ struct AtlasResult {
   std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
   std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
   std::vector<std::string> word;                          // per row: the word, paper notation
+  std::vector<std::string> low_reason, high_reason;       // per row: what begins / ends the interval (CSV columns)
+  // The iterator check's tables as arrays (NAME_detected.csv, NAME_long_windows.csv, NAME_missed.csv: the same
+  // rows and values), and the feasible atlas's counts (NAME_counts.csv), so that NAME.h5 holds every table.
+  struct Detections {
+    std::vector<double> r, symbols, symbol_periodic_fraction, periodic_fraction;
+    std::vector<std::uint32_t> collisions, count;
+    std::vector<std::string> word, status;
+  } detections;
+  struct LongWindows {
+    std::vector<double> r_low, r_high, symbols;
+    std::vector<std::string> word;
+  } long_windows;
+  struct Missed {
+    std::vector<double> r, symbols, r_low, r_high;
+    std::vector<std::string> word;
+  } missed_entries;
+  FeasibleCounts counts;
 
   core::Tables tables() const { return csv; }
   std::string summary() const;             // the lines the command line prints
   void describe(core::Contents& c) const;
+  void describe_check(core::Contents& c) const;  // the iterator check's datasets (describe calls it)
 };
 
 // Some items of an atlas (ascending: words first, then r values of the check), item-major: what each computed.

@@ -304,6 +304,8 @@ void TransferRResult::describe(core::Contents& c) const {
   c.array("closed_classes", closed_classes, {R}, "r", "count", "closed classes of Ulam's matrix");
   c.array("rest_modulus", rest_modulus, {R}, "r", "1", "largest |lambda| outside the peripheral set (NaN: none within K)");
   c.array("gap", gap, {R}, "r", "1", "min |peripheral| - max |rest| (NaN: no peripheral or no rest within K)");
+  c.array("p2_beta", p2_beta, {R}, "r", "rad",
+          "rotation angle beta of P2's invariant curves, cos beta = -(1 - r)^2 / (4 r) (NaN below r = 3 - 2 sqrt 2)");
   c.array("window_lower", window_lower, {window_lower.size()}, "n = 1, 2, ...", "1",
           "lower bound of the window of (ab)^n(cb)^n: the root of Q_n");
   c.array("window_upper", window_upper, {window_upper.size()}, "n = 1, 2, ...", "1",
@@ -332,7 +334,7 @@ std::string TransferRResult::peripheral_csv() const {
   core::CsvTable t("r,peripheral_count,closed_classes,rest_modulus,gap,p2_beta");
   for (std::size_t i = 0; i < r.size(); ++i)
     t.line(fmt::format("{},{},{},{},{},{}", num(r[i]), peripheral_count[i], closed_classes[i], num(rest_modulus[i]),
-                       num(gap[i]), num(p2_rotation_angle(r[i]))));
+                       num(gap[i]), num(p2_beta[i])));
   return t.text();
 }
 

@@ -363,6 +363,7 @@ TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
     res.closed_classes.push_back(static_cast<std::uint32_t>(d.classes.size()));
     res.rest_modulus.push_back(max_rest);
     res.gap.push_back(per > 0 && std::isfinite(max_rest) ? min_per - max_rest : std::numeric_limits<double>::quiet_NaN());
+    res.p2_beta.push_back(p2_rotation_angle(res.r[ir]));
     if (c.progress) c.progress->update(ir + 1, R);
   }
   for (int n = 1; n <= 12; ++n) {

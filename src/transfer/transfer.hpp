@@ -322,6 +322,7 @@ struct TransferRResult {
   std::vector<std::uint32_t> closed_classes;    // per r
   std::vector<double> gap;             // min |peripheral| - max |rest| (NaN when no rest within K)
   std::vector<double> rest_modulus;    // max |lambda| outside the peripheral set
+  std::vector<double> p2_beta;         // p2_rotation_angle(r) per r (NaN below 3 - 2 sqrt 2)
   // The windows [root of Q_n, r_crit,2(n)] of (ab)^n(cb)^n (src/windows), n = 1..12 (narrower windows are below
   // the resolution of any r grid we draw); n = 1 has no r_crit,2 (NaN).
   std::vector<double> window_lower, window_upper;

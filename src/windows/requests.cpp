@@ -503,6 +503,9 @@ BoundPrecisionResult merge(const BoundPrecisionRequest& req, std::vector<BoundPr
         res.rows.push_back(row);
       }
       res.summary.push_back({name, route_name(route), largest_all, largest_any, total_s / r.count()});
+      res.precision.push_back(name);
+      res.route.push_back(route_name(route));
+      res.row.push_back(name + " " + route_name(route));
     }
   for (const auto& row : res.rows) {
     res.value.push_back(row.value);
@@ -535,8 +538,14 @@ std::string BoundPrecisionResult::summary_csv() const {
 
 void BoundPrecisionResult::describe(core::Contents& c) const {
   const std::size_t P = summary.size(), N = n.size();
-  const std::string axes = "precision and route (attribute rows), n";
+  const std::string axes = "precision and route, n";
   c.array("n", n, {N}, "n", "1", "window index n");
+  c.text("precision", precision, "precision and route", "scalar type",
+         "the row's scalar type: float, double, long-double, float128 or mpfr:DIGITS");
+  c.text("route", route, "precision and route", "route",
+         "the row's route: matrix (powers of the period matrix) or polynomial (Horner on Q_n's coefficients)");
+  c.text("row", row, "precision and route", "text", "the row's scalar type and route, the coordinates of that axis");
+  c.coordinate("precision and route", "row");
   c.array("value", value, {P, N}, axes, "1", "lower bound found by bisection in the row's precision and route");
   c.array("abs_error", abs_error, {P, N}, axes, "1", "|value - certified 40-decimal value| (NaN: no bound found)");
   c.array("correct_12", correct_12, {P, N}, axes, "1", "1 when abs_error <= 5e-13 (correct to 12 decimals)");

@@ -236,6 +236,8 @@ struct BoundPrecisionResult {
   std::vector<double> value, abs_error, seconds;
   std::vector<std::uint8_t> correct_12;
   std::vector<std::uint32_t> n;
+  std::vector<std::string> precision, route;  // per row of the [P, N] views: its scalar type and route (names)
+  std::vector<std::string> row;               // per row: "precision route", the rows' axis coordinates
 
   std::string csv() const;          // precision,route,n,value,abs_error,correct_12,seconds
   std::string summary_csv() const;  // precision,route,largest_n_all_correct_12,largest_n_correct_12,seconds_per_bound
