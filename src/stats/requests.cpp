@@ -88,6 +88,52 @@ void CorrelateRequest::validate() const {
                          "iterations");
 }
 
+namespace {
+// The probe of both routes: the default orbit (r = 0.11 from the first point of the Section 4 grid) with 200 lags.
+double correlate_probe(const std::string& precision, const std::string& method, long iterations,
+                       const core::RunControl& c) {
+  CorrelateRequest p;
+  p.precision = precision;
+  p.method = method;
+  p.transient = 0;
+  p.n_max = 200;
+  p.fit_lags = 200;
+  p.iterations = std::max(iterations, 400L);
+  (void)run(p, c);
+  return method == "fft" ? static_cast<double>(p.iterations + p.n_max)
+                         : static_cast<double>(p.iterations) * static_cast<double>(p.n_max + 1);
+}
+}  // namespace
+
+core::Work work(const CorrelateRequest& req) {
+  const double N = static_cast<double>(req.iterations), M = static_cast<double>(req.n_max);
+  core::Work w;
+  core::Term orbit;
+  orbit.route = "correlate orbit and fft " + req.precision;
+  orbit.units = static_cast<double>(req.transient) + N + M;
+  orbit.what = "map steps of one orbit in double (transient + iterations + n-max), priced with its FFT correlation "
+               "(O(N log N)) and spectrum by the probe";
+  orbit.probe = [precision = req.precision](double n, const core::RunControl& c) {
+    return correlate_probe(precision, "fft", static_cast<long>(n), c);
+  };
+  w.terms.push_back(orbit);
+  if (req.method != "fft") {
+    core::Term direct;
+    direct.route = "correlate direct sum " + req.precision;
+    direct.units = N * (M + 1);
+    direct.what = "products of the direct sum (iterations x (n-max + 1))";
+    direct.probe = [precision = req.precision](double n, const core::RunControl& c) {
+      return correlate_probe(precision, "direct", static_cast<long>(n / 201), c);
+    };
+    w.terms.push_back(direct);
+  }
+  // C_N [n-max + 1] (twice for both), the power spectrum [iterations / 2] with its frequencies, ~20 bytes a number in
+  // the tables; the run holds the orbit's states (3 doubles), the two observables and the FFT's padded buffers.
+  w.output_bytes = 20 * (3 * (M + 1) + N) + 4096;
+  w.peak_bytes = (N + M) * (24 + 16) + 4 * 16 * 2 * (N + M) + 65536;
+  return w;
+}
+
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();
