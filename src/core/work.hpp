@@ -40,6 +40,23 @@ struct Work {
   double peak_bytes = 0;    // the largest memory the run holds at once, from the fields
 };
 
+// A term whose probe is the request itself, for a request that is one indivisible computation whose cost depends on
+// all its fields together (a word's verdict or stability window at D digits, four thresholds at D digits): no fixed
+// run stands for it, so its route names the whole request and its rate is measured on it, one run per unit
+// (the probe runs it max(1, n / 16) times).  The dry run of such a request costs at least one run of it.
+template <class Req> Term self_term(const Req& req, std::string route, std::string what) {
+  Term t;
+  t.route = std::move(route);
+  t.units = 1;
+  t.what = std::move(what);
+  t.probe = [req](double n, const RunControl& c) {
+    const long k = n < 32 ? 1L : static_cast<long>(n / 16);
+    for (long i = 0; i < k; ++i) (void)run(req, c);  // the module's run, by argument-dependent lookup
+    return static_cast<double>(k);
+  };
+  return t;
+}
+
 // A request whose cost work(request) predicts.
 template <class Req> concept Costed = requires(const Req& r) {
   { work(r) } -> std::convertible_to<Work>;
