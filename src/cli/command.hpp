@@ -287,11 +287,15 @@ template <class Req> void print_work_estimate(const std::string& name, const Req
 }
 
 // Before a run predicted over 10 minutes, its estimate on stderr (a route not yet calibrated costs its ~0.1 s probe,
-// once per machine, build and thread count).
+// once per machine, build and thread count).  Not for a request whose probe is itself (core::self_term): pricing it
+// would run it first.
 constexpr double long_run_seconds = 600;
 template <class Req> void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
-  const io::WorkEstimate e = io::estimate_work(work(req), ctx.control, threads);
+  core::Work w = work(req);
+  for (const core::Term& t : w.terms)
+    if (t.probe_is_request) return;
+  const io::WorkEstimate e = io::estimate_work(std::move(w), ctx.control, threads);
   if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, false) << std::flush;
 }
 

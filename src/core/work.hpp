@@ -29,6 +29,7 @@ struct Term {
   // The route's probe: runs a fixed run of the route (fixed r and point, never the request's own) of about n units
   // and returns the units it ran.  The calibration doubles n from 16 until one probe takes 0.1 s.
   std::function<double(double n, const RunControl&)> probe;
+  bool probe_is_request = false;  // self_term: calibrating runs the request itself (no note before such a run)
 };
 
 struct Work {
@@ -49,6 +50,7 @@ template <class Req> Term self_term(const Req& req, std::string route, std::stri
   t.route = std::move(route);
   t.units = 1;
   t.what = std::move(what);
+  t.probe_is_request = true;
   t.probe = [req](double n, const RunControl& c) {
     const long k = n < 32 ? 1L : static_cast<long>(n / 16);
     for (long i = 0; i < k; ++i) (void)run(req, c);  // the module's run, by argument-dependent lookup

@@ -169,7 +169,7 @@ std::string WorkEstimate::text(const std::string& command, bool dry_run) const {
   }
   s << fmt::format("  predicted: {} on {} thread{}{}\n", time_text(predicted_seconds), threads, threads == 1 ? "" : "s",
                    work.bound.empty() ? "" : " at most (an upper bound: " + work.bound + ")");
-  s << fmt::format("  output: about {} of data (figures not counted); peak memory about {}\n",
+  s << fmt::format("  output: about {} of data (figures not counted); peak memory about {} (the run's data)\n",
                    size_text(work.output_bytes), size_text(work.peak_bytes));
   const fs::path p = rates_path();
   s << "  rates: " << (p.empty() ? "not cached (neither XDG_CACHE_HOME nor HOME is set)" : "cached in " + p.string())
