@@ -295,8 +295,14 @@ template <class Req> void note_long_run(const std::string& name, const Req& req,
   core::Work w = work(req);
   for (const core::Term& t : w.terms)
     if (t.probe_is_request) return;
-  const io::WorkEstimate e = io::estimate_work(std::move(w), ctx.control, threads);
-  if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, false) << std::flush;
+  try {
+    const io::WorkEstimate e = io::estimate_work(std::move(w), ctx.control, threads);
+    if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, false) << std::flush;
+  } catch (const core::Cancelled&) {
+    throw;
+  } catch (const std::exception& e) {  // a probe that fails is no reason not to run the request
+    std::cerr << "btob: warning: no estimate before the run (" << e.what() << ")\n";
+  }
 }
 
 // The body, or the files of a stdout command given --out.
