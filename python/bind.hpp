@@ -12,6 +12,7 @@
 #include "core/result.hpp"
 #include "extras/extras.hpp"
 #include "io/io.hpp"
+#include "io/rates.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -266,6 +267,41 @@ template <class Req> void bind_estimate(py::module_& m) {
   });
 }
 
+// The cost of a request that is not a sweep (core/work.hpp): its work at the cached, else calibrated, route rates
+// (io/rates.hpp).  _btob._estimators[function](**kwargs) -> dict(terms, predicted_seconds, threads, upper_bound,
+// bytes, peak_bytes), terms a list of dict(route, units, what, units_per_second, cached).
+template <class Req> void bind_work_estimate(py::module_& m) {
+  using R = Route<Req>;
+  if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
+  m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
+    Req req = request_of<Req>(kw);
+    const int threads = threads_of(kw);
+    req.validate();
+    R::prepare(req);
+    io::WorkEstimate e;
+    const int used = static_cast<int>(threads > 0 ? threads : default_threads());
+    run_released([&](const core::RunControl& c) { e = io::estimate_work(work(req), c, used); }, threads, py::none());
+    py::list terms;
+    for (std::size_t i = 0; i < e.work.terms.size(); ++i) {
+      py::dict t;
+      t["route"] = e.work.terms[i].route;
+      t["units"] = e.work.terms[i].units;
+      t["what"] = e.work.terms[i].what;
+      t["units_per_second"] = e.rates[i].units_per_second;
+      t["cached"] = e.rates[i].cached;
+      terms.append(t);
+    }
+    py::dict d;
+    d["terms"] = terms;
+    d["predicted_seconds"] = e.predicted_seconds;
+    d["threads"] = e.threads;
+    d["upper_bound"] = e.work.bound;
+    d["bytes"] = e.work.output_bytes;
+    d["peak_bytes"] = e.work.peak_bytes;
+    return d;
+  });
+}
+
 }  // namespace detail
 
 // Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
@@ -280,6 +316,7 @@ template <class Req> void bind(py::module_& m) {
   m.def(R::function, &detail::call<Req>, doc.c_str());
   detail::list_function(m, defaults);
   if constexpr (core::Sweep<Req>) detail::bind_estimate<Req>(m);
+  else if constexpr (core::Costed<Req>) detail::bind_work_estimate<Req>(m);
 }
 
 }  // namespace btob::python

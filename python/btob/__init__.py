@@ -49,11 +49,21 @@ for _name in FUNCTIONS:
 del _name
 
 def estimate(function, **kwargs):
-    """The cost of a sweep request before it runs: ``btob.estimate("bifurcation", r_count=10**6, ...)`` takes the
-    function's name and its keywords, runs a ~0.2 s sample of the request's own items (spread over the sweep) and
-    returns a dict: items, sampled, sample_seconds, predicted_seconds (the whole request on this machine with these
-    threads), bytes (the result's data) and peak_bytes.  Nothing else is computed or written.  The sweeps:
-    ``sorted(btob._btob._estimators)``; other functions raise ValueError."""
+    """The cost of a request before it runs: ``btob.estimate("bifurcation", r_count=10**6, ...)`` or
+    ``btob.estimate(btob.lyapunov, r=0.2, point="1,-0.5,-1.1", iterations=10**10)`` takes the function (or its name)
+    and its keywords and returns a dict; nothing is written.
+
+    A sweep runs a ~0.2 s sample of the request's own items (spread over the sweep) and returns: items, sampled,
+    sample_seconds, predicted_seconds (the whole request on this machine with these threads), bytes (the result's
+    data) and peak_bytes.
+
+    Any other request counts its work from its keywords and prices it with a rate per route (map steps of the
+    double derivative cocycle, particle collisions in MPFR at D digits, ...), measured once by a ~0.1 s fixed probe
+    run and cached in $XDG_CACHE_HOME/btob/rates.json (~/.cache/btob/rates.json), keyed by btob version and commit,
+    CPU model, threads and route.  It returns: terms (a list of dicts: route, units, what, units_per_second, cached),
+    predicted_seconds, threads, upper_bound (why the count is an upper bound, or ""), bytes (the data the result
+    writes, figures excluded) and peak_bytes.  The functions: ``sorted(btob._btob._estimators)``; others raise
+    ValueError."""
     name = getattr(function, "__name__", function)
     if name not in _btob._estimators:
         raise ValueError(f"estimate: got {name!r}, expected one of {', '.join(sorted(_btob._estimators))}")

@@ -81,6 +81,56 @@ ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control) 
   return res;
 }
 
+namespace {
+// A probe of the classifier on one orbit that no pass decides early: r = 0.2 from (1, -0.5, -1.1), whose orbit has
+// no period (pass 1 goes to the end of its window: quasi-periodic, on a P2 invariant curve, so pass 2 runs and
+// records its rotation), with the refinement off.
+ClassifyRequest classify_probe(long transient, long window, long lyap_iterations) {
+  ClassifyRequest p;
+  p.r = 0.2;
+  p.point = "1,-0.5,-1.1";
+  p.thresholds.max_period = 1;
+  p.thresholds.transient = transient;
+  p.thresholds.window = window;
+  p.thresholds.lyap_transient = 1;
+  p.thresholds.lyap_blocks = 2;
+  p.thresholds.lyap_iterations = lyap_iterations;
+  p.thresholds.refine_factor = 0;
+  return p;
+}
+}  // namespace
+
+core::Work work(const ClassifyRequest& req) {
+  const Options& o = req.thresholds;
+  const double passes = o.refine_factor > 0 ? 2 : 1;
+  core::Work w;
+  core::Term one;
+  one.route = "classify pass 1 double";
+  one.units = static_cast<double>(o.transient + o.window) +
+              (o.refine_factor > 0 ? static_cast<double>(o.transient) * o.refine_factor + static_cast<double>(o.window) : 0.0);
+  one.what = "map steps of pass 1 in double (transient + iterations, and transient x refine-factor + iterations)";
+  one.probe = [](double n, const core::RunControl& c) {
+    const ClassifyRequest p = classify_probe(std::max(1L, static_cast<long>(n)), 20, 20);
+    (void)run(p, c);
+    return static_cast<double>(p.thresholds.transient + p.thresholds.window);
+  };
+  core::Term two;
+  two.route = "classify pass 2 cocycle double";
+  two.units = passes * static_cast<double>(o.lyap_transient + o.lyap_iterations);
+  two.what = "steps of pass 2's derivative cocycle in double (lyap-transient + lyap-iterations, per pass)";
+  two.probe = [](double n, const core::RunControl& c) {
+    const ClassifyRequest p = classify_probe(1, 1, std::max(20L, static_cast<long>(n)));
+    (void)run(p, c);
+    return static_cast<double>(p.thresholds.lyap_transient + p.thresholds.lyap_iterations);
+  };
+  w.terms = {one, two};
+  w.bound = "pass 1 decides periodic orbits and collapses without pass 2, and only an unresolved orbit is refined";
+  w.output_bytes = 400;  // one printed row (or NAME.json with its attributes under --out)
+  // Pass 1 keeps the window's states (3 doubles and a symbol each); pass 2 the rotation record (2 doubles a step).
+  w.peak_bytes = 32 * static_cast<double>(o.window + o.max_period) + 16 * static_cast<double>(o.lyap_iterations) + 65536;
+  return w;
+}
+
 void ClassifyResult::describe(core::Contents& c) const {
   c.attr("r", request.r);
   c.attr("point", request.point);

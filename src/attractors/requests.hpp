@@ -7,6 +7,7 @@
 #include "core/request.hpp"
 #include "core/result.hpp"
 #include "core/sweep.hpp"
+#include "core/work.hpp"
 
 #include <cstdint>
 #include <string>
@@ -57,6 +58,10 @@ struct ClassifyResult {
 };
 
 ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): the map steps of pass 1 (transient + window) and the cocycle steps of pass 2, each again
+// in the refinement pass (transient x refine-factor): an upper bound, since pass 1 decides periodic orbits and
+// collapses without pass 2, and only unresolved orbits are refined.
+core::Work work(const ClassifyRequest& req);
 
 // ---- basins at one r (`btob basins`) --------------------------------------------------------------------------
 struct BasinsRequest {

@@ -313,7 +313,9 @@ void serve(const Settings& s) {
 
 Register reg([](CLI::App& app) {
   auto s = std::make_shared<Settings>();
-  CLI::App* c = app.add_subcommand("explore", "Serve the bifurcation diagram to a browser, recomputed at every zoom");
+  CLI::App* c = app.add_subcommand("explore", "Serve the bifurcation diagram to a browser, recomputed at every zoom (a server that "
+                                                "runs until stopped: no --dry-run; each view's cost is that of a small "
+                                                "bifurcation request)");
   c->add_option("--port", s->port, "TCP port, 0..65535 (0: any free port)")->check(CLI::Range(0, 65535))->capture_default_str();
   c->add_option("--host", s->host, "address to listen on (default 127.0.0.1; any other exposes the explorer)");
   c->add_flag("--no-browser", s->no_browser, "do not open a browser");

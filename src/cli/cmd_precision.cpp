@@ -32,7 +32,10 @@ void tradeoff(const precision::TradeoffRequest& req, const Output& o, const Cont
 struct Registration {
   Registration() {
     command<precision::TradeoffRequest>(
-        "precision", "Speed against accuracy of each precision and algorithm (vs 256-digit MPFR)",
+        "precision",
+        "Speed against accuracy of each precision and algorithm (vs 256-digit MPFR). No --dry-run: most of its time is "
+        "fixed parts (each method's window tests up to the largest window-n, its Lyapunov errors on the sinks and its "
+        "throughput), about a minute whatever the orbits, which no short probe prices",
         Output{"results/precision", "tradeoff", "", 0, false, false}, tradeoff);
   }
 } registration;

@@ -79,7 +79,7 @@ void replay_flags(const io::Scene& s, const std::string& path, Args args, std::s
 struct RunFlags {
   std::string path, out;
   int threads = 0;
-  bool quiet = false, no_plot = false;
+  bool quiet = false, no_plot = false, dry_run = false;
 };
 
 void run_scene(const RunFlags& f) {
@@ -113,6 +113,11 @@ void run_scene(const RunFlags& f) {
   if (f.threads != 0) args.emplace_back("threads", std::vector<std::string>{std::to_string(f.threads)});
   if (f.quiet) args.emplace_back("quiet", std::vector<std::string>{"true"});
   if (f.no_plot && (it == scene_commands().end() || it->second.files)) args.emplace_back("no-plot", std::vector<std::string>{"true"});
+  if (f.dry_run) {
+    if (it != scene_commands().end() && !it->second.dry_run)
+      throw UsageError(fmt::format("--dry-run: '{}' has no dry run", s.command));
+    args.emplace_back("dry-run", std::vector<std::string>{"true"});
+  }
   if (it == scene_commands().end()) return replay_flags(s, path, args, injected_from);
   std::string inv = invocation() + " -> btob " + s.command;
   for (const auto& [k, vals] : args) {
@@ -136,6 +141,7 @@ Register reg([](CLI::App& app) {
   c->add_option("--threads", f->threads, "OpenMP threads (default: all cores)");
   c->add_flag("--quiet", f->quiet, "no progress or summary on stderr");
   c->add_flag("--no-plot", f->no_plot, "write data only");
+  c->add_flag("--dry-run", f->dry_run, "the command's --dry-run: its predicted cost, nothing written");
   c->callback([f] { run_scene(*f); });
 });
 

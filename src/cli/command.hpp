@@ -16,7 +16,9 @@
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/sweep.hpp"
+#include "core/work.hpp"
 #include "extras/extras.hpp"
+#include "io/rates.hpp"
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
@@ -47,6 +49,7 @@ struct Output {
   bool dry_run = false;  // predict the cost from a sample of the items, write nothing (core/estimate.hpp)
   bool resume = false;   // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
   bool sweep = false;    // the request is a sweep (core/sweep.hpp): it has --dry-run and --resume
+  bool costed = false;   // the request counts its work (core/work.hpp): it has --dry-run from the cached route rates
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
   // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
   bool files = true;
@@ -74,6 +77,12 @@ struct Output {
       v("dry-run", dry_run,
         "print the work (items), the predicted time on this machine, the data size and rank 0's peak memory, "
         "calibrated by running a ~0.2 s sample of this request's own items; write nothing");
+    if (costed && !sweep)
+      v("dry-run", dry_run,
+        "print the work (its units, counted from the fields), the predicted time on this machine, the output size and "
+        "the peak memory; the rate of each route is measured the first time by a ~0.1 s fixed probe run and cached "
+        "in $XDG_CACHE_HOME/btob/rates.json (~/.cache/btob/rates.json), keyed by btob version and commit, CPU model, "
+        "threads and route; write nothing else");
     if (sweep)
       v("resume", resume,
         "keep finished items in OUT/NAME.checkpoint (./NAME.checkpoint when printing) while running, and continue "
@@ -127,6 +136,7 @@ template <class Req> auto run_with_progress(const Req& req, const Output& o, con
 struct SceneCommand {
   std::function<void(const Args& args, const std::string& invocation)> run;  // later keys override earlier ones
   bool files = true;                                                         // has out and name
+  bool dry_run = false;                                                      // has --dry-run (a sweep, or costed)
 };
 std::map<std::string, SceneCommand>& scene_commands();
 
@@ -270,6 +280,31 @@ template <class Req> void print_estimate(const std::string& name, const Req& req
     std::cout << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
 }
 
+// --dry-run of a request that is not a sweep: its work at the cached (else calibrated) route rates, on stdout.
+template <class Req> void print_work_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  std::cout << io::estimate_work(work(req), ctx.control, threads).text(name);
+}
+
+// Before a run predicted over 10 minutes, its estimate on stderr (a route not yet calibrated costs its ~0.1 s probe,
+// once per machine, build and thread count).  Not for a request whose probe is itself (core::self_term): pricing it
+// would run it first.
+constexpr double long_run_seconds = 600;
+template <class Req> void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  core::Work w = work(req);
+  for (const core::Term& t : w.terms)
+    if (t.probe_is_request) return;
+  try {
+    const io::WorkEstimate e = io::estimate_work(std::move(w), ctx.control, threads);
+    if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, false) << std::flush;
+  } catch (const core::Cancelled&) {
+    throw;
+  } catch (const std::exception& e) {  // a probe that fails is no reason not to run the request
+    std::cerr << "btob: warning: no estimate before the run (" << e.what() << ")\n";
+  }
+}
+
 // The body, or the files of a stdout command given --out.
 template <class Req>
 void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
@@ -301,6 +336,9 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
     if (out.dry_run) return print_estimate(name, req, out, ctx);
     if (out.resume)  // a collective under mpirun: rank 0 reads the file, every rank its items
       ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
+  } else if constexpr (core::Costed<Req>) {  // runs on rank 0 alone (returned above on the others)
+    if (out.dry_run) return print_work_estimate(name, req, out, ctx);
+    if (!out.quiet) note_long_run(name, req, out, ctx);
   }
   try {
     run_body(name, body, req, out, ctx);
@@ -326,6 +364,7 @@ void add_flags_command(CLI::App& app, const std::string& name, const std::string
   };
   Output defaults = output_defaults;
   defaults.sweep = core::Sweep<Req>;
+  defaults.costed = core::Costed<Req>;
   auto s = std::make_shared<State>(State{request_defaults, defaults, {}, {}});
   CLI::App* c = add_nested(app, name, help);
   mpi::request_apps().push_back(c);
@@ -344,6 +383,7 @@ template <class Req>
 void run_from_args(const std::string& name, const Body<Req>& body, Req req, Output out, const Args& args,
                    const std::string& invocation) {
   out.sweep = core::Sweep<Req>;
+  out.costed = core::Costed<Req>;
   std::vector<bool> used(args.size(), false);
   req.fields(ArgsApplier{&args, &used});
   out.fields(ArgsApplier{&args, &used});
@@ -371,7 +411,7 @@ void command(const std::string& name, const std::string& help, Output output_def
   });
   scene_commands()[name] = SceneCommand{[=](const Args& args, const std::string& inv) {
     detail::run_from_args<Req>(name, body, request_defaults, output_defaults, args, inv);
-  }, output_defaults.files};
+  }, output_defaults.files, core::Sweep<Req> || core::Costed<Req>};
 }
 
 }  // namespace btob::cli

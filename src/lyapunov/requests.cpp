@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -98,6 +99,45 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
                                  res.weighted[0], res.weighted[1]},
              fmt::format("r = {} in {}", req.r, prec.name()));
   return res;
+}
+
+namespace {
+// One term of cocycle steps in `precision`, probed on a fixed chaotic orbit (r = 0.2 from (1, -0.5, -1.1): no
+// collapse, no period, so every step costs what a long run's steps cost) with the request's QR interval.
+core::Term cocycle_term(const std::string& precision, int reorthonormalise, double steps) {
+  core::Term t;
+  t.route = fmt::format("lyapunov cocycle {} QR/{}", core::parse_precision(precision, "precision").name(), reorthonormalise);
+  t.units = steps;
+  t.what = fmt::format("map steps of the derivative cocycle in {} (transient + iterations)", precision);
+  t.probe = [precision, reorthonormalise](double n, const core::RunControl& c) {
+    OrbitRequest p;
+    p.r = core::Decimal::parse("0.2", "r");
+    p.point = "1,-0.5,-1.1";
+    p.precision = precision;
+    p.reorthonormalise = reorthonormalise;
+    p.transient = 0;
+    p.blocks = 2;
+    p.iterations = std::max(static_cast<long>(n), 2L * reorthonormalise);
+    (void)run(p, c);
+    return static_cast<double>(p.iterations);
+  };
+  return t;
+}
+}  // namespace
+
+core::Work work(const OrbitRequest& req) {
+  core::Work w;
+  const double steps = static_cast<double>(req.transient) + static_cast<double>(req.iterations);
+  w.terms.push_back(cocycle_term(req.precision, req.reorthonormalise, steps));
+  if (req.precision == "float") {  // the command line re-runs a float orbit in double to check lambda1's sign
+    w.terms.push_back(cocycle_term("double", req.reorthonormalise, steps));
+    w.terms.back().what += ", the float run's check";
+  }
+  // Printed: one CSV row; --convergence: a row per checkpoint (powers of two and block ends) of ~60 bytes.
+  const double rows = std::log2(std::max(2.0, static_cast<double>(req.iterations))) + req.blocks;
+  w.output_bytes = 120 + (req.convergence.empty() ? 0 : 60 * rows);
+  w.peak_bytes = 64 * rows + 4096;  // the accumulator's checkpoints; the orbit itself is a few vectors
+  return w;
 }
 
 void MapRequest::validate() const {

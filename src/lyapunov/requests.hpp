@@ -6,6 +6,7 @@
 #include "core/request.hpp"
 #include "core/result.hpp"
 #include "core/sweep.hpp"
+#include "core/work.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 
@@ -45,6 +46,9 @@ struct OrbitRequest {
 
 // The exponents of one orbit, every value finite (a precision that cannot represent the run is refused).
 ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): transient + iterations steps of the derivative cocycle in the request's precision (and
+// as many in double after a float run, which the command line re-runs in double); a fixed orbit probes the route.
+core::Work work(const OrbitRequest& req);
 
 // ---- maps over r x initial conditions (`btob lyapunov-map`) and a strip at one r (`btob lyapunov-strip`) ----
 struct MapRequest {

@@ -135,4 +135,26 @@ void StripOrbitsResult::describe(core::Contents& c) const {
   c.attr("iteration_seconds", seconds);
 }
 
+core::Work work(const StripOrbitsRequest& req) {
+  const double orbits = static_cast<double>(req.orbits), tail = static_cast<double>(req.tail);
+  core::Work w;
+  core::Term t;
+  t.route = "strip-orbits tails and classifier double";
+  t.units = orbits * static_cast<double>(req.iterations);
+  t.what = "map steps of the orbits (orbits x iterations), each orbit classified again from its start";
+  t.probe = [](double n, const core::RunControl& c) {
+    StripOrbitsRequest p;  // 10 orbits at r = 0.2
+    p.iterations = std::max(static_cast<long>(n / 10), 2L);
+    p.tail = 1;
+    (void)run(p, c);
+    return 10.0 * static_cast<double>(p.iterations);
+  };
+  w.terms.push_back(std::move(t));
+  w.bound = "the classifier decides a periodic orbit or a collapse without its second pass";
+  // The tails w1, w2 [orbits x tail] in NAME.h5 (8 bytes each) and NAME.csv (~20 bytes a number); the run keeps them.
+  w.output_bytes = orbits * tail * 2 * (8 + 20) + 200 * orbits;
+  w.peak_bytes = orbits * tail * 2 * 8 * 2 + 65536;
+  return w;
+}
+
 }  // namespace btob::orbits

@@ -6,6 +6,7 @@
 #include "attractors/attractors.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 
 #include <cstdint>
 #include <string>
@@ -58,6 +59,9 @@ struct StripOrbitsResult {
 
 // Throws core::InvalidField (field named as the flag) on invalid input; core::Cancelled when cancelled.
 StripOrbitsResult run(const StripOrbitsRequest& request, const core::RunControl& control = {});
+// Its cost (core/work.hpp): orbits x iterations map steps of the tails, which the classifier then runs again from
+// each start (transient = iterations, then its window and pass 2), priced together by a probe of 10 orbits at r = 0.2.
+core::Work work(const StripOrbitsRequest& request);
 
 // The paper's word for a verdict: "periodic", "quasi-periodic", "chaotic", "collapse" or "unresolved".
 const char* panel_word(attractors::Type t);

@@ -307,4 +307,51 @@ ParticlesResult run(const ParticlesRequest& req, const core::RunControl& control
   }
 }
 
+namespace {
+// The collisions run() simulates for `periods` periods of `letters` collisions each: the diagram's first periods
+// (event by event), then the rescaled run of every period, then the unrescaled run.  That last run stops where its
+// gaps underflow: in MPFR (an exponent range of ~2^30 binary orders) it runs every period and is counted; in double,
+// long double and float128 it stops after a few hundred to a few thousand periods and is not counted.  A normal start
+// adds up to 42 trial runs of 3 periods, also not counted.  A pattern that fails stops early (an upper bound).
+double collisions(double letters, long periods, long diagram_periods, bool mpfr) {
+  const double rescaled = static_cast<double>(std::min(periods, diagram_periods)) +
+                          (periods > diagram_periods ? static_cast<double>(periods) : 0.0);
+  return letters * (rescaled + (mpfr ? static_cast<double>(periods) : 0.0));
+}
+}  // namespace
+
+core::Work work(const ParticlesRequest& req) {
+  const core::Precision prec = core::parse_precision(req.precision, "precision");
+  const bool mpfr = prec.kind == core::Precision::Kind::mpfr;
+  // The collision letters of one period (a symbol 1 or 3 is one collision, 2 is two): the pattern tool's, in double.
+  const double letters = static_cast<double>(
+      patterns::analyse<double>(patterns::parse_word(req.word, "word"), static_cast<double>(req.r)).letters.size());
+  core::Work w;
+  core::Term t;
+  t.route = "particles events " + prec.name();
+  t.units = collisions(letters, req.periods, req.diagram_periods, mpfr);
+  t.what = fmt::format("particle collisions in {} ({} per period x ({} periods{}))", req.precision, letters,
+                       req.periods, mpfr ? " rescaled + as many unrescaled" : " rescaled; the unrescaled run stops "
+                                                                              "where its gaps underflow, not counted");
+  t.probe = [precision = req.precision, mpfr](double n, const core::RunControl& c) {
+    ParticlesRequest p;  // 1133 at r = 0.15: a stable collapse, simulated to the last period
+    p.word = "1133";
+    p.r = core::Decimal::parse("0.15", "r");
+    p.precision = precision;
+    p.diagram_periods = 1;
+    p.periods = std::clamp(static_cast<long>(n / (mpfr ? 16 : 8)), 2L, 100000000L);
+    (void)run(p, c);
+    return collisions(8, p.periods, p.diagram_periods, mpfr);
+  };
+  w.terms.push_back(std::move(t));
+  w.bound = "a pattern that fails stops there";
+  // NAME.csv (one row), convergence.csv (a row per period up to 100, then 20 per decade, 7 numbers), events.csv (a row
+  // per event of the diagram's periods, 8 numbers); ~20 bytes a number.  The run keeps per period a few doubles.
+  const double p = static_cast<double>(req.periods);
+  const double conv_rows = std::min(p, 100.0) + (p > 100 ? 20 * std::log10(p / 100) : 0.0);
+  w.output_bytes = 400 + 140 * conv_rows + 160 * letters * static_cast<double>(req.diagram_periods);
+  w.peak_bytes = 64 * p + 64 * letters * static_cast<double>(req.diagram_periods) + 65536;
+  return w;
+}
+
 }  // namespace btob::particles

@@ -4,6 +4,7 @@
 #include "core/map.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 
 #include <Eigen/Core>
 
@@ -156,5 +157,8 @@ struct ParticlesResult {
 std::vector<std::size_t> convergence_rows(std::size_t periods);
 
 ParticlesResult run(const ParticlesRequest& request, const core::RunControl& control = {});
+// Its cost (core/work.hpp): collisions of the event loop, letters per period x (the rescaled run's periods, the
+// diagram's periods again, the unrescaled run's periods), probed on 132312 at r = 0.5 in the request's precision.
+core::Work work(const ParticlesRequest& request);
 
 }  // namespace btob::particles

@@ -246,4 +246,26 @@ void CurvesResult::describe(core::Contents& c) const {
   c.attr("r_count", request.r_count);
 }
 
+core::Work work(const CurvesRequest& req) {
+  const double L = static_cast<double>(parse_word(req.word, "word").size()), R = static_cast<double>(req.r_count);
+  core::Work w;
+  core::Term t;
+  t.route = "pattern-curves " + req.track;
+  t.units = R * L;
+  t.what = "r values x symbols of the word (a period matrix and its eigenvalues per r)";
+  t.probe = [track = req.track](double n, const core::RunControl& c) {
+    CurvesRequest p;  // 132312 over the default r range
+    p.track = track;
+    p.r_count = std::clamp(static_cast<long>(n / 6), 2L, 1000000L);
+    (void)run(p, c);
+    return 6.0 * static_cast<double>(p.r_count);
+  };
+  w.terms.push_back(std::move(t));
+  // Per r: 3 eigenvalues (re, im, modulus), the tracked one and its dominance, and 1 + 3 L branch quantities, in
+  // NAME.h5 (8 bytes) and NAME.csv (~20 bytes a number).
+  w.output_bytes = R * (12 + 3 * L) * 28;
+  w.peak_bytes = R * (12 + 3 * L) * 8 * 2 + 65536;
+  return w;
+}
+
 }  // namespace btob::patterns

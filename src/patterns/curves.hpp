@@ -5,6 +5,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 #include "patterns/patterns.hpp"
 
 #include <cstdint>
@@ -69,5 +70,8 @@ struct CurvesResult {
 
 // Throws core::InvalidField naming the field (word, r-min, r-max, r-count, track).
 CurvesResult run(const CurvesRequest& request, const core::RunControl& control = {});
+// Its cost (core/work.hpp): r-count x the analysed word's symbols (a period matrix, its eigenvalues and the branch
+// quantities per r), probed on 132312 over r in (0, 1).
+core::Work work(const CurvesRequest& request);
 
 }  // namespace btob::patterns

@@ -6,6 +6,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 #include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
 
@@ -71,6 +72,9 @@ struct WordResult {
 };
 
 WordResult run(const WordRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): one analysis of the word (verdict, window or characteristic polynomial), probed on the
+// request itself: its cost depends on the word, the mode, the precision and the digits together.
+core::Work work(const WordRequest& req);
 
 // `btob pattern atlas`: every canonical primitive word of length <= max-length with its stability set and the
 // check against the iterator at Table 6.1's r values; or, with --feasible, every feasible periodic orbit.

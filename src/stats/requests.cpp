@@ -88,6 +88,52 @@ void CorrelateRequest::validate() const {
                          "iterations");
 }
 
+namespace {
+// The probe of both routes: the default orbit (r = 0.11 from the first point of the Section 4 grid) with 200 lags.
+double correlate_probe(const std::string& precision, const std::string& method, long iterations,
+                       const core::RunControl& c) {
+  CorrelateRequest p;
+  p.precision = precision;
+  p.method = method;
+  p.transient = 0;
+  p.n_max = 200;
+  p.fit_lags = 200;
+  p.iterations = std::max(iterations, 100000L);  // FFTW's planning and the fit amortised, as in a long run
+  (void)run(p, c);
+  return method == "fft" ? static_cast<double>(p.iterations + p.n_max)
+                         : static_cast<double>(p.iterations) * static_cast<double>(p.n_max + 1);
+}
+}  // namespace
+
+core::Work work(const CorrelateRequest& req) {
+  const double N = static_cast<double>(req.iterations), M = static_cast<double>(req.n_max);
+  core::Work w;
+  core::Term orbit;
+  orbit.route = "correlate orbit and fft " + req.precision;
+  orbit.units = static_cast<double>(req.transient) + N + M;
+  orbit.what = "map steps of one orbit in double (transient + iterations + n-max), priced with its FFT correlation "
+               "(O(N log N)) and spectrum by the probe";
+  orbit.probe = [precision = req.precision](double n, const core::RunControl& c) {
+    return correlate_probe(precision, "fft", static_cast<long>(n), c);
+  };
+  w.terms.push_back(orbit);
+  if (req.method != "fft") {
+    core::Term direct;
+    direct.route = "correlate direct sum " + req.precision;
+    direct.units = N * (M + 1);
+    direct.what = "products of the direct sum (iterations x (n-max + 1))";
+    direct.probe = [precision = req.precision](double n, const core::RunControl& c) {
+      return correlate_probe(precision, "direct", static_cast<long>(n / 201), c);  // at least 1e5 x 201 products
+    };
+    w.terms.push_back(direct);
+  }
+  // C_N, its envelope and fit per lag in NAME.h5 and NAME.csv (~110 bytes a lag), the binned spectrum; the run holds
+  // the orbit's states, the two observables and the FFT's padded complex buffers (~90 bytes a state).
+  w.output_bytes = 110 * (M + 1) + 16384;
+  w.peak_bytes = 90 * (N + M) + 65536;
+  return w;
+}
+
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control) {
   req.validate();
   control.check_cancelled();

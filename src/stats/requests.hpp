@@ -6,6 +6,7 @@
 #include "core/request.hpp"
 #include "core/result.hpp"
 #include "core/sweep.hpp"
+#include "core/work.hpp"
 #include "iterate/ensemble.hpp"
 #include "stats/stats.hpp"
 
@@ -68,6 +69,9 @@ struct CorrelateResult {
 };
 
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): the orbit's map steps (transient + iterations + n-max) with its FFT correlation and
+// spectrum, and for method direct or both the direct sum's iterations x (n-max + 1) products.
+core::Work work(const CorrelateRequest& req);
 
 // ---- empirical measures at one r (`btob measure`) ------------------------------------------------------------
 struct MeasureRequest {

@@ -329,6 +329,107 @@ TransferResult run(const TransferRequest& q, const core::RunControl& control) {
 }
 
 
+// ---- the cost of transfer and transfer-r (core/work.hpp) -------------------------------------------------------
+namespace {
+// The side N of an NxN probe partition near `boxes` boxes, a multiple of 8 (so tv-bins 8 divides it), at least 8.
+long probe_side(double boxes) { return std::max(8L, 8 * std::lround(std::sqrt(std::max(boxes, 64.0)) / 8)); }
+
+// Ulam's sample images in `domain` by `route`: the matrix of r = 0.15 on an NxN partition, 16 samples a box.
+core::Term ulam_term(const std::string& domain, const std::string& route, double images) {
+  core::Term t;
+  t.route = fmt::format("transfer ulam images {} {}", domain, route);
+  t.units = images;
+  t.what = fmt::format("sample images of Ulam's matrix ({} route; boxes x samples)", route);
+  t.probe = [domain, route](double n, const core::RunControl& c) {
+    const Domain dom = parse_domain(domain);
+    const long side = probe_side(n / 16);
+    (void)ulam_btob(0.15, dom, domain_partition(dom, side, side), 16, route, c);
+    return static_cast<double>(side * side * 16);
+  };
+  return t;
+}
+
+// The stages on the matrix, priced per box and eigenvalue on r = 0.15, 16 samples a box, 16 eigenvalues, at least
+// 64x64 boxes (below 600 boxes the eigenvalues come from a dense solver, whose cost grows like boxes^3): transfer's
+// whole pipeline without the empirical measure, or transfer-r's Arnoldi solve alone.  The Arnoldi iterations depend
+// on r and on the spectrum's gaps (r = 0.3 costs about 3 times r = 0.15): the least certain of the rates.
+core::Term matrix_term(const std::string& domain, double box_eigenvalues, bool transfer_r) {
+  core::Term t;
+  t.route = fmt::format("transfer{} matrix stages {}", transfer_r ? "-r" : "", domain);
+  t.units = box_eigenvalues;
+  t.what = transfer_r ? "box-eigenvalues of the Arnoldi solves (r values x boxes x eigenvalues)"
+                      : "box-eigenvalues of the stages on the matrix (boxes x eigenvalues: decomposition, Arnoldi, "
+                        "components, cycles, basins)";
+  t.probe = [domain, transfer_r](double n, const core::RunControl& c) {
+    const long side = std::max(64L, probe_side(n / 16));
+    if (transfer_r) {
+      TransferRRequest p;
+      p.domain = domain;
+      p.r_min = 0.15, p.r_max = 0.16, p.r_count = 1;
+      p.boxes = fmt::format("{}x{}", side, side);
+      p.eigenvalues = 16;
+      (void)run(p, c);
+    } else {
+      TransferRequest p;
+      p.domain = domain;
+      p.boxes = fmt::format("{}x{}", side, side);
+      p.samples = 16;
+      p.eigenvalues = 16;
+      p.measure_orbits = 0;
+      p.tv_bins = 8;
+      (void)run(p, c);
+    }
+    return static_cast<double>(side * side * 16);
+  };
+  return t;
+}
+}  // namespace
+
+core::Work work(const TransferRequest& q) {
+  const auto [n1, n2] = parse_boxes(q.boxes);
+  const double boxes = static_cast<double>(n1) * static_cast<double>(n2), K = q.eigenvalues;
+  core::Work w;
+  w.terms.push_back(ulam_term(q.domain, q.route, boxes * q.samples));
+  w.terms.push_back(matrix_term(q.domain, boxes * std::max(1.0, K), false));
+  if (q.measure_orbits > 0 && q.spectrum()) {
+    core::Term m;
+    m.route = "transfer empirical measure";
+    const double orbits = static_cast<double>(q.measure_orbits) * q.measure_orbits;
+    m.units = orbits * static_cast<double>(q.measure_iterations + q.measure_transient);
+    m.what = "map steps of the empirical measure's orbits (measure-orbits^2 x (transient + iterations))";
+    m.probe = [](double n, const core::RunControl& c) {
+      TransferRequest p;  // an 8x8 matrix: the measure's orbits are the run
+      p.boxes = "8x8";
+      p.samples = 1;
+      p.eigenvalues = 1;
+      p.tv_bins = 8;
+      p.measure_orbits = 4;
+      p.measure_transient = 0;
+      p.measure_iterations = std::max(100L, static_cast<long>(n / 16));
+      (void)run(p, c);
+      return 16.0 * static_cast<double>(p.measure_iterations);
+    };
+    w.terms.push_back(std::move(m));
+  }
+  // Per box a few arrays (density, basins, components, the Lebesgue projection) in NAME.h5 and the tables; the
+  // matrix (a 4-byte column and an 8-byte value per distinct image, at most samples a box) and the Arnoldi basis
+  // (2K + 1 complex vectors of the boxes) at once.
+  w.output_bytes = boxes * 8 * 6 + K * 64 + 4096;
+  w.peak_bytes = boxes * std::min<double>(q.samples, 64) * 12 + boxes * (2 * K + 1) * 16 + boxes * 8 * 8;
+  return w;
+}
+
+core::Work work(const TransferRRequest& q) {
+  const auto [n1, n2] = parse_boxes(q.boxes);
+  const double boxes = static_cast<double>(n1) * static_cast<double>(n2), R = static_cast<double>(q.r_count);
+  core::Work w;
+  w.terms.push_back(ulam_term(q.domain, q.route, R * boxes * q.samples));
+  w.terms.push_back(matrix_term(q.domain, R * boxes * q.eigenvalues, true));
+  w.output_bytes = R * (static_cast<double>(q.eigenvalues) * 2 * 20 + 100) + 4096;
+  w.peak_bytes = boxes * std::min<double>(q.samples, 64) * 12 + boxes * (2.0 * q.eigenvalues + 1) * 16;
+  return w;
+}
+
 // ---- btob transfer-r --------------------------------------------------------------------------------------
 TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
   q.validate();

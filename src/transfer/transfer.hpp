@@ -6,6 +6,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 
 #include <complex>
 #include <cstdint>
@@ -289,6 +290,10 @@ struct TransferResult {
   std::string summary() const;         // the lines printed on stderr
 };
 TransferResult run(const TransferRequest& q, const core::RunControl& c = {});
+// Its cost (core/work.hpp): Ulam's sample images (boxes x samples), the stages on the matrix (decomposition, Arnoldi,
+// components, basins: boxes x eigenvalues), the empirical measure's map steps (measure-orbits^2 x (transient +
+// iterations)); each route probed at r = 0.15.
+core::Work work(const TransferRequest& q);
 
 // ---- btob transfer-r: the peripheral spectrum across r ------------------------------------------------
 struct TransferRRequest {
@@ -339,6 +344,8 @@ struct TransferRResult {
   std::string summary() const;
 };
 TransferRResult run(const TransferRRequest& q, const core::RunControl& c = {});
+// Its cost (core/work.hpp): per r, Ulam's sample images and the leading eigenvalues (transfer's first two routes).
+core::Work work(const TransferRRequest& q);
 
 // Parses "NxM" (field named in errors); throws core::InvalidField.
 std::pair<long, long> parse_boxes(const std::string& s, const char* field = "boxes");

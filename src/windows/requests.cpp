@@ -7,6 +7,8 @@
 #include "core/sweep.hpp"
 #include "windows/direct.hpp"
 
+#include <numbers>
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -302,6 +304,39 @@ void StripesResult::describe(core::Contents& c) const {
   c.array("mirror_l", mirror_l, {S}, "stripe", "1", "numerator m - l of the mirror rotation number (same r)");
   c.array("r", r, {S}, "stripe", "1", "thin stripe r(l/m), eq. (6.3), rounded to double");
   c.decimal("r_decimal", text, "stripe", "1", "thin stripe r(l/m) with `digits` decimals");
+}
+
+core::Work work(const ThresholdsRequest& req) {
+  core::Work w;
+  w.terms.push_back(core::self_term(req, fmt::format("windows thresholds {} digits", req.digits),
+                                    fmt::format("run of the four thresholds at {} decimals (one indivisible "
+                                                "computation: its probe is this request)", req.digits)));
+  w.output_bytes = 4 * (req.digits + 60.0);
+  w.peak_bytes = 65536 + 64.0 * req.digits;
+  return w;
+}
+
+namespace {
+// The reduced l/m in (1/4, 1/2] with m <= M: a quarter of the Farey fractions, sum phi(m) ~ 3 M^2 / pi^2.
+double stripes_about(double M) { return 3 * M * M / (4 * std::numbers::pi * std::numbers::pi); }
+}  // namespace
+
+core::Work work(const StripesRequest& req) {
+  core::Work w;
+  core::Term t;
+  t.route = fmt::format("windows stripes {} digits", req.digits);
+  t.units = std::max(1.0, stripes_about(req.max_m));
+  t.what = fmt::format("thin stripes r(l/m) at {} decimals (about 3 max-m^2 / (4 pi^2))", req.digits);
+  t.probe = [digits = req.digits](double n, const core::RunControl& c) {
+    StripesRequest p;
+    p.digits = digits;
+    p.max_m = static_cast<int>(std::clamp(std::sqrt(n * 4 * std::numbers::pi * std::numbers::pi / 3), 4.0, 100000.0));
+    return static_cast<double>(run(p, c).l.size());
+  };
+  w.output_bytes = t.units * (req.digits + 40.0) * 2;  // l, m, mirror_l and the r text, in NAME.h5 and the CSV
+  w.peak_bytes = t.units * (req.digits + 64.0) + 65536;
+  w.terms.push_back(std::move(t));
+  return w;
 }
 
 // ---- verify ----------------------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 #include "windows/verify.hpp"
 #include "windows/windows.hpp"
 
@@ -131,6 +132,8 @@ struct ThresholdsResult {
   void describe(core::Contents& c) const;
 };
 ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): one run of the four thresholds at `digits` decimals, probed on the request itself.
+core::Work work(const ThresholdsRequest& req);
 
 struct StripesRequest {
   int max_m = 120;  // largest denominator m, 1..100000
@@ -151,6 +154,9 @@ struct StripesResult {
   void describe(core::Contents& c) const;
 };
 StripesResult run(const StripesRequest& req, const core::RunControl& control = {});
+// Its cost (core/work.hpp): the stripes l/m, m <= max-m (about 3 max-m^2 / (4 pi^2) of them), each r(l/m) at
+// `digits` decimals, probed on a smaller max-m at the same digits.
+core::Work work(const StripesRequest& req);
 
 // ---- btob windows verify -----------------------------------------------------------------------------------
 struct VerifyRequest {
