@@ -70,6 +70,11 @@ template <class F> auto with_scalar(const core::Precision& p, F&& f) {
 }
 }  // namespace
 
+double Request::map_steps() const {
+  const double orbits = static_cast<double>(iterate::parse_grid(grid, seed, "grid").size());
+  return static_cast<double>(r_count) * orbits * static_cast<double>(iterations);
+}
+
 void Request::validate() const {
   core::require_r(r_min, "r-min");
   core::require_r(r_max, "r-max");

@@ -37,6 +37,7 @@ struct Request {
 
   void validate() const;
   std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
+  double map_steps() const;  // r values x initial conditions x iterations (core::StepCounted)
   template <class V> void fields(V&& v) {
     v("r-min", r_min, "smallest r, in (0,1)");
     v("r-max", r_max, "largest r, in (0,1)");

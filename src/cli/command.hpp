@@ -305,6 +305,19 @@ template <class Req> void note_long_run(const std::string& name, const Req& req,
   }
 }
 
+// Before a sweep that may take over 10 minutes, the estimate from its sample on stderr (rank 0; the other ranks go
+// on to the sweep and wait for it there): core::StepCounted says when it is worth the sample's 0.2 s.
+template <class Req> void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+  if constexpr (core::StepCounted<Req>) {
+    if (out.quiet || mpi::rank() != 0) return;
+    const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+    const double fastest = core::fastest_steps_per_second(req.precision) * threads * mpi::size();
+    if (req.map_steps() / fastest < 60) return;
+    const core::SweepEstimate e = core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads));
+    if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, threads, false) << std::flush;
+  }
+}
+
 // The body, or the files of a stdout command given --out.
 template <class Req>
 void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
@@ -334,6 +347,7 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
   Context ctx = make_context(name, out, invocation, std::move(recorded));
   if constexpr (core::Sweep<Req>) {
     if (out.dry_run) return print_estimate(name, req, out, ctx);
+    if (!out.resume) note_long_sweep(name, req, out, ctx);  // a resumed run's bar says what is left at its own rate
     if (out.resume)  // a collective under mpirun: rank 0 reads the file, every rank its items
       ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
   } else if constexpr (core::Costed<Req>) {  // runs on rank 0 alone (returned above on the others)

@@ -28,14 +28,16 @@ struct SweepEstimate {
   double predicted_seconds = 0;  // the whole request on `ranks` processes of the sample's threads
   double bytes = 0;              // the parts' packed bytes, scaled to every item
   int ranks = 1;
-  std::string text(const std::string& command, int threads) const {
+  // dry: --dry-run's report; else the note before a long run (the same numbers, on stderr).
+  std::string text(const std::string& command, int threads, bool dry = true) const {
     return fmt::format(
-        "btob {}: dry run (a sample computed, nothing written)\n"
+        "btob {}: {}\n"
         "  work: {} items (the sweep's r values, grid rows, n values or words)\n"
         "  sample: {} items in {:.3f} s on {} threads ({:.3g} s per item)\n"
         "  predicted: {:.3g} s on {} process{} x {} threads\n"
         "  data: about {:.3g} MB gathered and written; peak memory about {:.3g} MB on rank 0 (parts and merge)\n",
-        command, items, sampled, sample_seconds, threads, sample_seconds / static_cast<double>(sampled),
+        command, dry ? "dry run (a sample computed, nothing written)" : "estimate before the run (a sample of its items)",
+        items, sampled, sample_seconds, threads, sample_seconds / static_cast<double>(sampled),
         predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6, 2 * bytes / 1e6);
   }
 };
@@ -60,6 +62,21 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
   }
   e.predicted_seconds = e.sample_seconds / static_cast<double>(e.sampled) * static_cast<double>(e.items) / ranks;
   return e;
+}
+
+// A sweep that counts its map steps from its fields (`double map_steps() const`, and its precision in
+// `precision`) gets its estimate before the run when it may exceed 10 minutes: the sample above runs only when the
+// count alone takes over a minute at the fastest kernel rate of its precision (faster than any measured route:
+// double's batched kernel makes ~6e8 steps/s per core, long double ~1e8, float128 and MPFR < 1e7), so a short
+// run pays nothing and a long one 0.2 s.
+template <class Req> concept StepCounted = Sweep<Req> && requires(const Req& r) {
+  { r.map_steps() } -> std::convertible_to<double>;
+  { r.precision } -> std::convertible_to<std::string>;
+};
+inline double fastest_steps_per_second(const std::string& precision) {
+  if (precision == "float" || precision == "double") return 1e9;
+  if (precision == "long-double") return 2e8;
+  return 2e7;
 }
 
 }  // namespace btob::core

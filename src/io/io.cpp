@@ -253,7 +253,10 @@ void Progress::update(std::size_t done, std::size_t total) {
   if (total == 0) return;
   if (!noted_ && done > 0 && done < total) {
     const double el = seconds_now() - start_, left = el * static_cast<double>(total - done) / static_cast<double>(done);
-    if (el >= 2 && left > 600) {  // 2 s: enough items for a rate; 10 min: worth knowing before waiting for it
+    // A rate from at least 2 s and 1% of the work (or 30 s: a start-up that allocates gigabytes, or a first item
+    // that is slower than the rest, would otherwise extrapolate to days); 10 min: worth knowing before waiting.
+    const bool rate_known = el >= 2 && (100 * done >= total || el >= 30);
+    if (rate_known && left > 600) {
       noted_ = true;
       std::cerr << fmt::format("{}btob: {}: about {:.0f} min left at the rate so far (--dry-run predicts before a run)\n",
                                open_ ? "\n" : "", label_, left / 60) << std::flush;

@@ -64,8 +64,9 @@ void write_text_atomic(const fs::path& path, const std::string& text);
 // A manifest (key: value lines, JSON object) beside a result.
 void write_manifest(const fs::path& path, const Attrs& a);
 
-// A progress bar on stderr, shown only when stderr is a terminal; quiet otherwise.  A run that, after 2 s, has more
-// than 10 minutes left at the rate so far says so once, terminal or not ("btob: LABEL: about N min left").
+// A progress bar on stderr, shown only when stderr is a terminal; quiet otherwise.  A run that, after 2 s and 1% of its
+// work (or 30 s), has more than 10 minutes left at the rate so far says so once, terminal or not ("btob: LABEL: about
+// N min left").
 class Progress {
  public:
   explicit Progress(std::string label);

@@ -157,6 +157,17 @@ void MapRequest::validate() const {
     throw core::InvalidField("attractors", "with transient 0", "transient >= 1 (classify's transient)");
 }
 
+double MapRequest::map_steps() const {
+  const double orbits = static_cast<double>(iterate::parse_grid(grid, seed, "grid").size());
+  return static_cast<double>(r_count) * orbits * (static_cast<double>(transient) + static_cast<double>(iterations));
+}
+
+double StripRequest::map_steps() const {
+  const core::Grid g = spec();
+  return static_cast<double>(g.axis1.cells) * static_cast<double>(g.axis2.cells) *
+         (static_cast<double>(transient) + static_cast<double>(iterations));
+}
+
 void StripRequest::validate() const {
   core::require_r(r, "r");
   const core::Grid g = spec();  // N, M >= 1 and the range checked by the parser

@@ -66,6 +66,7 @@ struct MapRequest {
 
   void validate() const;
   std::size_t work_items() const { return static_cast<std::size_t>(r_count); }  // a sweep over r (core/sweep.hpp)
+  double map_steps() const;  // r values x initial conditions x (transient + iterations) (core::StepCounted)
   template <class V> void fields(V&& v) {
     v("r-min", r_min, "smallest r, in (0,1)");
     v("r-max", r_max, "largest r, in (0,1)");
@@ -92,6 +93,7 @@ struct StripRequest {
   // The grid: "strip:NxM[:w1min:w1max]" (iterate::parse_strip: core::parse_grid with the strip syntax).
   core::Grid spec() const { return iterate::parse_strip(grid, "grid"); }
   std::size_t work_items() const { return static_cast<std::size_t>(spec().axis1.cells); }  // columns of w1 cells (core/sweep.hpp)
+  double map_steps() const;  // cells x (transient + iterations) (core::StepCounted)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("grid", grid, "strip:NxM[:w1min:w1max]: N cells along w1 x M along w2 (w2 in [-1, 1], w1 by default in [-2, 2])");
