@@ -6,6 +6,7 @@
 // its decimals (multiprecision values as decimal.Decimal) and its attributes.
 #pragma once
 
+#include "core/cancel.hpp"
 #include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
@@ -216,7 +217,7 @@ template <class Req> py::object call(py::kwargs kw) {
   // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
   run_released([&](const core::RunControl& c) {
     holder->res = run(req, c);
-    c.check_cancelled();
+    core::check_cancel(c.cancel);
     holder->extras = extras::of(req, holder->res, c);
   }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
   present(req, threads, *holder);

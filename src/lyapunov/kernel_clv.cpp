@@ -24,6 +24,7 @@
 // mantissa product and an exponent sum, exact); lambda1 + lambda2 = mean log det D = mean of log det M + 3 log c.
 // The expanding flag s1 >= 1 of D: with F = s1^2 + s2^2 = |D g1|^2 + |D g2|^2 and Dt = s1 s2 = det M c^3,
 // s1 >= 1 exactly when Dt >= 1 or F >= 1 + Dt^2 ((1 - s1^2)(1 - s2^2) = 1 - F + Dt^2).
+#include "core/cancel.hpp"
 #include "iterate/cocycle_impl.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/hyperbolicity.hpp"
@@ -613,7 +614,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
       if (run.progress) run.progress->update(r0 + g, rs.size());
     }
   }
-  if (run.cancel && run.cancel->cancelled()) throw core::Cancelled();
+  core::check_cancel(run.cancel);
   return rows;
 }
 

@@ -1,6 +1,7 @@
 // Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
 #include "patterns/curves.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "iterate/parallel.hpp"
 
@@ -171,7 +172,7 @@ void critical_points(const Word& h, bool negative, CurvesResult& res) {
 // word -> arrays -> a row per r (in parallel) -> critical r.
 CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   q.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   CurvesResult res;
   res.request = q;
   const Word h = analysed_word(q, res);
@@ -182,7 +183,7 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
     const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
     curve_row(h, negative, i, r, res);
   });
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   critical_points(h, negative, res);
   if (control.progress) control.progress->update(1, 1);
   return res;

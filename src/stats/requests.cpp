@@ -1,6 +1,7 @@
 // The statistics requests: validation, the runs, and the description of their results.
 #include "stats/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 
@@ -90,7 +91,7 @@ void CorrelateRequest::validate() const {
 
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   CorrelateResult res;
   res.request = req;
   std::tie(res.phi, res.psi) = observables(req.observable);
@@ -101,12 +102,12 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   const OrbitSeries s =
       std::move(orbit_series(req.r, {core::parse_point(req.point, "point")}, req.transient, N + M, opt)[0]);
   const auto x = observe(s, res.phi), y = observe(s, res.psi);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   auto t0 = std::chrono::steady_clock::now();
   res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct");
   res.seconds = seconds_since(t0);
   if (req.method == "both") {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     t0 = std::chrono::steady_clock::now();
     res.c_direct = correlate_as(req.precision, x, y, N, M, false);
     res.seconds_direct = seconds_since(t0);
@@ -268,7 +269,7 @@ std::size_t MeasureRequest::work_items() const { return iterate::parse_grid(grid
 
 MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   MeasurePart p;
   p.items = items;
   if (items.empty()) return p;  // a rank without initial conditions
@@ -282,7 +283,7 @@ MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& 
   opt.cancel = control.cancel;
   const Measure frame = measure_frame(parse_chart(req.coords, "coords"), req.bins, req.bins, req.extent);
   std::vector<OrbitSeries> series = orbit_series(req.r, mine, req.transient, req.iterations, opt);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   p.cells.reserve(items.size() * static_cast<std::size_t>(req.iterations));
   for (auto& s : series) {
     const std::vector<std::int32_t> c = measure_cells(s, frame, req.extent.empty());
