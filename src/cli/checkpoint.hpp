@@ -123,7 +123,7 @@ std::vector<std::size_t> items_left(std::size_t n, const std::vector<std::size_t
 template <core::Sweep Req> auto run_checkpointed(const Req& req, const core::RunControl& control, Checkpoint& cp, bool split) {
   using Part = decltype(run_part(req, std::vector<std::size_t>{}, control));
   using Result = decltype(merge(req, std::vector<Part>{}));
-  const std::size_t n = req.work_items(), ranks = split ? static_cast<std::size_t>(mpi::size()) : 1;
+  const std::size_t n = core::work_items(req, control.cancel), ranks = split ? static_cast<std::size_t>(mpi::size()) : 1;
   const std::size_t me = split ? static_cast<std::size_t>(mpi::rank()) : 0;
   const std::vector<std::size_t> left = detail::items_left(n, cp.done);
   std::vector<std::size_t> mine;

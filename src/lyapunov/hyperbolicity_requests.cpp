@@ -59,6 +59,7 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
   p.symbol.reserve(items.size() * n2);
   for (std::size_t i : items)
     for (std::size_t j = 0; j < n2; ++j) {
+      core::poll_cancel(control.cancel, static_cast<long>(j));
       const StepSingularValues sv = step_singular_values(grid.at(i * n2 + j), req.r);
       p.s1.push_back(sv.s1);
       p.s2.push_back(sv.s2);

@@ -70,6 +70,7 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   }
   iterate::RunOptions ro;
   ro.threads = control.threads;
+  ro.cancel = control.cancel;
   iterate::TailRecorder t1(iterate::Coord::w1, ens.orbits(), q.iterations, q.tail);
   iterate::TailRecorder t2(iterate::Coord::w2, ens.orbits(), q.iterations, q.tail);
   iterate::Both<iterate::TailRecorder, iterate::TailRecorder> both(t1, t2);
@@ -82,6 +83,7 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   attractors::Options opt;
   opt.transient = q.iterations;
   opt.run.threads = control.threads;
+  opt.run.cancel = control.cancel;
   res.verdicts = attractors::classify(ens, opt);
   for (const auto& v : res.verdicts) {
     res.pattern.push_back(v.type == attractors::Type::periodic ? patterns::to_paper(patterns::canonical(v.word)) : "");

@@ -131,10 +131,11 @@ void curve_row(const Word& h, bool negative, std::size_t i, double r, CurvesResu
 }
 
 // The roots of f between consecutive r of the grid where its sign changes (both ends finite), bisected on f down
-// to 1e-15 (a few ulps of r).
-template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f) {
+// to 1e-15 (a few ulps of r).  The token is polled every core::cancel_stride grid intervals.
+template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f, const core::CancelToken* cancel) {
   std::vector<double> roots;
   for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+    core::poll_cancel(cancel, static_cast<long>(i));
     double a = grid[i], b = grid[i + 1], fa = f(a), fb = f(b);
     if (!(std::isfinite(fa) && std::isfinite(fb)) || (fa > 0) == (fb > 0)) continue;
     while (b - a > 1e-15) {
@@ -150,16 +151,16 @@ template <class F> std::vector<double> sign_changes(const std::vector<double>& g
 
 // Critical r: sign changes of -u_x u_z (sign-free: u_x = 0 or u_z = 0, where u leaves the domain; named by the
 // component that vanishes), then of the dominance margin.
-void critical_points(const Word& h, bool negative, CurvesResult& res) {
+void critical_points(const Word& h, bool negative, CurvesResult& res, const core::CancelToken* cancel) {
   const auto domain = [&](double r) {
     const Point pt = at(h, res.reduced, r, negative);
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
   };
-  for (double rc : sign_changes(res.r, domain)) {
+  for (double rc : sign_changes(res.r, domain, cancel)) {
     const Point pt = at(h, res.reduced, rc, negative);
     res.critical.push_back({std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
   }
-  for (double rc : sign_changes(res.r, [&](double r) { return at(h, res.reduced, r, negative).dominance; }))
+  for (double rc : sign_changes(res.r, [&](double r) { return at(h, res.reduced, r, negative).dominance; }, cancel))
     res.critical.push_back({"dominance", rc});
   for (const auto& c : res.critical) {
     res.critical_r.push_back(c.r);
@@ -180,11 +181,12 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   const std::size_t n = static_cast<std::size_t>(q.r_count);
   allocate_curves(n, 1 + 3 * h.size(), res);
   iterate::parallel_for(n, control.threads, [&](std::size_t i) {
+    if (control.cancel && control.cancel->cancelled()) return;  // no exception may leave an OpenMP region
     const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
     curve_row(h, negative, i, r, res);
   });
   core::check_cancel(control.cancel);
-  critical_points(h, negative, res);
+  critical_points(h, negative, res, control.cancel);
   if (control.progress) control.progress->update(1, 1);
   return res;
 }

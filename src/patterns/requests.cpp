@@ -437,8 +437,10 @@ void AtlasRequest::validate() const {
     throw core::InvalidField("max-period", std::to_string(max_period), fmt::format("1..tail/2 ({})", tail / 2));
 }
 
-std::size_t AtlasRequest::work_items() const {
-  return enumerate_canonical(static_cast<int>(max_length)).size() + (checks() ? table_6_1_r().size() : 0);
+std::size_t AtlasRequest::work_items() const { return work_items(nullptr); }
+
+std::size_t AtlasRequest::work_items(const core::CancelToken* cancel) const {
+  return enumerate_canonical(static_cast<int>(max_length), cancel).size() + (checks() ? table_6_1_r().size() : 0);
 }
 
 AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
@@ -534,8 +536,7 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
 }
 
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
-  // The words first, polling the token (work_items() cannot): every later enumeration finds them listed.
-  enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
+  core::work_items(req, control.cancel);  // the words first, polling the token: later enumerations find them listed
   return merge(req, {run_part(req, core::all_items(req), control)});
 }
 

@@ -34,22 +34,23 @@ std::pair<Observable, Observable> observables(const std::string& spec) {
 
 // C_N in precision T by the chosen route; the result in double.
 template <class T>
-std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft) {
+std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft,
+                                 const core::CancelToken* cancel) {
   const std::vector<T> a(x.begin(), x.end()), b(y.begin(), y.end());
   std::vector<T> c;
   if (fft) {
     Correlator<T> corr(N, n_max);
     c = corr(a, b);
   } else {
-    c = correlation_direct(a, b, N, n_max);
+    c = correlation_direct(a, b, N, n_max, cancel);
   }
   return {c.begin(), c.end()};
 }
 std::vector<double> correlate_as(const std::string& precision, const std::vector<double>& x, const std::vector<double>& y,
-                                 long N, long n_max, bool fft) {
-  if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft);
-  if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft);
-  return correlate_in<double>(x, y, N, n_max, fft);
+                                 long N, long n_max, bool fft, const core::CancelToken* cancel) {
+  if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft, cancel);
+  if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft, cancel);
+  return correlate_in<double>(x, y, N, n_max, fft, cancel);
 }
 
 // The periodogram of x (first N values), averaged over blocks of consecutive frequencies to at most 8192 points
@@ -104,12 +105,12 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   const auto x = observe(s, res.phi), y = observe(s, res.psi);
   core::check_cancel(control.cancel);
   auto t0 = std::chrono::steady_clock::now();
-  res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct");
+  res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct", control.cancel);
   res.seconds = seconds_since(t0);
   if (req.method == "both") {
     core::check_cancel(control.cancel);
     t0 = std::chrono::steady_clock::now();
-    res.c_direct = correlate_as(req.precision, x, y, N, M, false);
+    res.c_direct = correlate_as(req.precision, x, y, N, M, false, control.cancel);
     res.seconds_direct = seconds_since(t0);
     double scale = 0;
     for (std::size_t n = 0; n < res.c.size(); ++n) {

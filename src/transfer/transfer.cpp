@@ -321,7 +321,7 @@ TransferResult run(const TransferRequest& q, const core::RunControl& control) {
   cycle_stage(q, dom, d, densities, control, res);
   basin_stage(P, q, dom, mu, control, res);
   if (q.measure_orbits > 0 && q.spectrum()) {  // (nothing to compare it with without the density)
-    const MeasureComparison cmp = compare_with_empirical(q, dom, res.part, res.density, control.threads);
+    const MeasureComparison cmp = compare_with_empirical(q, dom, res.part, res.density, control);
     res.tv_boxes = cmp.tv_boxes, res.tv_coarse = cmp.tv_coarse, res.measure_points = cmp.points;
   }
   file_arrays(res);

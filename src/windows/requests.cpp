@@ -332,7 +332,8 @@ VerifyOptions verify_options(const VerifyRequest& req, int threads) {
 
 VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
-  const VerifyOptions options = verify_options(req, control.threads);
+  VerifyOptions options = verify_options(req, control.threads);
+  options.cancel = control.cancel;
   // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
   VerifyPart part = for_each_n<VerifyPart>(req, 2, items, control, [&](VerifyPart& p, int n) {
     const std::vector<VerifyRow> rows = verify_windows(n, n, options);
