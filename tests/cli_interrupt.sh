@@ -167,6 +167,7 @@ interrupt TERM hyperbolicity-orbits --r-count 4 --iterations 1000 --transient 10
 interrupt TERM lyapunov-strip --grid strip:2x1 --iterations 100000000000 --out @OUT --no-plot
 interrupt INT basins --r 0.2 --grid strip:2x2 --replicates 0 --transient 100000000000 --out @OUT --no-plot
 interrupt TERM basins-r --r-values 0.2 --grid 1,-0.5,-1.1 --transient 100000000000 --out @OUT --no-plot
+interrupt TERM hyperbolicity --r 0.2 --grid strip:3000x3000 --out @OUT --no-plot
 interrupt TERM measure --r 0.2 --grid 1,-0.5,-1.1 --transient 100000000000 --iterations 1000 --out @OUT --no-plot
 # With --resume: the atlas's words are counted (3^16 of them) before the first round.
 interrupt TERM pattern atlas --max-length 16 --no-check --out @OUT --no-plot --resume
