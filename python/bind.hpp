@@ -6,11 +6,13 @@
 // its decimals (multiprecision values as decimal.Decimal) and its attributes.
 #pragma once
 
+#include "core/cancel.hpp"
 #include "core/estimate.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
 #include "extras/extras.hpp"
+#include "io/checkpoint.hpp"
 #include "io/io.hpp"
 #include "io/rates.hpp"
 
@@ -172,6 +174,7 @@ template <class Req> Req request_of(const py::kwargs& kw) {
   using R = Route<Req>;
   Req req = R::defaults();
   std::set<std::string> used{"threads", "progress"}, missing;
+  if constexpr (core::Sweep<Req>) used.insert("resume");
   req.fields(KwargsApplier{&kw, &used, &missing});
   for (auto item : kw) {
     const std::string k = item.first.cast<std::string>();
@@ -203,7 +206,36 @@ template <class Req, class Res> void present(Req& req, int threads, ResultOf<Res
   if constexpr (requires { holder.res.tables(); }) holder.tables = holder.res.tables();
 }
 
-// One call of btob.<function>(**kw): request -> validate -> run (released) -> Result.
+// resume= of a sweep: the checkpoint's path (str or os.PathLike), "" when absent or None.
+inline std::string resume_of(const py::kwargs& kw) {
+  if (!kw.contains("resume") || kw["resume"].is_none()) return "";
+  return py::str(py::module_::import("os").attr("fspath")(kw["resume"]));
+}
+
+// The checkpoint of resume= for the request as it runs (io/checkpoint.hpp: the command line's file, identity and
+// refusal, keyed by the command's name and the request's fields): ValueError with its one line when the file belongs
+// to another request or build, or another run uses it.
+template <class Req> std::unique_ptr<io::Checkpoint> open_resume(const Req& req, const std::string& path) {
+  auto cp = std::make_unique<io::Checkpoint>();
+  cp->path = path;
+  Args args;
+  Req copy = req;
+  copy.fields(core::ArgsWriter{&args});
+  cp->identity = io::checkpoint_identity(Route<Req>::command, args);
+  if (const std::string why = io::open_checkpoint_file(*cp); !why.empty()) throw py::value_error(why);
+  return cp;
+}
+
+// run(req), or with a checkpoint its items in rounds kept in the file and merged with those it held (bitwise run()).
+template <class Req> auto run_or_resume(const Req& req, const core::RunControl& c, io::Checkpoint* cp) {
+  if constexpr (core::Sweep<Req>)
+    if (cp) return std::move(*io::run_in_rounds(req, c, *cp, io::alone()));
+  return run(req, c);
+}
+
+// One call of btob.<function>(**kw): request -> validate -> run (released) -> Result.  A sweep given
+// resume="DIR/NAME.checkpoint" keeps its finished items there and continues from them; the file is removed once the
+// result is complete and kept when the run stops (KeyboardInterrupt, an error, a kill).
 template <class Req> py::object call(py::kwargs kw) {
   using R = Route<Req>;
   using Res = std::decay_t<decltype(run(std::declval<const Req&>(), std::declval<const core::RunControl&>()))>;
@@ -213,13 +245,17 @@ template <class Req> py::object call(py::kwargs kw) {
   auto holder = std::make_shared<ResultOf<Res>>();
   extras::check(req);  // unknown overlay names fail before any work
   R::prepare(req);
+  std::unique_ptr<io::Checkpoint> cp;
+  if constexpr (core::Sweep<Req>)
+    if (const std::string path = resume_of(kw); !path.empty()) cp = open_resume(req, path);
   // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
   // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
   run_released([&](const core::RunControl& c) {
-    holder->res = run(req, c);
-    c.check_cancelled();
+    holder->res = run_or_resume(req, c, cp.get());
+    core::check_cancel(c.cancel);
     holder->extras = extras::of(req, holder->res, c);
   }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+  if (cp) io::remove_checkpoint(*cp);
   present(req, threads, *holder);
   return py::cast(std::static_pointer_cast<ResultBase>(holder));
 }
@@ -313,6 +349,9 @@ template <class Req> void bind(py::module_& m) {
   defaults.fields(core::DocLister{&docs});
   doc += field_doc_lines(docs);
   doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
+  if constexpr (core::Sweep<Req>)
+    doc += "    resume = None: 'DIR/NAME.checkpoint': keep the finished items in that file and continue from it (the "
+           "command line's --resume; refused for another request or build; removed once the result is complete)\n";
   m.def(R::function, &detail::call<Req>, doc.c_str());
   detail::list_function(m, defaults);
   if constexpr (core::Sweep<Req>) detail::bind_estimate<Req>(m);

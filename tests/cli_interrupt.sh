@@ -4,8 +4,12 @@
 # hours) to finish: a command that ignored the signal would fail the bound.  The bound is 2 s so that a loaded
 # machine does not fail the test; the latency measured is printed (on an idle machine it is a few milliseconds, the
 # cost of polling the token every core::cancel_stride steps).
-# Usage: cli_interrupt.sh PATH/TO/btob
+# Usage: cli_interrupt.sh PATH/TO/btob [MPIRUN]: with MPIRUN, sweeps under `mpirun -n 2` (with --resume) instead:
+# the signal goes to every process of the job (as a batch system sends it) and the ranks must have ended within the
+# bound, leaving the output folder as it was (with --resume: and the checkpoint of the finished items).  The ranks
+# stop quietly (cli/mpi.cpp: the job is ending and said why; mpirun's exit status and messages are its own).
 btob="$1"
+mpirun="${2:-}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail=0
@@ -38,19 +42,26 @@ interrupt() {
   fi
   wait "$pid"
   rc=$?
-  local latency want lines files
+  local latency want lines files kept=0 want_files="keep.txt "
   latency=$(echo "$t1 - $t0" | bc)
   want=$([ "$sig" = INT ] && echo 130 || echo 143)
   lines=$(grep -c . "$work/stderr")
   files=$(cd "$out" && ls -A | tr '\n' ' ')
+  # --resume: the finished items stay in OUT/NAME.checkpoint, and a line says so before the interruption's.
+  if [[ " $* " == *" --resume "* ]]; then
+    kept=1
+    want_files=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint' | tr '\n' ' ')
+    grep -q "^btob: the finished items are kept in .*\.checkpoint; the same command with --resume continues$" \
+      "$work/stderr" || kept=2
+  fi
   if [ "$rc" -ne "$want" ]; then
     echo "FAIL (exit $rc, expected $want after SIG$sig): btob $*"; cat "$work/stderr"; fail=1
-  elif [ "$lines" -ne 1 ] || ! grep -q "^btob: interrupted; nothing was written$" "$work/stderr"; then
+  elif [ "$lines" -ne $((1 + kept)) ] || ! grep -q "^btob: interrupted; nothing was written$" "$work/stderr"; then
     echo "FAIL ($lines lines on stderr, expected 'btob: interrupted; nothing was written'): btob $*"
     cat "$work/stderr"; fail=1
   elif [ -s "$work/stdout" ]; then
     echo "FAIL (wrote to stdout): btob $*"; head -3 "$work/stdout"; fail=1
-  elif [ "$files" != "keep.txt " ] || [ "$(cat "$out/keep.txt")" != "an earlier result" ]; then
+  elif [ "$files" != "$want_files" ] || [ "$(cat "$out/keep.txt")" != "an earlier result" ]; then
     echo "FAIL (output folder holds '$files'): btob $*"; fail=1
   elif (($(echo "$latency > $bound" | bc))); then
     echo "FAIL (exit $latency s after SIG$sig, bound $bound s): btob $*"; fail=1
@@ -58,6 +69,64 @@ interrupt() {
     echo "ok: SIG$sig -> exit $rc in $latency s: btob $*"
   fi
 }
+
+# interrupt_mpi <INT|TERM> <btob arguments...>: the job's every process gets the signal; its ranks must be gone
+# within the bound and the folder (@OUT) hold keep.txt and, with --resume, the checkpoint alone.
+interrupt_mpi() {
+  local sig="$1"
+  shift
+  local out="$work/out" args=() a
+  rm -rf "$out" && mkdir -p "$out" && echo "an earlier result" >"$out/keep.txt"
+  for a in "$@"; do args+=("${a//@OUT/$out}"); done
+  setsid "$mpirun" -n 2 "$btob" "${args[@]}" >"$work/stdout" 2>"$work/stderr" &
+  local pid=$!
+  sleep "$settle"
+  local ranks
+  ranks=$(pgrep -s "$pid" -x btob | tr '\n' ' ')
+  if [ -z "$ranks" ]; then
+    wait "$pid"
+    echo "FAIL (no rank running before the signal, exit $?): mpirun -n 2 btob $*"; cat "$work/stderr"; fail=1; return
+  fi
+  local t0 t1 r alive
+  t0=$(date +%s.%N)
+  pkill -"$sig" -s "$pid"
+  for _ in $(seq 1 1000); do
+    alive=0
+    # A rank that has ended is a zombie until mpirun reaps it (its own shutdown takes a second): not running.
+    for r in $ranks; do [[ "$(ps -o stat= -p "$r" 2>/dev/null)" == [^Z]* ]] && alive=1; done
+    [ $alive = 0 ] && break
+    sleep 0.005
+  done
+  t1=$(date +%s.%N)
+  if [ $alive = 1 ]; then
+    pkill -KILL -s "$pid"; wait "$pid" 2>/dev/null
+    echo "FAIL (ranks still running $(echo "$t1 - $t0" | bc) s after SIG$sig): mpirun -n 2 btob $*"; fail=1; return
+  fi
+  wait "$pid" 2>/dev/null
+  local latency files want="keep.txt "
+  latency=$(echo "$t1 - $t0" | bc)
+  [[ " $* " == *" --resume "* ]] && want=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint' | tr '\n' ' ')
+  files=$(cd "$out" && ls -A | tr '\n' ' ')
+  if [ "$files" != "$want" ] || [ "$(cat "$out/keep.txt")" != "an earlier result" ]; then
+    echo "FAIL (output folder holds '$files'): mpirun -n 2 btob $*"; fail=1
+  elif (($(echo "$latency > $bound" | bc))); then
+    echo "FAIL (ranks ended $latency s after SIG$sig, bound $bound s): mpirun -n 2 btob $*"; fail=1
+  else
+    echo "ok: SIG$sig -> ranks ended in $latency s: mpirun -n 2 btob $*"
+  fi
+}
+
+if [ -n "$mpirun" ]; then
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+  export OMPI_MCA_btl_base_warn_component_unused=0
+  # Items that are long orbits (polled inside a batch), the atlas's enumeration of its words (counted before the
+  # split), covariant vectors (a transient of 1e12 steps); with --resume the items run in rounds.
+  interrupt_mpi TERM lyapunov-map --r-count 4 --iterations 100000000000 --grid 1,-0.5,-1.1 --threads 1 --out @OUT --no-plot --resume
+  interrupt_mpi TERM pattern atlas --max-length 16 --no-check --threads 1 --out @OUT --no-plot
+  interrupt_mpi INT pattern atlas --max-length 16 --no-check --threads 1 --out @OUT --no-plot --resume
+  interrupt_mpi TERM hyperbolicity-orbits --r-count 4 --iterations 1000 --transient 1000000000000 --grid 1,-0.5,-1.1 --threads 1 --out @OUT --no-plot --resume
+  exit $fail
+fi
 
 orbit=(--r 0.2 --point 1,-0.5,-1.1)
 # Single orbits in the kernel's and the scalar routes' precisions (MPFR included), transients.
@@ -77,4 +146,29 @@ interrupt TERM pattern atlas --max-length 16 --no-check --out @OUT --no-plot
 interrupt TERM windows bounds --n 1000 --certify
 interrupt INT transfer --r 0.3 --boxes 1024x1024 --out @OUT --no-plot
 interrupt TERM particles 1133 --r 0.15 --periods 100000000 --precision mpfr:40 --out @OUT --no-plot
+# The other families, each in a loop that ran for seconds to minutes unpolled before: a long double orbit, the
+# correlation's transient and its direct sum over lags, strip orbits and their classification, the pattern curves'
+# r values, the precision study, transfer's dense eigensolver (one block of 576 boxes, solved on a thread of its own)
+# and its scan over r, windows' polynomials, iterator checks and precision study, the covariant vectors' transient,
+# and the sweeps over grids.
+interrupt TERM lyapunov "${orbit[@]}" --iterations 1000000000000 --precision long-double
+interrupt INT correlate "${orbit[@]}" --transient 1000000000000 --iterations 1000 --n-max 10 --fit-lags 10 --out @OUT --no-plot
+interrupt TERM correlate "${orbit[@]}" --iterations 2000000 --n-max 200000 --method direct --out @OUT --no-plot
+interrupt TERM strip-orbits --orbits 1000 --iterations 10000000 --tail 100 --out @OUT --no-plot
+interrupt INT particles 1133 --r 0.15 --periods 100000000 --out @OUT --no-plot
+interrupt TERM pattern-curves --word "132^200" --r-count 60000 --out @OUT --no-plot
+interrupt TERM precision --orbits 2000 --iterations 100000 --out @OUT --no-plot
+interrupt TERM transfer --r 0.3 --boxes 24x24 --tv-bins 8 --samples 4096 --out @OUT --no-plot
+interrupt INT transfer-r --r-count 1000 --boxes 256x256 --out @OUT --no-plot
+interrupt TERM windows poly --n 1..3000 --out @OUT
+interrupt TERM windows verify --n 2..3 --iterations 100000000000 --out @OUT
+interrupt INT windows precision --n 1..2000 --out @OUT --no-plot
+interrupt TERM hyperbolicity-orbits --r-count 4 --iterations 1000 --transient 1000000000000 --grid 1,-0.5,-1.1 --out @OUT --no-plot
+interrupt TERM lyapunov-strip --grid strip:2x1 --iterations 100000000000 --out @OUT --no-plot
+interrupt INT basins --r 0.2 --grid strip:2x2 --replicates 0 --transient 100000000000 --out @OUT --no-plot
+interrupt TERM basins-r --r-values 0.2 --grid 1,-0.5,-1.1 --transient 100000000000 --out @OUT --no-plot
+interrupt TERM hyperbolicity --r 0.2 --grid strip:3000x3000 --out @OUT --no-plot
+interrupt TERM measure --r 0.2 --grid 1,-0.5,-1.1 --transient 100000000000 --iterations 1000 --out @OUT --no-plot
+# With --resume: the atlas's words are counted (3^16 of them) before the first round.
+interrupt TERM pattern atlas --max-length 16 --no-check --out @OUT --no-plot --resume
 exit $fail

@@ -1,5 +1,6 @@
 """Ctrl-C (SIGINT) stops every kind of run: single orbits in every precision, transients, sweeps whose items are
-long orbits, the atlas and windows certificates raise KeyboardInterrupt within a bound.  Each call below would run
+long orbits, the atlas and windows certificates, covariant vectors, direct correlation sums, the pattern curves, the
+iterator checks and the overlays computed after a run raise KeyboardInterrupt within a bound.  Each call below would run
 for minutes or hours if the signal were not seen inside its inner loop.  Each runs in a child interpreter, so that
 a run that ignored the signal fails the test (killed after a timeout) instead of hanging it.  The bound is 2 s so
 that a loaded machine does not fail the test; on an idle machine the latency is the binding's 50 ms poll."""
@@ -22,6 +23,16 @@ RUNS = {
     "bifurcation mpfr": 'btob.bifurcation(r_count=2, iterations=10**8, tail=100, grid="1,-0.5,-1.1", precision="mpfr:30")',
     "pattern_atlas": "btob.pattern_atlas(max_length=12)",
     "windows certificate": 'btob.windows_bounds(n="1000", certify=True)',
+    "lyapunov long double": f'btob.lyapunov({ORBIT}, iterations=10**12, precision="long-double")',
+    # The overlays' window bounds, computed after the run (seconds the first time in a process).
+    "lyapunov_map overlays": 'btob.lyapunov_map(r_count=2, iterations=10, transient=5, grid="1,-0.5,-1.1")',
+    "hyperbolicity_orbits transient": 'btob.hyperbolicity_orbits(r_count=4, iterations=1000, transient=10**12, '
+                                      'grid="1,-0.5,-1.1")',
+    "correlate direct": f'btob.correlate({ORBIT}, iterations=2000000, n_max=200000, method="direct")',
+    "strip_orbits": "btob.strip_orbits(orbits=1000, iterations=10**7, tail=100)",
+    "pattern_curves": 'btob.pattern_curves(word="132^200", r_count=60000)',
+    "windows_verify": 'btob.windows_verify(n="2..3", iterations=10**11)',
+    "measure transient": 'btob.measure(r=0.2, grid="1,-0.5,-1.1", transient=10**11, iterations=1000)',
 }
 # The child: runs the call; on KeyboardInterrupt prints when it arrived (CLOCK_MONOTONIC, the parent's clock too),
 # checks that the next run works and exits 42.

@@ -14,6 +14,7 @@
 #include "attractors/certify.hpp"
 #include "attractors/recorders.hpp"
 #include "attractors/stages.hpp"
+#include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/sweep.hpp"
 
@@ -458,7 +459,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
       part.iterations += x.steps;
       note_witnesses(x, e.initial, witnesses);  // classified again at full length after the last chunk
       fold_chunk(x, e.initial, ch, g, cert, certified, book);
-      if (opt.run.cancel && opt.run.cancel->cancelled()) throw core::Cancelled();
+      core::check_cancel(opt.run.cancel);
     }
   }
   check_witnesses(r, witnesses, cert, opt);

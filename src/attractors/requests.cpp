@@ -1,5 +1,6 @@
 #include "attractors/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
@@ -320,7 +321,7 @@ BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& 
   const std::vector<double> all_r = req.all_r();
   // Per r: the attractors (matched across r by key), fractions and intervals.
   for (std::size_t i : items) {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     const double r = all_r.at(i);
     iterate::Ensemble e;
     e.r = {r};

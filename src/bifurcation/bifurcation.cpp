@@ -1,6 +1,7 @@
 // Bifurcation diagrams: validation, the kernel run with the density recorder, the trigonometric route.
 #include "bifurcation/bifurcation.hpp"
 
+#include "core/cancel.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
@@ -140,12 +141,12 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   if (ens.r.empty()) {
     // a part with no r value (more processes than r values): nothing to run
   } else if (req.algorithm == "trig") {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     part.broken = prec.kind == core::Precision::Kind::f80
                       ? reference::trig_density<long double>(ens, req.iterations, dens, threads, control.cancel)
                       : reference::trig_density<double>(ens, req.iterations, dens, threads, control.cancel);
     // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     part.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
                                                  static_cast<int>(req.bins), 0.0, std::numbers::pi, threads,
                                                  control.cancel);

@@ -5,18 +5,24 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "cli/sweep.hpp"
+#include "core/cancel.hpp"
 #include "patterns/requests.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <iostream>
+#include <string>
 
 namespace btob::cli {
 namespace {
 
 void word_body(const patterns::WordRequest& req, const Output&, const Context& ctx) {
-  std::cout << patterns::run(req, ctx.control).text();
+  // Neither the word's analysis (patterns::analyse) nor its text (the canonical rotation, O(length^2)) polls the
+  // token: a signal during them prints nothing.
+  const std::string text = patterns::run(req, ctx.control).text();
+  core::check_cancel(ctx.control.cancel);
+  std::cout << text;
 }
 
 void atlas_body(const patterns::AtlasRequest& req, const Output& o, const Context& ctx) {

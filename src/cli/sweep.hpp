@@ -31,9 +31,9 @@ template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   if (ctx.checkpoint) return run_checkpointed(req, ctx.control, *ctx.checkpoint, true);  // --resume: in rounds
   if (mpi::size() == 1) return std::optional<Result>(run(req, ctx.control));
   const auto t0 = std::chrono::steady_clock::now();
-  const auto items = core::cyclic_items(req.work_items(), static_cast<std::size_t>(mpi::rank()),
-                                        static_cast<std::size_t>(mpi::size()));
-  Part mine = detail::naming_items(items, req.work_items(), [&] { return run_part(req, items, ctx.control); });
+  const std::size_t n = core::work_items(req, ctx.control.cancel);  // counting may be long (the atlas): polled
+  const auto items = core::cyclic_items(n, static_cast<std::size_t>(mpi::rank()), static_cast<std::size_t>(mpi::size()));
+  Part mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, ctx.control); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Rank 0 keeps its own part as it is; the others send theirs as bytes.
   std::vector<std::vector<char>> bytes = mpi::gather(mpi::rank() == 0 ? std::vector<char>{} : core::pack(mine), seconds);

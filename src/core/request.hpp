@@ -54,12 +54,7 @@ struct RunControl {
   static constexpr int max_threads = 1024;  // a stated bound; the command line refuses values outside 1..this
   int threads = 0;                          // 0: OpenMP's default (all cores); else 1..max_threads
   ProgressSink* progress = nullptr;
-  const CancelToken* cancel = nullptr;
-
-  bool cancelled() const { return cancel && cancel->cancelled(); }
-  void check_cancelled() const {
-    if (cancelled()) throw Cancelled();
-  }
+  const CancelToken* cancel = nullptr;  // polled by core::check_cancel / core::poll_cancel (core/cancel.hpp)
 };
 
 }  // namespace btob::core

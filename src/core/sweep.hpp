@@ -17,6 +17,8 @@
 // partition, in any order, gives the single-process result bitwise; a single process is the partition {all}.
 #pragma once
 
+#include "core/request.hpp"
+
 #include <algorithm>
 #include <concepts>
 #include <cstddef>
@@ -37,6 +39,13 @@ inline std::vector<std::size_t> all_items(std::size_t n) {
   return v;
 }
 template <Sweep Req> std::vector<std::size_t> all_items(const Req& r) { return all_items(r.work_items()); }
+
+// The item count where counting may take long (the atlas enumerates up to 3^16 words): a request with
+// work_items(cancel) polls the run's token while it counts (core::Cancelled); the others count at once.
+template <Sweep Req> std::size_t work_items(const Req& r, const CancelToken* cancel) {
+  if constexpr (requires { r.work_items(cancel); }) return r.work_items(cancel);
+  else return r.work_items();
+}
 
 // The items of part k of P in a cyclic split (item i goes to part i mod P): neighbouring items, whose costs are
 // alike (nearby r, adjacent rows), land in different parts, so parts cost about the same without measuring.

@@ -23,9 +23,10 @@ namespace btob::extras {
 std::string overlay_names();
 // The lines of the named overlays inside [r_min, r_max], flattened as (r, colour) pairs (colour 0 red, 1 blue,
 // 2 grey), one per r value (a value of two overlays once); `labels` (when given) gets what each line is.  An
-// unknown name throws core::InvalidField("overlay", ...).
+// unknown name throws core::InvalidField("overlay", ...).  `cancel` is polled while they are computed (the windows'
+// bounds take seconds the first time).
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
-                                   std::vector<std::string>* labels = nullptr);
+                                   std::vector<std::string>* labels = nullptr, const core::CancelToken* cancel = nullptr);
 
 // The attractor of every orbit of an ensemble (orbit o = r index * initial conditions + initial condition index):
 // attractors::classify at each r with `options`, the orbit's verdict named as `btob classify` names it (its pattern:
@@ -74,8 +75,8 @@ template <class Req> void check(const Req& req) {
 
 // Per request type (overlay lines computed here).  Requests without extras get none.
 template <class Req> Extras of(const Req&) { return {}; }
-Extras of(const bifurcation::Request& req);
-Extras of(const lyapunov::MapRequest& req);
+Extras of(const bifurcation::Request& req, const core::CancelToken* cancel = nullptr);
+Extras of(const lyapunov::MapRequest& req, const core::CancelToken* cancel = nullptr);
 Extras of(const lyapunov::StripRequest& req);
 Extras of(const precision::TradeoffRequest& req);
 Extras of(const windows::BoundPrecisionRequest& req);

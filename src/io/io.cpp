@@ -1,5 +1,6 @@
 // HDF5/CSV/manifest writers with provenance, and the progress bar.
 #include "io/io.hpp"
+#include "core/cancel.hpp"
 #include "io/cancel.hpp"
 
 #include <btob/build_info.hpp>
@@ -316,7 +317,7 @@ const core::CancelToken* stop_token = nullptr;
 
 void stop_on(const core::CancelToken* token) { stop_token = token; }
 void check_stop() {
-  if (stop_token && stop_token->cancelled()) throw core::Cancelled();
+  core::check_cancel(stop_token);
 }
 
 // The plot script runs as a child process (no shell: the arguments are passed as they are).  std::system would

@@ -1,6 +1,8 @@
 // The route rates and their cache file (io/rates.hpp).
 #include "io/rates.hpp"
 
+#include "core/cancel.hpp"
+
 #include <btob/build_info.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -88,7 +90,7 @@ RouteRate calibrate(const core::Term& term, const core::RunControl& control) {
   RouteRate r;
   double n = 16;
   for (;;) {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     const auto t0 = std::chrono::steady_clock::now();
     const double done = term.probe(n, control);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -383,7 +383,7 @@ struct RunTally {
     }
   }
   void finish(const RunOptions& opt, std::size_t n_batches) {
-    if (opt.cancel && opt.cancel->cancelled()) throw core::Cancelled();
+    core::check_cancel(opt.cancel);
     if (opt.progress) opt.progress->update(n_batches, n_batches);
     if (opt.degenerate) *opt.degenerate = degenerate.load();
   }

@@ -1,6 +1,7 @@
 // The hyperbolicity requests: validation, the runs, and the description of their results.
 #include "lyapunov/hyperbolicity_requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
@@ -46,7 +47,7 @@ std::size_t HyperbolicityRequest::work_items() const { return static_cast<std::s
 HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
                            const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const core::Grid s = req.strip();
   const auto t0 = std::chrono::steady_clock::now();
   // Cell (i, j) at i * n2 + j, as strip_singular_values (hyperbolicity.cpp) walks it: each cell the same call.
@@ -58,6 +59,7 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
   p.symbol.reserve(items.size() * n2);
   for (std::size_t i : items)
     for (std::size_t j = 0; j < n2; ++j) {
+      core::poll_cancel(control.cancel, static_cast<long>(j));
       const StepSingularValues sv = step_singular_values(grid.at(i * n2 + j), req.r);
       p.s1.push_back(sv.s1);
       p.s2.push_back(sv.s2);

@@ -24,6 +24,7 @@
 // mantissa product and an exponent sum, exact); lambda1 + lambda2 = mean log det D = mean of log det M + 3 log c.
 // The expanding flag s1 >= 1 of D: with F = s1^2 + s2^2 = |D g1|^2 + |D g2|^2 and Dt = s1 s2 = det M c^3,
 // s1 >= 1 exactly when Dt >= 1 or F >= 1 + Dt^2 ((1 - s1^2)(1 - s2^2) = 1 - F + Dt^2).
+#include "core/cancel.hpp"
 #include "iterate/cocycle_impl.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/hyperbolicity.hpp"
@@ -82,6 +83,7 @@ struct Sums {
 struct Store {
   double *A, *Bc, *rho;
   std::uint8_t *sym, *expd;  // window rows, only with keep_steps
+  const core::CancelToken* cancel;  // polled every core::cancel_stride blocks of steps (clv_phase)
 };
 
 inline V one() { return V{} + 1; }
@@ -187,7 +189,9 @@ void clv_phase(Regs& s_out, Sums& w_out, const V* r_in, const V* a_in, const V* 
   Sums w = w_out;
   V r[NV], a[NV], k[NV];
   for (int j = 0; j < NV; ++j) r[j] = r_in[j], a[j] = a_in[j], k[j] = k_in[j];
-  for (long done = 0; done < steps;) {
+  for (long done = 0, blocks = 0; done < steps; ++blocks) {
+    // Cancelled: the lanes are left where they are (the batch is dropped; the run throws after its region).
+    if (core::cancel_due(st.cancel, blocks)) break;
     const int n = static_cast<int>(std::min<long>(K, steps - done));
     clv_block<Stored, Window, Keep>(s, w, r, a, k, n, j0 + done, st);
     done += n;
@@ -498,7 +502,8 @@ struct ThreadStore {
   std::vector<double> gather;
   ThreadStore(std::size_t window, bool keep_steps)
       : A(window * B), Bc(A.size()), rho(window * B), sym(keep_steps ? window * B : 0), expd(sym.size()) {}
-  Store store() { return {A.data(), Bc.data(), rho.data(), sym.data(), expd.data()}; }
+  const core::CancelToken* cancel = nullptr;
+  Store store() { return {A.data(), Bc.data(), rho.data(), sym.data(), expd.data(), cancel}; }
 };
 
 // The keys of the r values in flight (r-major, then orbit-major, window keys each) and each orbit's extreme keys.
@@ -522,6 +527,7 @@ void run_batch(const std::vector<Vec3<double>>& initial, std::size_t o0, double 
   load_lanes(initial, o0, lanes, r, b);
   NormsAt start;
   const WindowEnd end = forward_pass(b, opt.transient, N, opt.backward_transient, K, keep_steps, st, start);
+  if (st.cancel && st.cancel->cancelled()) return;  // its lanes stopped part-way: nothing of them is kept
   const KeyRange range = backward_keys(b.w, st, N, lanes, keys.of(ir, o0));
   for (int l = 0; l < lanes; ++l) {
     const std::size_t o = o0 + static_cast<std::size_t>(l);
@@ -594,6 +600,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
 #pragma omp parallel num_threads(threads)
   {
     ThreadStore ts(Nz, keep_steps);
+    ts.cancel = run.cancel;
     for (std::size_t r0 = 0; r0 < rs.size(); r0 += G) {
       const std::size_t g = std::min(G, rs.size() - r0);
 #pragma omp single
@@ -604,16 +611,18 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
       if (stop) break;  // read by every thread after the single's barrier: all leave at the same round
 #pragma omp for schedule(dynamic)
       for (std::size_t t = 0; t < g * n_batches; ++t) {
+        if (run.cancel && run.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
         const std::size_t ir = r0 + t / n_batches;
         run_batch(initial, t % n_batches * B, rs[ir], K[ir], opt, keep_steps, ts, keys, ir - r0, rows[ir]);
       }
 #pragma omp for schedule(dynamic)
-      for (std::size_t i = 0; i < g; ++i) pool_row(keys, i, static_cast<std::size_t>(opt.bins), ts, rows[r0 + i]);
+      for (std::size_t i = 0; i < g; ++i)
+        if (!(run.cancel && run.cancel->cancelled())) pool_row(keys, i, static_cast<std::size_t>(opt.bins), ts, rows[r0 + i]);
 #pragma omp single nowait
       if (run.progress) run.progress->update(r0 + g, rs.size());
     }
   }
-  if (run.cancel && run.cancel->cancelled()) throw core::Cancelled();
+  core::check_cancel(run.cancel);
   return rows;
 }
 

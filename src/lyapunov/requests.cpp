@@ -1,6 +1,7 @@
 // The Lyapunov requests: validation, the runs, and the description of their results.
 #include "lyapunov/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
@@ -67,7 +68,7 @@ void OrbitRequest::validate() const {
 
 ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const core::Vec3<double> u = core::parse_point(req.point, "point");
   Options o;
   o.iterations = req.iterations;

@@ -1,6 +1,7 @@
 // Individual orbits at fixed r in the strip (Figures 6.9-6.11): seeded initial points, tails, verdicts.
 #include "orbits/orbits.hpp"
 
+#include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "iterate/kernel.hpp"
@@ -50,7 +51,7 @@ const char* panel_word(attractors::Type t) {
 
 StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& control) {
   q.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const auto t0 = std::chrono::steady_clock::now();
   StripOrbitsResult res;
   res.request = q;
@@ -69,18 +70,20 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
   }
   iterate::RunOptions ro;
   ro.threads = control.threads;
+  ro.cancel = control.cancel;
   iterate::TailRecorder t1(iterate::Coord::w1, ens.orbits(), q.iterations, q.tail);
   iterate::TailRecorder t2(iterate::Coord::w2, ens.orbits(), q.iterations, q.tail);
   iterate::Both<iterate::TailRecorder, iterate::TailRecorder> both(t1, t2);
   iterate::run<double>(ens, q.iterations, both, ro);
   if (control.progress) control.progress->update(1, 2);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   res.w1 = std::move(t1.out);
   res.w2 = std::move(t2.out);
   // The verdicts: the classifier continues each orbit from its start with the same transient as the figure.
   attractors::Options opt;
   opt.transient = q.iterations;
   opt.run.threads = control.threads;
+  opt.run.cancel = control.cancel;
   res.verdicts = attractors::classify(ens, opt);
   for (const auto& v : res.verdicts) {
     res.pattern.push_back(v.type == attractors::Type::periodic ? patterns::to_paper(patterns::canonical(v.word)) : "");

@@ -2,6 +2,7 @@
 // predictions from the period matrix, and explicit instantiations of the simulator.
 #include "particles/particles_impl.hpp"
 
+#include "core/cancel.hpp"
 #include "core/scalar.hpp"
 #include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
@@ -177,7 +178,7 @@ template <class T> PatternRun<T> rescaled_run(const ParticlesRequest& req, const
                                           req.diagram_periods, control.cancel);
   res.events = run.events;
   if (req.periods > req.diagram_periods && run.failure.empty()) {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     run = simulate_pattern<T>(start, letters, r, req.periods, true, 0, control.cancel);
   }
   if (control.progress) control.progress->update(1, 1);
@@ -294,7 +295,7 @@ void ParticlesRequest::validate() const {
 
 ParticlesResult run(const ParticlesRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   switch (prec.kind) {
     case core::Precision::Kind::f80: return run_impl<long double>(req, control);

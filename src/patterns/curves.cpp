@@ -1,6 +1,7 @@
 // Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
 #include "patterns/curves.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "iterate/parallel.hpp"
 
@@ -139,10 +140,11 @@ void curve_row(const Word& w, bool negative, std::size_t i, double r, CurvesResu
 }
 
 // The roots of f between consecutive r of the grid where its sign changes (both ends finite), bisected on f down
-// to 1e-15 (a few ulps of r).
-template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f) {
+// to 1e-15 (a few ulps of r).  The token is polled every core::cancel_stride grid intervals.
+template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f, const core::CancelToken* cancel) {
   std::vector<double> roots;
   for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+    core::poll_cancel(cancel, static_cast<long>(i));
     double a = grid[i], b = grid[i + 1], fa = f(a), fb = f(b);
     if (!(std::isfinite(fa) && std::isfinite(fb)) || (fa > 0) == (fb > 0)) continue;
     while (b - a > 1e-15) {
@@ -161,7 +163,7 @@ template <class F> std::vector<double> sign_changes(const std::vector<double>& g
 // around it, the eigenvector is resolved and |u_x u_z| exceeds its error bound (the signs are then those of the
 // exact eigenvector, and it crosses in between); otherwise it is "undecided in long double" (at r near 0, where
 // the tracked eigenvalue falls to ~1e-17 of the largest, its eigenvector is rounding).
-void critical_points(const Word& w, bool negative, CurvesResult& res) {
+void critical_points(const Word& w, bool negative, CurvesResult& res, const core::CancelToken* cancel) {
   const auto domain = [&](double r) {
     const Point pt = at(w, res.reduced, r, negative);
     return pt.tracked < 0 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(pt.u(0) * -pt.u(2));
@@ -170,13 +172,13 @@ void critical_points(const Word& w, bool negative, CurvesResult& res) {
     const Point pt = at(w, res.reduced, r, negative);
     return resolved(pt) && std::abs(pt.u(0) * pt.u(2)) > pt.u_error;
   };
-  for (double rc : sign_changes(res.r, domain)) {
+  for (double rc : sign_changes(res.r, domain, cancel)) {
     const Point pt = at(w, res.reduced, rc, negative);
     const auto i = static_cast<std::size_t>(std::upper_bound(res.r.begin(), res.r.end(), rc) - res.r.begin());
     const bool decided = i > 0 && i < res.r.size() && certain(res.r[i - 1]) && certain(res.r[i]);
     res.critical.push_back({!decided ? "undecided in long double" : std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
   }
-  for (double rc : sign_changes(res.r, [&](double r) { return at(w, res.reduced, r, negative).dominance; }))
+  for (double rc : sign_changes(res.r, [&](double r) { return at(w, res.reduced, r, negative).dominance; }, cancel))
     res.critical.push_back({"dominance", rc});
   for (const auto& c : res.critical) {
     res.critical_r.push_back(c.r);
@@ -189,7 +191,7 @@ void critical_points(const Word& w, bool negative, CurvesResult& res) {
 // word -> arrays -> a row per r (in parallel) -> critical r.
 CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   q.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   CurvesResult res;
   res.request = q;
   const Word w = analysed_word(q, res);
@@ -197,11 +199,12 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   const std::size_t n = static_cast<std::size_t>(q.r_count);
   allocate_curves(n, res.feas_names.size(), res);
   iterate::parallel_for(n, control.threads, [&](std::size_t i) {
+    if (control.cancel && control.cancel->cancelled()) return;  // no exception may leave an OpenMP region
     const double r = q.r_min + (q.r_max - q.r_min) * static_cast<double>(i) / static_cast<double>(n - 1);
     curve_row(w, negative, i, r, res);
   });
-  control.check_cancelled();
-  critical_points(w, negative, res);
+  core::check_cancel(control.cancel);
+  critical_points(w, negative, res, control.cancel);
   if (control.progress) control.progress->update(1, 1);
   return res;
 }

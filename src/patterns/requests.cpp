@@ -1,6 +1,7 @@
 // `btob pattern` as requests: WordRequest (verdict, window, charpoly) and AtlasRequest (the atlas and its check).
 #include "patterns/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/scalar.hpp"
@@ -214,7 +215,7 @@ void WordRequest::validate() const {
 
 WordResult run(const WordRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   WordResult res;
   res.mode = req.mode();
   res.word = parse_word(req.word, "word");
@@ -474,13 +475,15 @@ core::Work work(const WordRequest& req) {
   return w;
 }
 
-std::size_t AtlasRequest::work_items() const {
-  return enumerate_canonical(static_cast<int>(max_length)).size() + (checks() ? table_6_1_r().size() : 0);
+std::size_t AtlasRequest::work_items() const { return work_items(nullptr); }
+
+std::size_t AtlasRequest::work_items(const core::CancelToken* cancel) const {
+  return enumerate_canonical(static_cast<int>(max_length), cancel).size() + (checks() ? table_6_1_r().size() : 0);
 }
 
 AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const std::vector<Word> all = enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
   const std::vector<double> table = req.checks() ? table_6_1_r() : std::vector<double>{};
   std::vector<Word> words;
@@ -502,7 +505,7 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
     for (const auto& e : f) part.feasible.push_back(e.intervals);
   }
   part.atlas_seconds = seconds_since(t0);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   if (!rs.empty()) {
     t0 = std::chrono::steady_clock::now();
     const DetectionRun d = detect_patterns(rs, req.ics, req.iterations, req.tail, req.seed,
@@ -513,7 +516,7 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
       part.found[static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin())].emplace_back(f.word, f.count);
     part.check_seconds = seconds_since(t0);
   }
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   return part;
 }
 
@@ -571,8 +574,7 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
 }
 
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
-  // The words first, polling the token (work_items() cannot): every later enumeration finds them listed.
-  enumerate_canonical(static_cast<int>(req.max_length), control.cancel);
+  core::work_items(req, control.cancel);  // the words first, polling the token: later enumerations find them listed
   return merge(req, {run_part(req, core::all_items(req), control)});
 }
 

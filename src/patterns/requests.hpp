@@ -89,6 +89,9 @@ struct AtlasRequest {
   // A sweep (core/sweep.hpp): items 0..W-1 are the words of enumerate_canonical(max-length), in its order; with
   // the iterator check, items W.. are Table 6.1's r values (the detection at each r is independent of the others).
   std::size_t work_items() const;
+  // The same count, the words enumerated with `cancel` polled (3^16 words of length 16 take seconds): what the
+  // sweep layer calls first (core::work_items), so that every later enumeration finds them listed.
+  std::size_t work_items(const core::CancelToken* cancel) const;
   bool checks() const { return !feasible && !no_check; }
   std::string default_name() const { return feasible ? "feasible" : "atlas"; }
   template <class V> void fields(V&& v) {

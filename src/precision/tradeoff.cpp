@@ -306,7 +306,7 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
   TradeoffResult res;
   for (std::size_t step = 0; step < methods.size(); ++step) {
     if (control.progress) control.progress->update(step, methods.size());
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     res.rows.push_back(measure(methods[step], req, e, reference, window_n, ro));
   }
   if (control.progress) control.progress->update(methods.size(), methods.size());

@@ -2,6 +2,7 @@
 // double, long double.
 #include "stats/stats.hpp"
 
+#include "core/cancel.hpp"
 #include "core/request.hpp"
 #include "iterate/parallel.hpp"
 
@@ -48,7 +49,8 @@ long checked_fft_length(long N, long n_max) {
 }  // namespace
 
 template <class T>
-std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max) {
+std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max,
+                                  const core::CancelToken* cancel) {
   check_series(phi, psi, N, n_max);
   const T mp = mean(phi, N), mq = mean(psi, N);
   // Centred copies: the raw sum (1/N) sum phi psi - mp mq cancels to ~eps E[phi]E[psi] / C_N(0) (1e-12 on an
@@ -65,6 +67,7 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
     const T* pb = b.data() + n;
     T total = 0, comp = 0, wt = 0, wc = 0;
     for (long k0 = 0; k0 < N; k0 += block) {
+      if (core::cancel_due(cancel, k0 / block)) return;  // no exception may leave an OpenMP region
       const long k1 = std::min(N, k0 + block);
       T acc[8] = {}, w[8] = {};
       long k = k0;
@@ -84,6 +87,7 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
     }
     c[n] = (total + comp) / static_cast<T>(N) + mp * ((wt + wc) / static_cast<T>(N));
   });
+  core::check_cancel(cancel);
   return c;
 }
 
@@ -140,10 +144,12 @@ template <class T> std::vector<T> Periodogram<T>::operator()(const std::vector<T
   return s;
 }
 
-template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long);
-template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long);
+template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long,
+                                               const core::CancelToken*);
+template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long,
+                                                const core::CancelToken*);
 template std::vector<long double> correlation_direct(const std::vector<long double>&, const std::vector<long double>&,
-                                                     long, long);
+                                                     long, long, const core::CancelToken*);
 template class Correlator<float>;
 template class Correlator<double>;
 template class Correlator<long double>;

@@ -1,6 +1,7 @@
 // The statistics requests: validation, the runs, and the description of their results.
 #include "stats/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 
@@ -33,22 +34,23 @@ std::pair<Observable, Observable> observables(const std::string& spec) {
 
 // C_N in precision T by the chosen route; the result in double.
 template <class T>
-std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft) {
+std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft,
+                                 const core::CancelToken* cancel) {
   const std::vector<T> a(x.begin(), x.end()), b(y.begin(), y.end());
   std::vector<T> c;
   if (fft) {
     Correlator<T> corr(N, n_max);
     c = corr(a, b);
   } else {
-    c = correlation_direct(a, b, N, n_max);
+    c = correlation_direct(a, b, N, n_max, cancel);
   }
   return {c.begin(), c.end()};
 }
 std::vector<double> correlate_as(const std::string& precision, const std::vector<double>& x, const std::vector<double>& y,
-                                 long N, long n_max, bool fft) {
-  if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft);
-  if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft);
-  return correlate_in<double>(x, y, N, n_max, fft);
+                                 long N, long n_max, bool fft, const core::CancelToken* cancel) {
+  if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft, cancel);
+  if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft, cancel);
+  return correlate_in<double>(x, y, N, n_max, fft, cancel);
 }
 
 // The periodogram of x (first N values), averaged over blocks of consecutive frequencies to at most 8192 points
@@ -136,7 +138,7 @@ core::Work work(const CorrelateRequest& req) {
 
 CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   CorrelateResult res;
   res.request = req;
   std::tie(res.phi, res.psi) = observables(req.observable);
@@ -147,14 +149,14 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   const OrbitSeries s =
       std::move(orbit_series(req.r, {core::parse_point(req.point, "point")}, req.transient, N + M, opt)[0]);
   const auto x = observe(s, res.phi), y = observe(s, res.psi);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   auto t0 = std::chrono::steady_clock::now();
-  res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct");
+  res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct", control.cancel);
   res.seconds = seconds_since(t0);
   if (req.method == "both") {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     t0 = std::chrono::steady_clock::now();
-    res.c_direct = correlate_as(req.precision, x, y, N, M, false);
+    res.c_direct = correlate_as(req.precision, x, y, N, M, false, control.cancel);
     res.seconds_direct = seconds_since(t0);
     double scale = 0;
     for (std::size_t n = 0; n < res.c.size(); ++n) {
@@ -314,7 +316,7 @@ std::size_t MeasureRequest::work_items() const { return iterate::parse_grid(grid
 
 MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   MeasurePart p;
   p.items = items;
   if (items.empty()) return p;  // a rank without initial conditions
@@ -328,7 +330,7 @@ MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& 
   opt.cancel = control.cancel;
   const Measure frame = measure_frame(parse_chart(req.coords, "coords"), req.bins, req.bins, req.extent);
   std::vector<OrbitSeries> series = orbit_series(req.r, mine, req.transient, req.iterations, opt);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   p.cells.reserve(items.size() * static_cast<std::size_t>(req.iterations));
   for (auto& s : series) {
     const std::vector<std::int32_t> c = measure_cells(s, frame, req.extent.empty());

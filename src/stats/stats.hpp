@@ -61,8 +61,10 @@ std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
 // against mean(phi) mean(psi)); 8 interleaved partial sums over blocks of 1024 terms, each block added to a
 // compensated (Neumaier) total; the means are compensated too; lags in parallel (OpenMP, static: the
 // result does not depend on the thread count).
+// `cancel` is polled every core::cancel_stride blocks of every lag (core::Cancelled after the loop).
 template <class T>
-std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max);
+std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T>& psi, long N, long n_max,
+                                  const core::CancelToken* cancel = nullptr);
 
 // The FFT route, O(L log L), L = fast_fft_length(N + n_max): phi_k - mean(phi) (k < N) and psi_k -
 // mean(psi) (k < N + n_max) are zero padded to L, so the circular correlation IFFT(conj(FFT a) FFT b)/L
@@ -159,10 +161,13 @@ double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b
 // per measure.  Orbits ending on the same attractor with a physical measure land in one group.
 std::vector<int> group_measures(const std::vector<Measure>& ms, double tv_same);
 
-extern template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long);
-extern template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long);
+extern template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long,
+                                                      const core::CancelToken*);
+extern template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long,
+                                                       const core::CancelToken*);
 extern template std::vector<long double> correlation_direct(const std::vector<long double>&,
-                                                            const std::vector<long double>&, long, long);
+                                                            const std::vector<long double>&, long, long,
+                                                            const core::CancelToken*);
 extern template class Correlator<float>;
 extern template class Correlator<double>;
 extern template class Correlator<long double>;

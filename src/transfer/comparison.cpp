@@ -39,8 +39,11 @@ std::vector<core::Vec3<double>> measure_grid(const TransferRequest& q, Domain do
 
 // The orbits' empirical measures on the boxes, averaged: each orbit weighs its initial condition's share of
 // Lebesgue measure (equal cells: equal weights).
-stats::Measure empirical(const TransferRequest& q, Domain dom, const Partition& part, int threads) {
-  const auto series = stats::orbit_series(q.r, measure_grid(q, dom), q.measure_transient, q.measure_iterations, threads);
+stats::Measure empirical(const TransferRequest& q, Domain dom, const Partition& part, const core::RunControl& control) {
+  iterate::RunOptions opt;  // the orbits poll the run's token
+  opt.threads = control.threads;
+  opt.cancel = control.cancel;
+  const auto series = stats::orbit_series(q.r, measure_grid(q, dom), q.measure_transient, q.measure_iterations, opt);
   const stats::Chart chart = dom == Domain::strip ? stats::Chart::strip : stats::Chart::angles;
   stats::Measure mean;
   for (std::size_t o = 0; o < series.size(); ++o) {
@@ -56,8 +59,8 @@ stats::Measure empirical(const TransferRequest& q, Domain dom, const Partition& 
 }  // namespace
 
 MeasureComparison compare_with_empirical(const TransferRequest& q, Domain dom, const Partition& part,
-                                         const std::vector<double>& density, int threads) {
-  const stats::Measure orbits = empirical(q, dom, part, threads);
+                                         const std::vector<double>& density, const core::RunControl& control) {
+  const stats::Measure orbits = empirical(q, dom, part, control);
   stats::Measure ulam = orbits;  // the same bins, the transfer density's masses
   double total = 0;
   for (double v : density) total += v;

@@ -7,9 +7,13 @@
 #include <Spectra/MatOp/SparseGenMatProd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 
 namespace btob::transfer {
 
@@ -90,19 +94,36 @@ std::vector<LocalPair> arnoldi_eigenpairs(const ColMat& A, int k, bool vectors, 
   return out;
 }
 
-// Every eigenpair of A by Eigen's dense solver.
-std::vector<LocalPair> dense_eigenpairs(const ColMat& A, bool vectors, const core::CancelToken* cancel) {
-  core::check_cancel(cancel);
-  const Eigen::MatrixXd D(A);
+// Every eigenpair of the dense matrix D by Eigen's solver.
+std::vector<LocalPair> eigen_solve(const Eigen::MatrixXd& D, bool vectors) {
   Eigen::EigenSolver<Eigen::MatrixXd> es(D, vectors);
   std::vector<LocalPair> out;
-  for (long i = 0; i < A.rows(); ++i) {
+  for (long i = 0; i < D.rows(); ++i) {
     LocalPair pair;
     pair.value = es.eigenvalues()(i);
     if (vectors) pair.vector = es.eigenvectors().col(i);
     out.push_back(std::move(pair));
   }
   return out;
+}
+
+// Eigen's dense solver runs O(m^3) steps inside one call that cannot poll the token (0.03 s at 100 boxes, ~5 s at
+// kDenseMaxBoxes, minutes at kDenseFallbackBoxes).  Above this size the block is solved on a thread of its own.
+constexpr long kDenseInlineBoxes = 128;
+
+// Every eigenpair of A by Eigen's dense solver.  A block above kDenseInlineBoxes is solved on a thread of its own
+// (on its own copy; the same code, so the same bits) while this one polls the token every 5 ms: cancelled, this
+// thread throws at once and abandons the solver, which finishes alone and frees its copy (one core for at most the
+// solve's own time; the command line's exit ends it at once).
+std::vector<LocalPair> dense_eigenpairs(const ColMat& A, bool vectors, const core::CancelToken* cancel) {
+  core::check_cancel(cancel);
+  if (!cancel || A.rows() <= kDenseInlineBoxes) return eigen_solve(Eigen::MatrixXd(A), vectors);
+  auto task = std::make_shared<std::packaged_task<std::vector<LocalPair>()>>(
+      [D = Eigen::MatrixXd(A), vectors] { return eigen_solve(D, vectors); });
+  std::future<std::vector<LocalPair>> solved = task->get_future();
+  std::thread([task] { (*task)(); }).detach();  // the task (and D) live until the solver returns
+  while (solved.wait_for(std::chrono::milliseconds(5)) != std::future_status::ready) core::check_cancel(cancel);
+  return solved.get();
 }
 
 }  // namespace

@@ -116,6 +116,6 @@ struct MeasureComparison {
   long points = 0;
 };
 MeasureComparison compare_with_empirical(const TransferRequest& q, Domain dom, const Partition& part,
-                                         const std::vector<double>& density, int threads);
+                                         const std::vector<double>& density, const core::RunControl& control);
 
 }  // namespace btob::transfer

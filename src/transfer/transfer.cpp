@@ -2,6 +2,7 @@
 // `btob transfer` (its stages in stages.hpp) and `btob transfer-r`.
 #include "transfer/transfer.hpp"
 
+#include "core/cancel.hpp"
 #include "core/grid.hpp"
 
 #include <fmt/format.h>
@@ -217,7 +218,7 @@ UlamMatrix matrix_stage(const TransferRequest& q, Domain dom, TransferResult& re
   res.lost = P.lost;
   res.matrix_bytes = P.col.size() * sizeof(int) + P.val.size() * sizeof(double) + P.row_ptr.size() * sizeof(int);
   res.seconds_matrix = detail::seconds_since(started);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   return P;
 }
 
@@ -283,7 +284,7 @@ void basin_stage(const UlamMatrix& P, const TransferRequest& q, Domain dom, cons
   res.basin_residual = basins.residual;
   res.basin_iterations = basins.iterations;
   res.seconds_basins = detail::seconds_since(started);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
 }
 
 // The arrays of the HDF5 file: "second" all 0 when there is no such eigenvalue, the Lebesgue fractions, the (a, b)
@@ -313,14 +314,14 @@ TransferResult run(const TransferRequest& q, const core::RunControl& control) {
   const Spectrum spectrum = q.spectrum() ? leading_spectrum(P, d, q, control.cancel) : Spectrum{};
   record_spectrum(spectrum, q.near_one, res);
   res.seconds_spectrum = detail::seconds_since(spectrum_started);
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   const std::vector<double> mu = lebesgue(res.part, dom, q.w1_range);
   std::vector<std::vector<double>> densities;  // per component: its density over all boxes
   if (q.spectrum()) densities = component_stages(P, d, spectrum, mu, q, control, res);
   cycle_stage(q, dom, d, densities, control, res);
   basin_stage(P, q, dom, mu, control, res);
   if (q.measure_orbits > 0 && q.spectrum()) {  // (nothing to compare it with without the density)
-    const MeasureComparison cmp = compare_with_empirical(q, dom, res.part, res.density, control.threads);
+    const MeasureComparison cmp = compare_with_empirical(q, dom, res.part, res.density, control);
     res.tv_boxes = cmp.tv_boxes, res.tv_coarse = cmp.tv_coarse, res.measure_points = cmp.points;
   }
   file_arrays(res);
@@ -447,7 +448,7 @@ TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
   core::RunControl inner = c;
   inner.progress = nullptr;
   for (std::size_t ir = 0; ir < R; ++ir) {
-    c.check_cancelled();
+    core::check_cancel(c.cancel);
     const UlamMatrix P = ulam_btob(res.r[ir], dom, part, q.samples, q.route, inner);
     const Decomposition d = decompose(P);
     const auto pairs = leading_eigenpairs(P, d, q.eigenvalues, false, kDenseMaxBoxes, c.cancel);

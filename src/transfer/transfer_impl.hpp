@@ -1,6 +1,7 @@
 // The generic Ulam construction, templated on the map (used for P^_r and for the validation maps of the tests).
 #pragma once
 
+#include "core/cancel.hpp"
 #include "transfer/transfer.hpp"
 
 #include <omp.h>
@@ -106,7 +107,7 @@ UlamMatrix ulam(const Partition& p, int samples, BatchMap&& f, const core::RunCo
   std::uint64_t lost = 0;
   const int threads = c.threads > 0 ? c.threads : omp_get_max_threads();
   for (long box0 = 0; box0 < n; box0 += chunk) {
-    c.check_cancelled();
+    core::check_cancel(c.cancel);
     const long count = std::min(chunk, n - box0);
     ulam_detail::place_samples(p, off, box0, count, a, b, threads);
     f(a.data(), b.data(), a.size());

@@ -1,6 +1,8 @@
 // Overlays of the windows on bifurcation diagrams (windows/overlays.hpp).
 #include "windows/overlays.hpp"
 
+#include "core/cancel.hpp"
+
 #include "windows/direct.hpp"
 #include "windows/windows.hpp"
 
@@ -29,9 +31,10 @@ std::pair<double, double> bounds_in_double(int n) {
 }
 }  // namespace
 
-std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max) {
+std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel) {
   std::vector<std::pair<double, int>> out;
   for (int n = 1; n <= kOverlayMaxN; ++n) {
+    core::check_cancel(cancel);
     const double up_closed = n >= 2 ? static_cast<double>(r_crit2(n, 20)) : 1.0;
     if (up_closed < r_min) break;
     if (n >= 2 && up_closed >= r_min && up_closed <= r_max) out.push_back({up_closed, 0});  // red: r_crit,2(n)

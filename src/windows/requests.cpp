@@ -1,6 +1,7 @@
 // The windows requests: validation, the runs, their CSV text and the description of their results.
 #include "windows/requests.hpp"
 
+#include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
@@ -53,7 +54,7 @@ Part for_each_n(const Req& req, int min_n, const std::vector<std::size_t>& items
   Part part;
   part.items = items;
   for (std::size_t j = 0; j < items.size(); ++j) {
-    control.check_cancelled();
+    core::check_cancel(control.cancel);
     f(part, r.n_of(items[j]));
     progress(control, j + 1, items.size());
   }
@@ -247,7 +248,7 @@ void ThresholdsRequest::validate() const { require_digits(digits); }
 
 ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   ThresholdsResult res;
   res.thresholds = thresholds(req.digits);
   for (const auto& t : res.thresholds) {
@@ -279,7 +280,7 @@ void StripesRequest::validate() const {
 
 StripesResult run(const StripesRequest& req, const core::RunControl& control) {
   req.validate();
-  control.check_cancelled();
+  core::check_cancel(control.cancel);
   StripesResult res;
   for (const auto& s : thin_stripes(req.max_m, req.digits)) {
     res.l.push_back(static_cast<std::uint32_t>(s.l));
@@ -366,7 +367,8 @@ VerifyOptions verify_options(const VerifyRequest& req, int threads) {
 
 VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
-  const VerifyOptions options = verify_options(req, control.threads);
+  VerifyOptions options = verify_options(req, control.threads);
+  options.cancel = control.cancel;
   // One n at a time, for progress and cancellation; the rows do not depend on the grouping.
   VerifyPart part = for_each_n<VerifyPart>(req, 2, items, control, [&](VerifyPart& p, int n) {
     const std::vector<VerifyRow> rows = verify_windows(n, n, options);

@@ -50,6 +50,7 @@ std::vector<VerifyRow> verify_windows(int first, int last, const VerifyOptions& 
     iterate::SymbolRecorder rec(ens.orbits(), iterations - tail + 1, iterations);
     iterate::RunOptions ro;
     ro.threads = opt.threads;
+    ro.cancel = opt.cancel;
     if (opt.long_double) iterate::run<long double>(ens, iterations, rec, ro);
     else iterate::run<double>(ens, iterations, rec, ro);
     for (std::size_t j = 0; j < 4; ++j) {

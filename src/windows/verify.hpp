@@ -1,6 +1,8 @@
 // The iterator's check of the windows: orbits of the Section 4 grid inside and just below each window.
 #pragma once
 
+#include "core/request.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@ struct VerifyOptions {
   long tail = 40000;
   bool long_double = false;  // run the kernel in long double instead of double
   int threads = 0;
+  const core::CancelToken* cancel = nullptr;  // polled by the kernel runs (core::Cancelled)
 };
 
 struct VerifyRow {
