@@ -48,7 +48,7 @@ template <core::Sweep Req>
 SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, int ranks, std::size_t start,
                              double target = 0.2) {
   SweepEstimate e;
-  e.items = req.work_items();
+  e.items = core::work_items(req, control.cancel);  // polled: the atlas enumerates its words
   e.ranks = ranks;
   for (std::size_t m = std::min(std::max<std::size_t>(start, 1), e.items); m > 0; m = std::min(2 * m, e.items)) {
     std::vector<std::size_t> items;
