@@ -101,6 +101,12 @@ XDG_CACHE_HOME=/proc/btob-no-such-dir "$BTOB" lyapunov --r 0.2 --point 1,-0.5,-1
   fail "an unwritable cache is an error: $(cat out.txt)"
 grep -q "^  predicted: " out.txt || fail "no prediction without a cache: $(cat out.txt)"
 rm -f out.txt
+# A request that is its own probe (a word's verdict) keeps the time of a completed run: the dry run after it reads
+# the cache instead of running it again.
+"$BTOB" pattern 1133 --r 0.15 > /dev/null || fail "pattern 1133 failed"
+"$BTOB" pattern 1133 --r 0.15 --dry-run > out.txt 2>&1 || fail "pattern --dry-run: $(cat out.txt)"
+grep -q "cached from" out.txt || fail "a completed run of a self-probed request left no rate: $(cat out.txt)"
+rm -f out.txt
 fi
 [ -z "$(ls)" ] || fail "the dry runs left $(ls)"
 

@@ -33,9 +33,10 @@ struct Registration {
   Registration() {
     command<precision::TradeoffRequest>(
         "precision",
-        "Speed against accuracy of each precision and algorithm (vs 256-digit MPFR). No --dry-run: most of its time is "
-        "fixed parts (each method's window tests up to the largest window-n, its Lyapunov errors on the sinks and its "
-        "throughput), about a minute whatever the orbits, which no short probe prices",
+        "Speed against accuracy of each precision and algorithm (vs 256-digit MPFR). Most of its time is fixed parts "
+        "(each method's window tests up to the largest window-n, its Lyapunov errors on the sinks and its throughput), "
+        "about a minute whatever the orbits, which no short probe prices: --dry-run of a request not yet run on this "
+        "machine runs it once (writing nothing); a completed run keeps its time for the dry runs after it",
         Output{"results/precision", "tradeoff", "", 0, false, false}, tradeoff);
   }
 } registration;

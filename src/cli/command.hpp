@@ -25,6 +25,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <concepts>
 #include <iostream>
 #include <functional>
@@ -318,6 +319,18 @@ template <class Req> void note_long_sweep(const std::string& name, const Req& re
   }
 }
 
+// A request that is its own probe (every term a core::self_term: a word's analysis, the precision study) keeps the
+// time of a completed run in the rate cache: its dry run afterwards reads it instead of running the request again.
+template <class Req> void remember_self_rate(const Req& req, const Output& out, double seconds) {
+  if constexpr (core::Costed<Req> && !core::Sweep<Req>) {
+    const core::Work w = work(req);
+    if (w.terms.empty() || !std::all_of(w.terms.begin(), w.terms.end(), [](const core::Term& t) { return t.probe_is_request; }))
+      return;
+    const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+    for (const core::Term& t : w.terms) io::remember_rate(t, threads, t.units, seconds / static_cast<double>(w.terms.size()));
+  }
+}
+
 // The body, or the files of a stdout command given --out.
 template <class Req>
 void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
@@ -354,6 +367,7 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
     if (out.dry_run) return print_work_estimate(name, req, out, ctx);
     if (!out.quiet) note_long_run(name, req, out, ctx);
   }
+  const auto t0 = std::chrono::steady_clock::now();
   try {
     run_body(name, body, req, out, ctx);
   } catch (const core::Cancelled&) {
@@ -364,6 +378,7 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
   }
   // The result is written (or printed): the finished items are no longer needed.
   if (ctx.checkpoint && mpi::rank() == 0) remove_checkpoint(*ctx.checkpoint);
+  remember_self_rate(req, out, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
 // The subcommand on the command line: a flag per field of the request and of the output, applied when it runs.

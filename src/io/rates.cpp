@@ -141,6 +141,14 @@ RouteRate route_rate(const core::Term& term, const core::RunControl& control, in
   return r;
 }
 
+void remember_rate(const core::Term& term, int threads, double units, double seconds) {
+  if (!(units > 0 && seconds > 0)) return;
+  RouteRate r;
+  r.units_per_second = units / seconds;
+  r.probe_units = units, r.probe_seconds = seconds;
+  store_rate(rates_path(), rate_key(term.route, threads), r);
+}
+
 WorkEstimate estimate_work(core::Work work, const core::RunControl& control, int threads) {
   WorkEstimate e;
   e.threads = threads;

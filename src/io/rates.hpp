@@ -35,6 +35,10 @@ struct RouteRate {
 // the probe's, then cached.  Throws core::Cancelled when the control is cancelled during a probe.
 RouteRate route_rate(const core::Term& term, const core::RunControl& control, int threads);
 
+// Keeps a rate measured by a completed run of the request itself (a core::self_term's route: the request is its own
+// probe), so that its dry run after a run reads the cache instead of running it again.
+void remember_rate(const core::Term& term, int threads, double units, double seconds);
+
 // A request's predicted cost: the work, each term's rate, and their sum.
 struct WorkEstimate {
   core::Work work;

@@ -28,6 +28,22 @@
 
 namespace btob::precision {
 
+core::Work work(const TradeoffRequest& req) {
+  core::Work w;
+  std::string route = "precision study";
+  core::Args args;
+  TradeoffRequest fields = req;  // fields() visits members by reference
+  fields.fields(core::ArgsWriter{&args});
+  for (const auto& [name, values] : args) route += " " + name + "=" + fmt::format("{}", fmt::join(values, ","));
+  w.terms.push_back(core::self_term(req, route,
+                                    "the precision study (one indivisible run: every method's window tests, Lyapunov "
+                                    "errors and throughput, then the orbits' symbols against 256-digit MPFR)"));
+  const double methods = 8, r = static_cast<double>(req.r.size());
+  w.output_bytes = methods * (200 + 40 * r) + 2000;  // tradeoff.csv: a row per method, four columns per r
+  w.peak_bytes = methods * static_cast<double>(req.orbits) * r * static_cast<double>(req.iterations) + 4e6;  // symbols
+  return w;
+}
+
 using namespace btob::iterate;
 using core::mpfr_float;
 using Clock = std::chrono::steady_clock;

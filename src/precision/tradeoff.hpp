@@ -8,6 +8,7 @@
 
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/work.hpp"
 
 #include <cstdint>
 #include <string>
@@ -59,6 +60,12 @@ struct TradeoffResult {
 };
 
 TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control = {});
+
+// Its cost (core/work.hpp): one indivisible study whose time is mostly fixed parts (each method's window tests up
+// to the largest window-n, its Lyapunov errors on the sinks, its throughput: about a minute whatever the orbits),
+// which no short probe prices; so the request is its own probe (core::self_term): the first dry run of a request
+// runs it once, and a completed run keeps its time in the rate cache for the dry runs after it.
+core::Work work(const TradeoffRequest& req);
 
 // lambda1 = log|l2/l1| / p of the periodic word `period` (symbols 1, 2, 3) at r (read from its decimal
 // text to 60 digits: the r that T's runs read, not double's value widened), in MPFR with 60 digits: the period matrix, its dominant eigenvalue l1 by Newton on det(t - M) from the
