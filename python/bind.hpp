@@ -280,10 +280,13 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
 
 // A sweep's cost from a ~0.2 s sample of its own items (core/estimate.hpp), for btob.estimate(function, **kwargs):
 // _btob._estimators[function](**kwargs) -> dict(items, sampled, sample_seconds, predicted_seconds, bytes,
-// peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.
+// peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.  The sweeps'
+// names are also in _btob._sweeps (the functions that take resume=).
 template <class Req> void bind_estimate(py::module_& m) {
   using R = Route<Req>;
   if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
+  if (!py::hasattr(m, "_sweeps")) m.attr("_sweeps") = py::set();
+  m.attr("_sweeps").attr("add")(R::function);
   m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
     Req req = request_of<Req>(kw);
     const int threads = threads_of(kw);

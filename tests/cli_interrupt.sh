@@ -45,7 +45,9 @@ interrupt() {
   local latency want lines files kept=0 want_files="keep.txt "
   latency=$(echo "$t1 - $t0" | bc)
   want=$([ "$sig" = INT ] && echo 130 || echo 143)
-  lines=$(grep -c . "$work/stderr")
+  # The estimate a run predicted over 10 minutes prints before it starts (a header line, then indented lines) is not
+  # the interruption's: the rest of stderr must be its one line.
+  lines=$(grep -v -E '^btob .*: (a long run; its estimate first|estimate before the run)|^  ' "$work/stderr" | grep -c .)
   files=$(cd "$out" && ls -A | tr '\n' ' ')
   # --resume: the finished items stay in OUT/NAME.checkpoint, and a line says so before the interruption's.
   if [[ " $* " == *" --resume "* ]]; then

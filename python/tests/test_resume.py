@@ -84,11 +84,12 @@ def test_another_request_is_refused_in_one_line(tmp_path):
     assert cp.read_bytes() == before
 
 
-SWEEPS = sorted(f for f in btob._btob._estimators if f in CASES)
+SWEEPS = sorted(f for f in btob._btob._sweeps if f in CASES)
 
 
 def test_every_sweep_takes_resume():
-    assert set(SWEEPS) == set(btob._btob._estimators), "a sweep without a small case in test_round_trip.CASES"
+    assert set(SWEEPS) == set(btob._btob._sweeps), "a sweep without a small case in test_round_trip.CASES"
+    assert set(btob._btob._sweeps) < set(btob._btob._estimators), "the sweeps are some of the estimated functions"
 
 
 @pytest.mark.parametrize("function", SWEEPS)

@@ -350,7 +350,8 @@ core::Work work(const ParticlesRequest& req) {
   // per event of the diagram's periods, 8 numbers); ~20 bytes a number.  The run keeps per period a few doubles.
   const double p = static_cast<double>(req.periods);
   const double conv_rows = std::min(p, 100.0) + (p > 100 ? 20 * std::log10(p / 100) : 0.0);
-  w.output_bytes = 400 + 140 * conv_rows + 160 * letters * static_cast<double>(req.diagram_periods);
+  // NAME.h5 holds three ratios per period (length, time, velocity; 8 bytes each) and the diagram's events.
+  w.output_bytes = 400 + 140 * conv_rows + 160 * letters * static_cast<double>(req.diagram_periods) + 24 * p;
   w.peak_bytes = 64 * p + 64 * letters * static_cast<double>(req.diagram_periods) + 65536;
   return w;
 }
