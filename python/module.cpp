@@ -134,7 +134,7 @@ BTOB_ROUTE(attractors::BasinsRRequest, "basins_r", "basins-r", "basins-r", "frac
   template <class Res> static std::string scalar(const auto&, const Res&) {                       \
     return "float,double,long-double,float128,mpfr:50,mpfr:100,mpfr:256";                        \
   }
-BTOB_ROUTE(precision::TradeoffRequest, "precision_study", "precision", "precision_tradeoff", "tradeoff", "",
+BTOB_ROUTE(precision::TradeoffRequest, "precision_study", "precision", "precision_tradeoff", "tradeoff", "precision_tradeoff.py",
            "Speed against accuracy of each precision and algorithm (vs 256-digit MPFR)")
 #undef BTOB_ROUTE_BODY
 #define BTOB_ROUTE_BODY \

@@ -1,15 +1,16 @@
 #!/bin/bash
 # --dry-run (core/estimate.hpp): the predicted time of three sweeps of different kinds (r values with long orbits,
 # grid rows of a basin image, n values of certified window bounds) lies within a factor of 2 of the measured run
-# time, and a dry run writes nothing; a sweep of about half an hour prints its estimate before it starts, a short one
-# does not.  The same for three requests that are not sweeps, priced by the cached route
+# time, and a dry run writes nothing.  The same for three requests that are not sweeps, priced by the cached route
 # rates (core/work.hpp, io/rates.hpp): one orbit's derivative cocycle, the classifier's two passes, the particles'
 # event loop, each from a cold cache and the first again from a warm one; a corrupt, a foreign and an unwritable
-# cache are recalibrated without an error.  Timing on a shared machine: a command outside the factor is measured
+# cache are recalibrated without an error; a sweep of about half an hour prints its estimate before it starts, a
+# short one does not.  Timing on a shared machine: a command outside the factor is measured
 # once more (dry run and run again, back to back) before the test fails.
 #
 # Usage: cli_dry_run.sh BTOB [sweeps|counted|cache]   (default: all three parts; CTest runs them as separate tests,
-# the two timed ones left out of the unoptimised sanitizer build, where each run takes ten times longer)
+# the counted part, with the note before a long sweep, left out of the unoptimised sanitizer build, where each run
+# takes ten times longer)
 set -u
 BTOB=$1
 PART=${2:-all}
@@ -53,20 +54,6 @@ check bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 100 --iteration
 check basins basins --r 0.11 --grid strip:200x200 --replicates 1 --transient 20000 --iterations 3000 \
   --max-period 200 --lyap-iterations 400 --refine-factor 2 --no-plot
 check windows-bounds windows bounds --n 1..80 --certify --digits 15
-# A sweep predicted over 10 minutes says so before it starts (the sample runs only when its map steps may take a
-# minute): the note within a few seconds of the start, then SIGINT; a short sweep prints no note.
-"$BTOB" bifurcation --r-count 1000000 --iterations 100000 --grid random:64 --threads 2 --no-plot --out big \
-  2> note.txt &
-pid=$!
-for _ in $(seq 100); do grep -q "estimate before the run" note.txt 2> /dev/null && break; sleep 0.1; done
-kill -INT $pid 2> /dev/null
-wait $pid
-grep -q "estimate before the run" note.txt || fail "a sweep of ~30 min printed no estimate before it started: $(cat note.txt)"
-grep -q "predicted: " note.txt || fail "the note before the run has no prediction: $(cat note.txt)"
-[ ! -e big ] || fail "the interrupted sweep wrote big/"
-"$BTOB" bifurcation --r-count 20 --iterations 1000 --no-plot --out small 2> note.txt
-grep -q "estimate before the run" note.txt && fail "a short sweep printed an estimate: $(cat note.txt)"
-rm -rf small note.txt
 fi
 
 # Requests that are not sweeps, each from a cold cache (its routes calibrated by their probes), and the first again
@@ -85,6 +72,20 @@ rm -rf "$XDG_CACHE_HOME/btob"
 # The particles in MPFR: the event loop dominates.  In double, writing NAME.h5's three ratios per period (deflated,
 # at a speed that depends on how the data compress) is a third of a run of this length, which no route prices.
 check particles particles 1133 --r 0.15 --periods 60000 --precision mpfr:40 --no-plot
+# A sweep predicted over 10 minutes says so before it starts (the sample runs only when its map steps may take a
+# minute): the note within a few seconds of the start, then SIGINT; a short sweep prints no note.
+"$BTOB" bifurcation --r-count 1000000 --iterations 100000 --grid random:64 --bins 10 --threads 2 --no-plot --out big \
+  2> note.txt &
+pid=$!
+for _ in $(seq 100); do grep -q "estimate before the run" note.txt 2> /dev/null && break; sleep 0.1; done
+kill -INT $pid 2> /dev/null
+wait $pid
+grep -q "estimate before the run" note.txt || fail "a sweep of ~30 min printed no estimate before it started: $(cat note.txt)"
+grep -q "predicted: " note.txt || fail "the note before the run has no prediction: $(cat note.txt)"
+[ ! -e big ] || fail "the interrupted sweep wrote big/"
+"$BTOB" bifurcation --r-count 20 --iterations 1000 --no-plot --out small 2> note.txt
+grep -q "estimate before the run" note.txt && fail "a short sweep printed an estimate: $(cat note.txt)"
+rm -rf small note.txt
 fi
 
 # A corrupt and a foreign cache file are recalibrated over (and rewritten in the cache's format); an unwritable

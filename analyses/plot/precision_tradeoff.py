@@ -1,39 +1,69 @@
 #!/usr/bin/env python3
-"""Speed against accuracy of each precision and algorithm, from results/precision/tradeoff.csv.
+"""Speed against accuracy of each precision and algorithm (`btob precision`).
 
 Four panels, each against iterations per second: how long the symbol sequence agrees with a 256-digit run
 (median over orbits) at each r; the final-state error; the Lyapunov exponent's error on periodic sinks; the
 largest window (ab)^n(cb)^n resolved.
-Usage: precision_tradeoff.py tradeoff.csv OUT.png
-One command's figure that still reads its CSV table: `btob precision` writes no HDF5 file yet.
+Usage: precision_tradeoff.py NAME.h5 OUT.png
+Reads NAME.h5 alone (method names, r, iterations_per_second, agree_median and final_error_median [method, r],
+lyapunov_error, lyapunov_error_near_neutral and window_n_max [method]; the attribute iterations); NAME.csv is the
+same table.  The windows panel also draws the paper's Table B.1 (analyses/reference, shipped with the scripts).
 """
 import csv
-import json
+import math
 import os
 import sys
 
-import matplotlib
+import h5py
 
-from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
+from plotlib import save_atomic  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def texts(f, name):
+    """A string dataset as a list of str (an h5py file, or a btob result whose texts are lists already)."""
+    d = f[name]
+    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
+
+
+def rows_of(f):
+    """One dict per method, keyed as the CSV's columns (agree_median_r<r>, final_error_median_r<r>, ...); a value not
+    measured for that method (trig: no Lyapunov error, no window test) is absent."""
+    methods = texts(f, "method")
+    rs = [f"{float(x):g}" for x in f["r"][()]]
+    rate, agree, err = f["iterations_per_second"][()], f["agree_median"][()], f["final_error_median"][()]
+    lyap, near, nmax = f["lyapunov_error"][()], f["lyapunov_error_near_neutral"][()], f["window_n_max"][()]
+    rows = []
+    for m, name in enumerate(methods):
+        row = {"method": name, "iterations_per_second": float(rate[m])}
+        for k, r in enumerate(rs):
+            row[f"agree_median_r{r}"] = int(agree[m][k])
+            row[f"final_error_median_r{r}"] = float(err[m][k])
+        for key, v in (("lyapunov_error", lyap[m]), ("lyapunov_error_near_neutral", near[m])):
+            if math.isfinite(float(v)):
+                row[key] = float(v)
+        if float(nmax[m]) >= 0:
+            row["window_n_max"] = int(nmax[m])
+        rows.append(row)
+    return rs, rows
+
+
 def main(src, dst):
-    with open(src) as f:
-        rows = list(csv.DictReader(f))
-    rs = [k[len("agree_median_r"):] for k in rows[0].keys() if k.startswith("agree_median_r")]
-    # The run's iterations: in the manifest beside the CSV (NAME.json), or in the comment line of older CSVs.
-    iters = "?"
-    manifest = os.path.splitext(src)[0] + ".json"
-    if os.path.exists(manifest):
-        with open(manifest) as f:
-            iters = str(json.load(f).get("iterations", "?"))
+    with h5py.File(src, "r") as f:
+        fig = draw(f)
+    save_atomic(fig, dst)
+
+
+def draw(f):
+    """The figure of an h5py-like f (the datasets `btob precision` writes)."""
+    rs, rows = rows_of(f)
+    iters = str(int(f.attrs["iterations"])) if "iterations" in f.attrs else "?"
     fig, axes = plt.subplots(2, 2, figsize=(15, 10.5), dpi=120)
     (ax, cx), (lx, bx) = axes
     markers = "os^Dv<>"
     for i, r in enumerate(rs):
-        x = [float(row["iterations_per_second"]) for row in rows]
-        y = [max(1, int(row[f"agree_median_r{r}"])) for row in rows]
+        x = [row["iterations_per_second"] for row in rows]
+        y = [max(1, row[f"agree_median_r{r}"]) for row in rows]
         ax.scatter(x, y, marker=markers[i % len(markers)], s=40, label=f"r = {r}", alpha=0.85)
         for k, (xi, yi, row) in enumerate(zip(x, y, rows)):
             if i == 0:  # labels of neighbouring methods staggered vertically (they overlapped at equal y)
@@ -64,13 +94,13 @@ def main(src, dst):
     cx.set_title(f"state error after {iters} iterations", fontsize=9)
     cx.legend(fontsize=8)
     # Lyapunov exponent error on the sinks 1133, 111333, 132312 (linear methods only).
-    ly = [row for row in rows if row.get("lyapunov_error")]
+    ly = [row for row in rows if "lyapunov_error" in row]
     floor = 1e-17
     lx.scatter([float(row["iterations_per_second"]) for row in ly],
                [max(floor, float(row["lyapunov_error"])) for row in ly], color="#9467bd", s=40,
                label="strongly contracting sinks (largest error)")
     # The weakly contracting sink 312^150 at r = 0.171599 (just above 3 - 2 sqrt 2), when the CSV has it.
-    nn = [row for row in rows if row.get("lyapunov_error_near_neutral")]
+    nn = [row for row in rows if "lyapunov_error_near_neutral" in row]
     if nn:
         lx.scatter([float(row["iterations_per_second"]) for row in nn],
                    [max(floor, float(row["lyapunov_error_near_neutral"])) for row in nn], color="#d62728", marker="x",
@@ -111,8 +141,8 @@ def main(src, dst):
         ncross = (ulp / np.exp(icpt)) ** (1 / slope)
         bx.text(2.2, ulp * 1.5, f"spacing of {name} numbers near r = 7-4*sqrt(3): {ulp:.1e}"
                 + (f" (window narrower beyond n ~ {ncross:.0f})" if ncross < 5000 else ""), fontsize=7, color=col)
-    ntest = max([int(v) for row in rows for v in [row["window_n_max"]] if v] + [1])
-    passed = [row["method"] for row in rows if row["window_n_max"] and int(row["window_n_max"]) >= ntest]
+    ntest = max([row["window_n_max"] for row in rows if "window_n_max" in row] + [1])
+    passed = [row["method"] for row in rows if row.get("window_n_max", -1) >= ntest]
     bx.axvspan(2, ntest, color="#dddddd", alpha=0.6, lw=0)
     bx.text(2.2, 1e-14, f"n <= {ntest} tested (8 orbits at the middle of each window):\n"
             f"resolved by all {len(passed)} linear methods (trig: not tested)", fontsize=7, va="bottom")
@@ -124,10 +154,10 @@ def main(src, dst):
     bx.legend(fontsize=7, loc="upper right")
     fig.suptitle("btob: speed against accuracy, per precision and algorithm", fontsize=11)
     fig.tight_layout()
-    save_atomic(fig, dst)
+    return fig
 
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:
-        sys.exit("usage: precision_tradeoff.py tradeoff.csv OUT.png")
+        sys.exit("usage: precision_tradeoff.py NAME.h5 OUT.png")
     main(sys.argv[1], sys.argv[2])

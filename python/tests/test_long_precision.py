@@ -3,6 +3,9 @@ fixed sizes), hence labelled long: the deterministic columns of tradeoff.csv and
 import csv
 import io
 import os
+import shutil
+import subprocess
+import sys
 
 import btob
 from conftest import cli, manifest
@@ -30,3 +33,14 @@ def test_precision_study_attrs(tmp_path):
     col = b[0].index("iterations_per_second")
     assert a[0] == b[0] and len(a) == len(b) > 1
     assert [r[:col] + r[col + 1:] for r in a] == [r[:col] + r[col + 1:] for r in b]
+    # The command's figure from its HDF5 file alone (the script's own Table B.1 aside), and Python's plot() of the
+    # same result: the methods are a string dataset, the iterations an attribute.
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    shutil.copy(tmp_path / "tradeoff.h5", alone / "tradeoff.h5")
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    p = subprocess.run([sys.executable, os.path.join(root, "analyses", "plot", "precision_tradeoff.py"),
+                        str(alone / "tradeoff.h5"), str(alone / "tradeoff.png")], capture_output=True, text=True, cwd=alone)
+    assert p.returncode == 0 and (alone / "tradeoff.png").stat().st_size > 10000, p.stderr
+    fig = res.plot()
+    assert len(fig.axes) == 4 and "(200 iterations compared)" in fig.axes[0].get_title()

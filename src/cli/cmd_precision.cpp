@@ -23,8 +23,9 @@ void tradeoff(const precision::TradeoffRequest& req, const Output& o, const Cont
   io::ResultFiles files(o.out, o.name);
   const core::Tables tables = res.tables();  // NAME.csv, also printed
   files.tables(tables);
+  files.h5(c, at);
   ctx.manifest(files, at);
-  if (!o.no_plot) files.plot("precision_tradeoff.py", o.name + ".csv");
+  if (!o.no_plot) files.plot("precision_tradeoff.py", o.name + ".h5");  // the script reads NAME.h5 alone
   files.commit();
   for (const auto& [role, text] : tables) std::cout << text;
 }

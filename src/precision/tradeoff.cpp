@@ -327,7 +327,9 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control) 
   }
   if (control.progress) control.progress->update(methods.size(), methods.size());
   res.r = core::values(req.r);
+  res.iterations = req.iterations;
   for (const TradeoffRow& row : res.rows) {
+    res.method.push_back(row.method);
     res.digits.push_back(row.digits);
     res.rate.push_back(row.rate);
     res.window_n_max.push_back(row.n_max);
@@ -387,10 +389,15 @@ void TradeoffResult::describe(core::Contents& c) const {
           "largest |lambda1 - exact| on the sinks 1133, 111333, 132312 (NaN: not tested)");
   c.array("lyapunov_error_near_neutral", lyapunov_near_neutral, {M}, "method", "1/iteration (natural log)",
           "|lambda1 - exact| on the weakly contracting sink 312^150 at r = 0.171599 (NaN: not tested)");
+  c.text("method", method, "method", "name",
+         "the method: algorithm (linear: Theorem 3.1's matrices; trig: Appendix A.1) / arithmetic, the coordinates "
+         "of that axis");
+  c.coordinate("method", "method");
   std::string names;
   for (const auto& row : rows) names += (names.empty() ? "" : ",") + row.method;
   c.attr("methods", names);
   c.attr("reference", std::string("mpfr:256"));
+  c.attr("iterations", iterations);
 }
 
 }  // namespace btob::precision

@@ -50,6 +50,8 @@ struct TradeoffResult {
   // Flat views for describe(): [M] and [M, R], M methods in the order of `rows`, R r values.
   std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, lyapunov_near_neutral,
       window_n_max;
+  std::vector<std::string> method;  // [M] the methods' names (TradeoffRow::method), the axis "method"
+  long iterations = 0;              // symbols compared per orbit (the request's)
 
   // The CSV of results/precision/tradeoff.csv: one header line, a row per method (columns per r of `r`).
   std::string csv() const;
