@@ -67,29 +67,16 @@ template <class T> struct Root {
   T re, im;
   bool real;
 };
-template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, const T& c) {
+// The root of largest modulus of l^3 + a l^2 + b l + c: Viete's trigonometric form when D <= 0 (three real roots),
+// else stable Cardano (one real root, or a triple root when p = q = 0); then Newton steps on the cubic, kept only
+// while |f| decreases (guards near double roots).  three_real: which form was used.
+template <class T> T largest_root(const T& a, const T& b, const T& c, bool& three_real) {
   const T p = b - a * a / 3, q = 2 * a * a * a / 27 - a * b / 3 + c;
   const T D = (q / 2) * (q / 2) + (p / 3) * (p / 3) * (p / 3);  // < 0: three distinct real roots
   const auto f = [&](const T& l) -> T { return ((l + a) * l + b) * l + c; };
   const auto df = [&](const T& l) -> T { return (3 * l + 2 * a) * l + b; };
-  const auto polish = [&](T l) -> T {
-    // Newton steps on the original cubic, kept only while |f| decreases (guards near double roots).
-    for (int it = 0; it < 4; ++it) {
-      const T d = df(l);
-      if (d == 0) break;
-      const T next = l - f(l) / d;
-      if (!(abs_<T>(f(next)) < abs_<T>(f(l)))) break;
-      l = next;
-    }
-    return l;
-  };
-  // The root of largest modulus l: Viete's trigonometric form when D <= 0 (three real roots), else stable Cardano
-  // (one real root, or a triple root when p = q = 0).  Then the other two from the quadratic factor, never from
-  // the trigonometric form: its roots carry an absolute error of a few ulps of the largest, so two roots far
-  // below it come out as noise (D's sign itself is cancellation there, and a clamped arccos argument makes them
-  // an exact double root).
   T l;
-  const bool three_real = D <= 0 && p < 0;
+  three_real = D <= 0 && p < 0;
   if (three_real) {
     const T m = 2 * sqrt_<T>(-p / 3);
     T arg = 3 * q / (p * m);
@@ -101,13 +88,29 @@ template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, co
       const T x = m * cos_<T>(th - two_pi_3 * k) - a / 3;
       if (abs_<T>(x) > abs_<T>(l)) l = x;
     }
-    l = polish(l);
   } else {
     const T s = sqrt_<T>(std::max<T>(D, T(0)));
     const T u = cbrt_<T>(-q / 2 - (q < 0 ? T(-s) : s));
     const T t = u == 0 ? T(0) : T(u - p / (3 * u));
-    l = polish(t - a / 3);
+    l = t - a / 3;
   }
+  for (int it = 0; it < 4; ++it) {
+    const T d = df(l);
+    if (d == 0) break;
+    const T next = l - f(l) / d;
+    if (!(abs_<T>(f(next)) < abs_<T>(f(l)))) break;
+    l = next;
+  }
+  return l;
+}
+
+// The three roots: the largest (largest_root), then the other two from the quadratic factor, never from the
+// trigonometric form: its roots carry an absolute error of a few ulps of the largest, so two roots far below it come
+// out as noise (D's sign itself is cancellation there, and a clamped arccos argument makes them an exact double
+// root).
+template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, const T& c) {
+  bool three_real = false;
+  const T l = largest_root(a, b, c, three_real);
   std::array<Root<T>, 3> r;
   const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // product of the other two (l dominant: -c/l has no cancellation)
   // Their sum S: -a - l carries an absolute error of eps |l|, all of S's when the two are far below l; then

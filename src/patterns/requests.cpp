@@ -322,9 +322,9 @@ std::string detection_status(const AtlasRequest& req, const std::vector<AtlasEnt
   return fmt::format("NOT stable in atlas ({}; {}; |l2|/|l1| = {:.6f})", outcome_name(v.outcome), v.reason, ratio);
 }
 
-// Item 6 of the atlas issue: the iterator at Table 6.1's r values, its patterns against the atlas.
-// `d` is the detection at Table 6.1's r values, in their order.
-void check(const AtlasRequest& req, const std::vector<double>& grid, const DetectionRun& d, AtlasResult& res) {
+// The iterator's detections at Table 6.1's r values, each with its status against the atlas: the "detected" table
+// and its datasets; returns the (r, word) pairs seen.
+std::set<std::pair<double, Word>> detected_table(const AtlasRequest& req, const DetectionRun& d, AtlasResult& res) {
   const std::vector<double>& rs = d.r;
   // Per r: symbol_periodic_fraction counts the orbits whose symbol sequence is eventually periodic, which includes
   // the invariant curves of P2 (symbols 222..., quasi-periodic in the state); periodic_fraction counts only the
@@ -357,7 +357,13 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
     a.periodic_fraction.push_back(static_cast<double>(periodic[ir]) / ics);
     a.status.push_back(status[k]);
   }
-  // Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas.
+  res.csv.emplace_back("detected", det.text());
+  return seen;
+}
+
+// Stability sets of the found patterns longer than L (not in the atlas), same columns as the atlas: the
+// "long_windows" table and its datasets.
+void long_windows(const AtlasRequest& req, const std::vector<double>& grid, const DetectionRun& d, AtlasResult& res) {
   std::vector<AtlasEntry> long_entries;
   for (const auto& f : d.found)
     if (static_cast<long>(f.word.size()) > req.max_length &&
@@ -370,6 +376,12 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
       res.long_windows.r_low.push_back(iv.lo);
       res.long_windows.r_high.push_back(iv.hi);
     }
+  res.csv.emplace_back("long_windows", atlas_csv(long_entries));
+}
+
+// The atlas's stable intervals containing one of Table 6.1's r at which the iterator did not see the word: the
+// "missed" table and its datasets.
+void missed_table(const std::vector<double>& rs, const std::set<std::pair<double, Word>>& seen, AtlasResult& res) {
   core::CsvTable missed("r,word,symbols,r_low,r_high");
   for (double r : rs)
     for (const auto& e : res.entries)
@@ -384,9 +396,15 @@ void check(const AtlasRequest& req, const std::vector<double>& grid, const Detec
           res.missed_entries.r_high.push_back(iv.hi);
           ++res.missed;
         }
-  res.csv.emplace_back("detected", det.text());
-  res.csv.emplace_back("long_windows", atlas_csv(long_entries));
   res.csv.emplace_back("missed", missed.text());
+}
+
+// The iterator at Table 6.1's r values against the atlas (`d` is its detection there, in their order): detected ->
+// long windows -> missed.
+void check(const AtlasRequest& req, const std::vector<double>& grid, const DetectionRun& d, AtlasResult& res) {
+  const std::set<std::pair<double, Word>> seen = detected_table(req, d, res);
+  long_windows(req, grid, d, res);
+  missed_table(d.r, seen, res);
   res.checked = true;
   res.detected = static_cast<long>(d.found.size());
 }
