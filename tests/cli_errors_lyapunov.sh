@@ -6,7 +6,8 @@ set -u
 btob="$1"
 source "$(dirname "$0")/cli_lib.sh"
 
-# btob lyapunov (one orbit): bad r, points, lengths and precisions, beyond the cases of cli_errors.sh.
+# btob lyapunov, lyapunov-map and lyapunov-strip: bad r and r ranges, points, grids, lengths, blocks, precisions and
+# threads, beyond the cases of cli_errors.sh.
 p=(lyapunov --point 1,0.1,-1 --iterations 100 --transient 10)
 expect_error "r" "${p[@]}" --r 1.2
 expect_error "r" "${p[@]}" --r nan
