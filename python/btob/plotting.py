@@ -14,22 +14,24 @@ PLOT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "plo
 
 
 class H5View:
-    """A Result seen as an h5py.File by the plot scripts: f[name][...], name in f, f.keys(), f.attrs."""
+    """A Result seen as an h5py.File by the plot scripts: f[name][...], name in f, f.keys(), f.attrs.  Its string
+    datasets (res.texts: word names, methods) are numpy arrays of str here, where h5py gives byte strings."""
 
     def __init__(self, res):
         self._res = res
         self.attrs = res.attrs
 
     def __getitem__(self, name):
-        if name not in self._res.arrays:
+        if name not in self:
             raise KeyError(name)
-        return getattr(self._res, name)
+        v = getattr(self._res, name)
+        return np.array(v, dtype=object) if name in self._res.texts else v
 
     def __contains__(self, name):
-        return name in self._res.arrays
+        return name in self._res.arrays or name in self._res.texts
 
     def keys(self):
-        return list(self._res.arrays)
+        return list(self._res.arrays) + list(self._res.texts)
 
 
 def script(name):
