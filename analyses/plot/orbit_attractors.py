@@ -24,17 +24,11 @@ PALETTE = [0, 2, 8, 10, 12, 16, 18, 1, 3, 9, 11, 13, 17, 19]
 R_CRIT_2 = 3 - 2 * 2 ** 0.5  # r_crit,2(2), the top of the widest window (n = 2)
 
 
-def texts(f, name):
-    """A string dataset as a list of str (an h5py file, or a btob result whose texts are lists already)."""
-    d = f[name]
-    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
-
-
 def windows(f):
     """(lower bound, r_crit,2(n)) of each window whose two ends are in the file's overlay lines, widest r first."""
     if "overlay_lines" not in f or "overlay_labels" not in f:
         return []
-    lines, labels = f["overlay_lines"][...], texts(f, "overlay_labels")
+    lines, labels = f["overlay_lines"][...], plotlib.texts(f, "overlay_labels")
     ends = sorted((float(v), "lower bound" in l, "r_crit,2" in l) for (v, _c), l in zip(lines, labels))
     # The windows are disjoint intervals [lower(n), r_crit,2(n)]: a lower bound followed by an r_crit,2 closes one.
     return sorted(((a[0], b[0]) for a, b in zip(ends, ends[1:]) if a[1] and b[2]), reverse=True)
@@ -51,7 +45,7 @@ def label_of(name, kind, period):
 def layers_of(f):
     """The stacked shares [r] of the most frequent attractors, "other" and "unresolved", with colours and labels."""
     count = f["attractor_count"][...].astype(float)
-    names, kinds = texts(f, "attractor_name"), texts(f, "attractor_type")
+    names, kinds = plotlib.texts(f, "attractor_name"), plotlib.texts(f, "attractor_type")
     period = f["attractor_period"][...]
     share = count / count.sum(axis=1, keepdims=True)
     order = [i for i in np.argsort(-count.sum(axis=0), kind="stable") if count[:, i].sum() > 0 and names[i] != "unresolved"]

@@ -15,6 +15,12 @@ def attrs(h5obj):
     return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5obj.attrs.items()}
 
 
+def texts(f, name):
+    """A string dataset as a list of str: an h5py file gives byte strings, a btob Result (plotting.H5View) str."""
+    d = f[name]
+    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
+
+
 def save_atomic(fig, dst, **savefig_kw):
     """Writes the figure to a temporary file beside dst (savefig_kw: matplotlib's, e.g. dpi), then renames it (no
     partial PNG)."""

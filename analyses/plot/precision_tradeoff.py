@@ -16,14 +16,8 @@ import sys
 
 import h5py
 
-from plotlib import save_atomic  # noqa: F401  (also selects the Agg backend)
+from plotlib import save_atomic, texts  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def texts(f, name):
-    """A string dataset as a list of str (an h5py file, or a btob result whose texts are lists already)."""
-    d = f[name]
-    return [t.decode() if isinstance(t, bytes) else str(t) for t in (d[()] if hasattr(d, "dtype") else d)]
 
 
 def rows_of(f):

@@ -2,17 +2,15 @@
 the file while the run goes on; a run killed with SIGKILL, or stopped by Ctrl-C (KeyboardInterrupt keeps the file),
 and then resumed gives arrays bitwise equal to one uninterrupted run, and removes the file; a file made by another
 request is refused with one line naming the field that differs, and left as it was."""
-import os
 import signal
 import subprocess
 import sys
 import time
 
-import numpy as np
 import pytest
 
 import btob
-from test_round_trip import CASES
+from test_round_trip import CASES, same_arrays
 
 # A sweep of 64 r values in 32 rounds of 2 (one thread), about 2.5 s in all: a part is appended every ~0.08 s.
 KW = dict(r_min=0.1, r_max=0.5, r_count=64, grid="paper", iterations=1000000, transient=100, threads=1)
@@ -25,16 +23,6 @@ except KeyboardInterrupt:
     sys.exit(42 if os.path.exists(sys.argv[1]) else 1)
 sys.exit(0)
 """
-
-
-def same_arrays(x, y):
-    assert x.arrays == y.arrays
-    for k in x.arrays:
-        if "seconds" in k:  # wall time of the run
-            continue
-        assert np.asarray(getattr(x, k)).tobytes() == np.asarray(getattr(y, k)).tobytes(), k
-    for k in x.decimals + x.texts:
-        assert getattr(x, k) == getattr(y, k), k
 
 
 @pytest.fixture(scope="module")
