@@ -278,7 +278,8 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
   m.attr("_fields")[R::function] = kws;
 }
 
-// A sweep's cost from a ~0.2 s sample of its own items (core/estimate.hpp), for btob.estimate(function, **kwargs):
+// A sweep's cost from a sample of its own items (32 items and 0.2 s, or 1 s; core/estimate.hpp), for
+// btob.estimate(function, **kwargs):
 // _btob._estimators[function](**kwargs) -> dict(items, sampled, sample_seconds, predicted_seconds, bytes,
 // peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.  The sweeps'
 // names are also in _btob._sweeps (the functions that take resume=).

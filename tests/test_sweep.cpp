@@ -3,6 +3,7 @@
 // give the single process's files (tests/mpi_sweeps.sh checks the command line on top of it).
 #include "attractors/requests.hpp"
 #include "bifurcation/bifurcation.hpp"
+#include "core/estimate.hpp"
 #include "core/pack.hpp"
 #include "core/sweep.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
@@ -15,10 +16,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
+#include <thread>
 #include <variant>
 
 namespace {
@@ -340,6 +343,47 @@ TEST(Sweep, WindowsPrecisionAnyPartitionEqualsRun) {
     EXPECT_EQ(whole.summary[k].largest_any, merged.summary[k].largest_any) << whole.summary[k].precision;
   }
   EXPECT_EQ(whole.correct_12, merged.correct_12);
+}
+
+// A sweep whose items each take `item_seconds` (asleep): the dry run's sample (core/estimate.hpp) on items of known
+// cost.  run_part is found by argument-dependent lookup, as a module's is.
+struct SleepySweep {
+  std::size_t n = 1000;
+  double item_seconds = 0.002;
+  std::size_t work_items() const { return n; }
+};
+std::vector<double> run_part(const SleepySweep& q, const std::vector<std::size_t>& items, const core::RunControl&) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(q.item_seconds * static_cast<double>(items.size())));
+  return std::vector<double>(items.size(), 1.0);
+}
+
+// The sample holds at least `min_items` items even once it took `target` seconds: 2 ms items reach the target
+// (20 ms) at 16 items, and the sample goes on to 32 (a sample of a few items of a basin image missed its mean by
+// 2-4 times).  Sleeping longer than asked (a loaded machine) only reaches the target sooner, never the 1 s cap.
+TEST(Sweep, EstimateSamplesAtLeastMinItems) {
+  core::RunControl one;
+  one.threads = 1;
+  const SleepySweep q;
+  const auto e = core::estimate_sweep(q, one, 1, 1, 0.02, 32, 1.0);
+  EXPECT_EQ(e.sampled, 32u);
+  EXPECT_EQ(e.items, q.n);
+  // Each item slept at least its 2 ms, so the prediction is at least n x 2 ms.
+  EXPECT_GE(e.predicted_seconds, static_cast<double>(q.n) * q.item_seconds);
+  EXPECT_GT(e.bytes, 0.0);
+}
+
+// Slow items stop the sample at the cap with fewer items: 30 ms items and a 0.1 s cap give 4 items (fewer when the
+// sleeps overran), never the 32 a cheap sweep samples; the prediction scales by n / sampled.
+TEST(Sweep, EstimateSampleStopsAtTheCap) {
+  core::RunControl one;
+  one.threads = 1;
+  SleepySweep q;
+  q.item_seconds = 0.03;
+  const auto e = core::estimate_sweep(q, one, 2, 1, 0.02, 32, 0.1);
+  EXPECT_LE(e.sampled, 4u);
+  EXPECT_GE(e.sample_seconds, 0.1);
+  EXPECT_NEAR(e.predicted_seconds, e.sample_seconds / static_cast<double>(e.sampled) * static_cast<double>(q.n) / 2,
+              1e-12 * e.predicted_seconds);  // two ranks share the items
 }
 
 // The atlas's tables are where its words and the check's patterns are: they must agree byte for byte.

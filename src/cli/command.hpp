@@ -77,7 +77,7 @@ struct Output {
     if (sweep)
       v("dry-run", dry_run,
         "print the work (items), the predicted time on this machine, the data size and rank 0's peak memory, "
-        "calibrated by running a ~0.2 s sample of this request's own items; write nothing");
+        "calibrated by running a 0.2-1 s sample of this request's own items; write nothing");
     if (costed && !sweep)
       v("dry-run", dry_run,
         "print the work (its units, counted from the fields), the predicted time on this machine, the output size and "
@@ -307,7 +307,7 @@ template <class Req> void note_long_run(const std::string& name, const Req& req,
 }
 
 // Before a sweep that may take over 10 minutes, the estimate from its sample on stderr (rank 0; the other ranks go
-// on to the sweep and wait for it there): core::StepCounted says when it is worth the sample's 0.2 s.
+// on to the sweep and wait for it there): core::StepCounted says when it is worth the sample's 0.2-2 s.
 template <class Req> void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   if constexpr (core::StepCounted<Req>) {
     if (out.quiet || mpi::rank() != 0) return;

@@ -1,9 +1,14 @@
 // The cost of a sweep (core/sweep.hpp) predicted from a sample of its own items: the command line's `--dry-run` and
 // Python's btob.estimate().
 //
-// The program calibrates on the request itself rather than on a table of rates: it runs run_part on a few items
-// spread evenly over 0..n-1 (items i*n/m, so costs that grow along the sweep, as a window's with n, are sampled
-// across their range), doubling m until the sample took ~0.2 s, and scales: time = sample seconds / m x n / ranks.
+// The program calibrates on the request itself rather than on a table of rates: it runs run_part on items spread
+// evenly over 0..n-1 (items i*n/m, so costs that grow along the sweep, as a window's with n, are sampled across
+// their range), doubling m until the sample took 0.2 s and holds at least 32 items, or took 1 s, and scales: time =
+// sample seconds / m x n / ranks.  The item count matters as much as the time: items differ in cost (a basin
+// image's rows cross different basins), and a sample of two or four items, which 0.2 s alone buys where an item
+// takes ~0.1 s (the sanitizer build), predicted a basin image 2-4 times too long on a loaded machine; sixteen
+// 0.09 s rows of the same image predicted it within 12%.  The 1 s cap bounds the sample (and the note before a long
+// StepCounted sweep) where items are slow: the doubling then costs at most about 2 s.
 // The packed size of the sample's parts, scaled the same way, is what rank 0 gathers and keeps; the result files
 // are about that size, and rank 0 holds about twice it while merging.  Nothing is written.
 #pragma once
@@ -43,10 +48,11 @@ struct SweepEstimate {
 };
 
 // The sample: m items spread over 0..n-1, m doubled (from `start`, the threads: every thread gets an item) until it
-// took `target` seconds or covers n.  `ranks`: the processes the prediction divides the work over.
+// took `target` seconds with at least `min_items` items, or took `cap` seconds, or covers n.  `ranks`: the
+// processes the prediction divides the work over.
 template <core::Sweep Req>
 SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, int ranks, std::size_t start,
-                             double target = 0.2) {
+                             double target = 0.2, std::size_t min_items = 32, double cap = 1.0) {
   SweepEstimate e;
   e.items = core::work_items(req, control.cancel);  // polled: the atlas enumerates its words
   e.ranks = ranks;
@@ -58,7 +64,7 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
     e.sample_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     e.sampled = m;
     e.bytes = static_cast<double>(core::pack(part).size()) * static_cast<double>(e.items) / static_cast<double>(m);
-    if (e.sample_seconds >= target || m == e.items) break;
+    if (m == e.items || e.sample_seconds >= cap || (e.sample_seconds >= target && m >= min_items)) break;
   }
   e.predicted_seconds = e.sample_seconds / static_cast<double>(e.sampled) * static_cast<double>(e.items) / ranks;
   return e;
@@ -68,7 +74,7 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
 // `precision`) gets its estimate before the run when it may exceed 10 minutes: the sample above runs only when the
 // count alone takes over a minute at the fastest kernel rate of its precision (faster than any measured route:
 // double's batched kernel makes ~6e8 steps/s per core, long double ~1e8, float128 and MPFR < 1e7), so a short
-// run pays nothing and a long one 0.2 s.
+// run pays nothing and a long one the sample's 0.2-2 s.
 template <class Req> concept StepCounted = Sweep<Req> && requires(const Req& r) {
   { r.map_steps() } -> std::convertible_to<double>;
   { r.precision } -> std::convertible_to<std::string>;
