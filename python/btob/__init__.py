@@ -53,9 +53,9 @@ def estimate(function, **kwargs):
     ``btob.estimate(btob.lyapunov, r=0.2, point="1,-0.5,-1.1", iterations=10**10)`` takes the function (or its name)
     and its keywords and returns a dict; nothing is written.
 
-    A sweep runs a ~0.2 s sample of the request's own items (spread over the sweep) and returns: items, sampled,
-    sample_seconds, predicted_seconds (the whole request on this machine with these threads), bytes (the result's
-    data) and peak_bytes.
+    A sweep runs a sample of the request's own items (spread over the sweep; 32 items and 0.2 s, or 1 s) and
+    returns: items, sampled, sample_seconds, predicted_seconds (the whole request on this machine with these
+    threads), bytes (the result's data) and peak_bytes.
 
     Any other request counts its work from its keywords and prices it with a rate per route (map steps of the
     double derivative cocycle, particle collisions in MPFR at D digits, ...), measured once by a ~0.1 s fixed probe

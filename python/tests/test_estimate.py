@@ -1,4 +1,4 @@
-"""btob.estimate(): a sweep's predicted time from a ~0.2 s sample of its own items lies within a factor 2 of the
+"""btob.estimate(): a sweep's predicted time from a sample of its own items lies within a factor 2 of the
 run it predicts (a sweep of long orbits over r and one of certified window bounds, whose items cost more as n
 grows), and so does one orbit's, priced by the cached rate of its route (core/work.hpp, io/rates.hpp); it names the
 functions it prices and refuses others and unknown keywords.  Timing on a shared machine: a prediction outside the
