@@ -54,6 +54,11 @@ check bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 100 --iteration
 check basins basins --r 0.11 --grid strip:200x200 --replicates 1 --transient 20000 --iterations 3000 \
   --max-period 200 --lyap-iterations 400 --refine-factor 2 --no-plot
 check windows-bounds windows bounds --n 1..80 --certify --digits 15
+# A request whose items come from a data file (basins-r --table: Table 6.1's r values) is sampled on them.
+"$BTOB" basins-r --table --grid random:20 --threads 1 --dry-run > table.txt 2>&1 || fail "basins-r --table --dry-run: $(cat table.txt)"
+grep -q "^  work: 33 items" table.txt || fail "basins-r --table's dry run did not see Table 6.1's 33 r values: $(cat table.txt)"
+grep -qi "nan" table.txt && fail "basins-r --table's dry run printed NaN: $(cat table.txt)"
+rm -f table.txt
 fi
 
 # Requests that are not sweeps, each from a cold cache (its routes calibrated by their probes), and the first again

@@ -13,6 +13,15 @@
 #include <iostream>
 
 namespace btob::cli {
+
+// basins-r --table: Table 6.1 is data of the lab (io::data_file) unless --reference names another CSV; read before
+// the request is validated, so a dry run samples its r values too.
+template <> struct Prepare<attractors::BasinsRRequest> {
+  static void apply(attractors::BasinsRRequest& req) {
+    req.reference_csv = io::data_text(req.reference, attractors::table_6_1_file);
+  }
+};
+
 namespace {
 
 // ---- btob classify ----
@@ -67,10 +76,7 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
 }
 
 // ---- btob basins-r ----
-void basins_r(const attractors::BasinsRRequest& given, const Output& o, const Context& ctx) {
-  // Table 6.1 is data of the lab (io::data_file) unless --reference names another CSV.
-  attractors::BasinsRRequest req = given;
-  req.reference_csv = io::data_text(req.reference, attractors::table_6_1_file);
+void basins_r(const attractors::BasinsRRequest& req, const Output& o, const Context& ctx) {
   Context run_ctx = ctx;
   const auto progress = terminal_progress("basins-r");
   if (!o.quiet) run_ctx.control.progress = progress.get();

@@ -250,6 +250,14 @@ CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& 
 Context make_context(const std::string& command, const Output& o, const std::string& invocation, Args request_args);
 }  // namespace detail
 
+// Data files a request reads before it is validated, estimated or run (a request does no I/O of its own):
+// specialised beside the command's body, as basins-r's Table 6.1 (cmd_attractors.cpp).  The command line's
+// counterpart of a Python route's prepare(): both fill the request before its dry run samples its items, which
+// a body filling them too late left empty (`basins-r --table --dry-run` saw 0 items).
+template <class Req> struct Prepare {
+  static void apply(Req&) {}
+};
+
 namespace detail {
 template <class Req> using Body = std::function<void(const Req&, const Output&, const Context&)>;
 
@@ -343,10 +351,11 @@ void run_body(const std::string& name, const Body<Req>& body, const Req& req, co
   body(req, out, ctx);
 }
 
-// validate -> output -> record -> (MPI checkpoint) -> --dry-run, or --resume's checkpoint -> the body.
+// prepare -> validate -> output -> record -> (MPI checkpoint) -> --dry-run, or --resume's checkpoint -> the body.
 template <class Req>
 void execute(const std::string& name, const Body<Req>& body, Req req, Output out, bool threads_given,
              const std::string& invocation) {
+  Prepare<Req>::apply(req);
   req.validate();
   complete_output(name, req, out, threads_given);
   Args recorded = recorded_request(req, out);

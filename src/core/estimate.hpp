@@ -42,7 +42,7 @@ struct SweepEstimate {
         "  predicted: {:.3g} s on {} process{} x {} threads\n"
         "  data: about {:.3g} MB gathered and written; peak memory about {:.3g} MB on rank 0 (parts and merge)\n",
         command, dry ? "dry run (a sample computed, nothing written)" : "estimate before the run (a sample of its items)",
-        items, sampled, sample_seconds, threads, sample_seconds / static_cast<double>(sampled),
+        items, sampled, sample_seconds, threads, sampled ? sample_seconds / static_cast<double>(sampled) : 0.0,
         predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6, 2 * bytes / 1e6);
   }
 };
@@ -66,6 +66,7 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
     e.bytes = static_cast<double>(core::pack(part).size()) * static_cast<double>(e.items) / static_cast<double>(m);
     if (m == e.items || e.sample_seconds >= cap || (e.sample_seconds >= target && m >= min_items)) break;
   }
+  if (e.sampled == 0) return e;  // no items (a validated request has some): nothing to time, and no 0 / 0
   e.predicted_seconds = e.sample_seconds / static_cast<double>(e.sampled) * static_cast<double>(e.items) / ranks;
   return e;
 }
