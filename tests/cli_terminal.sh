@@ -31,7 +31,7 @@ tty_run "$out/basins.log" basins --r 0.21 --grid strip:200x200 --replicates 1 --
 no_bar_before_text "$out/basins.log" basins
 expect_line "$out/basins.log" '^  [0-9]+ quasi-periodic P2 invariant curves: 0\.[0-9]+ \[0\.[0-9]+, 0\.[0-9]+\]$' \
   "basins prints each attractor's fraction and interval"
-expect_line "$out/basins.log" '^  0 unresolved: ' "basins prints the unresolved fraction"
+expect_line "$out/basins.log" '^  0 undecided: ' "basins prints the undecided fraction"
 expect_line "$out/basins.log" "wrote .*basins_fractions\.csv.*basins\.h5.*basins\.png" "basins names its files, PNG included"
 
 tty_run "$out/lmap.log" lyapunov-map --r-min 0.1 --r-max 0.2 --r-count 400 --iterations 2000 --out "$out/l"

@@ -13,7 +13,7 @@ import pytest
 from conftest import exe
 
 # Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
-INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "interval", "line", "(r, colour)", "step",
+INDEX_AXES = {"initial condition", "attractor", "attractor then undecided", "interval", "line", "(r, colour)", "step",
               "eigenvalue", "orbit", "group", "period", "event", "particle"}
 
 COMMANDS = {
