@@ -22,8 +22,9 @@ def rows_of(f):
         pattern, _, kind = a[f"legend_{i}"].rpartition(" (")
         out.append({"attractor": i, "type": kind.rstrip(")"), "pattern": pattern, "fraction": fr, "ci_low": lo,
                     "ci_high": hi})
-    out.append({"attractor": 0, "type": "undecided", "pattern": "", "fraction": a["undecided_fraction"],
-                "ci_low": a.get("undecided_ci_low", float("nan")), "ci_high": a.get("undecided_ci_high", float("nan"))})
+    u = "undecided" if "undecided_fraction" in a else "unresolved"  # older files: unresolved_*
+    out.append({"attractor": 0, "type": "undecided", "pattern": "", "fraction": a[f"{u}_fraction"],
+                "ci_low": a.get(f"{u}_ci_low", float("nan")), "ci_high": a.get(f"{u}_ci_high", float("nan"))})
     return out
 
 
