@@ -201,7 +201,7 @@ def tails(btob, points, r, threads):
 
 
 def verdicts(btob, points, r, threads):
-    """btob's verdict (periodic, quasi-periodic, chaotic, collapse, unresolved) on each orbit: btob.classify, one
+    """btob's verdict (periodic, quasi-periodic, chaotic, collapse, undecided) on each orbit: btob.classify, one
     orbit per call on one thread each, `threads` calls at a time (the calls release the GIL)."""
     from concurrent.futures import ThreadPoolExecutor
 

@@ -38,7 +38,7 @@ BTOB_ROUTE(attractors::BasinsRequest, "basins", "basins", "basins", "basins", "a
 BTOB_ROUTE(lyapunov::HyperbolicityOrbitsRequest, "hyperbolicity_orbits", "hyperbolicity-orbits", "hyperbolicity-orbits", "hyperbolicity_orbits",
            "hyperbolicity_orbits.py", "Per r: fraction of expanding steps and CLV angles along orbits, beside lambda1")
 BTOB_ROUTE(attractors::ClassifyRequest, "classify", "classify", "classify", "classify", "",
-           "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or unresolved")
+           "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or undecided")
 BTOB_ROUTE(stats::MeasureRequest, "measure", "measure", "measure", "measure", "stats_measure.py",
            "Empirical measures of many initial conditions at one r, their distances and convergence (Section 8.1 (2))")
 BTOB_ROUTE(windows::PolyRequest, "windows_poly", "windows poly", "windows_poly", "poly", "",

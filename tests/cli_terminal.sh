@@ -2,7 +2,8 @@
 # What the terminal says, run under a pseudo-terminal (script(1), bsdutils) so that progress bars
 # are drawn as a user sees them:
 #   - a progress bar ends its line: no "btob: ..." line starts after a bar on the same line;
-#   - basins prints each attractor's fraction with its interval;
+#   - basins prints each attractor's fraction with its interval, and calls the points no attractor was found for
+#     "undecided" (classify's word), never "unresolved";
 #   - every command names the files it wrote, the PNG included.
 set -u
 btob="$1"
@@ -31,7 +32,10 @@ tty_run "$out/basins.log" basins --r 0.21 --grid strip:200x200 --replicates 1 --
 no_bar_before_text "$out/basins.log" basins
 expect_line "$out/basins.log" '^  [0-9]+ quasi-periodic P2 invariant curves: 0\.[0-9]+ \[0\.[0-9]+, 0\.[0-9]+\]$' \
   "basins prints each attractor's fraction and interval"
-expect_line "$out/basins.log" '^  0 unresolved: ' "basins prints the unresolved fraction"
+expect_line "$out/basins.log" '^  0 undecided: ' "basins prints the undecided fraction"
+expect_line "$out/basins.log" ' attractors, undecided [0-9.]+ \([0-9]+ before refinement\)' \
+  "basins' summary line gives the undecided fraction"
+if grep -qi unresolved "$out/basins.log.lines"; then echo "FAIL: basins says 'unresolved'"; fail=1; else echo "ok: basins never says 'unresolved'"; fi
 expect_line "$out/basins.log" "wrote .*basins_fractions\.csv.*basins\.h5.*basins\.png" "basins names its files, PNG included"
 
 tty_run "$out/lmap.log" lyapunov-map --r-min 0.1 --r-max 0.2 --r-count 400 --iterations 2000 --out "$out/l"

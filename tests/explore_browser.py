@@ -134,6 +134,7 @@ def pick_1133(d, base, source, shots):
     WebDriverWait(d, TIMEOUT).until(lambda d: "%" in d.find_element(By.ID, "basins-table").text)
     table = d.find_element(By.ID, "basins-table").text
     assert "1133" in table, table
+    assert "undecided" in table and "NaN" not in table, table  # the verdict's one word, its share read from the JSON
     d.save_screenshot(os.path.join(shots, "explore_1133.png"))
     print(f"explore_browser: click at r = {r:.6f} in the window [{lo}, {hi}] reads: " + info.replace("\n", "; "))
     print("explore_browser: basins: " + table.replace("\n", "; "))

@@ -240,7 +240,7 @@ TEST(Attractors, ReturnDistanceIsADifferenceOfRoundedUnitVectors) {
 
 TEST(Basins, FractionsSumToOneWithIntervals) {
   const Basins b = basins(0.21, parse_grid("strip:30x20", -2, 2), 2, 7, {});
-  double sum = b.unresolved.value;
+  double sum = b.undecided.value;
   std::size_t count = 0;
   for (std::size_t i = 0; i < b.attractors.size(); ++i) {
     sum += b.fractions[i].value;
@@ -320,7 +320,7 @@ TEST(Basins, EarlyExitGivesTheFullLengthVerdicts) {
                 fmt::format("{:.8g} {:.8g}", want[i].invariant_min, want[i].invariant_max)) << at;
       for (int k = 0; k <= q.replicates; ++k) {
         std::size_t c = 0;
-        for (const auto& v : per_grid[static_cast<std::size_t>(k)]) c += v.type != Type::unresolved && v.key == want[i].key;
+        for (const auto& v : per_grid[static_cast<std::size_t>(k)]) c += v.type != Type::undecided && v.key == want[i].key;
         EXPECT_EQ(res.basins.replicate_fractions[i][static_cast<std::size_t>(k)],
                   static_cast<double>(c) / static_cast<double>(n)) << at << ", grid " << k;
       }
@@ -433,7 +433,7 @@ TEST(Requests, BasinsMatchTheDirectRoute) {
   EXPECT_EQ(res.basins.labels, b.labels);
   ASSERT_EQ(res.fraction.size(), b.attractors.size());
   ASSERT_EQ(res.replicate_mean.size(), b.attractors.size() + 1);
-  double sum = b.unresolved.value;
+  double sum = b.undecided.value;
   for (std::size_t i = 0; i < res.fraction.size(); ++i) {
     EXPECT_EQ(res.fraction[i], b.fractions[i].value);
     sum += res.fraction[i];

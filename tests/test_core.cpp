@@ -317,7 +317,7 @@ TEST(Csv, RowsMatchTheHeaderAndTextNeedsNoQuoting) {
   t.line("2,132312,0.25");
   EXPECT_EQ(t.text(), "attractor,pattern,fraction\n1,132^3312^3,0.5\n0,a; 'b' no.2 c,\n2,132312,0.25\n");
   EXPECT_EQ(t.rows(), 3u);
-  EXPECT_THROW(t.row({"0", "unresolved"}), std::logic_error);  // the old fractions.csv's short row
+  EXPECT_THROW(t.row({"0", "undecided"}), std::logic_error);  // the old fractions.csv's short row
   EXPECT_THROW(t.line("1,2"), std::logic_error);
   EXPECT_THROW(t.line("1,\"a,b\",3"), std::logic_error);      // quoted fields are not read by genfromtxt
   EXPECT_THROW(t.line("1,a#b,3"), std::logic_error);

@@ -158,7 +158,7 @@ TEST(OneOrbit, ClassifyAndLyapunovReportOneExponent) {
     EXPECT_EQ(v.point, v2.point);
     const lyapunov::ProjectiveResult p = lyapunov::projective_exponents<double>(u, r, lo);
     EXPECT_GE(p.lambda[0].value, p.lambda[1].value);
-    if (v.type == attractors::Type::unresolved || v.type == attractors::Type::quasi_periodic) continue;
+    if (v.type == attractors::Type::undecided || v.type == attractors::Type::quasi_periodic) continue;
     // lyapunov's error bar (batch means, at least 4 eps |lambda|) and classify's (0 on a cycle: exact), plus
     // the transient's bias on a cycle: the tangent vector aligns like exp((lambda2 - lambda1) n), gone after 2000
     // steps; 5 sigma + 1e-9.

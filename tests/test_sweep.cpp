@@ -116,12 +116,12 @@ TEST(Sweep, PackRoundTripsBitwise) {
   attractors::BasinClass c;
   c.first = v, c.first_index = 7, c.count = {4, 5}, c.rotation_min = -0.0, c.invariant_max = 1e-310;
   p.classes = {c, c};
-  p.unresolved = {1, 2};
+  p.undecided = {1, 2};
   p.iterations = 123, p.certified = 9, p.seconds = 1.5, p.threads = 2;
   const auto q = core::unpack<attractors::BasinRows>(core::pack(p));
   EXPECT_EQ(q.items, p.items);
   EXPECT_EQ(q.labels, p.labels);
-  EXPECT_EQ(q.unresolved, p.unresolved);
+  EXPECT_EQ(q.undecided, p.undecided);
   EXPECT_EQ(q.iterations, 123);
   EXPECT_EQ(q.certified, 9u);
   ASSERT_EQ(q.classes.size(), 2u);

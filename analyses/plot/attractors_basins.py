@@ -15,15 +15,16 @@ from plotlib import attrs, save_atomic
 
 def rows_of(f):
     """The legend's rows (the columns of NAME_fractions.csv it uses) from the result itself: attractor ids 1..n with
-    fraction and 95% interval, then the unresolved points (id 0)."""
+    fraction and 95% interval, then the undecided points (id 0)."""
     a = attrs(f)
     out = []
     for i, (fr, lo, hi) in enumerate(zip(f["fraction"][...], f["ci_low"][...], f["ci_high"][...]), start=1):
         pattern, _, kind = a[f"legend_{i}"].rpartition(" (")
         out.append({"attractor": i, "type": kind.rstrip(")"), "pattern": pattern, "fraction": fr, "ci_low": lo,
                     "ci_high": hi})
-    out.append({"attractor": 0, "type": "undecided", "pattern": "", "fraction": a["unresolved_fraction"],
-                "ci_low": a.get("unresolved_ci_low", float("nan")), "ci_high": a.get("unresolved_ci_high", float("nan"))})
+    u = "undecided" if "undecided_fraction" in a else "unresolved"  # older files: unresolved_*
+    out.append({"attractor": 0, "type": "undecided", "pattern": "", "fraction": a[f"{u}_fraction"],
+                "ci_low": a.get(f"{u}_ci_low", float("nan")), "ci_high": a.get(f"{u}_ci_high", float("nan"))})
     return out
 
 
@@ -39,7 +40,7 @@ def draw(f):
     labels = f["labels"][...]
     rows = rows_of(f)
     n_att = int(a["attractors"])
-    # Colours: unresolved black, then a qualitative palette by id (ids are sorted keys: stable across runs).
+    # Colours: undecided black, then a qualitative palette by id (ids are sorted keys: stable across runs).
     palette = plt.get_cmap("tab20").colors
     cols = [(0, 0, 0)] + [palette[i % len(palette)] for i in range(n_att)]
     cmap = colors.ListedColormap(cols)

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 SHOWN = 10  # attractors with a colour of their own (by total count); the others are "other"
-FIXED = {"chaotic": "#d62728", "unresolved": "#d9d9d9", "P2 invariant curves": "#2ca02c", "invariant curves": "#98df8a",
+FIXED = {"chaotic": "#d62728", "undecided": "#d9d9d9", "P2 invariant curves": "#2ca02c", "invariant curves": "#98df8a",
          "1": "#252525", "3": "#636363"}
 # Colours of the periodic attractors: tab20 without its greens, reds and greys (kept for the fixed names above).
 PALETTE = [0, 2, 8, 10, 12, 16, 18, 1, 3, 9, 11, 13, 17, 19]
@@ -43,12 +43,12 @@ def label_of(name, kind, period):
 
 
 def layers_of(f):
-    """The stacked shares [r] of the most frequent attractors, "other" and "unresolved", with colours and labels."""
+    """The stacked shares [r] of the most frequent attractors, "other" and "undecided", with colours and labels."""
     count = f["attractor_count"][...].astype(float)
     names, kinds = plotlib.texts(f, "attractor_name"), plotlib.texts(f, "attractor_type")
     period = f["attractor_period"][...]
     share = count / count.sum(axis=1, keepdims=True)
-    order = [i for i in np.argsort(-count.sum(axis=0), kind="stable") if count[:, i].sum() > 0 and names[i] != "unresolved"]
+    order = [i for i in np.argsort(-count.sum(axis=0), kind="stable") if count[:, i].sum() > 0 and names[i] != "undecided"]
     shown, rest = order[:SHOWN], order[SHOWN:]
     cmap = plt.get_cmap("tab20")
     layers, colours, legend = [], [], []
@@ -65,10 +65,10 @@ def layers_of(f):
         layers.append(share[:, rest].sum(axis=1))
         colours.append("#8c8c8c")
         legend.append(f"other ({len(rest)} attractors)")
-    u = names.index("unresolved") if "unresolved" in names else -1
+    u = names.index("undecided") if "undecided" in names else -1
     if u >= 0 and count[:, u].sum() > 0:
         layers.append(share[:, u])
-        colours.append(FIXED["unresolved"])
+        colours.append(FIXED["undecided"])
         legend.append("undecided (classify could not decide)")
     return layers, colours, legend
 

@@ -26,8 +26,8 @@ int main() try {
   basins.replicates = 0;
   basins.validate();
   const btob::attractors::BasinsResult res = btob::attractors::run(basins);
-  std::printf("basins r=0.3 grid %s: %zu attractors, %zu unresolved of %zu points\n", basins.grid.c_str(),
-              res.basins.attractors.size(), res.unresolved_count, res.points());
+  std::printf("basins r=0.3 grid %s: %zu attractors, %zu undecided of %zu points\n", basins.grid.c_str(),
+              res.basins.attractors.size(), res.undecided_count, res.points());
   for (std::size_t i = 0; i < res.basins.attractors.size(); ++i) {
     const auto& a = res.basins.attractors[i];
     std::printf("  attractor %d %-12s fraction %.4f [%.4f, %.4f]\n", a.id, a.pattern.empty() ? a.key.c_str() : a.pattern.c_str(),

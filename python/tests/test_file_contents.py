@@ -1,7 +1,8 @@
 """Self-describing files: every file a command writes is opened and checked.  Every HDF5 dataset states its unit and
 meaning (attributes units, description); every axis of a grid (a dataset of two or more dimensions) that runs over
 a coordinate has that coordinate attached as an HDF5 dimension scale (index axes such as "initial condition" have
-none); every CSV row has the header's width and ends with a newline; a manifest states each verdict once."""
+none); every CSV row has the header's width and ends with a newline; a manifest states each verdict once; the verdict
+of an orbit the classifier could not decide is "undecided" in every name, string and cell, never a second word."""
 import csv
 import json
 import os
@@ -13,7 +14,7 @@ import pytest
 from conftest import exe
 
 # Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
-INDEX_AXES = {"initial condition", "attractor", "attractor then unresolved", "interval", "line", "(r, colour)", "step",
+INDEX_AXES = {"initial condition", "attractor", "attractor then undecided", "interval", "line", "(r, colour)", "step",
               "eigenvalue", "orbit", "group", "period", "event", "particle"}
 
 COMMANDS = {
@@ -36,6 +37,15 @@ COMMANDS = {
     "particles": ["particles", "1133", "--r", "0.15", "--periods", "3"],
 }
 
+# Commands whose files hold the verdict word and are checked for it alone (their grids have no dimension scales).
+WORD_ONLY = {
+    "basins-r": ["basins-r", "--r-values", "0.2,0.35", "--grid", "random:12", "--transient", "50", "--iterations",
+                 "300", "--lyap-iterations", "200", "--lyap-transient", "50", "--refine-factor", "0"],
+    "strip-orbits": ["strip-orbits", "--r", "0.2", "--orbits", "3", "--iterations", "400", "--tail", "100"],
+    "transfer": ["transfer", "--r", "0.2", "--boxes", "8x8", "--samples", "2", "--eigenvalues", "3",
+                 "--measure-orbits", "2", "--measure-iterations", "200", "--tv-bins", "4"],
+}
+
 
 # The tables a plot script draws from, which NAME.h5 must hold beside its CSV files (the script reads NAME.h5 alone).
 REQUIRED = {
@@ -48,6 +58,9 @@ REQUIRED = {
     "windows precision": ["n", "precision", "route", "row", "abs_error", "seconds"],
     "particles": ["event_period", "event_time", "event_time_to_collapse", "event_x", "event_letter"],
 }
+# The verdict of an orbit no attractor was found for is "undecided" (attractors::type_name); this word, which files
+# written before the rename used for it, must not reappear in a name, an attribute, a string or a CSV cell.
+OLD_WORD = "unresolved"
 # Names that are data (words, verdicts, reasons, collision letters) are string datasets, not numbers or CSV text.
 TEXT_SUFFIXES = ("word", "status", "reason", "letter")
 
@@ -76,6 +89,37 @@ def check_h5(path, bad):
                     bad.append(f"{path}:{name}: axis {i} ({label}) has no dimension scale")
 
 
+def strings(value):
+    """The strings an HDF5 attribute or dataset value holds (none for numbers)."""
+    if isinstance(value, bytes):
+        return [value.decode(errors="replace")]
+    if isinstance(value, str):
+        return [value]
+    if hasattr(value, "dtype") and value.dtype.kind in "OSU":
+        return [x for v in value.ravel().tolist() for x in strings(v)]
+    return []
+
+
+def check_word(path, bad):
+    """Every name and string of the file (HDF5: objects, attribute names and string values, string datasets; CSV and
+    JSON: the text) without OLD_WORD."""
+    found = []
+    if path.endswith(".h5"):
+        with h5py.File(path, "r") as f:
+            objects = [("/", f)]
+            f.visititems(lambda name, obj: objects.append((name, obj)))
+            for name, obj in objects:
+                found += [name] if OLD_WORD in name.lower() else []
+                for key, value in obj.attrs.items():
+                    found += [f"{name}@{key}"] if any(OLD_WORD in s.lower() for s in [key, *strings(value)]) else []
+                if isinstance(obj, h5py.Dataset) and any(OLD_WORD in s.lower() for s in strings(obj[()])):
+                    found.append(f"{name} (values)")
+    elif path.endswith((".csv", ".json")):
+        with open(path) as f:
+            found += [f"line {i}" for i, line in enumerate(f, start=1) if OLD_WORD in line.lower()]
+    bad += [f"{path}: {where} says '{OLD_WORD}', not 'undecided'" for where in found]
+
+
 def check_csv(path, bad):
     with open(path, newline="") as f:
         text = f.read()
@@ -94,12 +138,28 @@ def check_manifest(path, bad):
         bad.append(f"{path}: two verdicts (decays and decay_verdict)")
 
 
+def run(args, out):
+    """Runs btob with args into the folder out; returns its standard output."""
+    p = subprocess.run([exe(), *args, "--out", str(out), "--no-plot", "--quiet", "--threads", "1"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    return p
+
+
+@pytest.mark.parametrize("command", sorted(WORD_ONLY))
+def test_every_file_says_undecided(command, tmp_path):
+    out = tmp_path / "out"
+    run(WORD_ONLY[command], out)
+    bad = []
+    for name in sorted(os.listdir(out)):
+        check_word(str(out / name), bad)
+    assert not bad, "\n".join(bad)
+
+
 @pytest.mark.parametrize("command", sorted(COMMANDS))
 def test_every_file_describes_itself(command, tmp_path):
     out = tmp_path / "out"
-    p = subprocess.run([exe(), *COMMANDS[command], "--out", str(out), "--no-plot", "--quiet", "--threads", "1"],
-                       capture_output=True, text=True)
-    assert p.returncode == 0, p.stderr
+    p = run(COMMANDS[command], out)
     if p.stdout:
         assert p.stdout.endswith("\n"), f"btob {command}: standard output does not end with a newline"
     bad = []
@@ -107,6 +167,7 @@ def test_every_file_describes_itself(command, tmp_path):
     assert files
     for name in files:
         path = str(out / name)
+        check_word(path, bad)
         if name.endswith(".h5"):
             check_h5(path, bad)
         elif name.endswith(".csv"):
@@ -138,6 +199,21 @@ def test_the_checks_catch_an_undescribed_grid(tmp_path):
     assert any("no description" in b for b in bad) and any("no dimension scale" in b for b in bad)
     assert any("not as strings" in b for b in bad)
     assert any("newline" in b for b in bad) and any("fields" in b for b in bad)
+
+
+def test_the_checks_catch_the_old_word(tmp_path):
+    path = str(tmp_path / "x.h5")
+    with h5py.File(path, "w") as f:
+        f["fraction"] = [0.5]
+        f["fraction"].attrs["axes"] = "attractor then unresolved"
+        f.attrs["unresolved_fraction"] = 0.5
+        f["name"] = [b"132^2", b"unresolved"]
+    with open(tmp_path / "x.csv", "w") as f:
+        f.write("attractor,type\n0,unresolved\n")
+    bad = []
+    check_word(path, bad)
+    check_word(str(tmp_path / "x.csv"), bad)
+    assert len(bad) == 4 and all("'unresolved'" in b for b in bad), bad
 
 
 def test_string_arrays_describe_themselves_in_python():

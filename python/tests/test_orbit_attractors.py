@@ -12,13 +12,13 @@ GRID = ";".join(",".join(repr(c) for c in p) for p in POINTS)
 
 
 def classify_each(res, transient, iterations, max_period):
-    """classify's (pattern or 'unresolved', type, period) of every orbit of the result, in its [r, point] order."""
+    """classify's (pattern or 'undecided', type, period) of every orbit of the result, in its [r, point] order."""
     out = []
     for r in res.r:
         row = []
         for p in POINTS:
             v = btob.classify(r=float(r), point=p, transient=transient, iterations=iterations, max_period=max_period)
-            row.append((v.attrs["pattern"] or "unresolved", v.attrs["type"], int(v.attrs["period"])))
+            row.append((v.attrs["pattern"] or "undecided", v.attrs["type"], int(v.attrs["period"])))
         out.append(row)
     return out
 

@@ -25,13 +25,13 @@ using core::Vec3;
 //    lambda1 (the fused cocycle kernel, batch means) and, for the orbits whose lambda1 is zero within its bar,
 //    from a plain run of the same orbits, the weighted Birkhoff rotation number about the P2
 //    centre (1, 0, -1) with the P2 invariant I (attractors/recorders.hpp).  Refinement: orbits
-//    still unresolved are continued from where they stopped with `refine_factor` times the transient.
+//    still undecided are continued from where they stopped with `refine_factor` times the transient.
 //  * Types: periodic (a stable periodic orbit, the pattern tool's verdict attached), collapse
 //    (three-particle collapse, z -> 0 with symbol 1 or x -> 0 with symbol 3; r <= 7 - 4 sqrt(3)),
 //    quasi-periodic (lambda1 = 0 within its error bar and a converged rotation number), chaotic
-//    (lambda1 > 0 beyond its error bar), unresolved (the budget ran out; `detail` says why).
+//    (lambda1 > 0 beyond its error bar), undecided (the budget ran out; `detail` says why).
 
-enum class Type : std::uint8_t { unresolved = 0, collapse = 1, periodic = 2, quasi_periodic = 3, chaotic = 4 };
+enum class Type : std::uint8_t { undecided = 0, collapse = 1, periodic = 2, quasi_periodic = 3, chaotic = 4 };
 const char* type_name(Type t);
 
 struct Options {
@@ -55,7 +55,7 @@ struct Options {
   // average converges faster than any power of 1/n on a smooth invariant curve (Das-Yorke), to ~1e-10
   // at n = 4000; chaotic orbits differ by ~1e-2.  In (0, 0.1].
   double rotation_tol = 1e-6;
-  int refine_factor = 10;  // refinement pass: transient multiplied by this for unresolved orbits, 0 = off, <= 1000
+  int refine_factor = 10;  // refinement pass: transient multiplied by this for undecided orbits, 0 = off, <= 1000
   iterate::RunOptions run;  // threads (results never depend on them), progress
 };
 // Throws std::invalid_argument "field: got X, expected Y" naming the option.
@@ -63,7 +63,7 @@ void validate(const Options& opt);
 
 // The verdict on one orbit, with its evidence.
 struct OrbitVerdict {
-  Type type = Type::unresolved;
+  Type type = Type::undecided;
   int period = 0;            // in map iterations (periodic; 1 for collapse)
   patterns::Word word;       // periodic: the symbols of one period from the window's first point
   std::string key;           // attractor identity key (see attractor_key)
@@ -76,7 +76,7 @@ struct OrbitVerdict {
   bool p2_region = false;    // no symbol 1 or 3 in the window (an orbit of the P2 parallelogram)
   long iterations = 0;       // map iterations spent on this orbit
   Vec3<double> point;        // a point on the attractor (the window's first point, unit, in Q)
-  std::string detail;        // why unresolved, or extra evidence
+  std::string detail;        // why undecided, or extra evidence
   template <class A> void members(A& a) {  // core/pack.hpp
     a(type, period, word.s, key, residual, closest_return, lambda1, err1, rotation, rotation_delta, invariant,
       invariant_spread, p2_region, iterations, point, detail);
@@ -86,7 +86,7 @@ struct OrbitVerdict {
 // Identity of the attractor an orbit reached, as a string key that sorts deterministically:
 //   "C1" / "C3"  collapse on z = 0 / x = 0;   "P<digits>"  periodic, word rotated to its smallest rotation
 //   (order 1 < 3 < 2; J-mirrors are different attractors);   "Q2" quasi-periodic invariant curves of the P2
-//   parallelogram (a continuum: one family);   "Q" other quasi-periodic;   "X" chaotic;   "" unresolved.
+//   parallelogram (a continuum: one family);   "Q" other quasi-periodic;   "X" chaotic;   "" undecided.
 std::string attractor_key(const OrbitVerdict& v);
 // Same attractor at r: same key and, for periodic orbits, b's point lies on a's cycle (within point_tol);
 // for quasi-periodic curves, same rotation number (turns) and same invariant I (relative), within `curve_tol`.
@@ -100,8 +100,8 @@ OrbitVerdict classify_point(const Vec3<double>& u0, double r, const Options& opt
 
 // An attractor found at one r.
 struct Attractor {
-  int id = 0;                   // 1-based, by sorted key (0 is reserved for unresolved points)
-  Type type = Type::unresolved;
+  int id = 0;                   // 1-based, by sorted key (0 is reserved for undecided points)
+  Type type = Type::undecided;
   std::string key;
   std::string pattern;          // paper notation (132^3312^3; 312^2 for the J-mirror of 132^2; "1" / "3" collapse)
   std::string canonical;        // patterns::canonical in paper notation (mirrors share it)
@@ -121,7 +121,7 @@ struct Attractor {
 };
 
 // Attractors of a set of verdicts: one per key, ids by sorted key, counts; `labels` (same order as the
-// verdicts) gets the ids (0: unresolved).  Periodic keys are checked against patterns::analyse at r.
+// verdicts) gets the ids (0: undecided).  Periodic keys are checked against patterns::analyse at r.
 std::vector<Attractor> collect(const std::vector<OrbitVerdict>& v, double r, std::vector<std::uint32_t>* labels);
 
 // A binomial proportion with its two-sided 95% Clopper-Pearson interval (boost::math::binomial_distribution).
@@ -159,10 +159,10 @@ struct Basins {
   Grid grid;
   std::vector<Attractor> attractors;       // union over the main grid and the replicates, ids by key
   std::vector<std::uint32_t> labels;       // main grid, index i2 * n1 + i1 (row-major, w2 rows)
-  std::vector<Fraction> fractions;         // per attractor (main grid); unresolved last
-  Fraction unresolved;
-  std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; unresolved appended last
-  std::size_t unresolved_first_pass = 0;   // before refinement
+  std::vector<Fraction> fractions;         // per attractor (main grid); undecided last
+  Fraction undecided;
+  std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; undecided appended last
+  std::size_t undecided_first_pass = 0;    // before refinement
   long iterations_total = 0;               // map iterations of the grids' orbits (all passes, all grids; not the
                                            // early exit's probe and checks)
   std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
@@ -210,16 +210,16 @@ struct BasinClass {
 };
 struct BasinRows {
   std::vector<std::size_t> items;       // ascending
-  std::vector<std::uint32_t> labels;    // n1 per main-grid item (they come first), in item order: 1 + class, 0 unresolved
+  std::vector<std::uint32_t> labels;    // n1 per main-grid item (they come first), in item order: 1 + class, 0 undecided
   std::vector<BasinClass> classes;      // the attractors its orbits reached
-  std::vector<std::size_t> unresolved;  // unresolved orbits per grid
-  std::size_t unresolved_first_pass = 0;  // main grid: unresolved after the first pass (before refinement)
+  std::vector<std::size_t> undecided;   // undecided orbits per grid
+  std::size_t undecided_first_pass = 0;  // main grid: undecided after the first pass (before refinement)
   long iterations = 0;                  // map iterations spent (all passes, all its grids)
   std::size_t certified = 0;            // orbits decided before the full length (early exit), all its grids
   double seconds = 0;
   int threads = 0;                      // threads the part ran on (reported, not computed with)
   template <class A> void members(A& a) {
-    a(items, labels, classes, unresolved, unresolved_first_pass, iterations, certified, seconds, threads);
+    a(items, labels, classes, undecided, undecided_first_pass, iterations, certified, seconds, threads);
   }
 };
 BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,

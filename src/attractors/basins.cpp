@@ -367,7 +367,7 @@ void note_witnesses(const ChunkVerdicts& x, const std::vector<Vec3<double>>& sta
     }
 }
 
-// Folds a chunk's verdicts into the part: classes, counts, main-grid labels, unresolved counts.
+// Folds a chunk's verdicts into the part: classes, counts, main-grid labels, undecided counts.
 void fold_chunk(const ChunkVerdicts& x, const std::vector<Vec3<double>>& starts, const RowChunk& ch, const Grid& g,
                 const Certificates& cert, CertifiedClasses& certified, ClassBook& book) {
   BasinRows& part = book.part;
@@ -380,10 +380,10 @@ void fold_chunk(const ChunkVerdicts& x, const std::vector<Vec3<double>>& starts,
       if (d.is_full_length()) {
         const OrbitVerdict& v = x.full[x.full_of[o]];
         if (k == 0)
-          part.unresolved_first_pass +=
-              v.type == Type::unresolved || v.detail.find("after refinement") != std::string::npos;
-        if (v.type == Type::unresolved) {
-          ++part.unresolved[k];
+          part.undecided_first_pass +=
+              v.type == Type::undecided || v.detail.find("after refinement") != std::string::npos;
+        if (v.type == Type::undecided) {
+          ++part.undecided[k];
           if (k == 0) part.labels.push_back(0);
           continue;
         }
@@ -435,7 +435,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
   const std::size_t grids = static_cast<std::size_t>(replicates) + 1;
   BasinRows part;
   part.items = items;
-  part.unresolved.assign(grids, 0);
+  part.undecided.assign(grids, 0);
   part.labels.reserve(
       static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [&](auto i) { return i < n2; })) * n1);
   ClassBook book{part, grids};
@@ -484,18 +484,18 @@ void join_class(BasinClass& j, const BasinClass& c, std::size_t grids) {
   keep_highest_invariant(j.hi, c.hi);
 }
 
-// The classes of all parts joined by (type, key); the parts' totals summed into b, unresolved counts per grid.
+// The classes of all parts joined by (type, key); the parts' totals summed into b, undecided counts per grid.
 JoinedClasses join_parts(const std::vector<BasinRows>& parts, std::size_t grids, Basins& b,
-                         std::vector<std::size_t>& unresolved, double& part_seconds) {
+                         std::vector<std::size_t>& undecided, double& part_seconds) {
   JoinedClasses joined;
-  unresolved.assign(grids, 0);
+  undecided.assign(grids, 0);
   for (const auto& p : parts) {
     part_seconds = std::max(part_seconds, p.seconds);
     b.iterations_total += p.iterations;
-    b.unresolved_first_pass += p.unresolved_first_pass;
+    b.undecided_first_pass += p.undecided_first_pass;
     b.certified += p.certified;
-    if (p.unresolved.size() != grids) throw std::logic_error("basin rows: unresolved counts of another request");
-    for (std::size_t k = 0; k < grids; ++k) unresolved[k] += p.unresolved[k];
+    if (p.undecided.size() != grids) throw std::logic_error("basin rows: undecided counts of another request");
+    for (std::size_t k = 0; k < grids; ++k) undecided[k] += p.undecided[k];
     for (const auto& c : p.classes) {
       auto [it, fresh] = joined.try_emplace({static_cast<int>(c.first.type), c.first.key}, c);
       if (!fresh) join_class(it->second, c, grids);
@@ -535,10 +535,10 @@ void settle_pending(JoinedClasses& joined, double r, const Options& opt) {
 
 // The attractors of the joined classes (ids by sorted key), their main-grid fractions and replicate fractions.
 std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined,
-                                                  const std::vector<std::size_t>& unresolved, double r, std::size_t n,
+                                                  const std::vector<std::size_t>& undecided, double r, std::size_t n,
                                                   Basins& b) {
   std::map<ClassKey, std::uint32_t> id_of;
-  const std::size_t grids = unresolved.size();
+  const std::size_t grids = undecided.size();
   for (const auto& [k, c] : joined) {
     Attractor a = attractor_of(c.first, r);
     a.id = static_cast<int>(b.attractors.size()) + 1;
@@ -554,9 +554,9 @@ std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined,
   }
   std::vector<double> per_grid(grids);
   for (std::size_t kk = 0; kk < grids; ++kk)
-    per_grid[kk] = static_cast<double>(unresolved[kk]) / static_cast<double>(n);
+    per_grid[kk] = static_cast<double>(undecided[kk]) / static_cast<double>(n);
   b.replicate_fractions.push_back(std::move(per_grid));
-  b.unresolved = fraction(unresolved[0], n);
+  b.undecided = fraction(undecided[0], n);
   return id_of;
 }
 
@@ -590,11 +590,11 @@ Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt,
   Basins b;
   b.r = r;
   b.grid = g;
-  std::vector<std::size_t> unresolved;
+  std::vector<std::size_t> undecided;
   double part_seconds = 0;
-  JoinedClasses joined = join_parts(parts, grids, b, unresolved, part_seconds);
+  JoinedClasses joined = join_parts(parts, grids, b, undecided, part_seconds);
   settle_pending(joined, r, opt);
-  const auto id_of = name_attractors(joined, unresolved, r, g.cells(), b);
+  const auto id_of = name_attractors(joined, undecided, r, g.cells(), b);
   place_labels(parts, order, g, id_of, b);
   b.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return b;

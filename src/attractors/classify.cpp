@@ -169,7 +169,7 @@ struct PassTwo {
   std::vector<Vec3<double>> last;
 };
 
-// The rotation number and the P2 invariant decide only between quasi-periodic and unresolved: wanted for the orbits
+// The rotation number and the P2 invariant decide only between quasi-periodic and undecided: wanted for the orbits
 // whose lambda1 is zero within its bar where P2 rotates.
 bool wants_rotation(const PassTwo& two, std::size_t i, double r, const Options& opt) {
   return RotationRecorder::defined(r) &&
@@ -222,7 +222,7 @@ PassTwo run_pass_two(const iterate::Ensemble& pass_two, const Options& opt) {
   return two;
 }
 
-// Pass 2's verdict on its orbit i: chaotic, quasi-periodic or unresolved (with the reason).
+// Pass 2's verdict on its orbit i: chaotic, quasi-periodic or undecided (with the reason).
 void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options& opt, OrbitVerdict& v) {
   v.iterations += opt.lyap_transient + opt.lyap_iterations;
   v.lambda1 = two.exponents.lambda1[i], v.err1 = two.exponents.err1[i];
@@ -282,12 +282,12 @@ void run_pass(const iterate::Ensemble& ens, long transient, const Options& opt, 
   }
 }
 
-// Refinement: continue only the unresolved orbits, with refine_factor times the transient.
+// Refinement: continue only the undecided orbits, with refine_factor times the transient.
 void refine(const iterate::Ensemble& ens, const Options& opt, const std::vector<Vec3<double>>& latest,
             ExactCycles& exact, std::vector<OrbitVerdict>& out) {
   std::vector<std::size_t> idx;
   for (std::size_t o = 0; o < out.size(); ++o)
-    if (out[o].type == Type::unresolved) idx.push_back(o);
+    if (out[o].type == Type::undecided) idx.push_back(o);
   if (idx.empty()) return;
   iterate::Ensemble again;
   again.r = ens.r;
@@ -301,7 +301,7 @@ void refine(const iterate::Ensemble& ens, const Options& opt, const std::vector<
     const std::string first = v.detail;
     v = std::move(refined[i]);
     v.iterations += before;
-    if (v.type == Type::unresolved)
+    if (v.type == Type::undecided)
       v.detail += " (also after refinement)";
     else
       v.detail += " (after refinement; first pass: " + first + ")";
@@ -339,7 +339,7 @@ const char* type_name(Type t) {
     case Type::chaotic:
       return "chaotic";
     default:
-      return "undecided";  // Type::unresolved: the window cannot decide
+      return "undecided";  // Type::undecided: the window cannot decide
   }
 }
 
@@ -364,7 +364,7 @@ void validate(const Options& o) {
 std::string attractor_key(const OrbitVerdict& v) { return v.key; }
 
 bool same_attractor(const OrbitVerdict& a, const OrbitVerdict& b, double r, double point_tol, double curve_tol) {
-  if (a.type != b.type || a.key != b.key || a.type == Type::unresolved) return false;
+  if (a.type != b.type || a.key != b.key || a.type == Type::undecided) return false;
   if (a.type == Type::periodic) {
     // Same word up to phase (the key) and b's point on a's cycle: walk the cycle from a's point.
     Vec3<double> u = a.point;
@@ -427,7 +427,7 @@ std::vector<Attractor> collect(const std::vector<OrbitVerdict>& vs, double r, st
   // One attractor per (type, key), sorted: ids do not depend on the order of the verdicts.
   std::map<std::pair<int, std::string>, Attractor> by_key;
   for (const OrbitVerdict& v : vs) {
-    if (v.type == Type::unresolved) continue;
+    if (v.type == Type::undecided) continue;
     auto [it, fresh] = by_key.try_emplace({static_cast<int>(v.type), v.key});
     if (fresh) it->second = attractor_of(v, r);
     ++it->second.count;
@@ -443,7 +443,7 @@ std::vector<Attractor> collect(const std::vector<OrbitVerdict>& vs, double r, st
   if (labels) {
     labels->assign(vs.size(), 0);
     for (std::size_t o = 0; o < vs.size(); ++o)
-      if (vs[o].type != Type::unresolved) (*labels)[o] = id_of[vs[o].key];
+      if (vs[o].type != Type::undecided) (*labels)[o] = id_of[vs[o].key];
   }
   return out;
 }

@@ -32,7 +32,7 @@ int threads_of(const core::RunControl& control) { return control.threads > 0 ? c
 
 // The attractor's own spelling (mirror-aware) from a one-verdict collection.
 std::string pattern_of(const OrbitVerdict& v, double r) {
-  if (v.type == Type::unresolved) return "";
+  if (v.type == Type::undecided) return "";
   const auto a = collect({v}, r, nullptr);
   return a.empty() ? "" : a[0].pattern;
 }
@@ -125,7 +125,7 @@ core::Work work(const ClassifyRequest& req) {
     return static_cast<double>(p.thresholds.lyap_transient + p.thresholds.lyap_iterations);
   };
   w.terms = {one, two};
-  w.bound = "pass 1 decides periodic orbits and collapses without pass 2, and only an unresolved orbit is refined";
+  w.bound = "pass 1 decides periodic orbits and collapses without pass 2, and only an undecided orbit is refined";
   w.output_bytes = 400;  // one printed row (or NAME.json with its attributes under --out)
   // Pass 1 keeps the window's states (3 doubles and a symbol each); pass 2 the rotation record (2 doubles a step).
   w.peak_bytes = 32 * static_cast<double>(o.window + o.max_period) + 16 * static_cast<double>(o.lyap_iterations) + 65536;
@@ -187,7 +187,7 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
     res.ci_low.push_back(f.low);
     res.ci_high.push_back(f.high);
   }
-  // The spread of each fraction over the main and replicate grids (unresolved last).
+  // The spread of each fraction over the main and replicate grids (undecided last).
   for (const auto& v : b.replicate_fractions) {
     double m = 0, s = 0;
     for (double x : v) m += x;
@@ -196,7 +196,7 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
     res.replicate_mean.push_back(m);
     res.replicate_sd.push_back(v.size() > 1 ? std::sqrt(s / static_cast<double>(v.size() - 1)) : 0.0);
   }
-  for (auto l : b.labels) res.unresolved_count += l == 0;
+  for (auto l : b.labels) res.undecided_count += l == 0;
   res.axis1 = b.grid.axis1.centres();  // cell centres of the main (unshifted) grid, where its points lie
   res.axis2 = b.grid.axis2.centres();
   return res;
@@ -215,15 +215,15 @@ void BasinsResult::describe(core::Contents& c) const {
   c.array(ax2.name, axis2, {axis2.size()}, ax2.name, ax2.units, ax2.meaning);
   c.array("labels", b.labels, {static_cast<std::size_t>(ax2.cells), static_cast<std::size_t>(ax1.cells)},
           fmt::format("{}, {}", ax2.name, ax1.name), "attractor id",
-          "attractor of each grid point (0 = unresolved; legend_<id>)");
+          "attractor of each grid point (0 = undecided; legend_<id>)");
   c.array("fraction", fraction, {fraction.size()}, "attractor", "1", "fraction of the main grid in each basin");
   c.array("ci_low", ci_low, {ci_low.size()}, "attractor", "1",
           "lower end of the Clopper-Pearson 95% interval of the fraction (sampling only)");
   c.array("ci_high", ci_high, {ci_high.size()}, "attractor", "1",
           "upper end of the Clopper-Pearson 95% interval of the fraction (sampling only)");
-  c.array("replicate_mean", replicate_mean, {replicate_mean.size()}, "attractor then unresolved", "1",
-          "mean fraction over the main and the randomly shifted replicate grids (unresolved last)");
-  c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then unresolved", "1",
+  c.array("replicate_mean", replicate_mean, {replicate_mean.size()}, "attractor then undecided", "1",
+          "mean fraction over the main and the randomly shifted replicate grids (undecided last)");
+  c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then undecided", "1",
           "sample standard deviation of the fraction over the main and replicate grids (0 with one grid)");
   c.attr("interval", "Clopper-Pearson 95% (sampling only)");
   const std::size_t n = points();
@@ -242,10 +242,10 @@ void BasinsResult::describe(core::Contents& c) const {
   c.attr("seed", static_cast<long>(request.seed));
   threshold_attrs(c, request.thresholds);
   c.attr("attractors", static_cast<long>(b.attractors.size()));
-  c.attr("unresolved_fraction", b.unresolved.value);
-  c.attr("unresolved_ci_low", b.unresolved.low);
-  c.attr("unresolved_ci_high", b.unresolved.high);
-  c.attr("unresolved_first_pass", static_cast<long>(b.unresolved_first_pass));
+  c.attr("undecided_fraction", b.undecided.value);
+  c.attr("undecided_ci_low", b.undecided.low);
+  c.attr("undecided_ci_high", b.undecided.high);
+  c.attr("undecided_first_pass", static_cast<long>(b.undecided_first_pass));
   c.attr("map_iterations", b.iterations_total);
   c.attr("certified_early", static_cast<long>(b.certified));  // orbits decided before the full length (all grids)
   c.attr("seconds", b.seconds);
@@ -328,10 +328,10 @@ BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& 
     e.initial = pts;
     const auto v = classify(e, opt);
     BasinsRRow row{r, collect(v, r, nullptr), {}, {}};
-    std::size_t unres = 0;
-    for (const auto& x : v) unres += x.type == Type::unresolved;
+    std::size_t undec = 0;
+    for (const auto& x : v) undec += x.type == Type::undecided;
     for (const auto& x : row.attractors) row.fractions.push_back(fraction(x.count, v.size()));
-    row.unresolved = fraction(unres, v.size());
+    row.undecided = fraction(undec, v.size());
     part.rows.push_back(std::move(row));
   }
   part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -367,7 +367,7 @@ void compare(BasinsRResult& res, const std::vector<TableRow>& table) {
         cmp.other += fmt::format("{}{} ({:.3f})", cmp.other.empty() ? "" : "; ", label, row.fractions[i].value);
       }
     }
-    cmp.other += fmt::format("{}unresolved ({:.3f})", cmp.other.empty() ? "" : "; ", row.unresolved.value);
+    cmp.other += fmt::format("{}undecided ({:.3f})", cmp.other.empty() ? "" : "; ", row.undecided.value);
     std::set<std::string> paper;
     if (t) {
       cmp.in_table = true;
@@ -411,7 +411,7 @@ BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts) {
   }
   compare(res, parse_table(req.reference_csv));
 
-  // The fraction matrix [r x key] for the stacked areas: keys across r sorted (type, key), unresolved last.
+  // The fraction matrix [r x key] for the stacked areas: keys across r sorted (type, key), undecided last.
   std::map<std::pair<int, std::string>, std::string> keys;
   for (const auto& row : res.rows)
     for (const auto& x : row.attractors) keys[{static_cast<int>(x.type), x.key}] = x.pattern;
@@ -427,10 +427,10 @@ BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts) {
     ++col;
   }
   for (std::size_t i = 0; i < nr; ++i) {
-    res.fraction[i * cols + col] = res.rows[i].unresolved.value;
+    res.fraction[i * cols + col] = res.rows[i].undecided.value;
     res.r.push_back(res.rows[i].r);
   }
-  res.columns.push_back("unresolved");
+  res.columns.push_back("undecided");
   res.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
@@ -447,7 +447,7 @@ std::string grid_measure(const std::string& spec) {
 
 void BasinsRResult::describe(core::Contents& c) const {
   c.array("r", r, {r.size()}, "r value", "1", "restitution coefficients");
-  c.array("fraction", fraction, {r.size(), columns.size()}, "r value, attractor (column_<j>; unresolved last)", "1",
+  c.array("fraction", fraction, {r.size(), columns.size()}, "r value, attractor (column_<j>; undecided last)", "1",
           "fraction of the initial conditions in each basin");
   for (std::size_t j = 0; j < columns.size(); ++j) c.attr(fmt::format("column_{}", j), columns[j]);
   c.attr("grid", request.grid);
@@ -459,7 +459,7 @@ void BasinsRResult::describe(core::Contents& c) const {
   c.attr("seconds", seconds);
 }
 
-// NAME_fractions.csv: the requested columns first, then counts, replicate spread and evidence; the unresolved
+// NAME_fractions.csv: the requested columns first, then counts, replicate spread and evidence; the undecided
 // points are the last row (attractor 0), with the columns that describe an attractor left empty.
 core::Tables BasinsResult::tables() const {
   const Basins& b = basins;
@@ -480,8 +480,8 @@ core::Tables BasinsResult::tables() const {
            at.letters, measure});
   }
   const std::size_t u = b.attractors.size();
-  std::vector<std::string> row = {"0", "unresolved", "", f(b.unresolved.value), f(b.unresolved.low),
-                                  f(b.unresolved.high), fmt::format("{}", unresolved_count), f(replicate_mean[u]),
+  std::vector<std::string> row = {"0", "undecided", "", f(b.undecided.value), f(b.undecided.low),
+                                  f(b.undecided.high), fmt::format("{}", undecided_count), f(replicate_mean[u]),
                                   f(replicate_sd[u])};
   row.resize(t.columns().size());
   row.back() = measure;
@@ -498,9 +498,9 @@ std::string BasinsRResult::fractions_csv() const {
                          type_name(row.attractors[i].type), core::csv_text(row.attractors[i].pattern),
                          row.fractions[i].value, row.fractions[i].low, row.fractions[i].high, row.attractors[i].count,
                          core::csv_text(row.attractors[i].stability), measure));
-    t.line(fmt::format("{},,unresolved,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.unresolved.value, row.unresolved.low,
-                       row.unresolved.high,
-                       static_cast<std::size_t>(std::llround(row.unresolved.value * static_cast<double>(points))),
+    t.line(fmt::format("{},,undecided,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.undecided.value, row.undecided.low,
+                       row.undecided.high,
+                       static_cast<std::size_t>(std::llround(row.undecided.value * static_cast<double>(points))),
                        measure));
   }
   return t.text();

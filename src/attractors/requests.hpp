@@ -51,7 +51,7 @@ struct ClassifyRequest {
 struct ClassifyResult {
   ClassifyRequest request;
   OrbitVerdict verdict;
-  std::string pattern;  // the attractor's own spelling (mirror-aware); empty when unresolved
+  std::string pattern;  // the attractor's own spelling (mirror-aware); empty when undecided
   std::string detail;   // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
   // Attributes only: type, pattern, period, lambda1, err, detail, iterations.
   void describe(core::Contents& c) const;
@@ -60,7 +60,7 @@ struct ClassifyResult {
 ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control = {});
 // Its cost (core/work.hpp): the map steps of pass 1 (transient + window) and the cocycle steps of pass 2, each again
 // in the refinement pass (transient x refine-factor): an upper bound, since pass 1 decides periodic orbits and
-// collapses without pass 2, and only unresolved orbits are refined.
+// collapses without pass 2, and only undecided orbits are refined.
 core::Work work(const ClassifyRequest& req);
 
 // ---- basins at one r (`btob basins`) --------------------------------------------------------------------------
@@ -91,17 +91,17 @@ struct BasinsResult {
   BasinsRequest request;
   Basins basins;
   std::vector<double> fraction, ci_low, ci_high;  // [attractors]: main-grid fractions and their 95% intervals
-  std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; unresolved last
+  std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; undecided last
   std::vector<double> axis1, axis2;                  // [n1], [n2]: the main grid's cell centres along each axis
-  std::size_t unresolved_count = 0;                  // unresolved points of the main grid
+  std::size_t undecided_count = 0;                   // undecided points of the main grid
   int threads = 0;                                   // threads used
   std::size_t points() const { return basins.labels.size(); }
-  // Arrays: labels [n2, n1] (attractor id per grid point, 0 = unresolved) with its axes' coordinates (w1, w2 on a
+  // Arrays: labels [n2, n1] (attractor id per grid point, 0 = undecided) with its axes' coordinates (w1, w2 on a
   // strip; theta, y = -cos phi on the sphere; theta, phi for angles), fraction, ci_low, ci_high [attractors],
   // replicate_mean, replicate_sd [attractors + 1]; attributes: the request, the grid, counts, timings, legend_<id>.
   void describe(core::Contents& c) const;
   // NAME_fractions.csv: per attractor its fraction and 95% interval, counts, replicate spread and evidence; the
-  // unresolved points last (attractor 0), their attractor columns empty; the measure on every row.
+  // undecided points last (attractor 0), their attractor columns empty; the measure on every row.
   core::Tables tables() const;
 };
 
@@ -159,8 +159,8 @@ struct BasinsRRow {
   double r = 0;
   std::vector<Attractor> attractors;
   std::vector<Fraction> fractions;  // per attractor
-  Fraction unresolved;
-  template <class A> void members(A& a) { a(r, attractors, fractions, unresolved); }  // core/pack.hpp
+  Fraction undecided;
+  template <class A> void members(A& a) { a(r, attractors, fractions, undecided); }  // core/pack.hpp
 };
 
 // The comparison with Table 6.1 at one r: the periodic fraction (paper: % of 10 orbits) and the patterns found.
@@ -175,7 +175,7 @@ struct Comparison {
   std::string found;       // "pattern (fraction); ..."
   int paper_found = 0, paper_total = 0;
   std::string extra;       // periodic patterns found that the paper does not list
-  std::string other;       // other types and unresolved with their fractions
+  std::string other;       // other types and undecided with their fractions
 };
 
 struct BasinsRResult {
@@ -184,7 +184,7 @@ struct BasinsRResult {
   std::vector<BasinsRRow> rows;
   std::vector<Comparison> comparison;  // per row
   std::vector<double> r;               // [rows]
-  std::vector<double> fraction;        // [rows, columns]: per attractor key (sorted by type, key), unresolved last
+  std::vector<double> fraction;        // [rows, columns]: per attractor key (sorted by type, key), undecided last
   std::vector<std::string> columns;    // column labels
   int threads = 0;
   double seconds = 0;

@@ -55,10 +55,10 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   const std::size_t n = res.points();
   if (!o.quiet)
     std::cerr << fmt::format("btob: basins at r = {}: {} points x {} grids in {:.2f} s ({:.3g} points/s, {} threads), "
-                             "{} attractors, unresolved {:.4f} ({} before refinement); wrote {}\n",
+                             "{} attractors, undecided {:.4f} ({} before refinement); wrote {}\n",
                              req.r, n, req.replicates + 1, b.seconds,
                              static_cast<double>(n * static_cast<std::size_t>(req.replicates + 1)) / b.seconds,
-                             res.threads, b.attractors.size(), b.unresolved.value, b.unresolved_first_pass,
+                             res.threads, b.attractors.size(), b.undecided.value, b.undecided_first_pass,
                              listing(written));
   if (o.quiet) return;
   // Each attractor's fraction with its 95% interval (sampling only), of the measure the grid samples.
@@ -71,8 +71,8 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
     std::cerr << fmt::format("  {} {} {}: {:.4f} [{:.4f}, {:.4f}]\n", b.attractors[i].id,
                              attractors::type_name(b.attractors[i].type), b.attractors[i].pattern, b.fractions[i].value,
                              b.fractions[i].low, b.fractions[i].high);
-  std::cerr << fmt::format("  0 unresolved: {:.4f} [{:.4f}, {:.4f}]\n", b.unresolved.value, b.unresolved.low,
-                           b.unresolved.high);
+  std::cerr << fmt::format("  0 undecided: {:.4f} [{:.4f}, {:.4f}]\n", b.undecided.value, b.undecided.low,
+                           b.undecided.high);
 }
 
 // ---- btob basins-r ----

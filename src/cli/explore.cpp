@@ -269,10 +269,10 @@ std::string basins_json(const Params& p, const core::RunControl& control, const 
     atts.push_back({{"id", at.id}, {"type", attractors::type_name(at.type)}, {"pattern", at.pattern},
                     {"fraction", res.fraction[a]}, {"low", res.ci_low[a]}, {"high", res.ci_high[a]}});
   }
-  const attractors::Fraction& u = res.basins.unresolved;
+  const attractors::Fraction& u = res.basins.undecided;
   return json{{"r", req.r}, {"n1", n}, {"n2", n}, {"grid", req.grid},
               {"measure", attractors::measure_name(res.basins.grid)}, {"labels", res.basins.labels},
-              {"attractors", atts}, {"unresolved", {{"fraction", u.value}, {"low", u.low}, {"high", u.high}}},
+              {"attractors", atts}, {"undecided", {{"fraction", u.value}, {"low", u.low}, {"high", u.high}}},
               {"seconds", res.basins.seconds}}
       .dump();
 }

@@ -155,8 +155,8 @@ OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::O
     found[i] = attractors::collect(attractors::classify(one, opt), e.r[i], &ids[i]);
     for (const auto& a : found[i]) index.emplace(std::make_pair(static_cast<int>(a.type), a.key), 0);
   }
-  out.name = {"unresolved"};
-  out.type = {attractors::type_name(attractors::Type::unresolved)};
+  out.name = {"undecided"};
+  out.type = {attractors::type_name(attractors::Type::undecided)};
   out.period = {0};
   for (auto& [k, v] : index) {
     v = static_cast<std::uint32_t>(out.name.size());
@@ -168,7 +168,7 @@ OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::O
   out.label.assign(R * I, 0);
   out.count.assign(R * A, 0);
   for (std::size_t i = 0; i < R; ++i) {
-    std::vector<std::uint32_t> global(found[i].size() + 1, 0);  // collect's id (1-based, 0 unresolved) -> index
+    std::vector<std::uint32_t> global(found[i].size() + 1, 0);  // collect's id (1-based, 0 undecided) -> index
     for (const auto& a : found[i]) {
       const std::uint32_t g = index.at({static_cast<int>(a.type), a.key});
       global[static_cast<std::size_t>(a.id)] = g;
@@ -187,13 +187,13 @@ OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::O
 void OrbitAttractors::add_to(core::Contents& c) const {
   const std::size_t A = name.size();
   c.array("attractor", label, {r_count, n_ic}, "r, initial condition", "index",
-          "the orbit's attractor: an index into attractor_name (0 unresolved), classify's verdict on the orbit");
+          "the orbit's attractor: an index into attractor_name (0 undecided), classify's verdict on the orbit");
   c.array("attractor_count", count, {r_count, A}, "r, attractor", "count", "orbits of each attractor at each r");
   c.array("attractor_period", period, {A}, "attractor", "iterations",
           "map iterations per period of each attractor (1 for a collapse, 0 for none)");
   c.text("attractor_name", name, "attractor", "name",
          "each attractor as btob classify names it: its pattern (paper notation), P2 invariant curves, chaotic, "
-         "or unresolved");
+         "or undecided");
   c.text("attractor_type", type, "attractor", "name", "classify's type of each attractor");
   c.attr("attractor_transient", options.transient);
   c.attr("attractor_iterations", options.window);

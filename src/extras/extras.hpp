@@ -30,8 +30,8 @@ std::vector<double> overlay_values(const std::vector<std::string>& names, double
 
 // The attractor of every orbit of an ensemble (orbit o = r index * initial conditions + initial condition index):
 // attractors::classify at each r with `options`, the orbit's verdict named as `btob classify` names it (its pattern:
-// "132^2", "1" for a collapse, "P2 invariant curves", "chaotic"; "unresolved" when classify could not decide).
-// Attractors are indexed over the whole ensemble: 0 is "unresolved", then one per (type, key) of classify's verdicts
+// "132^2", "1" for a collapse, "P2 invariant curves", "chaotic"; "undecided" when classify could not decide).
+// Attractors are indexed over the whole ensemble: 0 is "undecided", then one per (type, key) of classify's verdicts
 // in that order (attractors::collect's order at one r), the same index at every r.
 struct OrbitAttractors {
   std::vector<std::uint32_t> label;   // [r, initial condition]: the index of the orbit's attractor

@@ -118,7 +118,7 @@ void StripOrbitsResult::describe(core::Contents& c) const {
   c.array("start_w1", start_w1, {n}, "orbit", "1", "initial w1");
   c.array("start_w2", start_w2, {n}, "orbit", "1", "initial w2");
   // The classifier's verdict on each orbit (the panel titles; also NAME.csv).
-  c.text("verdict", verdict, "orbit", "name", "the classifier's verdict: periodic, quasi-periodic, chaotic, collapse or unresolved");
+  c.text("verdict", verdict, "orbit", "name", "the classifier's verdict: periodic, quasi-periodic, chaotic, collapse or undecided");
   c.text("pattern", pattern, "orbit", "name", "paper notation of the periodic word (canonical; empty when not periodic)");
   c.array("period", period, {n}, "orbit", "iterations", "period of a periodic verdict in map iterations (0 otherwise)");
   c.array("rotation", rotation, {n}, "orbit", "turns/iteration",

@@ -63,7 +63,7 @@ StripOrbitsResult run(const StripOrbitsRequest& request, const core::RunControl&
 // each start (transient = iterations, then its window and pass 2), priced together by a probe of 10 orbits at r = 0.2.
 core::Work work(const StripOrbitsRequest& request);
 
-// The paper's word for a verdict: "periodic", "quasi-periodic", "chaotic", "collapse" or "unresolved".
+// The paper's word for a verdict: "periodic", "quasi-periodic", "chaotic", "collapse" or "undecided".
 const char* panel_word(attractors::Type t);
 
 }  // namespace btob::orbits

@@ -48,22 +48,23 @@ std::string verdict_of(const attractors::Attractor& a) {
   }
 }
 
-// The attractors the class's starts reach, by decreasing count (ties: the classifier's order), and the unresolved.
+// The attractors the class's starts reach, by decreasing count (ties: the classifier's order), and the undecided.
 void name_class(std::uint32_t k, const std::vector<attractors::OrbitVerdict>& verdicts, double r, ClassNames& out) {
   auto found = attractors::collect(verdicts, r, nullptr);
   std::stable_sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.count > y.count; });
-  long resolved = 0;
+  long decided = 0;
   for (const auto& a : found) {
     out.reached.push_back({static_cast<int>(k), a.pattern, attractors::type_name(a.type), verdict_of(a),
                            static_cast<long>(a.count)});
-    resolved += static_cast<long>(a.count);
+    decided += static_cast<long>(a.count);
     if (verdict_of(a) == "stable" &&
         std::find(out.stable_words.begin(), out.stable_words.end(), a.pattern) == out.stable_words.end())
       out.stable_words.push_back(a.pattern);
   }
   const long classified = static_cast<long>(verdicts.size());
-  if (classified > resolved)
-    out.reached.push_back({static_cast<int>(k), "undecided", "unresolved", "undecided", classified - resolved});
+  if (classified > decided)
+    out.reached.push_back({static_cast<int>(k), "undecided", attractors::type_name(attractors::Type::undecided),
+                           "undecided", classified - decided});
   // The class's name: the attractor more than half of its starts reach, else "undecided".
   const bool majority = !found.empty() && 2 * static_cast<long>(found[0].count) > classified;
   out.name.push_back(majority ? found[0].pattern : "undecided");

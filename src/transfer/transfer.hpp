@@ -212,8 +212,8 @@ constexpr std::size_t kNameSamples = 256;  // starts per closed class: each cost
 struct ClassAttractor {
   int closed_class = 0;   // 1-based
   std::string attractor;  // periodic: its word in paper notation (mirror-aware); collapse: "1" or "3";
-                          // "P2 invariant curves", "invariant curves", "chaotic"; "undecided" for unresolved starts
-  std::string type;       // attractors::type_name: periodic, collapse, quasi-periodic, chaotic, unresolved
+                          // "P2 invariant curves", "invariant curves", "chaotic"; "undecided" for starts not decided
+  std::string type;       // attractors::type_name: periodic, collapse, quasi-periodic, chaotic, undecided
   std::string verdict;    // stable, collapse, neutral, unstable or undecided
   long starts = 0;        // starts of the class whose orbit reaches it
 };

@@ -427,8 +427,8 @@ function drawBasins(j) {
   const rows = j.attractors.map((a) => `<tr><td style="color:${BASIN_COLOURS[a.id % BASIN_COLOURS.length]}">\u25a0</td>` +
     `<td>${a.pattern || a.type}</td><td>${a.type}</td><td>${(100 * a.fraction).toFixed(2)}%</td>` +
     `<td>[${(100 * a.low).toFixed(2)}, ${(100 * a.high).toFixed(2)}]</td></tr>`);
-  rows.push(`<tr><td style="color:${BASIN_COLOURS[0]}">\u25a0</td><td>unresolved</td><td></td>` +
-    `<td>${(100 * j.unresolved.fraction).toFixed(2)}%</td><td></td></tr>`);
+  rows.push(`<tr><td style="color:${BASIN_COLOURS[0]}">\u25a0</td><td>undecided</td><td></td>` +
+    `<td>${(100 * j.undecided.fraction).toFixed(2)}%</td><td></td></tr>`);
   $("basins-table").innerHTML = rows.join("");
   $("basins-status").textContent = `r = ${j.r}: ${j.grid} (${j.measure}), 95% intervals`;
 }
