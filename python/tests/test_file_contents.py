@@ -13,9 +13,26 @@ import pytest
 
 from conftest import exe
 
-# Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate.
+# Axes that number things (an orbit, an attractor, an interval) rather than run over a coordinate, and the components
+# of a point; a label may add what it holds in brackets ("step (the last tail iterations)" is a "step" axis).
 INDEX_AXES = {"initial condition", "attractor", "attractor then undecided", "interval", "line", "(r, colour)", "step",
-              "eigenvalue", "orbit", "group", "period", "event", "particle"}
+              "eigenvalue", "orbit", "group", "period", "event", "particle", "point of the periodic orbit",
+              "cycle point", "(x, y, z)", "(a, b)"}
+
+
+def axis_labels(axes):
+    """The labels of an `axes` attribute, split at the commas outside brackets (io::axis_labels)."""
+    labels, depth, start = [], 0, 0
+    for i, ch in enumerate(axes + ","):
+        depth += ch in "([" and 1 or (-1 if ch in ")]" and depth > 0 else 0)
+        if ch == "," and depth == 0:
+            labels.append(axes[start:i].strip())
+            start = i + 1
+    return [l for l in labels if l]
+
+
+def is_index(label):
+    return label in INDEX_AXES or label.split(" (")[0] in INDEX_AXES
 
 COMMANDS = {
     "bifurcation": ["bifurcation", "--r-min", "0.1", "--r-max", "0.2", "--r-count", "8", "--iterations", "200",
@@ -35,15 +52,26 @@ COMMANDS = {
     "transfer-r": ["transfer-r", "--r-min", "0.15", "--r-max", "0.3", "--r-count", "2", "--boxes", "8x8", "--samples",
                    "2", "--eigenvalues", "3"],
     "particles": ["particles", "1133", "--r", "0.15", "--periods", "3"],
-}
-
-# Commands whose files hold the verdict word and are checked for it alone (their grids have no dimension scales).
-WORD_ONLY = {
     "basins-r": ["basins-r", "--r-values", "0.2,0.35", "--grid", "random:12", "--transient", "50", "--iterations",
                  "300", "--lyap-iterations", "200", "--lyap-transient", "50", "--refine-factor", "0"],
     "strip-orbits": ["strip-orbits", "--r", "0.2", "--orbits", "3", "--iterations", "400", "--tail", "100"],
     "transfer": ["transfer", "--r", "0.2", "--boxes", "8x8", "--samples", "2", "--eigenvalues", "3",
                  "--measure-orbits", "2", "--measure-iterations", "200", "--tv-bins", "4"],
+    "hyperbolicity-orbits": ["hyperbolicity-orbits", "--r-count", "3", "--iterations", "300"],
+    "measure": ["measure", "--r", "0.2", "--grid", "random:4", "--iterations", "300"],
+    "pattern-curves": ["pattern-curves", "--r-count", "20"],
+    "windows verify": ["windows", "verify", "--n", "2..4", "--iterations", "2000", "--tail", "500"],
+}
+# Commands without a plot: windows poly, and those that print their result and write files only when given --out.
+NO_PLOT = {
+    "windows poly": ["windows", "poly", "--n", "1..5"],
+    "classify": ["classify", "--r", "0.2", "--point", "1,-0.5,-1.1"],
+    "lyapunov": ["lyapunov", "--r", "0.2", "--point", "1,-0.5,-1.1", "--iterations", "1000"],
+    "pattern": ["pattern", "132312", "--r", "0.5"],
+    "pattern --window": ["pattern", "132312", "--window"],
+    "windows bounds": ["windows", "bounds", "--n", "1..5"],
+    "windows thresholds": ["windows", "thresholds"],
+    "windows stripes": ["windows", "stripes"],
 }
 
 
@@ -77,15 +105,12 @@ def check_h5(path, bad):
                     bad.append(f"{path}:{name}: no {key}")
             if ds.ndim < 2:
                 continue
-            labels = [a.strip() for a in str(ds.attrs.get("axes", "")).split(",")]
-            labels = [l for l in labels if l]
-            if "(r, colour)" in str(ds.attrs.get("axes", "")):
-                continue
+            labels = axis_labels(str(ds.attrs.get("axes", "")))
             if len(labels) != ds.ndim:
                 bad.append(f"{path}:{name}: axes '{ds.attrs.get('axes')}' do not name its {ds.ndim} dimensions")
                 continue
             for i, label in enumerate(labels):
-                if label not in INDEX_AXES and len(ds.dims[i]) == 0:
+                if not is_index(label) and len(ds.dims[i]) == 0:
                     bad.append(f"{path}:{name}: axis {i} ({label}) has no dimension scale")
 
 
@@ -138,28 +163,18 @@ def check_manifest(path, bad):
         bad.append(f"{path}: two verdicts (decays and decay_verdict)")
 
 
-def run(args, out):
-    """Runs btob with args into the folder out; returns its standard output."""
-    p = subprocess.run([exe(), *args, "--out", str(out), "--no-plot", "--quiet", "--threads", "1"],
+def run(args, out, plot=True):
+    """Runs btob with args into the folder out (--no-plot where the command has a plot); returns its standard output."""
+    p = subprocess.run([exe(), *args, "--out", str(out), "--quiet", "--threads", "1", *(["--no-plot"] if plot else [])],
                        capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     return p
 
 
-@pytest.mark.parametrize("command", sorted(WORD_ONLY))
-def test_every_file_says_undecided(command, tmp_path):
-    out = tmp_path / "out"
-    run(WORD_ONLY[command], out)
-    bad = []
-    for name in sorted(os.listdir(out)):
-        check_word(str(out / name), bad)
-    assert not bad, "\n".join(bad)
-
-
-@pytest.mark.parametrize("command", sorted(COMMANDS))
+@pytest.mark.parametrize("command", sorted(COMMANDS) + sorted(NO_PLOT))
 def test_every_file_describes_itself(command, tmp_path):
     out = tmp_path / "out"
-    p = run(COMMANDS[command], out)
+    p = run(COMMANDS[command], out) if command in COMMANDS else run(NO_PLOT[command], out, plot=False)
     if p.stdout:
         assert p.stdout.endswith("\n"), f"btob {command}: standard output does not end with a newline"
     bad = []

@@ -449,6 +449,10 @@ void BasinsRResult::describe(core::Contents& c) const {
   c.array("r", r, {r.size()}, "r value", "1", "restitution coefficients");
   c.array("fraction", fraction, {r.size(), columns.size()}, "r value, attractor (column_<j>; undecided last)", "1",
           "fraction of the initial conditions in each basin");
+  c.text("column", columns, "attractor (column_<j>; undecided last)", "name",
+         "the attractor of each column of fraction: its pattern and type, undecided last (as column_<j>)");
+  c.coordinate("r value", "r");
+  c.coordinate("attractor (column_<j>; undecided last)", "column");
   for (std::size_t j = 0; j < columns.size(); ++j) c.attr(fmt::format("column_{}", j), columns[j]);
   c.attr("grid", request.grid);
   c.attr("measure", grid_measure(request.grid));

@@ -1,12 +1,16 @@
 // What a result holds, as named arrays and attributes: the one view through which the writers (HDF5, manifest),
 // the Python binding and the MPI gather read every result type.  A result type provides
 //     void describe(core::Contents& c) const;   // c.array(...) for every array, c.attr(...) for every summary value
-// The arrays are views of the result's own vectors (no copy); the result must outlive its Contents.
+// The arrays are views of the result's own vectors (no copy); the result must outlive its Contents.  Coordinates
+// that only describe (bin and box centres, from the request's extent) are computed by describe() and kept by the
+// Contents itself (Contents::coordinate_array), shared by its copies.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <variant>
@@ -49,6 +53,13 @@ inline std::string table_file(const std::string& name, const std::string& role) 
   return name + (role.empty() ? "" : "_" + role) + ".csv";
 }
 
+// The centres of n equal bins of [lo, hi] (a histogram's bins, a partition's boxes): coordinates of their axis.
+inline std::vector<double> bin_centres(double lo, double hi, std::size_t n) {
+  std::vector<double> c(n);
+  for (std::size_t k = 0; k < n; ++k) c[k] = lo + (static_cast<double>(k) + 0.5) * (hi - lo) / static_cast<double>(n);
+  return c;
+}
+
 struct Contents {
   std::vector<ArrayView> arrays;
   std::vector<DecimalView> decimals;
@@ -75,6 +86,17 @@ struct Contents {
   void attr(const std::string& name, AttrValue v) { attrs[name] = std::move(v); }
   // Declares array `array` (added with array()) as the coordinates of axis `label`.
   void coordinate(const std::string& label, const std::string& array) { coordinates[label] = array; }
+  // A 1-D array computed for the description (the centres of a histogram's bins or of a partition's boxes), held
+  // by these Contents (a deque: its elements never move), added as array `name` and declared the coordinates of
+  // every axis in `labels`.
+  void coordinate_array(const std::string& name, std::vector<double> values, const std::vector<std::string>& labels,
+                        std::string units, std::string description) {
+    owned->push_back(std::move(values));
+    const std::vector<double>& v = owned->back();
+    array(name, v, {v.size()}, name, std::move(units), std::move(description));
+    for (const auto& l : labels) coordinate(l, name);
+  }
+  std::shared_ptr<std::deque<std::vector<double>>> owned = std::make_shared<std::deque<std::vector<double>>>();
   const ArrayView* find(const std::string& name) const {
     for (const auto& a : arrays)
       if (a.name == name) return &a;

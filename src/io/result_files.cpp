@@ -100,13 +100,23 @@ void string_dataset(H5::H5File& file, const core::DecimalView& d) {
   string_attr(ds, "description", d.description);
 }
 
-// The axis labels of an array ("r, theta bin" -> {"r", "theta bin"}).
+// The axis labels of an array ("r, theta bin" -> {"r", "theta bin"}): split at the commas outside brackets, so a
+// label may say what its axis holds ("point, (x, y, z)" -> {"point", "(x, y, z)"}).
+std::size_t label_end(const std::string& axes, std::size_t start) {
+  int depth = 0;
+  for (std::size_t i = start; i < axes.size(); ++i) {
+    const char ch = axes[i];
+    if (ch == '(' || ch == '[') ++depth;
+    else if ((ch == ')' || ch == ']') && depth > 0) --depth;
+    else if (ch == ',' && depth == 0) return i;
+  }
+  return axes.size();
+}
 std::vector<std::string> axis_labels(const std::string& axes) {
   std::vector<std::string> out;
   std::size_t start = 0;
   while (start <= axes.size()) {
-    std::size_t end = axes.find(',', start);
-    if (end == std::string::npos) end = axes.size();
+    const std::size_t end = label_end(axes, start);
     std::string l = axes.substr(start, end - start);
     while (!l.empty() && l.front() == ' ') l.erase(l.begin());
     while (!l.empty() && l.back() == ' ') l.pop_back();

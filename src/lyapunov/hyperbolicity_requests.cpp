@@ -300,6 +300,8 @@ void HyperbolicityOrbitsResult::describe(core::Contents& c) const {
   c.array("lambda1_qr_median", lambda1_qr_median, {R}, "r", per, "median of the forward-QR lambda1 over the window");
   c.array("angle_histogram", angle_histogram, {R, bins}, "r, angle bin over [0, pi/2]", "count",
           "CLV angles of the non-degenerate orbits per bin");
+  c.coordinate_array("angle_bin", core::bin_centres(0, std::numbers::pi / 2, bins), {"angle bin over [0, pi/2]"}, rad,
+                     "centre of each CLV-angle bin of angle_histogram (bins of equal width over [0, pi/2])");
   c.array("orbit_frac_expanding", orbit_frac_expanding, {R, I}, oi, "1", "fraction of window steps with s1 >= 1");
   c.array("orbit_angle_median", orbit_angle_median, {R, I}, oi, rad, "median CLV angle (NaN if degenerate)");
   c.array("orbit_angle_q05", orbit_angle_q05, {R, I}, oi, rad, "5% quantile of the CLV angle (NaN if degenerate)");

@@ -28,6 +28,7 @@ void ProjectiveResult::describe(core::Contents& c) const {
   const std::vector<std::size_t> dims{convergence.n.size()};
   c.array("convergence_n", convergence.n, dims, "checkpoint", "iterations",
           "averaged steps at the checkpoint (powers of two and block ends)");
+  c.coordinate("checkpoint", "convergence_n");
   c.array("convergence_lambda1", convergence.exponents[0], dims, "checkpoint", "1/iteration (natural log)",
           "running average of lambda1 at the checkpoint");
   c.array("convergence_lambda2", convergence.exponents[1], dims, "checkpoint", "1/iteration (natural log)",

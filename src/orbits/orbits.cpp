@@ -113,8 +113,8 @@ std::string StripOrbitsResult::csv() const {
 
 void StripOrbitsResult::describe(core::Contents& c) const {
   const std::size_t n = start_w1.size(), t = static_cast<std::size_t>(request.tail);
-  c.array("w1", w1, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w1 of eq. (6.4)");
-  c.array("w2", w2, {n, t}, "orbit, state (the last tail iterations)", "1", "strip coordinate w2 of eq. (6.4), in (-1, 1)");
+  c.array("w1", w1, {n, t}, "orbit, step (the last tail iterations)", "1", "strip coordinate w1 of eq. (6.4)");
+  c.array("w2", w2, {n, t}, "orbit, step (the last tail iterations)", "1", "strip coordinate w2 of eq. (6.4), in (-1, 1)");
   c.array("start_w1", start_w1, {n}, "orbit", "1", "initial w1");
   c.array("start_w2", start_w2, {n}, "orbit", "1", "initial w2");
   // The classifier's verdict on each orbit (the panel titles; also NAME.csv).

@@ -224,7 +224,9 @@ void CurvesResult::describe(core::Contents& c) const {
   c.array("modulus", modulus, {n, 3}, "r, eigenvalue", "1", "moduli of the eigenvalues");
   c.array("tracked", tracked, {n}, "r", "1", "the tracked eigenvalue (NaN where it is not real or not negative)");
   c.array("dominance", dominance, {n}, "r", "1", "(|tracked| - max |other|) / |tracked|: > 0 where it dominates");
-  c.array("feas", feas, {n, feas_names.size()}, "r, quantity (feas_names)", "1",
+  c.text("quantity", feas_names, "quantity", "name",
+         "name of each column of feas: u_z, then y, ay-x, ay-z of each point v_k of the orbit (as feas_names)");
+  c.array("feas", feas, {n, feas_names.size()}, "r, quantity", "1",
           "u_z, then y, alpha y - x, alpha y - z of v_0 .. v_{p-1} (eigenvector normalised by u_x = 1; NaN where "
           "not resolved)");
   c.array("u_error", u_error, {n}, "r", "1",

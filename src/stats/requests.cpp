@@ -407,11 +407,18 @@ void MeasureResult::describe(core::Contents& c) const {
   c.array("w1_v_to_group_head", w1_v, {I}, "initial condition", "v units",
           "1-D Wasserstein distance of the v marginals to the group's first measure");
   c.array("convergence_n", conv_n, {C}, "checkpoint", "iterations", "N = 16, 32, ..., iterations");
+  c.coordinate("checkpoint", "convergence_n");
   c.array("convergence_tv_within_group", conv_within, {C, G}, "checkpoint, group", "1",
           "largest TV between mu_N of a member and mu_N of the group's first orbit");
   c.array("convergence_tv_to_full", conv_to_full, {C, G}, "checkpoint, group", "1",
           "TV between mu_N of the group's first orbit and its measure at the full length");
   c.array("extent", extent, {4}, "u_lo, u_hi, v_lo, v_hi", chart, "the histogram's window in the chart");
+  if (extent.size() == 4) {  // a result that ran: the bins' centres in the window
+    c.coordinate_array("u_bin", core::bin_centres(extent[0], extent[1], B), {"u bin"}, chart,
+                       "centre of each u bin of the histograms (the first chart coordinate)");
+    c.coordinate_array("v_bin", core::bin_centres(extent[2], extent[3], B), {"v bin", "v bin (" + chart + ")"}, chart,
+                       "centre of each v bin of the histograms (the second chart coordinate)");
+  }
   c.attr("r", request.r);
   c.attr("grid", request.grid);
   c.attr("seed", static_cast<long>(request.seed));

@@ -81,6 +81,10 @@ void describe_arrays(const TransferResult& res, core::Contents& c) {
     c.array("lebesgue", res.lebesgue, {res.lebesgue.size()}, "component", "1",
             "fraction of the Lebesgue measure of the chart rectangle that ends in each component");
   }
+  c.coordinate_array("box_a", core::bin_centres(res.part.lo1, res.part.hi1, box_dims[0]), {"first chart coordinate"},
+                     "rad", "centre of each box in the first chart coordinate a");
+  c.coordinate_array("box_b", core::bin_centres(res.part.lo2, res.part.hi2, box_dims[1]), {"second chart coordinate"},
+                     "1", "centre of each box in the second chart coordinate b");
   c.array("cycle_points", res.cycle_points, {res.cycle_points.size() / 2, 2}, "cycle point, (a, b)", "rad, 1",
           "chart coordinates of every point of every requested cycle, the cycles in order");
   if (res.basins.empty()) return;
