@@ -312,6 +312,59 @@ TEST(Spectrum, SmallEigenvaluesKeepTheirRelativeAccuracy) {
   }
 }
 
+// Double's verdict on every word's orbits against 60-digit MPFR's, saddles included.  A saddle's orbit (the middle
+// eigenvalue) used to be its eigenvector carried forward along the word, which multiplies the eigenvector's error by
+// up to |mu1 / mu2| per period: at 13223122, r = 0.0075 (ratio 1e20) double found inequality 5 failing and "no
+// periodic orbit" where every margin is >= 0.012 and the orbit is unstable.  Each eigenvalue's points now come from
+// an iteration stable for it (detail::orbit_points), so double agrees with MPFR at every r of the grid that is not
+// within 1e-6 of a change of MPFR's verdict (where rounding may decide either way), and a saddle's points agree to
+// 1e-12 (measured 2e-16 at 13223122, r = 0.0075; the plane intersection's conditioning allowed for).
+TEST(Spectrum, SaddleOrbitsAgreeWithMpfr) {
+  const btob::core::MpfrDigits digits(60);
+  std::vector<Word> words = enumerate_canonical(6);
+  words.push_back(W("13223122"));
+  words.push_back(W("132^3312^3"));
+  int compared = 0, saddles = 0;
+  for (const Word& w : words)
+    for (int k = 0; k < 24; ++k) {
+      const double r = 0.0075 * std::pow(80.0, k / 23.0);  // 0.0075 .. 0.6, log-spaced
+      const auto m = analyse<mpfr_float>(w, mpfr_float(r));
+      if (analyse<mpfr_float>(w, mpfr_float(r * (1 - 1e-6))).outcome != m.outcome ||
+          analyse<mpfr_float>(w, mpfr_float(r * (1 + 1e-6))).outcome != m.outcome)
+        continue;
+      const auto d = analyse<double>(w, r);
+      ++compared;
+      EXPECT_EQ(outcome_name(d.outcome), std::string(outcome_name(m.outcome))) << to_paper(w) << " at r = " << r;
+      // Which eigenvalue is the orbit's: only where its modulus is separated (a neutral orbit's ties with a
+      // complex pair, as the single letter 2's three moduli r, may be ordered either way).
+      if (m.outcome != Outcome::stable && m.outcome != Outcome::unstable) continue;
+      EXPECT_EQ(d.orbit_eigen, m.orbit_eigen) << to_paper(w) << " at r = " << r;
+      if (d.orbit_eigen <= 0 || d.orbit_eigen != m.orbit_eigen) continue;
+      ++saddles;
+      for (std::size_t j = 0; j < d.orbit.size(); ++j)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_CLOSE(d.orbit[j](c), static_cast<double>(m.orbit[j](c)),
+                       bound(1e-12, "a saddle's points: eigenvectors of stable iterations"))
+              << to_paper(w) << " at r = " << r << ", point " << j;
+    }
+  EXPECT_GT(compared, 2000);  // 2496 (word, r) pairs compared, 1484 of them saddles
+  EXPECT_GT(saddles, 1000);
+}
+
+// The case that showed it, in double against the 60-digit points (cheap: under the sanitizers too).
+TEST(Spectrum, SaddleOrbitOf13223122AtSmallR) {
+  const btob::core::MpfrDigits digits(60);
+  const auto d = analyse<double>(W("13223122"), 0.0075);
+  const auto m = analyse<mpfr_float>(W("13223122"), mpfr_float(0.0075));
+  ASSERT_EQ(d.outcome, Outcome::unstable);
+  ASSERT_EQ(d.orbit_eigen, 1);  // mu2's orbit: a saddle
+  ASSERT_EQ(m.orbit_eigen, 1);
+  for (std::size_t j = 0; j < d.orbit.size(); ++j)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_CLOSE(d.orbit[j](c), static_cast<double>(m.orbit[j](c)), ulps<double>(64, "a saddle's points").of(1.0))
+          << "point " << j;
+}
+
 // ---------------------------------------------------------------- Table 6.1
 TEST(Table61, EveryPatternIsStableWhereThePaperSawIt) {
   const std::vector<std::pair<const char*, double>> seen = {

@@ -168,32 +168,55 @@ template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool red
   return M;
 }
 
-// Feasibility along the word from the unit vector v (any sign): returns -1 when every inequality holds
-// strictly, 0 when v is not strictly inside the domain x z < 0, k when the k-th inequality fails.
-// margins (if non-null) receives the p + 1 margins (domain, then one per symbol), sign-invariant.
-template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
+// The branch condition of core::branch for symbol s at the point v of Q, as a margin that is > 0 when the step
+// from v uses symbol s.
+template <class T> T branch_margin(int s, const T& a, const Vec3<T>& v) {
+  if (s == 1) return a * v(1) - v(0);
+  if (s == 3) return v(2) - a * v(1);
+  return std::min<T>(v(0) - a * v(1), a * v(1) - v(2));
+}
+
+// Feasibility along the word of the orbit whose k-th point point(k) gives (unit; the first in Q, each with the sign
+// of P_{w_k} applied to the one before): returns -1 when every inequality holds strictly, 0 when the first point is
+// not strictly inside the domain x z < 0, k when the k-th inequality fails.  margins (if non-null) receives the
+// p + 1 margins (domain, then one per symbol); without it the first failure ends the walk.
+template <class T, class Point>
+int feasibility_walk(const Word& w, const T& r, const Vec3<T>& first, Point&& point, std::vector<T>* margins) {
   const T a = core::alpha(r);
-  const T dom = -v(0) * v(2);  // > 0 strictly inside the domain (eq. 3.4)
+  const T dom = -first(0) * first(2);  // > 0 strictly inside the domain (eq. 3.4)
   if (margins) margins->assign(1, dom);
   int fail = dom > 0 ? -1 : 0;
-  v = core::to_quadrant(v);
-  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   for (std::size_t k = 0; k < w.size(); ++k) {
-    const int s = w.s[k];
-    // Branch conditions of core::branch, as margins that are > 0 when the step uses symbol s.
-    T m;
-    if (s == 1) m = a * v(1) - v(0);
-    else if (s == 3) m = v(2) - a * v(1);
-    else m = std::min<T>(v(0) - a * v(1), a * v(1) - v(2));
+    const T m = branch_margin<T>(w.s[k], a, point(k));
     if (margins) margins->push_back(m);
     if (!(m > 0) && fail < 0) {
       fail = static_cast<int>(k) + 1;
       if (!margins) return fail;
     }
-    v = P[s - 1] * v;
-    v /= v.norm();
   }
   return fail;
+}
+
+// Feasibility along the word from the unit vector v (any sign) carried forward: u_0 = v brought into Q, u_k =
+// P_{w_k} u_{k-1} normalised.  Stable for the dominant eigenvector (the other components shrink along the word); a
+// saddle's or the smallest eigenvalue's orbit is walked on orbit_points instead.
+template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  const Vec3<T> first = v;
+  v = core::to_quadrant(v);
+  std::size_t at = 0;  // point(k) is called for k = 0, 1, ... in order
+  return feasibility_walk<T>(w, r, first, [&](std::size_t k) -> const Vec3<T>& {
+    for (; at < k; ++at) {
+      v = P[w.s[at] - 1] * v;
+      v /= v.norm();
+    }
+    return v;
+  }, margins);
+}
+
+// Feasibility of given orbit points u_0 .. u_{p-1} (orbit_points).
+template <class T> int feasibility_of(const Word& w, const T& r, const std::vector<Vec3<T>>& u, std::vector<T>* margins = nullptr) {
+  return feasibility_walk<T>(w, r, u[0], [&](std::size_t k) -> const Vec3<T>& { return u[k]; }, margins);
 }
 
 // A bound on the error of the unit eigenvector (eigenvector()) of the simple root i of a normalised matrix
@@ -257,6 +280,86 @@ template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced)
 // an error of a few ulps of the largest modulus when they are simple.
 template <class T> T tie_tol() { return 64 * eps_<T>(); }
 
+// The points u_0 .. u_{p-1} of the periodic orbit of the real eigenvalue mu_i of the spectrum s of A (A =
+// analysed_matrix of w, roots by decreasing modulus): unit vectors, u_0 in Q, u_k with the sign of P_{w_k} u_{k-1}.
+// Each eigenvalue's orbit is computed by an iteration along the word that is stable for it (its own direction is the
+// dominant one of that iteration, so rounding shrinks instead of growing by up to |mu_1 / mu_i| per period, which
+// carried a saddle's eigenvector far from its orbit within one period at small r):
+//  * mu_1: forward, u_k = P u_{k-1} (as feasibility() walks it);
+//  * mu_3: backward, u_{k-1} = P^-1 u_k = cof(P)^T u_k / det P, from u_p = u_0 (mu_3 is dominant for M^-1);
+//  * mu_2: u_k is the intersection of two planes through it, each carried stably: y_1 (the left eigenvector of
+//    mu_1, normal to the plane of the eigenvectors of mu_2 and mu_3) backward, y_{k-1} = P^T y_k (mu_1 dominant for
+//    M^T), and y_3 (normal to the plane of mu_1 and mu_2) forward, y_3 -> cof(P) y_3 = det P P^-T y_3 (det M / mu_3
+//    dominant for cof M); u_k = y_3,k x y_1,k.
+template <class T>
+std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& s, int i) {
+  const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[i].re);
+  const std::size_t p = w.size();
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  std::vector<Vec3<T>> u(p);
+  u[0] = core::to_quadrant(v);
+  const auto unit = [](Vec3<T> x) { return Vec3<T>(x / x.norm()); };
+  // The dominant eigenvalue, and an eigenvalue whose modulus ties with another's (no iteration has it dominant):
+  // forward from the eigenvector (for a tie, neutral: errors neither grow nor shrink).
+  const T tol = 1 - tie_tol<T>();
+  const bool separated = s.mod[2] < s.mod[1] * tol && (i == 2 || s.mod[1] < s.mod[0] * tol);
+  if (i == 0 || !separated) {
+    for (std::size_t k = 1; k < p; ++k) u[k] = unit(P[w.s[k - 1] - 1] * u[k - 1]);
+    return u;
+  }
+  // Each iteration first runs whole periods from the eigenvector (a power iteration) until a period changes it by
+  // less than 8 eps: the eigenvector of an eigenvalue below eps times the largest is rounding noise (111113 at
+  // r = 0.0075: mu2 / mu1 = 3e-19, its direct eigenvector 1.7e-4 off), and each period shrinks the error by the
+  // iteration's eigenvalue ratio (mu3 / mu2 = 1/549 there).  At most 64 periods: a ratio that slow is a near-tie,
+  // whose verdict the tie tolerance already leaves open.
+  const auto converge = [&](Vec3<T> x, const auto& period) {
+    for (int it = 0; it < 64; ++it) {
+      Vec3<T> next = period(x);
+      if (next.dot(x) < 0) next = -next;
+      const bool done = (next - x).norm() <= 8 * eps_<T>();
+      x = next;
+      if (done) break;
+    }
+    return x;
+  };
+  if (i == 2) {
+    const std::array<Mat3<T>, 3> CT = {cofactor<T>(P[0]).transpose(), cofactor<T>(P[1]).transpose(),
+                                       cofactor<T>(P[2]).transpose()};  // P^-1 up to det P
+    const auto back = [&](std::size_t k, const Vec3<T>& x) { return unit(CT[w.s[k] - 1] * x); };
+    Vec3<T> x = converge(u[0], [&](Vec3<T> x) {
+      for (std::size_t k = p; k-- > 0;) x = back(k, x);
+      return x;
+    });
+    u[0] = core::to_quadrant(x);
+    for (std::size_t k = p; k-- > 1;) u[k] = x = back(k, x);
+  } else {
+    const Mat3<T> At = s.A.m.transpose();
+    const std::array<Mat3<T>, 3> PT = {P[0].transpose(), P[1].transpose(), P[2].transpose()};
+    const std::array<Mat3<T>, 3> C = {cofactor<T>(P[0]), cofactor<T>(P[1]), cofactor<T>(P[2])};  // P^-T up to det P
+    const auto back = [&](std::size_t k, const Vec3<T>& y) { return unit(PT[w.s[k] - 1] * y); };
+    const auto fwd = [&](std::size_t k, const Vec3<T>& n) { return unit(C[w.s[k] - 1] * n); };
+    Vec3<T> y = converge(eigenvector<T>(At, s.roots[0].re), [&](Vec3<T> y) {
+      for (std::size_t k = p; k-- > 0;) y = back(k, y);
+      return y;
+    });
+    Vec3<T> n = converge(eigenvector<T>(At, s.roots[2].re), [&](Vec3<T> n) {
+      for (std::size_t k = 0; k < p; ++k) n = fwd(k, n);
+      return n;
+    });
+    u[0] = core::to_quadrant(unit(n.cross(y)));
+    std::vector<Vec3<T>> y1(p);
+    for (std::size_t k = p; k-- > 1;) y1[k] = y = back(k, y);
+    for (std::size_t k = 1; k < p; ++k) {
+      n = fwd(k - 1, n);
+      u[k] = unit(n.cross(y1[k]));
+    }
+  }
+  // The sign of the forward step: u_k and P u_{k-1} on the same side.
+  for (std::size_t k = 1; k < p; ++k)
+    if ((P[w.s[k - 1] - 1] * u[k - 1]).dot(u[k]) < 0) u[k] = -u[k];
+  return u;
+}
+
 // Stability predicate with its failure reason ("" when stable).
 template <class T> std::string stability_reason(const Word& w, const T& r, bool reduced) {
   const Spectrum<T> s = spectrum(w, r, reduced);
@@ -304,7 +407,7 @@ template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T&
     e.real = s.roots[i].real;
     if (e.real) {
       e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
-      e.first_failure = feasibility(w, r, e.vector);
+      e.first_failure = i == 0 ? feasibility(w, r, e.vector) : feasibility_of(w, r, orbit_points(w, r, s, i));
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;
     }
@@ -330,8 +433,16 @@ template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
 }
 
 // The periodic orbit's points (unit, in Q) and its letters, from the orbit's eigenvector.
-template <class T> void periodic_orbit(const T& r, Verdict<T>& v) {
+template <class T> void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict<T>& v) {
   if (v.orbit_eigen < 0) return;
+  if (v.orbit_eigen > 0) {  // a saddle's or the smallest eigenvalue's orbit: each point by its stable iteration
+    const std::vector<Vec3<T>> u = orbit_points(v.word, r, s, v.orbit_eigen);
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      v.orbit.push_back(core::to_quadrant<T>(u[k]));
+      v.letters += core::letters<T>(v.word.s[k], v.orbit.back());
+    }
+    return;
+  }
   Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   for (auto c : v.word.s) {
@@ -408,9 +519,10 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
   v.word = primitive_root(w0);
   v.r = r;
   v.reduced = is_J_square(v.word);
-  v.spectrum = eigen_infos(v.word, r, spectrum(v.word, r, v.reduced));
+  const Spectrum<T> s = spectrum(v.word, r, v.reduced);
+  v.spectrum = eigen_infos(v.word, r, s);
   verdict_outcome(r, v);
-  periodic_orbit(r, v);
+  periodic_orbit(r, s, v);
   orbit_exponents(log_moduli(v.word, r), v);
   return v;
 }
@@ -517,7 +629,8 @@ template <class T> Classification classify(const Word& w0, const T& r) {
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
   for (int i = 0; i < 3; ++i) {
     if (!s.roots[i].real) continue;
-    if (feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) >= 0) continue;
+    if ((i == 0 ? feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) : feasibility_of(w, r, orbit_points(w, r, s, i))) >= 0)
+      continue;
     if (i == 0 && dominant) return {Outcome::stable, collapses(w, r, s, i, reduced)};
     // analyse's neutral / undecided: the largest other modulus j against the orbit's i (M_w = A^2 when reduced).
     using std::abs;

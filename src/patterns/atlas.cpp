@@ -128,7 +128,9 @@ template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, lo
   const T lo = v.spectrum[v.orbit_eigen].modulus, l1 = v.spectrum[0].modulus;
   f.expansion = static_cast<double>(v.reduced ? T((l1 / lo) * (l1 / lo)) : T(l1 / lo));
   std::vector<T> margins;
-  (void)detail::feasibility(w, r, v.orbit.front(), &margins);
+  // The orbit's own points: a saddle's carried forward from its first would leave it (detail::orbit_points).
+  if (v.orbit_eigen == 0) (void)detail::feasibility(w, r, v.orbit.front(), &margins);
+  else (void)detail::feasibility_of(w, r, v.orbit, &margins);
   T m = margins.front() > 0 ? detail::sqrt_<T>(margins.front()) : T(0);  // domain margin -x z: a product, its square root
   for (std::size_t k = 1; k < margins.size(); ++k) m = std::min<T>(m, margins[k]);
   f.margin = static_cast<double>(m);
