@@ -3,7 +3,9 @@
 
 #include "patterns/patterns.hpp"
 
+#include "core/cancel.hpp"
 #include "core/request.hpp"
+#include "core/scalar.hpp"
 
 #include <boost/multiprecision/eigen.hpp>
 
@@ -14,6 +16,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace btob::patterns {
@@ -33,6 +36,15 @@ template <class T> T cbrt_(const T& x) {
   return x < 0 ? T(-y) : y;
 }
 template <class T> T eps_() { return std::numeric_limits<T>::epsilon(); }
+
+// The cancellation poll of a loop over a word's symbols (core/cancel.hpp; throws core::Cancelled), at symbol k.  A
+// step is one 3x3 product: nanoseconds in the fixed-size types, which poll every core::cancel_stride symbols; up to
+// milliseconds in MPFR at thousands of digits (a 60000-symbol word at mpfr:2000 takes a minute), which polls every
+// symbol (one relaxed load against an MPFR product: nothing).
+template <class T> void poll_symbol(const core::CancelToken* cancel, std::size_t k) {
+  if constexpr (std::is_same_v<T, core::mpfr_float>) core::check_cancel(cancel);
+  else core::poll_cancel(cancel, static_cast<long>(k));
+}
 
 // A matrix product kept normalised: value = exp(log_scale) * m, max |m_ij| = 1.
 template <class T> struct Scaled {
@@ -153,11 +165,12 @@ template <class T> Vec3<T> eigenvector(const Mat3<T>& A, const T& l) {
 }
 
 // The matrix analysed for w (its primitive root): J M_h when w = h J(h), else M_w; normalised.
-template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced) {
+template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> M;
   for (std::size_t k = 0; k < n; ++k) {
+    poll_symbol<T>(cancel, k);
     M.m = P[w.s[k] - 1] * M.m;
     // Renormalise every 8 factors: entries shrink at most like r^2 per factor (|det P_i| = r^3 or r^4),
     // so 8 factors stay far from underflow for r > 1e-10 in double.
@@ -171,7 +184,9 @@ template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool red
 // Feasibility along the word from the unit vector v (any sign): returns -1 when every inequality holds
 // strictly, 0 when v is not strictly inside the domain x z < 0, k when the k-th inequality fails.
 // margins (if non-null) receives the p + 1 margins (domain, then one per symbol), sign-invariant.
-template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
+template <class T>
+int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr,
+                const core::CancelToken* cancel = nullptr) {
   const T a = core::alpha(r);
   const T dom = -v(0) * v(2);  // > 0 strictly inside the domain (eq. 3.4)
   if (margins) margins->assign(1, dom);
@@ -179,6 +194,7 @@ template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::ve
   v = core::to_quadrant(v);
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   for (std::size_t k = 0; k < w.size(); ++k) {
+    poll_symbol<T>(cancel, k);
     const int s = w.s[k];
     // Branch conditions of core::branch, as margins that are > 0 when the step uses symbol s.
     T m;
@@ -225,13 +241,15 @@ template <class T> struct Spectrum {
 // (cofactor matrices multiply like the matrices: cof(X) = det(X) X^-T): each factor's cofactors are products of its
 // own O(r) entries with at most one cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3
 // + l2 l3 keeps its relative accuracy where m's 2x2 minors cancel down to it.
-template <class T> std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A) {
+template <class T>
+std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A, const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> C = {cofactor<T>(core::P1(r)), cofactor<T>(core::P2(r)), cofactor<T>(core::P3(r))};
   Scaled<T> cof;
   T log_det = T(0);
   const T log_r = log_(r);
   for (std::size_t k = 0; k < n; ++k) {
+    poll_symbol<T>(cancel, k);
     cof.m = C[w.s[k] - 1] * cof.m;
     if (k % 8 == 7) cof.normalise();  // renormalised as analysed_matrix does, far from underflow
     log_det += (w.s[k] == 2 ? 3 : 4) * log_r;
@@ -243,10 +261,10 @@ template <class T> std::array<T, 3> char_poly(const Word& w, const T& r, bool re
   return {A.m.trace(), c2, det};
 }
 
-template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced) {
+template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   Spectrum<T> s;
-  s.A = analysed_matrix(w, r, reduced);
-  const std::array<T, 3> cp = char_poly(w, r, reduced, s.A);
+  s.A = analysed_matrix(w, r, reduced, cancel);
+  const std::array<T, 3> cp = char_poly(w, r, reduced, s.A, cancel);
   s.roots = cubic_roots<T>(-cp[0], cp[1], -cp[2]);
   std::sort(s.roots.begin(), s.roots.end(), [](const Root<T>& x, const Root<T>& y) { return modulus(x) > modulus(y); });
   for (int i = 0; i < 3; ++i) s.mod[i] = modulus(s.roots[i]);
@@ -258,12 +276,13 @@ template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced)
 template <class T> T tie_tol() { return 64 * eps_<T>(); }
 
 // Stability predicate with its failure reason ("" when stable).
-template <class T> std::string stability_reason(const Word& w, const T& r, bool reduced) {
-  const Spectrum<T> s = spectrum(w, r, reduced);
+template <class T>
+std::string stability_reason(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
+  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
   if (!s.roots[0].real) return "complex";
   if (!(s.mod[1] < s.mod[0] * (1 - tie_tol<T>()))) return s.roots[1].real ? "dominance" : "complex";
   const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[0].re);
-  const int f = feasibility(w, r, v);
+  const int f = feasibility<T>(w, r, v, nullptr, cancel);
   if (f < 0) return "";
   return f == 0 ? "domain" : fmt::format("feas{}", f);
 }
@@ -277,9 +296,9 @@ template <class T> void check_inputs(const Word& w, const T& r) {
 
 }  // namespace detail
 
-template <class T> bool is_stable(const Word& w0, const T& r) {
+template <class T> bool is_stable(const Word& w0, const T& r, const core::CancelToken* cancel) {
   const Word w = primitive_root(w0);
-  return detail::stability_reason(w, r, is_J_square(w)).empty();
+  return detail::stability_reason(w, r, is_J_square(w), cancel).empty();
 }
 
 // An orbit that is not stable whose larger exponent is zero within the tie tolerance: neutral when the eigenvalue
@@ -293,7 +312,8 @@ namespace detail {
 
 // The eigenvalues of M_w (of A = J M_h when reduced), unnormalised, by decreasing modulus; each real one with its
 // eigenvector in Q and the first feasibility condition it fails.
-template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s) {
+template <class T>
+std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s, const core::CancelToken* cancel) {
   std::vector<EigenInfo<T>> out;
   const T scale = exp_(s.A.log_scale);  // eigenvalues of the unnormalised matrix
   for (int i = 0; i < 3; ++i) {
@@ -304,7 +324,7 @@ template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T&
     e.real = s.roots[i].real;
     if (e.real) {
       e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
-      e.first_failure = feasibility(w, r, e.vector);
+      e.first_failure = feasibility<T>(w, r, e.vector, nullptr, cancel);
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;
     }
@@ -314,8 +334,8 @@ template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T&
 }
 
 // Stable (the dominant eigenvalue's orbit), else unstable on the first feasible eigenvector, else no orbit.
-template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
-  v.reason = stability_reason(v.word, r, v.reduced);
+template <class T> void verdict_outcome(const T& r, Verdict<T>& v, const core::CancelToken* cancel) {
+  v.reason = stability_reason(v.word, r, v.reduced, cancel);
   if (v.reason.empty()) {
     v.outcome = Outcome::stable;
     v.orbit_eigen = 0;
@@ -330,11 +350,13 @@ template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
 }
 
 // The periodic orbit's points (unit, in Q) and its letters, from the orbit's eigenvector.
-template <class T> void periodic_orbit(const T& r, Verdict<T>& v) {
+template <class T> void periodic_orbit(const T& r, Verdict<T>& v, const core::CancelToken* cancel) {
   if (v.orbit_eigen < 0) return;
   Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-  for (auto c : v.word.s) {
+  for (std::size_t k = 0; k < v.word.size(); ++k) {
+    poll_symbol<T>(cancel, k);
+    const int c = v.word.s[k];
     v.orbit.push_back(u);
     v.letters += core::letters<T>(c, u);
     u = core::to_quadrant<T>(P[c - 1] * u);
@@ -347,16 +369,17 @@ template <class T> void periodic_orbit(const T& r, Verdict<T>& v) {
 template <class T> struct LogModuli {
   T l1, l1l2, det;
 };
-template <class T> LogModuli<T> log_moduli(const Word& w, const T& r) {
+template <class T> LogModuli<T> log_moduli(const Word& w, const T& r, const core::CancelToken* cancel) {
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> C;
   T log_det = T(0);
   for (std::size_t k = 0; k < w.size(); ++k) {
+    poll_symbol<T>(cancel, k);
     C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
     C.normalise();
     log_det += log_(abs_<T>(det3<T>(P[w.s[k] - 1])));
   }
-  const Spectrum<T> sm = spectrum(w, r, false);
+  const Spectrum<T> sm = spectrum(w, r, false, cancel);
   const T tr = C.m.trace();
   const T minors = C.m(0, 0) * C.m(1, 1) - C.m(0, 1) * C.m(1, 0) + C.m(0, 0) * C.m(2, 2) - C.m(0, 2) * C.m(2, 0) +
                    C.m(1, 1) * C.m(2, 2) - C.m(1, 2) * C.m(2, 1);
@@ -401,25 +424,25 @@ template <class T> void orbit_exponents(const LogModuli<T>& lg, Verdict<T>& v) {
 }  // namespace detail
 
 // primitive root -> spectrum -> outcome -> periodic orbit -> exponents.
-template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
+template <class T> Verdict<T> analyse(const Word& w0, const T& r, const core::CancelToken* cancel) {
   using namespace detail;
   check_inputs(w0, r);
   Verdict<T> v;
   v.word = primitive_root(w0);
   v.r = r;
   v.reduced = is_J_square(v.word);
-  v.spectrum = eigen_infos(v.word, r, spectrum(v.word, r, v.reduced));
-  verdict_outcome(r, v);
-  periodic_orbit(r, v);
-  orbit_exponents(log_moduli(v.word, r), v);
+  v.spectrum = eigen_infos(v.word, r, spectrum(v.word, r, v.reduced, cancel), cancel);
+  verdict_outcome(r, v, cancel);
+  periodic_orbit(r, v, cancel);
+  orbit_exponents(log_moduli(v.word, r, cancel), v);
   return v;
 }
 
-template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q) {
+template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q, const core::CancelToken* cancel) {
   using namespace detail;
   check_inputs(w0, r);
   const Word w = primitive_root(w0);
-  const Spectrum<T> s = spectrum(w, r, is_J_square(w));
+  const Spectrum<T> s = spectrum(w, r, is_J_square(w), cancel);
   int idx = -1;
   for (int i = 0; i < 3 && idx < 0; ++i)
     if (s.roots[i].real && (track == Track::dominant_real || s.roots[i].re < 0)) idx = i;
@@ -442,15 +465,16 @@ template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity 
   }
 }
 
-template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol) {
-  T flo = quantity(w, lo, track, q);
-  const T fhi = quantity(w, hi, track, q);
+template <class T>
+T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol, const core::CancelToken* cancel) {
+  T flo = quantity(w, lo, track, q, cancel);
+  const T fhi = quantity(w, hi, track, q, cancel);
   if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
     throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]", static_cast<double>(lo),
                                         static_cast<double>(hi)));
   for (int it = 0; it < 100000 && hi - lo > tol; ++it) {
     const T mid = (lo + hi) / 2;
-    const T fm = quantity(w, mid, track, q);
+    const T fm = quantity(w, mid, track, q, cancel);
     if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; }
     else hi = mid;
   }
@@ -458,22 +482,23 @@ template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quant
 }
 
 template <class T>
-std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol,
+                                       const core::CancelToken* cancel) {
   using namespace detail;
   if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   const bool red = is_J_square(w);
   std::vector<Interval<T>> out;
   std::vector<char> st(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red).empty();
+  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red, cancel).empty();
   // Bisects the predicate between a (stable) and b (not stable); returns the endpoint and b's reason.
   const auto refine = [&](T a, T b) {
     for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
       const T mid = (a + b) / 2;
-      if (stability_reason<T>(w, mid, red).empty()) a = mid;
+      if (stability_reason<T>(w, mid, red, cancel).empty()) a = mid;
       else b = mid;
     }
-    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red)};
+    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red, cancel)};
   };
   for (std::size_t i = 0; i < grid.size();) {
     if (!st[i]) { ++i; continue; }
@@ -507,17 +532,17 @@ template <class T> bool collapses(const Word& w, const T& r, const Spectrum<T>& 
 }
 }  // namespace detail
 
-template <class T> Classification classify(const Word& w0, const T& r) {
+template <class T> Classification classify(const Word& w0, const T& r, const core::CancelToken* cancel) {
   using namespace detail;
   const Word w = primitive_root(w0);
   const bool reduced = is_J_square(w);
-  const Spectrum<T> s = spectrum(w, r, reduced);
+  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
   // The same predicates as analyse: stable = real, strictly dominant and feasible; unstable = some other
   // real eigenvector feasible (analyse's loop over the spectrum in order of decreasing modulus).
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
   for (int i = 0; i < 3; ++i) {
     if (!s.roots[i].real) continue;
-    if (feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) >= 0) continue;
+    if (feasibility<T>(w, r, eigenvector<T>(s.A.m, s.roots[i].re), nullptr, cancel) >= 0) continue;
     if (i == 0 && dominant) return {Outcome::stable, collapses(w, r, s, i, reduced)};
     // analyse's neutral / undecided: the largest other modulus j against the orbit's i (M_w = A^2 when reduced).
     using std::abs;
@@ -530,20 +555,21 @@ template <class T> Classification classify(const Word& w0, const T& r) {
 }
 
 template <class T>
-std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol,
+                                                 const core::CancelToken* cancel) {
   using namespace detail;
   if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   std::vector<Classification> o(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]));
+  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]), cancel);
   // Bisects between a (classification ca) and b (another one); returns the endpoint and b's name.
   const auto refine = [&](T a, T b, const Classification& ca) {
     for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
       const T mid = (a + b) / 2;
-      if (classify<T>(w, mid) == ca) a = mid;
+      if (classify<T>(w, mid, cancel) == ca) a = mid;
       else b = mid;
     }
-    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b))};
+    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b, cancel))};
   };
   std::vector<FeasibleInterval<T>> out;
   for (std::size_t i = 0; i < grid.size();) {
