@@ -37,13 +37,16 @@ template <class T> T cbrt_(const T& x) {
 }
 template <class T> T eps_() { return std::numeric_limits<T>::epsilon(); }
 
-// The cancellation poll of a loop over a word's symbols (core/cancel.hpp; throws core::Cancelled), at symbol k.  A
-// step is one 3x3 product: nanoseconds in the fixed-size types, which poll every core::cancel_stride symbols; up to
-// milliseconds in MPFR at thousands of digits (a 60000-symbol word at mpfr:2000 takes a minute), which polls every
-// symbol (one relaxed load against an MPFR product: nothing).
-template <class T> void poll_symbol(const core::CancelToken* cancel, std::size_t k) {
+// The cancellation poll inside a loop over a word's symbols, at symbol k (core/cancel.hpp; throws core::Cancelled);
+// each such loop also polls once before it starts.  A step is one 3x3 product.  In the processor's types (float,
+// double, long double) it takes nanoseconds, so a whole loop over the longest word parse_word accepts (10^5 symbols)
+// takes milliseconds and the poll before it suffices: a test at every step cost 3-8% of the feasible atlas's inner
+// loop (bm_particles' classify), where words are a few symbols long.  float128 (software, microseconds a step) polls
+// every core::cancel_stride symbols; MPFR (up to milliseconds a step at thousands of digits: a 60000-symbol word at
+// mpfr:2000 takes a minute) at every symbol.
+template <class T> void poll_symbol([[maybe_unused]] const core::CancelToken* cancel, [[maybe_unused]] std::size_t k) {
   if constexpr (std::is_same_v<T, core::mpfr_float>) core::check_cancel(cancel);
-  else core::poll_cancel(cancel, static_cast<long>(k));
+  else if constexpr (!std::is_floating_point_v<T>) core::poll_cancel(cancel, static_cast<long>(k));
 }
 
 // A matrix product kept normalised: value = exp(log_scale) * m, max |m_ij| = 1.
@@ -169,6 +172,7 @@ template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool red
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> M;
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
     poll_symbol<T>(cancel, k);
     M.m = P[w.s[k] - 1] * M.m;
@@ -193,6 +197,7 @@ int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = 
   int fail = dom > 0 ? -1 : 0;
   v = core::to_quadrant(v);
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < w.size(); ++k) {
     poll_symbol<T>(cancel, k);
     const int s = w.s[k];
@@ -248,6 +253,7 @@ std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled
   Scaled<T> cof;
   T log_det = T(0);
   const T log_r = log_(r);
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
     poll_symbol<T>(cancel, k);
     cof.m = C[w.s[k] - 1] * cof.m;
@@ -354,6 +360,7 @@ template <class T> void periodic_orbit(const T& r, Verdict<T>& v, const core::Ca
   if (v.orbit_eigen < 0) return;
   Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < v.word.size(); ++k) {
     poll_symbol<T>(cancel, k);
     const int c = v.word.s[k];
@@ -373,6 +380,7 @@ template <class T> LogModuli<T> log_moduli(const Word& w, const T& r, const core
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> C;
   T log_det = T(0);
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < w.size(); ++k) {
     poll_symbol<T>(cancel, k);
     C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
