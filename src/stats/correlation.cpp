@@ -35,7 +35,9 @@ template <class F> void in_blocks(long n, const core::CancelToken* cancel, F&& f
 template <class T> T mean(const std::vector<T>& x, long N, const core::CancelToken* cancel = nullptr) {
   T s = 0, c = 0;
   in_blocks(N, cancel, [&](long lo, long hi) {
-    for (long k = lo; k < hi; ++k) add(s, c, x[k]);
+    T bs = s, bc = c;  // locals: the compiler keeps them in registers (s and c might alias x through the capture)
+    for (long k = lo; k < hi; ++k) add(bs, bc, x[k]);
+    s = bs, c = bc;
   });
   return (s + c) / static_cast<T>(N);
 }
@@ -117,15 +119,18 @@ std::vector<T> Correlator<T>::operator()(const std::vector<T>& phi, const std::v
   const T mp = mean(phi, N, cancel), mq = mean(psi, N, cancel);
   T* d = fft_.data();
   std::complex<T>* X = fft_.spectrum();
-  // Zero padding: phi beyond N, psi beyond N + n_max.
-  in_blocks(L, cancel, [&](long lo, long hi) {
-    for (long k = lo; k < hi; ++k) d[k] = k < N ? T(phi[k] - mp) : T(0);
-  });
+  // Zero padding: phi beyond N, psi beyond N + n_max (centre(v, m, n) writes d[k] = v[k] - m for k < n, else 0).
+  const auto centre = [&](const std::vector<T>& v, T m, long n) {
+    in_blocks(L, cancel, [&](long lo, long hi) {
+      const long split = std::clamp(n, lo, hi);
+      for (long k = lo; k < split; ++k) d[k] = v[k] - m;
+      std::fill(d + split, d + hi, T(0));
+    });
+  };
+  centre(phi, mp, N);
   fft_.forward(cancel);
   in_blocks(H, cancel, [&](long lo, long hi) { std::copy(X + lo, X + hi, a_.begin() + lo); });
-  in_blocks(L, cancel, [&](long lo, long hi) {
-    for (long k = lo; k < hi; ++k) d[k] = k < N + M ? T(psi[k] - mq) : T(0);
-  });
+  centre(psi, mq, N + M);
   fft_.forward(cancel);
   in_blocks(H, cancel, [&](long lo, long hi) {
     for (long j = lo; j < hi; ++j) X[j] = std::conj(a_[j]) * X[j];
@@ -135,18 +140,22 @@ std::vector<T> Correlator<T>::operator()(const std::vector<T>& phi, const std::v
   // W updated lag by lag with a compensated sum.
   T w = 0, wc = 0;
   in_blocks(N, cancel, [&](long lo, long hi) {
-    for (long k = lo; k < hi; ++k) add(w, wc, psi[k] - mq);
+    T bw = w, bwc = wc;  // locals, as in mean()
+    for (long k = lo; k < hi; ++k) add(bw, bwc, psi[k] - mq);
+    w = bw, wc = bwc;
   });
   std::vector<T> c(static_cast<std::size_t>(M + 1));
   const T invL = T(1) / static_cast<T>(L), invN = T(1) / static_cast<T>(N);
   in_blocks(M + 1, cancel, [&](long lo, long hi) {
+    T bw = w, bwc = wc;  // locals, as in mean()
     for (long n = lo; n < hi; ++n) {
-      c[n] = d[n] * invL * invN + mp * (w + wc) * invN;
+      c[n] = d[n] * invL * invN + mp * (bw + bwc) * invN;
       if (n < M) {
-        add(w, wc, psi[n + N] - mq);
-        add(w, wc, -(psi[n] - mq));
+        add(bw, bwc, psi[n + N] - mq);
+        add(bw, bwc, -(psi[n] - mq));
       }
     }
+    w = bw, wc = bwc;
   });
   return c;
 }
