@@ -17,7 +17,8 @@ bound=2.0   # seconds from the signal to the exit
 settle=1.0  # seconds before the signal: past start-up and validation, inside the computation
 
 # interrupt <INT|TERM> <btob arguments...>; "@OUT" in the arguments is replaced by an output folder that already
-# holds a result (keep.txt), which must be left as it was.
+# holds a result (keep.txt), which must be left as it was.  With writing=1 (writing=1 interrupt ...) the signal comes
+# 0.2 s after the run has begun to write its staged NAME.h5 (in OUT/.btob-tmp-*) instead of `settle` s after the start.
 interrupt() {
   local sig="$1"
   shift
@@ -26,7 +27,12 @@ interrupt() {
   for a in "$@"; do args+=("${a//@OUT/$out}"); done
   "$btob" "${args[@]}" >"$work/stdout" 2>"$work/stderr" &
   local pid=$!
-  sleep "$settle"
+  if [ "${writing:-0}" = 1 ]; then
+    for _ in $(seq 1 2000); do compgen -G "$out/.btob-tmp-*/*.h5" >/dev/null && break; sleep 0.005; done
+    sleep 0.2
+  else
+    sleep "$settle"
+  fi
   if ! kill -0 "$pid" 2>/dev/null; then
     wait "$pid"
     echo "FAIL (finished before the signal, exit $?): btob $*"; fail=1; return
@@ -173,4 +179,11 @@ interrupt TERM hyperbolicity --r 0.2 --grid strip:3000x3000 --out @OUT --no-plot
 interrupt TERM measure --r 0.2 --grid 1,-0.5,-1.1 --transient 100000000000 --iterations 1000 --out @OUT --no-plot
 # With --resume: the atlas's words are counted (3^16 of them) before the first round.
 interrupt TERM pattern atlas --max-length 16 --no-check --out @OUT --no-plot --resume
+# A word's analysis in MPFR (a primitive word of 59995 symbols at 2000 digits: a minute) and its stability set in
+# MPFR (7500 r values and their bisections for 1801 symbols: minutes).
+interrupt INT pattern "(132312)^9999 1" --r 0.2 --precision mpfr:2000
+interrupt TERM pattern "(132312)^300 1" --window --precision mpfr:100
+# Inside the deflated write of two 48 MB datasets (chaotic tails compress little: an 89 MB NAME.h5, seconds to
+# write), which is written one chunk at a time.
+writing=1 interrupt TERM strip-orbits --r 0.9 --orbits 1000 --iterations 6000 --tail 6000 --threads 1 --out @OUT --no-plot
 exit $fail

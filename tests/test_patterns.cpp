@@ -125,6 +125,35 @@ TEST(Words, CanonicalFormIsInvariantUnderRotationAndJ) {
   EXPECT_FALSE(is_J_square(W("1322")));
 }
 
+// The canonical form against its definition: the smallest of the 2n rotations of w and J(w) in the order 1 < 3 < 2,
+// found by listing them all (every word of length <= 8, and powers, whose equal rotations end the linear scan).
+TEST(Words, CanonicalFormIsTheSmallestOfAllRotations) {
+  const auto key = [](const Word& w) {
+    std::string k;
+    for (auto c : w.s) k.push_back(c == 1 ? 'a' : (c == 3 ? 'b' : 'c'));
+    return k;
+  };
+  const auto brute = [&](const Word& w) {
+    Word best = w;
+    for (const Word& v : {w, apply_J(w)})
+      for (std::size_t i = 0; i < w.size(); ++i)
+        if (key(rotate(v, i)) < key(best)) best = rotate(v, i);
+    return best;
+  };
+  long checked = 0;
+  for (int n = 1; n <= 8; ++n) {
+    Word w{std::vector<std::uint8_t>(static_cast<std::size_t>(n), 1)};
+    for (long code = 0, total = static_cast<long>(std::pow(3, n)); code < total; ++code, ++checked) {
+      long c = code;
+      for (int i = 0; i < n; ++i, c /= 3) w.s[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(1 + c % 3);
+      ASSERT_EQ(canonical(w), brute(w)) << to_digits(w);
+    }
+  }
+  EXPECT_EQ(checked, 9840);  // 3 + 9 + ... + 3^8
+  for (const char* p : {"(3122)^7", "(2131)^5", "(132312)^40", "(2)^9", "(31)^6 3"})
+    EXPECT_EQ(canonical(W(p)), brute(W(p))) << p;
+}
+
 TEST(Words, EnumerationHoldsEachClassOnce) {
   // Brute force over all words of length <= 7: the set of their canonical primitive forms equals the list.
   const auto list = enumerate_canonical(7);

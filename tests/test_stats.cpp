@@ -13,14 +13,17 @@
 #include "tolerance.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <numbers>
 #include <random>
 #include <string>
+#include <thread>
 
 using btob::test::bound;
 using btob::test::statistical;
@@ -456,6 +459,38 @@ TEST(MeasureRequest, RunGroupsTheMeasuresOfTheOrbits) {
   core::RunControl cancelled;
   cancelled.cancel = &token;
   EXPECT_THROW(run(q, cancelled), core::Cancelled);
+}
+
+// With a token, FFTs of RealFft::kInlineLength points or more (and their planning) run on a thread of their own:
+// the same plan on the same buffers, so the same bits as on the caller's thread; a token set while one runs throws
+// core::Cancelled at once, and the abandoned transform finishes alone (its buffers outlive the object).
+TEST(Correlation, LongTransformsRunOnAThreadOfTheirOwnAndStopOnCancel) {
+  const long N = 1200000, n_max = 1000;  // L = fast_fft_length(N + n_max) > kInlineLength = 2^20
+  std::mt19937_64 g(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> x(static_cast<std::size_t>(N + n_max));
+  for (auto& v : x) v = u(g);
+  core::CancelToken live;
+  Correlator<double> inline_corr(N, n_max), thread_corr(N, n_max, &live);
+  ASSERT_GE(thread_corr.fft_length(), RealFft<double>::kInlineLength);
+  const std::vector<double> a = inline_corr(x, x), b = thread_corr(x, x, &live);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+  // A token set 20 ms into one transform of 2^24 points (~0.3 s): it throws at the next poll (5 ms).
+  core::CancelToken token;
+  RealFft<double> f(1L << 24, &token);
+  std::fill(f.data(), f.data() + f.size(), 0.5);
+  std::chrono::steady_clock::time_point cancelled_at;
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    cancelled_at = std::chrono::steady_clock::now();
+    token.cancel();
+  });
+  EXPECT_THROW(f.forward(&token), core::Cancelled);
+  const auto thrown_at = std::chrono::steady_clock::now();
+  stopper.join();
+  // The 5 ms poll, with room for a loaded machine; run inline, the transform under way would end first (~0.3 s).
+  EXPECT_LT(std::chrono::duration<double>(thrown_at - cancelled_at).count(), 0.1);
 }
 
 namespace {

@@ -1,9 +1,10 @@
 """Ctrl-C (SIGINT) stops every kind of run: single orbits in every precision, transients, sweeps whose items are
 long orbits, the atlas and windows certificates, covariant vectors, direct correlation sums, the pattern curves, the
-iterator checks and the overlays computed after a run raise KeyboardInterrupt within a bound.  Each call below would run
-for minutes or hours if the signal were not seen inside its inner loop.  Each runs in a child interpreter, so that
-a run that ignored the signal fails the test (killed after a timeout) instead of hanging it.  The bound is 2 s so
-that a loaded machine does not fail the test; on an idle machine the latency is the binding's 50 ms poll."""
+iterator checks, a word's analysis in MPFR and the overlays computed after a run raise KeyboardInterrupt within a
+bound.  Each call below would run for minutes or hours if the signal were not seen inside its inner loop.  Each runs
+in a child interpreter, so that a run that ignored the signal fails the test (killed after a timeout) instead of
+hanging it.  The bound is 2 s so that a loaded machine does not fail the test; on an idle machine the latency is the
+binding's 50 ms poll."""
 import os
 import signal
 import subprocess
@@ -33,6 +34,8 @@ RUNS = {
     "pattern_curves": 'btob.pattern_curves(word="132^200", r_count=60000)',
     "windows_verify": 'btob.windows_verify(n="2..3", iterations=10**11)',
     "measure transient": 'btob.measure(r=0.2, grid="1,-0.5,-1.1", transient=10**11, iterations=1000)',
+    # A word's analysis in MPFR: a primitive word of 59995 symbols at 2000 digits (a minute unpolled).
+    "pattern mpfr": 'btob.pattern(word="(132312)^9999 1", r="0.2", precision="mpfr:2000")',
 }
 # The child: runs the call; on KeyboardInterrupt prints when it arrived (CLOCK_MONOTONIC, the parent's clock too),
 # checks that the next run works and exits 42.

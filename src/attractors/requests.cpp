@@ -75,7 +75,7 @@ ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control) 
   res.detail = v.detail + fmt::format("; {} iterations", v.iterations);
   if (v.type == Type::periodic && !v.word.s.empty()) {
     // The pattern tool's verdict at this r: stability and the collision letters (acb / cab resolved).
-    const patterns::Verdict<double> pv = patterns::analyse<double>(v.word, req.r);
+    const patterns::Verdict<double> pv = patterns::analyse<double>(v.word, req.r, control.cancel);
     res.detail += fmt::format("; pattern tool: {}; letters {}", patterns::outcome_name(pv.outcome), pv.letters);
   }
   res.pattern = pattern_of(v, req.r);

@@ -18,8 +18,8 @@ namespace btob::cli {
 namespace {
 
 void word_body(const patterns::WordRequest& req, const Output&, const Context& ctx) {
-  // Neither the word's analysis (patterns::analyse) nor its text (the canonical rotation, O(length^2)) polls the
-  // token: a signal during them prints nothing.
+  // The run polls the token (the analysis along the word's symbols); the text (O(length): milliseconds for the
+  // longest word) does not, and a signal during it prints nothing.
   const std::string text = patterns::run(req, ctx.control).text();
   core::check_cancel(ctx.control.cancel);
   std::cout << text;

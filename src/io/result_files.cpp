@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <fstream>
@@ -173,11 +174,10 @@ void write_root_attrs(H5::H5File& file, const Attrs& attrs) {
   }
 }
 
-// The creation properties of an array of `total` elements with dimensions d: chunked (chunks of at most 2^18
-// elements, halving each dimension in turn) and deflated from 4096 elements on (density images are mostly empty).
-H5::DSetCreatPropList array_layout(const std::vector<hsize_t>& d, std::size_t total) {
-  H5::DSetCreatPropList plist;
-  if (total < 4096) return plist;
+// The chunk of an array of `total` elements with dimensions d: at most about 2^18 elements, halving each dimension
+// in turn; empty (a contiguous dataset) below 4096 elements.
+std::vector<hsize_t> array_chunk(const std::vector<hsize_t>& d, std::size_t total) {
+  if (total < 4096) return {};
   std::vector<hsize_t> chunk = d;
   std::size_t n = total;
   for (auto& x : chunk)
@@ -185,9 +185,42 @@ H5::DSetCreatPropList array_layout(const std::vector<hsize_t>& d, std::size_t to
       n /= 2;
       x = (x + 1) / 2;
     }
+  return chunk;
+}
+
+// The creation properties of an array with that chunk: chunked and deflated from 4096 elements on (density images
+// are mostly empty).
+H5::DSetCreatPropList array_layout(const std::vector<hsize_t>& chunk) {
+  H5::DSetCreatPropList plist;
+  if (chunk.empty()) return plist;
   plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
   plist.setDeflate(4);
   return plist;
+}
+
+// Writes the array `data` (dimensions d, row-major) into the chunked dataset ds one whole chunk at a time (the
+// chunks' grid in row-major order), polling the stop token (io/cancel.hpp) before each: deflating ~100 MB takes
+// seconds, and one H5Dwrite of it could not be stopped.  Each chunk is written once and whole, so the dataset holds
+// the same values, chunks and filter as after one write of the array.
+template <class V>
+void write_by_chunks(H5::DataSet& ds, const V* data, const std::vector<hsize_t>& d, const std::vector<hsize_t>& chunk) {
+  const int rank = static_cast<int>(d.size());
+  H5::DataSpace mem(rank, d.data()), file = ds.getSpace();
+  std::vector<hsize_t> index(d.size(), 0), start(d.size()), count(d.size());
+  for (;;) {
+    check_stop();
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      start[i] = index[i] * chunk[i];
+      count[i] = std::min(chunk[i], d[i] - start[i]);
+    }
+    mem.selectHyperslab(H5S_SELECT_SET, count.data(), start.data());
+    file.selectHyperslab(H5S_SELECT_SET, count.data(), start.data());
+    ds.write(data, h5_type<V>(), mem, file);
+    int i = rank - 1;  // the next chunk: an odometer over the chunk grid, last dimension fastest
+    while (i >= 0 && (++index[static_cast<std::size_t>(i)]) * chunk[static_cast<std::size_t>(i)] >= d[static_cast<std::size_t>(i)])
+      index[static_cast<std::size_t>(i--)] = 0;
+    if (i < 0) return;
+  }
 }
 
 // One array of the result as a dataset with its units, axes and description.
@@ -201,8 +234,10 @@ void write_array(H5::H5File& file, const core::ArrayView& a) {
         if (total != vec->size())
           throw std::logic_error(fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
         H5::DataSpace space(static_cast<int>(d.size()), d.data());
-        H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, array_layout(d, total));
-        if (total > 0) ds.write(vec->data(), h5_type<V>());
+        const std::vector<hsize_t> chunk = array_chunk(d, total);
+        H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, array_layout(chunk));
+        if (!chunk.empty()) write_by_chunks(ds, vec->data(), d, chunk);
+        else if (total > 0) ds.write(vec->data(), h5_type<V>());
         string_attr(ds, "units", a.units);
         string_attr(ds, "axes", a.axes);
         string_attr(ds, "description", a.description);

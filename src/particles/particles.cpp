@@ -102,7 +102,7 @@ namespace {
 // The word's verdict at r as the result's header: names, moduli of M_w (squares of those of J M_h when
 // w = h J(h)), and whether K_w predicts a self-similar collapse.  Returns the moduli in T.
 template <class T> std::vector<T> pattern_header(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
-                                                 ParticlesResult& res) {
+                                                 ParticlesResult& res, const core::CancelToken* cancel) {
   res.word = patterns::to_paper(v.word);
   res.digits = patterns::to_digits(v.word);
   res.letters = v.letters;
@@ -115,7 +115,7 @@ template <class T> std::vector<T> pattern_header(const ParticlesRequest& req, co
   for (const auto& e : v.spectrum) mod.push_back(v.reduced ? T(e.modulus * e.modulus) : e.modulus);
   for (const auto& m : mod) res.moduli.push_back(static_cast<double>(m));
   res.orbit_eigen = v.orbit_eigen;
-  res.collapse = patterns::classify<T>(v.word, r).collapse;
+  res.collapse = patterns::classify<T>(v.word, r, cancel).collapse;
   return mod;
 }
 
@@ -249,9 +249,9 @@ template <class T> void unrescaled_run(const ParticlesRequest& req, const Gaps<T
 template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const core::RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   const T r = core::from_decimal<T>(req.r.text);  // T nearest the decimal, not double's value widened
-  const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r);
+  const patterns::Verdict<T> v = patterns::analyse<T>(patterns::parse_word(req.word, "word"), r, control.cancel);
   ParticlesResult res;
-  const std::vector<T> mod = pattern_header<T>(req, v, r, res);
+  const std::vector<T> mod = pattern_header<T>(req, v, r, res, control.cancel);
   predict_contractions<T>(v, r, mod, res);
   const Gaps<T, 3> start = pattern_start<T>(req, v, r, res.collapse, control);
   const PatternRun<T> run = rescaled_run<T>(req, start, v.letters, r, control, res);

@@ -24,13 +24,15 @@ std::string classification_name(const Classification& c) {
 }
 
 #define BTOB_PATTERNS_INSTANTIATE(T)                                                                          \
-  template Verdict<T> analyse<T>(const Word&, const T&);                                                       \
-  template bool is_stable<T>(const Word&, const T&);                                                           \
-  template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&);        \
-  template T quantity<T>(const Word&, const T&, Track, Quantity);                                              \
-  template Classification classify<T>(const Word&, const T&);                                                         \
-  template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&); \
-  template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
+  template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                              \
+  template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                                  \
+  template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&,         \
+                                                     const core::CancelToken*);                                 \
+  template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);                     \
+  template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                         \
+  template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&, \
+                                                               const core::CancelToken*);                       \
+  template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&, const core::CancelToken*);
 
 BTOB_PATTERNS_INSTANTIATE(float)
 BTOB_PATTERNS_INSTANTIATE(double)

@@ -3,7 +3,9 @@
 
 #include "patterns/patterns.hpp"
 
+#include "core/cancel.hpp"
 #include "core/request.hpp"
+#include "core/scalar.hpp"
 
 #include <boost/multiprecision/eigen.hpp>
 
@@ -14,6 +16,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace btob::patterns {
@@ -33,6 +36,18 @@ template <class T> T cbrt_(const T& x) {
   return x < 0 ? T(-y) : y;
 }
 template <class T> T eps_() { return std::numeric_limits<T>::epsilon(); }
+
+// The cancellation poll inside a loop over a word's symbols, at symbol k (core/cancel.hpp; throws core::Cancelled);
+// each such loop also polls once before it starts.  A step is one 3x3 product.  In the processor's types (float,
+// double, long double) it takes nanoseconds, so a whole loop over the longest word parse_word accepts (10^5 symbols)
+// takes milliseconds and the poll before it suffices: a test at every step cost 3-8% of the feasible atlas's inner
+// loop (bm_particles' classify), where words are a few symbols long.  float128 (software, microseconds a step) polls
+// every core::cancel_stride symbols; MPFR (up to milliseconds a step at thousands of digits: a 60000-symbol word at
+// mpfr:2000 takes a minute) at every symbol.
+template <class T> void poll_symbol([[maybe_unused]] const core::CancelToken* cancel, [[maybe_unused]] std::size_t k) {
+  if constexpr (std::is_same_v<T, core::mpfr_float>) core::check_cancel(cancel);
+  else if constexpr (!std::is_floating_point_v<T>) core::poll_cancel(cancel, static_cast<long>(k));
+}
 
 // A matrix product kept normalised: value = exp(log_scale) * m, max |m_ij| = 1.
 template <class T> struct Scaled {
@@ -153,11 +168,13 @@ template <class T> Vec3<T> eigenvector(const Mat3<T>& A, const T& l) {
 }
 
 // The matrix analysed for w (its primitive root): J M_h when w = h J(h), else M_w; normalised.
-template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced) {
+template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> M;
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
+    poll_symbol<T>(cancel, k);
     M.m = P[w.s[k] - 1] * M.m;
     // Renormalise every 8 factors: entries shrink at most like r^2 per factor (|det P_i| = r^3 or r^4),
     // so 8 factors stay far from underflow for r > 1e-10 in double.
@@ -181,12 +198,15 @@ template <class T> T branch_margin(int s, const T& a, const Vec3<T>& v) {
 // not strictly inside the domain x z < 0, k when the k-th inequality fails.  margins (if non-null) receives the
 // p + 1 margins (domain, then one per symbol); without it the first failure ends the walk.
 template <class T, class Point>
-int feasibility_walk(const Word& w, const T& r, const Vec3<T>& first, Point&& point, std::vector<T>* margins) {
+int feasibility_walk(const Word& w, const T& r, const Vec3<T>& first, Point&& point, std::vector<T>* margins,
+                     const core::CancelToken* cancel) {
   const T a = core::alpha(r);
   const T dom = -first(0) * first(2);  // > 0 strictly inside the domain (eq. 3.4)
   if (margins) margins->assign(1, dom);
   int fail = dom > 0 ? -1 : 0;
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < w.size(); ++k) {
+    poll_symbol<T>(cancel, k);
     const T m = branch_margin<T>(w.s[k], a, point(k));
     if (margins) margins->push_back(m);
     if (!(m > 0) && fail < 0) {
@@ -200,7 +220,9 @@ int feasibility_walk(const Word& w, const T& r, const Vec3<T>& first, Point&& po
 // Feasibility along the word from the unit vector v (any sign) carried forward: u_0 = v brought into Q, u_k =
 // P_{w_k} u_{k-1} normalised.  Stable for the dominant eigenvector (the other components shrink along the word); a
 // saddle's or the smallest eigenvalue's orbit is walked on orbit_points instead.
-template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr) {
+template <class T>
+int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = nullptr,
+                const core::CancelToken* cancel = nullptr) {
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   const Vec3<T> first = v;
   v = core::to_quadrant(v);
@@ -211,12 +233,14 @@ template <class T> int feasibility(const Word& w, const T& r, Vec3<T> v, std::ve
       v /= v.norm();
     }
     return v;
-  }, margins);
+  }, margins, cancel);
 }
 
 // Feasibility of given orbit points u_0 .. u_{p-1} (orbit_points).
-template <class T> int feasibility_of(const Word& w, const T& r, const std::vector<Vec3<T>>& u, std::vector<T>* margins = nullptr) {
-  return feasibility_walk<T>(w, r, u[0], [&](std::size_t k) -> const Vec3<T>& { return u[k]; }, margins);
+template <class T>
+int feasibility_of(const Word& w, const T& r, const std::vector<Vec3<T>>& u, std::vector<T>* margins = nullptr,
+                   const core::CancelToken* cancel = nullptr) {
+  return feasibility_walk<T>(w, r, u[0], [&](std::size_t k) -> const Vec3<T>& { return u[k]; }, margins, cancel);
 }
 
 // A bound on the error of the unit eigenvector (eigenvector()) of the simple root i of a normalised matrix
@@ -248,13 +272,16 @@ template <class T> struct Spectrum {
 // (cofactor matrices multiply like the matrices: cof(X) = det(X) X^-T): each factor's cofactors are products of its
 // own O(r) entries with at most one cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3
 // + l2 l3 keeps its relative accuracy where m's 2x2 minors cancel down to it.
-template <class T> std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A) {
+template <class T>
+std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A, const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> C = {cofactor<T>(core::P1(r)), cofactor<T>(core::P2(r)), cofactor<T>(core::P3(r))};
   Scaled<T> cof;
   T log_det = T(0);
   const T log_r = log_(r);
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
+    poll_symbol<T>(cancel, k);
     cof.m = C[w.s[k] - 1] * cof.m;
     if (k % 8 == 7) cof.normalise();  // renormalised as analysed_matrix does, far from underflow
     log_det += (w.s[k] == 2 ? 3 : 4) * log_r;
@@ -266,10 +293,10 @@ template <class T> std::array<T, 3> char_poly(const Word& w, const T& r, bool re
   return {A.m.trace(), c2, det};
 }
 
-template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced) {
+template <class T> Spectrum<T> spectrum(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   Spectrum<T> s;
-  s.A = analysed_matrix(w, r, reduced);
-  const std::array<T, 3> cp = char_poly(w, r, reduced, s.A);
+  s.A = analysed_matrix(w, r, reduced, cancel);
+  const std::array<T, 3> cp = char_poly(w, r, reduced, s.A, cancel);
   s.roots = cubic_roots<T>(-cp[0], cp[1], -cp[2]);
   std::sort(s.roots.begin(), s.roots.end(), [](const Root<T>& x, const Root<T>& y) { return modulus(x) > modulus(y); });
   for (int i = 0; i < 3; ++i) s.mod[i] = modulus(s.roots[i]);
@@ -292,13 +319,19 @@ template <class T> T tie_tol() { return 64 * eps_<T>(); }
 //    M^T), and y_3 (normal to the plane of mu_1 and mu_2) forward, y_3 -> cof(P) y_3 = det P P^-T y_3 (det M / mu_3
 //    dominant for cof M); u_k = y_3,k x y_1,k.
 template <class T>
-std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& s, int i) {
+std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& s, int i,
+                                  const core::CancelToken* cancel = nullptr) {
   const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[i].re);
   const std::size_t p = w.size();
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   std::vector<Vec3<T>> u(p);
   u[0] = core::to_quadrant(v);
-  const auto unit = [](Vec3<T> x) { return Vec3<T>(x / x.norm()); };
+  std::size_t steps = 0;  // every step below is one 3x3 product: polled as the word's other loops are
+  core::check_cancel(cancel);
+  const auto unit = [&](Vec3<T> x) {
+    poll_symbol<T>(cancel, steps++);
+    return Vec3<T>(x / x.norm());
+  };
   // The dominant eigenvalue, and an eigenvalue whose modulus ties with another's (no iteration has it dominant):
   // forward from the eigenvector (for a tie, neutral: errors neither grow nor shrink).
   const T tol = 1 - tie_tol<T>();
@@ -361,12 +394,13 @@ std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& 
 }
 
 // Stability predicate with its failure reason ("" when stable).
-template <class T> std::string stability_reason(const Word& w, const T& r, bool reduced) {
-  const Spectrum<T> s = spectrum(w, r, reduced);
+template <class T>
+std::string stability_reason(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
+  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
   if (!s.roots[0].real) return "complex";
   if (!(s.mod[1] < s.mod[0] * (1 - tie_tol<T>()))) return s.roots[1].real ? "dominance" : "complex";
   const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[0].re);
-  const int f = feasibility(w, r, v);
+  const int f = feasibility<T>(w, r, v, nullptr, cancel);
   if (f < 0) return "";
   return f == 0 ? "domain" : fmt::format("feas{}", f);
 }
@@ -380,9 +414,9 @@ template <class T> void check_inputs(const Word& w, const T& r) {
 
 }  // namespace detail
 
-template <class T> bool is_stable(const Word& w0, const T& r) {
+template <class T> bool is_stable(const Word& w0, const T& r, const core::CancelToken* cancel) {
   const Word w = primitive_root(w0);
-  return detail::stability_reason(w, r, is_J_square(w)).empty();
+  return detail::stability_reason(w, r, is_J_square(w), cancel).empty();
 }
 
 // An orbit that is not stable whose larger exponent is zero within the tie tolerance: neutral when the eigenvalue
@@ -396,7 +430,8 @@ namespace detail {
 
 // The eigenvalues of M_w (of A = J M_h when reduced), unnormalised, by decreasing modulus; each real one with its
 // eigenvector in Q and the first feasibility condition it fails.
-template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s) {
+template <class T>
+std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s, const core::CancelToken* cancel) {
   std::vector<EigenInfo<T>> out;
   const T scale = exp_(s.A.log_scale);  // eigenvalues of the unnormalised matrix
   for (int i = 0; i < 3; ++i) {
@@ -407,7 +442,8 @@ template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T&
     e.real = s.roots[i].real;
     if (e.real) {
       e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
-      e.first_failure = i == 0 ? feasibility(w, r, e.vector) : feasibility_of(w, r, orbit_points(w, r, s, i));
+      e.first_failure = i == 0 ? feasibility<T>(w, r, e.vector, nullptr, cancel)
+                               : feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;
     }
@@ -417,8 +453,8 @@ template <class T> std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T&
 }
 
 // Stable (the dominant eigenvalue's orbit), else unstable on the first feasible eigenvector, else no orbit.
-template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
-  v.reason = stability_reason(v.word, r, v.reduced);
+template <class T> void verdict_outcome(const T& r, Verdict<T>& v, const core::CancelToken* cancel) {
+  v.reason = stability_reason(v.word, r, v.reduced, cancel);
   if (v.reason.empty()) {
     v.outcome = Outcome::stable;
     v.orbit_eigen = 0;
@@ -433,10 +469,11 @@ template <class T> void verdict_outcome(const T& r, Verdict<T>& v) {
 }
 
 // The periodic orbit's points (unit, in Q) and its letters, from the orbit's eigenvector.
-template <class T> void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict<T>& v) {
+template <class T>
+void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict<T>& v, const core::CancelToken* cancel) {
   if (v.orbit_eigen < 0) return;
   if (v.orbit_eigen > 0) {  // a saddle's or the smallest eigenvalue's orbit: each point by its stable iteration
-    const std::vector<Vec3<T>> u = orbit_points(v.word, r, s, v.orbit_eigen);
+    const std::vector<Vec3<T>> u = orbit_points(v.word, r, s, v.orbit_eigen, cancel);
     for (std::size_t k = 0; k < u.size(); ++k) {
       v.orbit.push_back(core::to_quadrant<T>(u[k]));
       v.letters += core::letters<T>(v.word.s[k], v.orbit.back());
@@ -445,7 +482,10 @@ template <class T> void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict
   }
   Vec3<T> u = v.spectrum[v.orbit_eigen].vector;
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-  for (auto c : v.word.s) {
+  core::check_cancel(cancel);
+  for (std::size_t k = 0; k < v.word.size(); ++k) {
+    poll_symbol<T>(cancel, k);
+    const int c = v.word.s[k];
     v.orbit.push_back(u);
     v.letters += core::letters<T>(c, u);
     u = core::to_quadrant<T>(P[c - 1] * u);
@@ -458,16 +498,18 @@ template <class T> void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict
 template <class T> struct LogModuli {
   T l1, l1l2, det;
 };
-template <class T> LogModuli<T> log_moduli(const Word& w, const T& r) {
+template <class T> LogModuli<T> log_moduli(const Word& w, const T& r, const core::CancelToken* cancel) {
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> C;
   T log_det = T(0);
+  core::check_cancel(cancel);
   for (std::size_t k = 0; k < w.size(); ++k) {
+    poll_symbol<T>(cancel, k);
     C.m = cofactor<T>(P[w.s[k] - 1]) * C.m;
     C.normalise();
     log_det += log_(abs_<T>(det3<T>(P[w.s[k] - 1])));
   }
-  const Spectrum<T> sm = spectrum(w, r, false);
+  const Spectrum<T> sm = spectrum(w, r, false, cancel);
   const T tr = C.m.trace();
   const T minors = C.m(0, 0) * C.m(1, 1) - C.m(0, 1) * C.m(1, 0) + C.m(0, 0) * C.m(2, 2) - C.m(0, 2) * C.m(2, 0) +
                    C.m(1, 1) * C.m(2, 2) - C.m(1, 2) * C.m(2, 1);
@@ -512,26 +554,26 @@ template <class T> void orbit_exponents(const LogModuli<T>& lg, Verdict<T>& v) {
 }  // namespace detail
 
 // primitive root -> spectrum -> outcome -> periodic orbit -> exponents.
-template <class T> Verdict<T> analyse(const Word& w0, const T& r) {
+template <class T> Verdict<T> analyse(const Word& w0, const T& r, const core::CancelToken* cancel) {
   using namespace detail;
   check_inputs(w0, r);
   Verdict<T> v;
   v.word = primitive_root(w0);
   v.r = r;
   v.reduced = is_J_square(v.word);
-  const Spectrum<T> s = spectrum(v.word, r, v.reduced);
-  v.spectrum = eigen_infos(v.word, r, s);
-  verdict_outcome(r, v);
-  periodic_orbit(r, s, v);
-  orbit_exponents(log_moduli(v.word, r), v);
+  const Spectrum<T> s = spectrum(v.word, r, v.reduced, cancel);
+  v.spectrum = eigen_infos(v.word, r, s, cancel);
+  verdict_outcome(r, v, cancel);
+  periodic_orbit(r, s, v, cancel);
+  orbit_exponents(log_moduli(v.word, r, cancel), v);
   return v;
 }
 
-template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q) {
+template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q, const core::CancelToken* cancel) {
   using namespace detail;
   check_inputs(w0, r);
   const Word w = primitive_root(w0);
-  const Spectrum<T> s = spectrum(w, r, is_J_square(w));
+  const Spectrum<T> s = spectrum(w, r, is_J_square(w), cancel);
   int idx = -1;
   for (int i = 0; i < 3 && idx < 0; ++i)
     if (s.roots[i].real && (track == Track::dominant_real || s.roots[i].re < 0)) idx = i;
@@ -554,15 +596,16 @@ template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity 
   }
 }
 
-template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol) {
-  T flo = quantity(w, lo, track, q);
-  const T fhi = quantity(w, hi, track, q);
+template <class T>
+T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol, const core::CancelToken* cancel) {
+  T flo = quantity(w, lo, track, q, cancel);
+  const T fhi = quantity(w, hi, track, q, cancel);
   if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
     throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]", static_cast<double>(lo),
                                         static_cast<double>(hi)));
   for (int it = 0; it < 100000 && hi - lo > tol; ++it) {
     const T mid = (lo + hi) / 2;
-    const T fm = quantity(w, mid, track, q);
+    const T fm = quantity(w, mid, track, q, cancel);
     if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; }
     else hi = mid;
   }
@@ -570,22 +613,23 @@ template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quant
 }
 
 template <class T>
-std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol,
+                                       const core::CancelToken* cancel) {
   using namespace detail;
   if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   const bool red = is_J_square(w);
   std::vector<Interval<T>> out;
   std::vector<char> st(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red).empty();
+  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red, cancel).empty();
   // Bisects the predicate between a (stable) and b (not stable); returns the endpoint and b's reason.
   const auto refine = [&](T a, T b) {
     for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
       const T mid = (a + b) / 2;
-      if (stability_reason<T>(w, mid, red).empty()) a = mid;
+      if (stability_reason<T>(w, mid, red, cancel).empty()) a = mid;
       else b = mid;
     }
-    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red)};
+    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red, cancel)};
   };
   for (std::size_t i = 0; i < grid.size();) {
     if (!st[i]) { ++i; continue; }
@@ -619,18 +663,19 @@ template <class T> bool collapses(const Word& w, const T& r, const Spectrum<T>& 
 }
 }  // namespace detail
 
-template <class T> Classification classify(const Word& w0, const T& r) {
+template <class T> Classification classify(const Word& w0, const T& r, const core::CancelToken* cancel) {
   using namespace detail;
   const Word w = primitive_root(w0);
   const bool reduced = is_J_square(w);
-  const Spectrum<T> s = spectrum(w, r, reduced);
+  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
   // The same predicates as analyse: stable = real, strictly dominant and feasible; unstable = some other
   // real eigenvector feasible (analyse's loop over the spectrum in order of decreasing modulus).
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
   for (int i = 0; i < 3; ++i) {
     if (!s.roots[i].real) continue;
-    if ((i == 0 ? feasibility(w, r, eigenvector<T>(s.A.m, s.roots[i].re)) : feasibility_of(w, r, orbit_points(w, r, s, i))) >= 0)
-      continue;
+    const int f = i == 0 ? feasibility<T>(w, r, eigenvector<T>(s.A.m, s.roots[i].re), nullptr, cancel)
+                         : feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
+    if (f >= 0) continue;
     if (i == 0 && dominant) return {Outcome::stable, collapses(w, r, s, i, reduced)};
     // analyse's neutral / undecided: the largest other modulus j against the orbit's i (M_w = A^2 when reduced).
     using std::abs;
@@ -643,20 +688,21 @@ template <class T> Classification classify(const Word& w0, const T& r) {
 }
 
 template <class T>
-std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol) {
+std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol,
+                                                 const core::CancelToken* cancel) {
   using namespace detail;
   if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
   const Word w = primitive_root(w0);
   std::vector<Classification> o(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]));
+  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]), cancel);
   // Bisects between a (classification ca) and b (another one); returns the endpoint and b's name.
   const auto refine = [&](T a, T b, const Classification& ca) {
     for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
       const T mid = (a + b) / 2;
-      if (classify<T>(w, mid) == ca) a = mid;
+      if (classify<T>(w, mid, cancel) == ca) a = mid;
       else b = mid;
     }
-    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b))};
+    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b, cancel))};
   };
   std::vector<FeasibleInterval<T>> out;
   for (std::size_t i = 0; i < grid.size();) {

@@ -39,8 +39,9 @@ bool resolved(const Point& p) { return p.tracked >= 0 && p.u_error < kResolved; 
 Point at(const Word& w, bool reduced, double r_, bool negative) {
   Point p;
   const L r = r_;
-  const detail::Scaled<L> A = detail::analysed_matrix<L>(w, r, reduced);
-  const std::array<L, 3> cp = detail::char_poly<L>(w, r, reduced, A);
+  // Not polled inside (nullptr): a point is one r, and the callers poll between points (some in an OpenMP region).
+  const detail::Scaled<L> A = detail::analysed_matrix<L>(w, r, reduced, nullptr);
+  const std::array<L, 3> cp = detail::char_poly<L>(w, r, reduced, A, nullptr);
   p.roots = detail::cubic_roots<L>(-cp[0], cp[1], -cp[2]);
   std::sort(p.roots.begin(), p.roots.end(), [](const auto& a, const auto& b) {
     if (a.real != b.real) return a.real;

@@ -89,9 +89,12 @@ template <class T> struct Verdict {
 
 // The analysis of Section 7 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.
 // Throws std::invalid_argument (field "word") on an empty word, std::domain_error (field "r") outside (0,1).
-template <class T> Verdict<T> analyse(const Word& w, const T& r);
+// Every function of the analysis below that takes `cancel` polls it along the word's symbols (every symbol in MPFR,
+// every core::cancel_stride symbols otherwise) and throws core::Cancelled once it is set; nullptr: never (a caller
+// inside an OpenMP region, which polls between words instead).
+template <class T> Verdict<T> analyse(const Word& w, const T& r, const core::CancelToken* cancel = nullptr);
 // True when analyse(w, r).outcome == stable, without building the orbit (the atlas's inner loop).
-template <class T> bool is_stable(const Word& w, const T& r);
+template <class T> bool is_stable(const Word& w, const T& r, const core::CancelToken* cancel = nullptr);
 
 // One interval of r in (0, 1) on which a stable periodic orbit with word w exists, with the condition
 // failing just outside each endpoint: "complex" (dominant eigenvalue becomes complex), "dominance"
@@ -105,7 +108,8 @@ template <class T> struct Interval {
 // The scan grid in double; transitions are then bisected in T down to `tol` (absolute, in r).
 std::vector<double> default_grid();  // 7500 points, denser on [0.07, 0.26) where windows are thin
 template <class T>
-std::vector<Interval<T>> stability_set(const Word& w, const std::vector<double>& grid, const T& tol);
+std::vector<Interval<T>> stability_set(const Word& w, const std::vector<double>& grid, const T& tol,
+                                       const core::CancelToken* cancel = nullptr);
 
 // analyse(w, r).outcome without the orbit and the exponents (the inner loop of the feasible atlas): stable
 // when the dominant eigenvector is feasible and strictly dominant, unstable when another real eigenvector
@@ -125,7 +129,7 @@ struct Classification {
   bool operator==(const Classification&) const = default;
 };
 std::string classification_name(const Classification& c);  // "none", "stable", "unstable", "stable (no collapse)", ...
-template <class T> Classification classify(const Word& w, const T& r);
+template <class T> Classification classify(const Word& w, const T& r, const core::CancelToken* cancel = nullptr);
 // One interval of r on which w has a feasible periodic point with a constant classification; lo_reason /
 // hi_reason name the classification just beyond the endpoint (classification_name) or "end".
 template <class T> struct FeasibleInterval {
@@ -138,7 +142,8 @@ template <class T> struct FeasibleInterval {
 // classify on `grid`, each change bisected in T down to `tol`.  Intervals narrower than the grid step can be
 // missed; the grid is the caller's resolution.
 template <class T>
-std::vector<FeasibleInterval<T>> feasibility_set(const Word& w, const std::vector<double>& grid, const T& tol);
+std::vector<FeasibleInterval<T>> feasibility_set(const Word& w, const std::vector<double>& grid, const T& tol,
+                                                 const core::CancelToken* cancel = nullptr);
 
 // Quantities of Section 7 as functions of r, for the real eigenvalue picked by Track of the analysed matrix
 // (J M_h if w = h J(h), else M_w).  Signs are those of the paper's normalisation x = 1 (z = 1 for x_component).
@@ -149,9 +154,10 @@ enum class Quantity {
   alpha_y_minus_x,  // alpha y - x with x > 0: first feasibility inequality (r_crit,132J, r_crit,1322J,5)
   dominance_gap     // (|l_tracked| - max |l_other|) / |l_tracked|        (r_crit,1322J,1 and 2)
 };
-template <class T> T quantity(const Word& w, const T& r, Track track, Quantity q);
+template <class T> T quantity(const Word& w, const T& r, Track track, Quantity q, const core::CancelToken* cancel = nullptr);
 // A root of quantity(w, ., track, q) in [lo, hi] (sign change required) by bisection down to tol.
-template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol);
+template <class T>
+T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol, const core::CancelToken* cancel = nullptr);
 
 }  // namespace btob::patterns
 
@@ -159,13 +165,15 @@ template <class T> T quantity_root(const Word& w, T lo, T hi, Track track, Quant
 
 namespace btob::patterns {
 #define BTOB_PATTERNS_EXTERN(T)                                                                                \
-  extern template Verdict<T> analyse<T>(const Word&, const T&);                                                \
-  extern template bool is_stable<T>(const Word&, const T&);                                                    \
-  extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&); \
-  extern template T quantity<T>(const Word&, const T&, Track, Quantity);                                       \
-  extern template Classification classify<T>(const Word&, const T&);                                                  \
-  extern template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&); \
-  extern template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&);
+  extern template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                       \
+  extern template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                           \
+  extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&,  \
+                                                            const core::CancelToken*);                          \
+  extern template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);              \
+  extern template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                  \
+  extern template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&,  \
+                                                                      const T&, const core::CancelToken*);      \
+  extern template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&, const core::CancelToken*);
 BTOB_PATTERNS_EXTERN(float)
 BTOB_PATTERNS_EXTERN(double)
 BTOB_PATTERNS_EXTERN(long double)

@@ -34,8 +34,9 @@ template <class T> T from_text(const std::string& s) {
   else return T(s);
 }
 
-template <class T> void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits) {
-  const Verdict<T> v = analyse<T>(w, from_text<T>(r_text));
+template <class T>
+void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits, const core::CancelToken* cancel) {
+  const Verdict<T> v = analyse<T>(w, from_text<T>(r_text), cancel);
   const Word& u = v.word;
   res.scalar_type = core::scalar_name<T>();
   res.primitive = u;
@@ -66,6 +67,7 @@ template <class T> void fill_verdict(WordResult& res, const Word& w, const std::
   if (v.orbit_eigen < 0) return;
   res.letters = v.letters;
   for (std::size_t k = 0; k < v.orbit.size(); ++k) {
+    core::check_cancel(cancel);  // a point's seven decimals: milliseconds in MPFR at thousands of digits
     const auto& p = v.orbit[k];
     const auto [w1, w2] = core::strip<T>(p);
     res.orbit.push_back({std::to_string(int(u.s[k])), str(p(0), digits), str(p(1), digits), str(p(2), digits),
@@ -74,40 +76,41 @@ template <class T> void fill_verdict(WordResult& res, const Word& w, const std::
   }
 }
 
-template <class T> void fill_window(WordResult& res, const Word& w, const T& tol, int digits) {
+template <class T>
+void fill_window(WordResult& res, const Word& w, const T& tol, int digits, const core::CancelToken* cancel) {
   res.scalar_type = core::scalar_name<T>();
-  for (const auto& iv : stability_set<T>(w, default_grid(), tol)) {
+  for (const auto& iv : stability_set<T>(w, default_grid(), tol, cancel)) {
     res.intervals.push_back({str(iv.lo, digits), str(iv.hi, digits), iv.lo_reason, iv.hi_reason});
     res.r_low.push_back(static_cast<double>(iv.lo));
     res.r_high.push_back(static_cast<double>(iv.hi));
   }
 }
 
-void verdict(WordResult& res, const WordRequest& req, const Word& w) {
+void verdict(WordResult& res, const WordRequest& req, const Word& w, const core::CancelToken* cancel) {
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   switch (prec.kind) {
-    case core::Precision::Kind::f32: fill_verdict<float>(res, w, req.r, 9); break;
-    case core::Precision::Kind::f80: fill_verdict<long double>(res, w, req.r, 21); break;
-    case core::Precision::Kind::f128: fill_verdict<core::float128>(res, w, req.r, 34); break;
+    case core::Precision::Kind::f32: fill_verdict<float>(res, w, req.r, 9, cancel); break;
+    case core::Precision::Kind::f80: fill_verdict<long double>(res, w, req.r, 21, cancel); break;
+    case core::Precision::Kind::f128: fill_verdict<core::float128>(res, w, req.r, 34, cancel); break;
     case core::Precision::Kind::mpfr: {
       const core::MpfrDigits guard(prec.mpfr_digits);
-      fill_verdict<core::mpfr_float>(res, w, req.r, prec.mpfr_digits);
+      fill_verdict<core::mpfr_float>(res, w, req.r, prec.mpfr_digits, cancel);
       break;
     }
-    default: fill_verdict<double>(res, w, req.r, 17); break;
+    default: fill_verdict<double>(res, w, req.r, 17, cancel); break;
   }
 }
 
-void window(WordResult& res, const WordRequest& req, const Word& w) {
+void window(WordResult& res, const WordRequest& req, const Word& w, const core::CancelToken* cancel) {
   const core::Precision prec = core::parse_precision(req.precision, "precision");
   const int digits = static_cast<int>(req.digits);
   if (digits > 15 || prec.kind == core::Precision::Kind::mpfr) {
     const int d = std::max(digits, prec.mpfr_digits);
     const core::MpfrDigits guard(d + 15);  // guard digits for the products
     // Bisection down to 10^-(d+3): the d printed digits are then correct up to rounding.
-    fill_window<core::mpfr_float>(res, w, core::mpfr_float(pow(core::mpfr_float(10), -(d + 3))), d);
+    fill_window<core::mpfr_float>(res, w, core::mpfr_float(pow(core::mpfr_float(10), -(d + 3))), d, cancel);
   } else {
-    fill_window<double>(res, w, 1e-15, digits > 0 ? digits : 17);  // 1e-15: a few ulps of r near 0.2
+    fill_window<double>(res, w, 1e-15, digits > 0 ? digits : 17, cancel);  // 1e-15: a few ulps of r near 0.2
   }
 }
 
@@ -221,8 +224,8 @@ WordResult run(const WordRequest& req, const core::RunControl& control) {
   res.word = parse_word(req.word, "word");
   res.primitive = primitive_root(res.word);
   switch (res.mode) {
-    case WordRequest::Mode::verdict: verdict(res, req, res.word); break;
-    case WordRequest::Mode::window: window(res, req, res.word); break;
+    case WordRequest::Mode::verdict: verdict(res, req, res.word, control.cancel); break;
+    case WordRequest::Mode::window: window(res, req, res.word, control.cancel); break;
     case WordRequest::Mode::charpoly: charpoly(res, res.word); break;
   }
   return res;

@@ -22,9 +22,23 @@ template <class T> inline void add(T& s, T& c, T v) {
   s = t;
 }
 
-template <class T> T mean(const std::vector<T>& x, long N) {
+// f(lo, hi) over [0, n) in order, in blocks of 2^20 indices (about a millisecond each), polling `cancel` before
+// each: the FFT route's passes over its series and padded buffers take ~1 s each at the 3e8 points memory allows.
+template <class F> void in_blocks(long n, const core::CancelToken* cancel, F&& f) {
+  constexpr long block = 1L << 20;
+  for (long lo = 0; lo < n; lo += block) {
+    core::check_cancel(cancel);
+    f(lo, std::min(n, lo + block));
+  }
+}
+
+template <class T> T mean(const std::vector<T>& x, long N, const core::CancelToken* cancel = nullptr) {
   T s = 0, c = 0;
-  for (long k = 0; k < N; ++k) add(s, c, x[k]);
+  in_blocks(N, cancel, [&](long lo, long hi) {
+    T bs = s, bc = c;  // locals: the compiler keeps them in registers (s and c might alias x through the capture)
+    for (long k = lo; k < hi; ++k) add(bs, bc, x[k]);
+    s = bs, c = bc;
+  });
   return (s + c) / static_cast<T>(N);
 }
 
@@ -92,55 +106,79 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
 }
 
 template <class T>
-Correlator<T>::Correlator(long N, long n_max) : N_(N), n_max_(n_max), fft_(checked_fft_length(N, n_max)) {
+Correlator<T>::Correlator(long N, long n_max, const core::CancelToken* cancel)
+    : N_(N), n_max_(n_max), fft_(checked_fft_length(N, n_max), cancel) {
   a_.resize(static_cast<std::size_t>(fft_.size() / 2 + 1));
 }
 
-template <class T> std::vector<T> Correlator<T>::operator()(const std::vector<T>& phi, const std::vector<T>& psi) {
+template <class T>
+std::vector<T> Correlator<T>::operator()(const std::vector<T>& phi, const std::vector<T>& psi,
+                                         const core::CancelToken* cancel) {
   check_series(phi, psi, N_, n_max_);
   const long L = fft_.size(), H = L / 2 + 1, N = N_, M = n_max_;
-  const T mp = mean(phi, N), mq = mean(psi, N);
+  const T mp = mean(phi, N, cancel), mq = mean(psi, N, cancel);
   T* d = fft_.data();
   std::complex<T>* X = fft_.spectrum();
-  std::fill(d, d + L, T(0));  // zero padding: phi beyond N, psi beyond N + n_max
-  for (long k = 0; k < N; ++k) d[k] = phi[k] - mp;
-  fft_.forward();
-  std::copy(X, X + H, a_.begin());
-  std::fill(d, d + L, T(0));
-  for (long k = 0; k < N + M; ++k) d[k] = psi[k] - mq;
-  fft_.forward();
-  for (long j = 0; j < H; ++j) X[j] = std::conj(a_[j]) * X[j];
-  fft_.inverse();  // d[n] = L sum_{k<N} (phi_k - mp)(psi_{k+n} - mq) for n <= n_max (no wrap-around)
+  // Zero padding: phi beyond N, psi beyond N + n_max (centre(v, m, n) writes d[k] = v[k] - m for k < n, else 0).
+  const auto centre = [&](const std::vector<T>& v, T m, long n) {
+    in_blocks(L, cancel, [&](long lo, long hi) {
+      const long split = std::clamp(n, lo, hi);
+      for (long k = lo; k < split; ++k) d[k] = v[k] - m;
+      std::fill(d + split, d + hi, T(0));
+    });
+  };
+  centre(phi, mp, N);
+  fft_.forward(cancel);
+  in_blocks(H, cancel, [&](long lo, long hi) { std::copy(X + lo, X + hi, a_.begin() + lo); });
+  centre(psi, mq, N + M);
+  fft_.forward(cancel);
+  in_blocks(H, cancel, [&](long lo, long hi) {
+    for (long j = lo; j < hi; ++j) X[j] = std::conj(a_[j]) * X[j];
+  });
+  fft_.inverse(cancel);  // d[n] = L sum_{k<N} (phi_k - mp)(psi_{k+n} - mq) for n <= n_max (no wrap-around)
   // sum_{k<N} phi_k psi_{k+n} / N - mp mq = centred(n) / N + mp W(n) / N, W(n) = sum_{k<N} (psi_{k+n} - mq),
   // W updated lag by lag with a compensated sum.
   T w = 0, wc = 0;
-  for (long k = 0; k < N; ++k) add(w, wc, psi[k] - mq);
+  in_blocks(N, cancel, [&](long lo, long hi) {
+    T bw = w, bwc = wc;  // locals, as in mean()
+    for (long k = lo; k < hi; ++k) add(bw, bwc, psi[k] - mq);
+    w = bw, wc = bwc;
+  });
   std::vector<T> c(static_cast<std::size_t>(M + 1));
   const T invL = T(1) / static_cast<T>(L), invN = T(1) / static_cast<T>(N);
-  for (long n = 0; n <= M; ++n) {
-    c[n] = d[n] * invL * invN + mp * (w + wc) * invN;
-    if (n < M) {
-      add(w, wc, psi[n + N] - mq);
-      add(w, wc, -(psi[n] - mq));
+  in_blocks(M + 1, cancel, [&](long lo, long hi) {
+    T bw = w, bwc = wc;  // locals, as in mean()
+    for (long n = lo; n < hi; ++n) {
+      c[n] = d[n] * invL * invN + mp * (bw + bwc) * invN;
+      if (n < M) {
+        add(bw, bwc, psi[n + N] - mq);
+        add(bw, bwc, -(psi[n] - mq));
+      }
     }
-  }
+    w = bw, wc = bwc;
+  });
   return c;
 }
 
-template <class T> Periodogram<T>::Periodogram(long N) : N_(N), fft_(std::max<long>(N, 1)) {
+template <class T>
+Periodogram<T>::Periodogram(long N, const core::CancelToken* cancel) : N_(N), fft_(std::max<long>(N, 1), cancel) {
   if (N < 2) throw core::InvalidField("iterations", fmt::format("N = {}", N), "N >= 2 for a spectrum");
 }
 
-template <class T> std::vector<T> Periodogram<T>::operator()(const std::vector<T>& x) {
+template <class T> std::vector<T> Periodogram<T>::operator()(const std::vector<T>& x, const core::CancelToken* cancel) {
   if (static_cast<long>(x.size()) < N_)
     throw core::InvalidField("series", fmt::format("{} values", x.size()), fmt::format("at least N = {}", N_));
-  const T m = mean(x, N_);
+  const T m = mean(x, N_, cancel);
   T* d = fft_.data();
-  for (long k = 0; k < N_; ++k) d[k] = x[k] - m;
-  fft_.forward();
+  in_blocks(N_, cancel, [&](long lo, long hi) {
+    for (long k = lo; k < hi; ++k) d[k] = x[k] - m;
+  });
+  fft_.forward(cancel);
   const std::complex<T>* X = fft_.spectrum();
   std::vector<T> s(static_cast<std::size_t>(N_ / 2 + 1));
-  for (long j = 0; j <= N_ / 2; ++j) s[j] = std::norm(X[j]) / static_cast<T>(N_);
+  in_blocks(N_ / 2 + 1, cancel, [&](long lo, long hi) {
+    for (long j = lo; j < hi; ++j) s[j] = std::norm(X[j]) / static_cast<T>(N_);
+  });
   return s;
 }
 

@@ -1,12 +1,17 @@
 // RealFft<T>: FFTW plans behind the module's one planner mutex (float, double, long double).
 #include "stats/fft.hpp"
 
+#include "core/cancel.hpp"
+
 #include <fftw3.h>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <climits>
+#include <future>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace btob::stats {
 namespace {
@@ -35,7 +40,40 @@ BTOB_FFTW_TRAITS(double, fftw)
 BTOB_FFTW_TRAITS(long double, fftwl)
 #undef BTOB_FFTW_TRAITS
 
+// Runs `exec` (one FFTW execution on buffers that `keep` owns): on this thread without a token or below `inline_n`
+// points, else on a thread of its own while this one polls the token every 5 ms; cancelled, this thread throws and
+// abandons the execution, which keeps its buffers alive (`keep`) until it returns.  The same plan on the same
+// buffers: the same bits on either thread.
+template <class Keep, class Exec>
+void execute(long n, long inline_n, const core::CancelToken* cancel, std::shared_ptr<Keep> keep, Exec exec) {
+  core::check_cancel(cancel);
+  if (!cancel || n < inline_n) {
+    exec();
+    return;
+  }
+  auto task = std::make_shared<std::packaged_task<void()>>([keep = std::move(keep), exec] { exec(); });
+  std::future<void> done = task->get_future();
+  std::thread([task] { (*task)(); }).detach();
+  while (done.wait_for(std::chrono::milliseconds(5)) != std::future_status::ready) core::check_cancel(cancel);
+  done.get();
+}
+
 }  // namespace
+
+template <class T> struct RealFft<T>::Plans {
+  T* in = nullptr;
+  typename Fftw<T>::complex* out = nullptr;
+  void* fwd = nullptr;
+  void* inv = nullptr;
+  ~Plans() {
+    using F = Fftw<T>;
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    if (fwd) F::destroy(fwd);
+    if (inv) F::destroy(inv);
+    F::free(in);
+    F::free(out);
+  }
+};
 
 long fast_fft_length(long n) {
   if (n <= 1) return 1;
@@ -48,38 +86,31 @@ long fast_fft_length(long n) {
   return best;
 }
 
-template <class T> RealFft<T>::RealFft(long n) : n_(n) {
+template <class T> RealFft<T>::RealFft(long n, const core::CancelToken* cancel) : n_(n) {
   using F = Fftw<T>;
   if (n < 1 || n > INT_MAX)
     throw std::invalid_argument(fmt::format("fft length: got {}, expected 1..{}", n, INT_MAX));
+  p_ = std::make_shared<Plans>();
+  execute(n, kInlineLength, cancel, p_, [p = p_.get(), n] {
+    std::lock_guard<std::mutex> lock(planner_mutex());  // released before the Plans' destructor takes it
+    p->in = F::alloc_real(static_cast<std::size_t>(n));
+    p->out = F::alloc_complex(static_cast<std::size_t>(n / 2 + 1));
+    if (p->in && p->out) {
+      p->fwd = F::r2c(static_cast<int>(n), p->in, p->out);
+      p->inv = F::c2r(static_cast<int>(n), p->out, p->in);
+    }
+  });
+  if (!p_->in || !p_->out) throw std::length_error(fmt::format("fft length: got {}, which does not fit in memory", n));
   // std::complex<T> and FFTW's T[2] have the same layout (C++ [complex.numbers], FFTW manual 4.1.1).
-  std::lock_guard<std::mutex> lock(planner_mutex());
-  in_ = F::alloc_real(static_cast<std::size_t>(n));
-  auto* out = F::alloc_complex(static_cast<std::size_t>(n / 2 + 1));
-  out_ = reinterpret_cast<std::complex<T>*>(out);
-  if (!in_ || !out) {
-    F::free(in_);
-    F::free(out);
-    throw std::length_error(fmt::format("fft length: got {}, which does not fit in memory", n));
-  }
-  fwd_ = F::r2c(static_cast<int>(n), in_, out);
-  inv_ = F::c2r(static_cast<int>(n), out, in_);
+  in_ = p_->in;
+  out_ = reinterpret_cast<std::complex<T>*>(p_->out);
 }
 
-template <class T> RealFft<T>::~RealFft() {
-  using F = Fftw<T>;
-  std::lock_guard<std::mutex> lock(planner_mutex());
-  if (fwd_) F::destroy(fwd_);
-  if (inv_) F::destroy(inv_);
-  F::free(in_);
-  F::free(out_);
+template <class T> void RealFft<T>::forward(const core::CancelToken* cancel) {
+  execute(n_, kInlineLength, cancel, p_, [p = p_.get()] { Fftw<T>::exec_r2c(p->fwd, p->in, p->out); });
 }
-
-template <class T> void RealFft<T>::forward() {
-  Fftw<T>::exec_r2c(fwd_, in_, reinterpret_cast<typename Fftw<T>::complex*>(out_));
-}
-template <class T> void RealFft<T>::inverse() {
-  Fftw<T>::exec_c2r(inv_, reinterpret_cast<typename Fftw<T>::complex*>(out_), in_);
+template <class T> void RealFft<T>::inverse(const core::CancelToken* cancel) {
+  execute(n_, kInlineLength, cancel, p_, [p = p_.get()] { Fftw<T>::exec_c2r(p->inv, p->out, p->in); });
 }
 
 template class RealFft<float>;

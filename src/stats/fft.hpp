@@ -1,6 +1,8 @@
 // One FFTW wrapper for the module: a real-to-complex / complex-to-real transform pair of one length.
 #pragma once
 
+#include "core/request.hpp"
+
 #include <complex>
 #include <memory>
 
@@ -14,24 +16,29 @@ namespace btob::stats {
 // plan and bitwise the same result on every run) and made and destroyed under one process-wide mutex
 // (FFTW's planner is not thread-safe); forward()/inverse() only execute and may run concurrently on
 // different objects.  Throws std::invalid_argument for n < 1 or n > 2^31 - 1 ("fft length: got ...").
+// Given a cancellation token, the planning (its twiddle factors: ~0.7 s a plan at 6e7 points) and a transform of
+// kInlineLength points or more run on a thread of their own while the caller polls the token every 5 ms: one FFTW
+// call cannot be interrupted and a transform takes seconds at 10^8 points (1.6 s at 2^26 in double).  Cancelled, the
+// caller throws core::Cancelled at once and abandons the call, which finishes alone on the buffers it shares with
+// the object and frees them; the object must not be used again.
 template <class T> class RealFft {
  public:
-  explicit RealFft(long n);
-  ~RealFft();
+  static constexpr long kInlineLength = 1L << 20;  // shorter transforms run on the caller's thread (~0.02 s)
+  explicit RealFft(long n, const core::CancelToken* cancel = nullptr);
   RealFft(const RealFft&) = delete;
   RealFft& operator=(const RealFft&) = delete;
   long size() const { return n_; }
   T* data() { return in_; }                      // n real values
   std::complex<T>* spectrum() { return out_; }   // n/2 + 1 complex values
-  void forward();                                // data() -> spectrum()
-  void inverse();                                // spectrum() -> data()
+  void forward(const core::CancelToken* cancel = nullptr);  // data() -> spectrum()
+  void inverse(const core::CancelToken* cancel = nullptr);  // spectrum() -> data()
 
  private:
+  struct Plans;  // the buffers and the plan pair, shared with a transform running on its own thread
   long n_;
+  std::shared_ptr<Plans> p_;
   T* in_ = nullptr;
   std::complex<T>* out_ = nullptr;
-  void* fwd_ = nullptr;
-  void* inv_ = nullptr;
 };
 
 // The smallest 2^a 3^b 5^c >= n (lengths on which FFTW's codelets are fastest), for zero padding.

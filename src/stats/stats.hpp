@@ -44,7 +44,9 @@ std::string observable_names();  // "theta, phi, w1, w2, cos-phi, symbol1, symbo
 double value(Observable o, const iterate::Vec3<double>& u, int symbol);
 
 // The series o(x_k), or f(o(x_k)) when f is given (a user function composed with the observable).
-std::vector<double> observe(const OrbitSeries& s, Observable o, const std::function<double(double)>& f = {});
+// `cancel` is polled every core::cancel_stride states (core::Cancelled).
+std::vector<double> observe(const OrbitSeries& s, Observable o, const std::function<double(double)>& f = {},
+                            const core::CancelToken* cancel = nullptr);
 // Any user function of the unit state and the symbol.
 using StateFunction = std::function<double(const iterate::Vec3<double>& u, int symbol)>;
 std::vector<double> observe(const OrbitSeries& s, const StateFunction& f);
@@ -70,11 +72,15 @@ std::vector<T> correlation_direct(const std::vector<T>& phi, const std::vector<T
 // mean(psi) (k < N + n_max) are zero padded to L, so the circular correlation IFFT(conj(FFT a) FFT b)/L
 // has no wrap-around for lags 0..n_max; then C_N(n) = that / N + mean(phi) * sum_{k<N}(psi_{k+n} -
 // mean(psi)) / N (exact identity; centring keeps the FFT's rounding relative to the covariance, not to
-// the raw second moment).  One object = one length = one plan pair, reused for every orbit.
+// the raw second moment).  One object = one length = one plan pair, reused for every orbit.  `cancel` is polled every
+// 2^20 points of its passes over the buffers and while a long transform runs (RealFft); cancelled, it throws
+// core::Cancelled and the object must not be used again.
 template <class T> class Correlator {
  public:
-  Correlator(long N, long n_max);  // validates N >= 1, 0 <= n_max < N; plans length L
-  std::vector<T> operator()(const std::vector<T>& phi, const std::vector<T>& psi);
+  // Validates N >= 1, 0 <= n_max < N; plans length L (polling `cancel` as RealFft does).
+  Correlator(long N, long n_max, const core::CancelToken* cancel = nullptr);
+  std::vector<T> operator()(const std::vector<T>& phi, const std::vector<T>& psi,
+                            const core::CancelToken* cancel = nullptr);
   long N() const { return N_; }
   long n_max() const { return n_max_; }
   long fft_length() const { return fft_.size(); }
@@ -87,11 +93,11 @@ template <class T> class Correlator {
 
 // Periodogram of x_0..x_{N-1}: S_j = |sum_k (x_k - mean) exp(-2 pi i j k / N)|^2 / N, j = 0..N/2, at
 // frequency j / N cycles per iteration (no padding; S is the DFT of the circular autocovariance with
-// weights 1/N, so sum over all N frequencies = N * variance).  One plan per object.
+// weights 1/N, so sum over all N frequencies = N * variance).  One plan per object; `cancel` as Correlator's.
 template <class T> class Periodogram {
  public:
-  explicit Periodogram(long N);  // N >= 2
-  std::vector<T> operator()(const std::vector<T>& x);
+  explicit Periodogram(long N, const core::CancelToken* cancel = nullptr);  // N >= 2
+  std::vector<T> operator()(const std::vector<T>& x, const core::CancelToken* cancel = nullptr);
 
  private:
   long N_;
