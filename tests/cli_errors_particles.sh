@@ -7,7 +7,7 @@ btob="$1"
 source "$(dirname "$0")/cli_lib.sh"
 
 p=(particles --out "$out/p" --no-plot --periods 10)
-expect_error "word" "${p[@]}" 1113 --r 0.3          # 1113 is feasible only in slivers below r = 0.01
+expect_error "word" "${p[@]}" 1113 --r 0.3          # 1113 is feasible (unstable) only below r = 0.0864
 expect_error "word" "${p[@]}" 12 --r 0.3             # 12 is feasible only below 3 - 2 sqrt(2)
 expect_error "word" "${p[@]}" 14 --r 0.15            # not a word over 1, 2, 3
 expect_error "r" "${p[@]}" 1133 --r 1.5

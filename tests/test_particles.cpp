@@ -283,7 +283,7 @@ TEST(ParticlesRequestContract, ErrorsNameTheField) {
   ParticlesRequest ok;
   EXPECT_EQ(field_of(ok), "");
   ParticlesRequest q = ok;
-  q.word = "1113";  // feasible only in slivers below r = 0.01
+  q.word = "1113";  // feasible (unstable) only below r = 0.0864; ok.r = 0.5
   EXPECT_EQ(field_of(q), "word");
   q = ok;
   q.word = "1133";  // feasible only for small r; ok.r = 0.5
