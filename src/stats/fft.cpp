@@ -1,17 +1,14 @@
 // RealFft<T>: FFTW plans behind the module's one planner mutex (float, double, long double).
 #include "stats/fft.hpp"
 
-#include "core/cancel.hpp"
+#include "core/abandonable.hpp"
 
 #include <fftw3.h>
 #include <fmt/format.h>
 
-#include <chrono>
 #include <climits>
-#include <future>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 namespace btob::stats {
 namespace {
@@ -41,9 +38,8 @@ BTOB_FFTW_TRAITS(long double, fftwl)
 #undef BTOB_FFTW_TRAITS
 
 // Runs `exec` (one FFTW execution on buffers that `keep` owns): on this thread without a token or below `inline_n`
-// points, else on a thread of its own while this one polls the token every 5 ms; cancelled, this thread throws and
-// abandons the execution, which keeps its buffers alive (`keep`) until it returns.  The same plan on the same
-// buffers: the same bits on either thread.
+// points, else by core::run_abandonable, the execution keeping its buffers alive (`keep`) until it returns.  The
+// same plan on the same buffers: the same bits on either thread.
 template <class Keep, class Exec>
 void execute(long n, long inline_n, const core::CancelToken* cancel, std::shared_ptr<Keep> keep, Exec exec) {
   core::check_cancel(cancel);
@@ -51,11 +47,7 @@ void execute(long n, long inline_n, const core::CancelToken* cancel, std::shared
     exec();
     return;
   }
-  auto task = std::make_shared<std::packaged_task<void()>>([keep = std::move(keep), exec] { exec(); });
-  std::future<void> done = task->get_future();
-  std::thread([task] { (*task)(); }).detach();
-  while (done.wait_for(std::chrono::milliseconds(5)) != std::future_status::ready) core::check_cancel(cancel);
-  done.get();
+  core::run_abandonable(cancel, [keep = std::move(keep), exec] { exec(); });
 }
 
 }  // namespace

@@ -1,19 +1,15 @@
 // The spectrum of Ulam's matrix block by block (Eigen's dense solver, Spectra's Arnoldi), the invariant density of
 // a closed class, and PCCA+ memberships.
-#include "core/cancel.hpp"
+#include "core/abandonable.hpp"
 #include "transfer/detail.hpp"
 
 #include <Spectra/GenEigsSolver.h>
 #include <Spectra/MatOp/SparseGenMatProd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <future>
-#include <memory>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 
 namespace btob::transfer {
 
@@ -111,19 +107,12 @@ std::vector<LocalPair> eigen_solve(const Eigen::MatrixXd& D, bool vectors) {
 // kDenseMaxBoxes, minutes at kDenseFallbackBoxes).  Above this size the block is solved on a thread of its own.
 constexpr long kDenseInlineBoxes = 128;
 
-// Every eigenpair of A by Eigen's dense solver.  A block above kDenseInlineBoxes is solved on a thread of its own
-// (on its own copy; the same code, so the same bits) while this one polls the token every 5 ms: cancelled, this
-// thread throws at once and abandons the solver, which finishes alone and frees its copy (one core for at most the
-// solve's own time; the command line's exit ends it at once).
+// Every eigenpair of A by Eigen's dense solver.  A block above kDenseInlineBoxes is solved by core::run_abandonable
+// on its own copy (the same code, so the same bits): cancelled, the solver finishes alone and frees its copy.
 std::vector<LocalPair> dense_eigenpairs(const ColMat& A, bool vectors, const core::CancelToken* cancel) {
   core::check_cancel(cancel);
   if (!cancel || A.rows() <= kDenseInlineBoxes) return eigen_solve(Eigen::MatrixXd(A), vectors);
-  auto task = std::make_shared<std::packaged_task<std::vector<LocalPair>()>>(
-      [D = Eigen::MatrixXd(A), vectors] { return eigen_solve(D, vectors); });
-  std::future<std::vector<LocalPair>> solved = task->get_future();
-  std::thread([task] { (*task)(); }).detach();  // the task (and D) live until the solver returns
-  while (solved.wait_for(std::chrono::milliseconds(5)) != std::future_status::ready) core::check_cancel(cancel);
-  return solved.get();
+  return core::run_abandonable(cancel, [D = Eigen::MatrixXd(A), vectors] { return eigen_solve(D, vectors); });
 }
 
 }  // namespace
