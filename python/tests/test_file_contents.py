@@ -24,8 +24,11 @@ def axis_labels(axes):
     """The labels of an `axes` attribute, split at the commas outside brackets (io::axis_labels)."""
     labels, depth, start = [], 0, 0
     for i, ch in enumerate(axes + ","):
-        depth += ch in "([" and 1 or (-1 if ch in ")]" and depth > 0 else 0)
-        if ch == "," and depth == 0:
+        if ch in "([":
+            depth += 1
+        elif ch in ")]" and depth > 0:
+            depth -= 1
+        elif ch == "," and depth == 0:
             labels.append(axes[start:i].strip())
             start = i + 1
     return [l for l in labels if l]

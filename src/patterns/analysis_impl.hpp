@@ -393,14 +393,21 @@ std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& 
   return u;
 }
 
+// Feasibility (as feasibility_of) of the orbit of the real eigenvalue i: the dominant one's walked forward from its
+// eigenvector, stopping at the first failing inequality (the atlas's inner loop), the others' on orbit_points.
+template <class T>
+int eigen_feasibility(const Word& w, const T& r, const Spectrum<T>& s, int i, const core::CancelToken* cancel) {
+  if (i == 0) return feasibility<T>(w, r, eigenvector<T>(s.A.m, s.roots[0].re), nullptr, cancel);
+  return feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
+}
+
 // Stability predicate with its failure reason ("" when stable).
 template <class T>
 std::string stability_reason(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   const Spectrum<T> s = spectrum(w, r, reduced, cancel);
   if (!s.roots[0].real) return "complex";
   if (!(s.mod[1] < s.mod[0] * (1 - tie_tol<T>()))) return s.roots[1].real ? "dominance" : "complex";
-  const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[0].re);
-  const int f = feasibility<T>(w, r, v, nullptr, cancel);
+  const int f = eigen_feasibility(w, r, s, 0, cancel);
   if (f < 0) return "";
   return f == 0 ? "domain" : fmt::format("feas{}", f);
 }
@@ -442,8 +449,7 @@ std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<
     e.real = s.roots[i].real;
     if (e.real) {
       e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
-      e.first_failure = i == 0 ? feasibility<T>(w, r, e.vector, nullptr, cancel)
-                               : feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
+      e.first_failure = eigen_feasibility(w, r, s, i, cancel);
       e.in_domain = e.first_failure != 0;
       e.feasible = e.first_failure < 0;
     }
@@ -673,9 +679,7 @@ template <class T> Classification classify(const Word& w0, const T& r, const cor
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
   for (int i = 0; i < 3; ++i) {
     if (!s.roots[i].real) continue;
-    const int f = i == 0 ? feasibility<T>(w, r, eigenvector<T>(s.A.m, s.roots[i].re), nullptr, cancel)
-                         : feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
-    if (f >= 0) continue;
+    if (eigen_feasibility(w, r, s, i, cancel) >= 0) continue;
     if (i == 0 && dominant) return {Outcome::stable, collapses(w, r, s, i, reduced)};
     // analyse's neutral / undecided: the largest other modulus j against the orbit's i (M_w = A^2 when reduced).
     using std::abs;
