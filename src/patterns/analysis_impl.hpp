@@ -318,75 +318,89 @@ template <class T> T tie_tol() { return 64 * eps_<T>(); }
 //    mu_1, normal to the plane of the eigenvectors of mu_2 and mu_3) backward, y_{k-1} = P^T y_k (mu_1 dominant for
 //    M^T), and y_3 (normal to the plane of mu_1 and mu_2) forward, y_3 -> cof(P) y_3 = det P P^-T y_3 (det M / mu_3
 //    dominant for cof M); u_k = y_3,k x y_1,k.
-template <class T>
-std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& s, int i,
-                                  const core::CancelToken* cancel = nullptr) {
-  const Vec3<T> v = eigenvector<T>(s.A.m, s.roots[i].re);
-  const std::size_t p = w.size();
-  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
-  std::vector<Vec3<T>> u(p);
-  u[0] = core::to_quadrant(v);
-  std::size_t steps = 0;  // every step below is one 3x3 product: polled as the word's other loops are
-  core::check_cancel(cancel);
-  const auto unit = [&](Vec3<T> x) {
+// One step of orbit_points' iterations: x -> M x normalised, M one of the three matrices `of` a symbol (P_i, P_i^T,
+// cof P_i or its transpose), polled as the word's other loops are (every step is one 3x3 product).
+template <class T> struct OrbitWalk {
+  const Word& w;
+  const core::CancelToken* cancel;
+  std::size_t steps = 0;
+  Vec3<T> step(const std::array<Mat3<T>, 3>& of, std::size_t k, const Vec3<T>& x) {
     poll_symbol<T>(cancel, steps++);
-    return Vec3<T>(x / x.norm());
-  };
-  // The dominant eigenvalue, and an eigenvalue whose modulus ties with another's (no iteration has it dominant):
-  // forward from the eigenvector (for a tie, neutral: errors neither grow nor shrink).
-  const T tol = 1 - tie_tol<T>();
-  const bool separated = s.mod[2] < s.mod[1] * tol && (i == 2 || s.mod[1] < s.mod[0] * tol);
-  if (i == 0 || !separated) {
-    for (std::size_t k = 1; k < p; ++k) u[k] = unit(P[w.s[k - 1] - 1] * u[k - 1]);
-    return u;
+    const Vec3<T> y = of[w.s[k] - 1] * x;
+    return y / y.norm();
   }
-  // Each iteration first runs whole periods from the eigenvector (a power iteration) until a period changes it by
-  // less than 8 eps: the eigenvector of an eigenvalue below eps times the largest is rounding noise (111113 at
-  // r = 0.0075: mu2 / mu1 = 3e-19, its direct eigenvector 1.7e-4 off), and each period shrinks the error by the
-  // iteration's eigenvalue ratio (mu3 / mu2 = 1/549 there).  At most 64 periods: a ratio that slow is a near-tie,
-  // whose verdict the tie tolerance already leaves open.
-  const auto converge = [&](Vec3<T> x, const auto& period) {
+  // One whole period: forward over k = 0 .. p-1, or backward over k = p-1 .. 0.
+  Vec3<T> period(const std::array<Mat3<T>, 3>& of, Vec3<T> x, bool backward) {
+    const std::size_t p = w.size();
+    for (std::size_t j = 0; j < p; ++j) x = step(of, backward ? p - 1 - j : j, x);
+    return x;
+  }
+  // Whole periods from x (a power iteration) until one changes it by less than 8 eps: the eigenvector of an
+  // eigenvalue below eps times the largest is rounding noise (111113 at r = 0.0075: mu2 / mu1 = 3e-19, its direct
+  // eigenvector 1.7e-4 off), and each period shrinks the error by the iteration's eigenvalue ratio (mu3 / mu2 =
+  // 1/549 there).  At most 64 periods: a ratio that slow is a near-tie, whose verdict the tie tolerance leaves open.
+  Vec3<T> converge(const std::array<Mat3<T>, 3>& of, Vec3<T> x, bool backward) {
     for (int it = 0; it < 64; ++it) {
-      Vec3<T> next = period(x);
+      Vec3<T> next = period(of, x, backward);
       if (next.dot(x) < 0) next = -next;
       const bool done = (next - x).norm() <= 8 * eps_<T>();
       x = next;
       if (done) break;
     }
     return x;
-  };
-  if (i == 2) {
-    const std::array<Mat3<T>, 3> CT = {cofactor<T>(P[0]).transpose(), cofactor<T>(P[1]).transpose(),
-                                       cofactor<T>(P[2]).transpose()};  // P^-1 up to det P
-    const auto back = [&](std::size_t k, const Vec3<T>& x) { return unit(CT[w.s[k] - 1] * x); };
-    Vec3<T> x = converge(u[0], [&](Vec3<T> x) {
-      for (std::size_t k = p; k-- > 0;) x = back(k, x);
-      return x;
-    });
-    u[0] = core::to_quadrant(x);
-    for (std::size_t k = p; k-- > 1;) u[k] = x = back(k, x);
-  } else {
-    const Mat3<T> At = s.A.m.transpose();
-    const std::array<Mat3<T>, 3> PT = {P[0].transpose(), P[1].transpose(), P[2].transpose()};
-    const std::array<Mat3<T>, 3> C = {cofactor<T>(P[0]), cofactor<T>(P[1]), cofactor<T>(P[2])};  // P^-T up to det P
-    const auto back = [&](std::size_t k, const Vec3<T>& y) { return unit(PT[w.s[k] - 1] * y); };
-    const auto fwd = [&](std::size_t k, const Vec3<T>& n) { return unit(C[w.s[k] - 1] * n); };
-    Vec3<T> y = converge(eigenvector<T>(At, s.roots[0].re), [&](Vec3<T> y) {
-      for (std::size_t k = p; k-- > 0;) y = back(k, y);
-      return y;
-    });
-    Vec3<T> n = converge(eigenvector<T>(At, s.roots[2].re), [&](Vec3<T> n) {
-      for (std::size_t k = 0; k < p; ++k) n = fwd(k, n);
-      return n;
-    });
-    u[0] = core::to_quadrant(unit(n.cross(y)));
-    std::vector<Vec3<T>> y1(p);
-    for (std::size_t k = p; k-- > 1;) y1[k] = y = back(k, y);
-    for (std::size_t k = 1; k < p; ++k) {
-      n = fwd(k - 1, n);
-      u[k] = unit(n.cross(y1[k]));
-    }
   }
+};
+
+// mu_3's orbit (orbit_points): backward with cof(P)^T = det P P^-1 from the converged u_0.
+template <class T>
+void smallest_points(OrbitWalk<T>& walk, const std::array<Mat3<T>, 3>& P, std::vector<Vec3<T>>& u) {
+  const std::array<Mat3<T>, 3> CT = {cofactor<T>(P[0]).transpose(), cofactor<T>(P[1]).transpose(),
+                                     cofactor<T>(P[2]).transpose()};  // P^-1 up to det P
+  Vec3<T> x = walk.converge(CT, u[0], true);
+  u[0] = core::to_quadrant(x);
+  for (std::size_t k = u.size(); k-- > 1;) u[k] = x = walk.step(CT, k, x);
+}
+
+// mu_2's orbit (orbit_points): u_k = y_3,k x y_1,k, y_1 carried backward by P^T and y_3 forward by cof P.
+template <class T>
+void saddle_points(OrbitWalk<T>& walk, const Spectrum<T>& s, const std::array<Mat3<T>, 3>& P,
+                   std::vector<Vec3<T>>& u) {
+  const std::size_t p = u.size();
+  const Mat3<T> At = s.A.m.transpose();
+  const std::array<Mat3<T>, 3> PT = {P[0].transpose(), P[1].transpose(), P[2].transpose()};
+  const std::array<Mat3<T>, 3> C = {cofactor<T>(P[0]), cofactor<T>(P[1]), cofactor<T>(P[2])};  // P^-T up to det P
+  Vec3<T> y = walk.converge(PT, eigenvector<T>(At, s.roots[0].re), true);
+  Vec3<T> n = walk.converge(C, eigenvector<T>(At, s.roots[2].re), false);
+  const Vec3<T> c0 = n.cross(y);
+  u[0] = core::to_quadrant(Vec3<T>(c0 / c0.norm()));
+  std::vector<Vec3<T>> y1(p);
+  for (std::size_t k = p; k-- > 1;) y1[k] = y = walk.step(PT, k, y);
+  for (std::size_t k = 1; k < p; ++k) {
+    n = walk.step(C, k - 1, n);
+    const Vec3<T> c = n.cross(y1[k]);
+    u[k] = c / c.norm();
+  }
+}
+
+template <class T>
+std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& s, int i,
+                                  const core::CancelToken* cancel = nullptr) {
+  const std::size_t p = w.size();
+  const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  std::vector<Vec3<T>> u(p);
+  u[0] = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
+  core::check_cancel(cancel);
+  OrbitWalk<T> walk{w, cancel};
+  // The dominant eigenvalue, and an eigenvalue whose modulus ties with another's (no iteration has it dominant):
+  // forward from the eigenvector (for a tie, neutral: errors neither grow nor shrink).
+  const T tol = 1 - tie_tol<T>();
+  const bool separated = s.mod[2] < s.mod[1] * tol && (i == 2 || s.mod[1] < s.mod[0] * tol);
+  if (i == 0 || !separated) {
+    for (std::size_t k = 1; k < p; ++k) u[k] = walk.step(P, k - 1, u[k - 1]);
+    return u;
+  }
+  if (i == 2) smallest_points(walk, P, u);
+  else saddle_points(walk, s, P, u);
   // The sign of the forward step: u_k and P u_{k-1} on the same side.
   for (std::size_t k = 1; k < p; ++k)
     if ((P[w.s[k - 1] - 1] * u[k - 1]).dot(u[k]) < 0) u[k] = -u[k];
