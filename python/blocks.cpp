@@ -161,7 +161,7 @@ py::object iterate_orbits(py::handle r, py::handle points, long iterations, cons
 }  // namespace
 
 void bind_blocks(py::module_& m) {
-  py::class_<Map>(m, "Map", "The b-to-b map P_r (Theorem 3.1): Map(r).step(points) applies one step to N points")
+  py::class_<Map>(m, "Map", "The b-to-b map P_r (Theorem 3.3): Map(r).step(points) applies one step to N points")
       .def(py::init<double>(), py::arg("r"))
       .def_readonly("r", &Map::r, "the restitution coefficient r, in (0, 1)")
       .def("step", &Map::step, py::arg("points"),

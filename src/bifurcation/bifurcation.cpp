@@ -91,7 +91,7 @@ void Request::validate() const {
     throw core::InvalidField("range", fmt::format("{} values", range.size()), "two numbers lo hi with lo < hi");
   (void)axis_of(*this);
   if (algorithm != "linear" && algorithm != "trig")
-    throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.1) or trig (Appendix A.1)");
+    throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.3) or trig (Appendix A.1)");
   if (algorithm == "trig" && (raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
     throw core::InvalidField("algorithm", "trig with " + std::string(raw ? "--raw" : prec.name()),
                              "trig in double or long-double, without raw tails");

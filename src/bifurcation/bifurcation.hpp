@@ -29,7 +29,7 @@ struct Request {
   std::vector<double> range;              // lo hi of the coordinate axis (log10 units with log); default per coord
   std::vector<double> vline;              // r values drawn as vertical lines (presentation)
   std::vector<std::string> overlay;       // named overlays (presentation; the command line resolves them)
-  std::string algorithm = "linear";       // linear (Theorem 3.1, batched kernel) or trig (Appendix A.1)
+  std::string algorithm = "linear";       // linear (Theorem 3.3, batched kernel) or trig (Appendix A.1)
   bool raw = false;                       // also keep the raw tails (r x initial condition x tail)
   // Also classify every orbit (`btob classify` with transient iterations - tail, iterations tail, in double): what
   // extras::of adds after the run (src/extras), so the diagram's run and its speed are the same without it.
@@ -53,7 +53,7 @@ struct Request {
     v("range", range, "lo hi of the coordinate axis (log10 units with --log)");
     v("vline", vline, "r values drawn as vertical lines");
     v("overlay", overlay, "named overlays (thresholds, windows, stripes)");
-    v("algorithm", algorithm, "linear (Theorem 3.1, batched kernel) or trig (Appendix A.1, per collision)");
+    v("algorithm", algorithm, "linear (Theorem 3.3, batched kernel) or trig (Appendix A.1, per collision)");
     v("raw", raw, "also store the raw tails in the HDF5 file");
     v("attractors", attractors, "also record each orbit's attractor (classify over the tail)");
   }

@@ -390,7 +390,7 @@ void TradeoffResult::describe(core::Contents& c) const {
   c.array("lyapunov_error_near_neutral", lyapunov_near_neutral, {M}, "method", "1/iteration (natural log)",
           "|lambda1 - exact| on the weakly contracting sink 312^150 at r = 0.171599 (NaN: not tested)");
   c.text("method", method, "method", "name",
-         "the method: algorithm (linear: Theorem 3.1's matrices; trig: Appendix A.1) / arithmetic, the coordinates "
+         "the method: algorithm (linear: Theorem 3.3's matrices; trig: Appendix A.1) / arithmetic, the coordinates "
          "of that axis");
   c.coordinate("method", "method");
   std::string names;
