@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "attractors/recorders.hpp"
+#include "core/error_bar.hpp"
 #include "attractors/stages.hpp"
 #include "core/coords.hpp"
 #include "iterate/cocycle.hpp"
@@ -234,7 +235,8 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
     v.rotation_delta = std::fabs(rot.rotation(k) - rot.rotation_half(k));
   }
   const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
-  const std::string lam = fmt::format("lambda1 = {:.3g} +- {:.2g}", v.lambda1, v.err1);
+  const core::ValueWithError shown = core::with_error(v.lambda1, v.err1);  // the interval contains lambda1
+  const std::string lam = fmt::format("lambda1 = {} +- {}", shown.value, shown.error);
   // "zero" means within lyapunov::classify's bar, which the detail states: three standard errors plus the
   // finite-time floor 10 / n, so that an exponent many standard errors from 0 but under the floor reads as such.
   const std::string zero = fmt::format("{} is zero within 3 err + 10/n = {:.2g}", lam,

@@ -3,6 +3,7 @@
 #include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
@@ -132,6 +133,29 @@ core::Work work(const ClassifyRequest& req) {
   return w;
 }
 
+namespace {
+// What classify's lambda1 is (docs/reference/numbers.md).  A periodic orbit's or a collapse's is the cycle's exact
+// exponent log|mu2/mu1|/p evaluated in double (err 0: no average, only rounding); any other orbit's is pass 2's
+// average with the batch-means standard error of lyapunov's method (err).
+core::Status lambda1_status(const OrbitVerdict& v, const Options& o) {
+  if (v.type == Type::periodic || v.type == Type::collapse)
+    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; err = 0",
+                           "no statistical error: rounding of double only");
+  return core::estimated(fmt::format("average over {} steps after {} (pass 2), err its batch-means standard error over "
+                                     "{} blocks, at least 4 eps |lambda1| (lyapunov's method); the finite-time bias of "
+                                     "a slowly converging orbit is not in it (the verdict adds 10/n)",
+                                     o.lyap_iterations, o.lyap_transient, o.lyap_blocks),
+                         "one standard error (68% if the block means are normal)");
+}
+}  // namespace
+
+std::string ClassifyResult::csv() const {
+  core::CsvTable t("type,pattern,period,lambda1,err,detail");
+  const core::ValueWithError l = core::with_error(verdict.lambda1, verdict.err1);
+  t.row({type_name(verdict.type), pattern, fmt::format("{}", verdict.period), l.value, l.error, detail});
+  return t.text();
+}
+
 void ClassifyResult::describe(core::Contents& c) const {
   c.attr("r", request.r);
   c.attr("point", request.point);
@@ -140,6 +164,7 @@ void ClassifyResult::describe(core::Contents& c) const {
   c.attr("period", static_cast<long>(verdict.period));
   c.attr("lambda1", verdict.lambda1);
   c.attr("err", verdict.err1);
+  c.status_of("lambda1", lambda1_status(verdict, request.thresholds));
   c.attr("detail", detail);
   c.attr("iterations", verdict.iterations);
   threshold_attrs(c, request.thresholds);

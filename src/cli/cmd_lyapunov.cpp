@@ -19,14 +19,9 @@ namespace {
 void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx) {
   const lyapunov::ProjectiveResult res = lyapunov::run(req, ctx.control);
   const auto& l = res.lambda;
-  if (req.weighted)  // weighted Birkhoff averages: super-polynomial on (quasi-)periodic orbits, no batch error
-    std::cout << "lambda1_weighted,lambda2_weighted,lambda1,err1,lambda2,err2,iterations\n"
-              << fmt::format("{:.15g},{:.15g},{:.12g},{:.3g},{:.12g},{:.3g},{}\n", res.weighted[0], res.weighted[1],
-                             l[0].value, l[0].error, l[1].value, l[1].error, res.iterations);
-  else
-    std::cout << "lambda1,err1,lambda2,err2,iterations\n"
-              << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", l[0].value, l[0].error, l[1].value, l[1].error,
-                             res.iterations);
+  // The table of --out's NAME.csv (with --weighted the weighted Birkhoff averages first: super-polynomial on
+  // (quasi-)periodic orbits, no batch error); each exponent printed with its bar by core::with_error.
+  std::cout << res.csv();
   if (req.precision == "float") {  // float rounding can move an orbit off a weak sink: the same orbit in double
     lyapunov::OrbitRequest d = req;
     d.precision = "double";

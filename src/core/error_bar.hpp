@@ -1,0 +1,23 @@
+// A value printed with its error bar: the one rule every command that prints "value, error" or "value +- error"
+// follows (lyapunov, classify), so that the printed interval [value - error, value + error] contains the value the
+// result stores (docs/reference/numbers.md).
+//   - the error is printed with two significant digits, rounded up (never down);
+//   - the value is printed to the unit one digit below the error's second significant digit (three digits at the
+//     error's scale), at most 17 significant digits (then it reads back as the same double);
+//   - the printed error covers the printed value's rounding too: it is the bar plus |value - printed value|,
+//     rounded up, and checked by reading both texts back.
+#pragma once
+
+#include <string>
+
+namespace btob::core {
+
+struct ValueWithError {
+  std::string value, error;
+};
+
+// value and error (>= 0, finite) as texts by the rule above; a zero or subnormal error prints the value with 17
+// significant digits and the error as given, rounded up to two digits ("0" for 0).
+ValueWithError with_error(double value, double error);
+
+}  // namespace btob::core
