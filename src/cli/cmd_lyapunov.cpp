@@ -3,6 +3,7 @@
 #include "cli/sweep.hpp"
 #include "cli/common.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "extras/extras.hpp"
 #include "lyapunov/requests.hpp"
 
@@ -30,10 +31,11 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     const int cf = lyapunov::classify(l[0].value, l[0].error, res.iterations),
               cd = lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations);
     const auto name = [](int c) { return c > 0 ? "positive" : c < 0 ? "negative" : "zero"; };
+    const core::ValueWithError dl = core::with_error(rd.lambda[0].value, rd.lambda[0].error);
     if (cf != cd)
-      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g} ({}), float {:.6g} "
+      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {} +- {} ({}), float {:.6g} "
                                "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
-                               rd.lambda[0].value, rd.lambda[0].error, name(cd), l[0].value, name(cf));
+                               dl.value, dl.error, name(cd), l[0].value, name(cf));
   }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");
