@@ -139,8 +139,9 @@ namespace {
 // average with the batch-means standard error of lyapunov's method (err).
 core::Status lambda1_status(const OrbitVerdict& v, const Options& o) {
   if (v.type == Type::periodic || v.type == Type::collapse)
-    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; err = 0",
-                           "no statistical error: rounding of double only");
+    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; err = "
+                           "4 eps max(1, |lambda1|), the rounding",
+                           "a numerical bound without proof (no statistical error: the exponent is not an average)");
   return core::estimated(fmt::format("average over {} steps after {} (pass 2), err its batch-means standard error over "
                                      "{} blocks, at least 4 eps |lambda1| (lyapunov's method); the finite-time bias of "
                                      "a slowly converging orbit is not in it (the verdict adds 10/n)",
@@ -251,6 +252,9 @@ void BasinsResult::describe(core::Contents& c) const {
   c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then undecided", "1",
           "sample standard deviation of the fraction over the main and replicate grids (0 with one grid)");
   c.attr("interval", "Clopper-Pearson 95% (sampling only)");
+  c.status_of("fraction", core::estimated("the share of the main grid's points in each basin; its bar ci_low .. ci_high "
+                                          "(sampling only; the grid's own error shows in replicate_sd)",
+                                          "95% Clopper-Pearson"));
   const std::size_t n = points();
   c.attr("r", request.r);
   c.attr("grid", request.grid);

@@ -403,9 +403,15 @@ core::Tables MapResult::tables() const {
   core::CsvTable csv(
       "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
       "frac_zero,frac_negative");
+  // Each exponent with its bar by core::with_error (the printed interval contains the value of NAME.h5).
+  const auto pair = [](double v, double e) {
+    if (!std::isfinite(v) || !std::isfinite(e) || e < 0) return core::csv_number(v) + "," + core::csv_number(e);
+    const core::ValueWithError p = core::with_error(v, e);
+    return p.value + "," + p.error;
+  };
   for (std::size_t i = 0; i < ensemble.r.size(); ++i)
-    csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", ensemble.r[i], s.min[i],
-                         s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i], s.frac_positive[i],
+    csv.line(fmt::format("{:.9f},{},{},{},{:.4f},{:.4f},{:.4f}", ensemble.r[i], pair(s.min[i], s.err_min[i]),
+                         pair(s.median[i], s.err_median[i]), pair(s.max[i], s.err_max[i]), s.frac_positive[i],
                          s.frac_zero[i], s.frac_negative[i]));
   return {{"summary", csv.text()}};
 }
