@@ -249,10 +249,11 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
   }
   const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
   const core::ValueWithError shown = core::with_error(v.lambda1, v.err1);  // the interval contains lambda1
-  const std::string lam = fmt::format("lambda1 = {} +- {}", shown.value, shown.error);
+  const std::string lam = fmt::format("lambda1 = {} +- {} (batch means, without the finite-time bias)", shown.value,
+                                      shown.error);
   // "zero" means within lyapunov::classify's bar, which the detail states: three standard errors plus the
   // finite-time floor 10 / n, so that an exponent many standard errors from 0 but under the floor reads as such.
-  const std::string zero = fmt::format("{} is zero within 3 err + 10/n = {:.2g}", lam,
+  const std::string zero = fmt::format("{} is zero within 3 batch_err + 10/n = {:.2g}", lam,
                                        3 * v.err1 + 10.0 / static_cast<double>(opt.lyap_iterations));
   if (sign > 0) {
     v.type = Type::chaotic, v.key = "X";

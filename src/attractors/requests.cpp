@@ -139,19 +139,20 @@ namespace {
 // average with the batch-means standard error of lyapunov's method (err).
 core::Status lambda1_status(const OrbitVerdict& v, const Options& o) {
   if (v.type == Type::periodic || v.type == Type::collapse)
-    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; err = "
-                           "4 eps max(1, |lambda1|), the rounding",
+    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; batch_err = "
+                           "4 eps max(1, |lambda1|), its rounding (no average, no batch means)",
                            "a numerical bound without proof (no statistical error: the exponent is not an average)");
-  return core::estimated(fmt::format("average over {} steps after {} (pass 2), err its batch-means standard error over "
-                                     "{} blocks, at least 4 eps |lambda1| (lyapunov's method); the finite-time bias of "
-                                     "a slowly converging orbit is not in it (the verdict adds 10/n)",
+  return core::estimated(fmt::format("average over {} steps after {} (pass 2); batch_err its batch-means standard error "
+                                     "over {} blocks, at least 4 eps max(1, |lambda1|) (lyapunov's err1); the "
+                                     "finite-time bias (up to about log(n)/n on invariant curves) is not in it: the "
+                                     "verdict's zero band is 3 batch_err + 10/n",
                                      o.lyap_iterations, o.lyap_transient, o.lyap_blocks),
-                         "one standard error (68% if the block means are normal)");
+                         "one standard error of the block means (68% if they are normal), bias excluded");
 }
 }  // namespace
 
 std::string ClassifyResult::csv() const {
-  core::CsvTable t("type,pattern,period,lambda1,err,detail");
+  core::CsvTable t("type,pattern,period,lambda1,batch_err,detail");
   const core::ValueWithError l = core::with_error(verdict.lambda1, verdict.err1);
   t.row({type_name(verdict.type), pattern, fmt::format("{}", verdict.period), l.value, l.error, detail});
   return t.text();
@@ -164,7 +165,7 @@ void ClassifyResult::describe(core::Contents& c) const {
   c.attr("pattern", pattern);
   c.attr("period", static_cast<long>(verdict.period));
   c.attr("lambda1", verdict.lambda1);
-  c.attr("err", verdict.err1);
+  c.attr("batch_err", verdict.err1);
   c.status_of("lambda1", lambda1_status(verdict, request.thresholds));
   c.attr("detail", detail);
   c.attr("iterations", verdict.iterations);
