@@ -18,7 +18,9 @@ std::string two_digits_up(double x) {
   double unit = std::pow(10.0, e - 1);
   double m = std::ceil(x / unit);  // 10..100 digits at the unit
   std::string s = fmt::format("{:.1e}", m * unit);
-  for (int guard = 0; std::stod(s) < x && guard < 4; ++guard) {  // the product or the text rounded below x
+  // The product or the text may have rounded below x.  The text's nearest double above x (strictly) puts the text
+  // itself above x: it is nearer that double than x.
+  for (int guard = 0; std::stod(s) <= x && guard < 4; ++guard) {
     m += 1;
     s = fmt::format("{:.1e}", m * unit);
   }
@@ -30,19 +32,24 @@ std::string two_digits_up(double x) {
 ValueWithError with_error(double value, double error) {
   if (!std::isfinite(value) || !std::isfinite(error) || error < 0)
     throw std::invalid_argument(fmt::format("with_error: value {} and error {} (a finite value, an error >= 0)", value, error));
-  if (error < std::numeric_limits<double>::min())  // no scale to print at: every digit, and the error as given
-    return {fmt::format("{:.17g}", value), error == 0 ? std::string("0") : two_digits_up(error)};
-  // The value's last printed digit: one below the error's second significant digit.
-  const int unit_exp = static_cast<int>(std::floor(std::log10(error))) - 2;
-  const int lead = value == 0 ? unit_exp : static_cast<int>(std::floor(std::log10(std::fabs(value))));
+  // Below 1e-300 a bar is printed as 1.0e-300 (rounded up: two digits of a subnormal have no double to hold them).
+  const auto bar = [](double e) { return e == 0 ? std::string("0") : two_digits_up(std::max(e, 1e-300)); };
+  if (value == 0) return {"0", bar(error)};  // exact
+  // The value's last printed digit: one below the error's second significant digit (all 17 digits when the error
+  // has no scale to print at: zero or subnormal).
+  const int lead = static_cast<int>(std::floor(std::log10(std::fabs(value))));
+  const int unit_exp = error >= std::numeric_limits<double>::min() ? static_cast<int>(std::floor(std::log10(error))) - 2
+                                                                    : lead - 16;
   const int significant = std::clamp(lead - unit_exp + 1, 1, 17);
   const std::string v = fmt::format("{:.{}e}", value, significant - 1);
-  const double shown = std::stod(v);
-  // The bar grows by the rounding of the printed value (exact in double: both are within a factor 2 here), and a
-  // relative 4 eps for the subtraction itself; then rounded up to two digits.
-  const double widened = error + std::fabs(value - shown) * (1 + 4 * std::numeric_limits<double>::epsilon());
-  return {significant == 17 ? fmt::format("{:.17g}", value) : fmt::format("{:.{}g}", value, significant),
-          two_digits_up(widened)};
+  // The printed value is the value correctly rounded at its last digit (10^(E - significant + 1), E the printed
+  // exponent, exact: log10 may be off by one near a power of ten), so it is within half that unit of the value:
+  // the bar grows by that half unit (the double 10^k with a relative 4 eps for its own rounding), then is
+  // rounded up to two digits.  With 17 digits the text reads back as the same double but is not its exact value.
+  const int printed_exp = std::stoi(v.substr(v.find('e') + 1));
+  const double half_unit = 0.5 * std::pow(10.0, printed_exp - significant + 1) *
+                           (1 + 4 * std::numeric_limits<double>::epsilon());
+  return {fmt::format("{:.{}g}", value, significant), two_digits_up(std::max(error + half_unit, 1e-300))};
 }
 
 }  // namespace btob::core

@@ -17,7 +17,8 @@ struct ValueWithError {
 };
 
 // value and error (>= 0, finite) as texts by the rule above; a zero or subnormal error prints the value with 17
-// significant digits and the error as given, rounded up to two digits ("0" for 0).
+// significant digits (the bar then covers their rounding); a value 0 is exact ("0"); a bar below 1e-300 prints as
+// 1.0e-300.  Throws std::invalid_argument on a non-finite value or error, or a negative error.
 ValueWithError with_error(double value, double error);
 
 }  // namespace btob::core
