@@ -13,13 +13,20 @@ import h5py
 import pytest
 
 import btob
-from conftest import cli, exe
+from conftest import cli, exe, flags
 
 STATUSES = {"certified", "estimated", "conjectured"}
 
 
 def rows(text):
     return list(csv.DictReader(io.StringIO(text)))
+
+
+def save(command, kwargs, out):
+    """`btob COMMAND ... --out OUT` for a command that prints its result (no --no-plot: it has no figure)."""
+    p = subprocess.run([exe(), *command.split(), *flags(kwargs), "--out", str(out), "--quiet", "--threads", "1"],
+                       capture_output=True, text=True, timeout=240)
+    assert p.returncode == 0, p.stderr
 
 
 def rerun(manifest, out):
@@ -43,7 +50,7 @@ def test_pattern_window_digits_reach_file_python_csv_and_run(tmp_path):
     kw = dict(window=True, digits=30)
     printed = rows(cli("pattern 132312", kw))
     assert printed and all(r["status"] == "estimated" for r in printed)
-    cli("pattern 132312", kw, out=tmp_path / "d")
+    save("pattern 132312", kw, tmp_path / "d")
     h5 = tmp_path / "d" / "pattern.h5"
     lows = decimals_of(h5, "r_low_decimal")
     assert lows == [Decimal(r["r_low"]) for r in printed]
@@ -72,7 +79,7 @@ def test_certified_bounds_say_what_each_bound_is(tmp_path):
     printed = rows(cli("windows bounds", kw))
     assert [r["lower_status"] for r in printed] == ["certified"] * 6
     assert [r["upper_status"] for r in printed] == [""] + ["conjectured"] * 5  # n = 1 has no upper bound
-    cli("windows bounds", kw, out=tmp_path / "d")
+    save("windows bounds", kw, tmp_path / "d")
     h5 = tmp_path / "d" / "bounds.h5"
     with open(tmp_path / "d" / "bounds.csv") as fh:
         assert rows(fh.read()) == printed
@@ -95,7 +102,7 @@ def test_certified_bounds_say_what_each_bound_is(tmp_path):
 
 def test_verdict_decimals_keep_the_precision(tmp_path):
     """A verdict in MPFR keeps its eigenvalues' and orbit's digits in NAME.h5 (the doubles are views)."""
-    cli("pattern 1133", dict(r="0.15", precision="mpfr:40"), out=tmp_path / "d")
+    save("pattern 1133", dict(r="0.15", precision="mpfr:40"), tmp_path / "d")
     h5 = tmp_path / "d" / "pattern.h5"
     re = decimals_of(h5, "eigen_re_decimal")
     assert len(re) == 3 and len(re[0].as_tuple().digits) > 30
@@ -114,7 +121,7 @@ def test_printed_lyapunov_interval_contains_the_stored_value(r, point, tmp_path)
     excludes the stored -0.4683473803358724; the printed interval must contain the value NAME.h5 holds."""
     kw = dict(r=r, point=point, iterations=20000, transient=500)
     row = rows(cli("lyapunov", kw))[0]
-    cli("lyapunov", kw, out=tmp_path / "d")
+    save("lyapunov", kw, tmp_path / "d")
     with h5py.File(tmp_path / "d" / "lyapunov.h5", "r") as f:
         for k, e in (("lambda1", "err1"), ("lambda2", "err2")):
             stored = Decimal(float(f.attrs[k]))  # the double's exact value
