@@ -219,6 +219,18 @@ py::object result_attribute(py::object self, const std::string& name) {
   throw py::attribute_error(fmt::format("btob.{} result has no attribute '{}'", r.function, name));
 }
 
+// res.status: {name: {"status": certified|estimated|conjectured, "basis": ..., "confidence": ... (estimates)}}
+// for every dataset or attribute that says what kind of number it holds (core::Status; NAME.h5's attributes).
+py::dict status_dict(const ResultBase& r) {
+  py::dict d;
+  for (const auto& [name, st] : r.contents.status) {
+    py::dict e(py::arg("status") = st.kind, py::arg("basis") = st.basis);
+    if (!st.confidence.empty()) e["confidence"] = st.confidence;
+    d[py::str(name)] = e;
+  }
+  return d;
+}
+
 py::dict attrs_dict(const ResultBase& r) {
   py::dict d;
   for (const auto& [k, v] : r.attrs) d[py::str(k)] = attr_value(v);
@@ -275,7 +287,7 @@ py::list result_dir(const ResultBase& r) {
   for (const auto& d : r.contents.decimals) l.append(d.name);
   for (const auto& t : r.contents.texts) l.append(t.name);
   for (const auto& [k, v] : r.attrs) l.append(k);
-  for (const char* k : {"attrs", "arrays", "decimals", "texts", "info", "plot", "save", "function", "tables"}) l.append(k);
+  for (const char* k : {"attrs", "arrays", "decimals", "texts", "status", "info", "plot", "save", "function", "tables"}) l.append(k);
   return l;
 }
 
@@ -305,6 +317,9 @@ void bind_result(py::module_& m) {
                              "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
       .def_property_readonly("texts", [](const ResultBase& r) { return names_of(r.contents.texts); },
                              "names of the string arrays (word names, overlay names): res.<name> is a list of str")
+      .def_property_readonly("status", &status_dict,
+                             "what kind of number each value computed beyond double (and each estimate) is: "
+                             "{name: {'status': 'certified'|'estimated'|'conjectured', 'basis': ..., 'confidence': ...}}")
       .def("info", &array_info, "dims, axes, units and description of an array, a decimal column or a string array")
       .def_property_readonly("function", [](const ResultBase& r) { return r.function; },
                              "the Python function that made this result (e.g. 'bifurcation')")

@@ -599,8 +599,10 @@ TEST(WindowRequests, BoundsEqualTableB1AndTheCertificatesHold) {
   }
   const std::string csv = res.csv();
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified");
-  EXPECT_NE(csv.find("\n2,0.127544097592,0.171572875254,0.127544097591,0.127544097592,1,-1,0,1,yes\n"),
+            "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified,lower_status,"
+            "upper_status");
+  // The certificate proves the lower bound; r_crit,2(n) stays the paper's conjecture (docs/reference/numbers.md).
+  EXPECT_NE(csv.find("\n2,0.127544097592,0.171572875254,0.127544097591,0.127544097592,1,-1,0,1,yes,certified,conjectured\n"),
             std::string::npos);
   btob::core::Contents c;
   res.describe(c);

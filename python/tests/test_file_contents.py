@@ -72,7 +72,10 @@ NO_PLOT = {
     "lyapunov": ["lyapunov", "--r", "0.2", "--point", "1,-0.5,-1.1", "--iterations", "1000"],
     "pattern": ["pattern", "132312", "--r", "0.5"],
     "pattern --window": ["pattern", "132312", "--window"],
+    "pattern --window --digits": ["pattern", "132312", "--window", "--digits", "30"],
+    "pattern mpfr": ["pattern", "1133", "--r", "0.15", "--precision", "mpfr:30"],
     "windows bounds": ["windows", "bounds", "--n", "1..5"],
+    "windows bounds --certify": ["windows", "bounds", "--n", "1..5", "--certify", "--digits", "20"],
     "windows thresholds": ["windows", "thresholds"],
     "windows stripes": ["windows", "stripes"],
 }
@@ -106,6 +109,8 @@ def check_h5(path, bad):
             for key in ("units", "description"):
                 if not str(ds.attrs.get(key, "")):
                     bad.append(f"{path}:{name}: no {key}")
+            if name.endswith("_decimal"):
+                check_status(path, f, name, bad)
             if ds.ndim < 2:
                 continue
             labels = axis_labels(str(ds.attrs.get("axes", "")))
@@ -115,6 +120,20 @@ def check_h5(path, bad):
             for i, label in enumerate(labels):
                 if not is_index(label) and len(ds.dims[i]) == 0:
                     bad.append(f"{path}:{name}: axis {i} ({label}) has no dimension scale")
+
+
+def check_status(path, f, name, bad):
+    """A decimal (a number computed beyond double) says what it is, and so does its double twin
+    (docs/reference/numbers.md): status certified, estimated or conjectured, its basis, and for an estimate the
+    confidence of its bar."""
+    twin = name.removesuffix("_decimal")
+    for n in [name] + ([twin] if twin in f else []):
+        a = f[n].attrs
+        status = str(a.get("status", ""))
+        if status not in ("certified", "estimated", "conjectured"):
+            bad.append(f"{path}:{n}: status '{status}', not certified, estimated or conjectured")
+        elif not str(a.get("basis", "")) or (status == "estimated" and not str(a.get("confidence", ""))):
+            bad.append(f"{path}:{n}: status {status} without its basis or confidence")
 
 
 def strings(value):

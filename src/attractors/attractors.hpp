@@ -69,7 +69,9 @@ struct OrbitVerdict {
   std::string key;           // attractor identity key (see attractor_key)
   double residual = 0;       // periodic: return distance |u_p - u_0|; else the closest return up to max_period
   int closest_return = 0;    // j of that closest return
-  double lambda1 = 0, err1 = 0;  // pass 2 (batch means); periodic / collapse: the exact exponent log|l2/l1|/p, err 0
+  // pass 2: lambda1 and err1 its batch-means standard error (lyapunov's method, floored at 4 eps max(1, |lambda1|));
+  // periodic / collapse: the exact exponent log|l2/l1|/p in double, err1 that floor (its rounding)
+  double lambda1 = 0, err1 = 0;
   // Pass 2, for the orbits they decide (lambda1 zero within its bar, r > 3 - 2 sqrt(2)); 0 for the others:
   double rotation = 0, rotation_delta = 0;  // turns per iteration, and |full - half| of the weighted averages
   double invariant = 0, invariant_spread = 0;  // weighted mean of I and (max - min) / mean over the record

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "attractors/recorders.hpp"
+#include "core/error_bar.hpp"
 #include "attractors/stages.hpp"
 #include "core/coords.hpp"
 #include "iterate/cocycle.hpp"
@@ -56,6 +57,16 @@ using namespace stages;
 
 namespace {
 
+// The floor lyapunov puts under every bar (lyapunov_impl.hpp, with_rounding_floor): 4 eps |lambda1| (at least 4 eps),
+// the arithmetic's share, which batch means cannot see (a cycle's block means agree exactly) and which is the whole
+// error of a cycle's exponent log|mu2/mu1|/p evaluated in double.  So err is never 0, and a periodic orbit's
+// printed interval contains lyapunov's estimate of the same orbit.
+namespace {
+double rounding_floor(double lambda1) {
+  return 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(lambda1));
+}
+}  // namespace
+
 // ---- pass 1: the window after the transient (return, collapse) ----
 
 // What pass 1 saw of orbit o: its point, final state, closest return, whether it stayed in the P2 region.
@@ -74,12 +85,14 @@ bool collapse_verdict(const ReturnRecorder& rec, std::size_t o, double r, const 
   if (rec.n1[o] == opt.window && th < opt.collapse_theta) {
     v.type = Type::collapse, v.period = 1, v.word.s = {1}, v.key = "C1";
     v.lambda1 = patterns::analyse<double>(v.word, r).lyapunov2;  // exponent of P1 on z = 0 (exact)
+    v.err1 = rounding_floor(v.lambda1);
     v.detail = fmt::format("theta = {:.3g} after {} steps, symbol 1 throughout the window", th, v.iterations);
     return true;
   }
   if (rec.n3[o] == opt.window && std::numbers::pi / 2 - th < opt.collapse_theta) {
     v.type = Type::collapse, v.period = 1, v.word.s = {3}, v.key = "C3";
     v.lambda1 = patterns::analyse<double>(v.word, r).lyapunov2;  // exponent of P3 on x = 0 (exact)
+    v.err1 = rounding_floor(v.lambda1);
     v.detail = fmt::format("pi/2 - theta = {:.3g} after {} steps, symbol 3 throughout the window",
                            std::numbers::pi / 2 - th, v.iterations);
     return true;
@@ -113,13 +126,14 @@ bool periodic_verdict(const ReturnRecorder& rec, std::size_t o, int p, double r,
   const std::string key = "P" + patterns::to_digits(key_word);
   const ExactCycle& e = exact_cycle(key, key_word, r, exact);
   v.lambda1 = e.verdict.lyapunov2;  // the cycle's exponent log|l2/l1|/p from the pattern tool (exact)
+  v.err1 = rounding_floor(v.lambda1);
   if (e.points.empty()) {
     // No feasible real eigenvector: a numerically periodic orbit the pattern tool cannot confirm.  In the P2 region
     // a rational P2 rotation (Section 5.2, whose cycles are neutral): periodic, reported, not hidden.  Elsewhere a
     // slow passage that no periodic orbit explains (e.g. near 7 - 4 sqrt(3), where P3's (y, z) rotation turns by
     // ~1e-9 per step near its slow direction): measured in pass 2 like an orbit without a period.
     if (!v.p2_region) {
-      v.period = 0, v.word = {}, v.lambda1 = 0;
+      v.period = 0, v.word = {}, v.lambda1 = 0, v.err1 = 0;
       v.residual = rec.best_d[o], v.closest_return = rec.best_j[o];
       return false;
     }
@@ -225,7 +239,7 @@ PassTwo run_pass_two(const iterate::Ensemble& pass_two, const Options& opt) {
 // Pass 2's verdict on its orbit i: chaotic, quasi-periodic or undecided (with the reason).
 void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options& opt, OrbitVerdict& v) {
   v.iterations += opt.lyap_transient + opt.lyap_iterations;
-  v.lambda1 = two.exponents.lambda1[i], v.err1 = two.exponents.err1[i];
+  v.lambda1 = two.exponents.lambda1[i], v.err1 = std::max(two.exponents.err1[i], rounding_floor(v.lambda1));
   if (const std::size_t k = two.rotation_index[i]; k != PassTwo::none) {
     const RotationRecorder& rot = *two.rotation;
     v.invariant = rot.invariant(k);
@@ -234,10 +248,12 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
     v.rotation_delta = std::fabs(rot.rotation(k) - rot.rotation_half(k));
   }
   const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
-  const std::string lam = fmt::format("lambda1 = {:.3g} +- {:.2g}", v.lambda1, v.err1);
+  const core::ValueWithError shown = core::with_error(v.lambda1, v.err1);  // the interval contains lambda1
+  const std::string lam = fmt::format("lambda1 = {} +- {} (batch means, without the finite-time bias)", shown.value,
+                                      shown.error);
   // "zero" means within lyapunov::classify's bar, which the detail states: three standard errors plus the
   // finite-time floor 10 / n, so that an exponent many standard errors from 0 but under the floor reads as such.
-  const std::string zero = fmt::format("{} is zero within 3 err + 10/n = {:.2g}", lam,
+  const std::string zero = fmt::format("{} is zero within 3 batch_err + 10/n = {:.2g}", lam,
                                        3 * v.err1 + 10.0 / static_cast<double>(opt.lyap_iterations));
   if (sign > 0) {
     v.type = Type::chaotic, v.key = "X";

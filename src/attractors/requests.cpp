@@ -3,6 +3,7 @@
 #include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
@@ -132,6 +133,31 @@ core::Work work(const ClassifyRequest& req) {
   return w;
 }
 
+namespace {
+// What classify's lambda1 is (docs/reference/numbers.md).  A periodic orbit's or a collapse's is the cycle's exact
+// exponent log|mu2/mu1|/p evaluated in double (err 0: no average, only rounding); any other orbit's is pass 2's
+// average with the batch-means standard error of lyapunov's method (err).
+core::Status lambda1_status(const OrbitVerdict& v, const Options& o) {
+  if (v.type == Type::periodic || v.type == Type::collapse)
+    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; batch_err = "
+                           "4 eps max(1, |lambda1|), its rounding (no average, no batch means)",
+                           "a numerical bound without proof (no statistical error: the exponent is not an average)");
+  return core::estimated(fmt::format("average over {} steps after {} (pass 2); batch_err its batch-means standard error "
+                                     "over {} blocks, at least 4 eps max(1, |lambda1|) (lyapunov's err1); the "
+                                     "finite-time bias (up to about log(n)/n on invariant curves) is not in it: the "
+                                     "verdict's zero band is 3 batch_err + 10/n",
+                                     o.lyap_iterations, o.lyap_transient, o.lyap_blocks),
+                         "one standard error of the block means (68% if they are normal), bias excluded");
+}
+}  // namespace
+
+std::string ClassifyResult::csv() const {
+  core::CsvTable t("type,pattern,period,lambda1,batch_err,detail");
+  const core::ValueWithError l = core::with_error(verdict.lambda1, verdict.err1);
+  t.row({type_name(verdict.type), pattern, fmt::format("{}", verdict.period), l.value, l.error, detail});
+  return t.text();
+}
+
 void ClassifyResult::describe(core::Contents& c) const {
   c.attr("r", request.r);
   c.attr("point", request.point);
@@ -139,7 +165,8 @@ void ClassifyResult::describe(core::Contents& c) const {
   c.attr("pattern", pattern);
   c.attr("period", static_cast<long>(verdict.period));
   c.attr("lambda1", verdict.lambda1);
-  c.attr("err", verdict.err1);
+  c.attr("batch_err", verdict.err1);
+  c.status_of("lambda1", lambda1_status(verdict, request.thresholds));
   c.attr("detail", detail);
   c.attr("iterations", verdict.iterations);
   threshold_attrs(c, request.thresholds);
@@ -226,6 +253,9 @@ void BasinsResult::describe(core::Contents& c) const {
   c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then undecided", "1",
           "sample standard deviation of the fraction over the main and replicate grids (0 with one grid)");
   c.attr("interval", "Clopper-Pearson 95% (sampling only)");
+  c.status_of("fraction", core::estimated("the share of the main grid's points in each basin; its bar ci_low .. ci_high "
+                                          "(sampling only; the grid's own error shows in replicate_sd)",
+                                          "95% Clopper-Pearson"));
   const std::size_t n = points();
   c.attr("r", request.r);
   c.attr("grid", request.grid);

@@ -53,8 +53,14 @@ struct ClassifyResult {
   OrbitVerdict verdict;
   std::string pattern;  // the attractor's own spelling (mirror-aware); empty when undecided
   std::string detail;   // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
-  // Attributes only: type, pattern, period, lambda1, err, detail, iterations.
+  // Attributes only: type, pattern, period, lambda1, batch_err, detail, iterations; lambda1's status (an estimate).
+  // batch_err is what lyapunov's err1 is (batch means floored at the rounding), named so because on a slowly
+  // converging orbit (invariant curves: a bias of about log(n)/n) it is not the whole error of lambda1.
   void describe(core::Contents& c) const;
+  // What `btob classify` prints and --out writes to NAME.csv: type,pattern,period,lambda1,batch_err,detail, lambda1
+  // and batch_err by core::with_error (the printed interval contains lambda1).
+  std::string csv() const;
+  core::Tables tables() const { return {{"", csv()}}; }
 };
 
 ClassifyResult run(const ClassifyRequest& req, const core::RunControl& control = {});

@@ -28,10 +28,7 @@ namespace {
 void classify(const attractors::ClassifyRequest& req, const Output&, const Context& ctx) {
   const attractors::ClassifyResult res = attractors::run(req, ctx.control);
   const attractors::OrbitVerdict& v = res.verdict;
-  core::CsvTable t("type,pattern,period,lambda1,err,detail");
-  t.row({attractors::type_name(v.type), res.pattern, fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
-         fmt::format("{:.2g}", v.err1), res.detail});
-  std::cout << t.text();
+  std::cout << res.csv();
 }
 
 // ---- btob basins ----

@@ -3,6 +3,7 @@
 #include "cli/sweep.hpp"
 #include "cli/common.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "extras/extras.hpp"
 #include "lyapunov/requests.hpp"
 
@@ -19,14 +20,9 @@ namespace {
 void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx) {
   const lyapunov::ProjectiveResult res = lyapunov::run(req, ctx.control);
   const auto& l = res.lambda;
-  if (req.weighted)  // weighted Birkhoff averages: super-polynomial on (quasi-)periodic orbits, no batch error
-    std::cout << "lambda1_weighted,lambda2_weighted,lambda1,err1,lambda2,err2,iterations\n"
-              << fmt::format("{:.15g},{:.15g},{:.12g},{:.3g},{:.12g},{:.3g},{}\n", res.weighted[0], res.weighted[1],
-                             l[0].value, l[0].error, l[1].value, l[1].error, res.iterations);
-  else
-    std::cout << "lambda1,err1,lambda2,err2,iterations\n"
-              << fmt::format("{:.12g},{:.3g},{:.12g},{:.3g},{}\n", l[0].value, l[0].error, l[1].value, l[1].error,
-                             res.iterations);
+  // The table of --out's NAME.csv (with --weighted the weighted Birkhoff averages first: super-polynomial on
+  // (quasi-)periodic orbits, no batch error); each exponent printed with its bar by core::with_error.
+  std::cout << res.csv();
   if (req.precision == "float") {  // float rounding can move an orbit off a weak sink: the same orbit in double
     lyapunov::OrbitRequest d = req;
     d.precision = "double";
@@ -35,10 +31,11 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     const int cf = lyapunov::classify(l[0].value, l[0].error, res.iterations),
               cd = lyapunov::classify(rd.lambda[0].value, rd.lambda[0].error, rd.iterations);
     const auto name = [](int c) { return c > 0 ? "positive" : c < 0 ? "negative" : "zero"; };
+    const core::ValueWithError dl = core::with_error(rd.lambda[0].value, rd.lambda[0].error);
     if (cf != cd)
-      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {:.6g} +- {:.2g} ({}), float {:.6g} "
+      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {} +- {} ({}), float {:.6g} "
                                "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
-                               rd.lambda[0].value, rd.lambda[0].error, name(cd), l[0].value, name(cf));
+                               dl.value, dl.error, name(cd), l[0].value, name(cf));
   }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");

@@ -4,9 +4,12 @@
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "cli/sweep.hpp"
+#include "core/error_bar.hpp"
 #include "stats/requests.hpp"
 
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include <iostream>
 
@@ -40,9 +43,14 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
     if (has("envelope_first")) std::cerr << fmt::format(", envelope {} .. {}", num("envelope_first"), num("envelope_last"));
     std::cerr << (has("decay_floor_lag") ? fmt::format(", floor reached at lag {}", num("decay_floor_lag"))
                                          : fmt::format(", floor not reached by lag {}", req.fit_lags));
-    if (has("decay_rate"))
-      std::cerr << fmt::format(", rate {} +- {} per iteration (95%: {} .. {})", num("decay_rate"),
-                               num("decay_rate_error"), num("decay_rate_low"), num("decay_rate_high"));
+    if (has("decay_rate")) {  // the rate and its bar by core::with_error: the printed interval holds the rate
+      const double v = std::get<double>(c.attrs.at("decay_rate")), e = std::get<double>(c.attrs.at("decay_rate_error"));
+      const core::ValueWithError rate = std::isfinite(v) && std::isfinite(e) && e >= 0
+                                            ? core::with_error(v, e)
+                                            : core::ValueWithError{num("decay_rate"), num("decay_rate_error")};
+      std::cerr << fmt::format(", rate {} +- {} per iteration (95%: {} .. {})", rate.value, rate.error,
+                               num("decay_rate_low"), num("decay_rate_high"));
+    }
     std::cerr << " (" << std::get<std::string>(c.attrs.at("decay_reason")) << ")";
   }
   if (!res.c_direct.empty())

@@ -36,6 +36,21 @@ struct ArrayView {
   }
 };
 
+// What kind of number a dataset (or a root attribute) holds (docs/reference/numbers.md): every number computed
+// beyond double says it, as the HDF5 attributes `status`, `basis` and `confidence` of its datasets, Python's
+// res.status[name] and a column of the CSV.
+//   certified    proved: `basis` names the certificate (datasets or the exact argument) that proves it
+//   estimated    measured or computed with an error bar: `basis` says what the bar is, `confidence` its level
+//   conjectured  a value the paper conjectures (window upper bounds r_crit,2(n)): `basis` names the conjecture
+struct Status {
+  std::string kind, basis, confidence;
+};
+inline Status certified(std::string basis) { return {"certified", std::move(basis), ""}; }
+inline Status estimated(std::string basis, std::string confidence) {
+  return {"estimated", std::move(basis), std::move(confidence)};
+}
+inline Status conjectured(std::string basis) { return {"conjectured", std::move(basis), ""}; }
+
 // Exact decimal numbers as text (multiprecision values: window bounds, thresholds), one per element: Python
 // returns them as decimal.Decimal, never rounded to double; the HDF5 writer stores them as string datasets.
 // The same view holds names that are data (Contents::texts: words, overlay names), strings in Python and HDF5.
@@ -69,16 +84,23 @@ struct Contents {
   // An axis label that is itself the name of a 1-D array of the right length needs no entry.  The HDF5 writer
   // attaches these arrays as dimension scales (H5DS) to every dataset with that axis.
   std::map<std::string, std::string> coordinates;
+  // Dataset or root attribute name -> what kind of number it holds (decimal() requires one; status_of()).
+  std::map<std::string, Status> status;
 
   template <class V>
   void array(std::string name, const std::vector<V>& v, std::vector<std::size_t> dims, std::string axes,
              std::string units, std::string description) {
     arrays.push_back({std::move(name), std::move(dims), std::move(axes), std::move(units), std::move(description), &v});
   }
+  // A decimal column says what kind of number it holds: it is computed beyond double, and its digits are worth
+  // only what its status says (the double twin, when there is one, gets the same status with status_of()).
   void decimal(std::string name, const std::vector<std::string>& v, std::string axes, std::string units,
-               std::string description) {
+               std::string description, Status s) {
+    status[name] = std::move(s);
     decimals.push_back({std::move(name), std::move(axes), std::move(units), std::move(description), &v});
   }
+  // The status of array or attribute `name` (a decimal's double twin, an estimate kept as an attribute).
+  void status_of(const std::string& name, Status s) { status[name] = std::move(s); }
   void text(std::string name, const std::vector<std::string>& v, std::string axes, std::string units,
             std::string description) {
     texts.push_back({std::move(name), std::move(axes), std::move(units), std::move(description), &v});

@@ -174,6 +174,28 @@ void write_root_attrs(H5::H5File& file, const Attrs& attrs) {
   }
 }
 
+// What kind of number each dataset or root attribute of c.status holds (core::Status): attributes status, basis
+// and (estimates) confidence on the dataset; on the root group as NAME.status, NAME.basis, NAME.confidence when
+// NAME is a root attribute (a verdict's or an orbit's numbers are attributes).
+void write_status(H5::H5File& file, const core::Contents& c) {
+  H5::Group root = file.openGroup("/");
+  for (const auto& [name, st] : c.status) {
+    const auto put = [&](H5::H5Object& o, const std::string& prefix) {
+      string_attr(o, prefix + "status", st.kind);
+      string_attr(o, prefix + "basis", st.basis);
+      if (!st.confidence.empty()) string_attr(o, prefix + "confidence", st.confidence);
+    };
+    if (file.nameExists(name)) {
+      H5::DataSet ds = file.openDataSet(name);
+      put(ds, "");
+    } else if (c.attrs.count(name)) {
+      put(root, name + ".");
+    } else {
+      throw std::logic_error("result status of '" + name + "': no dataset or attribute of that name");
+    }
+  }
+}
+
 // The chunk of an array of `total` elements with dimensions d: at most about 2^18 elements, halving each dimension
 // in turn; empty (a contiguous dataset) below 4096 elements.
 std::vector<hsize_t> array_chunk(const std::vector<hsize_t>& d, std::size_t total) {
@@ -271,6 +293,7 @@ void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
     for (const auto& a : c.arrays) write_array(file, a);
     for (const auto* list : {&c.decimals, &c.texts})
       for (const auto& d : *list) string_dataset(file, d);
+    write_status(file, c);
     attach_scales(file, c);
     file.close();
   } catch (const H5::Exception& e) {

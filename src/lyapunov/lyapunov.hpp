@@ -7,6 +7,7 @@
 #include "core/result.hpp"
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace btob::lyapunov {
@@ -62,8 +63,16 @@ struct ProjectiveResult {
   Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
   // Attributes lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the
   // columns `btob lyapunov --weighted` prints); arrays convergence_n, convergence_lambda1, convergence_lambda2 (the
-  // table `btob lyapunov --convergence FILE` writes: the running averages at every checkpoint).
+  // table `btob lyapunov --convergence FILE` writes: the running averages at every checkpoint).  lambda1 and
+  // lambda2 are estimates (core::Status): the error bar is the batch-means standard error (floored at the
+  // arithmetic's 4 eps |lambda|).
   void describe(core::Contents& c) const;
+  // What `btob lyapunov` prints and --out writes to NAME.csv: lambda1,err1,lambda2,err2,iterations,status (with the
+  // weighted averages first when weighted_columns), each value and its bar by core::with_error, so that the
+  // printed interval contains the stored value.
+  bool weighted_columns = false;
+  std::string csv() const;
+  core::Tables tables() const { return {{"", csv()}}; }
 };
 
 struct LinearResult {

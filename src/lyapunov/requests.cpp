@@ -3,6 +3,7 @@
 
 #include "core/cancel.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
 #include "core/coords.hpp"
@@ -15,6 +16,26 @@
 
 namespace btob::lyapunov {
 
+namespace {
+// What an orbit's exponent is (docs/reference/numbers.md): an estimate whose bar is the batch-means standard error.
+core::Status exponent_status(int blocks) {
+  return core::estimated(fmt::format("batch-means standard error over {} blocks (err1, err2), at least 4 eps |lambda| "
+                                     "for the arithmetic; the finite-time bias of a slowly converging orbit is not in it",
+                                     blocks),
+                         "one standard error (68% if the block means are normal)");
+}
+}  // namespace
+
+std::string ProjectiveResult::csv() const {
+  core::CsvTable t(weighted_columns ? "lambda1_weighted,lambda2_weighted,lambda1,err1,lambda2,err2,iterations,status"
+                                    : "lambda1,err1,lambda2,err2,iterations,status");
+  const core::ValueWithError a = core::with_error(lambda[0].value, lambda[0].error),
+                             b = core::with_error(lambda[1].value, lambda[1].error);
+  const std::string row = fmt::format("{},{},{},{},{},estimated", a.value, a.error, b.value, b.error, iterations);
+  t.line(weighted_columns ? fmt::format("{:.15g},{:.15g},{}", weighted[0], weighted[1], row) : row);
+  return t.text();
+}
+
 void ProjectiveResult::describe(core::Contents& c) const {
   c.attr("lambda1", lambda[0].value);
   c.attr("err1", lambda[0].error);
@@ -24,6 +45,13 @@ void ProjectiveResult::describe(core::Contents& c) const {
   c.attr("lambda2_weighted", weighted[1]);
   c.attr("iterations", iterations);
   c.attr("blocks", static_cast<long>(blocks));
+  const core::Status st = exponent_status(blocks);
+  c.status_of("lambda1", st);
+  c.status_of("lambda2", st);
+  const core::Status w = core::estimated("weighted Birkhoff average (super-polynomial convergence on periodic and "
+                                         "quasi-periodic orbits only)", "no error bar");
+  c.status_of("lambda1_weighted", w);
+  c.status_of("lambda2_weighted", w);
   if (convergence.exponents.size() < 2) return;  // a result that was never run
   const std::vector<std::size_t> dims{convergence.n.size()};
   c.array("convergence_n", convergence.n, dims, "checkpoint", "iterations",
@@ -97,6 +125,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
       break;
     }
   }
+  res.weighted_columns = req.weighted;
   all_finite(std::vector<double>{res.lambda[0].value, res.lambda[0].error, res.lambda[1].value, res.lambda[1].error,
                                  res.weighted[0], res.weighted[1]},
              fmt::format("r = {} in {}", req.r, prec.name()));
@@ -374,9 +403,15 @@ core::Tables MapResult::tables() const {
   core::CsvTable csv(
       "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
       "frac_zero,frac_negative");
+  // Each exponent with its bar by core::with_error (the printed interval contains the value of NAME.h5).
+  const auto pair = [](double v, double e) {
+    if (!std::isfinite(v) || !std::isfinite(e) || e < 0) return core::csv_number(v) + "," + core::csv_number(e);
+    const core::ValueWithError p = core::with_error(v, e);
+    return p.value + "," + p.error;
+  };
   for (std::size_t i = 0; i < ensemble.r.size(); ++i)
-    csv.line(fmt::format("{:.9f},{:.6g},{:.2g},{:.6g},{:.2g},{:.6g},{:.2g},{:.4f},{:.4f},{:.4f}", ensemble.r[i], s.min[i],
-                         s.err_min[i], s.median[i], s.err_median[i], s.max[i], s.err_max[i], s.frac_positive[i],
+    csv.line(fmt::format("{:.9f},{},{},{},{:.4f},{:.4f},{:.4f}", ensemble.r[i], pair(s.min[i], s.err_min[i]),
+                         pair(s.median[i], s.err_median[i]), pair(s.max[i], s.err_max[i]), s.frac_positive[i],
                          s.frac_zero[i], s.frac_negative[i]));
   return {{"summary", csv.text()}};
 }

@@ -4,6 +4,7 @@
 #include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
+#include "core/error_bar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 
@@ -103,10 +104,10 @@ std::string StripOrbitsResult::csv() const {
   core::CsvTable csv("orbit,start_w1,start_w2,verdict,pattern,period,lambda1,err1,rotation,residual,detail");
   for (std::size_t o = 0; o < verdicts.size(); ++o) {
     const auto& v = verdicts[o];
+    const core::ValueWithError l = core::with_error(v.lambda1, v.err1);  // the printed interval contains lambda1
     csv.row({fmt::format("{}", o + 1), fmt::format("{:.17g}", start_w1[o]), fmt::format("{:.17g}", start_w2[o]),
-             panel_word(v.type), pattern[o], fmt::format("{}", v.period), fmt::format("{:.6g}", v.lambda1),
-             fmt::format("{:.3g}", v.err1), fmt::format("{:.12g}", v.rotation), fmt::format("{:.3g}", v.residual),
-             v.detail});
+             panel_word(v.type), pattern[o], fmt::format("{}", v.period), l.value, l.error,
+             fmt::format("{:.12g}", v.rotation), fmt::format("{:.3g}", v.residual), v.detail});
   }
   return csv.text();
 }

@@ -210,9 +210,19 @@ CurvesResult run(const CurvesRequest& q, const core::RunControl& control) {
   return res;
 }
 
+// What a critical r is: a sign change on the grid bisected in long double to 1e-15, then rounded to double (which
+// holds every digit the bisection vouches for: no decimal); not proved.
+namespace {
+core::Status critical_status() {
+  return core::estimated("sign change on the r grid bisected in long double to 1e-15 (absolute), rounded to double",
+                         "error bar 1e-15 plus the rounding to double, a numerical bound without proof");
+}
+}  // namespace
+
 std::string CurvesResult::critical_csv() const {
-  core::CsvTable csv("what,r");
-  for (const auto& c : critical) csv.row({c.what, fmt::format("{:.16f}", c.r)});
+  core::CsvTable csv("what,r,status");  // status: docs/reference/numbers.md (critical_status)
+  const std::string st = critical_status().kind;
+  for (const auto& c : critical) csv.row({c.what, fmt::format("{:.16f}", c.r), st});
   return csv.text();
 }
 
@@ -237,6 +247,7 @@ void CurvesResult::describe(core::Contents& c) const {
           "1 where u_error < 1e-3: the eigenvector, hence the feasibility quantities, decided in long double");
   c.array("critical_r", critical_r, {critical_r.size()}, "critical value", "1",
           "r where u_x = 0, u_z = 0 or dominance changes (bisected to 1e-15)");
+  c.status_of("critical_r", critical_status());
   c.text("critical_what", critical_what, "critical value", "name",
          "what changes at each critical_r: u_x = 0, u_z = 0 (u leaves the domain), dominance, or undecided in "
          "long double (a sign change of u_x u_z where the eigenvector is not resolved)");

@@ -59,12 +59,15 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
     res.eigen_re.push_back(static_cast<double>(e.re));
     res.eigen_im.push_back(static_cast<double>(e.im));
     res.eigen_modulus.push_back(static_cast<double>(e.modulus));
+    res.eigen_re_decimal.push_back(t.re);
+    res.eigen_im_decimal.push_back(t.im);
   }
   res.outcome = outcome_name(v.outcome);
   res.reason = v.reason;
   res.lyapunov2 = str(v.lyapunov2, 10);
   res.lyapunov3 = str(v.lyapunov3, 10);
   if (v.orbit_eigen < 0) return;
+  res.exponents_decimal = {res.lyapunov2, res.lyapunov3};
   res.letters = v.letters;
   for (std::size_t k = 0; k < v.orbit.size(); ++k) {
     core::check_cancel(cancel);  // a point's seven decimals: milliseconds in MPFR at thousands of digits
@@ -73,16 +76,23 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
     res.orbit.push_back({std::to_string(int(u.s[k])), str(p(0), digits), str(p(1), digits), str(p(2), digits),
                          str(core::theta<T>(p), 12), str(w1, 12), str(w2, 12)});
     for (int i = 0; i < 3; ++i) res.orbit_xyz.push_back(static_cast<double>(p(i)));
+    for (int i = 1; i <= 3; ++i) res.orbit_decimal.push_back(res.orbit.back()[static_cast<std::size_t>(i)]);
   }
 }
 
 template <class T>
 void fill_window(WordResult& res, const Word& w, const T& tol, int digits, const core::CancelToken* cancel) {
   res.scalar_type = core::scalar_name<T>();
+  res.window_tol = str(tol, 3);
+  res.window_digits = digits;
   for (const auto& iv : stability_set<T>(w, default_grid(), tol, cancel)) {
     res.intervals.push_back({str(iv.lo, digits), str(iv.hi, digits), iv.lo_reason, iv.hi_reason});
     res.r_low.push_back(static_cast<double>(iv.lo));
     res.r_high.push_back(static_cast<double>(iv.hi));
+    res.r_low_decimal.push_back(res.intervals.back()[0]);
+    res.r_high_decimal.push_back(res.intervals.back()[1]);
+    res.low_reason.push_back(iv.lo_reason);
+    res.high_reason.push_back(iv.hi_reason);
   }
 }
 
@@ -122,71 +132,6 @@ void charpoly(WordResult& res, const Word& w) {
   res.c1 = chi.c1.to_string();
   res.c0 = chi.c0.to_string();
   res.discriminant = discriminant(chi).to_string();
-}
-
-// What a reason code of the analysis means (Section 7's conditions, in the order analyse checks them).
-std::string reason_text(const std::string& reason) {
-  if (reason == "complex") return "the dominant eigenvalue mu1 is complex: no dominant real direction";
-  if (reason == "domain") return "the dominant eigenvector lies outside the domain x z < 0";
-  if (reason == "dominance") return "the eigenvalue with a feasible eigenvector is not the dominant one";
-  if (reason.rfind("feas", 0) == 0)
-    return fmt::format("feasibility inequality {} fails: the orbit does not see the word's symbol there", reason.substr(4));
-  if (reason == "end") return "the end of (0, 1)";
-  return reason;
-}
-
-std::string verdict_text(const WordResult& res) {
-  const Word& w = res.word;
-  const Word& u = res.primitive;
-  std::string s = fmt::format("word        {} = {} ({} symbols, {} collisions); canonical {}\n", to_paper(w), to_digits(w),
-                              w.size(), collisions(w), to_paper(canonical(w)));
-  if (!(u == w)) s += fmt::format("primitive   {} (the orbit of a power is the orbit of its root)\n", to_paper(u));
-  s += fmt::format("r           {}\n", res.r);
-  if (res.reduced) {
-    const Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
-    s += fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
-  } else {
-    s += fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()), int(u.s.front()));
-  }
-  for (std::size_t i = 0; i < res.spectrum.size(); ++i) {
-    const EigenText& e = res.spectrum[i];
-    s += fmt::format("mu{}         ", i + 1);
-    if (e.real) {
-      s += fmt::format("{} (real, |mu|/|mu1| = {}), eigenvector ({}, {}, {})", e.re, e.ratio, e.vector[0], e.vector[1],
-                       e.vector[2]);
-      if (e.feasible) s += ", in the domain, all feasibility inequalities hold";
-      else if (!e.in_domain) s += ", outside the domain x z < 0";
-      else s += fmt::format(", in the domain, feasibility inequality {} fails (symbol {})", e.first_failure, e.failing_symbol);
-    } else {
-      const bool neg = !e.im.empty() && e.im[0] == '-';
-      s += fmt::format("{} {} {} i (complex, |mu|/|mu1| = {})", e.re, neg ? "-" : "+", neg ? e.im.substr(1) : e.im, e.ratio);
-    }
-    s += "\n";
-  }
-  std::string why;
-  if (res.outcome == outcome_name(Outcome::neutral))
-    why = " (elliptic: both exponents zero within 64 eps; neither attracting nor repelling)";
-  else if (res.outcome == outcome_name(Outcome::unstable))
-    why = " (a saddle or a source: lambda1 > 0)";
-  else if (res.outcome == outcome_name(Outcome::undecided))
-    why = fmt::format(" (undecided in {}: the orbit's eigenvalue and another real one have equal moduli within 64 "
-                      "eps, so lambda1 is zero within its error and the eigenvalue test cannot order them; use a "
-                      "longer precision, --precision mpfr:<digits>)", res.scalar_type);
-  else if (!res.reason.empty())
-    why = fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason));
-  s += fmt::format("verdict     {}{}\n", res.outcome, why);
-  if (res.orbit.empty()) return s;  // no periodic point: the period matrix's exponents describe no orbit
-  s += fmt::format("exponents   lambda1 = {}, lambda2 = {} (the orbit's projective Lyapunov exponents along its two "
-                   "tangent directions, log(|mu_j|/|mu_k|)/p for the eigenvalues mu_j other than the orbit's own mu_k, "
-                   "lambda1 >= lambda2, per iteration, natural log)\n",
-                   res.lyapunov2, res.lyapunov3);
-  s += fmt::format("letters     {} ({} collisions)\n", res.letters, collisions(u));
-  s += "orbit       k symbol x y z theta w1 w2\n";
-  for (std::size_t k = 0; k < res.orbit.size(); ++k) {
-    const auto& p = res.orbit[k];
-    s += fmt::format("            {} {} {} {} {} {} {} {}\n", k, p[0], p[1], p[2], p[3], p[4], p[5], p[6]);
-  }
-  return s;
 }
 
 }  // namespace
@@ -229,60 +174,6 @@ WordResult run(const WordRequest& req, const core::RunControl& control) {
     case WordRequest::Mode::charpoly: charpoly(res, res.word); break;
   }
   return res;
-}
-
-std::string WordResult::text() const {
-  switch (mode) {
-    case WordRequest::Mode::verdict: return verdict_text(*this);
-    case WordRequest::Mode::window: {
-      std::string s = "word,r_low,r_high,low_reason,high_reason\n";
-      for (const auto& iv : intervals) s += fmt::format("{},{},{},{},{}\n", to_paper(word), iv[0], iv[1], iv[2], iv[3]);
-      return s;
-    }
-    case WordRequest::Mode::charpoly:
-      return fmt::format(
-          "word          {} ({} symbols); matrix {}\n"
-          "chi(lambda) = det(lambda I - A) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r:\n"
-          "c2            {}\nc1            {}\nc0            {}\ndiscriminant  {}\n"
-          "              (the paper's sign: (q/2)^2 + (p/3)^3 of the depressed cubic; < 0: three real roots)\n",
-          to_paper(word), word.size(), reduced ? "A = J M_h, M_w = A^2 (w = h J(h))" : "A = M_w", c2, c1, c0, discriminant);
-  }
-  return {};
-}
-
-void WordResult::describe(core::Contents& c) const {
-  c.attr("word", to_paper(word));
-  c.attr("primitive", to_paper(primitive));
-  c.attr("scalar_type", scalar_type);
-  switch (mode) {
-    case WordRequest::Mode::verdict:
-      c.attr("mode", std::string("verdict"));
-      c.attr("r", r);
-      c.attr("verdict", outcome);
-      c.attr("reason", reason);
-      c.attr("lyapunov2", lyapunov2);
-      c.attr("lyapunov3", lyapunov3);
-      c.attr("letters", letters);
-      c.array("eigen_re", eigen_re, {eigen_re.size()}, "eigenvalue (decreasing modulus)", "1",
-              "real parts of the eigenvalues of the period matrix (double view of the text attributes)");
-      c.array("eigen_im", eigen_im, {eigen_im.size()}, "eigenvalue (decreasing modulus)", "1", "imaginary parts");
-      c.array("eigen_modulus", eigen_modulus, {eigen_modulus.size()}, "eigenvalue (decreasing modulus)", "1", "moduli");
-      c.array("orbit", orbit_xyz, {orbit_xyz.size() / 3, 3}, "point of the periodic orbit, (x, y, z)", "1",
-              "the periodic orbit's points u_0 .. u_{p-1}, unit vectors in Q (empty without a periodic point)");
-      break;
-    case WordRequest::Mode::window:
-      c.attr("mode", std::string("window"));
-      c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the stability intervals in r");
-      c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the stability intervals in r");
-      break;
-    case WordRequest::Mode::charpoly:
-      c.attr("mode", std::string("charpoly"));
-      c.attr("c2", c2);
-      c.attr("c1", c1);
-      c.attr("c0", c0);
-      c.attr("discriminant", discriminant);
-      break;
-  }
 }
 
 }  // namespace btob::patterns

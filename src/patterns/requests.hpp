@@ -61,14 +61,24 @@ struct WordResult {
   std::string letters;                // collision letters of the periodic orbit (when there is one)
   std::vector<std::array<std::string, 7>> orbit;  // k-th point: x y z theta w1 w2 (text) and its symbol first
   std::vector<double> eigen_re, eigen_im, eigen_modulus, orbit_xyz;  // numeric views [3], [3], [3], [p, 3]
+  // The same numbers as decimals with the precision's digits (NAME.h5 and Python, beside the doubles): [3], [3],
+  // [2] (lambda1, lambda2; empty without a periodic orbit), [3p] (x, y, z of each point).
+  std::vector<std::string> eigen_re_decimal, eigen_im_decimal, exponents_decimal, orbit_decimal;
   // window
   std::vector<std::array<std::string, 4>> intervals;  // r_low, r_high, low_reason, high_reason
   std::vector<double> r_low, r_high;
+  std::vector<std::string> r_low_decimal, r_high_decimal, low_reason, high_reason;  // the columns of intervals
+  std::string window_tol;  // the bisection's tolerance in r (decimal text)
+  int window_digits = 0;   // significant digits of the printed ends
   // charpoly: chi(lambda) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r
   std::string c2, c1, c0, discriminant;
 
   std::string text() const;           // what the command line prints
+  std::string window_csv() const;     // word,r_low,r_high,low_reason,high_reason,status
+  core::Tables tables() const;        // window mode: NAME.csv (window_csv); none otherwise
   void describe(core::Contents& c) const;
+  void describe_window(core::Contents& c) const;
+  void describe_verdict_decimals(core::Contents& c) const;
 };
 
 WordResult run(const WordRequest& req, const core::RunControl& control = {});

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -206,19 +207,44 @@ BoundsResult run(const BoundsRequest& req, const core::RunControl& control) {
 }
 
 std::string BoundsResult::csv() const {
-  core::CsvTable t(certified_run
-                       ? "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified"
-                       : "n,lower_bound,upper_bound");
+  // The last two columns say what each bound is (docs/reference/numbers.md): the lower bound certified by this
+  // row's certificate (estimated without --certify or when it failed), r_crit,2(n) conjectured (Section 4).
+  core::CsvTable t(certified_run ? "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,"
+                                   "certified,lower_status,upper_status"
+                                 : "n,lower_bound,upper_bound,lower_status,upper_status");
   for (std::size_t i = 0; i < n.size(); ++i) {
     std::string s = fmt::format("{},{},{}", n[i], lower_text[i], upper_text[i]);
+    const bool proved = certified_run && certificates[i].valid();
     if (certified_run) {
       const Certificate& c = certificates[i];
       s += fmt::format(",{},{},{},{},{},{},{}", a_text[i], b_text[i], c.sign_a, c.sign_b, c.roots_0_a, c.roots_a_b,
-                       c.valid() ? "yes" : "no");
+                       proved ? "yes" : "no");
     }
+    s += fmt::format(",{},{}", proved ? "certified" : "estimated", upper_text[i].empty() ? "" : "conjectured");
     t.line(s);
   }
   return t.text();
+}
+
+// The lower bounds are certified when every row's certificate holds: Q_n changes sign exactly on (a, b) and has
+// no root in (0, a] and exactly one in (a, b), so the smallest positive root lies in (a, b) (Appendix B).
+core::Status BoundsResult::lower_status() const {
+  const bool all = certified_run && std::all_of(certificates.begin(), certificates.end(),
+                                                [](const Certificate& c) { return c.valid(); });
+  if (all)
+    return core::certified("certificate per n: a_decimal < root < b_decimal, sign_Q_a * sign_Q_b < 0, "
+                           "sturm_roots_0_a = 0, sturm_roots_a_b = 1 (exact rationals); dataset certified = 1");
+  return core::estimated(certified_run ? "a certificate failed (dataset certified = 0): root of Q_n in MPFR, "
+                                         "rounded to `digits` decimals"
+                                       : "root of Q_n in MPFR with 20 guard digits, rounded to `digits` decimals; "
+                                         "not certified (--certify proves it)",
+                         "error bar half a unit of the last decimal, a numerical bound without proof");
+}
+
+// r_crit,2(n) (eq. (4.6)) is where the paper conjectures the window ends; nothing here proves the window reaches it.
+core::Status BoundsResult::upper_status() const {
+  return core::conjectured("r_crit,2(n), eq. (4.6), computed to `digits` decimals: the paper's conjecture that the "
+                           "window of (ab)^n(cb)^n ends there (Section 4); the certificate covers the lower bound only");
 }
 
 void BoundsResult::describe(core::Contents& c) const {
@@ -233,17 +259,38 @@ void BoundsResult::describe(core::Contents& c) const {
     c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Descartes rule after Moebius transforms, Sturm fallback)");
     c.array("certified", valid, {N}, "n", "1", "1 when the certificate proves the lower bound lies in (a, b)");
   }
-  c.decimal("lower_bound_decimal", lower_text, "n", "1", "smallest positive root of Q_n, `digits` decimals (correctly rounded)");
-  c.decimal("upper_bound_decimal", upper_text, "n", "1", "r_crit,2(n), `digits` decimals (empty for n = 1)");
+  const core::Status lower = lower_status(), upper = upper_status();
+  c.decimal("lower_bound_decimal", lower_text, "n", "1", "smallest positive root of Q_n, `digits` decimals (correctly rounded)",
+            lower);
+  c.status_of("lower_bound", lower);
+  c.decimal("upper_bound_decimal", upper_text, "n", "1", "r_crit,2(n), `digits` decimals (empty for n = 1)", upper);
+  c.status_of("upper_bound", upper);
   if (certified_run) {
-    c.decimal("a_decimal", a_text, "n", "1", "the certificate's a, an exact D-decimal fraction");
-    c.decimal("b_decimal", b_text, "n", "1", "the certificate's b = a + 10^-D");
+    const core::Status exact = core::certified("exact: a = floor(lower 10^D) / 10^D and b = a + 10^-D are D-decimal "
+                                               "fractions, printed with all D decimals");
+    c.decimal("a_decimal", a_text, "n", "1", "the certificate's a, an exact D-decimal fraction", exact);
+    c.decimal("b_decimal", b_text, "n", "1", "the certificate's b = a + 10^-D", exact);
   }
   c.attr("digits", static_cast<long>(digits));
   c.attr("certify", certified_run ? std::string("yes") : std::string("no"));
 }
 
 // ---- thresholds and stripes ------------------------------------------------------------------------------
+namespace {
+// What the thresholds' and the stripes' decimals are (docs/reference/numbers.md): closed forms evaluated in MPFR,
+// not interval arithmetic, so their last decimal is vouched for numerically, not proved.
+core::Status threshold_status() {
+  return core::estimated("closed form (names' formulas) evaluated in MPFR with 10 guard digits, rounded to `digits` "
+                         "decimals",
+                         "error bar one unit of the last decimal, a numerical bound without proof");
+}
+core::Status stripe_status() {
+  return core::estimated("eq. (6.3) with xi = cos(pi - 2 pi l/m) evaluated in MPFR with 10 guard digits, rounded to "
+                         "`digits` decimals",
+                         "error bar one unit of the last decimal, a numerical bound without proof");
+}
+}  // namespace
+
 void ThresholdsRequest::validate() const { require_digits(digits); }
 
 ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control) {
@@ -259,8 +306,9 @@ ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& contr
 }
 
 std::string ThresholdsResult::csv() const {
-  core::CsvTable t("name,formula,value");
-  for (std::size_t i = 0; i < thresholds.size(); ++i) t.row({thresholds[i].name, thresholds[i].formula, text[i]});
+  core::CsvTable t("name,formula,value,status");
+  const std::string st = threshold_status().kind;
+  for (std::size_t i = 0; i < thresholds.size(); ++i) t.row({thresholds[i].name, thresholds[i].formula, text[i], st});
   return t.text();
 }
 
@@ -269,7 +317,9 @@ void ThresholdsResult::describe(core::Contents& c) const {
   std::string names;
   for (const auto& t : thresholds) names += (names.empty() ? "" : ",") + t.name;
   c.attr("names", names);
-  c.decimal("value_decimal", text, "threshold", "1", "threshold values with `digits` decimals, in the order of names");
+  const core::Status st = threshold_status();
+  c.decimal("value_decimal", text, "threshold", "1", "threshold values with `digits` decimals, in the order of names", st);
+  c.status_of("value", st);
   for (std::size_t i = 0; i < thresholds.size(); ++i) c.attr(thresholds[i].name, thresholds[i].formula + " = " + text[i]);
 }
 
@@ -293,8 +343,9 @@ StripesResult run(const StripesRequest& req, const core::RunControl& control) {
 }
 
 std::string StripesResult::csv() const {
-  core::CsvTable t("l,m,mirror_l,r");
-  for (std::size_t i = 0; i < l.size(); ++i) t.line(fmt::format("{},{},{},{}", l[i], m[i], mirror_l[i], text[i]));
+  core::CsvTable t("l,m,mirror_l,r,status");
+  const std::string st = stripe_status().kind;
+  for (std::size_t i = 0; i < l.size(); ++i) t.line(fmt::format("{},{},{},{},{}", l[i], m[i], mirror_l[i], text[i], st));
   return t.text();
 }
 
@@ -304,7 +355,9 @@ void StripesResult::describe(core::Contents& c) const {
   c.array("m", m, {S}, "stripe", "1", "denominator of the rotation number");
   c.array("mirror_l", mirror_l, {S}, "stripe", "1", "numerator m - l of the mirror rotation number (same r)");
   c.array("r", r, {S}, "stripe", "1", "thin stripe r(l/m), eq. (6.3), rounded to double");
-  c.decimal("r_decimal", text, "stripe", "1", "thin stripe r(l/m) with `digits` decimals");
+  const core::Status st = stripe_status();
+  c.decimal("r_decimal", text, "stripe", "1", "thin stripe r(l/m) with `digits` decimals", st);
+  c.status_of("r", st);
 }
 
 core::Work work(const ThresholdsRequest& req) {

@@ -95,7 +95,11 @@ struct BoundsResult {
   std::vector<std::string> a_text, b_text;      // [N] the certificate's a, b: exact D-decimal fractions
   std::vector<double> sign_a, sign_b, roots_0_a, roots_a_b, valid;  // [N] when certify (valid: 1 or 0)
 
-  std::string csv() const;  // n,lower_bound,upper_bound[,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified]
+  // n,lower_bound,upper_bound[,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified],lower_status,upper_status
+  std::string csv() const;
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
+  core::Status lower_status() const;  // certified when every certificate holds, else estimated
+  core::Status upper_status() const;  // conjectured: r_crit,2(n)
   void describe(core::Contents& c) const;
 };
 // Some n of the range (items ascending, n = first + item), item-major: the bounds, and with --certify the
@@ -128,7 +132,8 @@ struct ThresholdsResult {
   std::vector<Threshold> thresholds;
   std::vector<std::string> text;  // [4] the values with `digits` decimals
   std::vector<double> value;      // [4] the values in double
-  std::string csv() const;        // name,formula,value
+  std::string csv() const;        // name,formula,value,status
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
   void describe(core::Contents& c) const;
 };
 ThresholdsResult run(const ThresholdsRequest& req, const core::RunControl& control = {});
@@ -150,7 +155,8 @@ struct StripesResult {
   std::vector<std::uint32_t> l, m, mirror_l;  // [S] l/m and its mirror (m - l)/m, sorted by r
   std::vector<std::string> text;              // [S] r(l/m) with `digits` decimals
   std::vector<double> r;                      // [S] r(l/m) in double
-  std::string csv() const;                    // l,m,mirror_l,r
+  std::string csv() const;                    // l,m,mirror_l,r,status
+  core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
   void describe(core::Contents& c) const;
 };
 StripesResult run(const StripesRequest& req, const core::RunControl& control = {});
