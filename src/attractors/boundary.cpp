@@ -93,17 +93,21 @@ std::vector<UncertainFraction> uncertain_fractions(const LabelImage& img, const 
   return out;
 }
 
+constexpr double kSaturation = 0.5;  // the largest f(eps) fitted
+
 UncertaintyFit fit_uncertainty(std::vector<UncertainFraction> points) {
   UncertaintyFit fit;
   fit.points = std::move(points);
   std::vector<double> x, y;
+  // The power law holds while f is small; near 1 it saturates (every cell uncertain) and would flatten the slope.
   for (const auto& p : fit.points)
-    if (p.uncertain > 0) x.push_back(std::log(p.eps)), y.push_back(std::log(p.f));
+    if (p.uncertain > 0 && p.f <= kSaturation) x.push_back(std::log(p.eps)), y.push_back(std::log(p.f));
   const std::size_t m = x.size();
   if (m < 3 || std::exp(x.back() - x.front()) < 10 - 1e-9) {
-    fit.why = m == 0 ? "no uncertain points (no boundary at the grid's resolution)"
-                     : fmt::format("{} eps with uncertain points, spanning less than a decade (at least three "
-                                   "spanning a decade needed: a grid of at least 80 x 80 cells)",
+    fit.why = m == 0 ? "no eps with 0 < f(eps) <= 1/2 (no boundary at the grid's resolution, or f saturated from "
+                       "one cell: a finer grid is needed)"
+                     : fmt::format("{} eps with 0 < f(eps) <= 1/2, spanning less than a decade (at least three "
+                                   "spanning a decade needed: a grid of at least 80 x 80 cells, f not saturated)",
                                    m);
     return fit;
   }

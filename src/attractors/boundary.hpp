@@ -50,7 +50,8 @@ std::vector<UncertainFraction> uncertain_fractions(const LabelImage& img, const 
 // Eight eps log-spaced from 1 to max(1, min(n1, n2) / 8) cells, rounded to distinct integers.
 std::vector<int> uncertainty_eps(std::size_t n1, std::size_t n2);
 
-// alpha from the least-squares line log f = alpha log eps + c over the eps with f > 0; its 95% interval is
+// alpha from the least-squares line log f = alpha log eps + c over the eps with 0 < f <= 1/2 (f saturates towards 1
+// at large eps, which would flatten the slope); its 95% interval is
 // alpha +- t(0.975, m - 2) se(alpha) (m points; se from the residuals).  Fitted only with at least three points
 // spanning a decade of eps (eps_max / eps_min >= 10); `why` says otherwise.  D = 2 - alpha.
 struct UncertaintyFit {
