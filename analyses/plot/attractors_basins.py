@@ -57,13 +57,14 @@ def draw_uncertainty(ax, f, a):
                 label="uncertain fraction (95% interval)")
     if a["uncertainty_fitted"]:
         alpha = float(a["uncertainty_exponent"])
-        x, y = np.log(eps[ok]), np.log(frac[ok])
+        used = ok & (frac <= 0.5)  # the points fitted: 0 < f <= 1/2 (boundary.hpp)
+        x, y = np.log(eps[used]), np.log(frac[used])
         c = y.mean() - alpha * x.mean()  # the least-squares line passes through the means
-        e = np.array([eps[ok].min(), eps[ok].max()])
+        e = np.array([eps[used].min(), eps[used].max()])
         ax.plot(e, np.exp(c) * e ** alpha, "-", color="C3",
                 label=(f"fit: alpha = {alpha:.3f} [{a['uncertainty_exponent_low']:.3f}, "
                        f"{a['uncertainty_exponent_high']:.3f}], D = {a['boundary_dimension']:.3f}"))
-        title = f"uncertainty exponent over eps = {a['uncertainty_eps_min_cells']}..{a['uncertainty_eps_max_cells']} cells"
+        title = f"uncertainty exponent fitted (f <= 1/2) over eps = {a['uncertainty_eps_min_cells']}..{a['uncertainty_eps_max_cells']} cells"
     else:
         title = "uncertainty exponent not fitted: " + textwrap.fill(str(a["uncertainty_note"]), 60)
     ax.set_xscale("log")
@@ -93,11 +94,13 @@ def draw(f):
     norm = colors.BoundaryNorm(np.arange(-0.5, n_att + 1.5), n_att + 1)
     geometry = "box_entropy" in f  # files written before the boundary geometry have no lower row
     if geometry:
-        fig = plt.figure(figsize=(9, 9.4), constrained_layout=True)
-        grid = fig.add_gridspec(2, 2, height_ratios=[1.25, 1])
-        ax = fig.add_subplot(grid[0, :])
-        draw_boxes(fig.add_subplot(grid[1, 0]), f, a)
-        draw_uncertainty(fig.add_subplot(grid[1, 1]), f, a)
+        # Two subfigures: the legend beside the map does not squeeze the lower row.
+        fig = plt.figure(figsize=(10, 10), constrained_layout=True)
+        top, bottom = fig.subfigures(2, 1, height_ratios=[1.2, 1])
+        ax = top.subplots()
+        lower = bottom.subplots(1, 2)
+        draw_boxes(lower[0], f, a)
+        draw_uncertainty(lower[1], f, a)
     else:
         fig, ax = plt.subplots(figsize=(9, 5.2), constrained_layout=True)
     ax.imshow(labels, origin="lower", cmap=cmap, norm=norm, interpolation="nearest", aspect="auto",
