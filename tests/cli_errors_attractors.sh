@@ -31,15 +31,21 @@ expect_error "w1-range" "${b[@]}" --r 0.2 --w1-range 3,1
 expect_error "collapse-theta" "${b[@]}" --r 0.2 --collapse-theta 2
 expect_error "lyap-blocks" "${b[@]}" --r 0.2 --lyap-blocks 1
 expect_error "replicates" "${b[@]}" --r 0.2 --replicates 101
+expect_error "entropy-box" "${b[@]}" --r 0.2 --entropy-box 0
+expect_error "entropy-box" "${b[@]}" --r 0.2 --entropy-box 1001
 [ -e "$out/b" ] && [ -n "$(ls -A "$out/b")" ] && { echo "FAIL: refused basins runs wrote $(ls "$out/b")"; fail=1; }
 
 # btob basins-r
 expect_error "r-values" basins-r --grid random:10 --out "$out/br" --no-plot
+expect_error "boundary-grid" basins-r --r-values 0.2 --grid random:10 --boundary-grid sphere:0x4 --out "$out/br" --no-plot
+expect_error "boundary-replicates" basins-r --r-values 0.2 --grid random:10 --boundary-replicates 101 --out "$out/br" --no-plot
+expect_error "entropy-box" basins-r --r-values 0.2 --grid random:10 --entropy-box 0 --out "$out/br" --no-plot
 [ -e "$out/br" ] && [ -n "$(ls -A "$out/br")" ] && { echo "FAIL: refused basins-r run wrote $(ls "$out/br")"; fail=1; }
 
 # A valid small run writes its files and no temporaries.
 "$btob" "${b[@]}" --r 0.15 --grid strip:8x8 --replicates 0 >/dev/null 2>&1 || { echo "FAIL: a valid basins run failed"; fail=1; }
 [ -s "$out/b/basins_fractions.csv" ] || { echo "FAIL: $out/b/basins_fractions.csv missing"; fail=1; }
+[ -s "$out/b/basins_boundary.csv" ] || { echo "FAIL: $out/b/basins_boundary.csv missing"; fail=1; }
 [ -n "$(find "$out/b" -name "*tmp*")" ] && { echo "FAIL: temporary files left behind"; fail=1; }
 
 if [ "$fail" -eq 0 ]; then echo "cli_errors_attractors: all checks passed"; fi

@@ -1,6 +1,7 @@
-"""Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions.
-Usage: attractors_basins.py NAME.h5 OUT.png   (reads NAME.h5 alone: labels, fraction, ci_low, ci_high and the
-attributes; NAME_fractions.csv holds the same numbers as a table)."""
+"""Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions; below, the boundary
+geometry: each entropy box's entropy (the boundary boxes) and the uncertain fraction f(eps) with its power-law fit.
+Usage: attractors_basins.py NAME.h5 OUT.png   (reads NAME.h5 alone: labels, fraction, ci_low, ci_high, box_entropy,
+uncertainty_* and the attributes; NAME_fractions.csv and NAME_boundary.csv hold the same numbers as tables)."""
 import sys
 import textwrap
 
@@ -28,6 +29,52 @@ def rows_of(f):
     return out
 
 
+def draw_boxes(ax, f, a):
+    """Each entropy box's entropy over the main grid's region (boxes from the grid's corner; a remainder left out)."""
+    e = f["box_entropy"][...]
+    box = int(a["entropy_box"])
+    x1 = a["axis1_lo"] + (a["axis1_hi"] - a["axis1_lo"]) * e.shape[1] * box / int(a["n1"])
+    x2 = a["axis2_lo"] + (a["axis2_hi"] - a["axis2_lo"]) * e.shape[0] * box / int(a["n2"])
+    im = ax.imshow(np.where(e > 0, e, np.nan), origin="lower", cmap="viridis", interpolation="nearest",
+                   aspect="auto", extent=[a["axis1_lo"], x1, a["axis2_lo"], x2], vmin=0)
+    ax.set_facecolor("#eeeeee")
+    ax.figure.colorbar(im, ax=ax, label="box entropy (nats)")
+    strip, sphere = a["grid_kind"] == "strip", a["grid_kind"] == "sphere"
+    ax.set_xlabel("$w_1$" if strip else r"$\theta$ (rad)")
+    ax.set_ylabel("$w_2$" if strip else (r"$y = -\cos\varphi$" if sphere else r"$\varphi$ (rad)"))
+    fractal = " > log 2" if a["log2_criterion"] else ""
+    ax.set_title(f"boundary boxes ({box} x {box} cells; grey: one basin): {a['boundary_boxes']} of "
+                 f"{a['entropy_boxes']}\n$S_b$ = {a['basin_entropy']:.4f} [{a['basin_entropy_low']:.4f}, "
+                 f"{a['basin_entropy_high']:.4f}], $S_{{bb}}$ = {a['boundary_basin_entropy']:.4f}{fractal}", fontsize=8)
+
+
+def draw_uncertainty(ax, f, a):
+    """f(eps) with its Clopper-Pearson 95% intervals, and the least-squares line of log f on log eps."""
+    eps, frac = f["uncertainty_eps"][...], f["uncertainty_fraction"][...]
+    lo, hi = f["uncertainty_ci_low"][...], f["uncertainty_ci_high"][...]
+    ok = frac > 0
+    ax.errorbar(eps[ok], frac[ok], yerr=[frac[ok] - lo[ok], hi[ok] - frac[ok]], fmt="o", ms=4, capsize=2,
+                label="uncertain fraction (95% interval)")
+    if a["uncertainty_fitted"]:
+        alpha = float(a["uncertainty_exponent"])
+        used = ok & (frac <= 0.5)  # the points fitted: 0 < f <= 1/2 (boundary.hpp)
+        x, y = np.log(eps[used]), np.log(frac[used])
+        c = y.mean() - alpha * x.mean()  # the least-squares line passes through the means
+        e = np.array([eps[used].min(), eps[used].max()])
+        ax.plot(e, np.exp(c) * e ** alpha, "-", color="C3",
+                label=(f"fit: alpha = {alpha:.3f} [{a['uncertainty_exponent_low']:.3f}, "
+                       f"{a['uncertainty_exponent_high']:.3f}], D = {a['boundary_dimension']:.3f}"))
+        title = f"uncertainty exponent fitted (f <= 1/2) over eps = {a['uncertainty_eps_min_cells']}..{a['uncertainty_eps_max_cells']} cells"
+    else:
+        title = "uncertainty exponent not fitted: " + textwrap.fill(str(a["uncertainty_note"]), 60)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"$\varepsilon$ (grid cells)")
+    ax.set_ylabel(r"uncertain fraction $f(\varepsilon)$")
+    ax.set_title(title + "\n" + textwrap.fill("Wada (merging): " + str(a["wada_verdict"]), 70), fontsize=8)
+    ax.legend(fontsize=7, loc="lower right")
+
+
 def main(h5_path, png_path):
     with h5py.File(h5_path, "r") as f:
         fig = draw(f)
@@ -45,7 +92,17 @@ def draw(f):
     cols = [(0, 0, 0)] + [palette[i % len(palette)] for i in range(n_att)]
     cmap = colors.ListedColormap(cols)
     norm = colors.BoundaryNorm(np.arange(-0.5, n_att + 1.5), n_att + 1)
-    fig, ax = plt.subplots(figsize=(9, 5.2), constrained_layout=True)
+    geometry = "box_entropy" in f  # files written before the boundary geometry have no lower row
+    if geometry:
+        # Two subfigures: the legend beside the map does not squeeze the lower row.
+        fig = plt.figure(figsize=(10, 10), constrained_layout=True)
+        top, bottom = fig.subfigures(2, 1, height_ratios=[1.2, 1])
+        ax = top.subplots()
+        lower = bottom.subplots(1, 2)
+        draw_boxes(lower[0], f, a)
+        draw_uncertainty(lower[1], f, a)
+    else:
+        fig, ax = plt.subplots(figsize=(9, 5.2), constrained_layout=True)
     ax.imshow(labels, origin="lower", cmap=cmap, norm=norm, interpolation="nearest", aspect="auto",
               extent=[a["axis1_lo"], a["axis1_hi"], a["axis2_lo"], a["axis2_hi"]])
     strip = a["grid_kind"] == "strip"

@@ -1,4 +1,5 @@
-"""Basin fractions across r (btob basins-r): stacked areas, attractors matched across r by pattern."""
+"""Basin fractions across r (btob basins-r): stacked areas, attractors matched across r by pattern; below (with a
+boundary grid), the basin entropies S_b, S_bb with their intervals and the uncertainty exponent against r."""
 import sys
 
 import h5py
@@ -15,9 +16,15 @@ def draw(f):
     frac = f["fraction"][...]
     names = [a[f"column_{i}"] for i in range(int(a["columns"]))]
     order = np.argsort(r)
+    order_r = order
     r, frac = r[order], frac[order]
     x = np.arange(len(r))  # r values of Table 6.1 are uneven: equal spacing, labelled by r
-    fig, ax = plt.subplots(figsize=(11, 5), constrained_layout=True)
+    geometry = "basin_entropy" in f
+    if geometry:
+        fig, (ax, bx) = plt.subplots(2, 1, figsize=(11, 8.6), constrained_layout=True, height_ratios=[1.3, 1],
+                                     sharex=True)
+    else:
+        fig, ax = plt.subplots(figsize=(11, 5), constrained_layout=True)
     # Colours: one distinct hue per pattern family (a pattern and its J-mirror, 132^n / 312^n, share it; the
     # mirror is hatched), so that different patterns never get near-identical shades; every segment taller than
     # 6% is labelled on the bar itself.  Quasi-periodic teal, chaotic dark red (hatched), collapse grey,
@@ -69,7 +76,36 @@ def draw(f):
                  fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=7,
               title="dotted: J-mirror (312^n of 132^n)\nQ2 on the bars: P2 invariant curves", title_fontsize=7)
+    if geometry:
+        draw_geometry(bx, f, a, x, order_r)
     return fig
+
+
+def draw_geometry(ax, f, a, x, order):
+    """S_b, S_bb (t 95% intervals over the replicate grids), the boundary-box share and alpha (fit interval) per r."""
+    def col(name):
+        return f[name][...][order]
+    for name, label, color in (("basin_entropy", "$S_b$", "C0"), ("boundary_basin_entropy", "$S_{bb}$", "C1")):
+        v, lo, hi = col(name), col(name + "_low"), col(name + "_high")
+        ax.errorbar(x - 0.1 if name == "basin_entropy" else x + 0.1, v, yerr=[v - lo, hi - v], fmt="o", ms=4,
+                    capsize=2, color=color, label=label)
+    ax.plot(x, col("boundary_box_share"), "s", ms=3, color="C2", label="boundary-box share")
+    ax.axhline(np.log(2), color="grey", ls="--", lw=0.8, label="log 2 ($S_{bb}$ above: fractal boundary)")
+    ax.set_ylabel("entropy (nats) / share")
+    ax.set_xlabel("r (equally spaced)")
+    tx = ax.twinx()
+    fit = col("uncertainty_fitted") > 0
+    al, lo, hi = col("uncertainty_exponent"), col("uncertainty_exponent_low"), col("uncertainty_exponent_high")
+    tx.errorbar(x[fit] + 0.25, al[fit], yerr=[al[fit] - lo[fit], hi[fit] - al[fit]], fmt="D", ms=4, capsize=2,
+                color="C3", label=r"uncertainty exponent $\alpha$ (95% fit interval)")
+    tx.axhline(1, color="C3", ls=":", lw=0.8)
+    tx.set_ylabel(r"$\alpha$ ($D = 2 - \alpha$; 1: smooth boundary)", color="C3")
+    tx.set_ylim(0, max(1.2, float(np.max(hi[fit])) + 0.05) if fit.any() else 1.2)
+    h1, l1 = ax.get_legend_handles_labels()
+    h2, l2 = tx.get_legend_handles_labels()
+    ax.legend(h1 + h2, l1 + l2, loc="upper left", bbox_to_anchor=(1.06, 1), fontsize=7)
+    ax.set_title(f"boundary geometry on {a['boundary_grid']} ({a['boundary_replicates']} replicate grids), entropy "
+                 f"boxes of {a['entropy_box']} cells", fontsize=9)
 
 
 def main(h5_path, png_path):

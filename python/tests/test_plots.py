@@ -21,7 +21,7 @@ CASES = [
     ("basins", dict(r=0.2, grid="strip:12x10", replicates=0, transient=500, iterations=300, lyap_iterations=400,
                     lyap_transient=100)),
     ("basins_r", dict(r_values=[0.2, 0.3], grid="random:8", transient=500, iterations=300, lyap_iterations=400,
-                      lyap_transient=100)),
+                      lyap_transient=100, boundary_grid="sphere:24x20")),
     # long enough for three windows above the noise floor: the fit and its verdict are drawn
     ("correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=400, iterations=1000000)),
     ("measure", dict(r=0.2, grid="random:3", iterations=2000, transient=100, bins=16)),

@@ -73,7 +73,7 @@ H5_CASES = [
     ("basins", "basins", dict(r=0.2, grid="strip:12x10", replicates=1, transient=500, iterations=300,
                               lyap_iterations=400, lyap_transient=100)),
     ("basins_r", "basins-r", dict(r_values=[0.2, 0.3], grid="random:12", transient=500, iterations=300,
-                                  lyap_iterations=400, lyap_transient=100)),
+                                  lyap_iterations=400, lyap_transient=100, boundary_grid="sphere:24x20")),
     ("correlate", "correlate", dict(r=0.11, point=(1.0, -0.5, -1.1), n_max=40, iterations=4000, method="both")),
     ("measure", "measure", dict(r=0.2, grid="random:3", iterations=2000, transient=100, bins=16)),
     ("pattern_curves", "pattern-curves", dict(word="132312", r_min=0.2, r_max=0.6, r_count=50)),

@@ -37,7 +37,7 @@ CASES = {
     "basins": dict(r=0.2, grid="strip:8x6", replicates=1, transient=500, iterations=300, lyap_iterations=400,
                    lyap_transient=100),
     "basins_r": dict(r_values=[0.2, 0.3], grid="random:6", transient=500, iterations=300, lyap_iterations=400,
-                     lyap_transient=100),
+                     lyap_transient=100, boundary_grid="sphere:24x20"),
     "correlate": dict(r=0.11, point=P, n_max=20, iterations=2000),
     "measure": dict(r=0.2, grid="random:3", iterations=1000, transient=100, bins=8),
     "windows_poly": dict(n="1..2"),

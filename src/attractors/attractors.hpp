@@ -2,6 +2,7 @@
 // with frequencies and confidence intervals, basin fractions across r (Table 6.1 with many orbits).
 #pragma once
 
+#include "attractors/boundary.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
 #include "iterate/ensemble.hpp"
@@ -168,9 +169,12 @@ struct Basins {
   long iterations_total = 0;               // map iterations of the grids' orbits (all passes, all grids; not the
                                            // early exit's probe and checks)
   std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
+  // Basin entropies on boxes of entropy_box cells (main and replicate grids), the uncertainty exponent and the Wada
+  // test of the main grid (attractors/boundary.hpp).
+  BoundaryGeometry boundary;
   double seconds = 0;
 };
-Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt);
+Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt, int entropy_box = 5);
 
 // Early exit (basins only; classify() always runs the full length).  An orbit whose state at a checkpoint
 // t < transient lies in a trapping cone of a stable cycle (a cone around the cycle's point, in the eigenvector
@@ -212,7 +216,7 @@ struct BasinClass {
 };
 struct BasinRows {
   std::vector<std::size_t> items;       // ascending
-  std::vector<std::uint32_t> labels;    // n1 per main-grid item (they come first), in item order: 1 + class, 0 undecided
+  std::vector<std::uint32_t> labels;    // n1 per item, in item order: 1 + class, 0 undecided
   std::vector<BasinClass> classes;      // the attractors its orbits reached
   std::vector<std::size_t> undecided;   // undecided orbits per grid
   std::size_t undecided_first_pass = 0;  // main grid: undecided after the first pass (before refinement)
@@ -226,6 +230,7 @@ struct BasinRows {
 };
 BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt,
                      const std::vector<std::size_t>& items);
-Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts);
+Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts,
+                    int entropy_box = 5);
 
 }  // namespace btob::attractors

@@ -225,9 +225,10 @@ void check_basins(double r, const Grid& g, int replicates, const Options& opt) {
   validate(opt);
   core::validate_r(r, "r");
   if (replicates < 0 || replicates > 100) throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
-  // Per point of the main grid: its label in a part and in the merged result; the work runs in chunks of at most
+  // Per point of every grid: its label in a part and in the merged images; the work runs in chunks of at most
   // kChunk orbits (see there).
-  iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 8, "grid");
+  iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells),
+                         8 * static_cast<std::size_t>(replicates + 1), "grid");
 }
 
 // ---- a part of a basin run: its classes as its orbits are folded in ----
@@ -367,7 +368,8 @@ void note_witnesses(const ChunkVerdicts& x, const std::vector<Vec3<double>>& sta
     }
 }
 
-// Folds a chunk's verdicts into the part: classes, counts, main-grid labels, undecided counts.
+// Folds a chunk's verdicts into the part: classes, counts, labels (every grid's: the merge measures the boundary
+// geometry of each), undecided counts.
 void fold_chunk(const ChunkVerdicts& x, const std::vector<Vec3<double>>& starts, const RowChunk& ch, const Grid& g,
                 const Certificates& cert, CertifiedClasses& certified, ClassBook& book) {
   BasinRows& part = book.part;
@@ -384,7 +386,7 @@ void fold_chunk(const ChunkVerdicts& x, const std::vector<Vec3<double>>& starts,
               v.type == Type::undecided || v.detail.find("after refinement") != std::string::npos;
         if (v.type == Type::undecided) {
           ++part.undecided[k];
-          if (k == 0) part.labels.push_back(0);
+          part.labels.push_back(0);
           continue;
         }
         c = book.find(v);
@@ -395,7 +397,7 @@ void fold_chunk(const ChunkVerdicts& x, const std::vector<Vec3<double>>& starts,
         book.add_certified(c, starts[o], index, d.is_p2_curve(), x.I[o]);
       }
       ++part.classes[c].count[k];
-      if (k == 0) part.labels.push_back(static_cast<std::uint32_t>(c + 1));
+      part.labels.push_back(static_cast<std::uint32_t>(c + 1));
     }
 }
 
@@ -436,8 +438,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
   BasinRows part;
   part.items = items;
   part.undecided.assign(grids, 0);
-  part.labels.reserve(
-      static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [&](auto i) { return i < n2; })) * n1);
+  part.labels.reserve(items.size() * n1);
   ClassBook book{part, grids};
   const Certificates cert = make_certificates(r, opt);
   CertifiedClasses certified{std::vector<std::size_t>(cert.cones.size(), npos)};
@@ -560,29 +561,31 @@ std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined,
   return id_of;
 }
 
-// Main-grid labels: rows placed by item (a part's main-grid items come first in its ascending list), each part's
-// class numbers mapped to the attractors' ids.
-void place_labels(const std::vector<BasinRows>& parts, const std::vector<core::ItemRef>& order, const Grid& g,
-                  const std::map<ClassKey, std::uint32_t>& id_of, Basins& b) {
+// The labels of grid k (0: the main grid): rows placed by item (item k n2 + j is row j of grid k; a part's labels
+// hold n1 per item in its ascending item order), each part's class numbers mapped to the attractors' ids.
+std::vector<std::uint32_t> grid_labels(const std::vector<BasinRows>& parts, const std::vector<core::ItemRef>& order,
+                                       const Grid& g, const std::map<ClassKey, std::uint32_t>& id_of, std::size_t k) {
   const std::size_t n1 = static_cast<std::size_t>(g.axis1.cells), n2 = static_cast<std::size_t>(g.axis2.cells);
-  b.labels.assign(n1 * n2, 0);
+  std::vector<std::uint32_t> labels(n1 * n2, 0);
   std::vector<std::vector<std::uint32_t>> ids(parts.size());
   for (std::size_t p = 0; p < parts.size(); ++p)
     for (const auto& c : parts[p].classes) ids[p].push_back(id_of.at({static_cast<int>(c.first.type), c.first.key}));
   for (std::size_t j = 0; j < n2; ++j) {
-    const auto& at = order[j];
+    const auto& at = order[k * n2 + j];
     const auto& src = parts[at.part].labels;
     if (src.size() < (at.index + 1) * n1) throw std::logic_error("basin rows: a row is missing");
     for (std::size_t q = 0; q < n1; ++q) {
       const std::uint32_t l = src[at.index * n1 + q];
-      b.labels[j * n1 + q] = l == 0 ? 0 : ids[at.part].at(l - 1);
+      labels[j * n1 + q] = l == 0 ? 0 : ids[at.part].at(l - 1);
     }
   }
+  return labels;
 }
 
 }  // namespace stages
 
-Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts) {
+Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt, std::vector<BasinRows> parts,
+                    int entropy_box) {
   check_basins(r, g, replicates, opt);
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t grids = static_cast<std::size_t>(replicates) + 1;
@@ -595,15 +598,21 @@ Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt,
   JoinedClasses joined = join_parts(parts, grids, b, undecided, part_seconds);
   settle_pending(joined, r, opt);
   const auto id_of = name_attractors(joined, undecided, r, g.cells(), b);
-  place_labels(parts, order, g, id_of, b);
+  // The boundary geometry from every grid's whole image (the sweep rule: computed here, from the merged rows).
+  std::vector<std::vector<std::uint32_t>> images;
+  for (std::size_t k = 0; k < grids; ++k) images.push_back(grid_labels(parts, order, g, id_of, k));
+  b.boundary = boundary_geometry(images, static_cast<std::size_t>(g.axis1.cells),
+                                 static_cast<std::size_t>(g.axis2.cells), entropy_box);
+  b.labels = std::move(images[0]);
   b.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return b;
 }
 
-Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt) {
+Basins basins(double r, const Grid& g, int replicates, std::uint64_t seed, const Options& opt, int entropy_box) {
   check_basins(r, g, replicates, opt);
   return merge_basins(r, g, replicates, opt,
-                      {basin_rows(r, g, replicates, seed, opt, core::all_items(basin_items(g, replicates)))});
+                      {basin_rows(r, g, replicates, seed, opt, core::all_items(basin_items(g, replicates)))},
+                      entropy_box);
 }
 
 }  // namespace btob::attractors

@@ -188,6 +188,8 @@ void BasinsRequest::validate() const {
   attractors::validate(thresholds);
   if (replicates < 0 || replicates > 100)
     throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
+  if (entropy_box < 1 || entropy_box > 1000)
+    throw core::InvalidField("entropy-box", std::to_string(entropy_box), "1..1000 cells");
   const Grid g = parsed_grid();
   // Per point of the main grid: its label in a part and in the merged result (the work runs in bounded chunks).
   iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 8, "grid");
@@ -207,7 +209,8 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
   BasinsResult res;
   res.request = req;
   for (const auto& p : parts) res.threads = std::max(res.threads, p.threads);
-  res.basins = merge_basins(req.r, req.parsed_grid(), req.replicates, req.thresholds, std::move(parts));
+  res.basins = merge_basins(req.r, req.parsed_grid(), req.replicates, req.thresholds, std::move(parts), req.entropy_box);
+  res.fill_boundary();
   const Basins& b = res.basins;
   for (const auto& f : b.fractions) {
     res.fraction.push_back(f.value);
@@ -282,6 +285,7 @@ void BasinsResult::describe(core::Contents& c) const {
   c.attr("points_per_second", static_cast<double>(n * static_cast<std::size_t>(request.replicates + 1)) / b.seconds);
   for (const auto& x : b.attractors)
     c.attr(fmt::format("legend_{}", x.id), fmt::format("{} ({})", x.pattern, type_name(x.type)));
+  describe_boundary(c);
 }
 
 // ---- basins-r ----
@@ -337,7 +341,20 @@ void BasinsRRequest::validate() const {
   const auto pts = iterate::parse_grid(grid, seed, "grid");
   if (pts.empty()) throw core::InvalidField("grid", "'" + grid + "' with no points", "at least one");
   iterate::checked_bytes(pts.size(), 800, "grid");
+  if (boundary_replicates < 0 || boundary_replicates > 100)
+    throw core::InvalidField("boundary-replicates", std::to_string(boundary_replicates), "0..100");
+  if (entropy_box < 1 || entropy_box > 1000)
+    throw core::InvalidField("entropy-box", std::to_string(entropy_box), "1..1000 cells");
+  if (has_boundary_grid(*this)) {
+    const Grid g = boundary_grid_of(*this);
+    iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells),
+                           8 * static_cast<std::size_t>(boundary_replicates + 1), "boundary-grid");
+  }
 }
+
+bool has_boundary_grid(const BasinsRRequest& req) { return req.boundary_grid != "none"; }
+// A strip boundary grid spans the basins default w1 range [-2, 2].
+Grid boundary_grid_of(const BasinsRRequest& req) { return parse_grid(req.boundary_grid, -2, 2, "boundary-grid"); }
 
 BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
@@ -362,6 +379,11 @@ BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& 
     for (const auto& x : v) undec += x.type == Type::undecided;
     for (const auto& x : row.attractors) row.fractions.push_back(fraction(x.count, v.size()));
     row.undecided = fraction(undec, v.size());
+    if (has_boundary_grid(req)) {
+      // The same classifier over an image of the domain: the boundary geometry at r.
+      row.has_boundary = true;
+      row.boundary = basins(r, boundary_grid_of(req), req.boundary_replicates, req.seed, opt, req.entropy_box).boundary;
+    }
     part.rows.push_back(std::move(row));
   }
   part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -461,6 +483,7 @@ BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts) {
     res.r.push_back(res.rows[i].r);
   }
   res.columns.push_back("undecided");
+  fill_boundary_columns(res);
   res.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
@@ -484,6 +507,14 @@ void BasinsRResult::describe(core::Contents& c) const {
   c.coordinate("r value", "r");
   c.coordinate("attractor (column_<j>; undecided last)", "column");
   for (std::size_t j = 0; j < columns.size(); ++j) c.attr(fmt::format("column_{}", j), columns[j]);
+  for (std::size_t q = 0; q < boundary_names.size(); ++q)
+    c.array(boundary_names[q], boundary_values[q], {r.size()}, "r value", boundary_units(boundary_names[q]),
+            boundary_meaning(boundary_names[q]));
+  if (!boundary_names.empty()) {
+    c.attr("boundary_grid", request.boundary_grid);
+    c.attr("boundary_replicates", static_cast<long>(request.boundary_replicates));
+    c.attr("entropy_box", static_cast<long>(request.entropy_box));
+  }
   c.attr("grid", request.grid);
   c.attr("measure", grid_measure(request.grid));
   c.attr("seed", static_cast<long>(request.seed));
@@ -520,7 +551,7 @@ core::Tables BasinsResult::tables() const {
   row.resize(t.columns().size());
   row.back() = measure;
   t.row(row);
-  return {{"fractions", t.text()}};
+  return {{"fractions", t.text()}, {"boundary", boundary_csv()}};
 }
 
 std::string BasinsRResult::fractions_csv() const {
@@ -561,7 +592,9 @@ std::string BasinsRResult::comparison_csv() const {
 }
 
 core::Tables BasinsRResult::tables() const {
-  return {{"", fractions_csv()}, {"table_6_1_comparison.csv", comparison_csv()}};
+  core::Tables t{{"", fractions_csv()}, {"table_6_1_comparison.csv", comparison_csv()}};
+  if (!boundary_names.empty()) t.push_back({"boundary", boundary_r_csv()});
+  return t;
 }
 
 }  // namespace btob::attractors

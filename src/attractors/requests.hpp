@@ -76,6 +76,7 @@ struct BasinsRequest {
   std::vector<double> w1_range{-2, 2};   // w1 range a < b of a strip grid
   int replicates = 2;                    // randomly shifted replicate grids, 0..100
   std::uint64_t seed = 1;                // seed of the replicate shifts
+  int entropy_box = 5;                   // side of the boxes of the basin entropies (cells), 1..1000
   Options thresholds;                    // classification thresholds (threshold_fields)
 
   void validate() const;
@@ -89,6 +90,7 @@ struct BasinsRequest {
     v("w1-range", w1_range, "w1 range a,b of a strip grid");
     v("replicates", replicates, "randomly shifted replicate grids, 0..100");
     v("seed", seed, "seed of the replicate shifts");
+    v("entropy-box", entropy_box, "side of the boxes of the basin entropies S_b, S_bb (cells), 1..1000");
     threshold_fields(v, thresholds);
   }
 };
@@ -104,11 +106,18 @@ struct BasinsResult {
   std::size_t points() const { return basins.labels.size(); }
   // Arrays: labels [n2, n1] (attractor id per grid point, 0 = undecided) with its axes' coordinates (w1, w2 on a
   // strip; theta, y = -cos phi on the sphere; theta, phi for angles), fraction, ci_low, ci_high [attractors],
-  // replicate_mean, replicate_sd [attractors + 1]; attributes: the request, the grid, counts, timings, legend_<id>.
+  // replicate_mean, replicate_sd [attractors + 1]; attributes: the request, the grid, counts, timings, legend_<id>;
+  // the boundary geometry (describe_boundary).
   void describe(core::Contents& c) const;
   // NAME_fractions.csv: per attractor its fraction and 95% interval, counts, replicate spread and evidence; the
-  // undecided points last (attractor 0), their attractor columns empty; the measure on every row.
+  // undecided points last (attractor 0), their attractor columns empty; the measure on every row.  NAME_boundary.csv:
+  // the boundary geometry, one quantity a row with its interval, then f(eps) a row per eps.
   core::Tables tables() const;
+  std::string boundary_csv() const;
+  void describe_boundary(core::Contents& c) const;  // boundary_output.cpp
+  std::vector<double> box_entropies;  // [n2 / box, n1 / box]: each box's entropy on the main grid (boundary panel)
+  std::vector<double> eps_cells, eps_fraction, eps_ci_low, eps_ci_high;  // [eps]: f(eps) on the main grid
+  void fill_boundary();  // box_entropies and the eps arrays from basins (merge calls it)
 };
 
 // In parts (core/sweep.hpp): item k * n2 + j is row j of grid k (0: main, then the replicates).
@@ -141,6 +150,11 @@ struct BasinsRRequest {
   std::string grid = "random:2000";   // initial conditions: random:N, paper, strip:NxM or x,y,z;...
   std::uint64_t seed = 1;             // seed of random grids
   std::string reference;              // Table 6.1 as CSV (a path; empty: the lab's own copy, read by the caller)
+  // The boundary geometry per r (attractors/boundary.hpp) from a basins run on this grid ("none": off), with its
+  // replicates and entropy boxes; the points of `grid` give the fractions.
+  std::string boundary_grid = "sphere:100x100";
+  int boundary_replicates = 2;
+  int entropy_box = 5;
   Options thresholds;                 // classification thresholds (threshold_fields)
   // Not a field: the text of the reference CSV, set by the caller (the command line reads `reference`).
   std::string reference_csv;
@@ -157,6 +171,10 @@ struct BasinsRRequest {
     v("grid", grid, "initial conditions: random:N, paper, strip:NxM or x,y,z;...");
     v("seed", seed, "seed of random grids");
     v("reference", reference, "Table 6.1 as CSV (default: the lab's copy)");
+    v("boundary-grid", boundary_grid,
+      "grid of the basin entropies and uncertainty exponent per r (sphere:NxM, strip:NxM, angles:NxM; none: off)");
+    v("boundary-replicates", boundary_replicates, "replicate grids of the entropies' intervals, 0..100");
+    v("entropy-box", entropy_box, "side of the boxes of the basin entropies S_b, S_bb (cells), 1..1000");
     threshold_fields(v, thresholds);
   }
 };
@@ -166,7 +184,9 @@ struct BasinsRRow {
   std::vector<Attractor> attractors;
   std::vector<Fraction> fractions;  // per attractor
   Fraction undecided;
-  template <class A> void members(A& a) { a(r, attractors, fractions, undecided); }  // core/pack.hpp
+  bool has_boundary = false;        // boundary-grid not "none"
+  BoundaryGeometry boundary;        // from a basins run on boundary-grid at r
+  template <class A> void members(A& a) { a(r, attractors, fractions, undecided, has_boundary, boundary); }  // core/pack.hpp
 };
 
 // The comparison with Table 6.1 at one r: the periodic fraction (paper: % of 10 orbits) and the patterns found.
@@ -194,8 +214,14 @@ struct BasinsRResult {
   std::vector<std::string> columns;    // column labels
   int threads = 0;
   double seconds = 0;
-  // Arrays: r [rows], fraction [rows, columns]; attributes: column_<j>, the request and timings.
+  // Arrays: r [rows], fraction [rows, columns]; with a boundary grid, the boundary geometry per r (boundary_arrays);
+  // attributes: column_<j>, the request and timings.
   void describe(core::Contents& c) const;
+  // Per r (boundary grid): S_b, S_bb and the boundary-box share with their replicate intervals, the uncertainty
+  // exponent with its fit interval (uncertainty_fitted 0: not fitted, values 0), the Wada distance; in this order.
+  std::vector<std::string> boundary_names;
+  std::vector<std::vector<double>> boundary_values;
+  std::string boundary_r_csv() const;  // NAME_boundary.csv: per r the boundary geometry (boundary_output.cpp)
   std::string fractions_csv() const;   // NAME.csv: per r and attractor, fraction, interval, count, measure
   std::string comparison_csv() const;  // table_6_1_comparison.csv: the periodic fraction and patterns against Table 6.1
   core::Tables tables() const;         // both
@@ -210,6 +236,17 @@ struct BasinsRPart {
   template <class A> void members(A& a) { a(items, rows, seconds, threads); }
 };
 BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+// The boundary geometry in a few lines for the terminal: entropies with their intervals, alpha and D with the fit's
+// range, the Wada verdict.
+std::string boundary_summary(const BoundaryGeometry& g);
+// boundary_names / boundary_values of a merged basins-r result (boundary_output.cpp), and each name's units and
+// meaning.
+void fill_boundary_columns(BasinsRResult& res);
+std::string boundary_units(const std::string& name);
+std::string boundary_meaning(const std::string& name);
+// basins-r's boundary grid, validated ("none": off).
+bool has_boundary_grid(const BasinsRRequest& req);
+Grid boundary_grid_of(const BasinsRRequest& req);
 BasinsRResult merge(const BasinsRRequest& req, std::vector<BasinsRPart> parts);
 // merge(req, {run_part(req, every r)}).
 BasinsRResult run(const BasinsRRequest& req, const core::RunControl& control = {});

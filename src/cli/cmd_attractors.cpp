@@ -70,6 +70,7 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
                              b.fractions[i].low, b.fractions[i].high);
   std::cerr << fmt::format("  0 undecided: {:.4f} [{:.4f}, {:.4f}]\n", b.undecided.value, b.undecided.low,
                            b.undecided.high);
+  std::cerr << attractors::boundary_summary(b.boundary);
 }
 
 // ---- btob basins-r ----
@@ -81,8 +82,10 @@ void basins_r(const attractors::BasinsRRequest& req, const Output& o, const Cont
   if (!got) return;
   const attractors::BasinsRResult& res = *got;
   if (!o.quiet)
-    for (const auto& row : res.rows)
+    for (const auto& row : res.rows) {
       std::cerr << fmt::format("btob: basins-r r = {}: {} attractors\n", row.r, row.attractors.size());
+      if (row.has_boundary) std::cerr << attractors::boundary_summary(row.boundary);
+    }
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "basins-r", "double");
@@ -104,13 +107,13 @@ struct Registration {
         classify);
     command<attractors::BasinsRequest>(
         "basins",
-        "Basins of the attractors at one r over a grid: image and fractions; writes NAME_fractions.csv, NAME.h5, NAME.json, "
-        "NAME.png",
+        "Basins of the attractors at one r over a grid: image, fractions, basin entropies, uncertainty exponent, Wada "
+        "test; writes NAME_fractions.csv, NAME_boundary.csv, NAME.h5, NAME.json, NAME.png",
         Output{"results/attractors/basins", "basins", "", 0, false, false}, basins);
     command<attractors::BasinsRRequest>(
         "basins-r",
-        "Basin fractions across r (Table 6.1 with many orbits), stacked areas; writes NAME.csv, "
-        "table_6_1_comparison.csv, NAME.h5, NAME.json, NAME.png",
+        "Basin fractions across r (Table 6.1 with many orbits), stacked areas, and basin entropies and uncertainty "
+        "exponent per r; writes NAME.csv, table_6_1_comparison.csv, NAME_boundary.csv, NAME.h5, NAME.json, NAME.png",
         Output{"results/attractors/basins_r", "fractions_r", "", 0, false, false}, basins_r);
   }
 } registration;
