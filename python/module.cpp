@@ -2,6 +2,7 @@
 // below only names each one (Python function, kind and file stem as the command line records them, plot script).
 #include "attractors/requests.hpp"
 #include "bifurcation/bifurcation.hpp"
+#include "leaves/requests.hpp"
 #include "bind.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
@@ -49,6 +50,8 @@ BTOB_ROUTE(windows::ThresholdsRequest, "windows_thresholds", "windows thresholds
            "7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1 in high precision")
 BTOB_ROUTE(windows::StripesRequest, "windows_stripes", "windows stripes", "windows_stripes", "stripes", "",
            "Thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max_m")
+BTOB_ROUTE(leaves::Request, "leaves", "leaves", "leaves", "leaves", "leaves.py",
+           "P2's invariant curves: labels, region, rotation numbers, where orbits land and the measure on a leaf")
 #undef BTOB_ROUTE_BODY
 
 // Routes whose scalar_type is the request's precision.
@@ -178,5 +181,6 @@ PYBIND11_MODULE(_btob, m) {
   bind<patterns::AtlasRequest>(m);
   bind<patterns::CurvesRequest>(m);
   bind<orbits::StripOrbitsRequest>(m);
+  bind<leaves::Request>(m);
   bind_blocks(m);
 }

@@ -30,7 +30,7 @@ git_commit = _btob.git_commit
 FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyperbolicity", "hyperbolicity_orbits",
              "classify", "basins", "basins_r", "correlate", "measure", "precision_study", "windows_poly",
              "windows_bounds", "windows_thresholds", "windows_stripes", "windows_verify", "windows_precision", "pattern",
-             "pattern_atlas", "pattern_curves", "strip_orbits"]
+             "pattern_atlas", "pattern_curves", "strip_orbits", "leaves"]
 
 
 def _wrap(name):

@@ -64,6 +64,8 @@ COMMANDS = {
     "measure": ["measure", "--r", "0.2", "--grid", "random:4", "--iterations", "300"],
     "pattern-curves": ["pattern-curves", "--r-count", "20"],
     "windows verify": ["windows", "verify", "--n", "2..4", "--iterations", "2000", "--tail", "500"],
+    "leaves": ["leaves", "--r", "0.25", "--grid", "sphere:6x6", "--transient", "300", "--iterations", "300",
+               "--lyap-iterations", "400", "--lyap-transient", "50", "--labels", "0.5,1.2", "--leaf-iterations", "500"],
 }
 # Commands without a plot: windows poly, and those that print their result and write files only when given --out.
 NO_PLOT = {

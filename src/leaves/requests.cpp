@@ -1,0 +1,199 @@
+// `btob leaves` (leaves/requests.hpp): validation, the run per r, the arrays and tables.
+#include "leaves/requests.hpp"
+
+#include "core/cancel.hpp"
+#include "core/csv.hpp"
+#include "leaves/leaves.hpp"
+#include "windows/windows.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+namespace btob::leaves {
+
+namespace {
+constexpr double pi = std::numbers::pi;
+
+// r where P2 / r has the complex pair: r^2 - 6 r + 1 < 0 and r < 1 (3 - 2 sqrt(2) < r < 1).
+void require_leaf_r(double r, const char* field) {
+  if (!(std::isfinite(r) && r * r - 6 * r + 1 < 0 && r < 1))
+    throw core::InvalidField(field, fmt::format("{}", r),
+                             "a number in (3 - 2 sqrt(2), 1) = (0.17157287525, 1), where P2 has complex eigenvalues");
+}
+
+// The region {t <= x}'s share of the grid's measure and its density in t, in closed form: the sphere measure
+// (geometry.hpp) for a sphere grid; for a strip grid the ellipse 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 <= x^2 I_max of
+// area pi x^2 I_max / sqrt(8 r - 4 alpha^2) over the rectangle's area 2 (b - a) (validate() makes the rectangle hold
+// the region: |w1| <= 1 / sqrt(2 r) on it).
+double share_in(const attractors::Grid& grid, double x, const Geometry& g) {
+  if (grid.kind == core::GridKind::sphere) return region_share(x, g);
+  const double area = pi * x * x * g.I_max / std::sqrt(8 * g.r - 4 * g.alpha * g.alpha);
+  return area / (2 * (grid.axis1.hi - grid.axis1.lo));
+}
+double density_in(const attractors::Grid& grid, double x, const Geometry& g) {
+  if (grid.kind == core::GridKind::sphere) return region_density(x, g);
+  return 2 * pi * x * g.I_max / std::sqrt(8 * g.r - 4 * g.alpha * g.alpha) / (2 * (grid.axis1.hi - grid.axis1.lo));
+}
+
+template <class T> void append(std::vector<T>& to, const std::vector<T>& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+// The closed forms at r: theta, the rotation number, I_max, the region's share and the law of labels it carries
+// (density per bin centre; its mean by the midpoint rule on 64 x bins points).
+void closed_forms(Result& res, const Geometry& g, int bins) {
+  res.r.push_back(g.r), res.cos_theta.push_back(g.cos_theta), res.rotation.push_back(g.rotation);
+  res.I_max.push_back(g.I_max);
+  res.region_share.push_back(share_in(res.grid, 1, g));
+  for (int k = 0; k < bins; ++k) res.region_density.push_back(density_in(res.grid, (k + 0.5) / bins, g));
+  double m = 0;
+  const int n = 64 * bins;
+  for (int k = 0; k < n; ++k) {
+    const double x = (k + 0.5) / n;
+    m += x * density_in(res.grid, x, g) / n;
+  }
+  res.region_mean.push_back(m / res.region_share.back());
+}
+
+// (i): where the grid's orbits land, their law and its mass.
+void landing(Result& res, const Geometry& g, const attractors::Options& opt, int bins) {
+  const Landing l = land(g, res.grid, opt);
+  const Density d = density(l.t, bins);
+  const attractors::Fraction f = attractors::fraction(l.q2, l.t.size());
+  res.mass.push_back(f.value), res.mass_low.push_back(f.low), res.mass_high.push_back(f.high);
+  res.outside_mass.push_back(f.value - res.region_share.back());
+  res.landing_mean.push_back(d.mean), res.landing_sd.push_back(d.sd);
+  res.q2.push_back(l.q2), res.above_one.push_back(l.above_one), res.undecided.push_back(l.undecided);
+  append(res.density, d.value), append(res.density_low, d.low), append(res.density_high, d.high);
+  append(res.kde, d.kde);
+  append(res.density_coarse, density(l.t, bins / 2).value);
+  append(res.label_map, l.t);
+}
+
+// (ii) and the rotation numbers: each requested leaf followed by the map.
+void follow(Result& res, const Geometry& g, const Request& q, const core::CancelToken* cancel) {
+  for (double t : q.labels) {
+    const LeafStudy s = study_leaf(t, g, q.leaf_iterations, cancel);
+    res.leaf_exact.push_back(s.exact_rotation), res.leaf_birkhoff.push_back(s.birkhoff);
+    res.leaf_birkhoff_half.push_back(s.birkhoff_half), res.leaf_exit.push_back(static_cast<double>(s.exit_step));
+    res.leaf_drift.push_back(s.label_drift), res.leaf_stays.push_back(s.stays ? 1 : 0);
+    res.ks_uniform.push_back(s.ks_uniform), res.ks_strip.push_back(s.ks_strip), res.ks_sphere.push_back(s.ks_sphere);
+    res.law_strip.push_back(s.law_strip), res.law_sphere.push_back(s.law_sphere);
+  }
+}
+
+std::string fmt_g(double x) { return fmt::format("{:.10g}", x); }
+}  // namespace
+
+attractors::Grid Request::parsed_grid() const {
+  if (w1_range.size() != 2)
+    throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
+  const attractors::Grid g = attractors::parse_grid(grid, w1_range[0], w1_range[1], "grid");
+  if (g.kind != core::GridKind::sphere && g.kind != core::GridKind::strip)
+    throw core::InvalidField("grid", "'" + grid + "'", "sphere:NxM or strip:NxM");
+  return g;
+}
+
+void Request::validate() const {
+  if (r_count < 0 || r_count > 1000) throw core::InvalidField("r-count", fmt::format("{}", r_count), "0..1000");
+  if (r_count == 0) require_leaf_r(r, "r");
+  if (r_count > 0) {
+    require_leaf_r(r_min, "r-min"), require_leaf_r(r_max, "r-max");
+    if (!(r_min < r_max || (r_count == 1 && r_min == r_max)))
+      throw core::InvalidField("r-max", fmt::format("{}", r_max), fmt::format("above r-min = {}", r_min));
+  }
+  const attractors::Grid g = parsed_grid();
+  if (g.cells() > 4000000) throw core::InvalidField("grid", "'" + grid + "'", "at most 4e6 points");
+  // A strip grid must hold the region (|w1| <= 1 / sqrt(2 r) on it) for the closed-form share of its measure.
+  const double r_lo = r_count == 0 ? r : r_min, reach = 1 / std::sqrt(2 * r_lo);
+  if (g.kind == core::GridKind::strip && !(g.axis1.lo <= -reach && g.axis1.hi >= reach))
+    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", g.axis1.lo, g.axis1.hi),
+                             fmt::format("a range holding [-{0:.6g}, {0:.6g}] (the region's w1 at r = {1})", reach, r_lo));
+  if (bins < 2 || bins > 1000 || bins % 2 != 0) throw core::InvalidField("bins", fmt::format("{}", bins), "even, 2..1000");
+  if (labels.empty() || labels.size() > 100)
+    throw core::InvalidField("labels", fmt::format("{} values", labels.size()), "1..100 labels");
+  for (double t : labels)
+    if (!(t > 0 && t <= 3)) throw core::InvalidField("labels", fmt::format("{}", t), "labels in (0, 3]");
+  if (leaf_iterations < 100 || leaf_iterations > 10000000)
+    throw core::InvalidField("leaf-iterations", fmt::format("{}", leaf_iterations), "100..1e7");
+  if (max_m < 2 || max_m > 120) throw core::InvalidField("max-m", fmt::format("{}", max_m), "2..120");
+  attractors::validate(thresholds);
+}
+
+std::vector<double> Request::all_r() const {
+  if (r_count == 0) return {r};
+  std::vector<double> v;
+  for (long k = 0; k < r_count; ++k)
+    v.push_back(r_count == 1 ? r_min : r_min + (r_max - r_min) * static_cast<double>(k) / static_cast<double>(r_count - 1));
+  return v;
+}
+
+Result run(const Request& q, const core::RunControl& control) {
+  q.validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  Result res;
+  res.request = q;
+  res.grid = q.parsed_grid();
+  res.axis1 = res.grid.axis1.centres(), res.axis2 = res.grid.axis2.centres();
+  const attractors::Options opt = attractors::run_options(q.thresholds, control);
+  const std::vector<double> rs = q.all_r();
+  for (std::size_t i = 0; i < rs.size(); ++i) {
+    core::check_cancel(control.cancel);
+    const Geometry g = geometry(rs[i]);
+    closed_forms(res, g, q.bins);
+    landing(res, g, opt, q.bins);
+    follow(res, g, q, control.cancel);
+    if (control.progress) control.progress->update(i + 1, rs.size());
+  }
+  for (const windows::Stripe& s : windows::thin_stripes(q.max_m, 20)) {
+    if (s.value.convert_to<double>() >= 1) continue;
+    res.stripe_l.push_back(static_cast<std::uint64_t>(s.l)), res.stripe_m.push_back(static_cast<std::uint64_t>(s.m));
+    res.stripe_r.push_back(s.value.convert_to<double>());
+  }
+  res.ks_critical = ks_critical(q.leaf_iterations);
+  res.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+core::Tables Result::tables() const {
+  const std::size_t R = r.size(), B = static_cast<std::size_t>(request.bins), L = request.labels.size();
+  core::CsvTable per_r("r,cos_theta,rotation,I_max,region_share,region_mean,mass,mass_low,mass_high,outside_mass,"
+                       "landing_mean,landing_sd,q2,above_one,undecided,points,measure");
+  const std::string measure = attractors::measure_name(grid);
+  for (std::size_t i = 0; i < R; ++i)
+    per_r.row({fmt_g(r[i]), fmt_g(cos_theta[i]), fmt_g(rotation[i]), fmt_g(I_max[i]), fmt_g(region_share[i]),
+               fmt_g(region_mean[i]), fmt_g(mass[i]), fmt_g(mass_low[i]), fmt_g(mass_high[i]), fmt_g(outside_mass[i]),
+               fmt_g(landing_mean[i]), fmt_g(landing_sd[i]), fmt::format("{}", q2[i]), fmt::format("{}", above_one[i]),
+               fmt::format("{}", undecided[i]), fmt::format("{}", grid.cells()), measure});
+  core::CsvTable land("r,t_lo,t_hi,density,density_low,density_high,kde,density_coarse,region_density");
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t k = 0; k < B; ++k) {
+      const std::size_t j = i * B + k;
+      land.row({fmt_g(r[i]), fmt_g(static_cast<double>(k) / static_cast<double>(B)),
+                fmt_g(static_cast<double>(k + 1) / static_cast<double>(B)), fmt_g(density[j]), fmt_g(density_low[j]),
+                fmt_g(density_high[j]), fmt_g(kde[j]), fmt_g(density_coarse[i * (B / 2) + k / 2]),
+                fmt_g(region_density[j])});
+    }
+  core::CsvTable lv("r,t,exact_rotation,birkhoff_rotation,difference,birkhoff_half,stays,exit_step,label_drift,"
+                    "ks_uniform,ks_strip_arc,ks_sphere_arc,law_distance_strip,law_distance_sphere,ks_critical,law");
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t k = 0; k < L; ++k) {
+      const std::size_t j = i * L + k;
+      const bool u = ks_uniform[j] < ks_critical, a = ks_strip[j] < ks_critical, s = ks_sphere[j] < ks_critical;
+      const std::string law = !leaf_stays[j] ? "leaves the region"
+                              : u && !a && !s ? "uniform eigen-angle; arc length rejected"
+                              : u             ? "uniform eigen-angle; arc length not resolved at this n"
+                                              : "uniform eigen-angle rejected (a resonance?)";
+      lv.row({fmt_g(r[i]), fmt_g(request.labels[k]), fmt_g(leaf_exact[j]), fmt_g(leaf_birkhoff[j]),
+              fmt::format("{:.3g}", leaf_birkhoff[j] - leaf_exact[j]), fmt_g(leaf_birkhoff_half[j]),
+              fmt::format("{}", leaf_stays[j]), fmt::format("{}", leaf_exit[j]), fmt::format("{:.3g}", leaf_drift[j]),
+              fmt_g(ks_uniform[j]), fmt_g(ks_strip[j]), fmt_g(ks_sphere[j]), fmt_g(law_strip[j]), fmt_g(law_sphere[j]),
+              fmt_g(ks_critical), law});
+    }
+  return {{"", per_r.text()}, {"landing", land.text()}, {"leaves", lv.text()}};
+}
+
+}  // namespace btob::leaves
