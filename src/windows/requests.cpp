@@ -141,7 +141,7 @@ BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& it
     part.lower_text.push_back(fixed(lo, req.digits));
     part.lower_bound.push_back(static_cast<double>(lo));
     if (n >= 2) {
-      const mpfr_float up = r_crit2(n, req.digits + 5);
+      const mpfr_float up = r_crit2(n, req.digits, 15);  // 15 guard digits for the D-decimal rounding
       part.upper_text.push_back(fixed(up, req.digits));
       part.upper_bound.push_back(static_cast<double>(up));
     } else {
