@@ -84,16 +84,16 @@ len=$(printf '%s' "$err" | wc -c)
 [ "$len" -le 400 ] || { echo "FAIL ($len characters): a point of 5000 characters quoted whole"; fail=1; }
 
 # ---- sweeps whose values collapse to fewer distinct doubles than requested ----
-collapse=(--r-min 0.2 --r-max 0.20000000000000001 --r-count 5000)  # [0.2, 0.2 + 1e-16]: two doubles
-expect_error "r-count: got 5000 values over r-min..r-max = \[0.2, 0.20000000000000004\], expected at most 2" \
+collapse=(--r-min 0.2 --r-max 0.20000000000000004 --r-count 5000)  # 0.2 and the next double: two doubles
+expect_error "r-count: got 5000 values over r-min..r-max = \[0.2, 0.20000000000000004\], expected at most 2 (the distinct doubles" \
   bifurcation "${collapse[@]}" --iterations 10 --tail 5 --grid 1,-0.5,-1.1 --out "$out/b"
-expect_error "expected at most 2 (the distinct doubles" lyapunov-map "${collapse[@]}" --iterations 100 --grid 1,-0.5,-1.1 --out "$out/b"
-expect_error "expected at most 2 (the distinct doubles" hyperbolicity-orbits "${collapse[@]}" --grid 1,-0.5,-1.1 --out "$out/b"
-expect_error "expected at most 2 (the distinct doubles" basins-r "${collapse[@]}" --grid 1,-0.5,-1.1 --out "$out/b"
-expect_error "expected at most 2 (the distinct doubles" transfer-r "${collapse[@]}" --out "$out/b"
-expect_error "expected at most 2 (the distinct doubles" pattern-curves 132312 "${collapse[@]}" --out "$out/b"
+expect_error "(the distinct doubles in that range" lyapunov-map "${collapse[@]}" --iterations 100 --grid 1,-0.5,-1.1 --out "$out/b"
+expect_error "(the distinct doubles in that range" hyperbolicity-orbits "${collapse[@]}" --grid 1,-0.5,-1.1 --out "$out/b"
+expect_error "(the distinct doubles in that range" basins-r "${collapse[@]}" --grid 1,-0.5,-1.1 --out "$out/b"
+expect_error "(the distinct doubles in that range" transfer-r "${collapse[@]}" --out "$out/b"
+expect_error "(the distinct doubles in that range" pattern-curves --word 132312 "${collapse[@]}" --out "$out/b"
 expect_error "bins: got 5000 values over range" bifurcation --r-count 2 --iterations 10 --tail 5 --grid 1,-0.5,-1.1 \
-  --range 0.5 0.50000000000000001 --bins 5000 --out "$out/b"
+  --range 0.5 0.5000000000000001 --bins 5000 --out "$out/b"
 expect_error "grid: got 4 values over w1min:w1max" lyapunov-strip --r 0.2 --grid strip:4x2:1:1.0000000000000002 --out "$out/b"
 # Two doubles hold two values: the edge is accepted.
 accepts bifurcation --r-min 0.2 --r-max 0.20000000000000004 --r-count 2 --iterations 10 --tail 5 --grid 1,-0.5,-1.1 \
