@@ -8,8 +8,8 @@ btob="$1"
 source "$(dirname "$0")/cli_lib.sh"
 cd "$out" || exit 1
 
-# A small result with arrays, decimals and a CSV table (windows bounds: NAME.h5 with text datasets, NAME.csv).
-"$btob" windows bounds --n 2..6 --digits 20 --out X --name X --quiet --no-plot || { echo "FAIL: the first run"; exit 1; }
+# A small result with arrays and decimal-text datasets (windows bounds: NAME.h5).
+"$btob" windows bounds --n 2..6 --digits 20 --out X --name X --quiet || { echo "FAIL: the first run"; exit 1; }
 before=$(md5sum X/X.h5 X/X.json)
 report=$("$btob" run X/X.json --quiet --no-plot) || { echo "FAIL: btob run X/X.json exited $?"; fail=1; }
 [ "$(md5sum X/X.h5 X/X.json)" = "$before" ] || { echo "FAIL: the re-run changed the original's files"; fail=1; }
@@ -20,16 +20,16 @@ python3 - X/reproduced/reproduction.json <<'EOF' || fail=1
 import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["reproduced"] is True and j["differ"] == [] and j["identical_count"] == j["compared"] > 2, j
-assert "lower_text" in j["identical"] and "X.csv" in j["identical"], j["identical"]
+assert "lower_bound_decimal" in j["identical"], j["identical"]
 EOF
 
 # An original whose data differ (another request's NAME.h5 put in its place): exit 0, the datasets that differ named.
-"$btob" windows bounds --n 2..6 --digits 25 --out Y --name X --quiet --no-plot || fail=1
+"$btob" windows bounds --n 2..6 --digits 25 --out Y --name X --quiet || fail=1
 cp Y/X.h5 X/X.h5
 report=$("$btob" run X/X.json --quiet --no-plot) || { echo "FAIL: a re-run that differs exited $?"; fail=1; }
-grep -q "^reproduction: [0-9]* of [0-9]* datasets bit-identical; differ: .*lower_text" <<<"$report" ||
+grep -q "^reproduction: [0-9]* of [0-9]* datasets bit-identical; differ: .*lower_bound_decimal" <<<"$report" ||
   { echo "FAIL: the report of a differing re-run: '$report'"; fail=1; }
-python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert not j['reproduced'] and 'lower_text' in j['differ'], j" \
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert not j['reproduced'] and 'lower_bound_decimal' in j['differ'], j" \
   X/reproduced/reproduction.json || fail=1
 
 # --out: where the user says, but never the original folder.
