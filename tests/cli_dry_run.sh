@@ -127,7 +127,6 @@ grep -q "extrapolated from sizes" <<< "$("$BTOB" windows bounds --n 300 --certif
 # A random word of 3000 symbols (seeded) in MPFR, whose verdict walks the orbit of every eigenvalue.
 word=$(python3 -c "import random; random.seed(7); print(''.join(random.choice('123') for _ in range(3000)))")
 sized pattern-3000-mpfr pattern "$word" --r 0.5 --precision mpfr:60
-sized pattern-132312-mpfr pattern "(132312)^500 1" --r 0.2 --precision mpfr:60
 sized thresholds windows thresholds --digits 10000
 fi
 
