@@ -289,7 +289,9 @@ std::int64_t order_key(double x) {
 }  // namespace
 
 double distinct_doubles(double lo, double hi) {
-  return static_cast<double>(order_key(hi) - order_key(lo)) + 1;
+  // Unsigned: across zero the difference of the keys reaches 2^63 and overflows int64 ([-2, 2] counted -2^63); it is
+  // below 2^64 for lo <= hi, exact in uint64 (the keys themselves, near 4.6e18, are not exact in double).
+  return static_cast<double>(static_cast<std::uint64_t>(order_key(hi)) - static_cast<std::uint64_t>(order_key(lo))) + 1;
 }
 
 void require_distinct(double lo, double hi, long count, const std::string& count_field, const std::string& range) {
