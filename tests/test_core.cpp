@@ -358,6 +358,9 @@ TEST(Limits, DistinctDoublesAgreeWithNextafter) {
     EXPECT_EQ(btob::core::distinct_doubles(lo, hi), steps + 1 - (crosses_zero ? 1 : 0)) << lo << " + " << steps;
   }
   EXPECT_EQ(btob::core::distinct_doubles(1.0, 2.0), std::ldexp(1.0, 52) + 1);
+  // [-2, 2]: 2^62 doubles on each side of zero and zero once, 2^63 + 1, which rounds to 2^63 in double (the key
+  // difference overflowed int64 and gave -2^63 before).
+  EXPECT_EQ(btob::core::distinct_doubles(-2.0, 2.0), std::ldexp(1.0, 63));
   EXPECT_EQ(btob::core::distinct_doubles(0.2, 0.2 + 1e-16), 2);  // the user's 5000 values in [0.2, 0.2 + 1e-16]
   EXPECT_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 3, "r-count", "r-min..r-max"), btob::core::InvalidField);
   EXPECT_NO_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 2, "r-count", "r-min..r-max"));
