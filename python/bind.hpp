@@ -303,6 +303,7 @@ template <class Req> void bind_estimate(py::module_& m) {
     d["predicted_seconds"] = e.predicted_seconds;
     d["bytes"] = e.bytes;
     d["peak_bytes"] = 2 * e.bytes;
+    d["model"] = e.model;  // a sized sweep's fit ("extrapolated from sizes ..."), else ""
     return d;
   });
 }
@@ -329,6 +330,7 @@ template <class Req> void bind_work_estimate(py::module_& m) {
       t["what"] = e.work.terms[i].what;
       t["units_per_second"] = e.rates[i].units_per_second;
       t["cached"] = e.rates[i].cached;
+      t["model"] = e.rates[i].model;  // a sized term's fit ("extrapolated from sizes ..."), else ""
       terms.append(t);
     }
     py::dict d;

@@ -8,7 +8,7 @@
 # short one does not.  Timing on a shared machine: a command outside the factor is measured
 # once more (dry run and run again, back to back) before the test fails.
 #
-# Usage: cli_dry_run.sh BTOB [sweeps|counted|cache]   (default: all three parts; CTest runs them as separate tests,
+# Usage: cli_dry_run.sh BTOB [sweeps|counted|cache|sized]   (default: all four parts; CTest runs them as separate tests,
 # the counted part, with the note before a long sweep, left out of the unoptimised sanitizer build, where each run
 # takes ten times longer)
 set -u
@@ -82,7 +82,7 @@ check particles particles 1133 --r 0.15 --periods 60000 --precision mpfr:40 --no
 "$BTOB" bifurcation --r-count 1000000 --iterations 100000 --grid random:64 --bins 10 --threads 2 --no-plot --out big \
   2> note.txt &
 pid=$!
-for _ in $(seq 100); do grep -q "estimate before the run" note.txt 2> /dev/null && break; sleep 0.1; done
+for _ in $(seq 300); do grep -q "estimate before the run" note.txt 2> /dev/null && break; sleep 0.1; done  # 30 s
 kill -INT $pid 2> /dev/null
 wait $pid
 grep -q "estimate before the run" note.txt || fail "a sweep of ~30 min printed no estimate before it started: $(cat note.txt)"
@@ -91,6 +91,43 @@ grep -q "predicted: " note.txt || fail "the note before the run has no predictio
 "$BTOB" bifurcation --r-count 20 --iterations 1000 --no-plot --out small 2> note.txt
 grep -q "estimate before the run" note.txt && fail "a short sweep printed an estimate: $(cat note.txt)"
 rm -rf small note.txt
+fi
+
+# Requests whose cost grows steeply with one size (a window bound's n, a word's length, the digits): the dry run fits
+# a cost model on small instances (core/size_model.hpp) and never runs the request itself.  Each dry run finishes
+# within 10 s of wall time (a loose bound for a loaded machine; the fit's budget is about a second, where the
+# request's own sample ran 235 s for --n 2000), says when it extrapolates, and predicts the run within a factor 3
+# (or 0.3 s, for a run so short that process start-up is a good part of it).  The runs take a few seconds.
+if [ "$PART" = all ] || [ "$PART" = sized ]; then
+# sized NAME ARGS...: the three checks above, once more (dry run and run) before failing on the factor.
+sized_within() {
+  local name=$1
+  shift
+  local t0 t1 dry predicted actual
+  t0=$(date +%s.%N)
+  dry=$("$BTOB" "$@" --threads 1 --dry-run 2>&1) || { fail "$name: the dry run failed: $dry"; return 0; }
+  t1=$(date +%s.%N)
+  echo "$(echo "$t1 - $t0" | bc -l) < 10" | bc -l | grep -qx 1 || { fail "$name: the dry run took $(echo "$t1 - $t0" | bc -l) s"; return 0; }
+  grep -q "extrapolated from sizes\|interpolated from sizes" <<< "$dry" || { fail "$name: no cost model in: $dry"; return 0; }
+  predicted=$(sed -n 's/^  predicted: \([0-9.e+-]*\) s.*/\1/p' <<< "$dry")
+  [ -n "$predicted" ] || { fail "$name: no prediction: $dry"; return 0; }
+  t0=$(date +%s.%N)
+  "$BTOB" "$@" --threads 1 > /dev/null 2>&1 || { fail "$name: the run failed"; return 0; }
+  t1=$(date +%s.%N)
+  actual=$(echo "$t1 - $t0" | bc -l)
+  echo "$name: predicted $predicted s ($(grep -o 'extrapolated from sizes [0-9.]*\|interpolated from sizes [0-9.]*' <<< "$dry")), measured $actual s"
+  echo "($predicted <= 3 * $actual && $actual <= 3 * $predicted) || ($predicted - $actual)^2 < 0.09" | bc -l | grep -qx 1
+}
+sized() {
+  sized_within "$@" || sized_within "$@" || fail "$1: the prediction is not within a factor 3 of the run, twice"
+}
+sized windows-bounds-300 windows bounds --n 300 --certify
+grep -q "extrapolated from sizes" <<< "$("$BTOB" windows bounds --n 300 --certify --dry-run)" ||
+  fail "windows bounds --n 300: the dry run does not say that it extrapolates"
+# A random word of 3000 symbols (seeded) in MPFR, whose verdict walks the orbit of every eigenvalue.
+word=$(python3 -c "import random; random.seed(7); print(''.join(random.choice('123') for _ in range(3000)))")
+sized pattern-3000-mpfr pattern "$word" --r 0.5 --precision mpfr:60
+sized thresholds windows thresholds --digits 10000
 fi
 
 # A corrupt and a foreign cache file are recalibrated over (and rewritten in the cache's format); an unwritable
@@ -109,10 +146,10 @@ XDG_CACHE_HOME=/proc/btob-no-such-dir "$BTOB" lyapunov --r 0.2 --point 1,-0.5,-1
   fail "an unwritable cache is an error: $(cat out.txt)"
 grep -q "^  predicted: " out.txt || fail "no prediction without a cache: $(cat out.txt)"
 rm -f out.txt
-# A request that is its own probe (a word's verdict) keeps the time of a completed run: the dry run after it reads
+# A request that is its own probe (a word's window) keeps the time of a completed run: the dry run after it reads
 # the cache instead of running it again.
-"$BTOB" pattern 1133 --r 0.15 > /dev/null || fail "pattern 1133 failed"
-"$BTOB" pattern 1133 --r 0.15 --dry-run > out.txt 2>&1 || fail "pattern --dry-run: $(cat out.txt)"
+"$BTOB" pattern 1133 --window > /dev/null || fail "pattern 1133 --window failed"
+"$BTOB" pattern 1133 --window --dry-run > out.txt 2>&1 || fail "pattern --dry-run: $(cat out.txt)"
 grep -q "cached from" out.txt || fail "a completed run of a self-probed request left no rate: $(cat out.txt)"
 rm -f out.txt
 fi

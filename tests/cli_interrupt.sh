@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Every command family stops on SIGINT and SIGTERM: exit 130 / 143, one line on stderr, nothing on stdout, no file
 # written and an existing result in the output folder untouched, within a bound.  Each run would take minutes (or
-# hours) to finish: a command that ignored the signal would fail the bound.  The bound is 2 s so that a loaded
-# machine does not fail the test; the latency measured is printed (on an idle machine it is a few milliseconds, the
-# cost of polling the token every core::cancel_stride steps).
+# hours) to finish: a command that ignored the signal would fail the bound.  The bound is 10 s, a margin that
+# survives a machine loaded several times over; the latency measured is printed (on an idle machine it is a few
+# milliseconds, the cost of polling the token every core::cancel_stride steps; benchmarks/bm_cancel.cpp measures it).
 # Usage: cli_interrupt.sh PATH/TO/btob [MPIRUN]: with MPIRUN, sweeps under `mpirun -n 2` (with --resume) instead:
 # the signal goes to every process of the job (as a batch system sends it) and the ranks must have ended within the
 # bound, leaving the output folder as it was (with --resume: and the checkpoint of the finished items).  The ranks
@@ -13,7 +13,7 @@ mpirun="${2:-}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail=0
-bound=2.0   # seconds from the signal to the exit
+bound=10.0  # seconds from the signal to the exit
 settle=1.0  # seconds before the signal: past start-up and validation, inside the computation
 
 # interrupt <INT|TERM> <btob arguments...>; "@OUT" in the arguments is replaced by an output folder that already
@@ -40,7 +40,7 @@ interrupt() {
   local t0 t1 rc
   t0=$(date +%s.%N)
   kill -"$sig" "$pid"
-  for _ in $(seq 1 1000); do kill -0 "$pid" 2>/dev/null || break; sleep 0.005; done
+  for _ in $(seq 1 6000); do kill -0 "$pid" 2>/dev/null || break; sleep 0.005; done  # up to 30 s
   t1=$(date +%s.%N)
   if kill -0 "$pid" 2>/dev/null; then
     kill -KILL "$pid"; wait "$pid" 2>/dev/null
@@ -98,7 +98,7 @@ interrupt_mpi() {
   local t0 t1 r alive
   t0=$(date +%s.%N)
   pkill -"$sig" -s "$pid"
-  for _ in $(seq 1 1000); do
+  for _ in $(seq 1 6000); do  # up to 30 s
     alive=0
     # A rank that has ended is a zombie until mpirun reaps it (its own shutdown takes a second): not running.
     for r in $ranks; do [[ "$(ps -o stat= -p "$r" 2>/dev/null)" == [^Z]* ]] && alive=1; done

@@ -2,8 +2,10 @@
 // ties, coordinates (theta, phi, strip, particles) and the validation errors.
 #include "core/coords.hpp"
 #include "core/csv.hpp"
+#include "core/fields.hpp"
 #include "core/map.hpp"
 #include "core/scalar.hpp"
+#include "core/size_model.hpp"
 #include "iterate/ensemble.hpp"
 
 #include <Eigen/Geometry>
@@ -20,6 +22,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using btob::test::bound;
@@ -342,4 +345,54 @@ TEST(Csv, NonFiniteNumbersAreEmptyCells) {
   btob::core::CsvTable t("r,gap");
   t.line("0.1," + csv_number(std::nan("")));
   EXPECT_EQ(t.text(), "r,gap\n0.1,\n");
+}
+
+// distinct_doubles counts representable values by their ordered bit patterns; checked against nextafter stepping
+// (an independent route) on small ranges, and against the binade's known count.
+TEST(Limits, DistinctDoublesAgreeWithNextafter) {
+  for (const auto& [lo, steps] : std::vector<std::pair<double, int>>{{0.2, 1}, {0.2, 7}, {-1e-310, 40}, {-0.5, 3}, {1.0, 0}}) {
+    double hi = lo;
+    for (int k = 0; k < steps; ++k) hi = std::nextafter(hi, 2.0);
+    // +0 and -0 are one value: a range across zero counts one double fewer than the nextafter steps give.
+    const bool crosses_zero = lo < 0 && hi >= 0;
+    EXPECT_EQ(btob::core::distinct_doubles(lo, hi), steps + 1 - (crosses_zero ? 1 : 0)) << lo << " + " << steps;
+  }
+  EXPECT_EQ(btob::core::distinct_doubles(1.0, 2.0), std::ldexp(1.0, 52) + 1);
+  // [-2, 2]: 2^62 doubles on each side of zero and zero once, 2^63 + 1, which rounds to 2^63 in double (the key
+  // difference overflowed int64 and gave -2^63 before).
+  EXPECT_EQ(btob::core::distinct_doubles(-2.0, 2.0), std::ldexp(1.0, 63));
+  EXPECT_EQ(btob::core::distinct_doubles(0.2, 0.2 + 1e-16), 2);  // the user's 5000 values in [0.2, 0.2 + 1e-16]
+  EXPECT_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 3, "r-count", "r-min..r-max"), btob::core::InvalidField);
+  EXPECT_NO_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 2, "r-count", "r-min..r-max"));
+}
+
+// An error quotes a long input by its head and tail with its length; a short one whole; the description after a
+// quoted input is kept.
+TEST(Limits, ErrorsQuoteLongInputsShort) {
+  const std::string word(100002, '1');
+  const btob::core::InvalidField e("word", "'" + word + "', symbol 4 at position 100001", "a word over 1, 2, 3");
+  const std::string what = e.what();
+  EXPECT_LT(what.size(), 200u) << what;
+  EXPECT_NE(what.find("(100002 characters), symbol 4 at position 100001"), std::string::npos) << what;
+  EXPECT_NE(what.find("'111111"), std::string::npos) << what;
+  EXPECT_EQ(btob::core::abbreviate("'0.5'"), "'0.5'");
+  EXPECT_EQ(btob::core::abbreviate(std::string(80, 'x')), std::string(80, 'x'));
+  EXPECT_EQ(btob::core::abbreviate(std::string(81, 'x')).size(), 30 + 3 + 30 + std::string(" (81 characters)").size());
+}
+
+// The cost model's interpolation and extrapolation (core/size_model.hpp) on given timings: a power law through the
+// largest two beyond them, the segment's power law between timed sizes, the timed sizes themselves as measured.
+TEST(Limits, SizeFitExtrapolatesThePowerLawOfItsLastSegment) {
+  btob::core::SizeFit f;
+  f.parameter = "n";
+  f.sizes = {8, 16, 32, 64};
+  f.seconds = {0.001, 0.01, 0.04, 0.32};  // exponents: -, 2, 3 over the last two
+  f.exponent = f.segment(3);
+  EXPECT_NEAR(f.exponent, 3, 1e-12);
+  EXPECT_NEAR(f.at(128), 0.32 * 8, 1e-12);
+  EXPECT_NEAR(f.at(32), 0.04, 1e-15);
+  EXPECT_NEAR(f.at(24), 0.01 * std::pow(1.5, 2), 1e-12);  // the 16..32 segment's exponent 2
+  EXPECT_TRUE(f.extrapolates(65));
+  EXPECT_FALSE(f.extrapolates(64));
+  EXPECT_NE(f.note(300).find("extrapolated from sizes 8..64 of n"), std::string::npos) << f.note(300);
 }

@@ -3,8 +3,10 @@ long orbits, the atlas and windows certificates, covariant vectors, direct corre
 iterator checks, a word's analysis in MPFR and the overlays computed after a run raise KeyboardInterrupt within a
 bound.  Each call below would run for minutes or hours if the signal were not seen inside its inner loop.  Each runs
 in a child interpreter, so that a run that ignored the signal fails the test (killed after a timeout) instead of
-hanging it.  The bound is 2 s so that a loaded machine does not fail the test; on an idle machine the latency is the
-binding's 50 ms poll."""
+hanging it.  The bound is 10 s, a margin that survives a machine loaded several times over (a 2 s bound failed once
+under a load of 4-5 on 2 cores): the test tells a run that polls from one that does not, whose calls run minutes.
+The latency itself (0.1 s on an idle machine, the binding's 50 ms poll) is a benchmark's measurement, not a test's:
+benchmarks/bm_cancel.cpp."""
 import os
 import signal
 import subprocess
@@ -13,7 +15,7 @@ import time
 
 import pytest
 
-BOUND = 2.0  # seconds from SIGINT to the child's exit (the guarantee on an idle machine is 0.1 s)
+BOUND = 10.0  # seconds from SIGINT to the child's exit (the 0.1 s of an idle machine: benchmarks/bm_cancel.cpp)
 ORBIT = 'r=0.2, point="1,-0.5,-1.1"'
 RUNS = {
     "lyapunov double": f"btob.lyapunov({ORBIT}, iterations=10**12)",
@@ -62,11 +64,11 @@ def test_keyboard_interrupt_stops_the_run(name):
     sent = time.monotonic()
     child.send_signal(signal.SIGINT)
     try:
-        rc = child.wait(timeout=10 * BOUND)
+        rc = child.wait(timeout=3 * BOUND)
     except subprocess.TimeoutExpired:
         child.kill()
         child.wait()
-        pytest.fail(f"{name}: still running {10 * BOUND} s after SIGINT")
+        pytest.fail(f"{name}: still running {3 * BOUND} s after SIGINT")
     assert rc == 42, f"{name}: exit {rc}, expected KeyboardInterrupt (42)"
     latency = float(child.stdout.readline()) - sent
     print(f"{name}: KeyboardInterrupt {latency:.3f} s after SIGINT")

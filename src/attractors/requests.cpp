@@ -57,7 +57,7 @@ void threshold_attrs(core::Contents& c, const Options& o) {
 // The exponent-reporting tools share lyapunov's domain: r from the smallest that double's exponents resolve.
 static void require_r_double(double r, const char* field) {
   core::require_r(r, field);
-  core::require_r_exponents(r, core::parse_precision("double"), field);
+  core::require_r_exponents(r, core::parse_precision("double"), field, {});  // no --precision to advise
 }
 
 void ClassifyRequest::validate() const {
@@ -334,6 +334,7 @@ void BasinsRRequest::validate() const {
   if (r_count > 0) {
     require_r_double(r_min, "r-min");
     require_r_double(r_max, "r-max");
+    if (r_min <= r_max) core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   }
   const std::vector<double> rs = all_r();
   if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1), a range (r-min, r-max, r-count) or --table");

@@ -82,6 +82,7 @@ void Request::validate() const {
   // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
   if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
+  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
   if (tail < 1 || tail > iterations)
     throw core::InvalidField("tail", std::to_string(tail), fmt::format("1 <= tail <= iterations = {}", iterations));
@@ -89,6 +90,7 @@ void Request::validate() const {
   const core::Precision prec = core::parse_precision(precision, "precision");
   if (!range.empty() && (range.size() != 2 || !(range[0] < range[1])))
     throw core::InvalidField("range", fmt::format("{} values", range.size()), "two numbers lo hi with lo < hi");
+  if (!range.empty()) core::require_distinct(range[0], range[1], bins, "bins", "range");
   (void)axis_of(*this);
   if (algorithm != "linear" && algorithm != "trig")
     throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.3) or trig (Appendix A.1)");
@@ -108,7 +110,7 @@ void Request::validate() const {
     if (tail >= iterations)
       throw core::InvalidField("attractors", fmt::format("with tail = iterations = {}", iterations),
                                "tail < iterations (classify's transient iterations - tail >= 1)");
-    core::require_r_exponents(r_min, prec, "r-min");
+    core::require_r_exponents(r_min, prec, "r-min", {});  // classify computes in double only
   }
 }
 

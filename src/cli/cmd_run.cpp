@@ -1,16 +1,24 @@
 // `btob run SCENE.toml` and `btob run results/NAME/NAME.json`: a scene, or the request a result's manifest
 // recorded, run again.  Request-based commands (cli/command.hpp) set their fields by name; the others still
 // replay their flags through the argument parser.
+//
+// A manifest's re-run is a reproduction check: it writes into NAME/reproduced/ (or --out, never the original
+// folder), then compares its datasets with the original's (io/reproduce.hpp), prints one line "reproduction: N of
+// M datasets bit-identical; differ: a, b" and writes the same as reproduction.json beside the re-run's files.
+// The exit status is the run's (0 whether or not the data are the same): the report says what differs.
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
+#include "io/io.hpp"
+#include "io/reproduce.hpp"
 #include "io/scene.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <iostream>
 
 namespace btob::cli {
 namespace {
@@ -82,15 +90,46 @@ struct RunFlags {
   bool quiet = false, no_plot = false, dry_run = false;
 };
 
+// The folder a manifest's re-run writes to: --out, else reproduced/ beside the manifest; never the manifest's own
+// folder, whose result it is compared with.
+std::string reproduction_folder(const std::string& manifest, const std::string& out) {
+  namespace fs = std::filesystem;
+  const fs::path original = fs::path(manifest).parent_path();
+  if (out.empty()) return (original / "reproduced").string();
+  std::error_code ec;
+  if (fs::exists(out) && fs::equivalent(out, original.empty() ? fs::path(".") : original, ec))
+    throw UsageError(fmt::format("--out: got '{}', the manifest's own folder; expected another folder (a re-run "
+                                 "never writes over the result it reproduces)",
+                                 out));
+  return out;
+}
+
+// After a manifest's re-run into `out`: its datasets against the original's, on stdout and in out/reproduction.json.
+void report_reproduction(const std::string& manifest, const std::string& out, const std::string& name, bool quiet) {
+  const std::filesystem::path original = std::filesystem::path(manifest).parent_path();
+  const io::Reproduction r = io::compare_results(original.empty() ? "." : original, out, name);
+  const std::filesystem::path file = std::filesystem::path(out) / "reproduction.json";
+  io::write_text_atomic(file, r.json());
+  std::cout << "reproduction: " << r.summary() << "\n";
+  if (!quiet) std::cerr << "btob: wrote " << file.string() << "\n";
+}
+
+// The value of `key` among the scene's arguments ("" when absent).
+std::string arg_value(const Args& args, const std::string& key) {
+  for (const auto& [k, v] : args)
+    if (k == key && !v.empty()) return v.back();
+  return "";
+}
+
 void run_scene(const RunFlags& f) {
   const std::string& path = f.path;
-  const std::string& out_override = f.out;
   if (!std::filesystem::is_regular_file(path))
     throw UsageError(fmt::format("scene: got '{}', expected an existing scene (.toml) or manifest (.json) file", path));
   const bool manifest = std::filesystem::path(path).extension() == ".json";
   const io::Scene s = manifest ? read_manifest(path) : io::read_scene(path);
+  const std::string out_override = manifest ? reproduction_folder(path, f.out) : f.out;
   // The request's keys, then the run's own: --out overrides the scene's folder; a scene without one writes to
-  // results/<scene name> (a manifest re-runs where it lies); the name defaults to the scene's.
+  // results/<scene name> (a manifest to reproduced/ beside it); the name defaults to the scene's.
   Args args;
   bool has_out = false, has_name = false, has_title = false;
   for (const auto& a : s.args) {
@@ -105,8 +144,7 @@ void run_scene(const RunFlags& f) {
   const bool writes = it == scene_commands().end() || it->second.files || (manifest && has_name);
   if (!out_override.empty()) args.emplace_back("out", std::vector<std::string>{out_override});
   else if (!has_out && writes)
-    args.emplace_back("out", std::vector<std::string>{manifest ? std::filesystem::path(path).parent_path().string()
-                                                               : "results/" + s.name});
+    args.emplace_back("out", std::vector<std::string>{"results/" + s.name});
   if (!has_name && writes) args.emplace_back("name", std::vector<std::string>{s.name});
   if (!has_title && !s.title.empty()) args.emplace_back("title", std::vector<std::string>{s.title});
   const std::size_t injected_from = args.size();  // the run's own flags, below
@@ -118,7 +156,13 @@ void run_scene(const RunFlags& f) {
       throw UsageError(fmt::format("--dry-run: '{}' has no dry run", s.command));
     args.emplace_back("dry-run", std::vector<std::string>{"true"});
   }
-  if (it == scene_commands().end()) return replay_flags(s, path, args, injected_from);
+  const auto report = [&] {
+    if (manifest && !f.dry_run && mpi::rank() == 0) report_reproduction(path, arg_value(args, "out"), arg_value(args, "name"), f.quiet);
+  };
+  if (it == scene_commands().end()) {
+    replay_flags(s, path, args, injected_from);
+    return report();
+  }
   std::string inv = invocation() + " -> btob " + s.command;
   for (const auto& [k, vals] : args) {
     inv += " --" + k;
@@ -131,13 +175,17 @@ void run_scene(const RunFlags& f) {
   } catch (const UsageError& e) {
     throw UsageError(fmt::format("{} {}: {}", manifest ? "manifest" : "scene", path, e.what()));
   }
+  report();
 }
 
 Register reg([](CLI::App& app) {
   auto f = std::make_shared<RunFlags>();
   CLI::App* c = app.add_subcommand("run", "Run a scene file (analyses/scenes/*.toml) or re-run a result's manifest (NAME.json)");
   c->add_option("scene", f->path, "scene file, or a manifest written with a result")->required();
-  c->add_option("--out", f->out, "output directory (default: the scene's; a manifest's own folder; else results/<scene name>)");
+  c->add_option("--out", f->out,
+                "output directory (default: the scene's, else results/<scene name>; for a manifest NAME.json, "
+                "reproduced/ beside it, never its own folder: the re-run's datasets are then compared with the "
+                "original's, the count of bit-identical ones printed and written to reproduction.json)");
   c->add_option("--threads", f->threads, "OpenMP threads (default: all cores)");
   c->add_flag("--quiet", f->quiet, "no progress or summary on stderr");
   c->add_flag("--no-plot", f->no_plot, "write data only");

@@ -303,7 +303,7 @@ template <class Req> void note_long_run(const std::string& name, const Req& req,
   const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
   core::Work w = work(req);
   for (const core::Term& t : w.terms)
-    if (t.probe_is_request) return;
+    if (t.probe_is_request || t.sized_run) return;  // pricing would run it, or instances of it for a second
   try {
     const io::WorkEstimate e = io::estimate_work(std::move(w), ctx.control, threads);
     if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, false) << std::flush;

@@ -11,10 +11,15 @@
 // StepCounted sweep) where items are slow: the doubling then costs at most about 2 s.
 // The packed size of the sample's parts, scaled the same way, is what rank 0 gathers and keeps; the result files
 // are about that size, and rank 0 holds about twice it while merging.  Nothing is written.
+//
+// A sweep whose items' cost grows steeply with a size (windows bounds: n, about n^2.4) is a core::SizedSweep: its
+// sample would compute its largest items (windows bounds --n 1..2000 --certify ran 235 s to "estimate" itself), so
+// its estimate times one-item requests of small sizes instead and extrapolates (core/size_model.hpp), and says so.
 #pragma once
 
 #include "core/pack.hpp"
 #include "core/request.hpp"
+#include "core/size_model.hpp"
 #include "core/sweep.hpp"
 
 #include <fmt/format.h>
@@ -33,8 +38,20 @@ struct SweepEstimate {
   double predicted_seconds = 0;  // the whole request on `ranks` processes of the sample's threads
   double bytes = 0;              // the parts' packed bytes, scaled to every item
   int ranks = 1;
+  std::string model;  // a SizedSweep's: how the prediction was fitted ("extrapolated from sizes 8..128 of n ...")
   // dry: --dry-run's report; else the note before a long run (the same numbers, on stderr).
   std::string text(const std::string& command, int threads, bool dry = true) const {
+    if (!model.empty())
+      return fmt::format(
+          "btob {}: {}\n"
+          "  work: {} items (the sweep's n values or words)\n"
+          "  sample: {} one-item requests of small sizes in {:.3f} s (never the request's own items)\n"
+          "  model: {}\n"
+          "  predicted: {:.3g} s on {} process{} x {} threads\n"
+          "  data: about {:.3g} MB gathered and written; peak memory about {:.3g} MB on rank 0 (parts and merge)\n",
+          command, dry ? "dry run (a cost model fitted on small instances, nothing written)" : "estimate before the run",
+          items, sampled, sample_seconds, model, predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6,
+          2 * bytes / 1e6);
     return fmt::format(
         "btob {}: {}\n"
         "  work: {} items (the sweep's r values, grid rows, n values or words)\n"
@@ -47,12 +64,48 @@ struct SweepEstimate {
   }
 };
 
+// A sweep with a cost model in a size: item i has size item_size(i), and sized(s) is the same request for one item
+// of size s (a one-item range).
+template <class Req> concept SizedSweep = Sweep<Req> && requires(const Req& r, std::size_t i, double s) {
+  { r.item_size(i) } -> std::convertible_to<double>;
+  { r.sized(s) } -> std::convertible_to<Req>;
+  { Req::size_parameter } -> std::convertible_to<std::string>;
+};
+
+// A SizedSweep's estimate: fit_sizes on one-item requests from size 8 (or the smallest item's, when smaller) up to
+// the largest item's, the predicted seconds summed over every item's size, on `ranks` processes (the items of a
+// rank run one after another).  The data: the last instance's packed part times the items.
+template <SizedSweep Req> SweepEstimate estimate_sized(const Req& req, const core::RunControl& control, int ranks) {
+  SweepEstimate e;
+  e.items = core::work_items(req, control.cancel);
+  e.ranks = ranks;
+  if (e.items == 0) return e;
+  double smallest = req.item_size(0), largest = smallest;
+  for (std::size_t i = 0; i < e.items; ++i) {
+    smallest = std::min(smallest, req.item_size(i));
+    largest = std::max(largest, req.item_size(i));
+  }
+  double part_bytes = 0;
+  const SizeFit f = fit_sizes(Req::size_parameter, std::min(smallest, 8.0), largest, [&](double s) {
+    part_bytes = static_cast<double>(core::pack(run_part(req.sized(s), {0}, control)).size());
+  }, control.cancel);
+  double total = 0;
+  for (std::size_t i = 0; i < e.items; ++i) total += f.at(req.item_size(i));
+  e.sampled = f.sizes.size();
+  e.sample_seconds = f.spent;
+  e.predicted_seconds = total / ranks;
+  e.bytes = part_bytes * static_cast<double>(e.items);
+  e.model = f.note(largest);
+  return e;
+}
+
 // The sample: m items spread over 0..n-1, m doubled (from `start`, the threads: every thread gets an item) until it
 // took `target` seconds with at least `min_items` items, or took `cap` seconds, or covers n.  `ranks`: the
 // processes the prediction divides the work over.
 template <core::Sweep Req>
 SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, int ranks, std::size_t start,
                              double target = 0.2, std::size_t min_items = 32, double cap = 1.0) {
+  if constexpr (SizedSweep<Req>) return estimate_sized(req, control, ranks);
   SweepEstimate e;
   e.items = core::work_items(req, control.cancel);  // polled: the atlas enumerates its words
   e.ranks = ranks;

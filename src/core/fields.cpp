@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -257,21 +259,47 @@ double smallest_r_exponents(const Precision& p) {
   return std::sqrt(1e3 * eps);
 }
 
-void require_r_exponents(double r, const Precision& p, const std::string& field) {
+void require_r_exponents(double r, const Precision& p, const std::string& field,
+                         const std::vector<std::string>& accepted) {
   const double lo = smallest_r_exponents(p);
-  if (r < lo) {
-    // The narrowest precision that resolves this r.
-    std::string fix = "mpfr:" + std::to_string(static_cast<int>(std::ceil(3 - 2 * std::log10(r))) + 1);
-    for (const char* name : {"double", "long-double", "float128"})
-      if (r >= smallest_r_exponents(parse_precision(name))) {
-        fix = name;
-        break;
-      }
-    throw InvalidField(field, fmt::format("{}", r),
-                             fmt::format("r >= {:.2g} in {} (the tangent plane's contraction r^2 is lost in rounding "
-                                         "below); use --precision {}",
-                                         lo, p.name(), fix));
-  }
+  if (r >= lo) return;
+  // The narrowest accepted precision that resolves this r: the fixed sizes in order, then the MPFR digits D with
+  // sqrt(1e3 10^-D) <= r, i.e. D >= 3 - 2 log10 r (one more for the rounding of the log), at most 10000.
+  std::string fix;
+  for (const char* name : {"float", "double", "long-double", "float128"})
+    if (std::find(accepted.begin(), accepted.end(), name) != accepted.end() &&
+        r >= smallest_r_exponents(parse_precision(name))) {
+      fix = name;
+      break;
+    }
+  const int digits = static_cast<int>(std::ceil(3 - 2 * std::log10(r))) + 1;
+  if (fix.empty() && std::find(accepted.begin(), accepted.end(), "mpfr") != accepted.end() && digits <= 10000)
+    fix = fmt::format("mpfr:{}", std::max(digits, 10));
+  throw InvalidField(field, fmt::format("{}", r),
+                     fmt::format("r >= {:.2g} in {} (the tangent plane's contraction r^2 is lost in rounding below){}",
+                                 lo, p.name(), fix.empty() ? "" : "; use --precision " + fix));
+}
+
+namespace {
+// The doubles' order as integers: x < y iff key(x) < key(y) for finite x, y (+0 and -0 share key 0).
+std::int64_t order_key(double x) {
+  const auto bits = std::bit_cast<std::int64_t>(x);
+  return bits >= 0 ? bits : -(bits & INT64_MAX);
+}
+}  // namespace
+
+double distinct_doubles(double lo, double hi) {
+  // Unsigned: across zero the difference of the keys reaches 2^63 and overflows int64 ([-2, 2] counted -2^63); it is
+  // below 2^64 for lo <= hi, exact in uint64 (the keys themselves, near 4.6e18, are not exact in double).
+  return static_cast<double>(static_cast<std::uint64_t>(order_key(hi)) - static_cast<std::uint64_t>(order_key(lo))) + 1;
+}
+
+void require_distinct(double lo, double hi, long count, const std::string& count_field, const std::string& range) {
+  if (count < 2 || !(std::isfinite(lo) && std::isfinite(hi) && lo <= hi)) return;  // the range's own checks say why
+  const double held = distinct_doubles(lo, hi);
+  if (static_cast<double>(count) > held)
+    throw InvalidField(count_field, fmt::format("{} values over {} = [{}, {}]", count, range, lo, hi),
+                       fmt::format("at most {:.0f} (the distinct doubles in that range: more values would repeat)", held));
 }
 
 std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field) {

@@ -47,11 +47,24 @@ std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, c
 // r in the open interval (0, 1), else InvalidField naming `field`.
 void require_r(double r, const std::string& field);
 // The smallest r whose Lyapunov exponents precision p resolves (sqrt(1e3 eps): 4.7e-7 in double), and r in
-// [that, 1) else InvalidField naming `field`, the precision and the narrowest precision that resolves r.  Every
-// tool that reports an exponent (lyapunov, classify, basins) accepts this one domain.
+// [that, 1) else InvalidField naming `field`, the precision and, as advice, the narrowest precision that resolves
+// r among `accepted`: the precisions the command's own --precision takes ("float", "double", "long-double",
+// "float128", "mpfr" for mpfr:D with D <= 10000), so that the advice is a command line the same command accepts.
+// A command without a precision choice (classify, basins) passes {} and gets no advice.  Every tool that reports
+// an exponent (lyapunov, classify, basins) accepts this one domain.
 struct Precision;
 double smallest_r_exponents(const Precision& p);
-void require_r_exponents(double r, const Precision& p, const std::string& field);
+void require_r_exponents(double r, const Precision& p, const std::string& field,
+                         const std::vector<std::string>& accepted = {"float", "double", "long-double", "float128",
+                                                                     "mpfr"});
+
+// The doubles x with lo <= x <= hi (finite, lo <= hi), counted by their ordered bit patterns (+0 and -0 once):
+// 2 in [0.2, 0.2 + 1e-16], 2^52 + 1 in [1, 2].
+double distinct_doubles(double lo, double hi);
+// A sweep of `count` evenly spaced values over [lo, hi] (count >= 2) computes at least that many distinct doubles,
+// else its values repeat and the sweep would claim a resolution it has not: refused with InvalidField naming
+// `count_field`, the range's fields `range` ("r-min..r-max") and how many distinct doubles the range holds.
+void require_distinct(double lo, double hi, long count, const std::string& count_field, const std::string& range);
 
 // The Decimals' values (a list of r for code that computes in double).
 std::vector<double> values(const std::vector<Decimal>& v);

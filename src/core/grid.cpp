@@ -1,6 +1,8 @@
 // The grid type's parser, axes and points (core/grid.hpp).
 #include "core/grid.hpp"
 
+#include "core/fields.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -104,6 +106,7 @@ Grid make_grid(GridKind kind, long n1, long n2) {
 
 void Grid::set_range1(double lo, double hi, const char* field) {
   if (!finite_range(lo, hi)) throw InvalidField(field, fmt::format("[{}, {}]", lo, hi), "finite a < b");
+  require_distinct(lo, hi, axis1.cells, field, "its range");  // distinct cell centres
   axis1.lo = lo, axis1.hi = hi;
 }
 
@@ -135,6 +138,7 @@ Grid parse_grid(std::string_view spec, const GridSyntax& syntax, const char* fie
     if (!syntax.ranges || g.kind != GridKind::strip || colon == std::string_view::npos) throw bad();
     const auto a = number<double>(range.substr(0, colon)), b = number<double>(range.substr(colon + 1));
     if (!a || !b || !finite_range(*a, *b)) throw bad();
+    require_distinct(*a, *b, *n1, field, "w1min:w1max");  // distinct cell centres
     g.axis1.lo = *a, g.axis1.hi = *b, g.has_range = true;
   }
   return g;

@@ -23,11 +23,30 @@
 
 namespace btob::core {
 
-// The one error type of request validation.  what() is "<field>: got <got>, expected <expected>"; the
-// command line prints it as one line and exits 2, Python raises ValueError with the same text.
+// An offending input as an error quotes it: the whole text when it has at most `max` characters, else its first
+// and last (max - 20) / 2 characters around "..." with the length, "1313...2231 (100002 characters)", so that an
+// error about a word of 100000 symbols stays one readable line.  A text that opens with a quoted input
+// ('<input>' and then the program's own description of what is wrong with it) has the input shortened inside its
+// quotes and the description kept.
+inline std::string abbreviate(std::string_view text, std::size_t max = 80) {
+  const auto shorten = [max](std::string_view in, std::string_view open, std::string_view close) {
+    if (in.size() <= max) return fmt::format("{}{}{}", open, in, close);
+    const std::size_t keep = (max - 20) / 2;
+    return fmt::format("{}{}...{}{} ({} characters)", open, in.substr(0, keep), in.substr(in.size() - keep), close,
+                       in.size());
+  };
+  const std::size_t end = text.empty() || text.front() != '\'' ? std::string_view::npos : text.find('\'', 1);
+  if (end == std::string_view::npos) return shorten(text, "", "");
+  return shorten(text.substr(1, end - 1), "'", "'") + std::string(text.substr(end + 1));
+}
+
+// The one error type of request validation.  what() is "<field>: got <got>, expected <expected>", <got>
+// abbreviated (at most about 80 characters of the input); the command line prints it as one line and exits 2,
+// Python raises ValueError with the same text.
 struct InvalidField : std::invalid_argument {
   InvalidField(std::string field_, const std::string& got, const std::string& expected)
-      : std::invalid_argument(field_ + ": got " + got + ", expected " + expected), field(std::move(field_)) {}
+      : std::invalid_argument(field_ + ": got " + abbreviate(got) + ", expected " + expected),
+        field(std::move(field_)) {}
   std::string field;
 };
 

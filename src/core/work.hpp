@@ -30,6 +30,14 @@ struct Term {
   // and returns the units it ran.  The calibration doubles n from 16 until one probe takes 0.1 s.
   std::function<double(double n, const RunControl&)> probe;
   bool probe_is_request = false;  // self_term: calibrating runs the request itself (no note before such a run)
+  // A term priced by a cost model in a size instead of a route's rate (core/size_model.hpp), for a request that is
+  // one indivisible computation whose cost grows with one size (a word's verdict with the word's length, the
+  // thresholds with their digits): sized_run(s, control) runs an instance of size s (a prefix of the word, the
+  // thresholds at s digits); the estimate times sizes from `smallest` up (about a second in all, never the
+  // request itself when it is larger) and extrapolates to `size`.  No probe and no cache: units = 1 run.
+  std::string size_parameter;
+  double size = 0, smallest = 1;
+  std::function<void(double size, const RunControl&)> sized_run;
 };
 
 struct Work {

@@ -2,6 +2,7 @@
 #include "io/rates.hpp"
 
 #include "core/cancel.hpp"
+#include "core/size_model.hpp"
 
 #include <btob/build_info.hpp>
 #include <fmt/format.h>
@@ -115,6 +116,22 @@ std::string time_text(double s) {
   return fmt::format("{:.3g} s (about {:.1f} h)", s, s / 3600);
 }
 
+// A sized term's time from instances of small sizes (core/size_model.hpp): units per second = units / the time
+// predicted at the request's size.
+RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, int threads) {
+  core::RunControl c = control;
+  c.threads = threads;
+  c.progress = nullptr;
+  const core::SizeFit f = core::fit_sizes(term.size_parameter, term.smallest, term.size,
+                                          [&](double s) { term.sized_run(s, c); }, control.cancel);
+  RouteRate r;
+  r.units_per_second = term.units / std::max(f.at(term.size), 1e-9);
+  r.probe_units = static_cast<double>(f.sizes.size());
+  r.probe_seconds = f.spent;
+  r.model = f.note(term.size);
+  return r;
+}
+
 }  // namespace
 
 fs::path rates_path() {
@@ -156,7 +173,9 @@ WorkEstimate estimate_work(core::Work work, const core::RunControl& control, int
     // Two terms of one route share its rate (and its probe runs once).
     auto same = std::find_if(work.terms.begin(), work.terms.end(), [&](const core::Term& u) { return u.route == t.route; });
     const auto k = static_cast<std::size_t>(same - work.terms.begin());
-    e.rates.push_back(k < e.rates.size() ? e.rates[k] : route_rate(t, control, threads));
+    e.rates.push_back(k < e.rates.size() ? e.rates[k]
+                      : t.sized_run     ? fitted_rate(t, control, threads)
+                                        : route_rate(t, control, threads));
     e.predicted_seconds += t.units / e.rates.back().units_per_second;
   }
   e.work = std::move(work);
@@ -166,13 +185,17 @@ WorkEstimate estimate_work(core::Work work, const core::RunControl& control, int
 std::string WorkEstimate::text(const std::string& command, bool dry_run) const {
   std::ostringstream s;
   if (dry_run)
-    s << fmt::format("btob {}: dry run (only the probes of routes not yet calibrated run; nothing written)\n", command);
+    s << fmt::format("btob {}: dry run (only the probes of routes not yet calibrated, or small instances of a sized request, run; nothing written)\n", command);
   else
     s << fmt::format("btob {}: a long run; its estimate first (--dry-run prints it without running)\n", command);
   for (std::size_t i = 0; i < work.terms.size(); ++i) {
     const core::Term& t = work.terms[i];
     const RouteRate& r = rates[i];
     s << fmt::format("  work: {:.4g} {}\n", t.units, t.what);
+    if (!r.model.empty()) {
+      s << fmt::format("    model: {}\n", r.model);
+      continue;
+    }
     s << fmt::format("    rate: {:.4g} per s on {} thread{} (route '{}', {} a probe of {:.4g} in {:.3f} s)\n",
                      r.units_per_second, threads, threads == 1 ? "" : "s", t.route,
                      r.cached ? "cached from" : "calibrated now by", r.probe_units, r.probe_seconds);

@@ -29,6 +29,7 @@ struct RouteRate {
   double units_per_second = 0;
   bool cached = false;              // read from the cache; else calibrated now by its probe
   double probe_units = 0, probe_seconds = 0;  // the probe that measured it (now or when it was cached)
+  std::string model;  // a sized term's (core::Term::sized_run): how its time was fitted, "extrapolated from ..."
 };
 
 // The rate of `term`'s route on `threads` threads (control.threads is set to it for the probe): the cached one, else

@@ -177,9 +177,10 @@ void MapRequest::validate() const {
   // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
   if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
   if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
+  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min");  // r-min <= r-max from here on
+  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min", {"float", "double"});  // r-min <= r-max from here on
   (void)iterate::parse_grid(grid, seed, "grid");
   // classify runs in double from transient >= 1 (attractors::validate refuses the rest of its options).
   if (attractors && precision != "double")
@@ -204,7 +205,7 @@ void StripRequest::validate() const {
   const core::Grid g = spec();  // N, M >= 1 and the range checked by the parser
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  core::require_r_exponents(r, core::parse_precision(precision), "r");  // the cocycle runs in this precision
+  core::require_r_exponents(r, core::parse_precision(precision), "r", {"float", "double"});  // the cocycle runs in this precision
   iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 200, "grid");
 }
 

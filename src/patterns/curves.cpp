@@ -2,6 +2,7 @@
 #include "patterns/curves.hpp"
 
 #include "core/cancel.hpp"
+#include "core/fields.hpp"
 #include "core/csv.hpp"
 #include "iterate/parallel.hpp"
 
@@ -76,6 +77,7 @@ void CurvesRequest::validate() const {
   if (!(r_max > r_min && r_max < 1))
     throw core::InvalidField("r-max", fmt::format("{}", r_max), fmt::format("a number in (r-min = {}, 1)", r_min));
   if (r_count < 2 || r_count > 1000000) throw core::InvalidField("r-count", fmt::format("{}", r_count), "2..1000000");
+  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   if (track != "dominant" && track != "negative")
     throw core::InvalidField("track", "'" + track + "'", "dominant or negative");
 }

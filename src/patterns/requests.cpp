@@ -375,18 +375,6 @@ void AtlasRequest::validate() const {
     throw core::InvalidField("max-period", std::to_string(max_period), fmt::format("1..tail/2 ({})", tail / 2));
 }
 
-core::Work work(const WordRequest& req) {
-  const char* mode = req.mode() == WordRequest::Mode::verdict ? "verdict" : req.mode() == WordRequest::Mode::window ? "window" : "charpoly";
-  core::Work w;
-  w.terms.push_back(core::self_term(
-      req, fmt::format("pattern {} {} r={} {} digits={}", mode, req.word, req.r, req.precision, req.digits),
-      fmt::format("{} of the word {} (one indivisible computation: its probe is this request)", mode, req.word)));
-  const double L = static_cast<double>(parse_word(req.word, "word").size());
-  w.output_bytes = 400 + 4 * L;  // one printed row with the word
-  w.peak_bytes = 65536 + 64 * L * (req.digits > 15 ? static_cast<double>(req.digits) : 1.0);
-  return w;
-}
-
 std::size_t AtlasRequest::work_items() const { return work_items(nullptr); }
 
 std::size_t AtlasRequest::work_items(const core::CancelToken* cancel) const {

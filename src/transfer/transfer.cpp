@@ -3,6 +3,7 @@
 #include "transfer/transfer.hpp"
 
 #include "core/cancel.hpp"
+#include "core/fields.hpp"
 #include "core/grid.hpp"
 
 #include <fmt/format.h>
@@ -203,6 +204,7 @@ void TransferRRequest::validate() const {
   check_common(r_min, boxes, domain, samples, eigenvalues, route, "r-min");
   if (!(r_max > r_min && r_max < 1)) throw core::InvalidField("r-max", str(r_max), fmt::format("a value in ({}, 1)", r_min));
   if (r_count < 1 || r_count > 100000) throw core::InvalidField("r-count", std::to_string(r_count), "1..100000");
+  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   if (!(peripheral > 0 && peripheral < 1)) throw core::InvalidField("peripheral", str(peripheral), "a distance in (0, 1)");
 }
 

@@ -142,7 +142,7 @@ BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& it
     part.lower_text.push_back(fixed(lo, req.digits));
     part.lower_bound.push_back(static_cast<double>(lo));
     if (n >= 2) {
-      const mpfr_float up = r_crit2(n, req.digits + 5);
+      const mpfr_float up = r_crit2(n, req.digits, 15);  // 15 guard digits for the D-decimal rounding
       part.upper_text.push_back(fixed(up, req.digits));
       part.upper_bound.push_back(static_cast<double>(up));
     } else {
@@ -362,9 +362,22 @@ void StripesResult::describe(core::Contents& c) const {
 
 core::Work work(const ThresholdsRequest& req) {
   core::Work w;
-  w.terms.push_back(core::self_term(req, fmt::format("windows thresholds {} digits", req.digits),
-                                    fmt::format("run of the four thresholds at {} decimals (one indivisible "
-                                                "computation: its probe is this request)", req.digits)));
+  // One indivisible computation whose cost grows with the digits: priced by the thresholds at 10, 20, 40, ...
+  // digits (core::Term::sized_run), never by running the request.
+  core::Term t;
+  t.route = fmt::format("windows thresholds {} digits", req.digits);
+  t.units = 1;
+  t.what = fmt::format("run of the four thresholds at {} decimals (one indivisible computation, priced by a cost "
+                       "model in the digits)", req.digits);
+  t.size_parameter = "digits";
+  t.size = req.digits;
+  t.smallest = 10;
+  t.sized_run = [](double digits, const core::RunControl& c) {
+    ThresholdsRequest one;
+    one.digits = static_cast<int>(digits);
+    (void)run(one, c);
+  };
+  w.terms.push_back(std::move(t));
   w.output_bytes = 4 * (req.digits + 60.0);
   w.peak_bytes = 65536 + 64.0 * req.digits;
   return w;

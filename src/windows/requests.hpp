@@ -77,6 +77,15 @@ struct BoundsRequest {
 
   void validate() const;
   std::size_t work_items() const;  // the n of the range (core/sweep.hpp)
+  // The dry run's cost model (core::SizedSweep, core/size_model.hpp): an item's cost grows with its n (about n^2.4),
+  // so the estimate times the request for small n alone and extrapolates instead of computing its largest n.
+  static constexpr const char* size_parameter = "n";
+  double item_size(std::size_t item) const { return parse_n_range(n, 1, "n").n_of(item); }
+  BoundsRequest sized(double size) const {
+    BoundsRequest one = *this;
+    one.n = std::to_string(static_cast<long>(size));
+    return one;
+  }
   template <class V> void fields(V&& v) {
     v("n", n, "n or A..B, n >= 1");
     v("digits", digits, "decimals after the point, 10..10000");

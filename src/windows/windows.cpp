@@ -215,12 +215,12 @@ mpfr_float r_crit2_here(int n) {
 
 }  // namespace
 
-mpfr_float r_crit2(int n, int digits) {
+mpfr_float r_crit2(int n, int digits, int guard) {
   validate_n(n, 2);
   validate_digits(digits);
-  ScopedDigits sd(digits + 10);  // 10 guard digits: cos/sqrt of well-conditioned arguments
+  ScopedDigits sd(digits + guard);  // guard digits (10 by default): cos/sqrt of well-conditioned arguments
   mpfr_float v = r_crit2_here(n);
-  v.precision(static_cast<unsigned>(digits) + 10);
+  v.precision(static_cast<unsigned>(digits + guard));
   return v;
 }
 

@@ -68,8 +68,11 @@ Certificate certify_lower_bound(int n, int decimals, const core::CancelToken* ca
 // root of Q_n lies in (a, b).  certify_lower_bound runs it on the D-decimal truncation of window_lower_bound(n).
 Certificate certify_interval(int n, const mpq_class& a, const mpq_class& b, const core::CancelToken* cancel = nullptr);
 
-// r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.6); n >= 2.  `digits` significant.
-mpfr_float r_crit2(int n, int digits);
+// r_crit,2(n) = (2 cos(pi/(2n)) - sqrt(4 cos^2(pi/(2n)) - 1))^2, eq. (4.6); n >= 2.  `digits` significant
+// (10..10000, the range every `digits` field documents), computed and returned with `guard` digits more: a caller
+// that wants more guard digits passes them here rather than adding them to `digits`, which would refuse the
+// documented 10000.
+mpfr_float r_crit2(int n, int digits, int guard = 10);
 
 // The paper's threshold constants in `digits` significant digits.
 struct Threshold {
