@@ -27,6 +27,16 @@ from . import plotting, progress as _progress  # noqa: E402
 __version__ = _btob.__version__
 git_commit = _btob.git_commit
 
+
+def cite(format="bibtex"):
+    """How to cite btob, as ``btob cite --format FORMAT`` prints it: the software at this build's version and git
+    commit, and the paper whose b-to-b map it implements (R. Castorrini and T. Dolmaire, "Four collapsing
+    one-dimensional particles: a dynamical system approach of the spherical billiard reduction").
+
+    format: "bibtex" (BibTeX entries, the default), "cff" (Citation File Format, as CITATION.cff) or "text".
+    Returns the text (print it); another format raises ValueError naming the accepted ones."""
+    return _btob.cite(format)
+
 FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyperbolicity", "hyperbolicity_orbits",
              "classify", "basins", "basins_r", "correlate", "measure", "precision_study", "windows_poly",
              "windows_bounds", "windows_thresholds", "windows_stripes", "windows_verify", "windows_precision", "pattern",
