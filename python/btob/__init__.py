@@ -43,6 +43,42 @@ FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyper
              "pattern_atlas", "pattern_curves", "strip_orbits"]
 
 
+def _default(annotation, texts):
+    """A field's default as a Python value, from its text form(s) (what the command line shows): a number for a
+    number, a list for a list, the text itself where the text is the value (a decimal whose text is not a float's
+    shortest form keeps its text, as the field does)."""
+    def one(t):
+        if annotation.startswith("int"):
+            return int(t)
+        if "float" in annotation and annotation != "str":
+            try:
+                x = float(t)
+            except ValueError:
+                return t
+            return x if repr(x) == t or repr(x) == t + ".0" else t
+        return t
+    if annotation.startswith("list"):
+        return [one(t) for t in texts]
+    if annotation == "bool":
+        return texts == ["true"]
+    return one(texts[0]) if texts else ""
+
+
+def _signature(name):
+    """inspect.Signature of a function, from the binding's fields (name, annotation, default, required): every
+    keyword is keyword-only, a required one without a default; then threads, progress (and resume for a sweep)."""
+    import inspect
+    fields, sweep = _btob._signatures[name]
+    kw = inspect.Parameter.KEYWORD_ONLY
+    params = [inspect.Parameter(k, kw, annotation=a, default=inspect.Parameter.empty if req else _default(a, texts))
+              for k, a, texts, req in fields]
+    params += [inspect.Parameter("threads", kw, annotation="int", default=0),
+               inspect.Parameter("progress", kw, annotation="bool | Callable[[int, int], None]", default=False)]
+    if sweep:
+        params.append(inspect.Parameter("resume", kw, annotation="str | None", default=None))
+    return inspect.Signature(params, return_annotation="btob.Result")
+
+
 def _wrap(name):
     fn = getattr(_btob, name)
 
@@ -51,6 +87,8 @@ def _wrap(name):
         with _progress.sink(kwargs.pop("progress", False), name) as cb:
             return fn(progress=cb, **kwargs)
 
+    # help(), IDE completion and Jupyter's shift-tab read __signature__ (the compiled function only says **kwargs).
+    call.__signature__ = _signature(name)
     return call
 
 
