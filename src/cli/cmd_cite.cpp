@@ -11,8 +11,9 @@ namespace {
 
 Register reg([](CLI::App& app) {
   auto format = std::make_shared<std::string>(io::citation_formats().front());
-  CLI::App* c = app.add_subcommand("cite", "Print how to cite btob: the software (this version and git commit) and the "
-                                             "paper whose b-to-b map it implements");
+  CLI::App* c = app.add_subcommand("cite",
+                                   "Print how to cite btob: the software (this version and git commit) and the "
+                                   "paper whose b-to-b map it implements");
   c->add_option("--format", *format, "bibtex (BibTeX entries), cff (Citation File Format, CITATION.cff) or text")
       ->check(CLI::IsMember(io::citation_formats()))
       ->capture_default_str();

@@ -11,7 +11,8 @@
 namespace btob::io {
 namespace {
 
-constexpr const char* kTitle = "btob: a statistics lab for the b-to-b map of four one-dimensional inelastic hard spheres";
+constexpr const char* kTitle =
+    "btob: a statistics lab for the b-to-b map of four one-dimensional inelastic hard spheres";
 constexpr const char* kAuthors = "the btob developers";
 constexpr const char* kLicense = "GPL-3.0-or-later";
 constexpr const char* kAbstract =
@@ -27,8 +28,7 @@ struct Person {
   const char* given_bibtex;  // BibTeX's ASCII spelling of the accents
   const char* family;
 };
-constexpr Person kPaperAuthors[] = {{"Roberto", "Roberto", "Castorrini"},
-                                    {"Théophile", "Th{\\'e}ophile", "Dolmaire"}};
+constexpr Person kPaperAuthors[] = {{"Roberto", "Roberto", "Castorrini"}, {"Théophile", "Th{\\'e}ophile", "Dolmaire"}};
 
 // "git commit C" (+ ", with uncommitted changes" when the build had some): what names the code that ran.
 std::string commit_note(const std::string& commit, const std::string& dirty) {
@@ -71,7 +71,8 @@ std::string cff(const std::string& version, const std::string& commit, const std
       "  - name: \"{}\"\n"
       "version: \"{}\"\n",
       kTitle, kAbstract, kAuthors, version);
-  if (!commit.empty()) out += fmt::format("commit: \"{}\"{}\n", commit, dirty == "yes" ? "  # with uncommitted changes" : "");
+  if (!commit.empty())
+    out += fmt::format("commit: \"{}\"{}\n", commit, dirty == "yes" ? "  # with uncommitted changes" : "");
   out += fmt::format(
       "license: {}\n"
       "keywords:\n"
