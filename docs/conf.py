@@ -4,8 +4,8 @@
 import os
 
 project = "btob"
-author = "the btob authors"
-copyright = "the btob authors"
+author = "the btob developers"
+copyright = "the btob developers; GPL-3.0-or-later"
 version = release = os.environ.get("BTOB_VERSION", "")
 
 extensions = [
