@@ -16,8 +16,10 @@ from conftest import exe
 CLI_TO_PYTHON = {"INTEGER": {"int"}, "REAL": {"float", "list[float] | str"},
                  "DECIMAL": {"float | str", "list[float | str] | str"}, "TEXT": {"str", "list[str] | str"},
                  None: {"bool"}}
-OPTION = re.compile(r"^\s+(?:-\w, )?--(?P<flag>[\w-]+)(?: (?P<type>[A-Z]+))?(?:=(?P<default>.*?))?"
-                    r"(?P<many> \.\.\.)?(?P<required> REQUIRED)?(?:\s{2,}|$)")
+# CLI11's option line: --flag TYPE=default [...] [REQUIRED], then the help after padding (one space at least); a
+# list's default holds spaces and is followed by " ...", a scalar's holds none.
+OPTION = re.compile(r"^\s+(?:-\w, )?--(?P<flag>[\w-]+)(?: (?P<type>[A-Z]+))?"
+                    r"(?:=(?P<default>\S+(?: \S+)*?(?= \.\.\.)|\S*))?(?P<many> \.\.\.)?(?P<required> REQUIRED)?(?:\s|$)")
 
 
 def help_options(command):
