@@ -106,6 +106,14 @@ setup(
     description="Statistics lab for the b-to-b map of four one-dimensional inelastic hard spheres",
     long_description=open(os.path.join(ROOT, "README.md"), encoding="utf-8").read(),
     long_description_content_type="text/markdown",
+    # GPL-3.0-or-later: FFTW (GPL-2.0-or-later) is linked into the module (docs/licence.md).  An SPDX expression in
+    # License (setuptools 65 has no License-Expression field yet) and the matching trove classifier; LICENSE goes
+    # into the wheel's .dist-info (setuptools' default license_files).
+    license="GPL-3.0-or-later",
+    license_files=["LICENSE"],
+    classifiers=["License :: OSI Approved :: GNU General Public License v3 or later (GPLv3+)",
+                 "Programming Language :: C++", "Programming Language :: Python :: 3",
+                 "Topic :: Scientific/Engineering :: Mathematics", "Topic :: Scientific/Engineering :: Physics"],
     python_requires=">=3.9",
     packages=["btob"],
     package_dir={"": "python"},

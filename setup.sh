@@ -21,6 +21,7 @@ packages=(
   python3-sphinx python3-myst-parser          # the documentation site (docs/, target `docs`): Sphinx, pages in Markdown
   python3-nbsphinx pandoc                     # the tutorials: notebooks executed in the site (pandoc renders their Markdown)
   furo                                        # the site's theme (responsive, with search)
+  libjs-mathjax                               # the site's formulas: MathJax, the field's standard, copied into the site (offline)
   chromium chromium-driver python3-selenium   # tests in a real browser (headless): the built site (label docs), the explorer's page
   libcpp-httplib-dev                          # `btob explore`: a maintained one-header HTTP server (Debian builds it as a library)
   libpng-dev                                  # `btob explore`: PNG images of the density (the reference PNG library)

@@ -13,6 +13,13 @@ set(BTOB_DEB_MAINTAINER "btob maintainers <btob-maintainers@example.org>"
     CACHE STRING "Maintainer field of the Debian package (cpack -G DEB): the packager's name and address")
 
 set(CPACK_PACKAGE_NAME btob)
+# The licence (LICENSE, docs/licence.md says why): GPL-3.0-or-later, as FFTW (GPL-2.0-or-later) is linked into every
+# binary.  A Debian control file has no licence field: the package states it in /usr/share/doc/btob/copyright
+# (cmake/debian/copyright, machine-readable DEP-5, pointing at /usr/share/common-licenses/GPL-3); the SPDX
+# identifier is kept here for CPack's other generators (tests/metadata_check.py checks every place agrees).
+set(BTOB_LICENSE "GPL-3.0-or-later")
+set(CPACK_RESOURCE_FILE_LICENSE ${CMAKE_SOURCE_DIR}/LICENSE)
+set(CPACK_RPM_PACKAGE_LICENSE ${BTOB_LICENSE})
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "statistics lab for the b-to-b map of four 1-D inelastic hard spheres")
 # The extended description: CPack puts the summary first, indents every line and marks the empty one (" .").
@@ -46,8 +53,9 @@ if(TARGET _btob)
   list(APPEND CPACK_COMPONENTS_ALL python_deb)
 endif()
 
-# /usr/share/doc/btob: the copyright file, the Debian changelog (one entry per version, dated as CHANGELOG.md's
-# entry of this version) and CHANGELOG.md, both gzipped with no timestamp (Debian policy 12.5, 12.7).
+# /usr/share/doc/btob: the copyright file (DEP-5, cmake/debian/copyright), the Debian changelog (one entry per
+# version, dated as CHANGELOG.md's entry of this version) and CHANGELOG.md, both gzipped with no timestamp (Debian
+# policy 12.5, 12.7).
 file(STRINGS ${CMAKE_SOURCE_DIR}/CHANGELOG.md entry REGEX "^## \\[${PROJECT_VERSION}\\] - [0-9-]+")
 string(REGEX MATCH "[0-9]+-[0-9]+-[0-9]+" BTOB_DEB_DAY "${entry}")
 if(NOT BTOB_DEB_DAY)
@@ -57,6 +65,9 @@ endif()
 execute_process(COMMAND date -u -R -d "${BTOB_DEB_DAY} 12:00" OUTPUT_VARIABLE BTOB_DEB_DATE
                 OUTPUT_STRIP_TRAILING_WHITESPACE COMMAND_ERROR_IS_FATAL ANY)
 configure_file(${CMAKE_SOURCE_DIR}/cmake/debian/changelog.in ${CMAKE_BINARY_DIR}/debian/changelog @ONLY)
+# The copyright file's year (lintian wants one in the notice) is the year of this version's CHANGELOG entry.
+string(SUBSTRING "${BTOB_DEB_DAY}" 0 4 BTOB_DEB_YEAR)
+configure_file(${CMAKE_SOURCE_DIR}/cmake/debian/copyright ${CMAKE_BINARY_DIR}/debian/copyright @ONLY)
 set(BTOB_DEB_DOCS "")
 foreach(doc ${CMAKE_BINARY_DIR}/debian/changelog ${CMAKE_SOURCE_DIR}/CHANGELOG.md)
   get_filename_component(name ${doc} NAME)
@@ -65,7 +76,7 @@ foreach(doc ${CMAKE_BINARY_DIR}/debian/changelog ${CMAKE_SOURCE_DIR}/CHANGELOG.m
   list(APPEND BTOB_DEB_DOCS ${gz})
 endforeach()
 add_custom_target(btob_deb_doc ALL DEPENDS ${BTOB_DEB_DOCS})
-install(FILES ${CMAKE_SOURCE_DIR}/cmake/debian/copyright ${BTOB_DEB_DOCS}
+install(FILES ${CMAKE_BINARY_DIR}/debian/copyright ${BTOB_DEB_DOCS}
         DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT deb_doc EXCLUDE_FROM_ALL)
 
 include(CPack)

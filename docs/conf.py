@@ -4,8 +4,8 @@
 import os
 
 project = "btob"
-author = "the btob authors"
-copyright = "the btob authors"
+author = "the btob developers"
+copyright = "the btob developers; GPL-3.0-or-later"
 version = release = os.environ.get("BTOB_VERSION", "")
 
 extensions = [
@@ -13,10 +13,25 @@ extensions = [
     "nbsphinx",             # the tutorials: analyses/notebooks, executed during the build
     "sphinx.ext.autodoc",   # the Python reference from the built module's docstrings
     "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",   # $...$ and $$...$$ rendered by MathJax, served from the site itself (below)
 ]
-myst_enable_extensions = ["colon_fence", "deflist"]
-# No TeX maths on the site: MathJax would load from a CDN, and the site must render offline (the browser test).
-nbsphinx_assume_equations = False
+# Mathematics in the pages' LaTeX: $x$ inline, $$...$$ displayed (with (label) numbering), amsmath environments.
+myst_enable_extensions = ["colon_fence", "deflist", "dollarmath", "amsmath"]
+myst_dmath_double_inline = True
+# MathJax offline: Debian's libjs-mathjax (2.7, setup.sh) is copied into the built site (_static/mathjax, the files
+# the TeX-AMS_CHTML configuration loads: see offline_mathjax) and loaded from there, so no page fetches anything from
+# the network (the browser test checks it).  A relative mathjax_path is relative to _static.
+MATHJAX_DIR = "/usr/share/javascript/mathjax"
+mathjax_path = "mathjax/MathJax.js?config=TeX-AMS_CHTML"
+# MathJax 2 finds Sphinx's \(...\) and \[...\] in the math spans only (not a $ in a table of prices).
+mathjax2_config = {
+    "tex2jax": {"inlineMath": [["\\(", "\\)"]], "displayMath": [["\\[", "\\]"]], "processEscapes": True,
+                "ignoreClass": "document", "processClass": "math|output_area"},
+    "CommonHTML": {"linebreaks": {"automatic": True}},
+    "showMathMenu": False,
+    "messageStyle": "none",
+}
+nbsphinx_assume_equations = True  # the notebooks' Markdown may hold $...$: the same local MathJax
 myst_heading_anchors = 3
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 # Included into other pages, never pages of their own:
@@ -30,7 +45,8 @@ nbsphinx_timeout = 300
 nbsphinx_allow_errors = False
 html_theme = "furo"
 html_title = "btob"
-html_static_path = []
+html_static_path = ["_static"]
+html_css_files = ["btob.css"]  # wrapped text blocks, scrolling tables and formulas
 html_show_sourcelink = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
@@ -62,6 +78,31 @@ def offline_furo(app, exception):
             f.write(css.replace("url(/javascript/normalize.css/normalize.css)", "url(normalize.css)"))
 
 
+# What MathJax 2's TeX-AMS_CHTML configuration loads at run time, relative to its root: the loader, the combined
+# configuration, the TeX input and MathML element jax, the CommonHTML output with its font data and the TeX web fonts
+# (woff; CommonHTML needs no other format), and the extensions the configuration names (menu, zoom, a11y...).
+MATHJAX_FILES = ["MathJax.js", "config/TeX-AMS_CHTML.js", "extensions", "jax/input/TeX", "jax/element",
+                 "jax/output/CommonHTML", "fonts/HTML-CSS/TeX/woff"]
+
+
+def offline_mathjax(app, exception):
+    """Copies MATHJAX_FILES of Debian's libjs-mathjax into the site's _static/mathjax (following Debian's symbolic
+    links to fonts-mathjax), so that the site is self-contained: it renders from disk or any web server, offline."""
+    if exception is not None or app.builder.format != "html":
+        return
+    import shutil
+    if not os.path.exists(os.path.join(MATHJAX_DIR, "MathJax.js")):
+        raise RuntimeError(f"no MathJax at {MATHJAX_DIR}: apt-get install libjs-mathjax (setup.sh)")
+    dest = os.path.join(app.outdir, "_static", "mathjax")
+    for rel in MATHJAX_FILES:
+        src, dst = os.path.join(MATHJAX_DIR, rel), os.path.join(dest, rel)
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        if os.path.isdir(src):
+            shutil.copytree(src, dst, dirs_exist_ok=True)
+        else:
+            shutil.copy(src, dst)
+
+
 def keyword_block(app, what, name, obj, options, lines):
     """The functions' docstrings are composed from each request's fields (python/bind.hpp): a summary, then
     "Keyword arguments (...):" and one indented line per field, written for help() in a terminal.  Show that list as
@@ -77,3 +118,4 @@ def keyword_block(app, what, name, obj, options, lines):
 def setup(app):
     app.connect("autodoc-process-docstring", keyword_block)
     app.connect("build-finished", offline_furo)
+    app.connect("build-finished", offline_mathjax)

@@ -8,6 +8,7 @@
 
 #include "core/cancel.hpp"
 #include "core/estimate.hpp"
+#include "core/field_types.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
@@ -104,8 +105,9 @@ struct KwargsApplier {
   }
 };
 
-// "name = default: help" lines for the docstring, from core's documentation of the fields.
-std::string field_doc_lines(const std::vector<core::FieldDoc>& docs);
+// "name: type = default: help" lines for the docstring (type the Python annotation; "(required)" for a field that
+// must be given, no default), from core's documentation of the fields and their types (same order).
+std::string field_doc_lines(const std::vector<core::FieldDoc>& docs, const std::vector<core::FieldTypeDoc>& types);
 
 // "btob.f(k='v', flag=True, values=['1', '2'], ...)": the provenance attribute `command` of a Python result, a
 // call that pasted into Python reproduces the request (text values in quotes, lists for list fields, booleans
@@ -276,6 +278,21 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
     kws.append(py::make_tuple(py::str(keyword(name)), texts));
   }
   m.attr("_fields")[R::function] = kws;
+  // (keyword, Python annotation, default texts, required) per field, and whether it takes resume=: btob/__init__.py
+  // builds each function's inspect.Signature from it (help(), IDE completion, a notebook's shift-tab).
+  if (!py::hasattr(m, "_signatures")) m.attr("_signatures") = py::dict();
+  std::vector<core::FieldDoc> docs;
+  std::vector<core::FieldTypeDoc> types;
+  defaults.fields(core::DocLister{&docs});
+  defaults.fields(core::TypeLister{&types});
+  py::list params;
+  for (std::size_t i = 0; i < docs.size(); ++i) {
+    py::list texts;
+    for (const auto& t : docs[i].defaults) texts.append(py::str(t));
+    params.append(py::make_tuple(py::str(keyword(docs[i].name)), py::str(types[i].type.python), texts,
+                                 docs[i].required));
+  }
+  m.attr("_signatures")[R::function] = py::make_tuple(params, core::Sweep<Req>);
 }
 
 // A sweep's cost from a sample of its own items (32 items and 0.2 s, or 1 s; core/estimate.hpp), for
@@ -352,11 +369,14 @@ template <class Req> void bind(py::module_& m) {
   std::string doc = std::string(R::help) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
   Req defaults = R::defaults();
   std::vector<core::FieldDoc> docs;
+  std::vector<core::FieldTypeDoc> types;
   defaults.fields(core::DocLister{&docs});
-  doc += field_doc_lines(docs);
-  doc += "    threads = 0: OpenMP threads (0: all cores)\n    progress = False: True (tqdm), or callable(done, total)\n";
+  defaults.fields(core::TypeLister{&types});
+  doc += field_doc_lines(docs, types);
+  doc += "    threads: int = 0: OpenMP threads (0: all cores)\n"
+         "    progress: bool | Callable = False: True (tqdm), or callable(done, total)\n";
   if constexpr (core::Sweep<Req>)
-    doc += "    resume = None: 'DIR/NAME.checkpoint': keep the finished items in that file and continue from it (the "
+    doc += "    resume: str | None = None: 'DIR/NAME.checkpoint': keep the finished items in that file and continue from it (the "
            "command line's --resume; refused for another request or build; removed once the result is complete)\n";
   m.def(R::function, &detail::call<Req>, doc.c_str());
   detail::list_function(m, defaults);

@@ -4,6 +4,7 @@
 #include "bifurcation/bifurcation.hpp"
 #include "leaves/requests.hpp"
 #include "bind.hpp"
+#include "io/citation.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
 #include "orbits/orbits.hpp"
@@ -158,6 +159,9 @@ PYBIND11_MODULE(_btob, m) {
   m.doc() = "btob: the b-to-b map of four inelastic hard spheres (compiled core; import btob instead)";
   m.attr("__version__") = build::version;
   m.attr("git_commit") = build::git_commit;
+  m.def("cite", [](const std::string& format) { return io::citation(format); }, pybind11::arg("format") = "bibtex",
+        "How to cite btob (the software at this build's version and commit, and the paper): format 'bibtex', 'cff' "
+        "or 'text', as `btob cite --format F` prints it");
   bind_result(m);
   bind<bifurcation::Request>(m);
   bind<lyapunov::OrbitRequest>(m);

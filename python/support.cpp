@@ -70,13 +70,14 @@ py::array array_view(const core::ArrayView& a, py::handle owner) {
       a.data);
 }
 
-std::string field_doc_lines(const std::vector<core::FieldDoc>& docs) {
+std::string field_doc_lines(const std::vector<core::FieldDoc>& docs, const std::vector<core::FieldTypeDoc>& types) {
   std::string doc;
-  for (const auto& f : docs) {
+  for (std::size_t i = 0; i < docs.size(); ++i) {
+    const auto& f = docs[i];
     std::string d;
     for (const auto& t : f.defaults) d += (d.empty() ? "" : " ") + t;
-    doc += "    " + keyword(f.name) + (f.required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " +
-           f.help + "\n";
+    doc += "    " + keyword(f.name) + ": " + types[i].type.python +
+           (f.required ? " (required)" : " = " + (d.empty() ? std::string("''") : d)) + ": " + f.help + "\n";
   }
   return doc;
 }

@@ -1,9 +1,14 @@
 #!/usr/bin/env python3
 """Opens the built documentation site in headless Chromium (Debian's chromium and chromium-driver, driven by
 Selenium) and checks what a reader sees: every page loads without a console error (severity SEVERE), every image has
-loaded with a non-zero size, and the search page finds `lyapunov_map`.  Screenshots of a few pages go to
-SHOTS_DIR.  Usage: browser_check.py HTML_DIR [SHOTS_DIR]"""
+loaded with a non-zero size, every formula is rendered by MathJax (each Sphinx math element holds MathJax's output,
+none is a TeX error, no raw `$$` or `$...\command...$` is left in the text outside code), no page requests anything
+but local files (Chromium's network log: every request of every page, scripts, styles, fonts, images), and the
+search page finds `lyapunov_map`.  Screenshots of a few pages go to SHOTS_DIR.
+Usage: browser_check.py HTML_DIR [SHOTS_DIR]"""
+import json
 import os
+import re
 import sys
 import tempfile
 import time
@@ -25,7 +30,8 @@ def browser(profile):
     opts.binary_location = "/usr/bin/chromium"
     for f in FLAGS + [f"--user-data-dir={profile}"]:
         opts.add_argument(f)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    # performance: Chromium's DevTools events, among them Network.requestWillBeSent for every request a page makes.
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL", "performance": "ALL"})
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
 
 
@@ -38,7 +44,56 @@ def page_problems(d, url):
         "return Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0)"
         ".map(i => i.getAttribute('src'));")
     problems += [f"broken image: {src}" for src in broken]
+    return problems + formula_problems(d) + remote_requests(d)
+
+
+# Sphinx wraps each formula in span.math / div.math; MathJax 2 (CommonHTML output) adds a .mjx-chtml element inside
+# it, and a TeX error becomes an merror (MathJax's noErrors extension shows the source instead).  The script waits for MathJax to finish (its queue empty).
+UNRENDERED_JS = """
+const maths = Array.from(document.querySelectorAll('span.math, div.math'));
+const pending = maths.filter(m => !m.querySelector('.mjx-chtml')).map(m => m.textContent.slice(0, 60));
+const errors = Array.from(document.querySelectorAll('.mjx-merror, .mjx-noError, [data-mathml*="<merror"]'))
+  .map(e => e.textContent.slice(0, 60));
+const hub = window.MathJax && window.MathJax.Hub;
+const busy = hub ? (hub.queue.pending > 0 || hub.queue.running > 0) : false;
+return {count: maths.length, pending: pending, errors: errors, busy: busy};
+"""
+# Text outside code that is TeX nobody rendered: $$, or $...$ holding a backslash command.
+RAW_TEX = re.compile(r"\$\$|\$[^$\n]{0,80}\\[A-Za-z]+[^$\n]{0,80}\$")
+TEXT_OUTSIDE_CODE_JS = """
+const body = document.querySelector('article') || document.body;
+const copy = body.cloneNode(true);
+copy.querySelectorAll('pre, code, script, .math, .highlight').forEach(e => e.remove());
+return copy.textContent;
+"""
+
+
+def formula_problems(d):
+    """Formulas MathJax did not render (or rendered as errors), and raw TeX left in the page's text."""
+    state = d.execute_script(UNRENDERED_JS)
+    if state["count"]:
+        try:
+            WebDriverWait(d, 30).until(lambda x: not (s := x.execute_script(UNRENDERED_JS))["pending"] and not s["busy"])
+        except Exception:
+            pass
+        state = d.execute_script(UNRENDERED_JS)
+    problems = [f"formula not rendered: {t!r}" for t in state["pending"][:5]]
+    problems += [f"formula with a TeX error: {t!r}" for t in list(dict.fromkeys(state["errors"]))[:5]]
+    raw = RAW_TEX.findall(d.execute_script(TEXT_OUTSIDE_CODE_JS))
+    problems += [f"raw TeX in the text: {t!r}" for t in raw[:5]]
     return problems
+
+
+def remote_requests(d):
+    """Every URL the page requested that is not a local file (or inline data): the site must work offline."""
+    urls = []
+    for entry in d.get_log("performance"):
+        msg = json.loads(entry["message"])["message"]
+        if msg.get("method") == "Network.requestWillBeSent":
+            url = msg["params"]["request"]["url"]
+            if not url.startswith(("file:", "data:", "blob:", "about:", "chrome:", "devtools:")):
+                urls.append(url)
+    return [f"network request: {u}" for u in sorted(set(urls))]
 
 
 def search_finds(d, root, word):
@@ -61,6 +116,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="btob-docs-chromium-") as profile:
         d = browser(profile)
         try:
+            d.get_log("performance")  # the start page's events
             for p in pages:
                 failures += [f"{p}: {x}" for x in page_problems(d, "file://" + os.path.join(root, p))]
                 if p in SHOTS:

@@ -9,8 +9,9 @@ import sys
 
 
 def help_of(btob, path):
-    """The help text of `btob PATH... --help` (CLI11 prints it on stdout, status 0)."""
-    p = subprocess.run([btob, *path, "--help"], capture_output=True, text=True, timeout=60,
+    """The help text of `btob PATH... --help` (CLI11 prints it on stdout, status 0).  argv[0] is "btob" (CLI11 names
+    the program by it in the usage lines: the reader's command, not this build's path)."""
+    p = subprocess.run(["btob", *path, "--help"], executable=btob, capture_output=True, text=True, timeout=60,
                        env=dict(os.environ, COLUMNS="110"))
     if p.returncode != 0:
         raise SystemExit(f"gen_cli: `btob {' '.join(path)} --help` exited {p.returncode}: {p.stderr.strip()}")
@@ -47,9 +48,14 @@ def write(btob, out_md):
              "", "# Command reference", "",
              "Every subcommand of `btob`, with the help text the executable prints (`btob SUB --help`). Flags, scene "
              "keys (`btob run SCENE.toml`) and Python keywords (`-` becomes `_`) name the same fields. Usage errors "
-             "print one line naming the flag and the accepted range and exit with status 2; nothing is written.", ""]
+             "print one line naming the flag and the accepted range and exit with status 2; nothing is written. Each "
+             "option shows its type (INTEGER, REAL, DECIMAL: a real number kept as the decimal text given, so that "
+             "r = 0.1 is 0.1 in every precision; TEXT; `...`: one or more values) and its default (`=...`); a "
+             "REQUIRED option has none.", ""]
     for path, text in pages:
         title = "btob " + " ".join(path) if path else "btob"
+        if os.path.abspath(btob) in text or os.path.dirname(os.path.abspath(btob)) in text:
+            raise SystemExit(f"gen_cli: `btob {' '.join(path)} --help` shows the build path {btob}")
         lines += [f"## `{title}`", "", "```text", text, "```", ""]
     os.makedirs(os.path.dirname(out_md) or ".", exist_ok=True)
     with open(out_md + ".tmp", "w") as f:

@@ -4,7 +4,55 @@
 Usage: gen_paper.py REPO OUT.md"""
 import importlib.util
 import os
+import re
 import sys
+
+# A displayed line of Q_n holds terms up to this many characters of their text form: it then fits the page's
+# column (~740 px) whether the terms are fractions (rendered narrower than their text) or 13-digit integers.
+LINE_CHARS = 60
+
+
+def tex(expr):
+    """One polynomial of results/windows/table_B2.txt (`5/256 r^8 - 5/32 r^7 ...`, `1/256 (r+1)^2 (5r^6 - ...)`) in
+    LaTeX: a/b -> \\tfrac{a}{b}, ^k -> ^{k}; the terms are kept as printed (the exact coefficients)."""
+    return re.sub(r"\^(\d+)", r"^{\1}", re.sub(r"(\d+)/(\d+)", r"\\tfrac{\1}{\2}", expr))
+
+
+def broken(expr):
+    """The polynomial's terms (split at ' + ' and ' - ', signs kept) in lines of at most LINE_CHARS, for an aligned
+    display: a line break inside the factored form's parentheses is fine in plain ( )."""
+    parts = re.split(r" ([+-]) ", expr)
+    terms = [parts[0]] + [f"{sign} {term}" for sign, term in zip(parts[1::2], parts[2::2])]
+    rows = [terms[0]]
+    for term in terms[1:]:
+        if len(rows[-1]) + 1 + len(term) > LINE_CHARS:
+            rows.append(term)
+        else:
+            rows[-1] += " " + term
+    return " \\\\\n  &\\quad ".join(tex(row) for row in rows)
+
+
+def latex_table_b2(lines):
+    """Table B.2 as displayed formulas instead of its text block (one line per polynomial, up to 1,237 characters:
+    a block thousands of pixels wide): for each n, Q_n expanded then factored, both exact, broken into lines."""
+    try:
+        start = lines.index("### Table B.2")
+        begin = lines.index("```text", start)
+    except ValueError:
+        return lines
+    end = lines.index("```", begin + 1)
+    block = "\n".join(lines[begin + 1:end]).splitlines()
+    forms = {}
+    for row in block:
+        m = re.match(r"Q_(\d+) = (.+)$", row.strip())
+        if not m:
+            return lines  # not the format this renders: keep the text block
+        forms.setdefault(int(m.group(1)), []).append(m.group(2))
+    out = []
+    for n, exprs in forms.items():
+        body = f" \\\\\n= {{}}&".join(" " + broken(e) for e in exprs)
+        out += ["$$", "\\begin{aligned}", f"Q_{{{n}}}(r) = {{}}&{body}", "\\end{aligned}", "$$", ""]
+    return lines[:begin] + out + lines[end + 1:]
 
 
 def write(repo, out_md):
@@ -12,7 +60,7 @@ def write(repo, out_md):
     gallery = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gallery)
     gallery.ROOT = os.path.abspath(repo)
-    lines = gallery.tables()
+    lines = latex_table_b2(gallery.tables())
     if lines[:1] == ["## The paper's tables"]:
         lines = lines[2:]  # the page has its own heading
     with open(out_md + ".tmp", "w") as f:

@@ -48,6 +48,7 @@ def api_page(btob):
     for name in btob.FUNCTIONS:
         lines += [f".. autofunction:: btob.{name}", ""]
     lines += [".. autofunction:: btob.iterate", "", ".. autofunction:: btob.estimate", "",
+              ".. autofunction:: btob.cite", "",
               ".. autoclass:: btob.Map", "   :members: r, step, matrix", "",
               ".. autoclass:: btob.Result", "   :members: attrs, arrays, decimals, info, function, command, request, "
               "tables, plots_from_files", "",

@@ -27,10 +27,56 @@ from . import plotting, progress as _progress  # noqa: E402
 __version__ = _btob.__version__
 git_commit = _btob.git_commit
 
+
+def cite(format="bibtex"):
+    """How to cite btob, as ``btob cite --format FORMAT`` prints it: the software at this build's version and git
+    commit, and the paper whose b-to-b map it implements (R. Castorrini and T. Dolmaire, "Four collapsing
+    one-dimensional particles: a dynamical system approach of the spherical billiard reduction").
+
+    format: "bibtex" (BibTeX entries, the default), "cff" (Citation File Format, as CITATION.cff) or "text".
+    Returns the text (print it); another format raises ValueError naming the accepted ones."""
+    return _btob.cite(format)
+
 FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyperbolicity", "hyperbolicity_orbits",
              "classify", "basins", "basins_r", "correlate", "measure", "precision_study", "windows_poly",
              "windows_bounds", "windows_thresholds", "windows_stripes", "windows_verify", "windows_precision", "pattern",
              "pattern_atlas", "pattern_curves", "strip_orbits", "leaves"]
+
+
+def _default(annotation, texts):
+    """A field's default as a Python value, from its text form(s) (what the command line shows): a number for a
+    number, a list for a list, the text itself where the text is the value (a decimal whose text is not a float's
+    shortest form keeps its text, as the field does)."""
+    def one(t):
+        if annotation.startswith("int"):
+            return int(t)
+        if "float" in annotation and annotation != "str":
+            try:
+                x = float(t)
+            except ValueError:
+                return t
+            return x if repr(x) == t or repr(x) == t + ".0" else t
+        return t
+    if annotation.startswith("list"):
+        return [one(t) for t in texts]
+    if annotation == "bool":
+        return texts == ["true"]
+    return one(texts[0]) if texts else ""
+
+
+def _signature(name):
+    """inspect.Signature of a function, from the binding's fields (name, annotation, default, required): every
+    keyword is keyword-only, a required one without a default; then threads, progress (and resume for a sweep)."""
+    import inspect
+    fields, sweep = _btob._signatures[name]
+    kw = inspect.Parameter.KEYWORD_ONLY
+    params = [inspect.Parameter(k, kw, annotation=a, default=inspect.Parameter.empty if req else _default(a, texts))
+              for k, a, texts, req in fields]
+    params += [inspect.Parameter("threads", kw, annotation="int", default=0),
+               inspect.Parameter("progress", kw, annotation="bool | Callable[[int, int], None]", default=False)]
+    if sweep:
+        params.append(inspect.Parameter("resume", kw, annotation="str | None", default=None))
+    return inspect.Signature(params, return_annotation="btob.Result")
 
 
 def _wrap(name):
@@ -41,6 +87,8 @@ def _wrap(name):
         with _progress.sink(kwargs.pop("progress", False), name) as cb:
             return fn(progress=cb, **kwargs)
 
+    # help(), IDE completion and Jupyter's shift-tab read __signature__ (the compiled function only says **kwargs).
+    call.__signature__ = _signature(name)
     return call
 
 

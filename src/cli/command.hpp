@@ -13,6 +13,7 @@
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
 #include "core/estimate.hpp"
+#include "core/field_types.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/sweep.hpp"
@@ -177,8 +178,11 @@ struct FlagBinder {
         o->expected(1, -1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
       else  // one value: a word after it is the next argument (`--periods 10 1133`: 1133 is the positional word)
         o->expected(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+      // The field's type (core/field_types.hpp), not CLI11's TEXT for the raw strings collected here; no default
+      // shown for a field that must be given (its default is a placeholder, not a value one may rely on).
+      o->type_name(core::field_type_name<T>().cli);
       const std::string d = joined(member);
-      if (!d.empty()) o->default_str(d);
+      if (!d.empty() && !required) o->default_str(d);
     }
     if (required && !positional) o->required();  // an empty positional fails validate(), naming the field
     (*opts)[name] = o;
