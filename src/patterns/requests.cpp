@@ -6,6 +6,7 @@
 #include "core/csv.hpp"
 #include "core/scalar.hpp"
 #include "core/sweep.hpp"
+#include "patterns/accuracy.hpp"
 #include "patterns/exact.hpp"
 
 #include <fmt/format.h>
@@ -37,17 +38,34 @@ template <class T> T from_text(const std::string& s) {
 template <class T>
 void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits, const core::CancelToken* cancel) {
   const Verdict<T> v = analyse<T>(w, from_text<T>(r_text), cancel);
+  accuracy::Check chk;  // the digits printed: those the reference in the next wider type confirms (accuracy.hpp)
+  chk.fill(digits);
+  std::string ref_outcome, ref_type;
+  if constexpr (!std::is_same_v<T, core::mpfr_float>) {
+    using H = typename accuracy::Reference<T>::type;
+    const core::MpfrDigits guard(accuracy::mpfr_digits);
+    const Verdict<H> ref = analyse<H>(w, from_text<H>(r_text), cancel);
+    chk = accuracy::check(v, ref);
+    ref_outcome = outcome_name(ref.outcome);
+    ref_type = std::is_same_v<H, core::mpfr_float> ? fmt::format("mpfr:{}", accuracy::mpfr_digits) : core::scalar_name<H>();
+  }
   const Word& u = v.word;
   res.scalar_type = core::scalar_name<T>();
   res.primitive = u;
   res.r = str(v.r, digits);
   res.reduced = v.reduced;
-  for (const auto& e : v.spectrum) {
+  for (std::size_t i = 0; i < v.spectrum.size(); ++i) {
+    const EigenInfo<T>& e = v.spectrum[i];
     EigenText t;
-    t.re = str(e.re, digits);
-    t.im = str(T(e.im < 0 ? T(-e.im) : e.im), digits);
+    const int dr = chk.re_digits[i], di = chk.im_digits[i];
+    t.re = accuracy::scaled_text(e.scaled_re, e.log_scale, dr, str(e.re, dr), e.re);
+    const T abs_im = e.im < 0 ? T(-e.im) : e.im;
+    t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di), abs_im);
     if (e.im < 0) t.im = "-" + t.im;
-    t.ratio = str(T(e.modulus / v.spectrum[0].modulus), 6);
+    // |mu|/|mu1| from the normalised moduli (the same scale): never 0/0
+    const T ratio = e.scaled_modulus / v.spectrum[0].scaled_modulus;
+    const int dq = accuracy::vouched_digits(chk.error[i] + chk.error[0], std::min(digits, 6));
+    t.ratio = accuracy::scaled_text(ratio, T(0), dq, str(ratio, std::max(dq, 1)), ratio);
     t.real = e.real;
     t.in_domain = e.in_domain;
     t.feasible = e.feasible;
@@ -62,8 +80,13 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
   }
   res.outcome = outcome_name(v.outcome);
   res.reason = v.reason;
-  res.lyapunov2 = str(v.lyapunov2, 10);
-  res.lyapunov3 = str(v.lyapunov3, 10);
+  res.lyapunov2 = str(v.lyapunov2, std::max(chk.lyapunov_digits, 1));
+  res.lyapunov3 = str(v.lyapunov3, std::max(chk.lyapunov_digits, 1));
+  if (!chk.same_outcome) {  // the verdict is not the precision's to give: no orbit is vouched for either
+    res.outcome = outcome_name(Outcome::undecided);
+    res.reason = fmt::format("precision: {} in {}, {} in {}", outcome_name(v.outcome), res.scalar_type, ref_outcome, ref_type);
+    return;
+  }
   if (v.orbit_eigen < 0) return;
   res.letters = v.letters;
   for (std::size_t k = 0; k < v.orbit.size(); ++k) {
@@ -124,71 +147,6 @@ void charpoly(WordResult& res, const Word& w) {
   res.discriminant = discriminant(chi).to_string();
 }
 
-// What a reason code of the analysis means (Section 7's conditions, in the order analyse checks them).
-std::string reason_text(const std::string& reason) {
-  if (reason == "complex") return "the dominant eigenvalue mu1 is complex: no dominant real direction";
-  if (reason == "domain") return "the dominant eigenvector lies outside the domain x z < 0";
-  if (reason == "dominance") return "the eigenvalue with a feasible eigenvector is not the dominant one";
-  if (reason.rfind("feas", 0) == 0)
-    return fmt::format("feasibility inequality {} fails: the orbit does not see the word's symbol there", reason.substr(4));
-  if (reason == "end") return "the end of (0, 1)";
-  return reason;
-}
-
-std::string verdict_text(const WordResult& res) {
-  const Word& w = res.word;
-  const Word& u = res.primitive;
-  std::string s = fmt::format("word        {} = {} ({} symbols, {} collisions); canonical {}\n", to_paper(w), to_digits(w),
-                              w.size(), collisions(w), to_paper(canonical(w)));
-  if (!(u == w)) s += fmt::format("primitive   {} (the orbit of a power is the orbit of its root)\n", to_paper(u));
-  s += fmt::format("r           {}\n", res.r);
-  if (res.reduced) {
-    const Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
-    s += fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
-  } else {
-    s += fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()), int(u.s.front()));
-  }
-  for (std::size_t i = 0; i < res.spectrum.size(); ++i) {
-    const EigenText& e = res.spectrum[i];
-    s += fmt::format("mu{}         ", i + 1);
-    if (e.real) {
-      s += fmt::format("{} (real, |mu|/|mu1| = {}), eigenvector ({}, {}, {})", e.re, e.ratio, e.vector[0], e.vector[1],
-                       e.vector[2]);
-      if (e.feasible) s += ", in the domain, all feasibility inequalities hold";
-      else if (!e.in_domain) s += ", outside the domain x z < 0";
-      else s += fmt::format(", in the domain, feasibility inequality {} fails (symbol {})", e.first_failure, e.failing_symbol);
-    } else {
-      const bool neg = !e.im.empty() && e.im[0] == '-';
-      s += fmt::format("{} {} {} i (complex, |mu|/|mu1| = {})", e.re, neg ? "-" : "+", neg ? e.im.substr(1) : e.im, e.ratio);
-    }
-    s += "\n";
-  }
-  std::string why;
-  if (res.outcome == outcome_name(Outcome::neutral))
-    why = " (elliptic: both exponents zero within 64 eps; neither attracting nor repelling)";
-  else if (res.outcome == outcome_name(Outcome::unstable))
-    why = " (a saddle or a source: lambda1 > 0)";
-  else if (res.outcome == outcome_name(Outcome::undecided))
-    why = fmt::format(" (undecided in {}: the orbit's eigenvalue and another real one have equal moduli within 64 "
-                      "eps, so lambda1 is zero within its error and the eigenvalue test cannot order them; use a "
-                      "longer precision, --precision mpfr:<digits>)", res.scalar_type);
-  else if (!res.reason.empty())
-    why = fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason));
-  s += fmt::format("verdict     {}{}\n", res.outcome, why);
-  if (res.orbit.empty()) return s;  // no periodic point: the period matrix's exponents describe no orbit
-  s += fmt::format("exponents   lambda1 = {}, lambda2 = {} (the orbit's projective Lyapunov exponents along its two "
-                   "tangent directions, log(|mu_j|/|mu_k|)/p for the eigenvalues mu_j other than the orbit's own mu_k, "
-                   "lambda1 >= lambda2, per iteration, natural log)\n",
-                   res.lyapunov2, res.lyapunov3);
-  s += fmt::format("letters     {} ({} collisions)\n", res.letters, collisions(u));
-  s += "orbit       k symbol x y z theta w1 w2\n";
-  for (std::size_t k = 0; k < res.orbit.size(); ++k) {
-    const auto& p = res.orbit[k];
-    s += fmt::format("            {} {} {} {} {} {} {} {}\n", k, p[0], p[1], p[2], p[3], p[4], p[5], p[6]);
-  }
-  return s;
-}
-
 }  // namespace
 
 void WordRequest::validate() const {
@@ -233,7 +191,7 @@ WordResult run(const WordRequest& req, const core::RunControl& control) {
 
 std::string WordResult::text() const {
   switch (mode) {
-    case WordRequest::Mode::verdict: return verdict_text(*this);
+    case WordRequest::Mode::verdict: return detail::verdict_text(*this);
     case WordRequest::Mode::window: {
       std::string s = "word,r_low,r_high,low_reason,high_reason\n";
       for (const auto& iv : intervals) s += fmt::format("{},{},{},{},{}\n", to_paper(word), iv[0], iv[1], iv[2], iv[3]);
