@@ -1,5 +1,6 @@
-// Explicit instantiations of the periodic-orbit analysis for double, long double, float128 and MPFR; the scan grid.
-#include "patterns/analysis_impl.hpp"
+// Explicit instantiations of the periodic-orbit analysis and its scans (float, double, long double, float128, MPFR);
+// the scan grid.
+#include "patterns/scan_impl.hpp"
 
 #include "core/scalar.hpp"
 

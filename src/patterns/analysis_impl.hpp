@@ -167,18 +167,29 @@ template <class T> Vec3<T> eigenvector(const Mat3<T>& A, const T& l) {
   return best / sqrt_<T>(bn);
 }
 
+// How many factors a normalised product may take before it is renormalised: entries shrink at most like r^2 per
+// factor (|det P_i| = r^3 or r^4), so s factors stay above sqrt(min normal) while r^(2s) does.  8 (what every
+// product here used) where that holds: r > 2.3e-10 in double (every r of the atlases), r > 0.065 in float; fewer
+// below, down to renormalising every factor, so that no entry underflows to zero or to a subnormal and the
+// normalisation never divides 0 by 0 (float at r = 0.01 lost every entry after 8 factors).
+template <class T> std::size_t renorm_stride(const T& r) {
+  const double lr = std::log(static_cast<double>(r));
+  const double lt = std::log(static_cast<double>(std::numeric_limits<T>::min())) / 2;  // below: subnormal territory
+  if (!(lr < 0) || 16 * lr > lt) return 8;
+  return static_cast<std::size_t>(std::clamp(std::floor(lt / (2 * lr)), 1.0, 8.0));
+}
+
 // The matrix analysed for w (its primitive root): J M_h when w = h J(h), else M_w; normalised.
 template <class T> Scaled<T> analysed_matrix(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
+  const std::size_t stride = renorm_stride(r);
   Scaled<T> M;
   core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
     poll_symbol<T>(cancel, k);
     M.m = P[w.s[k] - 1] * M.m;
-    // Renormalise every 8 factors: entries shrink at most like r^2 per factor (|det P_i| = r^3 or r^4),
-    // so 8 factors stay far from underflow for r > 1e-10 in double.
-    if (k % 8 == 7) M.normalise();
+    if (k % stride == stride - 1) M.normalise();  // renorm_stride: never near underflow
   }
   if (reduced) M.m = core::J<T>() * M.m;
   M.normalise();
@@ -279,11 +290,12 @@ std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled
   Scaled<T> cof;
   T log_det = T(0);
   const T log_r = log_(r);
+  const std::size_t stride = renorm_stride(r);  // cofactors of P_i are O(r^2) too
   core::check_cancel(cancel);
   for (std::size_t k = 0; k < n; ++k) {
     poll_symbol<T>(cancel, k);
     cof.m = C[w.s[k] - 1] * cof.m;
-    if (k % 8 == 7) cof.normalise();  // renormalised as analysed_matrix does, far from underflow
+    if (k % stride == stride - 1) cof.normalise();  // renormalised as analysed_matrix does, far from underflow
     log_det += (w.s[k] == 2 ? 3 : 4) * log_r;
   }
   if (reduced) cof.m = Mat3<T>(-core::J<T>()) * cof.m;
@@ -415,15 +427,18 @@ int eigen_feasibility(const Word& w, const T& r, const Spectrum<T>& s, int i, co
   return feasibility_of<T>(w, r, orbit_points(w, r, s, i, cancel), nullptr, cancel);
 }
 
-// Stability predicate with its failure reason ("" when stable).
+// Stability predicate with its failure reason ("" when stable), from the spectrum s of the analysed matrix.
 template <class T>
-std::string stability_reason(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
-  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
+std::string stability_reason_of(const Word& w, const T& r, const Spectrum<T>& s, const core::CancelToken* cancel) {
   if (!s.roots[0].real) return "complex";
   if (!(s.mod[1] < s.mod[0] * (1 - tie_tol<T>()))) return s.roots[1].real ? "dominance" : "complex";
   const int f = eigen_feasibility(w, r, s, 0, cancel);
   if (f < 0) return "";
   return f == 0 ? "domain" : fmt::format("feas{}", f);
+}
+template <class T>
+std::string stability_reason(const Word& w, const T& r, bool reduced, const core::CancelToken* cancel) {
+  return stability_reason_of(w, r, spectrum(w, r, reduced, cancel), cancel);
 }
 
 template <class T> void check_inputs(const Word& w, const T& r) {
@@ -460,6 +475,10 @@ std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<
     e.re = s.roots[i].re * scale;
     e.im = s.roots[i].im * scale;
     e.modulus = s.mod[i] * scale;
+    e.scaled_re = s.roots[i].re;
+    e.scaled_im = s.roots[i].im;
+    e.scaled_modulus = s.mod[i];
+    e.log_scale = s.A.log_scale;
     e.real = s.roots[i].real;
     if (e.real) {
       e.vector = core::to_quadrant(eigenvector<T>(s.A.m, s.roots[i].re));
@@ -573,6 +592,34 @@ template <class T> void orbit_exponents(const LogModuli<T>& lg, Verdict<T>& v) {
 
 }  // namespace detail
 
+namespace detail {
+// Whether every root of the normalised spectrum and its log-scale are finite numbers.
+template <class T> bool finite_spectrum(const Spectrum<T>& s) {
+  using std::isfinite;
+  bool ok = isfinite(s.A.log_scale);
+  for (const auto& x : s.roots) ok = ok && isfinite(x.re) && isfinite(x.im);
+  return ok;
+}
+}  // namespace detail
+
+namespace detail {
+// Whether a component of the (real) dominant eigenvector is zero or subnormal in a fixed-size type: 1^n 3^n has
+// x ~ r^n there (4e-230 at n = 200, 1e-5700 at n = 5000), which underflows to 0 and fails the domain test x z < 0
+// that MPFR passes.  The verdict is then not the type's to give (undecided, "range").  Never for MPFR.  An exact zero
+// counts only for words of two symbols or more: a one-symbol word's eigenvectors have exact zeros (P1's block
+// eigenvectors have z = 0: on the domain's boundary, no orbit), products of different P_i have none.
+template <class T> bool below_range(const Word& w, const EigenInfo<T>& e) {
+  if constexpr (std::is_same_v<T, core::mpfr_float>) return false;
+  else {
+    if (!e.real) return false;
+    using std::fpclassify;
+    for (int i : {0, 2})
+      if (const int c = fpclassify(e.vector(i)); c == FP_SUBNORMAL || (c == FP_ZERO && w.size() > 1)) return true;
+    return false;
+  }
+}
+}  // namespace detail
+
 // primitive root -> spectrum -> outcome -> periodic orbit -> exponents.
 template <class T> Verdict<T> analyse(const Word& w0, const T& r, const core::CancelToken* cancel) {
   using namespace detail;
@@ -582,88 +629,21 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r, const core::Ca
   v.r = r;
   v.reduced = is_J_square(v.word);
   const Spectrum<T> s = spectrum(v.word, r, v.reduced, cancel);
+  if (!finite_spectrum(s)) {  // no verdict on NaN (renorm_stride keeps the products normal; a guard, never reached)
+    v.outcome = Outcome::undecided;
+    v.reason = "range";
+    return v;
+  }
   v.spectrum = eigen_infos(v.word, r, s, cancel);
   verdict_outcome(r, v, cancel);
+  if (v.outcome != Outcome::stable && below_range(v.word, v.spectrum[0])) {  // the domain test read an underflowed component
+    v.outcome = Outcome::undecided;
+    v.reason = "range";
+    v.orbit_eigen = -1;
+  }
   periodic_orbit(r, s, v, cancel);
   orbit_exponents(log_moduli(v.word, r, cancel), v);
   return v;
-}
-
-template <class T> T quantity(const Word& w0, const T& r, Track track, Quantity q, const core::CancelToken* cancel) {
-  using namespace detail;
-  check_inputs(w0, r);
-  const Word w = primitive_root(w0);
-  const Spectrum<T> s = spectrum(w, r, is_J_square(w), cancel);
-  int idx = -1;
-  for (int i = 0; i < 3 && idx < 0; ++i)
-    if (s.roots[i].real && (track == Track::dominant_real || s.roots[i].re < 0)) idx = i;
-  if (idx < 0) return std::numeric_limits<T>::quiet_NaN();
-  if (q == Quantity::dominance_gap) {
-    T other = T(0);
-    for (int i = 0; i < 3; ++i)
-      if (i != idx) other = std::max<T>(other, s.mod[i]);
-    return (s.mod[idx] - other) / s.mod[idx];
-  }
-  const Vec3<T> u = eigenvector<T>(s.A.m, s.roots[idx].re);
-  switch (q) {
-    case Quantity::x_component: return u(2) < 0 ? T(u(0)) : T(-u(0));
-    case Quantity::z_component: return u(0) > 0 ? T(u(2)) : T(-u(2));
-    case Quantity::alpha_y_minus_x: {
-      const T val = core::alpha(r) * u(1) - u(0);
-      return u(0) > 0 ? val : T(-val);
-    }
-    default: return T(0);
-  }
-}
-
-template <class T>
-T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol, const core::CancelToken* cancel) {
-  T flo = quantity(w, lo, track, q, cancel);
-  const T fhi = quantity(w, hi, track, q, cancel);
-  if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
-    throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]", static_cast<double>(lo),
-                                        static_cast<double>(hi)));
-  for (int it = 0; it < 100000 && hi - lo > tol; ++it) {
-    const T mid = (lo + hi) / 2;
-    const T fm = quantity(w, mid, track, q, cancel);
-    if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; }
-    else hi = mid;
-  }
-  return (lo + hi) / 2;
-}
-
-template <class T>
-std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>& grid, const T& tol,
-                                       const core::CancelToken* cancel) {
-  using namespace detail;
-  if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
-  const Word w = primitive_root(w0);
-  const bool red = is_J_square(w);
-  std::vector<Interval<T>> out;
-  std::vector<char> st(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) st[i] = stability_reason<T>(w, T(grid[i]), red, cancel).empty();
-  // Bisects the predicate between a (stable) and b (not stable); returns the endpoint and b's reason.
-  const auto refine = [&](T a, T b) {
-    for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
-      const T mid = (a + b) / 2;
-      if (stability_reason<T>(w, mid, red, cancel).empty()) a = mid;
-      else b = mid;
-    }
-    return std::pair<T, std::string>{T((a + b) / 2), stability_reason<T>(w, b, red, cancel)};
-  };
-  for (std::size_t i = 0; i < grid.size();) {
-    if (!st[i]) { ++i; continue; }
-    std::size_t j = i;
-    while (j + 1 < grid.size() && st[j + 1]) ++j;
-    Interval<T> iv;
-    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
-    else std::tie(iv.lo, iv.lo_reason) = refine(T(grid[i]), T(grid[i - 1]));
-    if (j + 1 == grid.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
-    else std::tie(iv.hi, iv.hi_reason) = refine(T(grid[j]), T(grid[j + 1]));
-    out.push_back(iv);
-    i = j + 1;
-  }
-  return out;
 }
 
 namespace detail {
@@ -681,13 +661,11 @@ template <class T> bool collapses(const Word& w, const T& r, const Spectrum<T>& 
   const bool odd = collisions(w) % 2 != 0;
   return odd ? la * lo < 0 : la * lo > 0;
 }
-}  // namespace detail
 
-template <class T> Classification classify(const Word& w0, const T& r, const core::CancelToken* cancel) {
-  using namespace detail;
-  const Word w = primitive_root(w0);
-  const bool reduced = is_J_square(w);
-  const Spectrum<T> s = spectrum(w, r, reduced, cancel);
+// classify for the primitive word w from the spectrum s of its analysed matrix.
+template <class T>
+Classification classify_of(const Word& w, const T& r, const Spectrum<T>& s, bool reduced,
+                           const core::CancelToken* cancel) {
   // The same predicates as analyse: stable = real, strictly dominant and feasible; unstable = some other
   // real eigenvector feasible (analyse's loop over the spectrum in order of decreasing modulus).
   const bool dominant = s.roots[0].real && s.mod[1] < s.mod[0] * (1 - tie_tol<T>());
@@ -704,40 +682,12 @@ template <class T> Classification classify(const Word& w0, const T& r, const cor
   }
   return {};
 }
+}  // namespace detail
 
-template <class T>
-std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vector<double>& grid, const T& tol,
-                                                 const core::CancelToken* cancel) {
-  using namespace detail;
-  if (w0.s.empty()) throw core::InvalidField("word", "an empty word", "at least one symbol 1, 2 or 3");
+template <class T> Classification classify(const Word& w0, const T& r, const core::CancelToken* cancel) {
   const Word w = primitive_root(w0);
-  std::vector<Classification> o(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) o[i] = classify<T>(w, T(grid[i]), cancel);
-  // Bisects between a (classification ca) and b (another one); returns the endpoint and b's name.
-  const auto refine = [&](T a, T b, const Classification& ca) {
-    for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
-      const T mid = (a + b) / 2;
-      if (classify<T>(w, mid, cancel) == ca) a = mid;
-      else b = mid;
-    }
-    return std::pair<T, std::string>{T((a + b) / 2), classification_name(classify<T>(w, b, cancel))};
-  };
-  std::vector<FeasibleInterval<T>> out;
-  for (std::size_t i = 0; i < grid.size();) {
-    if (o[i].outcome == Outcome::none) { ++i; continue; }
-    std::size_t j = i;
-    while (j + 1 < grid.size() && o[j + 1] == o[i]) ++j;
-    FeasibleInterval<T> iv;
-    iv.outcome = o[i].outcome;
-    iv.collapse = o[i].collapse;
-    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
-    else std::tie(iv.lo, iv.lo_reason) = refine(T(grid[i]), T(grid[i - 1]), o[i]);
-    if (j + 1 == grid.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
-    else std::tie(iv.hi, iv.hi_reason) = refine(T(grid[j]), T(grid[j + 1]), o[i]);
-    out.push_back(iv);
-    i = j + 1;
-  }
-  return out;
+  const bool reduced = is_J_square(w);
+  return detail::classify_of(w, r, detail::spectrum(w, r, reduced, cancel), reduced, cancel);
 }
 
 }  // namespace btob::patterns

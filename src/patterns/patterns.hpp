@@ -63,8 +63,12 @@ const char* outcome_name(Outcome o);
 
 // One eigenvalue of the analysed matrix (M_w, or J M_h when w = h J(h)), with its eigenvector when real.
 template <class T> struct EigenInfo {
-  T re{}, im{};          // eigenvalue
+  T re{}, im{};          // eigenvalue (0 or a subnormal when it lies below T's range, inf above: see scaled_*)
   T modulus{};
+  // The same eigenvalue as (scaled_re + i scaled_im) e^log_scale, scaled_modulus e^log_scale: the roots of the
+  // normalised product (max entry 1) and its log-scale, finite for any word length where re, im, modulus under- or
+  // overflow (a word of 10^4 symbols at r = 0.07: |mu1| ~ 1e-2300).
+  T scaled_re{}, scaled_im{}, scaled_modulus{}, log_scale{};
   bool real = false;
   Vec3<T> vector;        // unit eigenvector brought into Q = {x >= 0, z <= 0} (real eigenvalues only)
   bool in_domain = false;  // x z < 0 (strictly inside the domain of P)
@@ -84,7 +88,8 @@ template <class T> struct Verdict {
   // Projective Lyapunov exponents per iteration of P_r: log(|l2|/|l1|)/p and log(|l3|/|l1|)/p of M_w
   // (natural log; from the second exterior power, accurate even when |l2/l1| underflows).
   T lyapunov2{}, lyapunov3{};
-  std::string reason;              // why not stable: "complex", "dominance", "domain", "feasN"
+  std::string reason;              // why not stable: "complex", "dominance", "domain", "feasN"; "range" (undecided:
+                                   // the spectrum or the dominant eigenvector's x or z left T's range)
 };
 
 // The analysis of Section 7 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.

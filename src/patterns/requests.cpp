@@ -6,6 +6,7 @@
 #include "core/csv.hpp"
 #include "core/scalar.hpp"
 #include "core/sweep.hpp"
+#include "patterns/accuracy.hpp"
 #include "patterns/exact.hpp"
 
 #include <fmt/format.h>
@@ -37,17 +38,34 @@ template <class T> T from_text(const std::string& s) {
 template <class T>
 void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits, const core::CancelToken* cancel) {
   const Verdict<T> v = analyse<T>(w, from_text<T>(r_text), cancel);
+  accuracy::Check chk;  // the digits printed: those the reference in the next wider type confirms (accuracy.hpp)
+  chk.fill(digits);
+  std::string ref_outcome, ref_type;
+  if constexpr (!std::is_same_v<T, core::mpfr_float>) {
+    using H = typename accuracy::Reference<T>::type;
+    const core::MpfrDigits guard(accuracy::mpfr_digits);
+    const Verdict<H> ref = analyse<H>(w, from_text<H>(r_text), cancel);
+    chk = accuracy::check(v, ref);
+    ref_outcome = outcome_name(ref.outcome);
+    ref_type = std::is_same_v<H, core::mpfr_float> ? fmt::format("mpfr:{}", accuracy::mpfr_digits) : core::scalar_name<H>();
+  }
   const Word& u = v.word;
   res.scalar_type = core::scalar_name<T>();
   res.primitive = u;
   res.r = str(v.r, digits);
   res.reduced = v.reduced;
-  for (const auto& e : v.spectrum) {
+  for (std::size_t i = 0; i < v.spectrum.size(); ++i) {
+    const EigenInfo<T>& e = v.spectrum[i];
     EigenText t;
-    t.re = str(e.re, digits);
-    t.im = str(T(e.im < 0 ? T(-e.im) : e.im), digits);
+    const int dr = chk.re_digits[i], di = chk.im_digits[i];
+    t.re = accuracy::scaled_text(e.scaled_re, e.log_scale, dr, str(e.re, dr), e.re);
+    const T abs_im = e.im < 0 ? T(-e.im) : e.im;
+    t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di), abs_im);
     if (e.im < 0) t.im = "-" + t.im;
-    t.ratio = str(T(e.modulus / v.spectrum[0].modulus), 6);
+    // |mu|/|mu1| from the normalised moduli (the same scale): never 0/0
+    const T ratio = e.scaled_modulus / v.spectrum[0].scaled_modulus;
+    const int dq = accuracy::vouched_digits(chk.error[i] + chk.error[0], std::min(digits, 6));
+    t.ratio = accuracy::scaled_text(ratio, T(0), dq, str(ratio, std::max(dq, 1)), ratio);
     t.real = e.real;
     t.in_domain = e.in_domain;
     t.feasible = e.feasible;
@@ -64,8 +82,13 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
   }
   res.outcome = outcome_name(v.outcome);
   res.reason = v.reason;
-  res.lyapunov2 = str(v.lyapunov2, 10);
-  res.lyapunov3 = str(v.lyapunov3, 10);
+  res.lyapunov2 = str(v.lyapunov2, std::max(chk.lyapunov_digits, 1));
+  res.lyapunov3 = str(v.lyapunov3, std::max(chk.lyapunov_digits, 1));
+  if (!chk.same_outcome) {  // the verdict is not the precision's to give: no orbit is vouched for either
+    res.outcome = outcome_name(Outcome::undecided);
+    res.reason = fmt::format("precision: {} in {}, {} in {}", outcome_name(v.outcome), res.scalar_type, ref_outcome, ref_type);
+    return;
+  }
   if (v.orbit_eigen < 0) return;
   res.exponents_decimal = {res.lyapunov2, res.lyapunov3};
   res.letters = v.letters;

@@ -82,6 +82,9 @@ struct WordResult {
 };
 
 WordResult run(const WordRequest& req, const core::RunControl& control = {});
+namespace detail {
+std::string verdict_text(const WordResult& res);  // WordResult::text() in verdict mode (verdict_text.cpp)
+}
 // Its cost (core/work.hpp): one analysis of the word (verdict, window or characteristic polynomial), probed on the
 // request itself: its cost depends on the word, the mode, the precision and the digits together.
 core::Work work(const WordRequest& req);
