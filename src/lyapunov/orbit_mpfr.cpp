@@ -19,13 +19,19 @@ struct Scratch {
 
 // One vector's step under the branch (s1, s3), with d1 = a y - x, d3 = a y - z already in s.c1, s.c3: the point's |c1|
 // and -|c3| are d1 or -d1 and d3 or -d3 with the signs its branch implies (the tangent vectors take the same signs).
+// The point (point = true) takes |c1| and -|c3| themselves, as the kernel does (the same values, and the kernel's
+// sign of zero at an exact tie).
 inline void vector_step(mpfr_ptr x, mpfr_ptr y, mpfr_ptr z, bool s1, bool s3, mpfr_srcptr r, mpfr_srcptr k,
-                        const Scratch& s) {
+                        const Scratch& s, bool point) {
   if (s3) mpfr_mul(s.xn, r, x, kNearest);
+  else if (point) mpfr_abs(s.xn, s.c1, kNearest);
   else if (s1) mpfr_swap(s.xn, s.c1);
   else mpfr_neg(s.xn, s.c1, kNearest);
   if (s1) mpfr_mul(s.zn, r, z, kNearest);
-  else if (s3) mpfr_swap(s.zn, s.c3);
+  else if (point) {
+    mpfr_abs(s.zn, s.c3, kNearest);
+    mpfr_neg(s.zn, s.zn, kNearest);
+  } else if (s3) mpfr_swap(s.zn, s.c3);
   else mpfr_neg(s.zn, s.c3, kNearest);
   mpfr_add(s.t, s.xn, s.zn, kNearest);
   mpfr_mul(s.t, s.t, k, kNearest);
@@ -52,11 +58,11 @@ template <> void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long
     mpfr_fms(s.c3, a, y, z, kNearest);
     const bool s1 = mpfr_sgn(s.c1) > 0, s3 = mpfr_sgn(s.c3) < 0;  // exact signs: MPFR's range has no underflow here
     // The point: |c1| = c1 on branch 1, -c1 on branch 2; -|c3| = c3 on branch 3, -c3 on branch 2.
-    vector_step(x, y, z, s1, s3, r, k, s);
+    vector_step(x, y, z, s1, s3, r, k, s, true);
     for (int j = 0; j < 2; ++j) {
       mpfr_fms(s.c1, a, v[j][1], v[j][0], kNearest);
       mpfr_fms(s.c3, a, v[j][1], v[j][2], kNearest);
-      vector_step(v[j][0], v[j][1], v[j][2], s1, s3, r, k, s);
+      vector_step(v[j][0], v[j][1], v[j][2], s1, s3, r, k, s, false);
     }
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(s1 ? 1 : (s3 ? 3 : 2));
   }
