@@ -79,8 +79,7 @@ template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, st
   using std::fabs;
   using std::fma;
   T x = f.u[0], y = f.u[1], z = f.u[2];
-  T p = f.v[0][0], q = f.v[0][1], w = f.v[0][2];
-  T P = f.v[1][0], Q = f.v[1][1], W = f.v[1][2];
+  T p = f.v[0], q = f.v[1], w = f.v[2];
   const T r = f.r, a = f.a, k = f.k;
   for (long i = 0; i < n; ++i) {
     const T c1 = core::fms<T>(a, y, x), c3 = core::fms<T>(a, y, z);
@@ -96,26 +95,23 @@ template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, st
     x = xn;
     z = zn;
     blended_tangent(p, q, w, m, r, a, k);
-    blended_tangent(P, Q, W, m, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(2 - s1 + s3);
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
-  f.v[0][0] = p, f.v[0][1] = q, f.v[0][2] = w;
-  f.v[1][0] = P, f.v[1][1] = Q, f.v[1][2] = W;
+  f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
 }  // namespace
 
 // Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
-// most one r x or r z, one addition, one FMA) and the same for each tangent vector, then one byte stored.  The
+// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored.  The
 // dependency chain through the point is fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
 template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
 #if defined(__FMA__)
   if constexpr (hardware_fma<T>) return advance_blended<T>(f, n, first, ring);
 #endif
   T x = f.u[0], y = f.u[1], z = f.u[2];
-  T p = f.v[0][0], q = f.v[0][1], w = f.v[0][2];
-  T P = f.v[1][0], Q = f.v[1][1], W = f.v[1][2];
+  T p = f.v[0], q = f.v[1], w = f.v[2];
   const T r = f.r, a = f.a, k = f.k;
   for (long i = 0; i < n; ++i) {
     bool s1 = false, s3 = false;
@@ -124,12 +120,10 @@ template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8
     y = o.y;
     z = o.z;
     tangent_step(p, q, w, s1, s3, r, a, k);
-    tangent_step(P, Q, W, s1, s3, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(s1 ? 1 : (s3 ? 3 : 2));
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
-  f.v[0][0] = p, f.v[0][1] = q, f.v[0][2] = w;
-  f.v[1][0] = P, f.v[1][1] = Q, f.v[1][2] = W;
+  f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
 template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*);

@@ -1,17 +1,20 @@
 // The projective exponents of one orbit at the scalar limit (lyapunov/orbit.hpp): the frame is stepped by
 // detail::advance (kernel_orbit.cpp, orbit_mpfr.cpp) between Gram-Schmidt steps, which happen here, every `len` steps.
 //
-// The interval.  Between two Gram-Schmidt steps the tangent vectors are stepped by M_s without projection, so each
-// carries a component along the orbit vector u next to its projective part p (the component orthogonal to u).  Every
-// rounding of a step is relative to the whole vector |v|, so after the projection p carries a relative error of at
-// most about (len + 2) eps rho, rho = |v| / |p| (len steps of rounding and the cancellation of the projection; the
-// second vector's Gram-Schmidt against the first likewise, with |v2| over its part orthogonal to u and p1).  rho is
+// The interval.  Between two projections the tangent vector is stepped by M_s without projection, so it carries a
+// component along the orbit vector u next to its projective part p (the component orthogonal to u).  Every rounding
+// of a step is relative to the whole vector |v|, so after the projection p carries a relative error of at most about
+// (len + 2) eps rho, rho = |v| / |p| (len steps of rounding and the cancellation of the projection).  rho is
 // measured at every Gram-Schmidt step (free: both norms are computed there), and the next interval is chosen so that
 // rho stays below 2^B, B = a sixth of T's bits (double: 8 bits, so the logs keep 45 of their 53 bits; MPFR at 50
 // digits: 27 bits): with g = log2(rho) / len measured over the last interval, len = B / g, at least 1, at most the
 // kernel's renormalisation interval K (iterate::renormalisation_interval: over K steps no vector of the frame
 // leaves T's range, so no step tests a range either).  A worst-case bound from the matrices alone (rho <= the
-// product of cond(M_s)) is useless at small r (cond(M_s) ~ 1 / r^2), hence the measured one.
+// product of cond(M_s)) is useless at small r (cond(M_s) ~ 1 / r^2), hence the measured one.  rho grows only where
+// lambda1 < 0 (u outgrows the tangent vector): on a chaotic orbit len stays at K.  lambda2 comes from the area
+// growth (Orbit::gram_schmidt), so no second vector has to be kept apart from the first: a Gram-Schmidt pair loses
+// (lambda1 - lambda2) / ln 2 bits per step to each other (2.4 on the chaotic orbit at r = 0.12), which would force
+// len ~ 3 there.
 // The arithmetic's error enters the error bar: each Gram-Schmidt step adds (len + 2) eps rho to the logs' worst-case
 // error, and the reported error is at least that sum over the averaged steps divided by their number.
 // A user interval (Options::reorthonormalise > 1) is kept fixed (at most K), as the QR route kept it.
@@ -34,7 +37,7 @@ namespace {
 
 template <class T> T dot3(const T* p, const T* q) { return T(p[0] * q[0] + p[1] * q[1] + p[2] * q[2]); }
 
-// One Gram-Schmidt step's output: the two logs of the projective growth since the previous one, and rho's log2.
+// One projection's output: the logs of the growth of lambda1 and of lambda2 since the previous one, and rho's log2.
 struct Growth {
   std::array<long double, 2> logs;
   double bits;
@@ -51,8 +54,7 @@ template <class T> struct Orbit {
     const Eigen::Matrix<T, 3, 2> V = tangent_basis(Vec3<T>(u / un));
     for (int i = 0; i < 3; ++i) {
       f.u[i] = u(i);
-      f.v[0][i] = V(i, 0);
-      f.v[1][i] = V(i, 1);
+      f.v[i] = V(i, 0);
     }
     f.r = r;
     f.a = (T(1) + r) / T(2);
@@ -60,31 +62,26 @@ template <class T> struct Orbit {
     unorm = un;
   }
 
-  // Project both tangent vectors on u^perp, Gram-Schmidt them, restart them as the orthonormal pair, and rescale u
-  // by a power of two (exact: the orbit's bits do not change).  The projective tangent vector is p / |u| (the
-  // derivative of u -> M u / |M u| at a unit u is (I - w w^T) M / |M u|), so a log of growth is log |p| - log |u|
-  // + log |u_prev|, with p from a unit start.
-  Growth gram_schmidt() {
+  // Project the tangent vector on u^perp, restart it as the unit vector there, and rescale u by a power of two
+  // (exact: the orbit's bits do not change).  The projective tangent vector is p / |u| (the derivative of
+  // u -> M u / |M u| at a unit u is (I - w w^T) M / |M u|), so lambda1's log of growth is log |p| - log |u| + log |u_prev|,
+  // with p from a unit start.  lambda1 + lambda2 is the log of the area growth of the same map, whose Jacobian on the
+  // sphere is |det M| / |M u|^3 at a unit u: over the interval, n13 log r - 3 log(|u| / |u_prev|) (det M_s = det P_s / r^3
+  // = r on branches 1 and 3, 1 on branch 2; Section 5.1's det P_i), exact up to rounding, without a second vector.
+  Growth gram_schmidt(long n13, long double log_r) {
     using std::sqrt;
     const T uu = dot3(f.u, f.u);
-    T p[2][3];
-    long double vlen[2];
-    for (int j = 0; j < 2; ++j) {
-      const T c = dot3(f.u, f.v[j]) / uu;
-      for (int i = 0; i < 3; ++i) p[j][i] = f.v[j][i] - c * f.u[i];
-      vlen[j] = std::sqrt(static_cast<long double>(dot3(f.v[j], f.v[j])));
-    }
-    const T n1 = sqrt(dot3(p[0], p[0]));
-    for (int i = 0; i < 3; ++i) p[0][i] /= n1;
-    const T c = dot3(p[0], p[1]);
-    for (int i = 0; i < 3; ++i) p[1][i] -= c * p[0][i];
-    const T n2 = sqrt(dot3(p[1], p[1]));
-    for (int i = 0; i < 3; ++i) p[1][i] /= n2;
+    const T c = dot3(f.u, f.v) / uu;
+    T p[3];
+    for (int i = 0; i < 3; ++i) p[i] = f.v[i] - c * f.u[i];
+    const long double vlen = std::sqrt(static_cast<long double>(dot3(f.v, f.v)));
+    const T n1 = sqrt(dot3(p, p));
+    for (int i = 0; i < 3; ++i) p[i] /= n1;
     const T un = sqrt(uu);
-    const long double ratio = static_cast<long double>(unorm / un);
-    const Growth g{{std::log(static_cast<long double>(n1) * ratio), std::log(static_cast<long double>(n2) * ratio)},
-                   static_cast<double>(std::log2(std::max({vlen[0] / static_cast<long double>(n1),
-                                                           vlen[1] / static_cast<long double>(n2), 1.0L})))};
+    const long double log_ratio = std::log(static_cast<long double>(T(unorm / un)));  // log(|u_prev| / |u|)
+    const long double log1 = std::log(static_cast<long double>(n1)) + log_ratio;
+    const long double sum = static_cast<long double>(n13) * log_r + 3 * log_ratio;  // lambda1 + lambda2's log
+    const Growth g{{log1, sum - log1}, static_cast<double>(std::log2(std::max(vlen / static_cast<long double>(n1), 1.0L)))};
     using std::fabs;
     using std::frexp;
     using std::ldexp;
@@ -95,8 +92,7 @@ template <class T> struct Orbit {
     unorm = T(ldexp(un, 1 - e));
     for (int i = 0; i < 3; ++i) {
       f.u[i] = T(ldexp(f.u[i], 1 - e));
-      f.v[0][i] = p[0][i];
-      f.v[1][i] = p[1][i];
+      f.v[i] = p[i];
     }
     return g;
   }
@@ -156,6 +152,7 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
   const long double eps = static_cast<long double>(std::numeric_limits<T>::epsilon());
   const double bits_allowed = std::max(2.0, -std::log2(static_cast<double>(eps)) / 6);  // B of the header comment
   const int cap = std::max(1, iterate::renormalisation_interval<T>({static_cast<double>(r)}));
+  const long double log_r = std::log(static_cast<long double>(r));
   const bool fixed = opt.reorthonormalise > 1;
   int len = fixed ? std::min(opt.reorthonormalise, cap) : 1;
   long double loss = 0;  // worst-case error of the summed logs: sum of (len + 2) eps rho over the averaged steps
@@ -164,15 +161,19 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
     const long next = detail::next_stop(done, len, sc, acc.next_cp);
     detail::advance<T>(o.f, next - done, done + 1, ring.data());
     if ((next >> 8) != (done >> 8)) core::check_cancel(opt.cancel);  // about every core::cancel_stride steps
-    const detail::Growth g = o.gram_schmidt();
+    long n13 = 0;  // steps on branches 1 and 3 (det M = r) since the last projection
+    for (long i = done + 1; i <= next; ++i) n13 += ring[i & (detail::kSymbolRing - 1)] != 2;
+    const detail::Growth g = o.gram_schmidt(n13, log_r);
     acc.add(next, g.logs);
     if (next > sc.transient)
       loss += static_cast<long double>(next - done + 2) * eps * std::exp2(static_cast<long double>(g.bits));
-    if (!fixed) {
+    if (!fixed && next <= sc.transient) {  // fixed over the averaged steps: see the header (weighted averages)
       const double per_step = g.bits / static_cast<double>(next - done);
       // At most doubling: an interval measured on a quiet stretch must not jump to K on a chaotic one.
       const int want = per_step > bits_allowed / cap ? std::max(1, static_cast<int>(bits_allowed / per_step)) : cap;
       len = std::min(want, 2 * static_cast<int>(next - done));
+    } else if (!fixed && g.bits > 2 * bits_allowed && len > 1) {
+      len /= 2;  // the averaged steps met a stretch the transient did not show
     }
     done = next;
   }

@@ -11,7 +11,7 @@ namespace btob::lyapunov {
 
 // The single-orbit route at the scalar limit (what projective_exponents runs): the point stepped by the batched kernel's
 // step (M_s = P_s / r, the kernel's orbit bit for bit) with two tangent vectors stepped by the same M_s, no division or
-// normalisation per step, Gram-Schmidt every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1 fixes it).
+// normalisation per step, one tangent vector projected every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1 fixes it).
 // Exponents differ from projective_exponents_qr's in the last digits (other roundings), within the error bars.
 // float, double, long double, float128, MPFR (include core/scalar.hpp for the last two).
 template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T& r, const Options& opt);
@@ -31,12 +31,13 @@ namespace btob::lyapunov::detail {
 inline constexpr long kSymbolRing = 4096;
 
 // The orbit's state between two Gram-Schmidt steps.  u: the point in Q, scaled by exact powers of two (the batched
-// kernel's orbit, bit for bit: the same step, the same start, rescaled by the same kind of factor); v[0], v[1]: two
-// tangent vectors stepped by the same linear map M_s as u, without projection (the projective tangent vector of
-// u -> M u / |M u| is the component of v orthogonal to u divided by |u|, taken at the Gram-Schmidt step).
+// kernel's orbit, bit for bit: the same step, the same start, rescaled by the same kind of factor); v: a tangent
+// vector stepped by the same linear map M_s as u, without projection (the projective tangent vector of
+// u -> M u / |M u| is the component of v orthogonal to u divided by |u|, taken at the Gram-Schmidt step).  One vector
+// is enough: lambda1 + lambda2 is the orbit's own area growth (orbit.cpp), so lambda2 needs no second vector.
 template <class T> struct OrbitFrame {
   T u[3];
-  T v[2][3];
+  T v[3];
   T r, a, k;  // r, alpha = (1 + r) / 2 and k = alpha / r, in T (the kernel's)
   T scratch[5];  // the MPFR step's temporaries, allocated once per orbit (unused by the other precisions)
 };
