@@ -6,6 +6,7 @@
 #include "lyapunov/hyperbolicity.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
+#include "lyapunov/orbit.hpp"
 #include "lyapunov/tangent.hpp"
 
 #include <benchmark/benchmark.h>
@@ -28,8 +29,9 @@ iterate::Ensemble workload(long r_count) {
 }
 
 // Scalar baseline: projective QR route (two tangent vectors, Gram-Schmidt every step) on one orbit, in every
-// precision of the lab; the MPFR digits are the benchmark's second argument.
-template <class T> void BM_qr_route(benchmark::State& st) {
+// precision of the lab; the MPFR digits are the benchmark's second argument.  Orbit = true: the one-orbit route that
+// `btob lyapunov` runs (projective_orbit: the kernel's step, Gram-Schmidt every few steps), the same workload.
+template <class T, bool Orbit = false> void BM_qr_route(benchmark::State& st) {
   if constexpr (std::is_same_v<T, core::mpfr_float>) core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
   const long n = st.range(0);
   lyapunov::Options o;
@@ -38,7 +40,7 @@ template <class T> void BM_qr_route(benchmark::State& st) {
   o.blocks = 10;
   const Eigen::Matrix<T, 3, 1> u0(T(1), T(-0.9), T(-0.2));
   for (auto _ : st) {
-    auto res = lyapunov::projective_exponents<T>(u0, T(0.3), o);
+    auto res = Orbit ? lyapunov::projective_orbit<T>(u0, T(0.3), o) : lyapunov::projective_exponents_qr<T>(u0, T(0.3), o);
     benchmark::DoNotOptimize(res.lambda[0].value);
   }
   st.SetItemsProcessed(st.iterations() * (o.transient + o.iterations));
@@ -119,6 +121,13 @@ BENCHMARK(BM_qr_route<double>)->Name("qr_route/double")->Args({1000000, 0})->Uni
 BENCHMARK(BM_qr_route<long double>)->Name("qr_route/long-double")->Args({200000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<core::float128>)->Name("qr_route/float128")->Args({20000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<core::mpfr_float>)->Name("qr_route/mpfr")->Args({5000, 50})->Args({5000, 100})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<double, true>)->Name("smoke_orbit")->Args({2000, 0});
+BENCHMARK(BM_qr_route<float, true>)->Name("orbit/float")->Args({10000000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<double, true>)->Name("orbit/double")->Args({10000000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<long double, true>)->Name("orbit/long-double")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<core::float128, true>)->Name("orbit/float128")->Args({200000, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_qr_route<core::mpfr_float, true>)->Name("orbit/mpfr")->Args({100000, 50})->Args({100000, 100})
     ->Unit(benchmark::kMillisecond);
 BTOB_PLAIN_REFERENCE;
 BENCHMARK(BM_map<false>)->Name("map_double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()

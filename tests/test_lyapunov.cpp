@@ -4,9 +4,11 @@
 #include "core/scalar.hpp"
 #include "iterate/cocycle.hpp"
 #include "iterate/kernel.hpp"
+#include "iterate/recorders.hpp"
 #include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
+#include "lyapunov/orbit.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -16,6 +18,8 @@
 #include "reference_tables.hpp"
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -476,4 +480,108 @@ TEST(Lyapunov, SummaryErrorBarsFollowTheirOrbits) {
   EXPECT_EQ(odd.median[0], 0.5); EXPECT_EQ(odd.err_median[0], 0.005);
   EXPECT_EQ(odd.min[0], -1); EXPECT_EQ(odd.err_min[0], 0.01);
   EXPECT_EQ(odd.max[0], 5); EXPECT_EQ(odd.err_max[0], 0.05);
+}
+
+namespace {
+// The one-orbit route (projective_orbit) against the kernel: r = 15/128 (exact in every precision, chaotic between the
+// windows n = 3 and n = 2), the symbols of the last 4096 of 12000 steps.  The kernel's SymbolRecorder sees the same
+// orbit only if the single-orbit step is the kernel's step with its roundings.
+template <class T> void expect_the_kernels_orbit(const char* what) {
+  SCOPED_TRACE(what);
+  const double r = 0.1171875;
+  lyapunov::Options o;
+  o.transient = 2000;
+  o.iterations = 10000;
+  o.blocks = 10;
+  const Eigen::Matrix<T, 3, 1> u0(T(1), T(-0.5), T(-1.1));
+  const auto res = lyapunov::projective_orbit<T>(u0, T(r), o);
+  iterate::Ensemble e;
+  e.r = {r};
+  e.initial = {V3(1, -0.5, -1.1)};
+  const long total = o.transient + o.iterations;
+  iterate::SymbolRecorder rec(1, total - 4095, total);
+  iterate::run<T>(e, total, rec);
+  ASSERT_EQ(res.symbols_tail.size(), 4096u);
+  long differ = 0;
+  for (std::size_t i = 0; i < 4096; ++i) differ += res.symbols_tail[i] != rec.out[i];
+  EXPECT_EQ(differ, 0);
+}
+
+// lambda1 of a periodic orbit from the eigenvalues of its period matrix, computed here in long double (the library's
+// periodic_exponents works in double): log |l2 / l1| / p.
+long double sink_lambda1(const std::vector<int>& period, long double r) {
+  using M3 = Eigen::Matrix<long double, 3, 3>;
+  M3 M = M3::Identity();
+  for (int s : period) M = core::P<long double>(s, r) * M;
+  const Eigen::EigenSolver<M3> es(M, false);
+  std::array<long double, 3> mod;
+  for (int i = 0; i < 3; ++i) mod[static_cast<std::size_t>(i)] = std::abs(es.eigenvalues()(i));
+  std::sort(mod.begin(), mod.end(), std::greater<>());
+  return std::log(mod[1] / mod[0]) / static_cast<long double>(period.size());
+}
+}  // namespace
+
+TEST(LyapunovOrbit, TheOrbitIsTheKernelsBitForBit) {
+  // Fails on the QR route (P_s u instead of the kernel's M_s u = P_s u / r: other roundings, another chaotic orbit).
+  expect_the_kernels_orbit<double>("double");
+  expect_the_kernels_orbit<float>("float");
+  expect_the_kernels_orbit<long double>("long double");
+  core::MpfrDigits digits(30);
+  expect_the_kernels_orbit<core::mpfr_float>("mpfr 30 digits");
+}
+
+TEST(LyapunovOrbit, SinkExponentIsThePeriodMatrixEigenvaluesWithinTheErrorBar) {
+  // The sink 1133 at r = 0.15 from (1, -0.5, -1.1): the plain average is the period matrix's exponent within the
+  // reported error bar (whose floor includes what the deferred Gram-Schmidt can lose), and the weighted average to
+  // the double rounding of both values.
+  const double r = 0.15;
+  lyapunov::Options o;
+  o.transient = 2000;
+  o.iterations = 4 * 25000;
+  o.blocks = 10;
+  const auto res = lyapunov::projective_orbit<double>(V3(1, -0.5, -1.1), r, o);
+  ASSERT_EQ(lyapunov::detect_period(res.symbols_tail, 64, 512), 4);
+  const std::vector<int> period(res.symbols_tail.end() - 4, res.symbols_tail.end());
+  EXPECT_TRUE(same_cycle(word(period), "1133")) << word(period);
+  const long double exact = sink_lambda1(period, 0.15L);
+  EXPECT_NEAR(static_cast<double>(exact), -0.4683473803358724, 1e-15);  // the value quoted for this sink
+  EXPECT_CLOSE(res.lambda[0].value, static_cast<double>(exact),
+               statistical(res.lambda[0].error, "the route's own error bar (batch means and its rounding floor)"));
+  EXPECT_CLOSE(res.weighted[0], static_cast<double>(exact),
+               bound(1e-12, "the weighted average over Gram-Schmidt intervals of uneven length: a midpoint rule of the "
+                            "smooth weight, far below the plain average's C / n"));
+  core::MpfrDigits digits(50);
+  using core::mpfr_float;
+  const auto m = lyapunov::projective_orbit<mpfr_float>(Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5),
+                                                                                        mpfr_float(-1.1)),
+                                                        mpfr_float(r), o);
+  EXPECT_CLOSE(m.lambda[0].value, static_cast<double>(exact),
+               statistical(m.lambda[0].error, "the MPFR route's own error bar"));
+}
+
+TEST(LyapunovOrbit, AgreesWithTheQrRouteWithinTheErrorBars) {
+  // The chaotic orbit (r = 0.12 from (1, -0.5, -1.1)): the one-orbit route, the QR route and the one-orbit
+  // route in MPFR follow different orbits after the Lyapunov time (other roundings), so they agree in distribution:
+  // within 5 error bars of the difference.
+  lyapunov::Options o;
+  o.transient = 1000;
+  o.iterations = 200000;
+  const V3 u0(1, -0.5, -1.1);
+  const auto fast = lyapunov::projective_orbit<double>(u0, 0.12, o);
+  const auto qr = lyapunov::projective_exponents_qr<double>(u0, 0.12, o);
+  core::MpfrDigits digits(30);
+  using core::mpfr_float;
+  lyapunov::Options om = o;
+  om.iterations = 40000;
+  const auto mp = lyapunov::projective_orbit<mpfr_float>(Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5),
+                                                                                         mpfr_float(-1.1)),
+                                                         mpfr_float("0.12"), om);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_GT(fast.lambda[i].error, 0.0);
+    const double e_qr = std::hypot(fast.lambda[i].error, qr.lambda[i].error);
+    EXPECT_CLOSE(fast.lambda[i].value, qr.lambda[i].value, statistical(5 * e_qr, "5 error bars of the difference"));
+    const double e_mp = std::hypot(fast.lambda[i].error, mp.lambda[i].error);
+    EXPECT_CLOSE(fast.lambda[i].value, mp.lambda[i].value, statistical(5 * e_mp, "5 error bars of the difference"));
+  }
+  EXPECT_GT(fast.lambda[0].value, 10 * fast.lambda[0].error);  // chaotic: lambda1 > 0
 }

@@ -116,6 +116,9 @@ template Mat3<double> projective_derivative<double>(const Mat3<double>&, const V
 template Mat3<long double> projective_derivative<long double>(const Mat3<long double>&, const Vec3<long double>&);
 template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
 template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
+template ProjectiveResult projective_exponents_qr<double>(const Vec3<double>&, const double&, const Options&);
+template ProjectiveResult projective_exponents_qr<long double>(const Vec3<long double>&, const long double&,
+                                                               const Options&);
 template LinearResult linear_exponents<double>(const Vec3<double>&, const double&, const Options&);
 template LinearResult linear_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "lyapunov/lyapunov.hpp"
+#include "lyapunov/orbit.hpp"
 
 #include <Eigen/Dense>
 
@@ -149,6 +150,10 @@ template <class T> Mat3<T> projective_derivative(const Mat3<T>& P, const Vec3<T>
 }
 
 template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, const T& r, const Options& opt) {
+  return projective_orbit<T>(u0, r, opt);
+}
+
+template <class T> ProjectiveResult projective_exponents_qr(const Vec3<T>& u0, const T& r, const Options& opt) {
   using std::log;
   validate(opt);
   detail::check_start(u0, r);
@@ -211,12 +216,20 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   Mat3<T> Q;
   Q.col(0) = u / u.norm();
   Q.template rightCols<2>() = tangent_basis(u);
+  // The orbit, computed exactly as in the projective route (projective_orbit: the batched kernel's step, whose
+  // symbol detail::advance leaves in the ring), rescaled by a power of two every step.
+  detail::OrbitFrame<T> f{};
+  f.r = r;
+  f.a = (T(1) + r) / T(2);
+  f.k = f.a / r;
+  std::array<std::uint8_t, detail::kSymbolRing> ring{};
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
     core::poll_cancel(opt.cancel, k);
-    const int s = core::branch(u, r);
-    const Vec3<T> pu = detail::apply(s, u, r);
-    u = detail::pow2_scaled<T>(pu);  // the orbit, computed exactly as in the projective route
+    for (int i = 0; i < 3; ++i) f.u[i] = u(i);
+    detail::advance<T>(f, 1, k, ring.data());
+    const int s = ring[k & (detail::kSymbolRing - 1)];
+    u = detail::pow2_scaled<T>(Vec3<T>(f.u[0], f.u[1], f.u[2]));
     Q = Pm[s - 1] * Q;   // the linear cocycle: products of P_i along the orbit
     if (sc.qr_at(k, acc.next_cp)) {
       const Eigen::HouseholderQR<Mat3<T>> qr(Q);

@@ -4,6 +4,12 @@
 // therefore known to ~1e-16 relative at best, which the precision study states.
 #include "core/scalar.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
+#include "lyapunov/orbit.hpp"
+
+namespace btob::lyapunov::detail {
+// Defined in orbit_mpfr.cpp (the mpfr_* C API): declared wherever the MPFR frame is stepped.
+template <> void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring);
+}  // namespace btob::lyapunov::detail
 
 namespace btob::lyapunov {
 
@@ -15,6 +21,10 @@ template LinearResult linear_exponents<float>(const Vec3<float>&, const float&, 
 template ProjectiveResult projective_exponents<float128>(const Vec3<float128>&, const float128&, const Options&);
 template LinearResult linear_exponents<float128>(const Vec3<float128>&, const float128&, const Options&);
 template ProjectiveResult projective_exponents<mpfr_float>(const Vec3<mpfr_float>&, const mpfr_float&, const Options&);
+template ProjectiveResult projective_exponents_qr<float>(const Vec3<float>&, const float&, const Options&);
+template ProjectiveResult projective_exponents_qr<float128>(const Vec3<float128>&, const float128&, const Options&);
+template ProjectiveResult projective_exponents_qr<mpfr_float>(const Vec3<mpfr_float>&, const mpfr_float&,
+                                                              const Options&);
 template LinearResult linear_exponents<mpfr_float>(const Vec3<mpfr_float>&, const mpfr_float&, const Options&);
 
 }  // namespace btob::lyapunov

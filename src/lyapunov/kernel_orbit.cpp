@@ -1,0 +1,134 @@
+// The single-orbit step of lyapunov/orbit.hpp in the kernel's unit flags (-march=native: the fused multiply-subtract of
+// the branch rule is one instruction, not a libm call), for float, double, long double and float128.
+#include "core/scalar.hpp"
+#include "iterate/kernel_impl.hpp"
+#include "lyapunov/orbit.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
+namespace btob::lyapunov::detail {
+namespace {
+
+template <class T> constexpr bool hardware_fma = std::is_same_v<T, double> || std::is_same_v<T, float>;
+
+// a y - x and k t + s for the tangent vectors: fused where the hardware fuses (double, float), else two roundings
+// (long double has no FMA instruction, float128's is software: the tangent vectors need no exact sign).
+template <class T> [[gnu::always_inline]] inline T mul_sub(const T& a, const T& y, const T& x) {
+  if constexpr (hardware_fma<T>) return core::fms<T>(a, y, x);
+  else return T(a * y - x);
+}
+template <class T> [[gnu::always_inline]] inline T mul_add(const T& k, const T& t, const T& s) {
+  using std::fma;
+  if constexpr (hardware_fma<T>) return fma(k, t, s);
+  else return T(k * t + s);
+}
+
+// A tangent vector's step under the branch (s1, s3) the point took: M_s v with the kernel's formulas, the signs that
+// the point's |c1| and -|c3| stand for written out (c1 > 0 on branch 1, c1 <= 0 on 2; c3 < 0 on 3, c3 >= 0 on 2).
+template <class T>
+[[gnu::always_inline]] inline void tangent_step(T& x, T& y, T& z, bool s1, bool s3, const T& r, const T& a, const T& k) {
+  const T d1 = mul_sub(a, y, x), d3 = mul_sub(a, y, z);
+  const T xn = s3 ? T(r * x) : (s1 ? d1 : T(-d1));
+  const T zn = s1 ? T(r * z) : (s3 ? d3 : T(-d3));
+  const T sy = (s1 || s3) ? T(-y) : y;
+  y = mul_add(k, T(xn + zn), sy);
+  x = xn;
+  z = zn;
+}
+
+// float and double: the same step without a conditional jump on the symbol (a chaotic orbit's symbols are not
+// predictable, and a mispredicted jump costs more than the step): the signs as masks, the selections as bit blends.
+// The values are map_step's bit for bit: c1, c3 fused, x' = r x or |c1|, z' = r z or -|c3|, y' = fma(k, x' + z', -+y);
+// the tangent vectors take d or -d where the point takes |c| or -|c| (the signs its branch implies).  An exact zero
+// c1 or c3 (a tie, or an underflow that core::sign_of_fms settles) takes the rare path of the exact rule.
+template <class T> struct Bits;
+template <> struct Bits<double> { using U = std::uint64_t; };
+template <> struct Bits<float> { using U = std::uint32_t; };
+
+template <class T> [[gnu::always_inline]] inline T blend(typename Bits<T>::U mask, T yes, T no) {
+  using U = typename Bits<T>::U;
+  return std::bit_cast<T>(static_cast<U>((mask & std::bit_cast<U>(yes)) | (~mask & std::bit_cast<U>(no))));
+}
+template <class T> [[gnu::always_inline]] inline T flip(typename Bits<T>::U sign, T v) {
+  return std::bit_cast<T>(static_cast<typename Bits<T>::U>(std::bit_cast<typename Bits<T>::U>(v) ^ sign));
+}
+
+template <class T> struct Masks {
+  typename Bits<T>::U m1, m3, not1, not3, either;  // all-ones masks of s1, s3; sign bits of !s1, !s3, s1 || s3
+};
+template <class T> [[gnu::always_inline]] inline Masks<T> masks(bool s1, bool s3) {
+  using U = typename Bits<T>::U;
+  constexpr int top = 8 * sizeof(U) - 1;
+  return {static_cast<U>(-static_cast<U>(s1)), static_cast<U>(-static_cast<U>(s3)), static_cast<U>(U(!s1) << top),
+          static_cast<U>(U(!s3) << top), static_cast<U>(U(s1 || s3) << top)};
+}
+
+template <class T> [[gnu::always_inline]] inline void blended_tangent(T& x, T& y, T& z, const Masks<T>& m, T r, T a, T k) {
+  using std::fma;
+  const T d1 = core::fms<T>(a, y, x), d3 = core::fms<T>(a, y, z);
+  const T xn = blend(m.m3, T(r * x), flip(m.not1, d1));
+  const T zn = blend(m.m1, T(r * z), flip(m.not3, d3));
+  y = fma(k, T(xn + zn), flip(m.either, y));
+  x = xn;
+  z = zn;
+}
+
+template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
+  using std::fabs;
+  using std::fma;
+  T x = f.u[0], y = f.u[1], z = f.u[2];
+  T p = f.v[0], q = f.v[1], w = f.v[2];
+  const T r = f.r, a = f.a, k = f.k;
+  for (long i = 0; i < n; ++i) {
+    const T c1 = core::fms<T>(a, y, x), c3 = core::fms<T>(a, y, z);
+    bool s1 = c1 > 0, s3 = c3 < 0;
+    if (__builtin_expect(c1 == 0 || c3 == 0, 0)) {
+      s1 = core::sign_of_fms<T>(a, y, x, c1) > 0;
+      s3 = core::sign_of_fms<T>(a, y, z, c3) < 0;
+    }
+    const Masks<T> m = masks<T>(s1, s3);
+    const T xn = blend(m.m3, T(r * x), T(fabs(c1)));
+    const T zn = blend(m.m1, T(r * z), T(-fabs(c3)));
+    y = fma(k, T(xn + zn), flip(m.either, y));
+    x = xn;
+    z = zn;
+    blended_tangent(p, q, w, m, r, a, k);
+    ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(2 - s1 + s3);
+  }
+  f.u[0] = x, f.u[1] = y, f.u[2] = z;
+  f.v[0] = p, f.v[1] = q, f.v[2] = w;
+}
+
+}  // namespace
+
+// Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
+// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored.  The
+// dependency chain through the point is fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
+template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
+#if defined(__FMA__)
+  if constexpr (hardware_fma<T>) return advance_blended<T>(f, n, first, ring);
+#endif
+  T x = f.u[0], y = f.u[1], z = f.u[2];
+  T p = f.v[0], q = f.v[1], w = f.v[2];
+  const T r = f.r, a = f.a, k = f.k;
+  for (long i = 0; i < n; ++i) {
+    bool s1 = false, s3 = false;
+    const iterate::detail::StepResult<T> o = iterate::detail::map_step<T, bool>(x, y, z, r, a, k, s1, s3);
+    x = o.x;
+    y = o.y;
+    z = o.z;
+    tangent_step(p, q, w, s1, s3, r, a, k);
+    ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(s1 ? 1 : (s3 ? 3 : 2));
+  }
+  f.u[0] = x, f.u[1] = y, f.u[2] = z;
+  f.v[0] = p, f.v[1] = q, f.v[2] = w;
+}
+
+template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*);
+template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*);
+template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*);
+template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*);
+
+}  // namespace btob::lyapunov::detail

@@ -1,0 +1,50 @@
+// One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s / r,
+// iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
+// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  What projective_exponents runs.
+#pragma once
+
+#include "lyapunov/lyapunov.hpp"
+
+#include <cstdint>
+
+namespace btob::lyapunov {
+
+// The single-orbit route at the scalar limit (what projective_exponents runs): the point stepped by the batched kernel's
+// step (M_s = P_s / r, the kernel's orbit bit for bit) with two tangent vectors stepped by the same M_s, no division or
+// normalisation per step, one tangent vector projected every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1 fixes it).
+// Exponents differ from projective_exponents_qr's in the last digits (other roundings), within the error bars.
+// float, double, long double, float128, MPFR (include core/scalar.hpp for the last two).
+template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T& r, const Options& opt);
+
+// The route before projective_orbit, kept as the reference of the tests and benchmarks: P_s u with the tangent plane
+// projected, divided and Gram-Schmidt orthonormalised every `reorthonormalise` steps (Eigen, every precision).
+template <class T> ProjectiveResult projective_exponents_qr(const Vec3<T>& u0, const T& r, const Options& opt);
+
+extern template ProjectiveResult projective_exponents_qr<double>(const Vec3<double>&, const double&, const Options&);
+
+}  // namespace btob::lyapunov
+
+namespace btob::lyapunov::detail {
+
+// The symbols of the last kSymbolRing steps, written in place (step i at ring[i & (kSymbolRing - 1)]): the
+// result's symbols_tail without a push per step.
+inline constexpr long kSymbolRing = 4096;
+
+// The orbit's state between two Gram-Schmidt steps.  u: the point in Q, scaled by exact powers of two (the batched
+// kernel's orbit, bit for bit: the same step, the same start, rescaled by the same kind of factor); v: a tangent
+// vector stepped by the same linear map M_s as u, without projection (the projective tangent vector of
+// u -> M u / |M u| is the component of v orthogonal to u divided by |u|, taken at the Gram-Schmidt step).  One vector
+// is enough: lambda1 + lambda2 is the orbit's own area growth (orbit.cpp), so lambda2 needs no second vector.
+template <class T> struct OrbitFrame {
+  T u[3];
+  T v[3];
+  T r, a, k;  // r, alpha = (1 + r) / 2 and k = alpha / r, in T (the kernel's)
+  T scratch[5];  // the MPFR step's temporaries, allocated once per orbit (unused by the other precisions)
+};
+
+// n steps of the frame from step number `first` (the symbol of step first + i goes to ring[(first + i) % kSymbolRing]).
+// Defined in kernel_orbit.cpp (the kernel's flags: FMA inline) for float, double, long double and float128, and in
+// orbit_mpfr.cpp for MPFR (the mpfr_* C API on preallocated numbers).
+template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring);
+
+}  // namespace btob::lyapunov::detail
