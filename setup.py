@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """pip install . : the Python package btob (python/btob) with its compiled module btob._btob, the plot scripts and
 the paper's reference tables (btob/data/), built by CMake: the same CMakeLists.txt, compilers and flags as the
 command line, so the package computes what `btob` computes.

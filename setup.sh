@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Debian packages btob needs (only the missing ones).  Why each: docs/install.md, "Dependencies and why each".
 set -euo pipefail
 packages=(

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates results/attractors/**: basin maps at the r values of Section 6.2 / Table 6.1 and the basin
 # fractions across r compared with Table 6.1.  Usage: analyses/attractors.sh path/to/btob [threads]
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The speed ratios from one benchmark run: each workload against the plain kernel measured in the same program.
 
 Usage: analyses/benchmark_ratios.py [DIR]     (DIR = results/benchmarks; writes DIR/ratios.csv, prints a Markdown table)

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Throughput report: runs the Google Benchmark programs and writes results/benchmarks/ (JSON + plot).
 # Usage: analyses/benchmarks.sh [BTOB_BINARY]   (the benchmark programs are found next to it)
 # Quote ratios measured in one run: the machine is shared and absolute times drift.

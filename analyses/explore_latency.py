@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Latency of `btob explore`: request to PNG for a 1200 x 700 view at the page's first (default) level of work, against
 the plain kernel's rate measured in the same run.
 

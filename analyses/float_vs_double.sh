@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Figure 4.1 in float and in double, in log10(theta): where does float's diagram differ?  Writes
 # results/float_vs_double/ (both data sets, per-r distances as CSV, and a comparison figure).
 # Usage: analyses/float_vs_double.sh [path/to/btob]

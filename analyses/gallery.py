@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes results/README.md: every figure of results/ at a glance, with what it shows, the paper's caption beside
 it where it reproduces one, the command that made it and its compute time (read from the result's manifest).
 Usage: analyses/gallery.py [REPO_ROOT]   (run by analyses/run_all.sh after everything else)"""

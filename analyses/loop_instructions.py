@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The loops of a compiled function and what one pass of each executes, read from the generated code.
 
 Usage: analyses/loop_instructions.py BINARY FUNCTION [--min N]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Scaling model of `mpirun -n P btob lyapunov-map` (README, "Sweeps over MPI"), from the measurements of
 analyses/mpi_scaling.sh.
 

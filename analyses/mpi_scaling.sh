@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # MPI against OpenMP on the Lyapunov-map workload, and what the gather to rank 0 costs: writes results/mpi/.
 # Usage: analyses/mpi_scaling.sh [BTOB_BINARY] [R_COUNT]   (default build/release/btob, 5000 r values)
 #   benchmark.csv  1 rank x 2 threads against 2 ranks x 1 thread, alternated (A B A B A B): wall and CPU time of the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates results/orbit_attractors: r against attractor.  `btob lyapunov-map --attractors` over r in
 # [0.0718, 0.45] (just above 7 - 4 sqrt 3, where collapse ends) with 64 random orbits per r: each orbit's exponents
 # and its attractor (btob classify with the same transient and iterations), then the share of the orbits that

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates results/particles: periodic collapses realised by four particles, and every periodic
 # orbit of P_r, stable or not.
 #   atlas/        btob pattern atlas --feasible: every canonical word of length <= L with a feasible periodic point

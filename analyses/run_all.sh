@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates everything in results/ from the scenes and analyses of this folder.
 # Usage: analyses/run_all.sh [BTOB_BINARY]      (default: build/release/btob)
 # Each result folder gets its data (HDF5/CSV), the PNG and a manifest (commit, command, seed, precision).

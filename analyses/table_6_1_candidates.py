@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Table 6.1 explained: which random initial data reproduce the paper's counts of periodic orbits out of ten.
 
 Section 6.2 of the paper: at each r, "ten different orbits, all generated from initial data randomly chosen in the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Statistics of Table 6.1 against btob: how probable the paper's count of periodic orbits out of ten is when the
 periodic fraction is btob's, itself estimated from n orbits, and how probable the whole table is.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates results/transfer/** (Section 8): Ulam's transfer operator of P_r at r = 0.15, 0.1, 0.21, 0.3, 0.11 (a
 # sink, a window, sinks with invariant curves, chaos), each at three resolutions or more, and the peripheral spectrum
 # across [0.07, 0.6] at three resolutions; then the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Convergence table of results/transfer: every `btob transfer` run's key numbers, grouped by r, three resolutions
 each; runs without a spectrum (--eigenvalues 0: the basins alone) leave the spectral columns
 empty.  Then the basins from the Ulam graph against the counted fractions of `btob basins` across the resolutions:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates results/windows: certified bounds (Table B.1), the polynomials Q_n (Table B.2), precision study,
 # iterator check.
 # Usage: analyses/windows.sh [path/to/btob]   (run from the repository root; called by analyses/run_all.sh)

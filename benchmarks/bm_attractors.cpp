@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the basin classification in grid points per second (items) at r = 0.2 (periodic sink and
 // P2 curves) and r = 0.102 (chaotic: every point goes through pass 2), 1 and 2 threads; the scalar
 // reference of pass 1 (one orbit at a time, Appendix A.2 normalisation) as the baseline; pass 2's two routes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cancellation latency: the time from setting a run's core::CancelToken to the run's return (core::Cancelled), the
 // goal being 0.1 s on an idle machine.  Tests bound it only by seconds (tests/cli_interrupt.sh,
 // python/tests/test_cancel.py), a margin that survives a loaded machine; the goal itself is measured here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the iterator in map iterations per second: the scalar loop of Appendix A.2 (baseline)
 // against the batched SIMD kernel, float and double, 1 and 2 threads, on the Figure 4.1 workload.
 #include "core/scalar.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the Lyapunov exponents in map iterations per second: the scalar QR route (Eigen, one orbit,
 // the baseline), the TangentRecorder on the plain batched kernel, and the fused cocycle kernel (map_exponents),
 // double and float, 1 and 2 threads; and the covariant Lyapunov vectors, scalar and batched.

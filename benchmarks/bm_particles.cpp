@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the particle check (collisions per second, items) in double, long double, float128 and MPFR-50, and
 // of the feasible atlas's inner loop (patterns::classify, evaluations per second) for words of length 8 and 14.
 #include "core/scalar.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // C_N(phi, psi; n) by FFT (FFTW) against the direct sum, templated on T; items = lag-products N (n_max + 1).
 // The direct sum costs N (n_max + 1) multiply-adds: at N = 1e6, n_max = 1e5 that is 1e11; it is measured
 // at n_max = 1e3 and 1e4 (linear in n_max) and run once (Iterations(1), ~10 s on 2 cores) at the full size;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ulam's matrix of P^_r: samples (map evaluations) per second for the two routes (core::step per sample against
 // one step of the batched SIMD kernel), 1 and 2 threads; and the whole `btob transfer` analysis at 512 x 512 boxes
 // with 64 samples per box (the target: under 60 s on 2 cores).

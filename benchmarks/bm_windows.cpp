@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Windows of stability: the exact certificate of the n-th lower bound (Descartes' rule after Moebius
 // transforms, the default) against the Sturm sequence it replaced, on the same reduced polynomial and the
 // same intervals; and the lower bound itself at 512 decimals (Newton from a 30-decimal seed).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The plain kernel on Figure 4.1's workload (bm_iterate's batched/double), registered again in the programs whose
 // workloads are quoted against it (the speed ratios: the cocycle, the covariant vectors, the classification).
 // analyses/benchmarks.sh runs those programs with five repetitions in random interleaving, so a workload and this

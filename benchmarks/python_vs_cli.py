@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """btob.bifurcation against `btob bifurcation` on the Figure 4.1 workload (5000 r x 32 orbits x 5000 iterations,
 700 bins), alternated A B A B ... in one run: the iteration time each reports (`iteration_seconds`, the kernel's
 wall time: what the binding could slow down) and the wall time of the whole call.  The goal: the Python

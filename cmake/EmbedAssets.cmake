@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Writes OUT, a C++ file holding the files of DIR (FILES: their names) as byte arrays, for btob::cli::explore::assets():
 # the explorer's page travels inside the executable, so `btob explore` works from any folder and after installation.
 # Run in script mode at build time (cmake -DDIR=... -DFILES=a;b -DOUT=... -P EmbedAssets.cmake).

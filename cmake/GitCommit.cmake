@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Writes OUT (a .cpp defining btob::build::git_commit and btob::build::git_dirty) from the git state of SRC, at
 # every build, and touches OUT only when it changed, so a commit re-links the binary but does not rebuild the rest.
 # git_dirty is "yes" when the tree the binary is compiled from differs from the commit: tracked files with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # What `cmake --install <build> --prefix P` puts under P, besides the Python package (python/CMakeLists.txt):
 #   bin/btob                                 the command line
 #   share/btob/{plot,reference}/             its plot scripts and the paper's reference tables (io::data_file)

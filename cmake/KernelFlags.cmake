@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Flags for the hot kernel's translation units only (see DESIGN.md, perf-notes).
 #  -fno-trapping-math : lets GCC 12 if-convert the branch-free matrix selection (else 15x slower)
 #  -fno-math-errno    : sqrt/fabs vectorise

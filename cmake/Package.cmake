@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # `cpack -G DEB` in a build folder (after `cmake --build`): btob_<version>_amd64.deb, one package with everything
 # `cmake --install` installs under /usr (the command, its plot scripts and reference tables, the library, its
 # headers, CMake and pkg-config packages) and the Python package in Debian's /usr/lib/python3/dist-packages.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Precompiled headers: the third-party and standard headers that nearly every translation unit parses through
 # core/scalar.hpp (Boost.Multiprecision float128 + MPFR, ~840 headers), core/map.hpp and core/coords.hpp (Eigen),
 # core/request.hpp (fmt), parsed once per group of targets instead of once per unit (4-6 s a unit).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sphinx configuration of btob's documentation site.  Built by docs/tools/build.py (the CMake target `docs`), which
 # stages this folder with the generated pages (command reference, performance, result schemas), the notebooks and
 # CHANGELOG.md into <build>/docs/source and runs sphinx-build there, with the built Python package on sys.path.

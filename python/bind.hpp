@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Python binding of the request/result contract (core/request.hpp, core/result.hpp): ONE template binds any
 // request type.  Keyword arguments are the request's fields() named as their flags with '-' -> '_', parsed by the
 // field parsers of core/fields.hpp (the same defaults, the same one-line errors, raised as ValueError); the run

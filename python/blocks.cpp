@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Building blocks for one's own analyses: btob.Map(r) (one step of P_r on N points, vectorised) and btob.iterate
 // (the batched kernel of src/iterate with its generic recorders: tails of a coordinate, symbols, final states, and
 // the whole tail of states and branches from one run).

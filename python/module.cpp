@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The compiled module btob._btob: every request-based analysis bound by the one template of bind.hpp; the table
 // below only names each one (Python function, kind and file stem as the command line records them, plot script).
 #include "attractors/requests.hpp"

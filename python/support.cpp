@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The generic parts of the binding (bind.hpp): keyword conversion, numpy views of a result's arrays, the released
 // run with Ctrl-C and progress, and the Python class of results.
 #include "bind.hpp"

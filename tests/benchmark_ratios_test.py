@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """analyses/benchmark_ratios.py against ratios known by construction, and on the committed results/benchmarks.
 
 Synthetic run: every benchmark the script reads gets three repetitions (items/s a, 2a, 4a for a workload; b, 3b,

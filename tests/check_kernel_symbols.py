@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """No function is compiled both for the kernel's instruction set and for the baseline, to be picked by the linker.
 
 Usage: check_kernel_symbols.py BUILD_SRC_DIR.  Only the kernel units (src/*/kernel_*.cpp) are compiled with the kernel

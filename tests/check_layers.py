@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The floors of docs/ARCHITECTURE.md: a module of src/ includes only modules on a lower floor (or itself).
 
 Usage: check_layers.py SOURCE_DIR.  Prints every offending include and exits 1; prints one line per module

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Every CSV the command line writes loads as it is.
 
 Runs each command that writes a CSV (files or stdout) on a small input into a temporary folder, then reads every

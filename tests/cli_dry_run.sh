@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # --dry-run (core/estimate.hpp): the predicted time of three sweeps of different kinds (r values with long orbits,
 # grid rows of a basin image, n values of certified window bounds) lies within a factor of 2 of the measured run
 # time, and a dry run writes nothing.  The same for three requests that are not sweeps, priced by the cached route

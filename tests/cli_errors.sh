@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The command line's error contract, checked as a user meets it: bad input gets a one-line error that
 # names the field, exit status 2, and no output file created or overwritten.
 set -u

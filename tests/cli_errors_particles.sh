@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The error contract of `btob particles`, as tests/cli_errors.sh checks it for the others: bad input gets
 # a one-line error naming the field, exit status 2, and no output file written.
 # Usage: cli_errors_particles.sh PATH/TO/btob

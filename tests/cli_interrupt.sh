@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Every command family stops on SIGINT and SIGTERM: exit 130 / 143, one line on stderr, nothing on stdout, no file
 # written and an existing result in the output folder untouched, within a bound.  Each run would take minutes (or
 # hours) to finish: a command that ignored the signal would fail the bound.  The bound is 10 s, a margin that

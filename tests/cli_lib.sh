@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Shared by the command-line error tests (tests/cli_errors*.sh): source it after setting btob=PATH/TO/btob.
 # Provides $out (a temporary directory, removed on exit), $fail, and expect_error.
 out=$(mktemp -d)

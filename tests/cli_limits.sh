@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The limits the documentation states, at their edges: `digits` fields accept 10 and 10000 and refuse 9 and 10001;
 # every error that advises an option names one the same command accepts (the advised command line, run, is not
 # refused); an error quotes at most about 80 characters of an offending input (a word of 100002 symbols); a sweep

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # `btob run results/X/X.json` is a reproduction check: without --out it writes into X/reproduced/ (never over the
 # original, whose files keep their bytes), prints "reproduction: N of M datasets bit-identical[; differ: ...]", writes
 # the same as reproduced/reproduction.json and exits 0 whether or not the data are the same; --out naming the

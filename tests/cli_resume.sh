@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # --resume (src/cli/checkpoint.hpp): a sweep killed with SIGKILL at a random point after its checkpoint holds
 # finished parts, resumed (killed and resumed once more), writes the uninterrupted run's data bitwise (HDF5 datasets
 # through tests/h5_same_data.py, CSV files and standard output byte for byte) and removes its checkpoint; a resume

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # What the terminal says, run under a pseudo-terminal (script(1), bsdutils) so that progress bars
 # are drawn as a user sees them:
 #   - a progress bar ends its line: no "btob: ..." line starts after a bar on the same line;

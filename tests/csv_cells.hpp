@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading back the CSV tables a module writes (core::CsvTable), for the tests of what the command line writes.
 #pragma once
 

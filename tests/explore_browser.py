@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The explorer's page in a real browser (headless Chromium through chromium-driver and Selenium): it loads and draws
 a first image; a box zoom changes the view and the address, and Back restores it; the wheel zooms in and a double
 click resets; the r window [0.0717, 0.0727]

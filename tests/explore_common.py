@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Starting and stopping `btob explore` for the explorer's tests (explore_server.py, explore_browser.py)."""
 import os
 import re

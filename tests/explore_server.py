@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """`btob explore`'s HTTP interface: malformed and oversized requests get HTTP 400 and one line of JSON naming the
 parameter, and the server keeps serving; the PNG of a view is the density of `btob bifurcation` with the same
 parameters, coloured by the rule of explore.hpp (recomputed here from the HDF5 counts, an independent route through

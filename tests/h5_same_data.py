@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Whether two HDF5 result files hold the same datasets, bitwise.
 
 Usage: h5_same_data.py A.h5 B.h5.  Every dataset of either file must exist in the other with the same dtype, shape

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The C++ library as a dependency: `cmake --install BUILD --prefix P`, then examples/cpp configured as a separate
 # project with CMAKE_PREFIX_PATH=P (find_package(btob), btob::btob), built and run; the same main built a second time
 # with the flags of P's btob.pc (pkg-config) must print the same lines.  Nothing of the source or build tree may be

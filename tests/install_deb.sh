@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Debian package: `cpack -G DEB` makes btob_<version>_amd64.deb; unpacked with dpkg-deb -x into a folder, its
 # command runs, its Python package imports from there (with its data files), its headers, library and CMake package
 # are in place; lintian reports no error (its warnings are printed).  The Python package is Debian's python3's

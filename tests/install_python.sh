@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Python package as a dependency: a fresh virtual environment (with the system's numpy, matplotlib, h5py),
 # `pip install --no-build-isolation --no-deps .` from the source tree, then, from a folder outside it, import btob
 # (which must come from the environment, with its data files), run a computation and draw its figure;

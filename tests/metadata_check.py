@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The licence is stated the same everywhere: LICENSE is the full text of the GPL, version 3 (byte for byte Debian's
 /usr/share/common-licenses/GPL-3 when present, else its first and last lines), setup.py's metadata, the CPack
 licence of cmake/Package.cmake and the Debian copyright file (machine-readable DEP-5: Format line, a Files: *

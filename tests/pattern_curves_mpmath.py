@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """pattern-curves against an independent route: mpmath's QR eigensolver at 50 digits.
 
 btob computes the spectrum of the period matrix from its characteristic polynomial in long double (the trace, the

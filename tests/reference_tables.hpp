@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The paper's tables vendored in analyses/reference/, as the tests read them.  A missing, unreadable, short or
 // malformed table throws std::runtime_error naming the file: a test that compares against a reference must fail,
 // never pass vacuously, when the reference is not there.

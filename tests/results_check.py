@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Quick mode of the runner (DESIGN.md): re-runs the cheap commands behind committed files of results/ into a
 temporary directory and compares the numbers with the committed ones, within the tolerances stated below.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/spdx.py on a scratch git repository holding one file of each kind: the identifier goes first in the file's
 comment syntax, after a shebang (and a Python encoding cookie), an HTML doctype, a CSS @charset; data files, results/
 and LICENSE are left alone; a second run changes nothing (idempotent); --check fails before the run, passes after,

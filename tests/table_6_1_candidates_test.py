@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """analyses/table_6_1_stats.py (the statistics of analyses/table_6_1_candidates.py) against independent routes:
 the beta-binomial probability against Gauss-Legendre integration of binomial x beta density (exact for the
 polynomial integrand of a small case), its binomial limit, the p-value and expected count against enumeration, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the attractors module's stages alone (attractors/stages.hpp, attractors/certify.hpp): the certificates of
 // early exits against independent routes (the scalar map core::step, the pattern tool's exact cycles), the decision
 // type, the one merge of the curve ranges, the smallest rotation of a word.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/attractors: classification (Table 6.1 patterns, collapse, quasi-periodic, chaotic), identity,
 // basins, fractions with intervals, determinism across thread counts, errors.
 #include "attractors/attractors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/attractors/boundary: basin entropy, boundary basin entropy, the uncertainty exponent and the Wada
 // merging test on synthetic label images whose values are known in closed form or counted here by a second route.
 #include "attractors/boundary.hpp"

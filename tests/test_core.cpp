@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of btob::core: invariants of P_r (quadrant, symmetries, spectra), branch conventions on exact
 // ties, coordinates (theta, phi, strip, particles) and the validation errors.
 #include "core/coords.hpp"

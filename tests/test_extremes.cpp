@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Numerical stability at the extremes: extreme r, points on and within 1e-300 of the branch
 // boundaries, subnormal coordinates, exact ties; float, double and long double.
 #include "core/coords.hpp"

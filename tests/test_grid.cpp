@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of btob::core's grid type: the one grammar KIND:NxM[:a:b] and its parser (each kind, ranges, errors), cell
 // centres and edges against the formula in exact rational arithmetic, the charts' points, and the fields that
 // read grids through it (basins, lyapunov-strip, hyperbolicity, transfer's boxes).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-hyperbolicity: singular values of D P-hat (closed form vs SVD and central differences, the
 // P2 centre), covariant Lyapunov vectors (periodic sinks vs eigenvectors of the period matrix, covariance on a
 // chaotic orbit, the degenerate rotation region of P2), strip images and errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the batched iterator: equals the scalar reference, deterministic across threads, the paper's
 // periodic orbits of Section 4, renormalisation at the extremes, recorders and ensembles.
 #include "core/coords.hpp"

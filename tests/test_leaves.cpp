@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The leaves of P2 (src/leaves): the request's claims checked exactly (rational linear algebra) and in MPFR, the
 // closed forms against independent routes (direct counts on grids, finite differences, the map's own orbits), and
 // the landing law against the basins command's classification.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long checks of src/attractors (label long): the 1000 x 1000 grid at r = 0.2 and Table 6.1 with 2000 orbits per r.
 #include "attractors/attractors.hpp"
 #include "iterate/ensemble.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long runs at the extremes (label "long", skipped by CI): one batch of orbits iterated 1e9
 // times each, in double and float, at the three-particle collapse, in chaos and on invariant curves.
 // Run with: ctest --preset long -R extremes   (about a minute on 2 cores).

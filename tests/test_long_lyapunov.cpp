@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long Lyapunov checks (label long): plain finite-time exponents of 132312 to 1e-8 (n = 6e7), quasi-periodic
 // orbits to 1e-5 after 1e7 iterations, and the batched map over the full goal workload against the QR route.
 #include "core/map.hpp"

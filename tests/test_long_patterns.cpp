@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long checks of btob::patterns (label long): Table B.1 windows n = 2..7, the iterator against the analysis
 // at every r of Table 6.1, and the 30-digit endpoint of 132312 stable under a change of MPFR precision.
 #include "patterns/atlas.hpp"

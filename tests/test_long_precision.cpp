@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The precision study on a small workload (~30 s: the Lyapunov column runs 1e5 steps on three sinks in every
 // arithmetic up to 100-digit MPFR).
 #include "core/scalar.hpp"

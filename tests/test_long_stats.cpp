@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long checks of src/stats (label long): C_N at the benchmark's series length N = 1e6 by FFT and by the direct
 // sum (n_max = 1e4: 1e10 multiply-adds), and the non-decay of C_N on a quasi-periodic orbit at r = 0.3 over 1e5 lags.
 #include "stats/stats.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long checks of src/windows (label "long"): certificates n = 41..150, 256 vs 512 digits for n <= 150.
 #include "windows/windows.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lyapunov exponents: periodic orbits against eigenvalues of period matrices, quasi-periodic orbits, the two QR
 // routes against each other, the batched TangentRecorder against the QR route, finite differences, errors.
 #include "core/map.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a printed number vouches for (docs/reference/numbers.md): core::with_error, the one rule by which lyapunov and
 // classify print a value with its error bar, is checked in exact rational arithmetic (GMP) against the double it
 // prints; and the status of every decimal a result describes.

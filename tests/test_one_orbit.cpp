@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One orbit, one verdict: every route takes the same branch (exactly), every tool reports the same exponents
 // and the same stability word for the same orbit.  Seeded; about 1 s in the release build.
 #include "attractors/attractors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/orbits: the strip tails against core::step one orbit at a time, determinism (seed, threads),
 // the verdicts of Figures 6.9 and 6.11 (132^3312^3 at r = 0.2, 132^67312^67 at r = 0.1717), and the errors.
 #include "orbits/orbits.hpp"

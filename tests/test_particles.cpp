@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of btob::particles: the event-driven simulator on cases with known answers (two particles, the
 // three-particle collapse threshold 7 - 4 sqrt(3), the energy loss of eq. 2.1), and four particles realising
 // periodic patterns against the map and the period matrix.

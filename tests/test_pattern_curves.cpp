@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of patterns::run(CurvesRequest) (Figures 7.1-7.8): the critical values of Theorems 7.1 and 7.3 against
 // the paper's 20-digit values, the spectrum against analyse(), the feasibility columns, and the errors.
 #include "patterns/curves.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scans and fixed-size routes at the edge of their resolution and range: the stability set of 1^n 3^n against the
 // windows module (Table B.1), every stable sample of random words inside the stability set, long words in every
 // fixed precision against MPFR, and the digits printed for an eigenvalue against 60-digit MPFR.

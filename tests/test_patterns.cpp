@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of btob::patterns: word algebra, Theorems 7.1 and 7.3, windows of Table B.1, Table 6.1, errors.
 #include "patterns/atlas.hpp"
 #include "patterns/exact.hpp"

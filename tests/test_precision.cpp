@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/precision: the exact exponent of a periodic word (MPFR Newton solve) against the double route of
 // lyapunov::periodic_exponents, its independence from MPFR's ambient precision, and the request's validation.
 // The study itself runs in tests/test_long_precision.cpp (~30 s).

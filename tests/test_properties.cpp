@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Properties over random inputs: the batched kernel, the scalar loop (Appendix A.2) and Definition 2.1 (the
 // cross-product construction, src/reference) agree on the next direction and symbol of one step of P_r, for
 // random r in (1e-6, 1 - 1e-6) and random points, including points on and within rounding of the branch

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of btob::reference: Definition 2.1, the particle simulation and the trigonometric algorithm
 // (Appendix A.1) against the piecewise-linear map core::step (Theorem 3.3), and the Figure 4.7 driver.
 #include "reference/reference.hpp"

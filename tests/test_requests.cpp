@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The request API (core/request.hpp) of the analyses moved into their modules: validation names the field,
 // run(request) equals the lower-level routes it wraps bitwise, results describe their arrays, MPFR digits do not
 // leak from one run to the next, field parsers read what they write.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/stats: C_N by FFT equals the direct sum (float, double, long double; random and orbit
 // series); periodic, quasi-periodic and chaotic C_N; empirical measures in one basin and on distinct
 // invariant curves; the SeriesRecorder against the TailRecorder; errors (API and command line).

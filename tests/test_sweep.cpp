@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Sweeps in parts (core/sweep.hpp), without MPI: for any partition of the items, in any order, merge(run_part...)
 // equals run() bitwise, array by array; parts survive core/pack.hpp bitwise.  This is what makes `mpirun -n P`
 // give the single process's files (tests/mpi_sweeps.sh checks the command line on top of it).

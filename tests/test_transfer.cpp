@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ulam's transfer operator (src/transfer): the generic construction against maps whose invariant densities are
 // known in closed form (logistic map at 4: arcsine; baker map: uniform), the ergodic decomposition against a
 // hand-made chain, the block spectrum against Spectra on the whole matrix, the two routes of P^_r against each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of reference::trig_density_matlab (Figure 4.7, panel a): where no acos argument leaves [-1, 1] it draws
 // exactly what trig_density draws; where GNU Octave running the printed code takes no complex acos, neither does it;
 // one thread and two threads give the same image.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of src/windows: Q_n against Table B.2, lower/upper bounds against Table B.1, certificates,
 // precision agreement, thin stripes and thresholds against closed forms, the matrix route, errors.
 #include "windows/direct.hpp"

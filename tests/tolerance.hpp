@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tolerances of the tests as statements (docs/ARCHITECTURE.md, "Tolerances"): every comparison of two numbers
 // says how far apart they may be and why, in one of three forms, and a failure prints both numbers, their
 // difference in the units of the statement, and the reason.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Checks the C++ files changed since BASE against the repository's .clang-format, changing nothing
 # (clang-format --dry-run --Werror): the code base is not reformatted, only what a change touches is held to it.
 # Usage: tools/check_format.sh [--lines] [BASE]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Adds the line `SPDX-License-Identifier: GPL-3.0-or-later` to every tracked source file of btob (LICENSE,
 docs/licence.md), or with --check lists the files that lack it (exit 1) and changes nothing.
 

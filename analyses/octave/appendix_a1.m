@@ -1,3 +1,4 @@
+% SPDX-License-Identifier: GPL-3.0-or-later
 % The trigonometric algorithm of the paper's Appendix A.1, as printed (MATLAB; runs unchanged in GNU Octave, whose
 % acos returns a complex number outside [-1, 1] as MATLAB's does).  Inputs theta0, phi0 (the b-state of eq. (2.17)),
 % NN collisions, r.  A, B, C are the collision matrices of eq. (2.6) (column i carries the collision of pair i,

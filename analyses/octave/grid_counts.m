@@ -1,3 +1,4 @@
+% SPDX-License-Identifier: GPL-3.0-or-later
 % Runs appendix_a1 on the 32 points of the Section 4 grid at the r values given, NN = 4 N collisions (N = 5000
 % b-to-b steps), and prints per r: orbits that took a complex acos, orbits with fewer than N b-collisions, and the
 % last 100 Re(theta) at b-collisions of each orbit's tail (min/max over the grid).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Basin map at one r (btob basins): one colour per attractor, legend with patterns and fractions; below, the boundary
 geometry: each entropy box's entropy (the boundary boxes) and the uncertain fraction f(eps) with its power-law fit.
 Usage: attractors_basins.py NAME.h5 OUT.png   (reads NAME.h5 alone: labels, fraction, ci_low, ci_high, box_entropy,

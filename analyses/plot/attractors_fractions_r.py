@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Basin fractions across r (btob basins-r): stacked areas, attractors matched across r by pattern; below (with a
 boundary grid), the basin entropies S_b, S_bb with their intervals and the uncertainty exponent against r."""
 import sys

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Table 6.1 against candidate initial distributions (analyses/table_6_1_candidates.py): the paper's counts out of ten
 against each candidate's expected count with its 95% predictive interval, the rows' p-values and the table's
 log-likelihood per candidate; and the detection check (the paper's pixel rule against btob's classifier).

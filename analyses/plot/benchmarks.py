@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws map iterations per second of bm_iterate (Google Benchmark JSON), with ratios to the scalar loop
 of Appendix A.2 measured in the same run, and the estimated hardware limit of the double kernel.
 

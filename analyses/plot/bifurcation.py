@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws a bifurcation diagram (density of tail values against r) from a `btob bifurcation` HDF5 file.
 
 Usage: bifurcation.py DATA.h5 OUT.png

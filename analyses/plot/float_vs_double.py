@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Compares the Figure 4.1 density images computed in float and in double.
 
 Per r: the Kolmogorov-Smirnov distance between the two binned theta distributions (700 bins), and the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws, over r, the fraction of expanding steps, the CLV angle quantiles and the angle histogram along orbits,
 beside the median largest Lyapunov exponent, from a `btob hyperbolicity-orbits` file.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws log10 of the largest singular value s1 of the one-step derivative at one r over a strip grid (w1, w2),
 from a `btob hyperbolicity` file.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """P2's invariant curves (btob leaves): at one r, where orbits land (label map and landing density with its bands,
 the kernel estimator, the coarse histogram and the region's own law), the rotation number per leaf and the
 Kolmogorov-Smirnov distances of the measure on a leaf; across r, theta / (2 pi) with the resonances l / m, the region's

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws a Lyapunov map (largest projective exponent of every orbit against r) from a `btob lyapunov-map` file.
 
 Usage: lyapunov_map.py DATA.h5 OUT.png

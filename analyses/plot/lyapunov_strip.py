@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws the largest Lyapunov exponent at one r over a strip grid (w1, w2) from a `btob lyapunov-strip` file.
 
 Usage: lyapunov_strip.py DATA.h5 OUT.png

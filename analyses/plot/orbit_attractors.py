@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws r against attractor from a `btob lyapunov-map --attractors` or `btob bifurcation --attractors` file: at each
 r the share of the grid's orbits that reached each attractor (stacked), with the windows of (ab)^n(cb)^n overlaid
 (a strip above the shares, from the lower bound of each window to its r_crit,2(n), when the file has the windows

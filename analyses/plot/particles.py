@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Space-time diagram and animation of four particles collapsing along a periodic pattern.
 
 Usage: particles.py NAME.h5 DIR

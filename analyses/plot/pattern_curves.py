@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Figures 7.1-7.8: eigenvalues (when real) and moduli of a word's period matrix against r, and the feasibility
 quantities of its tracked eigenvector.  Usage: pattern_curves.py RESULT.h5 OUTDIR (reads only the HDF5 file: the
 critical r values are its critical_r and critical_what)

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws the atlas of stable periodic patterns against r, with the iterator's detections overlaid.
 
 Usage: patterns_atlas.py NAME.h5 OUT.png

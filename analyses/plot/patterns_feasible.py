@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws the number of feasible periodic words (stable and unstable) of length <= L against r.
 
 Usage: patterns_feasible.py NAME.h5 OUT.png

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Shared helpers of the plot scripts: Agg backend, HDF5 attributes as str, atomic PNG writes."""
 import os
 import sys

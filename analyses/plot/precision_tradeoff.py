@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Speed against accuracy of each precision and algorithm (`btob precision`).
 
 Four panels, each against iterations per second: how long the symbol sequence agrees with a 256-digit run

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws C_N(phi, psi; n) against the lag n (linear, and log |C_N| with the window envelope, the noise floor
 and the fitted decay) and the power spectrum, from a `btob correlate` HDF5 file.
 Usage: stats_correlation.py DATA.h5 OUT.png"""

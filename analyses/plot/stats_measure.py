@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Draws the empirical measures of a `btob measure` HDF5 file: one image per group of coinciding measures
 (log colour, support outlined per group), their marginals, and the convergence against N.
 Usage: stats_measure.py DATA.h5 OUT.png"""

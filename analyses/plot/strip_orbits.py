@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Tails of individual orbits in the strip (w1, w2), one panel per orbit, titled by the classifier's verdict
 (Figures 6.9-6.11).  Usage: strip_orbits.py RESULT.h5 OUT.png (reads only the HDF5 file: the verdicts are its
 verdict, pattern, period and rotation datasets)"""

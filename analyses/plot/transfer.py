@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Ulam's transfer operator at one r: invariant density (Lebesgue projection), components, the sign structure of
 the leading real eigenvector below 1, and the spectrum in the complex plane; the basins from the Ulam graph when the
 request names attractors.  Usage: transfer.py H5 PNG.  Reads only the HDF5 file (the spectrum is its eig_re, eig_im

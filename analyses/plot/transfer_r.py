@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Peripheral spectrum of Ulam's operator across r with the gap, the thresholds and the windows (btob transfer-r).
 Usage: transfer_r.py NAME.h5 OUT.png   (reads NAME.h5 alone: r, re, im, gap, peripheral_count, window_lower,
 window_upper and the attributes boxes, samples, peripheral).  NaN values (no gap, no upper end of the window n = 1)

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Precision study of the window lower bounds: correct decimals and time per bound against n.
 
 Usage: windows_precision.py NAME.h5 OUT.png

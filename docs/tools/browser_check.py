@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Opens the built documentation site in headless Chromium (Debian's chromium and chromium-driver, driven by
 Selenium) and checks what a reader sees: every page loads without a console error (severity SEVERE), every image has
 loaded with a non-zero size, every formula is rendered by MathJax (each Sphinx math element holds MathJax's output,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Builds btob's documentation site (the CMake target `docs`, and the CTest test docs_build).
 
 Usage: build.py --btob BUILD/btob --pythonpath BUILD/python --out BUILD/docs [--source REPO]

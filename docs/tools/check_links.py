@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks every internal link and image of a built HTML site: each href/src that is not external must name an
 existing file, and each #fragment an id (or name) in the target page.  Usage: check_links.py HTML_DIR
 External links (http:, https:, mailto:) are not fetched: the build runs without network."""

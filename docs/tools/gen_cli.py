@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the command reference (reference/cli.md) from the built executable's own help: `btob --help`, then
 `btob SUB --help` for every subcommand it lists, recursively (`btob windows bounds --help`, ...), so the page can
 never disagree with the binary.  Usage: gen_cli.py BTOB OUT.md"""

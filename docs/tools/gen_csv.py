@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes, per guide, the CSV tables the command line and the analyses scripts write beside the HDF5 data
 (reference/csv/GUIDE.md): each committed example under results/ with its columns, read from the file itself, so a
 renamed column shows here.  Units: the columns carry those of the arrays of the same name (the HDF5 datasets,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the tables of the paper page (paper_tables.md): Tables 6.1, B.1 and B.2 beside the paper's, as the gallery
 (analyses/gallery.py, results/README.md) renders them from the committed results, so the two never differ.
 Usage: gen_paper.py REPO OUT.md"""

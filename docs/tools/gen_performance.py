@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the generated half of the performance page from results/benchmarks: the machine the numbers come from,
 the ratios of results/benchmarks/ratios.csv (each workload against the plain kernel measured in the same program)
 and, per benchmark program, every benchmark's rate (median over repetitions where there are several).

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the generated half of the Python reference from the built package: python_api.md (an autodoc entry for
 every public function of `btob.FUNCTIONS`, btob.iterate, btob.Map and btob.Result) and outputs/FUNCTION.md (every
 array a function's result holds, with its axes, units and description, and the names of its attributes), read from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A program using the installed btob library (examples/cpp/CMakeLists.txt): the Lyapunov exponents of one orbit and
 // the basins of attraction at one r, the analyses of `btob lyapunov` and `btob basins`, as requests and results.
 #include <btob/btob.hpp>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """btob in Python: the b-to-b map P_r of four one-dimensional inelastic hard spheres (Castorrini & Dolmaire).
 
 Every analysis of the command line is a function with the same inputs (keyword arguments named as the flags, '-'

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Figures of btob results, drawn by the command line's own scripts (analyses/plot/*.py, shipped in btob/data/plot).
 Most scripts have draw(f) -> matplotlib Figure for an h5py-like f, which a Result stands in for here.  The scripts
 of strip_orbits, pattern_curves and pattern_atlas read the saved HDF5 file, as the command line runs them:

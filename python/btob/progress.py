@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Progress of a run: progress=True shows a tqdm bar (python3-tqdm; nothing when it is not installed), a callable
 receives (done, total), False shows nothing.  The compiled module calls the callable from the waiting thread with
 the GIL held, at most every 50 ms."""

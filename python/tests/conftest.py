@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Shared helpers of the Python tests: the command line of the same build (BTOB_EXE, set by CTest) and the
 translation of keyword arguments into its flags (the binding's rule backwards: '_' -> '-')."""
 import json

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The building blocks: btob.Map(r).step against the paper's matrices, btob.iterate against the bifurcation
 kernel's raw tails (which test_requests.py ties to the command line bitwise) and against Map.step."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The boundary geometry of btob.basins and btob.basins_r (src/attractors/boundary.hpp) against a second route: the
 basin entropies, the boundary-box count and the uncertain fractions counted again here with numpy from the labels
 image the result carries, and basins_r's per-r values equal to a basins run on its boundary grid."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Ctrl-C (SIGINT) stops every kind of run: single orbits in every precision, transients, sweeps whose items are
 long orbits, the atlas and windows certificates, covariant vectors, direct correlation sums, the pattern curves, the
 iterator checks, a word's analysis in MPFR and the overlays computed after a run raise KeyboardInterrupt within a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """How to cite btob: CITATION.cff is `btob cite --format cff` without its commit line (one record, so the file cannot
 drift from the command), its version is CMakeLists.txt's one version, the BibTeX and text name this build's version
 and commit (`btob --version`), and btob.cite() prints what the command prints.  A bad format is one line naming the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """btob.estimate(): a sweep's predicted time from a sample of its own items lies within a factor 2 of the
 run it predicts (a sweep of long orbits over r and one of certified window bounds, whose items cost more as n
 grows), and so does one orbit's, priced by the cached rate of its route (core/work.hpp, io/rates.hpp); it names the

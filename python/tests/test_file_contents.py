@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Self-describing files: every file a command writes is opened and checked.  Every HDF5 dataset states its unit and
 meaning (attributes units, description); every axis of a grid (a dataset of two or more dimensions) that runs over
 a coordinate has that coordinate attached as an HDF5 dimension scale (index axes such as "initial condition" have

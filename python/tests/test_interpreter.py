@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The package as a citizen of the interpreter: errors as the command line words them, zero-copy arrays, no memory
 growth over 100 calls, the GIL released during a run, Ctrl-C within half a second, progress."""
 import gc

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """btob.precision_study against `btob precision` (about 30 s each: the study's Lyapunov and window checks have
 fixed sizes), hence labelled long: the deterministic columns of tradeoff.csv and the manifest's attributes."""
 import csv

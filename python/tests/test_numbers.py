@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Every number keeps the digits it was computed to and says what it is (docs/reference/numbers.md): decimals
 computed beyond double reach NAME.h5, Python (decimal.Decimal) and the CSV with every digit, and `btob run` of the
 manifest gives the same digits; each carries its status (certified, estimated, conjectured); a value printed with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Per-orbit attractors: `lyapunov_map(attractors=True)` and `bifurcation(attractors=True)` record each orbit's
 attractor, which is `btob.classify`'s verdict on that orbit (same point, r, transient and iterations), and leave the
 run they are added to unchanged."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """res.plot() draws the command line's figure from the result itself (the plot scripts' draw(f) on the result
 seen as an h5py file): every function with a figure returns a matplotlib Figure with the script's axes and title."""
 import os

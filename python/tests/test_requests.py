@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Python and the command line give bit-identical numbers for the same request: every function of the package
 against `btob COMMAND` with the same flags, on small requests (a second or two each).  Arrays are compared
 bitwise (dtype, shape and every bit, NaN included); attributes by value, except those that record when, how fast

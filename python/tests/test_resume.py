@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """resume= on every sweep (the command line's --resume, one code: io/checkpoint.hpp): the finished items are kept in
 the file while the run goes on; a run killed with SIGKILL, or stopped by Ctrl-C (KeyboardInterrupt keeps the file),
 and then resumed gives arrays bitwise equal to one uninterrupted run, and removes the file; a file made by another

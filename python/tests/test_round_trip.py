@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Round trips of every request: Python's res.save(d), then `btob run d/NAME.json`, gives the same data bitwise (every
 HDF5 dataset, every CSV table); the result's `command` attribute, evaluated, gives the same data again; save()
 writes the figure wherever the command line draws one, and writes nothing when it cannot.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Typed references: every Python function's inspect.signature names each keyword of its request (keyword-only, in
 the fields' order, then threads, progress and, for a sweep, resume) with a type annotation and the field's default
 (none for a required field), and the command line's --help says the same thing about the same field by the other

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """One spelling per concept: every Python function's keyword arguments (from the binding) and every command's flags
 (from `btob CMD --help`) are checked against the vocabulary the README lists.  A second spelling of a concept
 (n1 for a grid's size, rs for a list of r, nthreads for threads, ...) fails, naming the function or command."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Attractors of P_r-hat (Section 8.1 (1)): per-orbit classification, attractor identity, basins over grids
 // with frequencies and confidence intervals, basin fractions across r (Table 6.1 with many orbits).
 #pragma once

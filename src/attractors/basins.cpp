@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Basins over grids (attractors.hpp): the grids, the sweep of rows with early exits, and the merge of its parts.
 #include <fmt/format.h>
 #include <omp.h>

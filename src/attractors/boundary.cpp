@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The geometry of basin boundaries from a label image (boundary.hpp).
 #include "attractors/boundary.hpp"
 

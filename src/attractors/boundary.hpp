@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The geometry of basin boundaries from a label image (attractors.hpp's Basins::labels): basin entropy and boundary
 // basin entropy (Daza, Wagemakers, Georgeot, Guery-Odelin, Sanjuan, Sci. Rep. 6, 31416 (2016)), the uncertainty
 // exponent and the boundary's box-counting dimension (McDonald, Grebogi, Ott, Yorke, Physica D 17, 125 (1985)), and

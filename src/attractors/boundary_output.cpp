@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The boundary geometry of basins and basins-r (attractors/boundary.hpp) in their files and on the terminal: HDF5
 // datasets and attributes, NAME_boundary.csv, the summary lines.
 #include "attractors/requests.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The certification of early exits (attractors/certify.hpp): trapping cones of stable cycles, the P2 ellipses.
 #include "attractors/certify.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The certification of early exits (basins only; see attractors.hpp): trapping cones of stable cycles and the P2
 // invariant ellipses.  Internal to the attractors module; declared here so that each stage can be tested alone.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Per-orbit classification on the batched kernel (Section 8.1 (1)): pass 1 (return, collapse), pass 2 (lambda1, the
 // P2 rotation number), refinement; attractor identity and collection.
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched kernel instantiated with the recorders of the attractor classification (kernel flags).
 #include "attractors/recorders.hpp"
 #include "iterate/cocycle_impl.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Recorders of the attractor classification (src/attractors): period returns and the P2 rotation (Section 5.2).
 #pragma once
 

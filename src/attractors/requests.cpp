@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "attractors/requests.hpp"
 
 #include "core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The attractors of Section 8.1 (1) as requests and results (core/request.hpp): one orbit classified
 // (`btob classify`), the basins at one r over a grid (`btob basins`) and the basin fractions across r compared
 // with Table 6.1 (`btob basins-r`).

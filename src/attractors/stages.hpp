@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stages the attractors module's files share (classify.cpp, certify.cpp, basins.cpp), declared here so that each
 // can be called and tested alone.  Not part of the module's public API (attractors.hpp).
 #pragma once

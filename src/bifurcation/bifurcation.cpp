@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bifurcation diagrams: validation, the kernel run with the density recorder, the trigonometric route.
 #include "bifurcation/bifurcation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bifurcation diagrams (Figures 4.1-4.7 and 6.1-6.8 of the paper): the tails of theta, log10 theta, phi, w1 or w2
 // of every orbit of an ensemble (r values x initial conditions), binned on the fly into a density image, with the
 // points outside the range and the orbits the precision could not follow counted, never dropped silently.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The `btob` command: subcommands register themselves here (one src/cli/cmd_<name>.cpp each).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `--resume`: a sweep (core/sweep.hpp) keeps its finished parts in a checkpoint file while it runs, so that a run
 // stopped at any point (SIGKILL, a batch system's time limit, a node failure) continues where it was:
 //

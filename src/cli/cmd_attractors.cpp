@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob classify` (one orbit), `btob basins` (one r over a grid: basin image and fractions), `btob basins-r`
 // (basin fractions across r, compared to Table 6.1): the attractors of Section 8.1 (1), flags ->
 // attractors::*Request -> run -> files.

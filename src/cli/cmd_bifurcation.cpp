@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob bifurcation`: flags -> bifurcation::Request -> run -> NAME.h5, NAME.json, NAME.png (Figures 4.1-4.7, 6.1-6.8).
 #include "bifurcation/bifurcation.hpp"
 #include "cli/command.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob cite`: how to cite btob (io/citation.hpp), the software at this build's version and git commit and the paper
 // whose map it implements, printed to standard output; it writes no file and computes nothing.
 #include "cli/app.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob explore`: an HTTP server (cpp-httplib) for the page of src/cli/explore/ (embedded in the executable at
 // build time) and its API (explore.hpp computes the answers).  Loopback only unless --host says otherwise.  A request
 // carrying session=S cancels the computation of the same kind still running for S: the page's newest view wins.

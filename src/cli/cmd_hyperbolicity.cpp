@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob hyperbolicity` (singular values of the one-step derivative over a strip grid, as an image) and
 // `btob hyperbolicity-orbits` (per r: fraction of expanding steps and CLV angles along orbits, beside lambda1):
 // the (non-)hyperbolicity of Section 8.1 (3).  Flags -> lyapunov::Hyperbolicity*Request -> run -> files; both are

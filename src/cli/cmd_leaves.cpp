@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob leaves`: flags -> leaves::Request -> run -> NAME.h5, NAME.csv, NAME_landing.csv, NAME_leaves.csv, NAME.json,
 // NAME.png: P2's invariant curves (Section 8's programme (i), (ii), (iv)) at one r or across r.
 #include "cli/command.hpp"

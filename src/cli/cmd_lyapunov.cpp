@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob lyapunov`, `btob lyapunov-map`, `btob lyapunov-strip`: flags -> lyapunov::*Request -> run -> files.
 #include "cli/command.hpp"
 #include "cli/sweep.hpp"

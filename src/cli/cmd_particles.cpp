@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob particles WORD --r R`: flags -> particles::ParticlesRequest -> run -> one CSV row on stdout, and NAME.csv,
 // convergence.csv, events.csv, NAME.json, spacetime.png, animation.gif: four particles realise the periodic pattern
 // WORD, event by event.

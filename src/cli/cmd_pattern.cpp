@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob pattern`: flags -> patterns::WordRequest (verdict of one word at r, its stability set, its exact
 // characteristic polynomial; printed on stdout) or patterns::AtlasRequest (`btob pattern atlas`: the atlas of
 // stable patterns and its check against the iterator, or every feasible periodic orbit; files).  The atlas is a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob pattern-curves`: flags -> patterns::CurvesRequest -> run -> NAME.h5, NAME_critical.csv, NAME.json and the
 // figures: spectrum and feasibility quantities of a word's period matrix against r (Figures 7.1-7.8).
 #include "cli/command.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob precision`: flags -> precision::TradeoffRequest -> run -> results/precision/tradeoff.csv, manifest, plot.
 #include "cli/command.hpp"
 #include "cli/common.hpp"

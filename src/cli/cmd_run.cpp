@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob run SCENE.toml` and `btob run results/NAME/NAME.json`: a scene, or the request a result's manifest
 // recorded, run again.  Request-based commands (cli/command.hpp) set their fields by name; the others still
 // replay their flags through the argument parser.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob correlate` (C_N along one orbit) and `btob measure` (empirical measures of many initial conditions, their
 // distances and convergence), Section 8.1 (2): flags -> stats::*Request -> run -> files.  measure is a sweep
 // (cli/sweep.hpp): under mpirun the ranks share the initial conditions and rank 0 writes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob strip-orbits`: flags -> orbits::StripOrbitsRequest -> run -> NAME.h5, NAME.csv, NAME.json, NAME.png: tails of
 // individual orbits at one r in the strip (w1, w2), each with the classifier's verdict (Figures 6.9-6.11).
 #include "cli/command.hpp"

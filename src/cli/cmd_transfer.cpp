@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob transfer`: flags -> transfer::TransferRequest -> run -> spectrum.csv, components.csv, cycles.csv (cycles
 // asked for or found), basins.csv (when there is an attractor), classes.csv (without --cycle), NAME.h5, NAME.json,
 // NAME.png: Ulam's

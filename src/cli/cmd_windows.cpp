@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob windows poly|bounds|thresholds|stripes|verify|precision`: flags -> windows::*Request -> run -> stdout or
 // files.  poly, bounds, verify and precision are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n values and
 // rank 0 prints or writes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The request-based subcommands' shared parts: cancellation, terminal progress, output validation.
 #include "cli/command.hpp"
 #include "cli/mpi.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One mechanism for every subcommand built on a request (core/request.hpp): its flags, its scene keys and its
 // manifest's "request" object are the request's fields(), read and written by the same code.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shared helpers of the subcommands.
 #include "cli/common.hpp"
 #include "cli/app.hpp"

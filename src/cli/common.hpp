@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Helpers shared by the subcommands: progress adapter, the invocation string (the named r overlays are in
 // src/extras, shared with the Python binding).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stages of `btob explore` (explore.hpp): view parsing, the density run, colouring, PNG encoding, and the JSON
 // answers (classification, basins, overlays, export).
 #include "cli/explore.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob explore`: the bifurcation diagram served to a browser.  The HTTP handlers (cmd_explore.cpp) only move bytes;
 // what they serve is computed here in stages, each a function of typed input and output:
 //

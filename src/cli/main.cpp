@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Entry point of `btob`: builds the subcommands and maps errors to exit codes (2 usage, 1 otherwise).
 #include "cli/app.hpp"
 #include "cli/command.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The MPI job of cli/mpi.hpp: one process of rank 0 unless built with MPI (BTOB_MPI) and started by a launcher.
 #include "cli/mpi.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The processes of an MPI job (`mpirun -n P btob ...`), for the command line only: no analysis module knows of MPI.
 // Built with Open MPI when CMake found it (BTOB_MPI); without it, or when btob was not started by mpirun/srun, this
 // is one process of rank 0 and nothing here calls MPI.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Runs a sweep request (core/sweep.hpp) on every rank of an MPI job and merges the parts on rank 0:
 //
 //   const auto res = sweep(req, ctx);   // std::optional<Result>: the result on rank 0, nullopt on the others

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One call that cannot poll the cancellation token (core/cancel.hpp) from inside, made cancellable from outside: a
 // dense eigensolver's O(m^3) steps, one FFTW execution of millions of points.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How a long loop polls the cancellation token of core::RunControl (request.hpp) without slowing down.
 //
 // A loop that may run for more than ~0.1 s (one orbit's 1e12 steps, a transient, one window's certificate, an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Coordinates of a direction u: angles (theta, phi), the strip (w1, w2) of eq. (6.4), particles (p, q).
 #pragma once
 

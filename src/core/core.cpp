@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-template parts of btob::core: validation and precision names.
 #include "core/map.hpp"
 #include "core/scalar.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The lab's CSV writer (csv.hpp): one header line, one field per column on every row, nothing to quote.
 #include "core/csv.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one CSV writer of the lab: a table that numpy.genfromtxt(names=True, delimiter=",", dtype=None), pandas and
 // Python's csv module all read as it is.  That means
 //   - one header line of column names, nothing above it (no "# ..." line: what a run was lives in its manifest),

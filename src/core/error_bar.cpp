@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // core::with_error: the printed interval of a value and its error bar contains the value (core/error_bar.hpp).
 #include "core/error_bar.hpp"
 

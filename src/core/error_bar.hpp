@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A value printed with its error bar: the one rule every command that prints "value, error" or "value +- error"
 // follows (lyapunov, classify), so that the printed interval [value - error, value + error] contains the value the
 // result stores (docs/reference/numbers.md).

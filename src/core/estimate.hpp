@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cost of a sweep (core/sweep.hpp) predicted from a sample of its own items: the command line's `--dry-run` and
 // Python's btob.estimate().
 //

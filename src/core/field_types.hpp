@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The type of a request field as the front ends name it: the command line's option type (CLI11's type_name, shown
 // by --help and the command reference) and the Python annotation of the keyword (inspect.signature, help()).  One
 // name per C++ field type of core/fields.hpp, so both front ends say the same thing about the same field.

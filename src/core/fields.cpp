@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Field parsers of requests (core/fields.hpp).
 #include "core/fields.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Text <-> value for the fields of a request (core/request.hpp): one parser per field type, shared by the command
 // line, scene files, manifests and the Python binding, each failure a core::InvalidField naming the field.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The grid type's parser, axes and points (core/grid.hpp).
 #include "core/grid.hpp"
 

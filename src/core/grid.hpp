@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The grid type: N x M cells over a chart of the quadrant Q, one grammar KIND:NxM[:ranges], one parser.
 #pragma once
 

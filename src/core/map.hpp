@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The b-to-b map P_r of Theorem 3.3: matrices P1, P2, P3, the branch choice, symbols and collision letters.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bytes of a plain struct and back, for sending a part of a sweep to another process (core/sweep.hpp).  A struct
 // lists its members once, for both directions, like a request's fields():
 //     template <class A> void members(A& a) { a(items, density, seconds); }

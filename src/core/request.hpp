@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The contract every analysis follows: a plain Request struct validated once, run(request, RunControl) -> Result.
 //
 //   struct Request {                        // in the analysis module, e.g. btob::lyapunov::OrbitRequest

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a result holds, as named arrays and attributes: the one view through which the writers (HDF5, manifest),
 // the Python binding and the MPI gather read every result type.  A result type provides
 //     void describe(core::Contents& c) const;   // c.array(...) for every array, c.attr(...) for every summary value

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The scalar types of the lab: float, double, long double, float128 (quadmath) and MPFR (any digits).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cost of an indivisible or expensive-per-item computation predicted from small instances of it: a word's
 // analysis by word length, the thresholds by digits, a window's certified bound by n.  A dry run of such a request
 // must not run the request (windows bounds --n 2000 --certify took 235 s to "estimate" by computing its largest n),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Sweeps: requests whose work is a list of independent items (r values, grid rows), computed in parts and merged.
 // The one mechanism behind `mpirun -n P btob <command>` (src/cli/sweep.hpp); a module knows nothing of MPI:
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The version of the btob library a program is linked against: the CMake project version, the one `btob --version`,
 // the Python package (btob.__version__), the packages and the result manifests report.
 #pragma once

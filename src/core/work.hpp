@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cost of a request that is not a sweep, before it runs: its work counted from its fields, in units of the routes
 // it runs (map steps of the double derivative cocycle, particle collisions in MPFR at D digits, Ulam sample images),
 // and for each route a probe: a short fixed run of that route, which io/rates.hpp times once per machine, build and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The overlays and per-command attributes of extras.hpp.
 #include "extras/extras.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a command adds to a result beyond its describe(), where it needs the request: the named r overlays drawn
 // on figures (thresholds, windows, stripes), per-command attributes, and the attractor of every orbit of
 // lyapunov-map and bifurcation (their `attractors` field: classify's verdict, floor 4, which their own floor-3 runs

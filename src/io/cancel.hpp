@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cancellation token that io's long waits and commits obey (the command line's process-wide token, set by
 // SIGINT/SIGTERM): a plot script being run is ended and ResultFiles::commit() refuses, so a run stopped while its
 // files were being written leaves nothing, as one stopped during its computation.

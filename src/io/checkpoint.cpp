@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The checkpoint file of a resumable sweep (io/checkpoint.hpp): its header, its records, their validation.
 #include "io/checkpoint.hpp"
 #include "io/result_files.hpp"

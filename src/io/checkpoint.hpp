@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The checkpoint of a resumable sweep (core/sweep.hpp): its finished parts kept in a file while it runs, so that a
 // run stopped at any point (SIGKILL, a batch system's time limit, a node failure, Ctrl-C) continues where it was.
 // One code for the command line's --resume (cli/checkpoint.hpp adds the MPI ranks) and Python's resume= keyword:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The three renderings of one citation record (citation.hpp).  The paper's record holds what its LaTeX source
 // states: title and authors; it names no venue, year or arXiv number, so none is written (never guessed).
 #include "io/citation.hpp"

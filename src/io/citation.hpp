@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How to cite btob: the software (this build's version and git commit) and the paper whose map it implements, in
 // BibTeX, Citation File Format (CITATION.cff at the repository's root is `btob cite --format cff` without its commit
 // line: tests/citation_check.py) or plain text.  `btob cite` and Python's btob.cite() print these strings.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // HDF5/CSV/manifest writers with provenance, and the progress bar.
 #include "io/io.hpp"
 #include "core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Output with provenance: HDF5 arrays with attributes, CSV tables, manifests; atomic (temp + rename).
 #pragma once
 

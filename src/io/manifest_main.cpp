@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // btob_manifest OUT.json COMMAND FILE...: the manifest of a result written by a script rather than by a btob
 // subcommand (`btob windows bounds > bounds_certified.csv`, the Google Benchmark JSON): this build's provenance
 // (io::provenance: commit and git_dirty of the build, run_dirty, compiler, flags, date), the command that made

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The route rates and their cache file (io/rates.hpp).
 #include "io/rates.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The calibrated speed of each route (core/work.hpp) and its cache: how a request that is not a sweep is priced before
 // it runs (`--dry-run`, btob.estimate(), the note before a run predicted over 10 minutes).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The comparison of a result with its re-run (io/reproduce.hpp).
 #include "io/reproduce.hpp"
 

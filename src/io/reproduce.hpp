@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Whether a re-run reproduced a result (`btob run results/NAME/NAME.json`): every dataset of the original NAME.h5
 // against the re-run's, bit for bit, and every CSV table of the result byte for byte.  Attributes are not compared:
 // they hold provenance (date, command line, timings) that differs between any two runs; nor are datasets of wall

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ResultFiles: stage every file of a result in a temporary folder, move them into place together.
 #include "io/result_files.hpp"
 #include "core/request.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The files of one result, written together or not at all: every file goes to a private temporary folder, and
 // commit() moves them into the output folder (created only then), the manifest last.  A run that fails or is
 // cancelled leaves nothing behind: no partial file, no empty folder, and an existing result stays intact.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scene files: TOML (toml++) to a subcommand and its flags.
 #include "io/scene.hpp"
 

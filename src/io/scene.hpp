@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scene files (analyses/scenes/*.toml): a named, saved invocation of one `btob` subcommand.
 #pragma once
 

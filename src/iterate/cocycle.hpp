@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The linear cocycle on the batched kernel: every lane carries its point u and one tangent vector v, both
 // multiplied by the step's matrix, in registers (docs/ARCHITECTURE.md, "The cocycle kernel").
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of the fused cocycle kernel (iterate/cocycle.hpp); included only by kernel units (kernel flags).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ensembles: r values and initial-condition grids.
 #include "iterate/ensemble.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ensembles of orbits: r values x initial conditions (the Section 4 grid, strip grids, seeded random, lists).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched iterator of P_r: structure-of-arrays SIMD kernel, OpenMP driver, and its scalar reference.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of the batched kernel; included only by src/iterate/kernel_*.cpp (kernel flags).
 #pragma once
 

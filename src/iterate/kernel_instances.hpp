@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Explicit instantiations of the kernel for one scalar type T (included by kernel_<T>.cpp).
 #pragma once
 #include "iterate/kernel_impl.hpp"

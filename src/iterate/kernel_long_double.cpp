@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched kernel instantiated for long double (compiled with the kernel flags, cmake/KernelFlags.cmake).
 #include "iterate/kernel_instances.hpp"
 namespace btob::iterate {

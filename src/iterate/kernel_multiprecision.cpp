@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The kernel's generic lanes instantiated for float128 (quadmath) and MPFR (run-time digits), for the
 // precision study.  MPFR: worker threads inherit the caller's precision (see kernel_impl.hpp).
 #include "core/scalar.hpp"

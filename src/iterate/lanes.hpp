@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The SIMD geometry of the batched kernel: vector width and lanes per batch (kernel units only).
 #pragma once
 

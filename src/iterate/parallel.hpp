@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The OpenMP driver of the analyses' own loops over independent items (r values, words, lags): one parallel loop,
 // a static schedule, each item writing only its own output slice, so that the result does not depend on the
 // thread count.  Besides the batched and cocycle kernels (kernel_impl.hpp, cocycle_impl.hpp) this is where the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-template parts of the recorders.
 #include "iterate/recorders.hpp"
 

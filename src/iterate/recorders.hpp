@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Recorders: what a run keeps (tails of theta/phi/strip, symbol streams, final states, density images).
 #pragma once
 

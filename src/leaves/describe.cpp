@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The arrays and attributes of a leaves result (core/result.hpp): HDF5, manifest and Python read these.
 #include "leaves/requests.hpp"
 

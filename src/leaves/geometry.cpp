@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Closed forms of P2's leaves (leaves/geometry.hpp); derivations in docs/guides/leaves.md.
 #include "leaves/geometry.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The leaves of P2 (Proposition 5.2, Section 8): for r > 3 - 2 sqrt(2) the projective action of P2 keeps a quadratic
 // invariant, and its level sets are closed curves (leaves) on which P2 turns an eigen-angle by theta.  Closed forms
 // only; the derivations are in docs/guides/leaves.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One leaf followed by the map, where a grid's orbits land, and the law of their labels (leaves/leaves.hpp).
 #include "leaves/leaves.hpp"
 

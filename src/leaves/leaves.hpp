@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The leaves' dynamics: one leaf followed by the map (rotation number, the empirical measure against the invariant
 // probability and against arc length) and where the orbits of a grid land (the attractor classifier's "P2 invariant
 // curves", key "Q2", with the label of their leaf).

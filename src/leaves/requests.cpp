@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob leaves` (leaves/requests.hpp): validation, the run per r, the arrays and tables.
 #include "leaves/requests.hpp"
 

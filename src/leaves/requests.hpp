@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob leaves` / btob.leaves: Section 8's programme on P2's invariant curves at one r or across r.
 //   the leaves:        label t in closed form (leaves/geometry.hpp), the labels whose leaf stays in P2's region
 //                      (0 <= t <= 1), the region's sphere measure and the law of labels it carries, the rotation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ExponentSums: the cocycle recorder of Lyapunov maps (iterate/cocycle.hpp): at the end of the transient and at every
 // block end, per orbit, the cumulative sums from which lyapunov::exponents_from computes the projective exponents.
 #pragma once

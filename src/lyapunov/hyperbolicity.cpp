@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-template parts of hyperbolicity.hpp (strip images of the singular values, validation, quantiles) and the
 // explicit instantiations (double, long double).
 #include "lyapunov/hyperbolicity_impl.hpp"

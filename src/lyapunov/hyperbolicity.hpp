@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // (Non-)hyperbolicity of the projective map (paper, Section 8.1 (3)): singular values of the one-step derivative
 // D P-hat(u) on the tangent plane, the fraction of expanding steps along an orbit, and the covariant Lyapunov
 // vectors (Ginelli's forward-backward method) with the angle between the two Oseledets directions.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of hyperbolicity.hpp (singular values of D P-hat, Ginelli's covariant Lyapunov vectors);
 // included by hyperbolicity.cpp and by code that needs other scalar types.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The (non-)hyperbolicity analyses of Section 8.1 (3) as requests and results (core/request.hpp): singular values
 // of the one-step derivative over a strip grid (`btob hyperbolicity`), and per r the fraction of expanding steps
 // and the angles between covariant Lyapunov vectors along orbits, beside lambda1 (`btob hyperbolicity-orbits`).

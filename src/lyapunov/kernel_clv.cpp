@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched covariant Lyapunov vectors (hyperbolicity.hpp, covariant_vectors_batched), compiled with the kernel
 // flags.  Each lane carries the point u (the plain kernel's map_step: the symbols are iterate::run<double>'s), the
 // line of the first Ginelli vector e1 and, over the steps whose R is stored, the second e2, all unnormalised and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The single-orbit step of lyapunov/orbit.hpp in the kernel's unit flags (-march=native: the fused multiply-subtract of
 // the branch rule is one instruction, not a libm call), for float, double, long double and float128.
 #include "core/scalar.hpp"

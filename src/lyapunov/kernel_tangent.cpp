@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched kernels of the Lyapunov maps (compiled with the kernel flags): the fused cocycle kernel with
 // ExponentSums (double and float), and the plain kernel with the TangentRecorder (the float-point route, the
 // classification's recorder, and the reference the fused kernel is tested against).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-template parts of the Lyapunov module and the explicit instantiations (double, long double).
 #include "lyapunov/lyapunov_impl.hpp"
 

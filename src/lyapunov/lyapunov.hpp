@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lyapunov exponents of the b-to-b map (paper, Section 8.1 (3)): the projective derivative cocycle and the
 // linear cocycle of the products of P_i along an orbit, both with QR (Benettin) re-orthonormalisation.
 #pragma once

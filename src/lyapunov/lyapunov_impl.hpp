@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of lyapunov.hpp (the projective and linear QR cocycles); included by lyapunov.cpp and by
 // code that needs other scalar types (float128, mpfr).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Explicit instantiations of the Lyapunov cocycles for float, float128 and MPFR (every precision),
 // in their own unit so that the double build of lyapunov.cpp stays fast.  Sums of log R_ii are accumulated in
 // long double and results are reported in double (see lyapunov.hpp): for float128 and MPFR the exponent is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lyapunov maps on the batched kernel: run the TangentRecorder, turn its cumulative sums into exponents.
 #include "lyapunov/maps.hpp"
 

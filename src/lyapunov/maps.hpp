@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lyapunov maps: the projective exponents of every orbit of an ensemble (r values x initial conditions),
 // computed on the batched SIMD kernel (lyapunov::TangentRecorder), and their summary per r value.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The projective exponents of one orbit at the scalar limit (lyapunov/orbit.hpp): the frame is stepped by
 // detail::advance (kernel_orbit.cpp, orbit_mpfr.cpp) between Gram-Schmidt steps, which happen here, every `len` steps.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s / r,
 // iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
 // call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  What projective_exponents runs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The single-orbit step of lyapunov/orbit.hpp for MPFR: the mpfr_* C API on the frame's own numbers and its
 // preallocated scratch, in place, so that a step allocates nothing (Boost's operators allocate a temporary per
 // operation).  The point's arithmetic is the batched kernel's MPFR step operation for operation (map_step with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Lyapunov analyses as requests and results (core/request.hpp): one orbit in any precision, a map over
 // r values x initial conditions, and a strip image at one r.  Exponents are per map iteration, natural log;
 // the projective exponents lambda1, lambda2 of the 2-D map (lyapunov.hpp states the conventions).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // TangentRecorder: the projective derivative cocycle carried along every orbit of a batched run (Section 8.1 (3)).
 #pragma once
 

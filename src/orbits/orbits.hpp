@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Individual orbits at fixed r in the strip (w1, w2) of eq. (6.4), Section 6.2 (Figures 6.9-6.11): the last
 // `tail` states of orbits started from seeded random points of the strip, each with the verdict of the
 // attractor classifier (src/attractors), which is what titles each panel "periodic" or "quasi-periodic".

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The particle check of a periodic pattern: request validation, the start from the periodic point, the
 // predictions from the period matrix, and explicit instantiations of the simulator.
 #include "particles/particles_impl.hpp"

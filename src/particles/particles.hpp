@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Four inelastic particles realising a periodic pattern: an event-driven simulation of the collapse.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of the particle simulator (include this for another scalar type than the instantiated ones).
 #pragma once
 

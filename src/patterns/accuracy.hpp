@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the verdict's fixed-size routes (float, double, long double, float128) vouch for: each is checked against
 // the same analysis in the next wider type (the reference), and prints only the digits the two share.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Explicit instantiations of the periodic-orbit analysis and its scans (float, double, long double, float128, MPFR);
 // the scan grid.
 #include "patterns/scan_impl.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of the periodic-orbit analysis (Section 7): products, cubic spectrum, feasibility, windows.
 #pragma once
 

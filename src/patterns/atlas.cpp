@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The atlas of stable patterns (OpenMP over words) and pattern detection with the batched iterator.
 #include "patterns/atlas.hpp"
 

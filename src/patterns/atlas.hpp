@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The atlas of stable periodic patterns over r, and its check against the batched iterator (Table 6.1).
 #pragma once
 

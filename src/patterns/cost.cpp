@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cost of a word's analysis (`btob pattern`) before it runs (core/work.hpp): its verdict priced by a cost model
 // in the length of the word's primitive root (core/size_model.hpp), its window and characteristic polynomial by
 // running the request itself (core::self_term).  Kept apart from requests.cpp, which holds the analysis.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Spectrum and feasibility quantities of a word's period matrix as functions of r (Figures 7.1-7.8).
 #include "patterns/curves.hpp"
 

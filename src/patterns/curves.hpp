@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Section 7 as functions of r (Figures 7.1-7.8): the spectrum of the period matrix of a word (J M_h when
 // w = h J(h), else M_w), and the feasibility quantities of the tracked eigenvector along the word, on a grid
 // of r; with the critical r where the eigenvector's x component or the tracked eigenvalue's dominance changes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Exact polynomial arithmetic in r and characteristic polynomials of word matrices (Theorems 7.1, 7.3).
 #include "patterns/exact.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Exact characteristic polynomials of word matrices: polynomials in r with rational coefficients (GMP).
 #pragma once
 

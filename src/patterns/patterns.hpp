@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Periodic patterns of P_r (Sections 6.2 and 7): words over {1,2,3}, feasibility and stability of periodic
 // orbits, stability windows in r.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `btob pattern` as requests: WordRequest (verdict, window, charpoly) and AtlasRequest (the atlas and its check).
 #include "patterns/requests.hpp"
 

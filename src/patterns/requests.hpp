@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The requests of `btob pattern` (Sections 6.2, 7 of the paper): what one word does at one r, its stability set,
 // its exact characteristic polynomial (WordRequest), and the atlas of every word up to a length with its check
 // against the iterator (AtlasRequest).  Values computed in a multiprecision type travel as decimal text with the

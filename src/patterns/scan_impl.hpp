@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of the scans in r (Section 7): the quantities of the paper's critical values and their roots, the
 // stability set and the feasibility set of a word, with the refinement of their grid at spectral events.
 #pragma once

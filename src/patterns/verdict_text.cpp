@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The text `btob pattern WORD --r R` prints: the word, its matrix, the spectrum with the digits the route vouches
 // for (accuracy.hpp), the verdict with its reason, the exponents and the periodic orbit.
 #include "patterns/requests.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Words over {1,2,3}: parsing the paper's notation, printing, rotations, J, canonical forms, enumeration.
 #include "patterns/patterns.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What `btob pattern WORD` gives back: the text the command line prints (verdict, window CSV, characteristic
 // polynomial), the result's description (NAME.h5, Python) with the decimals of every number computed in the run's
 // precision and what kind of number each is (docs/reference/numbers.md), and the CSV tables of --out.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The precision study (`btob precision`): speed against accuracy of each precision and algorithm.
 // The same random orbits run in float, double, long double, float128, MPFR with 50 and 100 digits (the batched
 // linear kernel) and with the trigonometric algorithm of Appendix A.1 (double); each is compared with a 256-digit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Explicit instantiations of btob::reference for float, double, long double and float128.
 #include "reference/reference_impl.hpp"
 

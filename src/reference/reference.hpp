@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Independent routes to the b-to-b map, kept to test core::step and for the precision study:
 // the cross-product algorithm of Definition 2.1, an event-driven particle simulation, and the
 // trigonometric algorithm of Appendix A.1 (with a bifurcation-diagram driver for Figure 4.7).

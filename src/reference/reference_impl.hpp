@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template bodies of btob::reference (include this to use another scalar type than the instantiated ones).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Appendix A.1 with MATLAB's complex semantics: the paper's trigonometric code as it actually runs once acos
 // leaves [-1, 1] (Figure 4.7 shows what it draws).
 #include "core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // C_N(phi, psi; n) by the direct sum and by FFT (FFTW), and the periodogram (Section 8.1 (2)); T = float,
 // double, long double.
 #include "stats/stats.hpp"

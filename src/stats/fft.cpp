@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // RealFft<T>: FFTW plans behind the module's one planner mutex (float, double, long double).
 #include "stats/fft.hpp"
 

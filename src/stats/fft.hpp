@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One FFTW wrapper for the module: a real-to-complex / complex-to-real transform pair of one length.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batched kernel instantiated with the SeriesRecorder (observable series of src/stats; kernel flags).
 #include "iterate/kernel_impl.hpp"
 #include "stats/series.hpp"

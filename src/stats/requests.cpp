@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The statistics requests: validation, the runs, and the description of their results.
 #include "stats/requests.hpp"
 

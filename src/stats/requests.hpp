@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The statistics of Section 8.1 (2) as requests and results (core/request.hpp): C_N along one orbit with its
 // power spectrum (`btob correlate`), and the empirical measures of many initial conditions at one r with their
 // distances, groups and convergence against N (`btob measure`).

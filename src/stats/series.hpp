@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SeriesRecorder: the unit states and symbols of a window of consecutive steps of every orbit (Section 8.1 (2)).
 #pragma once
 

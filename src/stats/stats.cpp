@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Orbit series, observables, empirical measures, distances and the decay fit (Section 8.1 (2)).
 #include "stats/stats.hpp"
 

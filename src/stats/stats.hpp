@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Statistics along orbits of P^_r (Section 8.1 (2)): observables, empirical measures and their distances,
 // correlation functions C_N (FFTW and the direct sum), power spectra, decay of correlations.
 #pragma once

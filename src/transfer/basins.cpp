@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stage 9 of `btob transfer` (stages.hpp): basins from the Ulam graph.  The targets (the boxes of each stable
 // cycle, the P2 region), then the absorption probability of every box into each target and the Lebesgue measure
 // each target absorbs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stage 10 of `btob transfer` (stages.hpp): the transfer density against the empirical measure of `btob measure`
 // (stats module) from an NxN grid of the request's Lebesgue rectangle, in total variation.
 #include "transfer/detail.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stages 3-7 of `btob transfer` (stages.hpp): the leading spectrum, the absorbers, the projection of Lebesgue
 // measure on them, the components with their densities, and the second eigenvector's sign structure.
 #include "core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stage 8 of `btob transfer` (stages.hpp): periodic cycles located in the boxes and the density's mass around them.
 #include "transfer/detail.hpp"
 #include "transfer/stages.hpp"

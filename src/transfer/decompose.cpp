@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ergodic decomposition of Ulam's matrix: strongly connected components (Tarjan), the closed ones among them
 // numbered by their first box, and each closed class's period.
 #include "transfer/detail.hpp"

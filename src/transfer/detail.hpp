@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the transfer module's files share and no caller needs: box indices as vector positions, the sparse block
 // of a set of boxes, the dense/Arnoldi eigensolver of one block, PCCA+ memberships, the P2 region's level.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The kernel route of Ulam's matrix: one step of the batched SIMD kernel (iterate::run) for every sample, with a
 // recorder that writes the image's chart coordinates.  This file includes iterate/kernel_impl.hpp and is the
 // only file of the module compiled with the kernel flags (cmake/KernelFlags.cmake), as src/iterate's kernel_*.cpp.

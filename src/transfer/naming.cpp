@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stage 8a of `btob transfer` (stages.hpp), without --cycle: the attractors of the closed classes, found by
 // classifying (attractors::classify, `btob classify`'s defaults) the orbits started at the centres of their boxes.
 #include "transfer/detail.hpp"

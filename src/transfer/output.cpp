@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What `btob transfer` and `btob transfer-r` write, computed here so that tests reach it: the CSV tables (through
 // core::CsvTable; a value that is not a finite number is an empty cell), the HDF5 arrays and attributes
 // (describe), and the summary lines.

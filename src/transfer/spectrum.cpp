@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The spectrum of Ulam's matrix block by block (Eigen's dense solver, Spectra's Arnoldi), the invariant density of
 // a closed class, and PCCA+ memberships.
 #include "core/abandonable.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stages of `btob transfer` (transfer::run), each a function of typed inputs to a typed output, so that each
 // can be run and tested alone:
 //   1. matrix       ulam_btob                   Ulam's matrix of P_r on the partition (transfer.hpp)

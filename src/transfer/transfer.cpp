@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ulam's transfer operator of P^_r: partitions, charts, the matrix of the map, the requests, and the pipelines of
 // `btob transfer` (its stages in stages.hpp) and `btob transfer-r`.
 #include "transfer/transfer.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The transfer operator of P^_r by Ulam's method (Section 8): a box partition of the strip or the angles,
 // the sparse matrix of transition probabilities, its ergodic decomposition (closed classes = the ergodic
 // components the resolution sees), its leading spectrum (Spectra), the invariant densities and the projection

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The generic Ulam construction, templated on the map (used for P^_r and for the validation maps of the tests).
 #pragma once
 

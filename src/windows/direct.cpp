@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The matrix and polynomial routes to the window lower bound in float .. MPFR (the precision study).
 #include "windows/direct.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The window lower bound without huge coefficients: Q_n's sign from 3x3 matrix powers, in any scalar T.
 #pragma once
 

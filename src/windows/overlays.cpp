@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Overlays of the windows on bifurcation diagrams (windows/overlays.hpp).
 #include "windows/overlays.hpp"
 

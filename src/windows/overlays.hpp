@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows' r values drawn on bifurcation diagrams: window lower bounds and r_crit,2(n), and thin stripes.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Exact integer polynomials: arithmetic, exact signs at rationals, primitive Sturm sequences.
 #include "windows/polynomial.hpp"
 #include "core/cancel.hpp"

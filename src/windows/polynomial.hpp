@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Exact integer polynomials in one variable (GMP), their exact signs at rationals, and Sturm counts.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows requests: validation, the runs, their CSV text and the description of their results.
 #include "windows/requests.hpp"
 

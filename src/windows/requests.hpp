@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows analyses as requests and results (core/request.hpp): Q_n exactly (`btob windows poly`), certified
 // lower bounds and r_crit,2 (`windows bounds`, Table B.1), the paper's thresholds, the thin stripes of eq. (6.3),
 // the iterator's check inside and below each window (`windows verify`) and the precision study of the lower bound

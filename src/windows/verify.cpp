@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The iterator's check of the windows of stability.
 #include "windows/verify.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The iterator's check of the windows: orbits of the Section 4 grid inside and just below each window.
 #pragma once
 

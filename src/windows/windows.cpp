@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Windows of stability: Q_n exact, its smallest positive root in MPFR, exact certificates, r_crit,2.
 #include "windows/windows.hpp"
 #include "core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Windows of stability of (ab)^n(cb)^n: the exact polynomials Q_n, their roots in high precision with
 // exact certificates, the conjectured upper bounds r_crit,2(n), the paper's thresholds and thin stripes.
 #pragma once

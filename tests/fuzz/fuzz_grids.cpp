@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: iterate::parse_grid ("paper", "strip:NxM[:w1min:w1max]", "random:N", "x,y,z;x,y,z;...").
 // A parse either throws a std::logic_error (invalid_argument for a malformed spec, domain_error for a point
 // outside the domain, length_error for a grid that does not fit in memory) or returns at least one finite,

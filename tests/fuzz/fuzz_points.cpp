@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: core::parse_point ("x,y,z", the --point flag of lyapunov, stats, classify).  A parse either
 // throws a std::logic_error (core::InvalidField or domain_error, naming the field) or returns a finite, non-zero
 // point of the domain x*z <= 0 with x, z not both zero (eq. 3.4), scaled so that its largest component lies in

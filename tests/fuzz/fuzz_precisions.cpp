@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: core::parse_precision ("float", "double", "long-double", "float128", "mpfr:<digits>").
 // A parse either throws std::invalid_argument or returns a precision whose name parses back to itself, with
 // 10 <= digits <= 10000 for mpfr.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: core::parse_int_range ("A..B" or "A", the --n flag of `btob windows`).  A parse either throws
 // core::InvalidField naming the field, or returns lo <= A <= B <= hi, and then the canonical text "A..B" parses
 // back to the same pair (the parser reads what the manifests write).

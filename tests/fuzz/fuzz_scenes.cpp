@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: io::read_scene (TOML scene files, analyses/scenes/*.toml).  The input is written to a
 // temporary file (read_scene reads a path, as `btob run` does); a parse either throws std::invalid_argument
 // naming the file or returns a scene with a non-empty command.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz harness: patterns::parse_word (user words such as "132^3312^3", "(ab)(cb)", "abcbacb").
 // A parse either throws std::invalid_argument or returns a word of symbols 1..3 that survives the round trips
 // through the paper's notation and digits (anything else aborts: a crash for libFuzzer).

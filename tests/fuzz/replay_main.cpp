@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Replays committed fuzz corpora without libFuzzer (the normal gcc build, a CTest test): for each harness
 // given as NAME=DIR, feeds every file of DIR to that harness's entry point (LLVMFuzzerTestOneInput renamed
 // btob_fuzz_NAME at compile time).  Exit 1 when a directory is missing or empty: a corpus that is not there

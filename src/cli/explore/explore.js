@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // btob explore: the page.  The view (r window x coordinate window) lives in the address; every change asks the
 // server for the density at the image's size (GET /api/bifurcation), first at a cheap level, then refined while the
 // view stays.  A newer request aborts the older one here and, through the session, cancels it on the server.
