@@ -362,9 +362,16 @@ TEST(Limits, DistinctDoublesAgreeWithNextafter) {
   // [-2, 2]: 2^62 doubles on each side of zero and zero once, 2^63 + 1, which rounds to 2^63 in double (the key
   // difference overflowed int64 and gave -2^63 before).
   EXPECT_EQ(btob::core::distinct_doubles(-2.0, 2.0), std::ldexp(1.0, 63));
-  EXPECT_EQ(btob::core::distinct_doubles(0.2, 0.2 + 1e-16), 2);  // the user's 5000 values in [0.2, 0.2 + 1e-16]
-  EXPECT_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 3, "r-count", "r-min..r-max"), btob::core::InvalidField);
-  EXPECT_NO_THROW(btob::core::require_distinct(0.2, 0.2 + 1e-16, 2, "r-count", "r-min..r-max"));
+  // The user's 5000 values in [0.2, 0.2 + 1e-16]: 0.2 + 1e-16 rounds to 0.2 plus 4 units in the last place (the ulp
+  // of 0.2 is 2^-55 = 2.8e-17), so the range holds 5 doubles, counted here by nextafter.
+  const double hi = 0.2 + 1e-16;
+  long n = 1;
+  for (double x = 0.2; x < hi; x = std::nextafter(x, 1.0)) ++n;
+  EXPECT_EQ(n, 5);
+  EXPECT_EQ(btob::core::distinct_doubles(0.2, hi), n);
+  EXPECT_THROW(btob::core::require_distinct(0.2, hi, n + 1, "r-count", "r-min..r-max"), btob::core::InvalidField);
+  EXPECT_THROW(btob::core::require_distinct(0.2, hi, 5000, "r-count", "r-min..r-max"), btob::core::InvalidField);
+  EXPECT_NO_THROW(btob::core::require_distinct(0.2, hi, n, "r-count", "r-min..r-max"));
 }
 
 // An error quotes a long input by its head and tail with its length; a short one whole; the description after a

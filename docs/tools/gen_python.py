@@ -40,6 +40,8 @@ SMALL = {
     "pattern_atlas": dict(max_length=4),
     "pattern_curves": dict(word="132312"),
     "strip_orbits": dict(r=0.2),
+    "leaves": dict(r=0.25, grid="sphere:6x6", transient=300, iterations=300, lyap_iterations=400, lyap_transient=50,
+                   labels=(0.5, 1.2), leaf_iterations=500),
 }
 
 

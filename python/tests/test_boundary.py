@@ -42,11 +42,11 @@ def res():
 
 
 def test_entropies_equal_a_numpy_count(res):
-    labels = np.asarray(res["labels"])
+    labels = np.asarray(res.labels)
     sb, sbb, boundary, per_box = entropies(labels, 4)
     assert res.attrs["entropy_box"] == 4
     assert res.attrs["entropy_boxes"] == per_box.size == 24 * 22
-    assert np.allclose(np.asarray(res["box_entropy"]), per_box, rtol=1e-13, atol=0)
+    assert np.allclose(np.asarray(res.box_entropy), per_box, rtol=1e-13, atol=0)
     assert res.attrs["boundary_boxes"] == boundary
     # Sums of at most 528 terms in another order: a few hundred ulps at most.
     assert res.attrs["basin_entropy"] == pytest.approx(sb, rel=1e-12, abs=1e-15)
@@ -55,15 +55,20 @@ def test_entropies_equal_a_numpy_count(res):
 
 
 def test_uncertain_fractions_equal_a_numpy_count(res):
-    labels = np.asarray(res["labels"])
-    eps = np.asarray(res["uncertainty_eps"]).astype(int)
+    labels = np.asarray(res.labels)
+    eps = np.asarray(res.uncertainty_eps).astype(int)
     assert eps[0] == 1 and eps[-1] == 88 // 8
-    f = np.asarray(res["uncertainty_fraction"])
+    f = np.asarray(res.uncertainty_fraction)
     for e, got in zip(eps, f):
         assert got == pytest.approx(uncertain(labels, int(e), int(eps[-1])), rel=1e-12)
+    # The fit: the least-squares slope of log f on log eps over the points with 0 < f <= 1/2, again with numpy; it is
+    # made only over three such points spanning a decade, and otherwise the file says why (no exponent, no NaN).
+    ok = (f > 0) & (f <= 0.5)
+    if ok.sum() < 3 or eps[ok].max() < 10 * eps[ok].min():
+        assert not res.attrs["uncertainty_fitted"]
+        assert "uncertainty_exponent" not in res.attrs and res.attrs["uncertainty_note"]
+        return
     assert res.attrs["uncertainty_fitted"]
-    # The fit: the least-squares slope of log f on log eps, again with numpy.
-    ok = f > 0
     slope = np.polyfit(np.log(eps[ok]), np.log(f[ok]), 1)[0]
     assert res.attrs["uncertainty_exponent"] == pytest.approx(slope, rel=1e-9)
     assert res.attrs["uncertainty_exponent_low"] <= slope <= res.attrs["uncertainty_exponent_high"]
@@ -75,9 +80,10 @@ def test_basins_r_boundary_equals_a_basins_run():
     rr = btob.basins_r(r_values=[0.25], grid="random:8", boundary_grid="sphere:96x88", boundary_replicates=1,
                        entropy_box=4, **OPTS)
     one = btob.basins(r=0.25, grid="sphere:96x88", replicates=1, entropy_box=4, **OPTS)
-    assert np.asarray(rr["basin_entropy"])[0] == one.attrs["basin_entropy"]
-    assert np.asarray(rr["boundary_basin_entropy_high"])[0] == one.attrs["boundary_basin_entropy_high"]
-    assert np.asarray(rr["uncertainty_exponent"])[0] == one.attrs["uncertainty_exponent"]
+    assert np.asarray(rr.basin_entropy)[0] == one.attrs["basin_entropy"]
+    assert np.asarray(rr.boundary_basin_entropy_high)[0] == one.attrs["boundary_basin_entropy_high"]
+    if one.attrs["uncertainty_fitted"]:  # a grid this small may span less than the decade a fit needs
+        assert np.asarray(rr.uncertainty_exponent)[0] == one.attrs["uncertainty_exponent"]
 
 
 def test_bad_entropy_box_is_refused():

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s / r,
 // iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
-// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  What projective_exponents runs.
+// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  Not yet what projective_exponents
+// runs (lyapunov_impl.hpp says why).
 #pragma once
 
 #include "lyapunov/lyapunov.hpp"
@@ -10,7 +11,7 @@
 
 namespace btob::lyapunov {
 
-// The single-orbit route at the scalar limit (what projective_exponents runs): the point stepped by the batched kernel's
+// The single-orbit route at the scalar limit: the point stepped by the batched kernel's
 // step (M_s = P_s / r, the kernel's orbit bit for bit) with two tangent vectors stepped by the same M_s, no division or
 // normalisation per step, one tangent vector projected every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1 fixes it).
 // Exponents differ from projective_exponents_qr's in the last digits (other roundings), within the error bars.

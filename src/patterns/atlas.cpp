@@ -30,7 +30,13 @@ std::vector<AtlasEntry> compute_atlas(const std::vector<Word>& words, const std:
   iterate::parallel_for(words.size(), threads, 1, [&](std::size_t i) {
     if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
     out[i].word = words[i];
-    out[i].intervals = stability_set<double>(words[i], grid, tol);
+    // The word's scan polls the token (its refinement near spectral events can evaluate thousands of r values);
+    // Cancelled is caught inside the iteration, since no exception may leave the region, and thrown after it.
+    try {
+      out[i].intervals = stability_set<double>(words[i], grid, tol, cancel);
+    } catch (const core::Cancelled&) {
+      return;
+    }
   });
   core::check_cancel(cancel);
   return out;
