@@ -74,6 +74,15 @@ void BasinsResult::describe_boundary(core::Contents& c) const {
   const std::size_t rows = g.entropy.columns ? g.entropy.per_box.size() / g.entropy.columns : 0;
   c.array("box_entropy", box_entropies, {rows, g.entropy.columns}, "box row, box column", "nats",
           "entropy -sum p log p of the labels in each entropy box of the main grid (0: one basin)");
+  // The boxes' centres in grid cells (box i covers cells i box .. (i + 1) box - 1 of its axis), as the coordinates of
+  // the two box axes.
+  std::vector<double> row_centres(rows), column_centres(g.entropy.columns);
+  for (std::size_t i = 0; i < rows; ++i) row_centres[i] = (static_cast<double>(i) + 0.5) * static_cast<double>(g.entropy.box);
+  for (std::size_t j = 0; j < column_centres.size(); ++j)
+    column_centres[j] = (static_cast<double>(j) + 0.5) * static_cast<double>(g.entropy.box);
+  c.coordinate_array("box_row", std::move(row_centres), {"box row"}, "cells", "centre of each entropy box's rows, in grid cells");
+  c.coordinate_array("box_column", std::move(column_centres), {"box column"}, "cells",
+                     "centre of each entropy box's columns, in grid cells");
   c.array("uncertainty_eps", eps_cells, {eps_cells.size()}, "eps", "cells", "perturbation eps in grid cells");
   c.array("uncertainty_fraction", eps_fraction, {eps_fraction.size()}, "eps", "1",
           "fraction f(eps) of eps-uncertain cells of the main grid");

@@ -48,6 +48,7 @@ void landing_arrays(const Result& res, core::Contents& c) {
 void leaf_arrays(const Result& res, core::Contents& c) {
   const std::size_t R = res.r.size(), L = res.request.labels.size();
   c.array("leaf_t", res.request.labels, {L}, "leaf", "1", "labels t of the leaves followed by the map");
+  c.coordinate("leaf", "leaf_t");
   c.array("leaf_exact", res.leaf_exact, {R, L}, "r, leaf", "turns/iteration", "theta / (2 pi)");
   c.array("leaf_birkhoff", res.leaf_birkhoff, {R, L}, "r, leaf", "turns/iteration",
           "weighted (Das-Yorke) Birkhoff average of the eigen-angle increments along the map's orbit");
