@@ -220,20 +220,12 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   Mat3<T> Q;
   Q.col(0) = u / u.norm();
   Q.template rightCols<2>() = tangent_basis(u);
-  // The orbit, computed exactly as in the projective route (projective_orbit: the batched kernel's step, whose
-  // symbol detail::advance leaves in the ring), rescaled by a power of two every step.
-  detail::OrbitFrame<T> f{};
-  f.r = r;
-  f.a = (T(1) + r) / T(2);
-  f.k = f.a / r;
-  std::array<std::uint8_t, detail::kSymbolRing> ring{};
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
     core::poll_cancel(opt.cancel, k);
-    for (int i = 0; i < 3; ++i) f.u[i] = u(i);
-    detail::advance<T>(f, 1, k, ring.data());
-    const int s = ring[k & (detail::kSymbolRing - 1)];
-    u = detail::pow2_scaled<T>(Vec3<T>(f.u[0], f.u[1], f.u[2]));
+    const int s = core::branch(u, r);
+    const Vec3<T> pu = detail::apply(s, u, r);
+    u = detail::pow2_scaled<T>(pu);  // the orbit, computed exactly as in the projective route (projective_exponents)
     Q = Pm[s - 1] * Q;   // the linear cocycle: products of P_i along the orbit
     if (sc.qr_at(k, acc.next_cp)) {
       const Eigen::HouseholderQR<Mat3<T>> qr(Q);
