@@ -51,6 +51,8 @@ CASES = {
     "pattern_atlas": dict(max_length=4, no_check=True),
     "pattern_curves": dict(word="132312", r_min=0.3, r_max=0.6, r_count=20),
     "strip_orbits": dict(r=0.2, orbits=2, iterations=400, tail=50),
+    "leaves": dict(r=0.25, grid="sphere:6x6", transient=300, iterations=300, lyap_iterations=400, lyap_transient=50,
+                   labels=[0.5, 1.2], leaf_iterations=500),
 }
 
 
