@@ -15,8 +15,10 @@ from plotlib import attrs, save_atomic
 def _title(a, rows):
     where = f"r = {float(a['r_value']):g}" if rows == 1 else \
         f"r = {float(a['r_min']):g} .. {float(a['r_max']):g} ({rows} values)"
-    return (f"P2's invariant curves (leaves): {where}; grid {a['grid']} ({a['measure']}); classifier transient "
-            f"{a['transient']}, window {a['window']}; leaves followed {a['leaf_iterations']} iterations")
+    # Two lines: on one, the title ran past both edges of the figure.
+    return (f"P2's invariant curves (leaves): {where}; grid {a['grid']} ({a['measure']})\n"
+            f"classifier transient {a['transient']}, window {a['window']}; leaves followed {a['leaf_iterations']} "
+            f"iterations")
 
 
 def _one_r(f, a, fig):
@@ -65,12 +67,18 @@ def _across_r(f, a, fig):
     r = f["r"][...]
     p = ax[0, 0]
     p.plot(r, f["rotation"][...], "k-", label="theta / (2 pi)")
-    for sr, l, m in zip(f["stripe_r"][...], f["stripe_l"][...], f["stripe_m"][...]):
+    # Each resonance is the point (r(l/m), l/m) of the curve, labelled to its right at its own height l/m; a label
+    # within 0.008 turns (about a label's height) of the last one drawn is left out, its dot stays.
+    last = None
+    for sr, l, m in sorted(zip(f["stripe_r"][...], f["stripe_l"][...], f["stripe_m"][...])):
         if r.min() <= sr <= r.max():
-            p.axvline(sr, color="tab:blue", lw=0.6, alpha=0.6)
-            p.text(sr, 0.5, f"{l}/{m}", rotation=90, fontsize=6, va="top", ha="right", color="tab:blue")
+            p.plot(sr, l / m, "o", ms=4, color="tab:blue")
+            if last is None or abs(l / m - last) > 0.008:
+                p.annotate(f"{l}/{m}", (sr, l / m), xytext=(6, 0), textcoords="offset points", fontsize=8,
+                           va="center", color="tab:blue")
+                last = l / m
     p.set_xlabel("r"), p.set_ylabel("rotation number (turns/iteration)")
-    p.set_title("(iv) rotation number of the leaves; blue: resonances l/m (eq. (6.3))", fontsize=9)
+    p.set_title("(iv) rotation number of the leaves; blue dots: resonances theta/2pi = l/m (eq. (6.3))", fontsize=9)
     q = ax[0, 1]
     q.plot(r, f["region_share"][...], "g-", label="region t <= 1 (closed form)")
     q.errorbar(r, f["mass"][...], yerr=[f["mass"][...] - f["mass_low"][...], f["mass_high"][...] - f["mass"][...]],

@@ -30,7 +30,7 @@ void body(const leaves::Request& req, const Output& o, const Context& ctx) {
   std::cerr << fmt::format("btob: leaves at {} r values, {} points each, in {:.2f} s; wrote {}\n", res.r.size(),
                            res.grid.cells(), res.seconds, listing(written));
   for (std::size_t i = 0; i < res.r.size(); ++i)
-    std::cerr << fmt::format("  r = {}: theta/2pi = {:.10f}, region {:.4f}, on a P2 curve {:.4f} [{:.4f}, {:.4f}], "
+    std::cerr << fmt::format("  r = {:.10g}: theta/2pi = {:.10f}, region {:.4f}, on a P2 curve {:.4f} [{:.4f}, {:.4f}], "
                              "landing t mean {:.4f} sd {:.4f}\n",
                              res.r[i], res.rotation[i], res.region_share[i], res.mass[i], res.mass_low[i],
                              res.mass_high[i], res.landing_mean[i], res.landing_sd[i]);
