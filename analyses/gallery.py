@@ -157,6 +157,14 @@ LAB = [
      "basin map on a strip grid: fractions of Lebesgue measure on the rectangle (its share of the sphere measure in "
      "the title).")
     for r in ("0.05", "0.1", "0.15", "0.172", "0.2", "0.2_wide", "0.21", "0.24", "0.3", "0.58")] + [
+    (f"leaves/leaves_r{r}.png", f"leaves/leaves_r{r}.json", f"P2's invariant curves (leaves), r = {r}",
+     "where the orbits of a 100 x 100 sphere grid land (the label t of their leaf), the landing law against the "
+     "region's own, the rotation number per leaf against theta / (2 pi), and the measure on a leaf: the uniform "
+     "eigen-angle holds, normalised arc length is rejected (Kolmogorov-Smirnov).")
+    for r in ("0.2", "0.25", "0.3")] + [
+    ("leaves/leaves_sweep.png", "leaves/leaves_sweep.json", "P2's invariant curves across r",
+     "theta / (2 pi) with the resonances l / m, the region's measure against the landing mass, the landing law's "
+     "moments and its density, for 0.18 <= r <= 0.9."),
     ("lyapunov/lyapunov_map.png", "lyapunov/lyapunov_map.json", "Lyapunov map",
      "largest Lyapunov exponent of the 32 paper-grid orbits against r, and the share of positive/zero/negative."),
     ("lyapunov/lyapunov_strip_r0.3.png", "lyapunov/lyapunov_strip_r0.3.json", "Lyapunov exponents over the strip, r = 0.3",
