@@ -24,7 +24,7 @@ done
 "$BTOB" basins --r 0.2 --grid strip:600x300 --w1-range -30,30 --replicates 0 --threads "$THREADS" --out "$OUT/basins_r0.2_wide"
 # Basin fractions at the r values of Table 6.1 in [0.1, 0.6], 2000 random orbits each (the paper: 10): random:N is
 # uniform on the sphere of directions of the domain, the same measure as sphere:NxM.
-"$BTOB" basins-r --table --grid random:2000 --seed 1 --threads "$THREADS" --out "$OUT/basins_r"
+"$BTOB" basins-r --table --grid random:2000 --seed 1 --boundary-grid sphere:300x300 --threads "$THREADS" --out "$OUT/basins_r"
 # Table 6.1 against candidate initial distributions and the paper's detection rule (results/attractors/table_6_1):
 # the Python module built beside the binary, a few minutes on 2 cores.
 PYTHONPATH="$(cd "$(dirname "$BTOB")" && pwd)/python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 \

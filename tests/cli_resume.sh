@@ -98,7 +98,7 @@ mpi_skip || resumed lyapunov-map OUT/x.checkpoint lyapunov-map --r-min 0.08 --r-
 resumed basins OUT/x.checkpoint basins --r 0.11 --grid strip:200x200 --replicates 1 --transient 20000 \
   --iterations 3000 --max-period 200 --lyap-iterations 400 --refine-factor 2 --no-plot
 mpi_skip || resumed basins-r OUT/x.checkpoint basins-r --r-values 0.11 0.13 0.15 0.17 0.2 0.22 0.25 0.27 --grid random:20000 \
-  --transient 5000 --iterations 3000 --max-period 200 --lyap-iterations 400 --refine-factor 2 --no-plot
+  --boundary-grid sphere:40x40 --transient 5000 --iterations 3000 --max-period 200 --lyap-iterations 400 --refine-factor 2 --no-plot
 mpi_skip || resumed pattern-atlas OUT/x.checkpoint pattern atlas --max-length 7 --ics 100 --iterations 2000 --tail 500 \
   --max-period 200 --no-plot
 # A command that prints its result (Table B.1 with certificates): the checkpoint is ./NAME.checkpoint.

@@ -105,8 +105,8 @@ same bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 
 same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
 same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --iterations 300 --max-period 200 \
   --lyap-iterations 400 --refine-factor 2
-same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --transient 500 --iterations 300 \
-  --max-period 200 --lyap-iterations 400 --refine-factor 2
+same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --boundary-grid sphere:40x40 --transient 500 \
+  --iterations 300 --max-period 200 --lyap-iterations 400 --refine-factor 2
 same hyperbolicity hyperbolicity --r 0.11 --grid strip:60x30
 # r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.
 same hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \

@@ -485,6 +485,7 @@ TEST(Requests, BasinsRComparesWithTheTable) {
   EXPECT_EQ(q.all_r(), (std::vector<double>{0.15, 0.15, 0.21}));  // Table rows in [0.1, 0.6] are added
   q.table = false;
   q.r_values = {0.15, 0.21};
+  q.boundary_grid = "sphere:24x20";  // the comparison is under test here, not the boundary geometry
   const BasinsRResult res = run(q);
   ASSERT_EQ(res.comparison.size(), 2u);
   const Comparison& c = res.comparison[0];

@@ -196,6 +196,7 @@ TEST(Sweep, BasinsRAnyPartitionEqualsRun) {
   q.grid = "random:40";
   q.thresholds.transient = 400, q.thresholds.window = 300, q.thresholds.max_period = 200;
   q.thresholds.lyap_iterations = 400, q.thresholds.refine_factor = 2;
+  q.boundary_grid = "sphere:40x40";  // the boundary run is a basins run per r, partitioned with its r
   expect_any_partition_equals_run(q, "basins-r");
 }
 

@@ -94,6 +94,7 @@ def draw_geometry(ax, f, a, x, order):
     ax.axhline(np.log(2), color="grey", ls="--", lw=0.8, label="log 2 ($S_{bb}$ above: fractal boundary)")
     ax.set_ylabel("entropy (nats) / share")
     ax.set_xlabel("r (equally spaced)")
+    ax.tick_params(axis="x", labelrotation=60, labelsize=8)  # the shared axis: its labels are this panel's
     tx = ax.twinx()
     fit = col("uncertainty_fitted") > 0
     al, lo, hi = col("uncertainty_exponent"), col("uncertainty_exponent_low"), col("uncertainty_exponent_high")
