@@ -69,11 +69,15 @@ def draw_uncertainty(ax, f, a):
     else:
         title = "uncertainty exponent not fitted: " + textwrap.fill(str(a["uncertainty_note"]), 60)
     ax.set_xscale("log")
-    ax.set_yscale("log")
+    if ok.any():
+        ax.set_yscale("log")
+        ax.legend(fontsize=7, loc="lower right")
+    else:  # one basin: f = 0 at every eps, nothing to draw on a log scale
+        ax.text(0.5, 0.5, "f(eps) = 0 at every eps:\nno boundary at the grid's resolution", transform=ax.transAxes,
+                ha="center", va="center", fontsize=9)
     ax.set_xlabel(r"$\varepsilon$ (grid cells)")
     ax.set_ylabel(r"uncertain fraction $f(\varepsilon)$")
     ax.set_title(title + "\n" + textwrap.fill("Wada (merging): " + str(a["wada_verdict"]), 70), fontsize=8)
-    ax.legend(fontsize=7, loc="lower right")
 
 
 def main(h5_path, png_path):
