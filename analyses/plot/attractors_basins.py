@@ -37,7 +37,8 @@ def draw_boxes(ax, f, a):
     x1 = a["axis1_lo"] + (a["axis1_hi"] - a["axis1_lo"]) * e.shape[1] * box / int(a["n1"])
     x2 = a["axis2_lo"] + (a["axis2_hi"] - a["axis2_lo"]) * e.shape[0] * box / int(a["n2"])
     im = ax.imshow(np.where(e > 0, e, np.nan), origin="lower", cmap="viridis", interpolation="nearest",
-                   aspect="auto", extent=[a["axis1_lo"], x1, a["axis2_lo"], x2], vmin=0)
+                   aspect="auto", extent=[a["axis1_lo"], x1, a["axis2_lo"], x2], vmin=0,
+                   vmax=max(float(e.max()), np.log(2)))  # at least log 2 (two basins, half each): one basin has 0
     ax.set_facecolor("#eeeeee")
     ax.figure.colorbar(im, ax=ax, label="box entropy (nats)")
     strip, sphere = a["grid_kind"] == "strip", a["grid_kind"] == "sphere"
@@ -67,7 +68,7 @@ def draw_uncertainty(ax, f, a):
                        f"{a['uncertainty_exponent_high']:.3f}], D = {a['boundary_dimension']:.3f}"))
         title = f"uncertainty exponent fitted (f <= 1/2) over eps = {a['uncertainty_eps_min_cells']}..{a['uncertainty_eps_max_cells']} cells"
     else:
-        title = "uncertainty exponent not fitted: " + textwrap.fill(str(a["uncertainty_note"]), 60)
+        title = textwrap.fill("uncertainty exponent not fitted: " + str(a["uncertainty_note"]), 55)
     ax.set_xscale("log")
     if ok.any():
         ax.set_yscale("log")
@@ -75,9 +76,10 @@ def draw_uncertainty(ax, f, a):
     else:  # one basin: f = 0 at every eps, nothing to draw on a log scale
         ax.text(0.5, 0.5, "f(eps) = 0 at every eps:\nno boundary at the grid's resolution", transform=ax.transAxes,
                 ha="center", va="center", fontsize=9)
+        ax.set_yticks([])
     ax.set_xlabel(r"$\varepsilon$ (grid cells)")
     ax.set_ylabel(r"uncertain fraction $f(\varepsilon)$")
-    ax.set_title(title + "\n" + textwrap.fill("Wada (merging): " + str(a["wada_verdict"]), 70), fontsize=8)
+    ax.set_title(title + "\n" + textwrap.fill("Wada (merging): " + str(a["wada_verdict"]), 55), fontsize=8)
 
 
 def main(h5_path, png_path):
