@@ -107,6 +107,8 @@ same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --i
   --lyap-iterations 400 --refine-factor 2
 same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --boundary-grid sphere:40x40 --transient 500 \
   --iterations 300 --max-period 200 --lyap-iterations 400 --refine-factor 2
+same leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 --transient 500 \
+  --iterations 300 --max-period 200
 same hyperbolicity hyperbolicity --r 0.11 --grid strip:60x30
 # r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.
 same hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \

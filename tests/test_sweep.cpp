@@ -7,6 +7,7 @@
 #include "core/estimate.hpp"
 #include "core/pack.hpp"
 #include "core/sweep.hpp"
+#include "leaves/requests.hpp"
 #include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/requests.hpp"
 #include "patterns/requests.hpp"
@@ -188,6 +189,17 @@ TEST(Sweep, BasinsAnyPartitionEqualsRun) {
   attractors::BasinsRequest d;
   d.r = 0.21, d.grid = "strip:40x30", d.replicates = 1;
   expect_any_partition_equals_run(d, "basins, default thresholds", text);
+}
+
+TEST(Sweep, LeavesAnyPartitionEqualsRun) {
+  // Five r values across the range where the leaves exist; every per-r array (closed forms, landing law, label map,
+  // followed leaves) is placed by item.
+  leaves::Request q;
+  q.r_min = 0.18, q.r_max = 0.6, q.r_count = 5, q.grid = "sphere:12x10", q.leaf_iterations = 300;
+  q.labels = {0.5, 1.2};
+  q.thresholds.transient = 400, q.thresholds.window = 300, q.thresholds.max_period = 200;
+  q.thresholds.lyap_iterations = 400, q.thresholds.refine_factor = 2;
+  expect_any_partition_equals_run(q, "leaves");
 }
 
 TEST(Sweep, BasinsRAnyPartitionEqualsRun) {

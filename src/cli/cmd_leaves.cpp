@@ -3,6 +3,7 @@
 // NAME.png: P2's invariant curves (Section 8's programme (i), (ii), (iv)) at one r or across r.
 #include "cli/command.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "leaves/requests.hpp"
 
 #include <fmt/format.h>
@@ -16,7 +17,9 @@ void body(const leaves::Request& req, const Output& o, const Context& ctx) {
   Context run_ctx = ctx;
   const auto progress = terminal_progress("leaves " + o.name);
   if (!o.quiet) run_ctx.control.progress = progress.get();
-  const leaves::Result res = leaves::run(req, run_ctx.control);
+  const auto got = sweep(req, run_ctx);  // every MPI rank computes its share of the r values; rank 0 writes
+  if (!got) return;
+  const leaves::Result& res = *got;
   core::Contents c;
   res.describe(c);
   const io::Attrs at = ctx.attrs(o, c, "leaves", "double");

@@ -4,6 +4,7 @@
 
 #include "core/cancel.hpp"
 #include "core/csv.hpp"
+#include "core/sweep.hpp"
 #include "leaves/leaves.hpp"
 #include "windows/windows.hpp"
 
@@ -13,6 +14,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <type_traits>
 
 namespace btob::leaves {
 
@@ -131,32 +134,69 @@ std::vector<double> Request::all_r() const {
   return v;
 }
 
-Result run(const Request& q, const core::RunControl& control) {
+Part run_part(const Request& q, const std::vector<std::size_t>& items, const core::RunControl& control) {
   q.validate();
   const auto t0 = std::chrono::steady_clock::now();
+  Part part;
+  part.items = items;
+  part.rows.grid = q.parsed_grid();  // closed_forms and landing read it
+  const attractors::Options opt = attractors::run_options(q.thresholds, control);
+  const std::vector<double> rs = q.all_r();
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    core::check_cancel(control.cancel);
+    const Geometry g = geometry(rs.at(items[k]));
+    closed_forms(part.rows, g, q.bins);
+    landing(part.rows, g, opt, q.bins);
+    follow(part.rows, g, q, control.cancel);
+    if (control.progress) control.progress->update(k + 1, items.size());
+  }
+  part.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
+  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return part;
+}
+
+namespace {
+// Array number idx of per_r_arrays(r), which has element type V.
+template <class V> const std::vector<V>& nth_array(const Result& r, std::size_t idx) {
+  const std::vector<V>* found = nullptr;
+  std::size_t k = 0;
+  per_r_arrays(r, 0, 0, 0, [&](const auto& v, std::size_t) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<V>>)
+      if (k == idx) found = &v;
+    ++k;
+  });
+  if (!found) throw std::logic_error("leaves merge: no array of that type at that index");
+  return *found;
+}
+}  // namespace
+
+Result merge(const Request& q, std::vector<Part> parts) {
+  q.validate();
   Result res;
   res.request = q;
   res.grid = q.parsed_grid();
   res.axis1 = res.grid.axis1.centres(), res.axis2 = res.grid.axis2.centres();
-  const attractors::Options opt = attractors::run_options(q.thresholds, control);
-  const std::vector<double> rs = q.all_r();
-  for (std::size_t i = 0; i < rs.size(); ++i) {
-    core::check_cancel(control.cancel);
-    const Geometry g = geometry(rs[i]);
-    closed_forms(res, g, q.bins);
-    landing(res, g, opt, q.bins);
-    follow(res, g, q, control.cancel);
-    if (control.progress) control.progress->update(i + 1, rs.size());
-  }
+  const auto order = core::item_order(parts, q.work_items());
+  std::size_t idx = 0;
+  per_r_arrays(res, static_cast<std::size_t>(q.bins), res.grid.cells(), q.labels.size(), [&](auto& out, std::size_t w) {
+    using V = typename std::decay_t<decltype(out)>::value_type;
+    const std::size_t mine = idx++;
+    out = core::merge_rows<Part, V>(parts, order, w, [&](const Part& p) -> const std::vector<V>& {
+      return nth_array<V>(p.rows, mine);
+    });
+  });
+  for (const Part& p : parts) res.seconds = std::max(res.seconds, p.seconds), res.threads = std::max(res.threads, p.threads);
   for (const windows::Stripe& s : windows::thin_stripes(q.max_m, 20)) {
     if (s.value.convert_to<double>() >= 1) continue;
     res.stripe_l.push_back(static_cast<std::uint64_t>(s.l)), res.stripe_m.push_back(static_cast<std::uint64_t>(s.m));
     res.stripe_r.push_back(s.value.convert_to<double>());
   }
   res.ks_critical = ks_critical(q.leaf_iterations);
-  res.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+Result run(const Request& q, const core::RunControl& control) {
+  return merge(q, {run_part(q, core::all_items(q), control)});
 }
 
 core::Tables Result::tables() const {

@@ -35,6 +35,7 @@ struct Request {
 
   void validate() const;
   std::vector<double> all_r() const;    // r, or the range
+  std::size_t work_items() const { return all_r().size(); }  // a sweep over all_r() (core/sweep.hpp)
   attractors::Grid parsed_grid() const;
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (3 - 2 sqrt(2), 1) = (0.1716, 1) (when r-count is 0)");
@@ -78,6 +79,37 @@ struct Result {
   core::Tables tables() const;
 };
 
+// Every array of a Result with one row per r, with its row width (B label bins, C grid cells, L followed leaves), in
+// one order: what a sweep's part carries (Part::members) and merge() places by item.  R: Result or const Result.
+template <class R, class F> void per_r_arrays(R& res, std::size_t B, std::size_t C, std::size_t L, F&& f) {
+  for (auto* v : {&res.r, &res.cos_theta, &res.rotation, &res.I_max, &res.region_share, &res.region_mean, &res.mass,
+                  &res.mass_low, &res.mass_high, &res.landing_mean, &res.landing_sd, &res.outside_mass})
+    f(*v, std::size_t{1});
+  for (auto* v : {&res.q2, &res.above_one, &res.undecided}) f(*v, std::size_t{1});
+  for (auto* v : {&res.density, &res.density_low, &res.density_high, &res.kde, &res.region_density}) f(*v, B);
+  f(res.density_coarse, B / 2);
+  f(res.label_map, C);
+  for (auto* v : {&res.leaf_exact, &res.leaf_birkhoff, &res.leaf_birkhoff_half, &res.leaf_exit, &res.leaf_drift,
+                  &res.ks_uniform, &res.ks_strip, &res.ks_sphere, &res.law_strip, &res.law_sphere})
+    f(*v, L);
+  f(res.leaf_stays, L);
+}
+
+// Some r values (items: ascending indices into all_r()): their rows of every per-r array (per_r_arrays), in item
+// order.  Each r's numbers depend only on the request and the r, so any partition merges to run()'s result bitwise.
+struct Part {
+  std::vector<std::size_t> items;
+  Result rows;  // only the per-r arrays are set
+  double seconds = 0;
+  int threads = 0;
+  template <class A> void members(A& a) {
+    a(items, seconds, threads);
+    per_r_arrays(rows, 0, 0, 0, [&](auto& v, std::size_t) { a(v); });
+  }
+};
+Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+Result merge(const Request& req, std::vector<Part> parts);
+// merge(req, {run_part(req, every r)}).
 Result run(const Request& req, const core::RunControl& control = {});
 
 }  // namespace btob::leaves
