@@ -151,10 +151,14 @@ class Filter:
         if self.at_scope() and col == self.trailing_col and not stripped.startswith("///"):
             self.out.append(line[:col] + "///<" + stripped[2:])
             return i + 1
+        if stripped.startswith("// ----"):  # a section rule is never documentation; what follows it may be
+            self.out.append(line)
+            self.trailing_col = -1
+            return i + 1
         j = next_code(self.lines, i)
         run = self.lines[i:j]
         doc = self.at_scope() and documents(self.lines, j) and not any(
-            r.lstrip().startswith(("// ----", "// SPDX", "///")) for r in run)
+            r.lstrip().startswith(("// SPDX", "///")) for r in run)
         # A comment above several members (`// [R] per r:` and three lines of arrays) documents each of them: a
         # Doxygen member group whose first member carries the comment (DISTRIBUTE_GROUP_DOC gives it to all).
         n = member_run(self.lines, j) if doc else 0
@@ -187,8 +191,6 @@ class Filter:
                 and code.rstrip().endswith((";", ",")) and not line.startswith("///", col):
             line = line[:col] + "///<" + line[col + 2:]
             self.trailing_col = col
-        if i == self.group_end:
-            line += " /** @} */"
         self.braces(code)
         self.out.append(line)
 
@@ -213,13 +215,26 @@ class Filter:
         self.pending = "" if code.rstrip().endswith((";", "{", "}")) or not code.strip() else self.pending + " " + code
 
     def run(self):
-        i = 0
+        i, closing = 0, False
         while i < len(self.lines):
-            if self.lines[i].lstrip().startswith("//"):
-                i = self.comment_run(i)
+            line, start = self.lines[i], len(self.out)
+            stripped = line.lstrip()
+            continuation = stripped.startswith("//") and len(line) - len(stripped) == self.trailing_col
+            if stripped.startswith("//"):
+                j = self.comment_run(i)
             else:
                 self.code_line(i)
-                i += 1
+                j = i + 1
+            # A member group closes at the first line after its last member (and that member's comment, which a
+            # `/** @} */` on the member's own line would end): the marker opens that line.
+            if closing and not continuation:
+                self.out[start] = "/** @} */ " + self.out[start]
+                closing = False
+            if self.group_end in range(i, j):
+                closing = True
+            i = j
+        if closing:
+            self.out[-1] += " /** @} */"
         return self.out
 
 
