@@ -16,6 +16,7 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-h5py  # plots
   python3-mpmath                              # tests: an independent 50-digit eigensolver for pattern-curves
   clang-14 libfuzzer-14-dev                   # fuzzing the parsers of user input (tests/fuzz, libFuzzer; .ci/run)
+  clang-format-14                             # the C++ house style (.clang-format, tools/format.sh, the test format_check)
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars
   openmpi-bin libopenmpi-dev                  # sweeps split over ranks with `mpirun` (optional at build time)
@@ -23,6 +24,7 @@ packages=(
   python3-nbsphinx pandoc                     # the tutorials: notebooks executed in the site (pandoc renders their Markdown)
   furo                                        # the site's theme (responsive, with search)
   libjs-mathjax                               # the site's formulas: MathJax, the field's standard, copied into the site (offline)
+  doxygen python3-breathe                     # the site's C++ API reference: Doxygen reads the installed headers, Breathe makes Sphinx pages of it
   chromium chromium-driver python3-selenium   # tests in a real browser (headless): the built site (label docs), the explorer's page
   libcpp-httplib-dev                          # `btob explore`: a maintained one-header HTTP server (Debian builds it as a library)
   libpng-dev                                  # `btob explore`: PNG images of the density (the reference PNG library)

@@ -48,7 +48,7 @@ configure_file(${CMAKE_SOURCE_DIR}/cmake/btob.hpp.in ${CMAKE_BINARY_DIR}/generat
 install(FILES ${CMAKE_BINARY_DIR}/generated/btob/btob.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/btob)
 
 # ---- the libraries and the CMake package ----------------------------------------------------------------------
-# btob_all (btob::all in this build) is exported as btob::btob; each module library as btob::<module>.
+# btob_all (btob::btob in this build too) is exported as btob::btob; each module library as btob::<module>.
 set_target_properties(btob_all PROPERTIES EXPORT_NAME btob)
 target_compile_features(btob_all INTERFACE cxx_std_20)  # the headers need C++20 (gnu++20: the float128 type)
 foreach(lib ${BTOB_MODULE_LIBRARIES})

@@ -15,7 +15,14 @@ extensions = [
     "sphinx.ext.autodoc",   # the Python reference from the built module's docstrings
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",   # $...$ and $$...$$ rendered by MathJax, served from the site itself (below)
+    "breathe",              # the C++ reference: Doxygen's XML of the installed headers (docs/tools/gen_cpp.py)
 ]
+# Doxygen's XML, made by docs/tools/build.py before sphinx-build runs (BTOB_DOXYGEN_XML names its folder).
+breathe_projects = {"btob": os.environ.get("BTOB_DOXYGEN_XML", "")}
+breathe_default_project = "btob"
+breathe_default_members = ("members",)
+breathe_show_include = False  # each page states its header once, at the top
+
 # Mathematics in the pages' LaTeX: $x$ inline, $$...$$ displayed (with (label) numbering), amsmath environments.
 myst_enable_extensions = ["colon_fence", "deflist", "dollarmath", "amsmath"]
 myst_dmath_double_inline = True
@@ -36,7 +43,7 @@ nbsphinx_assume_equations = True  # the notebooks' Markdown may hold $...$: the 
 myst_heading_anchors = 3
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 # Included into other pages, never pages of their own:
-exclude_patterns = ["_build", "**.ipynb_checkpoints", "results/**", "ARCHITECTURE.md", "README.md", "CHANGELOG.md",
+exclude_patterns = ["_build", "examples/**", "**.ipynb_checkpoints", "results/**", "ARCHITECTURE.md", "README.md", "CHANGELOG.md",
                     "reference/outputs/**", "reference/csv/**", "reference/python_api.md", "performance_data.md", "paper_tables.md"]
 suppress_warnings = ["myst.header"]
 
@@ -48,6 +55,7 @@ html_theme = "furo"
 html_title = "btob"
 html_static_path = ["_static"]
 html_css_files = ["btob.css"]  # wrapped text blocks, scrolling tables and formulas
+html_js_files = ["btob_search.js"]  # search results without page summaries when the site is opened from disk
 html_show_sourcelink = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"

@@ -4,8 +4,9 @@
 Selenium) and checks what a reader sees: every page loads without a console error (severity SEVERE), every image has
 loaded with a non-zero size, every formula is rendered by MathJax (each Sphinx math element holds MathJax's output,
 none is a TeX error, no raw `$$` or `$...\command...$` is left in the text outside code), no page requests anything
-but local files (Chromium's network log: every request of every page, scripts, styles, fonts, images), and the
-search page finds `lyapunov_map`.  Screenshots of a few pages go to SHOTS_DIR.
+but local files (Chromium's network log: every request of every page, scripts, styles, fonts, images), the
+search page finds `lyapunov_map` without a console error, and the home page is a landing page (no table of
+contents in it, at most HOME_MAX_LINKS links, a figure).  Screenshots of a few pages go to SHOTS_DIR.
 Usage: browser_check.py HTML_DIR [SHOTS_DIR]"""
 import json
 import os
@@ -23,6 +24,7 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--disable-dev-shm-usage", "--window-size=1280,1000"]
 SHOTS = ["index.html", "guides/attractors.html", "tutorials/fig4_1.html", "reference/cli.html", "reference/python.html",
+         "reference/cpp.html", "reference/cpp/lyapunov_requests.html",
          "performance.html", "paper.html", "gallery.html"]
 
 
@@ -97,14 +99,43 @@ def remote_requests(d):
     return [f"network request: {u}" for u in sorted(set(urls))]
 
 
-def search_finds(d, root, word):
-    """The search page lists at least one result for `word` (furo's search runs in the page's JavaScript)."""
+def search_problems(d, root, word):
+    """Searches for `word` as a reader does (furo's search runs in the page's JavaScript): (the number of results
+    listed, the console errors of the search, the request, the index's loading and the listing included)."""
+    d.get_log("browser")  # what earlier pages logged
     d.get("file://" + os.path.join(root, "search.html") + "?q=" + word)
     try:
         WebDriverWait(d, 30).until(lambda x: len(x.find_elements(By.CSS_SELECTOR, "ul.search li")) > 0)
+        hits = len(d.find_elements(By.CSS_SELECTOR, "ul.search li"))
     except Exception:
-        return 0
-    return len(d.find_elements(By.CSS_SELECTOR, "ul.search li"))
+        hits = 0
+    time.sleep(0.5)  # the summaries of the results load after the list: their errors too
+    errors = [f"console: {e['message']}" for e in d.get_log("browser") if e.get("level") == "SEVERE"]
+    return hits, errors
+
+
+# The home page is a landing page: a few paragraphs, a figure and a short list of where to go, not the site's table
+# of contents (its toctrees are hidden: the sidebar has them).
+HOME_JS = """
+const body = document.querySelector('article') || document.body;
+return {links: body.querySelectorAll('a[href]:not(.headerlink)').length,
+        toc: body.querySelectorAll('.toctree-wrapper a').length,
+        images: body.querySelectorAll('img').length};
+"""
+HOME_MAX_LINKS = 40
+
+
+def home_problems(d, root):
+    d.get("file://" + os.path.join(root, "index.html"))
+    home = d.execute_script(HOME_JS)
+    problems = []
+    if home["toc"]:
+        problems.append(f"index.html: a table of contents of {home['toc']} links in the page (hide its toctrees)")
+    if home["links"] > HOME_MAX_LINKS:
+        problems.append(f"index.html: {home['links']} links, more than a landing page's {HOME_MAX_LINKS}")
+    if home["images"] < 1:
+        problems.append("index.html: no figure")
+    return problems
 
 
 def main():
@@ -122,10 +153,12 @@ def main():
                 failures += [f"{p}: {x}" for x in page_problems(d, "file://" + os.path.join(root, p))]
                 if p in SHOTS:
                     d.save_screenshot(os.path.join(shots, p.replace("/", "_").replace(".html", ".png")))
-            hits = search_finds(d, root, "lyapunov_map")
+            hits, errors = search_problems(d, root, "lyapunov_map")
             d.save_screenshot(os.path.join(shots, "search.png"))
             if hits == 0:
                 failures.append("search.html?q=lyapunov_map: no result")
+            failures += [f"search.html?q=lyapunov_map: {e}" for e in errors]
+            failures += home_problems(d, root)
         finally:
             d.quit()
     for f in failures:

@@ -5,7 +5,7 @@
 Usage: build.py --btob BUILD/btob --pythonpath BUILD/python --out BUILD/docs [--source REPO]
 
 Stages docs/ into OUT/source with what is generated or lives elsewhere in the repository (the command reference from
-`btob <sub> --help`, the performance page from results/benchmarks, the notebooks of analyses/notebooks, CHANGELOG.md,
+`btob <sub> --help`, the C++ reference from the headers `cmake --install` installs (gen_cpp.py), the performance page from results/benchmarks, the notebooks of analyses/notebooks, CHANGELOG.md,
 a link to results/ for the figures), runs sphinx-build with warnings as errors (-W --keep-going; the notebooks are
 executed by nbsphinx), then checks every internal link and image of the HTML (check_links.py).  Exit status 0 only
 when all of it succeeds."""
@@ -20,6 +20,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import gen_cli  # noqa: E402
+import gen_cpp  # noqa: E402
 import gen_csv  # noqa: E402
 import gen_paper  # noqa: E402
 import gen_performance  # noqa: E402
@@ -38,6 +39,8 @@ def stage(repo, src):
         if nb.endswith(".ipynb"):
             shutil.copy(os.path.join(nb_dir, nb), os.path.join(src, "tutorials", nb))
     shutil.copy(os.path.join(repo, "CHANGELOG.md"), os.path.join(src, "CHANGELOG.md"))
+    # The C++ reference shows examples/cpp (the program the test install_cpp builds against the installed package).
+    shutil.copytree(os.path.join(repo, "examples", "cpp"), os.path.join(src, "examples", "cpp"))
     os.symlink(os.path.join(repo, "results"), os.path.join(src, "results"))
     gallery(os.path.join(repo, "results", "README.md"), os.path.join(src, "gallery.md"))
 
@@ -67,8 +70,21 @@ def main():
     gen_performance.write(os.path.join(repo, "results", "benchmarks"), os.path.join(src, "performance_data.md"))
     gen_paper.write(repo, os.path.join(src, "paper_tables.md"))
     gen_csv.write(repo, os.path.join(src, "reference", "csv"))
+    # The C++ reference: the headers installed from the executable's build folder, read by Doxygen.
+    t_cpp = time.monotonic()
+    xml_dir, cpp_pages, undocumented = gen_cpp.write(os.path.dirname(os.path.abspath(a.btob)), os.path.join(out, "cpp"),
+                                                     os.path.join(src, "reference", "cpp"))
+    print(f"docs: C++ reference, {len(cpp_pages)} headers, {time.monotonic() - t_cpp:.1f} s")
+    # A request's field always has documentation (its comment, else its flag's help): one without fails the build.
+    # The fields of results and of the parts of sweeps are counted (each should have a comment in its header).
+    missing = [m for m in undocumented if re.search(r"Request::", m)]
+    print(f"docs: C++ reference, {len(undocumented) - len(missing)} result or part fields without a comment")
+    if missing:
+        print("docs: request fields without documentation (a comment in the header, or the help of its flag):\n  "
+              + "\n  ".join(missing))
+        return 1
     env = dict(os.environ, PYTHONPATH=os.path.abspath(a.pythonpath) + os.pathsep + os.environ.get("PYTHONPATH", ""),
-               BTOB_EXE=os.path.abspath(a.btob), PYDEVD_DISABLE_FILE_VALIDATION="1")
+               BTOB_EXE=os.path.abspath(a.btob), PYDEVD_DISABLE_FILE_VALIDATION="1", BTOB_DOXYGEN_XML=xml_dir)
     env.pop("MPLBACKEND", None)  # the notebooks' kernels draw inline (their figures go into the pages)
     gen_python.write(a.sphinx, env, os.path.join(src, "reference"))
     if os.path.isdir(html):

@@ -50,8 +50,8 @@ struct ClassifyRequest {
 };
 
 struct ClassifyResult {
-  ClassifyRequest request;
-  OrbitVerdict verdict;
+  ClassifyRequest request;  // the request, as run (validated)
+  OrbitVerdict verdict;  // the classifier's verdict: type, period, word, lambda1 and its evidence
   std::string pattern;  // the attractor's own spelling (mirror-aware); empty when undecided
   std::string detail;   // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
   // Attributes only: type, pattern, period, lambda1, batch_err, detail, iterations; lambda1's status (an estimate).
@@ -97,8 +97,8 @@ struct BasinsRequest {
 };
 
 struct BasinsResult {
-  BasinsRequest request;
-  Basins basins;
+  BasinsRequest request;  // the request, as run (validated)
+  Basins basins;  // the attractors (union over all grids), each grid point's label and the boundary geometry
   std::vector<double> fraction, ci_low, ci_high;  // [attractors]: main-grid fractions and their 95% intervals
   std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; undecided last
   std::vector<double> axis1, axis2;                  // [n1], [n2]: the main grid's cell centres along each axis
@@ -208,15 +208,15 @@ struct Comparison {
 };
 
 struct BasinsRResult {
-  BasinsRRequest request;
-  std::size_t points = 0;
-  std::vector<BasinsRRow> rows;
+  BasinsRRequest request;  // the request, as run (validated)
+  std::size_t points = 0;  // initial conditions per r (the grid's points)
+  std::vector<BasinsRRow> rows;  // one per r value, ascending: attractors, fractions, boundary
   std::vector<Comparison> comparison;  // per row
   std::vector<double> r;               // [rows]
   std::vector<double> fraction;        // [rows, columns]: per attractor key (sorted by type, key), undecided last
   std::vector<std::string> columns;    // column labels
-  int threads = 0;
-  double seconds = 0;
+  int threads = 0;  // OpenMP threads used
+  double seconds = 0;  // wall time of the run, seconds
   // Arrays: r [rows], fraction [rows, columns]; with a boundary grid, the boundary geometry per r (boundary_arrays);
   // attributes: column_<j>, the request and timings.
   void describe(core::Contents& c) const;

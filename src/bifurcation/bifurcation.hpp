@@ -61,11 +61,11 @@ struct Request {
 };
 
 struct Result {
-  iterate::Ensemble ensemble;
+  iterate::Ensemble ensemble;  // the r values and initial conditions iterated (the orbits, r-major)
   double r_min = 0, r_max = 0;         // the requested r range
   std::string coord;                   // the binned coordinate: theta, log10_theta, phi, w1, w2
   double lo = 0, hi = 0;               // the axis range
-  std::size_t bins = 0;
+  std::size_t bins = 0;  // bins of the density along the coordinate
   std::vector<double> bin_centre;      // [bins]: lo + (i + 1/2) (hi - lo) / bins, the density's coordinates
   std::vector<std::uint32_t> density;  // [r, bin]: tail points per bin
   std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
@@ -74,10 +74,10 @@ struct Result {
   reference::MatlabTrigImage matlab;   // trig only: what the paper's MATLAB code draws (complex continuation past
                                        // acos's domain, Figure 4.7), over [0, pi]
   std::vector<double> vlines;          // the request's vertical lines
-  std::string scalar_type, algorithm;
-  long iterations = 0, tail_length = 0, renormalisation_interval = 0;
+  std::string scalar_type, algorithm;  // the arithmetic that ran (float, double, ...) and the request's algorithm (linear or trig)
+  long iterations = 0, tail_length = 0, renormalisation_interval = 0;  // map iterations per orbit, of them the tail binned, steps between renormalisations
   std::uint64_t degenerate = 0;        // orbits whose final state was not a finite non-zero vector
-  double iteration_seconds = 0;
+  double iteration_seconds = 0;  // wall time of the iteration (without plotting or writing), seconds
 
   std::uint64_t points_below() const;
   std::uint64_t points_above() const;

@@ -53,8 +53,8 @@ struct Request {
 };
 
 struct Result {
-  Request request;
-  attractors::Grid grid;
+  Request request;  // the request, as run (validated)
+  attractors::Grid grid;  // the strip grid of initial conditions (n1 cells along w1, n2 along w2)
   std::vector<double> axis1, axis2;  // the grid's cell centres
   // [R] per r:
   std::vector<double> r, cos_theta, rotation, I_max, region_share, region_mean;

@@ -36,10 +36,10 @@ struct HyperbolicityRequest {
 };
 
 struct HyperbolicityResult {
-  HyperbolicityRequest request;
+  HyperbolicityRequest request;  // the request, as run (validated)
   StripSingularValues image;  // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
   std::vector<double> w1_cell, w2_cell;  // [n1], [n2]: the cell centres along each axis
-  double seconds = 0;
+  double seconds = 0;  // wall time of the run, seconds
 
   // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.
   void describe(core::Contents& c) const;
@@ -87,9 +87,9 @@ struct HyperbolicityOrbitsRequest {
 };
 
 struct HyperbolicityOrbitsResult {
-  HyperbolicityOrbitsRequest request;
-  iterate::Ensemble ensemble;
-  std::size_t bins = 0;
+  HyperbolicityOrbitsRequest request;  // the request, as run (validated)
+  iterate::Ensemble ensemble;  // the r values and initial conditions iterated (orbit = r index * I + initial condition)
+  std::size_t bins = 0;  // bins of the CLV angle histogram (angle_histogram)
   // Per r [R]: pooled over the orbits (angles only from non-degenerate ones), NaN when no orbit contributes.
   std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;
   std::vector<double> angle_histogram;  // [R, bins]

@@ -57,9 +57,9 @@ struct Convergence {
 struct ProjectiveResult {
   std::array<Estimate, 2> lambda;  // lambda1 >= lambda2 of the projective cocycle
   std::array<double, 2> weighted;  // the same, as weighted Birkhoff averages (fast on (quasi-)periodic orbits)
-  long iterations = 0;
-  int blocks = 0;
-  Convergence convergence;
+  long iterations = 0;  // map iterations averaged (the request's, after the transient)
+  int blocks = 0;  // batch-means blocks of the error bars (the request's)
+  Convergence convergence;  // the running averages at every checkpoint (what --convergence writes)
   std::vector<int> symbols_tail;  // symbols of the last min(iterations, 4096) steps (for period detection)
   Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
   // Attributes lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the

@@ -108,13 +108,13 @@ struct StripRequest {
 // Exponents of every orbit (orbit o = r index * initial conditions + initial condition index) and, for a map,
 // their summary per r.
 struct MapResult {
-  iterate::Ensemble ensemble;
-  OrbitExponents exponents;
+  iterate::Ensemble ensemble;  // the r values and initial conditions iterated (orbit = r index * I + initial condition)
+  OrbitExponents exponents;  // per orbit: lambda1, lambda2 and their batch-means errors, chi1, iterations
   RSummary summary;                  // lyapunov-map only
   std::vector<double> w1, w2;        // lyapunov-strip only: the cell centres, n1 x n2
   std::vector<double> w1_cell, w2_cell;  // lyapunov-strip only: the cell centres along each axis, [n1] and [n2]
   std::size_t n1 = 0, n2 = 0;        // lyapunov-strip only
-  double iteration_seconds = 0;
+  double iteration_seconds = 0;  // wall time of the iteration, seconds
   // lyapunov-map --precision float only: the orbits of every k-th r value (at most 64 r values) re-run in double,
   // and how many of them get another sign class (positive / zero / negative, maps.hpp classify).  Float rounds the
   // orbit at 6e-8 per step: near-neutral sinks (r just above 3 - 2 sqrt(2)) lose their orbits to it.

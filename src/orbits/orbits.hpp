@@ -41,7 +41,7 @@ struct StripOrbitsRequest {
 };
 
 struct StripOrbitsResult {
-  StripOrbitsRequest request;
+  StripOrbitsRequest request;  // the request, as run (validated)
   std::vector<double> start_w1, start_w2;  // [orbits]: the initial points
   std::vector<double> w1, w2;              // [orbits x tail], row-major: orbit o, state iterations - tail + 1 + j
   std::vector<attractors::OrbitVerdict> verdicts;  // [orbits]: the classifier's verdict (transient = iterations)

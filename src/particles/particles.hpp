@@ -101,13 +101,13 @@ struct ParticlesResult {
   std::string letters;       // collision letters of one period from the periodic point
   std::string outcome;       // "stable" or "unstable": the periodic point used (patterns::analyse)
   bool collapse = false;     // patterns::Classification::collapse: K_w has real eigenvalues on the orbit's plane
-  double r = 0;
-  long periods = 0;
-  std::string precision;
+  double r = 0;  // restitution coefficient, in (0, 1)
+  long periods = 0;  // periods of the pattern the particles were run for (the request's)
+  std::string precision;  // the arithmetic of the event-driven run (the request's)
   std::string start;         // the request's start
   bool sequence_ok = false;  // every period's letters matched
-  long periods_ok = 0;
-  std::string failure;
+  long periods_ok = 0;  // periods whose collision letters matched the pattern's
+  std::string failure;  // why the run stopped matching the pattern (empty when every period matched)
   // Last period's contraction against the prediction from M_w's eigenvalues (see the conventions).
   double length_contraction = 0, length_predicted = 0;
   double velocity_contraction = 0, velocity_predicted = 0;

@@ -42,7 +42,7 @@ struct CurvesRequest {
 };
 
 struct CurvesResult {
-  CurvesRequest request;
+  CurvesRequest request;  // the request, as run (validated)
   std::string word;                 // paper notation of the primitive root
   bool reduced = false;             // analysed through J M_h
   std::string analysed;             // the analysed word (h or w), digits

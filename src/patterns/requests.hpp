@@ -49,9 +49,9 @@ struct EigenText {
 };
 
 struct WordResult {
-  WordRequest::Mode mode = WordRequest::Mode::verdict;
+  WordRequest::Mode mode = WordRequest::Mode::verdict;  // what was computed: the verdict at r, the stability window, or the characteristic polynomial
   std::string scalar_type;            // the type the numbers were computed in
-  Word word, primitive;
+  Word word, primitive;  // the word as given and its primitive root (the shortest period)
   // verdict
   std::string r;                      // r as the precision holds it
   bool reduced = false;               // analysed through J M_h (Section 7.1)
@@ -67,7 +67,7 @@ struct WordResult {
   std::vector<std::string> eigen_re_decimal, eigen_im_decimal, exponents_decimal, orbit_decimal;
   // window
   std::vector<std::array<std::string, 4>> intervals;  // r_low, r_high, low_reason, high_reason
-  std::vector<double> r_low, r_high;
+  std::vector<double> r_low, r_high;  // window: each interval's ends as doubles (the decimals are r_low_decimal, r_high_decimal)
   std::vector<std::string> r_low_decimal, r_high_decimal, low_reason, high_reason;  // the columns of intervals
   std::string window_tol;  // the bisection's tolerance in r (decimal text)
   int window_digits = 0;   // significant digits of the printed ends
@@ -122,16 +122,16 @@ struct AtlasRequest {
 
 struct AtlasResult {
   AtlasRequest request;                    // what was computed (its lengths and check sizes go to the attributes)
-  bool feasible = false;
+  bool feasible = false;  // the request's mode: every feasible periodic orbit (true) or the stable atlas (false)
   double tol = 0;                          // bisection width in r
-  long grid_points = 0;
+  long grid_points = 0;  // r values of the scan's grid
   std::vector<AtlasEntry> entries;         // stable atlas
-  std::vector<FeasibleEntry> feasible_entries;
-  long words_scanned = 0, stable_words = 0, unstable_only_words = 0;
-  long followed_checked = 0, followed_agree = 0;
+  std::vector<FeasibleEntry> feasible_entries;  // feasible atlas: every feasible periodic orbit's interval, stable or not
+  long words_scanned = 0, stable_words = 0, unstable_only_words = 0;  // words scanned; of them, stable somewhere, and feasible but never stable
+  long followed_checked = 0, followed_agree = 0;  // feasible atlas: unstable orbits followed by the map with a predicted escape time, and of them those that escaped within [predicted / 2 - 2, 2 predicted + 2] periods
   bool checked = false;                    // the iterator check ran
-  long detected = 0, disagreements = 0, quasi_periodic = 0, missed = 0;
-  double atlas_seconds = 0, check_seconds = 0;
+  long detected = 0, disagreements = 0, quasi_periodic = 0, missed = 0;  // the iterator check's counts: periodic orbits detected, detections the atlas does not confirm, quasi-periodic orbits, atlas windows it missed
+  double atlas_seconds = 0, check_seconds = 0;  // wall times of the atlas and of the iterator check, seconds
   core::Tables csv;  // (role, content) in writing order: NAME.csv, NAME_detected.csv, ...
   std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
   std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
@@ -152,7 +152,7 @@ struct AtlasResult {
     std::vector<double> r, symbols, r_low, r_high;
     std::vector<std::string> word;
   } missed_entries;
-  FeasibleCounts counts;
+  FeasibleCounts counts;  // feasible atlas: the counts of NAME_counts.csv
 
   core::Tables tables() const { return csv; }
   std::string summary() const;             // the lines the command line prints

@@ -47,7 +47,7 @@ struct TradeoffRow {
 };
 
 struct TradeoffResult {
-  std::vector<TradeoffRow> rows;
+  std::vector<TradeoffRow> rows;  // one per method (arithmetic and algorithm), in the order they ran
   // Flat views for describe(): [M] and [M, R], M methods in the order of `rows`, R r values.
   std::vector<double> r, digits, rate, agree_min, agree_median, error_median, lyapunov_error, lyapunov_near_neutral,
       window_n_max;

@@ -47,19 +47,19 @@ struct CorrelateRequest {
 };
 
 struct CorrelateResult {
-  CorrelateRequest request;
-  Observable phi = Observable::phi, psi = Observable::phi;
+  CorrelateRequest request;  // the request, as run (validated)
+  Observable phi = Observable::phi, psi = Observable::phi;  // the two observables of C_N (the request's)
   std::vector<double> c;           // C_N(n), n = 0..n-max (computed in the request's precision)
   std::vector<double> c_direct;    // method both: the direct sum, else empty
   std::vector<double> envelope;    // max |C_N| over windows of `window` lags from lag 1
   std::vector<double> frequency;   // periodogram of phi over the first N values, averaged to <= 8192 points
-  std::vector<double> power;
-  double seconds = 0, seconds_direct = 0;
+  std::vector<double> power;  // the periodogram's power at each `frequency`
+  double seconds = 0, seconds_direct = 0;  // wall times of the FFT route and of the direct sum (method both), seconds
   double max_rel_diff = 0;         // method both: max |fft - direct| / max |direct|
   double peak_frequency = 0;       // of the unaveraged periodogram, cycles per iteration
   double noise_floor = 0;          // 4 |C_N(0)| / sqrt(N)
   bool fitted = false;             // n-max >= fit-lags >= 3 window: `decay` holds the fit
-  Decay decay;
+  Decay decay;  // the fitted decay rate of the |C_N| envelope (when `fitted`)
 
   long N() const { return request.iterations; }
   // Arrays: C_N [n-max + 1], C_N_direct [n-max + 1] (method both), envelope [windows], spectrum_frequency and
@@ -103,7 +103,7 @@ struct MeasureRequest {
 };
 
 struct MeasureResult {
-  MeasureRequest request;
+  MeasureRequest request;  // the request, as run (validated)
   std::vector<iterate::Vec3<double>> initial;  // the initial conditions, in grid order
   std::vector<int> group;                      // per initial condition: its group 0..G-1 (by first appearance)
   std::vector<std::uint64_t> group_index;      // the same as uint64 (the HDF5 dataset `group`)

@@ -227,10 +227,10 @@ struct ClassNames {
 };
 
 struct TransferResult {
-  TransferRequest request;
-  Partition part;
-  long nnz = 0;
-  std::uint64_t lost = 0;
+  TransferRequest request;  // the request, as run (validated)
+  Partition part;  // the box partition of the chart (boxes along each coordinate and their ranges)
+  long nnz = 0;  // non-zero entries of the Ulam matrix
+  std::uint64_t lost = 0;  // samples whose image left the chart or was not finite
   std::vector<double> eig_re, eig_im;  // K leading eigenvalues by decreasing modulus (block route)
   std::vector<std::uint32_t> eig_block;  // their blocks (0 transient, c closed class)
   std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
@@ -247,7 +247,7 @@ struct TransferResult {
   std::vector<double> second;          // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block; all 0
                                        // when there is no such eigenvalue)
   double second_positive_mass = 0, second_negative_mass = 0;  // L1 mass of the two signs, sum 1
-  long second_positive_boxes = 0, second_negative_boxes = 0;
+  long second_positive_boxes = 0, second_negative_boxes = 0;  // boxes where the second eigenvector is positive, negative
   // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
   std::vector<CycleCheck> cycles;
   // Without --cycle: the stable periodic attractors found in the closed classes (words, paper notation), which
@@ -320,9 +320,9 @@ struct TransferRRequest {
   }
 };
 struct TransferRResult {
-  TransferRRequest request;
-  std::vector<double> r;
-  long K = 0;
+  TransferRRequest request;  // the request, as run (validated)
+  std::vector<double> r;  // [R]: the r values, ascending
+  long K = 0;  // eigenvalues kept per r (the request's, at most the number of boxes)
   std::vector<double> re, im;          // r.size() x K row-major (NaN where fewer converged)
   std::vector<std::uint32_t> peripheral_count;  // per r
   std::vector<std::uint32_t> closed_classes;    // per r

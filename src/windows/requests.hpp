@@ -95,8 +95,8 @@ struct BoundsRequest {
 };
 
 struct BoundsResult {
-  int digits = 12;
-  bool certified_run = false;
+  int digits = 12;  // the request's digits of the printed bounds
+  bool certified_run = false;  // the request's certify: the bounds were proved in exact arithmetic
   std::vector<std::uint32_t> n;                 // [N]
   std::vector<std::string> lower_text;          // [N] lower bound, `digits` decimals (correctly rounded)
   std::vector<std::string> upper_text;          // [N] r_crit,2(n), `digits` decimals; "" for n = 1
@@ -139,7 +139,7 @@ struct ThresholdsRequest {
 };
 
 struct ThresholdsResult {
-  std::vector<Threshold> thresholds;
+  std::vector<Threshold> thresholds;  // 7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1: name, formula and value (windows::thresholds)
   std::vector<std::string> text;  // [4] the values with `digits` decimals
   std::vector<double> value;      // [4] the values in double
   std::string csv() const;        // name,formula,value,status
@@ -196,11 +196,11 @@ struct VerifyRequest {
 };
 
 struct VerifyResult {
-  NRange range;
-  VerifyOptions options;
+  NRange range;  // the window indices n checked
+  VerifyOptions options;  // the check's iterations, tail and arithmetic
   std::vector<VerifyRow> rows;  // 4 per n: below, inside_25, inside_50, inside_75
-  long passed = 0, total = 0;
-  double total_seconds = 0;
+  long passed = 0, total = 0;  // checks that passed, of all
+  double total_seconds = 0;  // wall time of the run, seconds
   // Flat views of the rows for describe(): [4N] each.
   std::vector<std::uint32_t> n, position, on_pattern, orbits, iterations_run, expected_on, pass;
   std::vector<double> r, lower, upper;
@@ -250,10 +250,10 @@ struct BoundPrecisionSummary {
   double seconds_per_bound = 0;
 };
 struct BoundPrecisionResult {
-  NRange range;
+  NRange range;  // the window indices n compared
   std::vector<BoundPrecisionRow> rows;  // (route, precision, n) in that order of nesting
-  std::vector<BoundPrecisionSummary> summary;
-  double total_seconds = 0;
+  std::vector<BoundPrecisionSummary> summary;  // per precision and route: correct digits and time per bound
+  double total_seconds = 0;  // wall time of the run, seconds
   // Flat views for describe(): [P, N] with P = the precision x route rows of the summary.
   std::vector<double> value, abs_error, seconds;
   std::vector<std::uint8_t> correct_12;
