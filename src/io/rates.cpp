@@ -130,6 +130,16 @@ RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, i
   r.probe_units = static_cast<double>(f.sizes.size());
   r.probe_seconds = f.spent;
   r.model = f.note(term.size);
+  if (term.work_of && !f.sizes.empty()) {  // proportional to the counted work, from the largest instance timed
+    const double w_req = term.work_of(term.size), w_last = term.work_of(f.sizes.back());
+    if (w_req > 0 && w_last > 0) {
+      r.units_per_second = term.units / std::max(f.seconds.back() * w_req / w_last, 1e-9);
+      r.model = fmt::format("{} from sizes {:.0f}..{:.0f} of {} ({} instances timed in {:.2f} s), in proportion to "
+                            "the counted work ({:.4g} against {:.4g} of the largest instance timed)",
+                            f.extrapolates(term.size) ? "extrapolated" : "interpolated", f.sizes.front(),
+                            f.sizes.back(), term.size_parameter, f.sizes.size(), f.spent, w_req, w_last);
+    }
+  }
   return r;
 }
 
