@@ -56,11 +56,15 @@ double verdict_work(const Word& u, const std::string& r_text, bool wide) {
   return per_symbol_steps * static_cast<double>(u.size()) + static_cast<double>(orbit_walk_steps() - before);
 }
 
-// The instances the verdict's cost model times, each with its counted work.  The instance of size l is the prefix
-// (primitive_prefix) among lengths l 2^(k/4), k = -4..3, whose work per symbol is nearest the whole word's (the
-// word itself once l reaches its length): the prefixes' own work per symbol varies tenfold, and instances of
-// proportionate work let the fit's doubling (core::fit_sizes, which stops when its power law predicts the next
-// instance over budget) go on to instances of a few tenths of a second, which time the rate to a few per cent.
+// The instances the verdict's cost model times, each with its counted work.  In the precisions wider than double
+// the instance of size l is the prefix (primitive_prefix) among lengths l 2^(k/4), k = -4..3, whose work per symbol
+// is nearest the whole word's (the word itself once l reaches its length): the prefixes' own work per symbol varies
+// tenfold, and instances of proportionate work let the fit's doubling (core::fit_sizes, which stops when its power
+// law predicts the next instance over budget) go on to instances of a few tenths of a second.  The choice runs
+// inside the instance's timing: eight analyses in long double, a quarter of a long-double instance at most (whose
+// check runs in float128), less in float128 and MPFR; in float and
+// double, where it would be most of it, the instance is the prefix of length l (the fit reaches long prefixes
+// anyway).  The whole word's count runs first, from work_of, outside the timing (io::fitted_rate).
 struct Instances {
   struct Instance {
     Word word;
@@ -78,7 +82,8 @@ struct Instances {
     if (it != done.end()) return it->second;
     if (per_symbol < 0) per_symbol = verdict_work(u, r, wide) / static_cast<double>(u.size());
     Instance best{u, per_symbol * static_cast<double>(u.size())};
-    if (length < u.size()) {
+    if (length < u.size() && !wide) best = {primitive_prefix(u, length), 0};  // counted as it runs
+    if (length < u.size() && wide) {
       double distance = std::numeric_limits<double>::infinity();
       for (int k = -4; k <= 3; ++k) {
         const auto m = static_cast<std::size_t>(std::llround(static_cast<double>(length) * std::exp2(k / 4.0)));
