@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The cost of a word's analysis (`btob pattern`) before it runs (core/work.hpp): its verdict priced by a cost model
-// in the length of the word's primitive root (core/size_model.hpp), its window and characteristic polynomial by
-// running the request itself (core::self_term).  Kept apart from requests.cpp, which holds the analysis.
+// The cost of a word's analysis (`btob pattern`) before it runs (core/work.hpp): its verdict priced from instances
+// of it in proportion to the counted work (core/size_model.hpp, core::Term::work_of), its window and characteristic
+// polynomial by running the request itself (core::self_term).  Kept apart from requests.cpp, which holds the analysis.
 #include "patterns/requests.hpp"
 
 #include "core/work.hpp"
@@ -113,7 +113,7 @@ core::Work work(const WordRequest& req) {
     t.route = fmt::format("pattern verdict {} r={} {}", word, req.r, req.precision);
     t.units = 1;
     t.what = fmt::format("verdict of the word {} ({} symbols in its primitive root; one indivisible computation, "
-                         "priced by a cost model in the root's length)", word, u.size());
+                         "priced from shorter instances by the counted work of its orbit walks)", word, u.size());
     t.size_parameter = "word length";
     t.size = static_cast<double>(u.size());
     t.smallest = 16;
