@@ -128,6 +128,12 @@ grep -q "extrapolated from sizes" <<< "$("$BTOB" windows bounds --n 300 --certif
 # A random word of 3000 symbols (seeded) in MPFR, whose verdict walks the orbit of every eigenvalue.
 word=$(python3 -c "import random; random.seed(7); print(''.join(random.choice('123') for _ in range(3000)))")
 sized pattern-3000-mpfr pattern "$word" --r 0.5 --precision mpfr:60
+# Periodic words: their prefixes' orbit walks converge in few or many periods (0.1 to 2.5 ms a symbol in mpfr:60),
+# so a power law in the length through two of them predicted 4e3 to 1e4 s for a run of 2-4 s (float128: 4.6e5 s,
+# long double 8.9e5 s); the model in the counted work (patterns/cost.cpp) prices them.
+sized pattern-periodic-mpfr pattern "(132312)^500 1" --r 0.2 --precision mpfr:60
+sized pattern-periodic-float128 pattern "(132312)^500 1" --r 0.2 --precision float128
+sized pattern-periodic-long-double pattern "(132312)^2000 1" --r 0.2 --precision long-double
 sized thresholds windows thresholds --digits 10000
 fi
 

@@ -39,6 +39,10 @@ struct Term {
   std::string size_parameter;
   double size = 0, smallest = 1;
   std::function<void(double size, const RunControl&)> sized_run;
+  // When set, the time of an instance is proportional to work_of(size) (counted, not a power of the size: a word's
+  // verdict walks the orbits for as many periods as its eigenvalue ratios need): the request is priced at the time
+  // of the largest instance timed times work_of(size) / work_of(that instance's size), not by a power law in size.
+  std::function<double(double size)> work_of;
 };
 
 struct Work {

@@ -123,6 +123,8 @@ RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, i
   core::RunControl c = control;
   c.threads = threads;
   c.progress = nullptr;
+  // The request's work first, outside the instances' timing (counting it may take a few tenths of a second).
+  const double w_req = term.work_of ? term.work_of(term.size) : 0;
   const core::SizeFit f = core::fit_sizes(term.size_parameter, term.smallest, term.size,
                                           [&](double s) { term.sized_run(s, c); }, control.cancel);
   RouteRate r;
@@ -130,6 +132,17 @@ RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, i
   r.probe_units = static_cast<double>(f.sizes.size());
   r.probe_seconds = f.spent;
   r.model = f.note(term.size);
+  if (term.work_of && !f.sizes.empty()) {  // proportional to the counted work, from the largest instance timed
+    const double w_last = term.work_of(f.sizes.back());
+    const double w = f.sizes.back() >= term.size ? w_last : w_req;  // the request itself timed: its own count
+    if (w > 0 && w_last > 0) {
+      r.units_per_second = term.units / std::max(f.seconds.back() * w / w_last, 1e-9);
+      r.model = fmt::format("{} from sizes {:.0f}..{:.0f} of {} ({} instances timed in {:.2f} s), in proportion to "
+                            "the counted work ({:.4g} against {:.4g} of the largest instance timed)",
+                            f.extrapolates(term.size) ? "extrapolated" : "interpolated", f.sizes.front(),
+                            f.sizes.back(), term.size_parameter, f.sizes.size(), f.spent, w, w_last);
+    }
+  }
   return r;
 }
 

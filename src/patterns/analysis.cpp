@@ -20,6 +20,12 @@ std::vector<double> default_grid() {
   return g;
 }
 
+namespace {
+thread_local std::uint64_t orbit_steps = 0;  // walk_steps.hpp
+}  // namespace
+std::uint64_t orbit_walk_steps() { return orbit_steps; }
+void add_orbit_walk_steps(std::uint64_t steps) { orbit_steps += steps; }
+
 std::string classification_name(const Classification& c) {
   if (c.outcome == Outcome::none || c.collapse) return outcome_name(c.outcome);
   return std::string(outcome_name(c.outcome)) + " (no collapse)";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "patterns/patterns.hpp"
+#include "patterns/walk_steps.hpp"
 
 #include "core/cancel.hpp"
 #include "core/request.hpp"
@@ -410,10 +411,12 @@ std::vector<Vec3<T>> orbit_points(const Word& w, const T& r, const Spectrum<T>& 
   const bool separated = s.mod[2] < s.mod[1] * tol && (i == 2 || s.mod[1] < s.mod[0] * tol);
   if (i == 0 || !separated) {
     for (std::size_t k = 1; k < p; ++k) u[k] = walk.step(P, k - 1, u[k - 1]);
+    add_orbit_walk_steps(walk.steps);
     return u;
   }
   if (i == 2) smallest_points(walk, P, u);
   else saddle_points(walk, s, P, u);
+  add_orbit_walk_steps(walk.steps);  // the verdict's cost model (orbit_walk_steps)
   // The sign of the forward step: u_k and P u_{k-1} on the same side.
   for (std::size_t k = 1; k < p; ++k)
     if ((P[w.s[k - 1] - 1] * u[k - 1]).dot(u[k]) < 0) u[k] = -u[k];
