@@ -223,7 +223,7 @@ def draw_trig(f, a, dm, dens, r, vlines, over, title, sub):
         red_dots(axes[0], r, stalled_m, a["iterations"], lo - 0.06 * (hi - lo))
     for ax in axes[:2]:
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7, loc="upper right", markerscale=3, framealpha=0.9)
+            ax.legend(fontsize=7, loc="center right", markerscale=3, framealpha=0.9)  # empty there: r > 0.13, theta < 1.4
     n_nan = int(nan_m.sum()) if nan_m is not None else 0
     stalled_note = (f"; {int(stalled_m.sum())} tail states never reached (no more b-collisions)"
                     if stalled_m is not None and stalled_m.sum() else "")
