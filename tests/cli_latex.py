@@ -138,11 +138,17 @@ def check_table(tex, csv_text, where):
 
 
 def column(header, rows, name):
-    """The cells of the column whose header starts with `name` (escaped, before its marker)."""
+    """The cells of the column whose header starts with `name` (escaped, before its marker); for P_low or P_high,
+    the low or high end of the interval column P [low, high]."""
     esc = name.replace("_", "\\_")
     for j, h in enumerate(header):
         if h == esc or h.startswith(esc + "\\textsuperscript"):
             return [r[j] for r in rows]
+    for end, k in (("_low", 0), ("_high", 1)):
+        prefix = esc[:-len(end) - 1] if name.endswith(end) else None
+        for j, h in enumerate(header):
+            if prefix and h.startswith(prefix) and h.endswith(" [low, high]"):
+                return [re.findall(r"\$[^$]*\$", r[j])[k] if r[j].startswith("[") else r[j] for r in rows]
     fail(f"no column {name} in {header}")
     return []
 

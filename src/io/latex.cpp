@@ -50,7 +50,8 @@ std::vector<Column> group_columns(const std::vector<std::string>& h) {
                h[j].substr(0, h[j].size() - 3) == h[j + 1].substr(0, h[j + 1].size() - 4)) {
       std::string prefix = h[j].substr(0, h[j].size() - 3);
       if (!prefix.empty() && prefix.back() == '_') prefix.pop_back();
-      cols.push_back({Column::interval, j, j + 1, latex_text(prefix.empty() ? "interval" : prefix), " [low, high]", prefix});
+      cols.push_back({Column::interval, j, j + 1, latex_text(prefix.empty() ? "interval" : prefix), " [low, high]", h[j]});  // status: the ends'
+
       ++j;
     } else {
       cols.push_back({Column::plain, j, j, latex_text(h[j]), "", h[j]});
