@@ -10,11 +10,8 @@ overlay lines closer than a few pixels are thinned (and the figure says how many
 trigonometric algorithm (Figure 4.7) three panels: what the paper's MATLAB code draws (complex
 continuation past acos's domain), the orbits that stayed in the domain, and the share of orbits that left it.
 """
-import sys
 
-import h5py
-
-from plotlib import attrs, save_atomic  # noqa: F401  (also selects the Agg backend)
+import plotlib  # noqa: E402  (main: the command line)
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -253,13 +250,5 @@ def failures_panel(ax, a, r, complex_orbits, broken, stalled_m, n_ic, xlim):
     ax.legend(fontsize=7, loc="upper right")
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, dst)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: bifurcation.py DATA.h5 OUT.png")
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw)
