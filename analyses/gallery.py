@@ -32,14 +32,16 @@ PAPER = [
      "closer zoom: windows n = 15 .. 125; below 7-4√3 every orbit collapses (theta = 0, counted below the range)."),
     ("fig4_5/fig4_5.png", "fig4_5/fig4_5.json", "Figure 4.5",
      f"Plot of the tails of the orbits of {P} for 0.07179 ≤ r ≤ 0.07189 after 5000 iterations, in logarithmic scale.",
-     "windows n = 47 .. 125 one after the other, theta down to 1e-220."),
+     "windows n = 47 .. 125 one after the other, theta down to 1e-220; the window bounds are ticks above the data "
+     "(lower blue, r_crit,2 red), so that the narrow windows n >= 75 on the left stay visible."),
     ("fig4_6/fig4_6.png", "fig4_6/fig4_6.json", "Figure 4.6",
      f"Plot of the tails of the orbits of {P} for 0.07183 ≤ r ≤ 0.07184 after 5000 iterations, in logarithmic scale.",
      "the ten windows n = 69 .. 78 side by side."),
     ("fig4_7/fig4_7.png", "fig4_7/fig4_7.json", "Figure 4.7",
      f"Plot of the tails of the orbits of {P} for 0.0717 ≤ r ≤ 0.1717 after 5000 iterations, relying on the "
      "trigonometric algorithm of Section A.1.",
-     "(a) btob's emulation of the paper's MATLAB code (MATLAB's acos: real on [-1, 1], complex outside), red dots "
+     "(a) btob's emulation of the paper's MATLAB code (MATLAB's acos: real on [-1, 1], complex outside), up to "
+     "theta = pi/2 as the paper draws it; green squares on pi/2 where orbits froze there, red dots below theta = 0 "
      "where some orbit stopped producing b-collisions (the paper's red dots); (b) only the orbits that never left "
      "acos's domain; (c) per r, the orbits that left it and the tail states never reached. Below r = 0.078 the "
      "printed code draws no apparent chaos: orbits reach phi = pi/2 exactly and stop, or stay at theta = pi/2. GNU "
@@ -204,21 +206,69 @@ def read_csv(path):
     return list(csv.DictReader(open(full))) if os.path.exists(full) else []
 
 
+def candidate_names():
+    """The candidate distributions' descriptions, from the analysis's manifest ({name: description})."""
+    m = manifest("attractors/table_6_1/table_6_1_candidates.json")
+    return m.get("candidates", {})
+
+
+def p_text(gof_p):
+    """A goodness-of-fit p-value from 20000 synthetic tables (table_6_1_candidates.py): 0 means below 1/20000."""
+    return f"p = {float(gof_p):.2f}" if float(gof_p) > 0 else "p < 5e-5"
+
+
+def table_6_1_conclusion(lik):
+    """The candidate analysis's conclusion, from likelihood.csv (rows sorted best first): the best candidate, its fit,
+    and the sphere measure under which basins-r counts."""
+    desc = candidate_names()
+    best = lik[0]
+    name = best["candidate"]
+    base = name.replace("+rule", "")
+    sphere = next((r for r in lik if r["candidate"] == "sphere"), None)
+    text = (f"**Which start points reproduce the paper's counts** (`analyses/table_6_1_candidates.py`, "
+            f"`results/attractors/table_6_1/`): of {len(lik) // 2} candidate start distributions, each judged by btob's "
+            f"classifier and by the paper's detection rule, the best is {desc.get(base, base)}"
+            f"{' under the paper' + chr(39) + 's rule' if name.endswith('+rule') else ' under btob' + chr(39) + 's classifier'}, "
+            f"log-likelihood {float(best['log_likelihood']):.1f} against a typical "
+            f"{float(best['expected_log_likelihood']):.1f} +- {float(best['sd_log_likelihood']):.1f} "
+            f"(goodness of fit {p_text(best['gof_p'])}).")
+    if sphere:
+        text += (f" The uniform measure on the sphere of directions, under which `btob basins-r` counts, is rejected "
+                 f"(log-likelihood {float(sphere['log_likelihood']):.1f}, {p_text(sphere['gof_p'])}).")
+    return text + (" The table gives per r the paper's row, the best candidate's expected count of periodic orbits "
+                   "out of ten with its 95% predictive interval and the row's two-sided p-value, and the patterns "
+                   "btob finds at that r (2000 orbits uniform on the sphere: the patterns, not their shares).")
+
+
+def table_6_1():
+    """Table 6.1 as the paper prints it (periodic %, patterns, their lengths), led by the candidate analysis's
+    conclusion, each row scored under the best-fitting start distribution, and the patterns btob finds."""
+    paper = read_csv("analyses/reference/patterns_paper_table_6_1.csv")
+    lik = sorted(read_csv("results/attractors/table_6_1/likelihood.csv"), key=lambda r: -float(r["log_likelihood"]))
+    if not paper or not lik:
+        return []
+    best = lik[0]["candidate"]
+    scored = {r["r"]: r for r in read_csv("results/attractors/table_6_1/candidates.csv") if r["candidate"] == best}
+    found = {r["r"]: r for r in read_csv("results/attractors/basins_r/table_6_1_comparison.csv")}
+    out = ["### Table 6.1", "", table_6_1_conclusion(lik), "",
+           f"| r | paper: periodic % | paper's patterns | paper: length | {best}: expected of 10 [95%] | row p | "
+           "btob's patterns (share of the sphere measure) |", "|---|---|---|---|---|---|---|"]
+    for p in paper:
+        c, f = scored.get(p["r"], {}), found.get(p["r"], {})
+        p = {k: v.replace(";", ", ") for k, v in p.items()}
+        expected = f"{float(c['expected_count']):.1f} [{c['count_low']}, {c['count_high']}]" if c else ""
+        out.append(f"| {p['r']} | {p['percent_periodic_of_10_random_ics']} | {p['patterns_detected'] or 'none'} | "
+                   f"{p['pattern_lengths_in_collisions'] or '--'} | {expected} | "
+                   f"{float(c['p_value']):.2g} | {f.get('patterns_found', '')} |" if c else
+                   f"| {p['r']} | {p['percent_periodic_of_10_random_ics']} | {p['patterns_detected'] or 'none'} | "
+                   f"{p['pattern_lengths_in_collisions'] or '--'} | | | {f.get('patterns_found', '')} |")
+    return out + [""]
+
+
 def tables():
     """Tables 6.1, B.1 and B.2 beside the paper's, from the committed results and the transcribed tables."""
     out = ["## The paper's tables", ""]
-    t61 = read_csv("results/attractors/basins_r/table_6_1_comparison.csv")
-    if t61:
-        out += ["### Table 6.1", "",
-                "Periodic patterns across r. The paper: the share of 10 random initial conditions reaching a periodic "
-                "pattern (its 95% interval from 10 draws) and the patterns seen; btob: the share of 2000 orbits "
-                "uniform on the sphere of directions, its 95% interval and every pattern found with its fraction "
-                "(`analyses/attractors.sh`, `results/attractors/basins_r/table_6_1_comparison.csv`).", "",
-                "| r | paper: periodic % | paper's patterns | btob: periodic | btob's 95% | btob's patterns | consistent |",
-                "|---|---|---|---|---|---|---|"]
-        out += [f"| {r['r']} | {r['paper_percent_periodic']} | {r['paper_patterns']} | {r['periodic_fraction']} | "
-                f"[{r['ci_low']}, {r['ci_high']}] | {r['patterns_found']} | {r['consistent']} |" for r in t61]
-        out.append("")
+    out += table_6_1()
     paper = {r["n"]: r for r in read_csv("analyses/reference/windows_paper_table_B1.csv")}
     ours = {r["n"]: r for r in read_csv("results/windows/bounds_certified.csv")}
     if paper and ours:
@@ -237,7 +287,7 @@ def tables():
         out.append("")
     b2 = os.path.join(ROOT, "results", "windows", "table_B2.txt")
     if os.path.exists(b2):
-        out += ["### Table B.2", "", "The polynomials Q_n, n = 2..10, exact (`btob windows poly --n 2..10`, "
+        out += ["### Table B.2", "", "The polynomials Q_n, n = 1..10, exact (`btob windows poly --n 1..10`, "
                 "`results/windows/table_B2.txt`). The paper prints +81/128 r^4 in Q_2; the coefficient is -81/128.",
                 "", "```text", open(b2).read().rstrip(), "```", ""]
     return out

@@ -3,16 +3,15 @@
 geometry: each entropy box's entropy (the boundary boxes) and the uncertain fraction f(eps) with its power-law fit.
 Usage: attractors_basins.py NAME.h5 OUT.png   (reads NAME.h5 alone: labels, fraction, ci_low, ci_high, box_entropy,
 uncertainty_* and the attributes; NAME_fractions.csv and NAME_boundary.csv hold the same numbers as tables)."""
-import sys
 import textwrap
 
-import h5py
 import numpy as np
 from matplotlib import colors
 from matplotlib import pyplot as plt
 from matplotlib.patches import Patch
 
-from plotlib import attrs, save_atomic
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs
 
 
 def rows_of(f):
@@ -82,12 +81,6 @@ def draw_uncertainty(ax, f, a):
     ax.set_title(title + "\n" + textwrap.fill("Wada (merging): " + str(a["wada_verdict"]), 55), fontsize=8)
 
 
-def main(h5_path, png_path):
-    with h5py.File(h5_path, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, png_path)
-
-
 def draw(f):
     """The figure of an h5py-like f (an h5py.File or a btob Python result)."""
     a = attrs(f)
@@ -140,6 +133,4 @@ def draw(f):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: attractors_basins.py NAME.h5 OUT.png")
-    main(*sys.argv[1:])
+    plotlib.main(draw)

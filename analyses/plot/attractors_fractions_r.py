@@ -1,13 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Basin fractions across r (btob basins-r): stacked areas, attractors matched across r by pattern; below (with a
 boundary grid), the basin entropies S_b, S_bb with their intervals and the uncertainty exponent against r."""
-import sys
 
-import h5py
 import numpy as np
 from matplotlib import pyplot as plt
 
-from plotlib import attrs, save_atomic
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs
 
 
 def draw(f):
@@ -110,11 +109,5 @@ def draw_geometry(ax, f, a, x, order):
                  f"boxes of {a['entropy_box']} cells", fontsize=9)
 
 
-def main(h5_path, png_path):
-    with h5py.File(h5_path, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, png_path)
-
-
 if __name__ == "__main__":
-    main(*sys.argv[1:3])
+    plotlib.main(draw)

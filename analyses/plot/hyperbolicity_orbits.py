@@ -6,9 +6,7 @@ beside the median largest Lyapunov exponent, from a `btob hyperbolicity-orbits` 
 Usage: hyperbolicity_orbits.py DATA.h5 OUT.png
 Reads only the HDF5 file; writes OUT.png atomically.
 """
-import sys
 
-import h5py
 import matplotlib
 
 import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
@@ -88,13 +86,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    plotlib.save_atomic(fig, dst, dpi=120, bbox_inches="tight")
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, usage=__doc__, dpi=120, bbox_inches="tight")

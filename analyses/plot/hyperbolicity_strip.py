@@ -7,9 +7,6 @@ Usage: hyperbolicity_strip.py DATA.h5 OUT.png
 Overlays the partition boundaries of the strip (eq. (6.4): w2 = 2 alpha w1 -+ 1, w1 = 0) and the contour s1 = 1
 (expanding where s1 >= 1).  Reads only the HDF5 file; writes OUT.png atomically.
 """
-import sys
-
-import h5py
 
 import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
@@ -54,13 +51,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    plotlib.save_atomic(fig, dst, dpi=130)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, usage=__doc__, dpi=130)

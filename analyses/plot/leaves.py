@@ -3,13 +3,12 @@
 the kernel estimator, the coarse histogram and the region's own law), the rotation number per leaf and the
 Kolmogorov-Smirnov distances of the measure on a leaf; across r, theta / (2 pi) with the resonances l / m, the region's
 measure and the landing mass, the landing law's moments and its density."""
-import sys
 
-import h5py
 import numpy as np
 from matplotlib import pyplot as plt
 
-from plotlib import attrs, save_atomic
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs
 
 
 def _title(a, rows):
@@ -107,11 +106,5 @@ def draw(f):
     return fig
 
 
-def main(h5_path, png_path):
-    with h5py.File(h5_path, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, png_path)
-
-
 if __name__ == "__main__":
-    main(*sys.argv[1:3])
+    plotlib.main(draw)

@@ -8,9 +8,6 @@ Top: lambda1 of every orbit (dots), min/median/max per r, vertical lines at the 
 Bottom: fraction of orbits whose lambda1 is clearly positive / zero / negative given its error bar.
 Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
 """
-import sys
-
-import h5py
 
 import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.pyplot as plt  # noqa: E402
@@ -76,13 +73,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    plotlib.save_atomic(fig, dst, dpi=130)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, usage=__doc__, dpi=130)

@@ -7,9 +7,6 @@ The partition boundaries of the strip (eq. (6.4)) are overlaid: w2 = 2 alpha w1 
 below it), w2 = 2 alpha w1 + 1 (alpha y = z: branch 3 above it) and w1 = 0.
 Reads only the HDF5 file; writes OUT.png atomically.
 """
-import sys
-
-import h5py
 
 import plotlib  # noqa: E402  (Agg for the command line; a Python session keeps its backend)
 import matplotlib.colors as mcolors  # noqa: E402
@@ -48,13 +45,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    plotlib.save_atomic(fig, dst, dpi=130)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, usage=__doc__, dpi=130)

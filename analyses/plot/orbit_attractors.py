@@ -9,9 +9,6 @@ Usage: orbit_attractors.py DATA.h5 OUT.png
 The attractors are classify's verdicts (attractor_name, attractor_type); the most frequent ones get a colour each, the
 rest are drawn together as "other".  Reads only the HDF5 file; writes OUT.png atomically (temporary file, then rename).
 """
-import sys
-
-import h5py
 
 import plotlib  # Agg for the command line (a Python session keeps its backend); atomic PNG writes
 import matplotlib.pyplot as plt  # noqa: E402
@@ -126,15 +123,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        if "attractor_count" not in f:
-            sys.exit(f"orbit_attractors.py: {src} has no per-orbit attractors (run the command with --attractors)")
-        fig = draw(f)
-    plotlib.save_atomic(fig, dst, dpi=130)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, usage=__doc__, require="attractor_count", dpi=130)

@@ -9,11 +9,9 @@ r_high), the found patterns longer than L (long_word, long_r_low, long_r_high), 
 then rename).  One horizontal bar per pattern; when there are more than MAX_ROWS patterns, the ones with the widest
 windows are shown (and the title says so), plus every pattern the iterator found.
 """
-import sys
 
-import h5py
-
-from plotlib import attrs, save_atomic, texts
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs, texts
 import matplotlib.pyplot as plt  # noqa: E402
 
 MAX_ROWS = 40
@@ -30,14 +28,6 @@ def table(f, columns):
         return []
     cols = {k: texts(f, name) if is_text(f[name]) else [float(x) for x in f[name][()]] for k, name in columns.items()}
     return [dict(zip(cols, values)) for values in zip(*cols.values())]
-
-
-def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: patterns_atlas.py NAME.h5 OUT.png")
-    with h5py.File(sys.argv[1], "r") as f:
-        fig = draw(f)
-    save_atomic(fig, sys.argv[2], dpi=130)
 
 
 def draw(f):
@@ -120,4 +110,4 @@ def draw_panel(ax, rows, intervals, detected, found_words, x0, x1):
 
 
 if __name__ == "__main__":
-    main()
+    plotlib.main(draw, dpi=130)

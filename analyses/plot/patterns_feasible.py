@@ -9,20 +9,10 @@ NAME_counts.csv) and the attributes max_length, words_scanned, feasible_words; w
 counts over (0, 1) on a log scale; right: a zoom on 0.15 <= r <= 0.6 with r_crit ~ 0.1917 (the earlier literature's
 bound) and 2^(2/3) - 1 (no collapse above).
 """
-import sys
 
-import h5py
-
-from plotlib import attrs, save_atomic
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: patterns_feasible.py NAME.h5 OUT.png")
-    with h5py.File(sys.argv[1], "r") as f:
-        fig = draw(f)
-    save_atomic(fig, sys.argv[2])
 
 
 def draw(f):
@@ -62,4 +52,4 @@ def draw(f):
 
 
 if __name__ == "__main__":
-    main()
+    plotlib.main(draw)

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Shared helpers of the plot scripts: Agg backend, HDF5 attributes as str, atomic PNG writes."""
+"""Shared helpers of the plot scripts: Agg backend, HDF5 attributes as str, atomic PNG writes, and main(draw), the
+command line `SCRIPT.py DATA.h5 OUT.png` every single-file script shares."""
 import os
 import sys
 
@@ -28,3 +29,18 @@ def save_atomic(fig, dst, **savefig_kw):
     tmp = f"{dst}.tmp-{os.getpid()}.png"
     fig.savefig(tmp, **savefig_kw)
     os.replace(tmp, dst)
+
+
+def main(draw, usage=None, require=None, **savefig_kw):
+    """The command line every plot script shares: `SCRIPT.py DATA.h5 OUT.png` draws draw(f) of the HDF5 file and
+    writes OUT.png atomically (savefig_kw: matplotlib's, e.g. dpi).  Wrong arguments exit with `usage` (else a usage
+    line naming the script); a file without the dataset `require` exits naming it."""
+    import h5py
+    script = os.path.basename(sys.argv[0])
+    if len(sys.argv) != 3:
+        sys.exit(usage or f"usage: {script} DATA.h5 OUT.png")
+    with h5py.File(sys.argv[1], "r") as f:
+        if require and require not in f:
+            sys.exit(f"{script}: {sys.argv[1]} has no dataset {require} (see the script's docstring)")
+        fig = draw(f)
+    save_atomic(fig, sys.argv[2], **savefig_kw)

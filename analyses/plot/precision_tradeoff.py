@@ -13,11 +13,10 @@ same table.  The windows panel also draws the paper's Table B.1 (analyses/refere
 import csv
 import math
 import os
-import sys
 
-import h5py
 
-from plotlib import save_atomic, texts  # noqa: F401  (also selects the Agg backend)
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import texts  # noqa: F401  (also selects the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 
 
@@ -41,12 +40,6 @@ def rows_of(f):
             row["window_n_max"] = int(nmax[m])
         rows.append(row)
     return rs, rows
-
-
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, dst)
 
 
 def draw(f):
@@ -153,6 +146,4 @@ def draw(f):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: precision_tradeoff.py NAME.h5 OUT.png")
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw)

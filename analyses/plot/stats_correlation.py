@@ -3,10 +3,7 @@
 """Draws C_N(phi, psi; n) against the lag n (linear, and log |C_N| with the window envelope, the noise floor
 and the fitted decay) and the power spectrum, from a `btob correlate` HDF5 file.
 Usage: stats_correlation.py DATA.h5 OUT.png"""
-import os
-import sys
 
-import h5py
 import matplotlib
 
 import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
@@ -73,15 +70,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: stats_correlation.py DATA.h5 OUT.png")
-    main(*sys.argv[1:])
+    plotlib.main(draw)

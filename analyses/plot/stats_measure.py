@@ -3,10 +3,7 @@
 """Draws the empirical measures of a `btob measure` HDF5 file: one image per group of coinciding measures
 (log colour, support outlined per group), their marginals, and the convergence against N.
 Usage: stats_measure.py DATA.h5 OUT.png"""
-import os
-import sys
 
-import h5py
 import matplotlib
 
 import plotlib  # noqa: E402,F401  (Agg for the command line; a Python session keeps its backend)
@@ -100,15 +97,5 @@ def draw(f):
     return fig
 
 
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    tmp = dst + f".tmp-{os.getpid()}.png"
-    fig.savefig(tmp)
-    os.replace(tmp, dst)
-
-
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: stats_measure.py DATA.h5 OUT.png")
-    main(*sys.argv[1:])
+    plotlib.main(draw)

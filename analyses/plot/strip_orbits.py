@@ -67,7 +67,7 @@ def main(h5path, dst):
         counts[key] = counts.get(key, 0) + 1
     summary = ", ".join(f"{c} {k}" for k, c in sorted(counts.items(), key=lambda kv: -kv[1]))
     fig.suptitle(f"{title}\nr = {r:g}; last {a['tail']} of {a['iterations']} iterations; start points random in the strip "
-                 f"(w1 in [{a['w1_min']:g}, {a['w1_max']:g}], seed {a['seed']})\n"
+                 f"(w1 uniform in [{a['w1_min']:g}, {a['w1_max']:g}], w2 uniform in (-1, 1), seed {a['seed']})\n"
                  f"verdicts of the {len(rows)} orbits (btob's classifier): {summary}; "
                  f"dashed: w2 = 2 alpha w1 -+ 1, dotted: w1 = 0", fontsize=9)
     save_atomic(fig, dst)

@@ -3,20 +3,13 @@
 Usage: transfer_r.py NAME.h5 OUT.png   (reads NAME.h5 alone: r, re, im, gap, peripheral_count, window_lower,
 window_upper and the attributes boxes, samples, peripheral).  NaN values (no gap, no upper end of the window n = 1)
 are undefined values; eigenvalues that did not converge (NaN) are left out."""
-import sys
 
-import h5py
 import numpy as np
 
-from plotlib import attrs, save_atomic
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import attrs
 
 import matplotlib.pyplot as plt
-
-
-def main(h5_path, png):
-    with h5py.File(h5_path, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, png)
 
 
 def draw(f):
@@ -80,6 +73,4 @@ def draw(f):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: transfer_r.py NAME.h5 OUT.png")
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw)

@@ -7,18 +7,11 @@ Reads NAME.h5 alone (written by `btob windows precision`, NAME = precision by de
 (rows x n) and the rows' precision and route (string datasets); NAME.csv is the same table.
 """
 import math
-import sys
 
-import h5py
 
-from plotlib import save_atomic, texts
+import plotlib  # noqa: E402  (main: the command line)
+from plotlib import texts
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def main(src, dst):
-    with h5py.File(src, "r") as f:
-        fig = draw(f)
-    save_atomic(fig, dst, dpi=130)
 
 
 def draw(f):
@@ -73,6 +66,4 @@ def draw(f):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: windows_precision.py NAME.h5 OUT.png")
-    main(sys.argv[1], sys.argv[2])
+    plotlib.main(draw, dpi=130)

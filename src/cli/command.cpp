@@ -52,6 +52,8 @@ void validate_output(const Output& o, bool threads_given) {
   if (threads_given && (o.threads < 1 || o.threads > core::RunControl::max_threads))
     throw core::InvalidField("threads", std::to_string(o.threads),
                              fmt::format("1..{} (omit the flag for all cores)", core::RunControl::max_threads));
+  if (o.format != "csv" && o.format != "latex")
+    throw core::InvalidField("format", "'" + o.format + "'", "csv or latex");
   if (!o.files) return;
   if (o.out.empty()) throw core::InvalidField("out", "''", "an output folder");
   if (o.name.empty() || o.name.find('/') != std::string::npos)
@@ -80,6 +82,8 @@ Context make_context(const std::string& command, const Output& o, const std::str
   c.request_args = std::move(request_args);
   c.command = command;
   c.quiet = o.quiet;
+  c.latex = o.format == "latex";
+  c.title = o.title;
   return c;
 }
 }  // namespace detail

@@ -20,6 +20,7 @@
 #include "core/sweep.hpp"
 #include "core/work.hpp"
 #include "extras/extras.hpp"
+#include "io/latex.hpp"
 #include "io/rates.hpp"
 #include "io/result_files.hpp"
 
@@ -53,6 +54,8 @@ struct Output {
   bool resume = false;   // keep finished items in a checkpoint and continue from it (cli/checkpoint.hpp)
   bool sweep = false;    // the request is a sweep (core/sweep.hpp): it has --dry-run and --resume
   bool costed = false;   // the request counts its work (core/work.hpp): it has --dry-run from the cached route rates
+  bool tabular = false;  // the result has CSV tables (tables()): it has --format
+  std::string format = "csv";  // csv, or latex: the tables also as booktabs LaTeX (io/latex.hpp)
   // false: the command prints its result on stdout; given --out, it writes the result's files instead (NAME.h5
   // when it has arrays, its CSV tables, NAME.json), as Python's save() does, and has no figure (no --no-plot)
   bool files = true;
@@ -75,6 +78,13 @@ struct Output {
     }
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
+    if (tabular && files)
+      v("format", format, "csv (the CSV tables) or latex (also each table as a booktabs LaTeX table, NAME.tex beside "
+                          "NAME.csv: exact decimals as printed, each number's status in a footnote under the table)");
+    if (tabular && !files)
+      v("format", format, "csv (print the CSV table) or latex (print it as a booktabs LaTeX table instead: exact "
+                          "decimals as printed, each number's status in a footnote under the table; with --out "
+                          "also NAME.tex beside NAME.csv)");
     v("quiet", quiet, "no progress or summary on stderr");
     if (sweep)
       v("dry-run", dry_run,
@@ -104,11 +114,16 @@ struct Context {
   Args request_args;         // the request as recorded in the manifest
   std::string command;       // the subcommand
   bool quiet = false;        // --quiet (and every MPI rank but 0)
+  bool latex = false;        // --format latex: the result's tables also as LaTeX (Context::manifest writes them)
+  std::string title;         // --title, the LaTeX tables' caption
   std::shared_ptr<Checkpoint> checkpoint;  // --resume: the sweep's checkpoint (every rank), else null
   // The manifest's request record: {"command": command, "args": request_args}.
   void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
+    if (latex) files.latex(command_line, caption());
     files.manifest(attrs, command, request_args);
   }
+  // The caption of its LaTeX tables: --title, else "btob COMMAND".
+  std::string caption() const { return title.empty() ? "btob " + command : title; }
   // Provenance, the result's own attributes, and kind, name, title, scalar_type, threads.
   io::Attrs attrs(const Output& o, const core::Contents& c, const std::string& kind, const std::string& scalar) const;
 };
@@ -134,6 +149,9 @@ template <class Req> auto run_with_progress(const Req& req, const Output& o, con
     if (ctx.checkpoint) return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
   return run(req, control);
 }
+
+// A request whose result has CSV tables (core::Tables): its command has --format csv|latex.
+template <class Req> concept Tabular = requires(const Req& q, const core::RunControl& c) { run(q, c).tables(); };
 
 // A command runnable from a scene or a manifest: sets fields by name and runs.
 struct SceneCommand {
@@ -249,6 +267,22 @@ template <class Req> void write_files(const Req& req, const Output& o, const Con
   const auto written = files.commit();
   if (!o.quiet) std::cerr << "btob: wrote " << listing(written) << "\n";
 }
+// A stdout command given --format latex (and no --out): its tables as booktabs LaTeX on stdout instead of the CSV
+// (io/latex.hpp), the status of each number from the result's Contents.  Nothing is printed when it has no table.
+template <class Req> void print_latex(const Req& req, const Output& o, const Context& ctx, const std::string& kind) {
+  if constexpr (Tabular<Req>) {
+    const auto res = run_with_progress(req, o, ctx, kind);
+    core::Contents c;
+    res.describe(c);
+    const core::Tables tables = res.tables();
+    if (tables.empty())
+      throw UsageError(fmt::format("--format: got 'latex', but this '{}' request has no table; expected csv", ctx.command));
+    std::string text;
+    for (const auto& [role, csv] : tables)
+      text += io::latex_document(csv, c.status, ctx.command_line, ctx.caption() + (role.empty() ? "" : " (" + role + ")"));
+    std::cout << text << std::flush;
+  }
+}
 // Adds subcommand `name` to `app`; a name of several words ("windows bounds") goes under the subcommands named by
 // the words before the last, each found or else created (a parent registered earlier keeps its help and settings).
 CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& help);
@@ -347,10 +381,13 @@ template <class Req> void remember_self_rate(const Req& req, const Output& out, 
 // The body, or the files of a stdout command given --out.
 template <class Req>
 void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
-  if (!out.files && !out.out.empty()) {
+  if (!out.files && (!out.out.empty() || out.format == "latex")) {
     std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
     std::replace(kind.begin(), kind.end(), ' ', '_');
-    if (mpi::rank() == 0) write_files(req, out, ctx, kind);
+    if (mpi::rank() == 0) {
+      if (out.out.empty()) print_latex(req, out, ctx, kind);
+      else write_files(req, out, ctx, kind);
+    }
     return;
   }
   body(req, out, ctx);
@@ -408,6 +445,7 @@ void add_flags_command(CLI::App& app, const std::string& name, const std::string
   Output defaults = output_defaults;
   defaults.sweep = core::Sweep<Req>;
   defaults.costed = core::Costed<Req>;
+  defaults.tabular = Tabular<Req>;
   auto s = std::make_shared<State>(State{request_defaults, defaults, {}, {}});
   CLI::App* c = add_nested(app, name, help);
   mpi::request_apps().push_back(c);
@@ -427,6 +465,7 @@ void run_from_args(const std::string& name, const Body<Req>& body, Req req, Outp
                    const std::string& invocation) {
   out.sweep = core::Sweep<Req>;
   out.costed = core::Costed<Req>;
+  out.tabular = Tabular<Req>;
   std::vector<bool> used(args.size(), false);
   req.fields(ArgsApplier{&args, &used});
   out.fields(ArgsApplier{&args, &used});

@@ -3,6 +3,7 @@
 #include "io/result_files.hpp"
 #include "core/request.hpp"
 #include "io/cancel.hpp"
+#include "io/latex.hpp"
 
 #include <H5Cpp.h>
 #include <hdf5_hl.h>
@@ -71,6 +72,15 @@ void ResultFiles::text(const std::string& filename, const std::string& content) 
 
 void ResultFiles::tables(const core::Tables& t) {
   for (const auto& [role, content] : t) text(core::table_file(name_, role), content);
+  tables_.insert(tables_.end(), t.begin(), t.end());
+}
+
+void ResultFiles::latex(const std::string& command_line, const std::string& caption) {
+  for (const auto& [role, content] : tables_) {
+    std::string file = core::table_file(name_, role);
+    file.replace(file.size() - 4, 4, ".tex");
+    text(file, latex_document(content, status_, command_line, caption + (role.empty() ? "" : " (" + role + ")")));
+  }
 }
 
 namespace {
@@ -283,6 +293,7 @@ struct QuietFile {
 
 // attributes -> arrays -> decimals and texts -> dimension scales; an HDF5 failure is one line naming the file.
 void ResultFiles::h5(const core::Contents& c, const Attrs& attrs) {
+  status_.insert(c.status.begin(), c.status.end());
   const std::string filename = name_ + ".h5";
   const fs::path p = staged(filename);
   H5::Exception::dontPrint();

@@ -8,6 +8,7 @@
 #include "io/io.hpp"
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ class ResultFiles {
   void text(const std::string& filename, const std::string& content);
   // A result's CSV tables (core::Tables), each to its core::table_file(NAME, role).
   void tables(const core::Tables& t);
+  // --format latex: each table given to tables() also as a booktabs LaTeX table (io/latex.hpp) beside its CSV
+  // (NAME.tex, NAME_role.tex), the status of its numbers from the Contents given to h5(); `command_line` heads it,
+  // `caption` (with the table's role) is its caption.
+  void latex(const std::string& command_line, const std::string& caption);
   // NAME.json: the attributes, and the request that made the result as {"command": ..., "args": {...}}.
   void manifest(const Attrs& attrs, const std::string& command,
                 const std::vector<std::pair<std::string, std::vector<std::string>>>& args);
@@ -62,6 +67,8 @@ class ResultFiles {
   fs::path out_, tmp_;
   std::string name_;
   std::vector<std::string> files_;
+  core::Tables tables_;                          // what tables() wrote, for latex()
+  std::map<std::string, core::Status> status_;  // the status of the numbers h5() wrote, for latex()
   bool committed_ = false;
 };
 
