@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Tables for papers: `--format latex` gives the CSV's table as a booktabs LaTeX table, digit for digit.
 
 Runs the commands whose tables a paper quotes, each with --format latex on standard output and again with --out

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long check (label long) of the scan of a word's stability set at the edge of its resolution: the window of
 // 1^n 3^n that `btob pattern --window` scans equals Table B.1's [lower bound, r_crit,2(n)] for every n = 2..200, and
 // is empty for n = 1 (the fast test_pattern_resolution covers n = 2..30, 50, 99, 150, 200).  Two references, each independent of the

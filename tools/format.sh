@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Holds every C++ file of the repository to its .clang-format (the house style, tuned to clang-format 14).
 # Usage: tools/format.sh [--fix]
 #   (no option)  check: change nothing, print clang-format's findings and how many, exit 1 when there is any

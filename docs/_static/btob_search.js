@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The search page's summaries: Sphinx's searchtools.js fetches each result's page to quote the words found in it,
 // and a browser refuses fetch() to pages opened from disk (file://: a CORS error in the console for every result,
 // and no summary anyway).  There the results are listed without summaries; served over HTTP they keep them.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Doxygen's INPUT_FILTER for btob's headers: reads a header, prints it with its house-style comments marked as
 documentation, every line kept in place (Doxygen's line numbers stay right).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The C++ API reference: the headers `cmake --install` puts under <prefix>/include/btob, read by Doxygen (XML only,
 the house-style `//` comments marked as documentation by doxygen_filter.py), one Sphinx page per header of the
 umbrella header <btob/btob.hpp> made of Breathe directives (Breathe renders Doxygen's XML in Sphinx's C++ domain,

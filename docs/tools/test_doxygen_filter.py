@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Doxygen filter's rules on a header written in the house style (the test docs_cpp_filter): what becomes
 documentation and what stays a plain comment, with every line kept in place."""
 import os

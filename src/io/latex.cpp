@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tables for papers: CSV -> booktabs LaTeX (latex.hpp).
 #include "io/latex.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tables for papers: a result's CSV table (core/csv.hpp) as a LaTeX table with booktabs rules, the one LaTeX writer
 // behind every command's `--format latex` (cli/command.hpp).  The table is the CSV's, cell for cell:
 //   - every number keeps the digits the CSV prints (the exact decimals of windows bounds, pattern --window, ...);

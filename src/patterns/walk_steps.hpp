@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The matrix-vector steps this thread's orbit walks took so far (the power iterations that carry a saddle's or the
 // smallest eigenvalue's eigenvector along the word, whole periods until it converges, at most 64, and the forward
 // walks of the others): with the word's length, what a verdict's time is proportional to (its cost model,
