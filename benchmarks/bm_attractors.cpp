@@ -20,14 +20,15 @@ using namespace btob;
 void BM_basins(benchmark::State& st) {
   const int replicates = static_cast<int>(st.range(3));
   const double r = static_cast<double>(st.range(0)) / 1000;
-  const attractors::Grid g = attractors::parse_grid("strip:" + std::to_string(st.range(1)) + "x" +
-                                                        std::to_string(st.range(1)), -2, 2);
+  const attractors::Grid g =
+      attractors::parse_grid("strip:" + std::to_string(st.range(1)) + "x" + std::to_string(st.range(1)), -2, 2);
   attractors::Options o;
   o.run.threads = static_cast<int>(st.range(2));
   for (auto _ : st) {
     auto b = attractors::basins(r, g, replicates, 1, o);
     benchmark::DoNotOptimize(b.labels.data());
-    st.counters["certified"] = static_cast<double>(b.certified) / static_cast<double>(g.axis1.cells * g.axis2.cells * (replicates + 1));
+    st.counters["certified"] =
+        static_cast<double>(b.certified) / static_cast<double>(g.axis1.cells * g.axis2.cells * (replicates + 1));
     st.counters["map_iterations"] = static_cast<double>(b.iterations_total);
   }
   st.SetItemsProcessed(st.iterations() * g.axis1.cells * g.axis2.cells * (replicates + 1));
@@ -103,16 +104,38 @@ void BM_classify(benchmark::State& st) {
 
 BENCHMARK(BM_basins)->Name("smoke_basins")->Args({200, 8, 1, 0})->UseRealTime();
 BENCHMARK(BM_pass1<false>)->Name("smoke_pass1_batched")->Args({2})->UseRealTime();
-BENCHMARK(BM_basins)->Name("basins")->Args({200, 300, 1, 0})->Args({200, 300, 2, 0})->Args({102, 100, 1, 0})
-    ->Args({102, 100, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-// The basins' speed workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of it.
-BENCHMARK(BM_basins)->Name("basins_replicates")->Args({200, 333, 2, 2})->Args({200, 1000, 2, 2})->UseRealTime()
-    ->Unit(benchmark::kMillisecond)->Iterations(1);
-BTOB_PLAIN_REFERENCE;
-BENCHMARK(BM_classify)->Name("classify")->ArgsProduct({{102, 300}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_pass2<true>)->Name("pass2_fused")->ArgsProduct({{102, 300}, {64}, {1, 2}})->UseRealTime()
+BENCHMARK(BM_basins)
+    ->Name("basins")
+    ->Args({200, 300, 1, 0})
+    ->Args({200, 300, 2, 0})
+    ->Args({102, 100, 1, 0})
+    ->Args({102, 100, 2, 0})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_pass2<false>)->Name("pass2_recorder")->ArgsProduct({{102, 300}, {64}, {1, 2}})->UseRealTime()
+// The basins' speed workload: btob basins --r 0.2 --grid strip:1000x1000 (two replicates), 2 threads; and a ninth of
+// it.
+BENCHMARK(BM_basins)
+    ->Name("basins_replicates")
+    ->Args({200, 333, 2, 2})
+    ->Args({200, 1000, 2, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BTOB_PLAIN_REFERENCE;
+BENCHMARK(BM_classify)
+    ->Name("classify")
+    ->ArgsProduct({{102, 300}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_pass2<true>)
+    ->Name("pass2_fused")
+    ->ArgsProduct({{102, 300}, {64}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_pass2<false>)
+    ->Name("pass2_recorder")
+    ->ArgsProduct({{102, 300}, {64}, {1, 2}})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_pass1<true>)->Name("pass1_scalar")->Args({4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_pass1<false>)->Name("pass1_batched")->Args({64})->UseRealTime()->Unit(benchmark::kMillisecond);

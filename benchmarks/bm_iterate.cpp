@@ -84,8 +84,10 @@ void BM_core_clock(benchmark::State& st) {
     long v = 0;
     for (long i = 0; i < kChain; i += 8) {
 #if defined(__x86_64__)
-      asm volatile("add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\t"
-                   "add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0" : "+r"(v));
+      asm volatile(
+          "add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\t"
+          "add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0"
+          : "+r"(v));
 #else
       v += 8;
       benchmark::DoNotOptimize(v);
@@ -115,22 +117,71 @@ BENCHMARK(BM_core_clock)->Name("core_clock")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_scalar_loop<double>)->Name("scalar_loop/double")->Args({50, 5000})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_scalar_loop<float>)->Name("scalar_loop/float")->Args({50, 5000})->Unit(benchmark::kMillisecond);
 // Batched: 1000 r values x 32 orbits x 5000 iterations (1.6e8 map iterations), threads 1 and 2.
-BENCHMARK(BM_batched<double>)->Name("batched/double")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_batched<float>)->Name("batched/float")->Args({1000, 5000, 1})->Args({1000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<double>)
+    ->Name("batched/double")
+    ->Args({1000, 5000, 1})
+    ->Args({1000, 5000, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<float>)
+    ->Name("batched/float")
+    ->Args({1000, 5000, 1})
+    ->Args({1000, 5000, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 // The full Figure 4.1 workload (5000 r, 8e8 map iterations) with the density recorder.
-BENCHMARK(BM_fig41<double, true>)->Name("fig41_density/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41<float, true>)->Name("fig41_density/float")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41<double, false>)->Name("fig41_plain/double")->Args({5000, 5000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, true>)
+    ->Name("fig41_density/double")
+    ->Args({5000, 5000, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<float, true>)
+    ->Name("fig41_density/float")
+    ->Args({5000, 5000, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, false>)
+    ->Name("fig41_plain/double")
+    ->Args({5000, 5000, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_fig41<double, true>)->Name("fig41_density/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_fig41<double, false>)->Name("fig41_plain/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_fig41<double, true, Coord::w2>)->Name("fig41_density_w2/double")->Args({5000, 5000, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fig41<double, true, Coord::w2>)
+    ->Name("fig41_density_w2/double")
+    ->Args({5000, 5000, 1})
+    ->Unit(benchmark::kMillisecond);
 // Wider precisions: batched 1 and 2 threads, scalar loop.
-BENCHMARK(BM_batched<long double>)->Name("batched/long-double")->Args({20, 2000, 1, 0})->Args({20, 2000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_batched<btob::core::float128>)->Name("batched/float128")->Args({4, 1000, 1, 0})->Args({4, 1000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_batched<btob::core::mpfr_float>)->Name("batched/mpfr")->Args({1, 500, 1, 50})->Args({1, 500, 2, 50})->Args({1, 500, 1, 100})->Args({1, 500, 2, 100})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<long double>)
+    ->Name("batched/long-double")
+    ->Args({20, 2000, 1, 0})
+    ->Args({20, 2000, 2, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<btob::core::float128>)
+    ->Name("batched/float128")
+    ->Args({4, 1000, 1, 0})
+    ->Args({4, 1000, 2, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_batched<btob::core::mpfr_float>)
+    ->Name("batched/mpfr")
+    ->Args({1, 500, 1, 50})
+    ->Args({1, 500, 2, 50})
+    ->Args({1, 500, 1, 100})
+    ->Args({1, 500, 2, 100})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_scalar_loop<long double>)->Name("scalar_loop/long-double")->Args({4, 2000})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_scalar_loop<btob::core::float128>)->Name("scalar_loop/float128")->Args({2, 1000})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_scalar_loop<btob::core::mpfr_float>)->Name("scalar_loop/mpfr")->Args({1, 300, 50})->Args({1, 300, 100})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<btob::core::float128>)
+    ->Name("scalar_loop/float128")
+    ->Args({2, 1000})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_scalar_loop<btob::core::mpfr_float>)
+    ->Name("scalar_loop/mpfr")
+    ->Args({1, 300, 50})
+    ->Args({1, 300, 100})
+    ->Unit(benchmark::kMillisecond);
 // Smoke runs for CTest (tiny sizes).
 BENCHMARK(BM_scalar_loop<double>)->Name("smoke/scalar_loop")->Args({2, 50});
 BENCHMARK(BM_batched<double>)->Name("smoke/batched")->Args({2, 50, 2})->UseRealTime();

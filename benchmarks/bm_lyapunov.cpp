@@ -33,7 +33,8 @@ iterate::Ensemble workload(long r_count) {
 // precision of the lab; the MPFR digits are the benchmark's second argument.  Orbit = true: the one-orbit route that
 // `btob lyapunov` runs (projective_orbit: the kernel's step, Gram-Schmidt every few steps), the same workload.
 template <class T, bool Orbit = false> void BM_qr_route(benchmark::State& st) {
-  if constexpr (std::is_same_v<T, core::mpfr_float>) core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
+  if constexpr (std::is_same_v<T, core::mpfr_float>)
+    core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
   const long n = st.range(0);
   lyapunov::Options o;
   o.transient = n / 10;
@@ -41,7 +42,8 @@ template <class T, bool Orbit = false> void BM_qr_route(benchmark::State& st) {
   o.blocks = 10;
   const Eigen::Matrix<T, 3, 1> u0(T(1), T(-0.9), T(-0.2));
   for (auto _ : st) {
-    auto res = Orbit ? lyapunov::projective_orbit<T>(u0, T(0.3), o) : lyapunov::projective_exponents_qr<T>(u0, T(0.3), o);
+    auto res =
+        Orbit ? lyapunov::projective_orbit<T>(u0, T(0.3), o) : lyapunov::projective_exponents_qr<T>(u0, T(0.3), o);
     benchmark::DoNotOptimize(res.lambda[0].value);
   }
   st.SetItemsProcessed(st.iterations() * (o.transient + o.iterations));
@@ -93,7 +95,7 @@ void BM_clv_scalar(benchmark::State& st) {
   const long n = static_cast<long>(e.orbits());
   for (auto _ : st) {
     std::vector<double> med(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static) num_threads(static_cast<int>(st.range(1)))
+#pragma omp parallel for schedule(static) num_threads(static_cast <int>(st.range(1)))
     for (long i = 0; i < n; ++i) {
       const std::size_t o_ = static_cast<std::size_t>(i);
       med[o_] = lyapunov::covariant_vectors<double>(e.initial[o_ % e.initial.size()], e.r[o_ / e.initial.size()], o)
@@ -112,7 +114,8 @@ void BM_clv_batched(benchmark::State& st) {
     auto rows = lyapunov::covariant_vectors_batched(e.r, e.initial, o, run);
     benchmark::DoNotOptimize(rows.data());
   }
-  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) * (o.transient + o.window + o.backward_transient));
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(e.orbits()) *
+                       (o.transient + o.window + o.backward_transient));
 }
 
 BENCHMARK(BM_qr_route<double>)->Name("smoke_qr_route")->Args({2000, 0});
@@ -121,23 +124,46 @@ BENCHMARK(BM_qr_route<float>)->Name("qr_route/float")->Args({1000000, 0})->Unit(
 BENCHMARK(BM_qr_route<double>)->Name("qr_route/double")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<long double>)->Name("qr_route/long-double")->Args({200000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<core::float128>)->Name("qr_route/float128")->Args({20000, 0})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_qr_route<core::mpfr_float>)->Name("qr_route/mpfr")->Args({5000, 50})->Args({5000, 100})
+BENCHMARK(BM_qr_route<core::mpfr_float>)
+    ->Name("qr_route/mpfr")
+    ->Args({5000, 50})
+    ->Args({5000, 100})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<double, true>)->Name("smoke_orbit")->Args({2000, 0});
 BENCHMARK(BM_qr_route<float, true>)->Name("orbit/float")->Args({10000000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<double, true>)->Name("orbit/double")->Args({10000000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<long double, true>)->Name("orbit/long-double")->Args({1000000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_qr_route<core::float128, true>)->Name("orbit/float128")->Args({200000, 0})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_qr_route<core::mpfr_float, true>)->Name("orbit/mpfr")->Args({100000, 50})->Args({100000, 100})
+BENCHMARK(BM_qr_route<core::mpfr_float, true>)
+    ->Name("orbit/mpfr")
+    ->Args({100000, 50})
+    ->Args({100000, 100})
     ->Unit(benchmark::kMillisecond);
 BTOB_PLAIN_REFERENCE;
-BENCHMARK(BM_map<false>)->Name("map_double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
+BENCHMARK(BM_map<false>)
+    ->Name("map_double")
+    ->Args({500, 10000, 1})
+    ->Args({500, 10000, 2})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_map<true>)->Name("map_float")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
+BENCHMARK(BM_map<true>)
+    ->Name("map_float")
+    ->Args({500, 10000, 1})
+    ->Args({500, 10000, 2})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_clv_scalar)->Name("clv_scalar")->Args({4, 1})->Args({4, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_clv_batched)->Name("clv_batched")->Args({20, 1})->Args({20, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_map_recorder)->Name("map_recorder/double")->Args({500, 10000, 1})->Args({500, 10000, 2})->UseRealTime()
+BENCHMARK(BM_clv_batched)
+    ->Name("clv_batched")
+    ->Args({20, 1})
+    ->Args({20, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_map_recorder)
+    ->Name("map_recorder/double")
+    ->Args({500, 10000, 1})
+    ->Args({500, 10000, 2})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -2,8 +2,8 @@
 // C_N(phi, psi; n) by FFT (FFTW) against the direct sum, templated on T; items = lag-products N (n_max + 1).
 // The direct sum costs N (n_max + 1) multiply-adds: at N = 1e6, n_max = 1e5 that is 1e11; it is measured
 // at n_max = 1e3 and 1e4 (linear in n_max) and run once (Iterations(1), ~10 s on 2 cores) at the full size;
-// the FFT route is measured at the full size.  A scalar baseline (one accumulator, no blocking, no threads) sits beside the direct sum.
-// BM_orbit_correlation is the whole user path: iterate 1.1e6 states, observe phi, C_N over 1e6 points.
+// the FFT route is measured at the full size.  A scalar baseline (one accumulator, no blocking, no threads) sits beside
+// the direct sum. BM_orbit_correlation is the whole user path: iterate 1.1e6 states, observe phi, C_N over 1e6 points.
 #include "stats/stats.hpp"
 
 #include <benchmark/benchmark.h>
@@ -63,16 +63,42 @@ void BM_orbit_correlation(benchmark::State& st) {
 }
 }  // namespace
 
-BENCHMARK(BM_fft<double>)->Name("correlation_fft<double>")->Args({1000000, 100000})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_fft<float>)->Name("correlation_fft<float>")->Args({1000000, 100000})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_fft<long double>)->Name("correlation_fft<long double>")->Args({1000000, 100000})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_direct<double>)->Name("correlation_direct<double>")->Args({1000000, 1000})->Args({1000000, 10000})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_direct<double>)->Name("correlation_direct<double>")->Args({1000000, 100000})->Iterations(1)
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_direct_scalar<double>)->Name("correlation_direct_scalar<double>")->Args({1000000, 1000})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_orbit_correlation)->Name("orbit_correlation<double>")->Args({1000000, 100000})->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_fft<double>)
+    ->Name("correlation_fft<double>")
+    ->Args({1000000, 100000})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_fft<float>)
+    ->Name("correlation_fft<float>")
+    ->Args({1000000, 100000})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_fft<long double>)
+    ->Name("correlation_fft<long double>")
+    ->Args({1000000, 100000})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_direct<double>)
+    ->Name("correlation_direct<double>")
+    ->Args({1000000, 1000})
+    ->Args({1000000, 10000})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_direct<double>)
+    ->Name("correlation_direct<double>")
+    ->Args({1000000, 100000})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_direct_scalar<double>)
+    ->Name("correlation_direct_scalar<double>")
+    ->Args({1000000, 1000})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_orbit_correlation)
+    ->Name("orbit_correlation<double>")
+    ->Args({1000000, 100000})
+    ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_fft<double>)->Name("smoke/correlation_fft<double>")->Args({1000, 100});
 BENCHMARK(BM_fft<float>)->Name("smoke/correlation_fft<float>")->Args({1000, 100});

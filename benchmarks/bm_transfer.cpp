@@ -46,10 +46,22 @@ void BM_analysis(benchmark::State& st) {
 
 BENCHMARK(BM_matrix)->Name("smoke_matrix")->Args({16, 4, 1, 0})->Args({16, 4, 1, 1})->UseRealTime();
 BENCHMARK(BM_analysis)->Name("smoke_analysis")->Args({150, 16, 4, 1})->UseRealTime();
-BENCHMARK(BM_matrix)->Name("matrix")->Args({512, 64, 1, 0})->Args({512, 64, 1, 1})->Args({512, 64, 2, 0})
-    ->Args({512, 64, 2, 1})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_analysis)->Name("analysis")->Args({150, 512, 64, 2})->Args({210, 512, 64, 2})->Args({300, 512, 64, 2})
-    ->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_matrix)
+    ->Name("matrix")
+    ->Args({512, 64, 1, 0})
+    ->Args({512, 64, 1, 1})
+    ->Args({512, 64, 2, 0})
+    ->Args({512, 64, 2, 1})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_analysis)
+    ->Name("analysis")
+    ->Args({150, 512, 64, 2})
+    ->Args({210, 512, 64, 2})
+    ->Args({300, 512, 64, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 

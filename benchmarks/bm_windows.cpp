@@ -60,7 +60,13 @@ void BM_lower_bound(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_counts_descartes)->Name("smoke/counts_descartes")->Arg(5)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_counts_descartes)->Name("counts_descartes")->Arg(40)->Arg(60)->Arg(120)->Arg(150)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_counts_descartes)
+    ->Name("counts_descartes")
+    ->Arg(40)
+    ->Arg(60)
+    ->Arg(120)
+    ->Arg(150)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_counts_sturm)->Name("counts_sturm")->Arg(40)->Arg(60)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_certify)->Name("certify")->Arg(60)->Arg(150)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_lower_bound)->Name("lower_bound")->Args({150, 30})->Args({150, 512})->Unit(benchmark::kMillisecond);

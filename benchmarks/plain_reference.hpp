@@ -43,6 +43,10 @@ inline void plain_reference(benchmark::State& st) {
 }  // namespace btob::bench
 
 // The same arguments as bm_iterate's batched/double: 1000 r x 32 points x 5000 steps, 1 and 2 threads.
-#define BTOB_PLAIN_REFERENCE                                                                                         \
-  BENCHMARK(btob::bench::plain_reference)->Name("plain_reference")->Args({1000, 5000, 1})->Args({1000, 5000, 2})   \
-      ->UseRealTime()->Unit(benchmark::kMillisecond)
+#define BTOB_PLAIN_REFERENCE              \
+  BENCHMARK(btob::bench::plain_reference) \
+      ->Name("plain_reference")           \
+      ->Args({1000, 5000, 1})             \
+      ->Args({1000, 5000, 2})             \
+      ->UseRealTime()                     \
+      ->Unit(benchmark::kMillisecond)

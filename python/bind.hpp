@@ -99,7 +99,8 @@ struct KwargsApplier {
     } else {
       constexpr bool is_double = std::is_same_v<T, double> || std::is_same_v<T, std::vector<double>> ||
                                  std::is_same_v<T, core::Decimal> || std::is_same_v<T, std::vector<core::Decimal>>;
-      constexpr bool is_vector = std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>> ||
+      constexpr bool is_vector = std::is_same_v<T, std::vector<double>> ||
+                                 std::is_same_v<T, std::vector<std::string>> ||
                                  std::is_same_v<T, std::vector<core::Decimal>>;
       core::set_field(member, items_of(v, is_double, is_vector), name);
     }
@@ -181,7 +182,8 @@ template <class Req> Req request_of(const py::kwargs& kw) {
   req.fields(KwargsApplier{&kw, &used, &missing});
   for (auto item : kw) {
     const std::string k = item.first.cast<std::string>();
-    if (!used.count(k)) throw py::type_error(std::string(R::function) + "() got an unexpected keyword argument '" + k + "'");
+    if (!used.count(k))
+      throw py::type_error(std::string(R::function) + "() got an unexpected keyword argument '" + k + "'");
   }
   if (!missing.empty())
     throw py::type_error(std::string(R::function) + "() missing required keyword argument '" + *missing.begin() + "'");
@@ -198,8 +200,8 @@ template <class Req, class Res> void present(Req& req, int threads, ResultOf<Res
   const long used_threads = threads > 0 ? threads : default_threads();
   std::string call;
   req.fields(CallWriter{&call});
-  holder.attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder.contents, R::kind_of(req),
-                                  R::name_of(req), "", R::scalar(req, holder.res), used_threads);
+  holder.attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder.contents,
+                                  R::kind_of(req), R::name_of(req), "", R::scalar(req, holder.res), used_threads);
   holder.extras.apply(holder.attrs);
   holder.function = R::function;
   holder.command = R::command;
@@ -253,11 +255,13 @@ template <class Req> py::object call(py::kwargs kw) {
     if (const std::string path = resume_of(kw); !path.empty()) cp = open_resume(req, path);
   // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
   // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
-  run_released([&](const core::RunControl& c) {
-    holder->res = run_or_resume(req, c, cp.get());
-    core::check_cancel(c.cancel);
-    holder->extras = extras::of(req, holder->res, c);
-  }, threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+  run_released(
+      [&](const core::RunControl& c) {
+        holder->res = run_or_resume(req, c, cp.get());
+        core::check_cancel(c.cancel);
+        holder->extras = extras::of(req, holder->res, c);
+      },
+      threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
   if (cp) io::remove_checkpoint(*cp);
   present(req, threads, *holder);
   return py::cast(std::static_pointer_cast<ResultBase>(holder));
@@ -290,8 +294,8 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
   for (std::size_t i = 0; i < docs.size(); ++i) {
     py::list texts;
     for (const auto& t : docs[i].defaults) texts.append(py::str(t));
-    params.append(py::make_tuple(py::str(keyword(docs[i].name)), py::str(types[i].type.python), texts,
-                                 docs[i].required));
+    params.append(
+        py::make_tuple(py::str(keyword(docs[i].name)), py::str(types[i].type.python), texts, docs[i].required));
   }
   m.attr("_signatures")[R::function] = py::make_tuple(params, core::Sweep<Req>);
 }
@@ -374,11 +378,14 @@ template <class Req> void bind(py::module_& m) {
   defaults.fields(core::DocLister{&docs});
   defaults.fields(core::TypeLister{&types});
   doc += field_doc_lines(docs, types);
-  doc += "    threads: int = 0: OpenMP threads (0: all cores)\n"
-         "    progress: bool | Callable = False: True (tqdm), or callable(done, total)\n";
+  doc +=
+      "    threads: int = 0: OpenMP threads (0: all cores)\n"
+      "    progress: bool | Callable = False: True (tqdm), or callable(done, total)\n";
   if constexpr (core::Sweep<Req>)
-    doc += "    resume: str | None = None: 'DIR/NAME.checkpoint': keep the finished items in that file and continue from it (the "
-           "command line's --resume; refused for another request or build; removed once the result is complete)\n";
+    doc +=
+        "    resume: str | None = None: 'DIR/NAME.checkpoint': keep the finished items in that file and continue from "
+        "it (the "
+        "command line's --resume; refused for another request or build; removed once the result is complete)\n";
   m.def(R::function, &detail::call<Req>, doc.c_str());
   detail::list_function(m, defaults);
   if constexpr (core::Sweep<Req>) detail::bind_estimate<Req>(m);

@@ -72,7 +72,8 @@ void run_kernel(const iterate::Ensemble& e, long iterations, Rec& rec, const cor
 }
 
 template <class Rec>
-void run_precision(const std::string& precision, const iterate::Ensemble& e, long it, Rec& rec, const core::RunControl& c) {
+void run_precision(const std::string& precision, const iterate::Ensemble& e, long it, Rec& rec,
+                   const core::RunControl& c) {
   if (precision == "float") run_kernel<float>(e, it, rec, c);
   else if (precision == "double") run_kernel<double>(e, it, rec, c);
   else if (precision == "long-double") run_kernel<long double>(e, it, rec, c);
@@ -105,8 +106,8 @@ iterate::Ensemble orbits_of(py::handle r, py::handle points, long iterations, lo
 }
 
 py::object iterate_orbits(py::handle r, py::handle points, long iterations, const std::string& record,
-                         const std::string& coord, long tail, const std::string& precision, int threads,
-                         py::object progress) {
+                          const std::string& coord, long tail, const std::string& precision, int threads,
+                          py::object progress) {
   const iterate::Ensemble e = orbits_of(r, points, iterations, tail, precision);
   const bool scalar_r = !PySequence_Check(r.ptr()) && !py::isinstance<py::array>(r);
   std::vector<py::ssize_t> shape;
@@ -114,7 +115,8 @@ py::object iterate_orbits(py::handle r, py::handle points, long iterations, cons
   shape.push_back(static_cast<py::ssize_t>(e.initial.size()));
   // One kernel run in the requested precision, feeding `rec`, with the GIL released and Ctrl-C watched.
   const auto run = [&](auto& rec) {
-    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, threads, progress);
+    run_released([&](const core::RunControl& c) { run_precision(precision, e, iterations, rec, c); }, threads,
+                 progress);
   };
   if (record == "tail") {
     iterate::TailRecorder rec(iterate::parse_coord(coord, "coord"), e.orbits(), iterations, tail);

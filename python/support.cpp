@@ -112,9 +112,10 @@ std::vector<std::string> save(const ResultBase& r, const std::string& out, const
       drawn = r.plot_many ? files.plot_figures(r.plot, inputs) : files.plot_inputs(r.plot, inputs);
     }
     if (!drawn)
-      throw std::runtime_error(fmt::format("save: the figure's script {} failed (its message is above); nothing was "
-                                           "written to {} (plot=False writes the data alone)",
-                                           r.plot, out));
+      throw std::runtime_error(
+          fmt::format("save: the figure's script {} failed (its message is above); nothing was "
+                      "written to {} (plot=False writes the data alone)",
+                      r.plot, out));
   }
   std::vector<std::string> written;
   for (const auto& p : files.commit()) written.push_back(p.string());
@@ -289,7 +290,8 @@ py::list result_dir(const ResultBase& r) {
   for (const auto& d : r.contents.decimals) l.append(d.name);
   for (const auto& t : r.contents.texts) l.append(t.name);
   for (const auto& [k, v] : r.attrs) l.append(k);
-  for (const char* k : {"attrs", "arrays", "decimals", "texts", "status", "info", "plot", "save", "function", "tables"}) l.append(k);
+  for (const char* k : {"attrs", "arrays", "decimals", "texts", "status", "info", "plot", "save", "function", "tables"})
+    l.append(k);
   return l;
 }
 
@@ -313,26 +315,33 @@ void bind_result(py::module_& m) {
       .def("__getattr__", &result_attribute)
       .def_property_readonly("attrs", &attrs_dict,
                              "provenance and summary: the attributes the command line writes to NAME.h5 (a dict)")
-      .def_property_readonly("arrays", [](const ResultBase& r) { return names_of(r.contents.arrays); },
-                             "names of the result's arrays (each is also an attribute: res.NAME, a numpy view)")
-      .def_property_readonly("decimals", [](const ResultBase& r) { return names_of(r.contents.decimals); },
-                             "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
-      .def_property_readonly("texts", [](const ResultBase& r) { return names_of(r.contents.texts); },
-                             "names of the string arrays (word names, overlay names): res.<name> is a list of str")
-      .def_property_readonly("status", &status_dict,
-                             "what kind of number each value computed beyond double (and each estimate) is: "
-                             "{name: {'status': 'certified'|'estimated'|'conjectured', 'basis': ..., 'confidence': ...}}")
+      .def_property_readonly(
+          "arrays", [](const ResultBase& r) { return names_of(r.contents.arrays); },
+          "names of the result's arrays (each is also an attribute: res.NAME, a numpy view)")
+      .def_property_readonly(
+          "decimals", [](const ResultBase& r) { return names_of(r.contents.decimals); },
+          "names of the result's exact decimal columns (res.NAME: a list of decimal.Decimal)")
+      .def_property_readonly(
+          "texts", [](const ResultBase& r) { return names_of(r.contents.texts); },
+          "names of the string arrays (word names, overlay names): res.<name> is a list of str")
+      .def_property_readonly(
+          "status", &status_dict,
+          "what kind of number each value computed beyond double (and each estimate) is: "
+          "{name: {'status': 'certified'|'estimated'|'conjectured', 'basis': ..., 'confidence': ...}}")
       .def("info", &array_info, "dims, axes, units and description of an array, a decimal column or a string array")
-      .def_property_readonly("function", [](const ResultBase& r) { return r.function; },
-                             "the Python function that made this result (e.g. 'bifurcation')")
-      .def_property_readonly("command", [](const ResultBase& r) { return r.command; },
-                             "the command line's subcommand of the same request (e.g. 'lyapunov-map')")
+      .def_property_readonly(
+          "function", [](const ResultBase& r) { return r.function; },
+          "the Python function that made this result (e.g. 'bifurcation')")
+      .def_property_readonly(
+          "command", [](const ResultBase& r) { return r.command; },
+          "the command line's subcommand of the same request (e.g. 'lyapunov-map')")
       .def_property_readonly("request", &request_dict, "the request's fields as text (what the manifest records)")
       .def("_save", &save_released)
       .def_property_readonly("plot_script", [](const ResultBase& r) { return r.plot; })
-      .def_property_readonly("plots_from_files", [](const ResultBase& r) { return !r.plot_inputs.empty(); },
-                             "True when the figure's script reads the command line's files (plot() saves the result "
-                             "to a temporary folder and shows the PNGs it writes)")
+      .def_property_readonly(
+          "plots_from_files", [](const ResultBase& r) { return !r.plot_inputs.empty(); },
+          "True when the figure's script reads the command line's files (plot() saves the result "
+          "to a temporary folder and shows the PNGs it writes)")
       .def_property_readonly("tables", &tables_dict, "the command line's CSV files of this result: {file name: text}")
       .def("__dir__", &result_dir)
       .def("__repr__", &result_repr);

@@ -2,10 +2,10 @@
 // Tests of src/attractors: classification (Table 6.1 patterns, collapse, quasi-periodic, chaotic), identity,
 // basins, fractions with intervals, determinism across thread counts, errors.
 #include "attractors/attractors.hpp"
-#include "core/coords.hpp"
-#include "core/fields.hpp"
 #include "attractors/recorders.hpp"
 #include "attractors/requests.hpp"
+#include "core/coords.hpp"
+#include "core/fields.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 #include "patterns/patterns.hpp"
@@ -251,8 +251,9 @@ TEST(Basins, FractionsSumToOneWithIntervals) {
     EXPECT_EQ(b.attractors[i].id, static_cast<int>(i) + 1);
   }
   EXPECT_CLOSE(sum, 1.0,
-               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
-                        "a few attractors (measured 0)"));
+               ulps(16,
+                    "fractions of counts over one total: a rounding per term and per addition, "
+                    "a few attractors (measured 0)"));
   EXPECT_EQ(b.labels.size(), 600u);
   EXPECT_EQ(b.replicate_fractions.size(), b.attractors.size() + 1);
   for (const auto& rf : b.replicate_fractions) EXPECT_EQ(rf.size(), 3u);
@@ -272,10 +273,14 @@ TEST(Basins, LabelsEqualClassifyAndCollectOfTheMainGrid) {
   const std::vector<Attractor> alone = collect(classify(e, {}), 0.2, &labels);
   ASSERT_EQ(b.labels.size(), labels.size());
   ASSERT_GE(alone.size(), 2u);
-  const auto key_of = [](const std::vector<Attractor>& as, std::uint32_t id) { return id == 0 ? std::string() : as[id - 1].key; };
-  for (std::size_t o = 0; o < labels.size(); ++o) EXPECT_EQ(key_of(b.attractors, b.labels[o]), key_of(alone, labels[o])) << o;
+  const auto key_of = [](const std::vector<Attractor>& as, std::uint32_t id) {
+    return id == 0 ? std::string() : as[id - 1].key;
+  };
+  for (std::size_t o = 0; o < labels.size(); ++o)
+    EXPECT_EQ(key_of(b.attractors, b.labels[o]), key_of(alone, labels[o])) << o;
   for (const Attractor& a : alone) {
-    const auto it = std::find_if(b.attractors.begin(), b.attractors.end(), [&](const Attractor& x) { return x.key == a.key; });
+    const auto it =
+        std::find_if(b.attractors.begin(), b.attractors.end(), [&](const Attractor& x) { return x.key == a.key; });
     ASSERT_NE(it, b.attractors.end()) << a.key;
     EXPECT_EQ(it->count, a.count) << a.key;
     const std::size_t i = static_cast<std::size_t>(it - b.attractors.begin());
@@ -316,14 +321,18 @@ TEST(Basins, EarlyExitGivesTheFullLengthVerdicts) {
       EXPECT_EQ(got[i].point, want[i].point) << at;
       // The table prints rotations with 10 and invariants with 8 significant digits.
       EXPECT_EQ(fmt::format("{:.10g} {:.10g}", got[i].rotation_min, got[i].rotation_max),
-                fmt::format("{:.10g} {:.10g}", want[i].rotation_min, want[i].rotation_max)) << at;
+                fmt::format("{:.10g} {:.10g}", want[i].rotation_min, want[i].rotation_max))
+          << at;
       EXPECT_EQ(fmt::format("{:.8g} {:.8g}", got[i].invariant_min, got[i].invariant_max),
-                fmt::format("{:.8g} {:.8g}", want[i].invariant_min, want[i].invariant_max)) << at;
+                fmt::format("{:.8g} {:.8g}", want[i].invariant_min, want[i].invariant_max))
+          << at;
       for (int k = 0; k <= q.replicates; ++k) {
         std::size_t c = 0;
-        for (const auto& v : per_grid[static_cast<std::size_t>(k)]) c += v.type != Type::undecided && v.key == want[i].key;
+        for (const auto& v : per_grid[static_cast<std::size_t>(k)])
+          c += v.type != Type::undecided && v.key == want[i].key;
         EXPECT_EQ(res.basins.replicate_fractions[i][static_cast<std::size_t>(k)],
-                  static_cast<double>(c) / static_cast<double>(n)) << at << ", grid " << k;
+                  static_cast<double>(c) / static_cast<double>(n))
+            << at << ", grid " << k;
       }
     }
     std::vector<std::uint32_t> labels;
@@ -440,8 +449,9 @@ TEST(Requests, BasinsMatchTheDirectRoute) {
     sum += res.fraction[i];
   }
   EXPECT_CLOSE(sum, 1.0,
-               ulps(16, "fractions of counts over one total: a rounding per term and per addition, "
-                        "a few attractors (measured 0)"));
+               ulps(16,
+                    "fractions of counts over one total: a rounding per term and per addition, "
+                    "a few attractors (measured 0)"));
   for (std::size_t i = 0; i < res.replicate_mean.size(); ++i) {
     const auto& v = b.replicate_fractions[i];
     ASSERT_EQ(v.size(), 3u);
@@ -499,8 +509,7 @@ TEST(Requests, BasinsRComparesWithTheTable) {
   for (std::size_t i = 0; i < 2; ++i) {
     double s = 0;
     for (std::size_t j = 0; j < cols; ++j) s += res.fraction[i * cols + j];
-    EXPECT_CLOSE(s, 1.0,
-                 ulps(16, "counts over one total: a rounding per term and per addition (measured 0)"));
+    EXPECT_CLOSE(s, 1.0, ulps(16, "counts over one total: a rounding per term and per addition (measured 0)"));
   }
   // No r at all, and a table asked for without its text, are refused naming the field.
   BasinsRRequest none;
@@ -527,7 +536,10 @@ TEST(Errors, NameTheField) {
     return std::string("no exception");
   };
   EXPECT_THROW(parse_grid("strip:0x10", -2, 2), std::invalid_argument);
-  EXPECT_NE(msg([] { parse_grid("strip:0x10", -2, 2); }).find("grid: got 'strip:0x10', expected sphere:NxM, strip:NxM or angles:NxM with N, M >= 1"), std::string::npos);
+  EXPECT_NE(msg([] {
+              parse_grid("strip:0x10", -2, 2);
+            }).find("grid: got 'strip:0x10', expected sphere:NxM, strip:NxM or angles:NxM with N, M >= 1"),
+            std::string::npos);
   EXPECT_THROW(parse_grid("strip:10", -2, 2), std::invalid_argument);
   EXPECT_THROW(parse_grid("disk:10x10", -2, 2), std::invalid_argument);
   // 2^32 x 2^32 cells: the point count wrapped to 0 in size_t, passed the memory check and wrote past the end.
@@ -593,8 +605,7 @@ TEST(Measure, SphereGridCountsSolidAngle) {
     for (const auto& u : rnd) in += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     for (const auto& u : pts) in_grid += core::strip<double>(u).first >= a && core::strip<double>(u).first <= b;
     const double p = strip_sphere_share(a, b), sd = std::sqrt(p * (1 - p) / 1e6);
-    EXPECT_CLOSE(in / 1e6, p,
-                 statistical(5 * sd + 1e-12, "5 sigma of a binomial count of 1e6 points"))
+    EXPECT_CLOSE(in / 1e6, p, statistical(5 * sd + 1e-12, "5 sigma of a binomial count of 1e6 points"))
         << "[" << a << ", " << b << "]";
     EXPECT_CLOSE(in_grid / n, p, bound(2e-3, "boundary cells, as above")) << "[" << a << ", " << b << "]";
   }
@@ -617,13 +628,16 @@ TEST(Measure, SphereGridAndRandomPointsAgreeTheRectangleDoesNot) {
   const auto v = classify(ensemble(q.r, tail), {});
   std::map<std::string, double> random_fraction, sphere_fraction, strip_fraction;
   for (const auto& a : collect(v, q.r, nullptr)) random_fraction[a.pattern] = static_cast<double>(a.count) / 3600;
-  for (std::size_t i = 0; i < s.basins.attractors.size(); ++i) sphere_fraction[s.basins.attractors[i].pattern] = s.fraction[i];
-  for (std::size_t i = 0; i < t.basins.attractors.size(); ++i) strip_fraction[t.basins.attractors[i].pattern] = t.fraction[i];
+  for (std::size_t i = 0; i < s.basins.attractors.size(); ++i)
+    sphere_fraction[s.basins.attractors[i].pattern] = s.fraction[i];
+  for (std::size_t i = 0; i < t.basins.attractors.size(); ++i)
+    strip_fraction[t.basins.attractors[i].pattern] = t.fraction[i];
   ASSERT_EQ(sphere_fraction.size(), 4u);  // 312^2, 132^2, 132^3312^3 and the P2 curves
   for (const auto& [pattern, p] : sphere_fraction) {
     // Two estimates of one p from 3600 points each: their difference has sd sqrt(2 p (1 - p) / 3600); 4 sd.
     EXPECT_CLOSE(random_fraction[pattern], p,
-                 statistical(4 * std::sqrt(2 * p * (1 - p) / 3600), "4 sd of the difference")) << pattern;
+                 statistical(4 * std::sqrt(2 * p * (1 - p) / 3600), "4 sd of the difference"))
+        << pattern;
   }
   const double curves = sphere_fraction["P2 invariant curves"], rect = strip_fraction["P2 invariant curves"];
   std::printf("r = 0.21, P2 invariant curves: sphere grid %.4f, random %.4f, strip rectangle %.4f\n", curves,

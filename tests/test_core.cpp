@@ -9,8 +9,8 @@
 #include "core/size_model.hpp"
 #include "iterate/ensemble.hpp"
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include <gtest/gtest.h>
 
@@ -49,7 +49,8 @@ template <class E, class F> void expect_error(F f, const std::vector<std::string
     ADD_FAILURE() << "no exception";
   } catch (const E& e) {
     const std::string msg = e.what();
-    for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "message '" << msg << "' lacks '" << p << "'";
+    for (const auto& p : parts)
+      EXPECT_NE(msg.find(p), std::string::npos) << "message '" << msg << "' lacks '" << p << "'";
   } catch (...) {
     ADD_FAILURE() << "exception of another type";
   }
@@ -73,7 +74,7 @@ TEST(Map, OddExtension) {
     for (const V& u : pts) {
       const auto a = btob::core::step(u, r), b = btob::core::step<double>(-u, r);
       ASSERT_EQ(a.symbol, b.symbol);
-      ASSERT_EQ(a.u, b.u);  // bitwise: negation is exact
+      ASSERT_EQ(a.u, b.u);                                 // bitwise: negation is exact
       ASSERT_EQ(btob::core::P(a.symbol, r) * (-u), -a.u);  // linearity of the branch, exact
     }
 }
@@ -116,7 +117,8 @@ TEST(Map, EigenvectorsOfPropositions51And53) {
     // Prop. 5.1: P1 (alpha, r + 1, 3 alpha) = r^2 (alpha, r + 1, 3 alpha): rounding of 3 terms of size <= 4.
     const V e(a, r + 1, 3 * a);
     EXPECT_SMALL((btob::core::P1(r) * e - r * r * e).norm(),
-                 ulps(16, "3 rounded terms of size <= 4 per entry").of(e.norm())) << r;
+                 ulps(16, "3 rounded terms of size <= 4 per entry").of(e.norm()))
+        << r;
     // The planes z = 0 (P1) and x = z (P2) are invariant.
     EXPECT_EQ((btob::core::P1(r) * V(0.3, -0.7, 0))(2), 0.0);
     const V w = btob::core::P2(r) * V(0.3, -0.7, 0.3);
@@ -166,11 +168,11 @@ TEST(Map, BranchConventionsOnExactTies) {
   // r = 0.5: alpha = 0.75, so the ties below are exact in binary floating point.
   const double r = 0.5;
   ASSERT_EQ(btob::core::alpha(r), 0.75);
-  EXPECT_EQ(btob::core::branch(V(0.75, 1, -1), r), 2);     // alpha y - x == 0 -> P2 (Remark 3.6)
-  EXPECT_EQ(btob::core::branch(V(1, -1, -0.75), r), 2);    // alpha y - z == 0 -> P2
-  EXPECT_EQ(btob::core::branch(V(1, 0, -1), r), 2);        // y == 0 -> P2
-  EXPECT_EQ(btob::core::branch(V(0, 0, -1), r), 2);        // x == y == 0 (alpha y - x == 0) -> P2
-  EXPECT_EQ(btob::core::branch(V(1, 0, 0), r), 2);         // y == z == 0 (alpha y - z == 0) -> P2
+  EXPECT_EQ(btob::core::branch(V(0.75, 1, -1), r), 2);   // alpha y - x == 0 -> P2 (Remark 3.6)
+  EXPECT_EQ(btob::core::branch(V(1, -1, -0.75), r), 2);  // alpha y - z == 0 -> P2
+  EXPECT_EQ(btob::core::branch(V(1, 0, -1), r), 2);      // y == 0 -> P2
+  EXPECT_EQ(btob::core::branch(V(0, 0, -1), r), 2);      // x == y == 0 (alpha y - x == 0) -> P2
+  EXPECT_EQ(btob::core::branch(V(1, 0, 0), r), 2);       // y == z == 0 (alpha y - z == 0) -> P2
   // One ulp-sized step off the ties selects P1 / P3.
   EXPECT_EQ(btob::core::branch(V(0.75 - 0x1p-40, 1, -1), r), 1);
   EXPECT_EQ(btob::core::branch(V(1, -1, -0.75 + 0x1p-40), r), 3);
@@ -285,15 +287,16 @@ TEST(Validation, RErrors) {
   using btob::core::validate_r;
   EXPECT_NO_THROW(validate_r(0.5));
   EXPECT_NO_THROW(validate_r(1e-300));
-  for (double r : {0.0, 1.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+  for (double r :
+       {0.0, 1.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
     expect_error<std::domain_error>([&] { validate_r(r); }, {"r: got", "open interval (0, 1)"});
   expect_error<std::domain_error>([] { validate_r(2.0, "r-max"); }, {"r-max: got 2", "(0, 1)"});
   expect_error<std::domain_error>([] { validate_r(0.0L); }, {"r: got 0"});
 }
 
 TEST(Validation, PrecisionNames) {
-  using btob::core::Precision;
   using btob::core::parse_precision;
+  using btob::core::Precision;
   EXPECT_EQ(parse_precision("float").kind, Precision::Kind::f32);
   EXPECT_EQ(parse_precision("double").kind, Precision::Kind::f64);
   EXPECT_EQ(parse_precision("long-double").kind, Precision::Kind::f80);
@@ -304,9 +307,11 @@ TEST(Validation, PrecisionNames) {
   for (const char* name : {"float", "double", "long-double", "float128", "mpfr:10", "mpfr:10000"})
     EXPECT_EQ(parse_precision(name).name(), name);
   for (const char* bad : {"mpfr:9", "mpfr:10001", "mpfr:", "mpfr", "mpfr:1e3", "mpfr:-20", "mpfr:99999999999"})
-    expect_error<std::invalid_argument>([&] { parse_precision(bad); }, {"precision: got '", "mpfr:<digits> with 10 <= digits <= 10000"});
-  expect_error<std::invalid_argument>([] { parse_precision("quad", "scalar"); },
-                                      {"scalar: got 'quad'", "expected one of float, double, long-double, float128, mpfr:<digits>"});
+    expect_error<std::invalid_argument>([&] { parse_precision(bad); },
+                                        {"precision: got '", "mpfr:<digits> with 10 <= digits <= 10000"});
+  expect_error<std::invalid_argument>(
+      [] { parse_precision("quad", "scalar"); },
+      {"scalar: got 'quad'", "expected one of float, double, long-double, float128, mpfr:<digits>"});
   EXPECT_STREQ(btob::core::scalar_name<double>(), "double");
   EXPECT_STREQ(btob::core::scalar_name<btob::core::float128>(), "float128");
 }
@@ -323,7 +328,7 @@ TEST(Csv, RowsMatchTheHeaderAndTextNeedsNoQuoting) {
   EXPECT_EQ(t.rows(), 3u);
   EXPECT_THROW(t.row({"0", "undecided"}), std::logic_error);  // the old fractions.csv's short row
   EXPECT_THROW(t.line("1,2"), std::logic_error);
-  EXPECT_THROW(t.line("1,\"a,b\",3"), std::logic_error);      // quoted fields are not read by genfromtxt
+  EXPECT_THROW(t.line("1,\"a,b\",3"), std::logic_error);  // quoted fields are not read by genfromtxt
   EXPECT_THROW(t.line("1,a#b,3"), std::logic_error);
   EXPECT_THROW(btob::core::CsvTable("# comment,a"), std::logic_error);
   EXPECT_THROW(btob::core::CsvTable("a,b,a"), std::logic_error);
@@ -351,7 +356,8 @@ TEST(Csv, NonFiniteNumbersAreEmptyCells) {
 // distinct_doubles counts representable values by their ordered bit patterns; checked against nextafter stepping
 // (an independent route) on small ranges, and against the binade's known count.
 TEST(Limits, DistinctDoublesAgreeWithNextafter) {
-  for (const auto& [lo, steps] : std::vector<std::pair<double, int>>{{0.2, 1}, {0.2, 7}, {-1e-310, 40}, {-0.5, 3}, {1.0, 0}}) {
+  for (const auto& [lo, steps] :
+       std::vector<std::pair<double, int>>{{0.2, 1}, {0.2, 7}, {-1e-310, 40}, {-0.5, 3}, {1.0, 0}}) {
     double hi = lo;
     for (int k = 0; k < steps; ++k) hi = std::nextafter(hi, 2.0);
     // +0 and -0 are one value: a range across zero counts one double fewer than the nextafter steps give.

@@ -36,11 +36,31 @@ std::vector<double> extreme_r() {
 std::vector<Vec3<double>> boundary_points(double r) {
   const double a = (1 + r) / 2, tiny = 1e-300, sub = 4.9e-324;
   std::vector<Vec3<double>> p = {
-      {0, 1, -1},      {0, -1, -1},     {0, 0.3, -1},      {1, 1, 0},        {1, -1, 0},       {1, 0.2, 0},
-      {tiny, 1, -1},   {tiny, -1, -1},  {1, 1, -tiny},     {1, -1, -tiny},   {1, 0, -1},       {1, tiny, -1},
-      {1, -tiny, -1},  {a, 1, -1},      {1, -1, -a},       {a * (1 + 1e-15), 1, -1},           {1, -1, -a * (1 + 1e-15)},
-      {a * tiny, tiny, -1},             {1, -tiny, -a * tiny},               {sub, 1, -1},     {1, sub, -sub},
-      {sub, sub, -sub}, {2 * sub, -sub, -3 * sub},       {1e-310, 2e-310, -3e-310},            {-1, 0.5, 1},  // other half
+      {0, 1, -1},
+      {0, -1, -1},
+      {0, 0.3, -1},
+      {1, 1, 0},
+      {1, -1, 0},
+      {1, 0.2, 0},
+      {tiny, 1, -1},
+      {tiny, -1, -1},
+      {1, 1, -tiny},
+      {1, -1, -tiny},
+      {1, 0, -1},
+      {1, tiny, -1},
+      {1, -tiny, -1},
+      {a, 1, -1},
+      {1, -1, -a},
+      {a * (1 + 1e-15), 1, -1},
+      {1, -1, -a * (1 + 1e-15)},
+      {a * tiny, tiny, -1},
+      {1, -tiny, -a * tiny},
+      {sub, 1, -1},
+      {1, sub, -sub},
+      {sub, sub, -sub},
+      {2 * sub, -sub, -3 * sub},
+      {1e-310, 2e-310, -3e-310},
+      {-1, 0.5, 1},  // other half
   };
   return p;
 }
@@ -100,8 +120,12 @@ TEST(Extremes, ExactTiesFollowTheDocumentedConvention) {
   // The batched kernel starts from the user's bits (power-of-two scaling only) and takes the same branch.
   Ensemble e;
   e.r = {r};
-  e.initial = {{0.75, 1, -1}, {1, -1, -0.75}, {1, 0, -1}, {std::nextafter(0.75, 0.0), 1, -1},
-               {1, -1, std::nextafter(-0.75, 0.0)}, {0.75 * 0x1p-1000, 0x1p-1000, -1}};
+  e.initial = {{0.75, 1, -1},
+               {1, -1, -0.75},
+               {1, 0, -1},
+               {std::nextafter(0.75, 0.0), 1, -1},
+               {1, -1, std::nextafter(-0.75, 0.0)},
+               {0.75 * 0x1p-1000, 0x1p-1000, -1}};
   SymbolRecorder s(e.orbits(), 1, 1);
   run<double>(e, 1, s);
   EXPECT_EQ(s.out, (std::vector<std::uint8_t>{2, 2, 2, 1, 3, 2}));

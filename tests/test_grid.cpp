@@ -22,8 +22,7 @@ const GridSyntax kAll{grid_kinds({GridKind::strip, GridKind::sphere, GridKind::a
                       "every form"};
 
 // The message of the InvalidField f throws (empty, and a failure, if it throws nothing or another type).
-template <class F>
-std::string error_of(F f) {
+template <class F> std::string error_of(F f) {
   try {
     f();
   } catch (const InvalidField& e) {

@@ -4,12 +4,12 @@
 // chaotic orbit, the degenerate rotation region of P2), strip images and errors.
 #include "core/coords.hpp"
 #include "core/map.hpp"
-#include "lyapunov/hyperbolicity.hpp"
-#include "lyapunov/hyperbolicity_requests.hpp"
-#include "lyapunov/maps.hpp"
-#include "lyapunov/lyapunov.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
+#include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/hyperbolicity_requests.hpp"
+#include "lyapunov/lyapunov.hpp"
+#include "lyapunov/maps.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -19,9 +19,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -55,9 +55,8 @@ TEST(Hyperbolicity, ClosedFormEqualsSvdOfTheDerivative) {
       for (int i = 0; i < 200; ++i) {
         const V3 u = core::to_quadrant<double>(V3(std::abs(U(rng)), U(rng), -std::abs(U(rng)))).normalized();
         const V3 w = (P * u).normalized();
-        const Eigen::Matrix2d A =
-            lyapunov::tangent_basis<double>(w).transpose() * lyapunov::projective_derivative<double>(P, u) *
-            lyapunov::tangent_basis<double>(u);
+        const Eigen::Matrix2d A = lyapunov::tangent_basis<double>(w).transpose() *
+                                  lyapunov::projective_derivative<double>(P, u) * lyapunov::tangent_basis<double>(u);
         const Eigen::JacobiSVD<Eigen::Matrix2d> svd(A);
         const auto sv = lyapunov::singular_values<double>(P, det_of(s, r), u);
         // Both are backward stable: errors ~ eps * s1 * (|P| / |P u|) <= 1e-13 s1 here; 1e-11 leaves room.
@@ -135,7 +134,8 @@ void check_periodic_clvs(double r, const V3& u0, std::size_t period) {
     for (std::size_t i = 0; i < period; ++i) M = core::P<double>(res.symbols[j + i], r) * M;
     const Eigen::EigenSolver<Eigen::Matrix3d> es(M);
     std::array<int, 3> idx = {0, 1, 2};
-    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b)); });
+    std::sort(idx.begin(), idx.end(),
+              [&](int a, int b) { return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b)); });
     for (int i : idx) ASSERT_EQ(es.eigenvalues()(i).imag(), 0.0) << "complex eigenvalues: CLVs undefined";
     const V3 u = res.points[j];
     ASSERT_SMALL(sin_between(es.eigenvectors().col(idx[0]).real(), u),
@@ -155,8 +155,8 @@ void check_periodic_clvs(double r, const V3& u0, std::size_t period) {
 }
 
 TEST(Hyperbolicity, ClvsOnPeriodicSinksAreProjectedEigenvectors) {
-  check_periodic_clvs(0.15, V3(1, -0.9, -0.2), 4);   // 1133 (colleague's test_lyapunov)
-  check_periodic_clvs(0.1, V3(1, -0.9, -0.2), 6);    // 111333
+  check_periodic_clvs(0.15, V3(1, -0.9, -0.2), 4);  // 1133 (colleague's test_lyapunov)
+  check_periodic_clvs(0.1, V3(1, -0.9, -0.2), 6);   // 111333
 }
 
 TEST(Hyperbolicity, ClvsAreCovariantOnAChaoticOrbit) {

@@ -88,7 +88,8 @@ TEST(Ensemble, ErrorsNameTheField) {
   EXPECT_THROW(parse_grid("0,0,0", 1), std::domain_error);
   EXPECT_THROW(parse_grid("nan,1,-1", 1), std::domain_error);
   EXPECT_THROW(parse_grid("strip:100000000x100000000", 1), std::length_error);
-  // 2^32 x 2^32 = 2^64 points: the product wrapped to 0 in size_t and passed the memory check (found writing the grid fuzz harness).
+  // 2^32 x 2^32 = 2^64 points: the product wrapped to 0 in size_t and passed the memory check (found writing the grid
+  // fuzz harness).
   EXPECT_THROW(parse_grid("strip:4294967296x4294967296", 1), std::length_error);
   EXPECT_THROW(parse_grid("strip:4294967297x4294967295", 1), std::length_error);
   try {
@@ -114,7 +115,8 @@ TEST(Recorders, AtanPosMatchesStdAtan2) {
     worst = std::max(worst, std::fabs(atan_pos<double>(a, b) - ref) / ref);
     const float af = static_cast<float>(a), bf = static_cast<float>(b);
     if (af > 0 && bf > 0)
-      worst_f = std::max(worst_f, static_cast<double>(std::fabs(atan_pos<float>(af, bf) - std::atan2(af, bf)) / std::atan2(af, bf)));
+      worst_f = std::max(
+          worst_f, static_cast<double>(std::fabs(atan_pos<float>(af, bf) - std::atan2(af, bf)) / std::atan2(af, bf)));
   }
   // Cephes' atan is accurate to ~1 ulp; allow 2 ulp (4.4e-16) in double and 2 ulp (2.4e-7) in float.
   EXPECT_SMALL(worst, ulps<double>(2, "Cephes' atan ~1 ulp, relative error"));
@@ -137,7 +139,8 @@ TEST(Recorders, AtanFastWithinItsBound) {
   };
   for (int i = 0; i < 1000000; ++i) {
     check(std::pow(10.0, -20 * u(gen)) * u(gen) + 1e-280, std::pow(10.0, -20 * u(gen)) * u(gen) + 1e-280);
-    const double t = 0.41421356237309503 * (1 + 1e-3 * (u(gen) - 0.5)), s = std::ldexp(1 + u(gen), 40 - static_cast<int>(80 * u(gen)));
+    const double t = 0.41421356237309503 * (1 + 1e-3 * (u(gen) - 0.5)),
+                 s = std::ldexp(1 + u(gen), 40 - static_cast<int>(80 * u(gen)));
     check(t * s, s);
     check(s, t * s);
     check(s * (1 + 1e-3 * (u(gen) - 0.5)), s);
@@ -157,8 +160,8 @@ struct RuleImage {
   std::vector<std::uint32_t> img;
   std::vector<std::uint64_t> under, over;
 };
-RuleImage rule_image(const std::vector<double>& values, std::size_t n_ic, std::size_t columns, long tail, std::size_t bins,
-                     double lo, double hi) {
+RuleImage rule_image(const std::vector<double>& values, std::size_t n_ic, std::size_t columns, long tail,
+                     std::size_t bins, double lo, double hi) {
   RuleImage out{std::vector<std::uint32_t>(columns * bins, 0), std::vector<std::uint64_t>(columns, 0),
                 std::vector<std::uint64_t>(columns, 0)};
   const double scale = static_cast<double>(bins) / (hi - lo);
@@ -273,7 +276,8 @@ TEST(Kernel, OneThreadEqualsTwoThreadsBitwise) {
   run<double>(e, 3000, a, one);
   run<double>(e, 3000, b, two);
   EXPECT_EQ(a.out, b.out);  // bitwise: each orbit is computed by the same instructions on any thread
-  DensityRecorder da(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 1), db(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 2);
+  DensityRecorder da(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 1),
+      db(Coord::phi, e, 3000, 50, 300, 0, std::numbers::pi, 2);
   run<float>(e, 3000, da, one);
   run<float>(e, 3000, db, two);
   EXPECT_EQ(da.merge(), db.merge());
@@ -351,7 +355,8 @@ TEST(Kernel, TailHistogramsAgreeWithScalarLoopAtEveryR) {
   // 3200 points: the two-sample KS distance exceeds 0.34 (n = 32) or 0.034 (n = 3200) with probability
   // 5%.  The bounds below, about twice the largest distance seen on two processor generations, leave room for noise but
   // fail on any systematic difference (a wrong branch, a lost rescale, a skipped step).
-  std::printf("binned KS distance batched vs scalar: worst %.3f, mean %.3f over %zu r values\n", worst, mean, e.r.size());
+  std::printf("binned KS distance batched vs scalar: worst %.3f, mean %.3f over %zu r values\n", worst, mean,
+              e.r.size());
   EXPECT_SMALL(worst, statistical(0.14, "KS distance of correlated samples: twice the largest measured"))
       << "mean KS distance " << mean;
   EXPECT_SMALL(mean, statistical(0.02, "mean KS distance: twice the largest measured"));
@@ -421,8 +426,9 @@ TEST(Build, RecorderVectorCodeIsInlinedIntoEachCaller) {
     if (line.find("{lambda") != std::string::npos) continue;
     // (iterate::TailRecorder by its qualified name: StateTailRecorder's per-lane normalisation of the tail is not
     // vector code and may stay out of line where the build does not optimise.)
-    for (const char* f : {"DensityRecorder::certain_bins", "DensityRecorder::record", "iterate::TailRecorder::record",
-                          "iterate::coord_values<", "iterate::coord_value<", "iterate::atan_fast", "iterate::atan_pos<"})
+    for (const char* f :
+         {"DensityRecorder::certain_bins", "DensityRecorder::record", "iterate::TailRecorder::record",
+          "iterate::coord_values<", "iterate::coord_value<", "iterate::atan_fast", "iterate::atan_pos<"})
       if (line.find(f) != std::string::npos) found += line;
   }
   std::free(buf);

@@ -148,7 +148,8 @@ TEST(LeavesGeometry, RegionMeasureAgainstDirectCounts) {
     const double count = static_cast<double>(in) / static_cast<double>(grid.cells());
     EXPECT_CLOSE(lv::region_share(1, g), count, bound(2.0 / 400, "boundary cells of a 400 x 400 grid"));
     // Geometric convergence: 64 nodes are off by ~4e-6 at r = 0.2 (an eccentric cone), so 256 (the default) by ~1e-22.
-    EXPECT_CLOSE(lv::region_share(1, g, 256), lv::region_share(1, g, 1024), ulps(64, "trapezoid rule converged at 256 nodes"));
+    EXPECT_CLOSE(lv::region_share(1, g, 256), lv::region_share(1, g, 1024),
+                 ulps(64, "trapezoid rule converged at 256 nodes"));
     const double h = 1e-4, fd = (lv::region_share(0.6 + h, g) - lv::region_share(0.6 - h, g)) / (2 * h);
     EXPECT_CLOSE(lv::region_density(0.6, g), fd, bound(1e-7, "central difference: h^2 f''' / 6 and 1e-16 / h"));
   }
@@ -203,7 +204,8 @@ TEST(LeavesLanding, MassEqualsBasinsAndStartsOnALeafStay) {
   double hist = 0, kde = 0;
   for (int k = 0; k < 10; ++k) hist += d.value[k] / 10, kde += d.kde[k] / 10;
   EXPECT_CLOSE(hist, static_cast<double>(l.q2 - l.above_one) / pts.size(), ulps(16, "a sum of 10 bins"));
-  EXPECT_CLOSE(kde, hist, bound(0.1 * hist, "midpoint rule of a kernel density of bandwidth h on bins of width h").of(1));
+  EXPECT_CLOSE(kde, hist,
+               bound(0.1 * hist, "midpoint rule of a kernel density of bandwidth h on bins of width h").of(1));
 }
 
 // Bad input: one field named with its range.

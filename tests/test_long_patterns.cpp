@@ -60,7 +60,8 @@ TEST(LongPatterns, IteratorAgreesWithTheAnalysisAtTable61) {
 TEST(LongPatterns, Endpoint132312IndependentOfPrecision) {
   const auto at = [](unsigned digits) {
     mpfr_float::default_precision(digits);
-    const auto s = stability_set<mpfr_float>(parse_word("132312"), default_grid(), mpfr_float(pow(mpfr_float(10), -35)));
+    const auto s =
+        stability_set<mpfr_float>(parse_word("132312"), default_grid(), mpfr_float(pow(mpfr_float(10), -35)));
     return s.at(0).lo;
   };
   const mpfr_float a = at(45), b = at(80);

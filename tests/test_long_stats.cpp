@@ -47,8 +47,9 @@ TEST(LongCorrelation, QuasiPeriodicR03DoesNotDecay) {
   const auto env = envelope(cn, 1000);
   const double lo = *std::min_element(env.begin(), env.end()), hi = *std::max_element(env.begin(), env.end());
   const Decay d = fit_decay(cn, n_max - 1, 1000, 4 * cn[0] / std::sqrt(static_cast<double>(N)));
-  std::printf("r = 0.3 quasi-periodic: C_N(0) = %.4g, envelope over windows of 1000 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
-              cn[0], lo, hi, d.rate, d.rate_error);
+  std::printf(
+      "r = 0.3 quasi-periodic: C_N(0) = %.4g, envelope over windows of 1000 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
+      cn[0], lo, hi, d.rate, d.rate_error);
   EXPECT_FALSE(d.decays);
   EXPECT_GT(lo, 0.9 * hi);  // flat envelope to 10% over 1e5 lags
 }

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Long check (label long) of the scan of a word's stability set at the edge of its resolution: the window of
 // 1^n 3^n that `btob pattern --window` scans equals Table B.1's [lower bound, r_crit,2(n)] for every n = 2..200, and
-// is empty for n = 1 (the fast test_pattern_resolution covers n = 2..30, 50, 99, 150, 200).  Two references, each independent of the
-// scan: the windows module (the smallest positive root of Q_n by bisection on the matrix route in long double, and
-// r_crit,2(n) from its closed form, eq. (4.6), in MPFR), for every n; and the paper's printed Table B.1
-// (analyses/reference/windows_paper_table_B1.csv, 12 decimals), for n = 1..100.
+// is empty for n = 1 (the fast test_pattern_resolution covers n = 2..30, 50, 99, 150, 200).  Two references, each
+// independent of the scan: the windows module (the smallest positive root of Q_n by bisection on the matrix route in
+// long double, and r_crit,2(n) from its closed form, eq. (4.6), in MPFR), for every n; and the paper's printed Table
+// B.1 (analyses/reference/windows_paper_table_B1.csv, 12 decimals), for n = 1..100.
 #include "patterns/patterns.hpp"
 #include "windows/direct.hpp"
 #include "windows/windows.hpp"
@@ -46,7 +46,8 @@ TEST(LongWindowTableB1, EveryNUpTo200) {
   for (int n = 2; n <= 200; ++n) {
     const auto set = stability_set<double>(power_word(n), default_grid(), 1e-15);
     ASSERT_EQ(set.size(), 1u) << "n = " << n << ": the window of 1^n 3^n is one interval";
-    const double lo = static_cast<double>(btob::windows::window_lower_bound_in<long double>(n, btob::windows::Route::matrix));
+    const double lo =
+        static_cast<double>(btob::windows::window_lower_bound_in<long double>(n, btob::windows::Route::matrix));
     ASSERT_TRUE(std::isfinite(lo)) << "n = " << n << ": the windows module found no sign change";
     EXPECT_CLOSE(set[0].lo, lo, scan_lo) << "n = " << n;
     EXPECT_CLOSE(set[0].hi, static_cast<double>(btob::windows::r_crit2(n, 30)), scan_hi) << "n = " << n;
@@ -57,7 +58,8 @@ TEST(LongWindowTableB1, EveryNUpTo200) {
     ASSERT_FALSE(row[2].empty()) << "n = " << n;
     // The known erratum of Table B.1 (test_windows): r_crit,2(52) = 0.07187247659883 (eq. 4.6; mpmath at 40 digits),
     // printed ...597; the scan agrees with eq. (4.6), checked above, and with the first 11 printed decimals.
-    EXPECT_CLOSE(set[0].hi, std::stod(row[2]), n == 52 ? bound(3e-12, "Table B.1's erratum at n = 52: 1.8e-12") : printed)
+    EXPECT_CLOSE(set[0].hi, std::stod(row[2]),
+                 n == 52 ? bound(3e-12, "Table B.1's erratum at n = 52: 1.8e-12") : printed)
         << "n = " << n;
   }
 }

@@ -6,10 +6,10 @@
 #include "iterate/cocycle.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
-#include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/maps.hpp"
 #include "lyapunov/orbit.hpp"
+#include "lyapunov/tangent.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -20,9 +20,9 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -41,7 +41,9 @@ std::string word(const std::vector<int>& s) {
   return w;
 }
 // True when a is a rotation of b (same cyclic word).
-bool same_cycle(const std::string& a, const std::string& b) { return a.size() == b.size() && (b + b).find(a) != std::string::npos; }
+bool same_cycle(const std::string& a, const std::string& b) {
+  return a.size() == b.size() && (b + b).find(a) != std::string::npos;
+}
 
 // The dominant real eigenvector of M, brought into Q.
 V3 dominant_eigenvector(const Eigen::Matrix3d& M) {
@@ -192,7 +194,8 @@ TEST(Lyapunov, ChaoticBetweenWindowsIsPositiveAndPrecisionIndependent) {
   o.transient = 1000;
   o.iterations = 100000;
   const auto d = lyapunov::projective_exponents<double>(V3(1, -0.9, -0.2), 0.11, o);
-  const auto q = lyapunov::projective_exponents<long double>(Eigen::Matrix<long double, 3, 1>(1, -0.9L, -0.2L), 0.11L, o);
+  const auto q =
+      lyapunov::projective_exponents<long double>(Eigen::Matrix<long double, 3, 1>(1, -0.9L, -0.2L), 0.11L, o);
   EXPECT_GT(d.lambda[0].value, 10 * d.lambda[0].error);
   EXPECT_CLOSE(d.lambda[0].value, q.lambda[0].value,
                statistical(5 * (d.lambda[0].error + q.lambda[0].error), "5 error bars of two chaotic estimates"));
@@ -223,8 +226,8 @@ TEST(Lyapunov, EveryPrecisionOnTheSink1133) {
   EXPECT_CLOSE(d.weighted[0], ref[0], wide);
   using core::float128;
   using core::mpfr_float;
-  const auto q = lyapunov::projective_exponents<float128>(Eigen::Matrix<float128, 3, 1>(1, float128(-0.9), float128(-0.2)),
-                                                          float128(r), o);
+  const auto q = lyapunov::projective_exponents<float128>(
+      Eigen::Matrix<float128, 3, 1>(1, float128(-0.9), float128(-0.2)), float128(r), o);
   EXPECT_CLOSE(q.weighted[0], ref[0], wide);
   EXPECT_CLOSE(q.weighted[1], ref[1], wide);
   mpfr_float::default_precision(50);
@@ -262,7 +265,8 @@ TEST(Lyapunov, FiniteDifferencesStraddleBoundaries) {
     V3 u = res.final_point;
     for (int k = 0; k < 8; ++k) {
       const double a = core::alpha(r);
-      dmin = std::min({dmin, std::abs(a * u(1) - u(0)) / std::hypot(a, 1.0), std::abs(a * u(1) - u(2)) / std::hypot(a, 1.0)});
+      dmin = std::min(
+          {dmin, std::abs(a * u(1) - u(0)) / std::hypot(a, 1.0), std::abs(a * u(1) - u(2)) / std::hypot(a, 1.0)});
       u = core::step(u, r).u.normalized();
     }
   }
@@ -326,7 +330,7 @@ TEST(Lyapunov, BatchedRecorderMatchesQrRoute) {
 TEST(Lyapunov, FusedCocycleMatchesTangentRecorder) {
   iterate::Ensemble e;
   e.r = iterate::linspace_r(0.0717, 0.6, 41);
-  e.r.push_back(0.01);   // small r: the largest cancellation per projection interval (redone blocks)
+  e.r.push_back(0.01);  // small r: the largest cancellation per projection interval (redone blocks)
   e.r.push_back(0.95);
   e.initial = iterate::paper_grid();
   e.grid_description = "paper";
@@ -351,11 +355,12 @@ TEST(Lyapunov, FusedCocycleMatchesTangentRecorder) {
     EXPECT_CLOSE(m.chi1[k], t.chi1[k], tol) << "orbit " << k << " r " << e.r[k / 32];
     worst = std::max({worst, std::abs(m.lambda1[k] - t.lambda1[k]), std::abs(m.lambda2[k] - t.lambda2[k])});
   }
-  const std::size_t blocks = e.orbits() * static_cast<std::size_t>((mo.transient + mo.iterations) /
-                                                                      iterate::cocycle_interval<double>());
-  std::printf("fused vs recorder: worst |dlambda| %.3g over %zu orbits, %zu (orbit, block) pairs redone of %zu\n", worst,
-              e.orbits(), redone, blocks);
-  EXPECT_LT(redone, blocks / 20) << "the redo is for the worst blocks only (measured 2.4%; the orbits at r = 0.01 are 2.3% of the ensemble)";
+  const std::size_t blocks =
+      e.orbits() * static_cast<std::size_t>((mo.transient + mo.iterations) / iterate::cocycle_interval<double>());
+  std::printf("fused vs recorder: worst |dlambda| %.3g over %zu orbits, %zu (orbit, block) pairs redone of %zu\n",
+              worst, e.orbits(), redone, blocks);
+  EXPECT_LT(redone, blocks / 20)
+      << "the redo is for the worst blocks only (measured 2.4%; the orbits at r = 0.01 are 2.3% of the ensemble)";
 }
 
 // The float cocycle (point, tangent vector and projections in float) against the double one: on sinks and invariant
@@ -457,7 +462,8 @@ TEST(Lyapunov, OrderedExponentsAndTheirErrors) {
     EXPECT_EQ(m.err_max[o], swap ? m.err2[o] : m.err1[o]);  // each error travels with its exponent
     EXPECT_EQ(m.lambda_min[o], swap ? m.lambda1[o] : m.lambda2[o]);
     EXPECT_EQ(m.err_min[o], swap ? m.err1[o] : m.err2[o]);
-    EXPECT_LE(m.lambda2[o] - m.lambda1[o], 3 * std::hypot(m.err1[o], m.err2[o]) + 10.0 / mo.iterations) << "orbit " << o;
+    EXPECT_LE(m.lambda2[o] - m.lambda1[o], 3 * std::hypot(m.err1[o], m.err2[o]) + 10.0 / mo.iterations)
+        << "orbit " << o;
   }
   std::printf("r in [0.18, 0.22], 41 x 32 orbits: lambda2 > lambda1 in %ld\n", reversed);
   EXPECT_GT(reversed, 0);  // as observed: the order is not a property of lambda1 alone
@@ -471,16 +477,21 @@ TEST(Lyapunov, SummaryErrorBarsFollowTheirOrbits) {
   e.lambda1 = {3, 1, 2, 4, /* r 2: */ -1, 5, 0.5};
   e.err1 = {0.3, 0.1, 0.2, 0.4, /* r 2: */ 0.01, 0.05, 0.005};
   const auto even = lyapunov::summarise(e, 1, 4);
-  EXPECT_EQ(even.min[0], 1); EXPECT_EQ(even.err_min[0], 0.1);
-  EXPECT_EQ(even.max[0], 4); EXPECT_EQ(even.err_max[0], 0.4);
+  EXPECT_EQ(even.min[0], 1);
+  EXPECT_EQ(even.err_min[0], 0.1);
+  EXPECT_EQ(even.max[0], 4);
+  EXPECT_EQ(even.err_max[0], 0.4);
   EXPECT_EQ(even.median[0], 2.5);
   EXPECT_DOUBLE_EQ(even.err_median[0], 0.5 * std::sqrt(0.2 * 0.2 + 0.3 * 0.3));
   e.lambda1.erase(e.lambda1.begin(), e.lambda1.begin() + 4);
   e.err1.erase(e.err1.begin(), e.err1.begin() + 4);
   const auto odd = lyapunov::summarise(e, 1, 3);
-  EXPECT_EQ(odd.median[0], 0.5); EXPECT_EQ(odd.err_median[0], 0.005);
-  EXPECT_EQ(odd.min[0], -1); EXPECT_EQ(odd.err_min[0], 0.01);
-  EXPECT_EQ(odd.max[0], 5); EXPECT_EQ(odd.err_max[0], 0.05);
+  EXPECT_EQ(odd.median[0], 0.5);
+  EXPECT_EQ(odd.err_median[0], 0.005);
+  EXPECT_EQ(odd.min[0], -1);
+  EXPECT_EQ(odd.err_min[0], 0.01);
+  EXPECT_EQ(odd.max[0], 5);
+  EXPECT_EQ(odd.err_max[0], 0.05);
 }
 
 namespace {
@@ -549,13 +560,13 @@ TEST(LyapunovOrbit, SinkExponentIsThePeriodMatrixEigenvaluesWithinTheErrorBar) {
   EXPECT_CLOSE(res.lambda[0].value, static_cast<double>(exact),
                statistical(res.lambda[0].error, "the route's own error bar (batch means and its rounding floor)"));
   EXPECT_CLOSE(res.weighted[0], static_cast<double>(exact),
-               bound(1e-12, "the weighted average over Gram-Schmidt intervals of uneven length: a midpoint rule of the "
-                            "smooth weight, far below the plain average's C / n"));
+               bound(1e-12,
+                     "the weighted average over Gram-Schmidt intervals of uneven length: a midpoint rule of the "
+                     "smooth weight, far below the plain average's C / n"));
   core::MpfrDigits digits(50);
   using core::mpfr_float;
-  const auto m = lyapunov::projective_orbit<mpfr_float>(Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5),
-                                                                                        mpfr_float(-1.1)),
-                                                        mpfr_float(r), o);
+  const auto m = lyapunov::projective_orbit<mpfr_float>(
+      Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5), mpfr_float(-1.1)), mpfr_float(r), o);
   EXPECT_CLOSE(m.lambda[0].value, static_cast<double>(exact),
                statistical(m.lambda[0].error, "the MPFR route's own error bar"));
 }
@@ -574,9 +585,8 @@ TEST(LyapunovOrbit, AgreesWithTheQrRouteWithinTheErrorBars) {
   using core::mpfr_float;
   lyapunov::Options om = o;
   om.iterations = 40000;
-  const auto mp = lyapunov::projective_orbit<mpfr_float>(Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5),
-                                                                                         mpfr_float(-1.1)),
-                                                         mpfr_float("0.12"), om);
+  const auto mp = lyapunov::projective_orbit<mpfr_float>(
+      Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5), mpfr_float(-1.1)), mpfr_float("0.12"), om);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_GT(fast.lambda[i].error, 0.0);
     const double e_qr = std::hypot(fast.lambda[i].error, qr.lambda[i].error);

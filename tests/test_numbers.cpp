@@ -56,7 +56,7 @@ void expect_contains(double value, double error) {
 TEST(ErrorBar, TheSinkOfTheIssue) {
   expect_contains(-0.4683473803358724, 8.881784197001252e-16);
   const auto p = with_error(-0.4683473803358724, 8.881784197001252e-16);
-  EXPECT_EQ(p.error, "9.0e-16");  // 8.88e-16 and the half unit of the 17th digit, rounded up
+  EXPECT_EQ(p.error, "9.0e-16");                       // 8.88e-16 and the half unit of the 17th digit, rounded up
   EXPECT_EQ(std::stod(p.value), -0.4683473803358724);  // all 17 digits: the double itself
   EXPECT_EQ(with_error(0.0123456, 0.0002).value, "0.012346");
   EXPECT_EQ(with_error(0.0123456, 0.0002).error, "2.1e-04");  // 2e-4 and the half unit 5e-7, rounded up

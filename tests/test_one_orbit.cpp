@@ -52,7 +52,7 @@ std::vector<Case> cases(std::mt19937_64& g, int n) {
   std::uniform_int_distribution<int> K(19, 255);  // 19 / 256 > 7 - 4 sqrt(3) = 0.0718
   std::uniform_real_distribution<double> U(0.05, 1);
   std::vector<Case> out;
-  const int ks[] = {19, 44};                      // 0.0742 (near 7 - 4 sqrt 3), 0.1719 (near 3 - 2 sqrt 2)
+  const int ks[] = {19, 44};  // 0.0742 (near 7 - 4 sqrt 3), 0.1719 (near 3 - 2 sqrt 2)
   for (int i = 0; i < n; ++i) {
     const double r = i % 8 < 2 ? ks[i % 2] / 256.0 : K(g) / 256.0;
     const double a = (1 + r) / 2;
@@ -149,8 +149,8 @@ TEST(OneOrbit, ClassifyAndLyapunovReportOneExponent) {
   int checked = 0;
   for (int i = 0; i < 16; ++i) {
     const double r = i == 0 ? 0.1 : (i == 1 ? 0.25 : R(g));
-    const Vec3<double> u = i == 0 ? Vec3<double>(1, 0, -1) : (i == 1 ? Vec3<double>(0.5, 0.8, -1)
-                                                                    : Vec3<double>(U(g), U(g) - 0.5, -U(g)));
+    const Vec3<double> u =
+        i == 0 ? Vec3<double>(1, 0, -1) : (i == 1 ? Vec3<double>(0.5, 0.8, -1) : Vec3<double>(U(g), U(g) - 0.5, -U(g)));
     SCOPED_TRACE(::testing::Message() << "r = " << r << " u = " << u.transpose());
     const attractors::OrbitVerdict v = attractors::classify_point(u, r, opt);
     const attractors::OrbitVerdict v2 = attractors::classify_point(std::ldexp(1.0, -600) * u, r, opt);
@@ -435,7 +435,6 @@ TEST(OneOrbit, AtlasIntervalsAndPatternSayTheSameWord) {
     // 64 eps: the eigenvalue moduli's tie tolerance of analyse (period 1).
     if (std::abs(v.lyapunov2) <= 64 * std::numeric_limits<double>::epsilon())
       EXPECT_EQ(v.outcome, real ? patterns::Outcome::undecided : patterns::Outcome::neutral) << "r = " << r;
-    else
-      EXPECT_EQ(v.outcome, patterns::Outcome::unstable) << "r = " << r << " lambda1 = " << v.lyapunov2;
+    else EXPECT_EQ(v.outcome, patterns::Outcome::unstable) << "r = " << r << " lambda1 = " << v.lyapunov2;
   }
 }

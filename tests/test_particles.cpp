@@ -8,14 +8,14 @@
 #include "core/map.hpp"
 #include "core/request.hpp"
 #include "core/scalar.hpp"
-#include "patterns/atlas.hpp"
-#include "patterns/patterns.hpp"
 #include "patterns/analysis_impl.hpp"
+#include "patterns/atlas.hpp"
 #include "patterns/exact.hpp"
+#include "patterns/patterns.hpp"
 #include "reference/reference.hpp"
 
-#include <boost/multiprecision/eigen.hpp>
 #include "csv_cells.hpp"
+#include <boost/multiprecision/eigen.hpp>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -162,7 +162,11 @@ TEST(ParticlesPatterns, IndependentRoutesAgree) {
   // from M_w's eigenvalues.  Tolerance 1e3 eps relative: the measured ratios come from norms of states that
   // carry O(letters) roundings per period, and the prediction from the roots of a cubic (a few ulps of the
   // largest modulus, divided by the smallest: a factor |l1/l3| <= 50 here).
-  struct Case { const char* word; double r; const char* letters; };
+  struct Case {
+    const char* word;
+    double r;
+    const char* letters;
+  };
   for (const Case& c : {Case{"1133", 0.15, "ababcbcb"}, Case{"111333", 0.1, "abababcbcbcb"}}) {
     const ParticlesResult s = run_word(c.word, c.r, 10000);
     EXPECT_TRUE(s.sequence_ok) << c.word << ": " << s.failure;
@@ -318,7 +322,10 @@ TEST(FeasibleAtlas, UnstableOrbitsAreFollowedAsLongAsPredicted) {
   // Orbits whose instability comes from a complex dominant pair (13 at r = 0.5: Lambda = 1.058 per period) are
   // followed far longer than this (10^5 periods and more): not covered by the prediction, left out here and, by
   // its 2000-period cap, from the atlas's check (unstable_followed.csv).
-  struct Case { const char* word; double r; };
+  struct Case {
+    const char* word;
+    double r;
+  };
   for (const Case& c : {Case{"13223122", 0.1}, Case{"13", 0.15}, Case{"12", 0.1}, Case{"132312", 0.1},
                         Case{"1133", 0.05}, Case{"111333", 0.05}, Case{"13", 0.3}}) {
     const auto d = patterns::follow_periodic_orbit<double>(patterns::parse_word(c.word), c.r, 100000);
@@ -341,7 +348,8 @@ TEST(FeasibleAtlas, CollapsesEndAtTheLiteraturesCriticalValues) {
   std::vector<double> grid;
   for (int i = 0; i < 80; ++i) grid.push_back(0.588 + 0.41 * i / 79.0);
   for (const auto& w : patterns::enumerate_canonical(8))
-    for (double r : grid) EXPECT_FALSE(patterns::classify<double>(w, r).collapse) << patterns::to_digits(w) << " r = " << r;
+    for (double r : grid)
+      EXPECT_FALSE(patterns::classify<double>(w, r).collapse) << patterns::to_digits(w) << " r = " << r;
 }
 
 TEST(FeasibleAtlas, OneThreadEqualsTwoThreads) {
@@ -359,7 +367,11 @@ TEST(ParticlesPatterns, ContractionFromTheExactCharacteristicPolynomial) {
   // run's own error, see IndependentRoutesAgree).
   boost::multiprecision::mpfr_float::default_precision(50);
   using mp = boost::multiprecision::mpfr_float;
-  struct Case { const char* word; double r; long num, den; };
+  struct Case {
+    const char* word;
+    double r;
+    long num, den;
+  };
   for (const Case& c : {Case{"1133", 0.15, 3, 20}, Case{"111333", 0.1, 1, 10}}) {
     const auto w = patterns::parse_word(c.word);
     const patterns::CharPoly chi = patterns::characteristic_polynomial(w);
@@ -397,7 +409,7 @@ TEST(ParticlesFiles, ConvergenceRowsAreEveryPeriodTo99ThenTwentyPerDecade) {
     const auto rows = convergence_rows(n);
     ASSERT_GE(rows.size(), 100u);
     for (std::size_t i = 0; i < 100; ++i) EXPECT_EQ(rows[i], i) << n;  // periods 1..100
-    EXPECT_EQ(rows.back(), n - 1) << n;                                   // and the last one
+    EXPECT_EQ(rows.back(), n - 1) << n;                                // and the last one
     // Beyond 100, consecutive periods k < k' (but the last) have k' = ceil(k 10^(1/20)): 20 per decade.
     for (std::size_t i = 100; i + 1 < rows.size(); ++i) {
       const double k = static_cast<double>(rows[i - 1] + 1), next = static_cast<double>(rows[i] + 1);
@@ -405,17 +417,18 @@ TEST(ParticlesFiles, ConvergenceRowsAreEveryPeriodTo99ThenTwentyPerDecade) {
       EXPECT_LT(next, k * std::pow(10.0, 0.05) + 1) << n << " row " << i;
     }
     const double decades = std::log10(static_cast<double>(n) / 100);
-    EXPECT_CLOSE(static_cast<double>(rows.size() - 100), 20 * decades,
-                 bound(2, "20 rows per decade, +-1 at each end")) << n;
+    EXPECT_CLOSE(static_cast<double>(rows.size() - 100), 20 * decades, bound(2, "20 rows per decade, +-1 at each end"))
+        << n;
   }
 }
 
 TEST(ParticlesFiles, ACollapseHasNumbersEverywhereButTheFirstTimeRatio) {
   const ParticlesResult s = run_word("1133", 0.15, 20);
   ASSERT_TRUE(s.sequence_ok);
-  const std::vector<std::pair<std::string, const char*>> files{
-      {s.csv(), "particles.csv"}, {s.convergence_csv(), "convergence.csv"}, {s.events_csv(), "events.csv"},
-      {s.row_csv(true), "row"}};
+  const std::vector<std::pair<std::string, const char*>> files{{s.csv(), "particles.csv"},
+                                                               {s.convergence_csv(), "convergence.csv"},
+                                                               {s.events_csv(), "events.csv"},
+                                                               {s.row_csv(true), "row"}};
   for (const auto& [csv, what] : files) expect_numbers_or_empty(csv, what);
   const auto conv = csv_cells(s.convergence_csv());
   ASSERT_EQ(conv.size(), 21u);  // header and 20 periods

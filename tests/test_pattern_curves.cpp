@@ -38,7 +38,7 @@ TEST(PatternCurves, CriticalValuesOf132312And13223122) {
   EXPECT_EQ(b.analysed, "1322");
   EXPECT_CLOSE(find(b, "dominance", 0.16), 0.16028989151805950668, tol);  // r_crit,1322J,1
   EXPECT_CLOSE(find(b, "dominance", 0.25), 0.25112749544281462755, tol);  // r_crit,1322J,2
-  EXPECT_CLOSE(find(b, "u_x = 0", 0.236), 0.23636180678365848104, tol);  // r_crit,1322J,3
+  EXPECT_CLOSE(find(b, "u_x = 0", 0.236), 0.23636180678365848104, tol);   // r_crit,1322J,3
   EXPECT_CLOSE(find(b, "u_z = 0", 0.17), 3 - 2 * std::sqrt(2.0), tol);    // r_crit,1322J,4 = 3 - 2 sqrt 2
 }
 
@@ -60,8 +60,9 @@ TEST(PatternCurves, SpectrumAgreesWithTheAnalysis) {
       else if (m > l2) l2 = m;
     }
     EXPECT_CLOSE(2 * std::log(l2 / l1) / 6, v.lyapunov2,
-                 ulps(45000, "two routes; the cubic's conditioning amplifies rounding near close roots "
-                             "(measured 22 eps)"));
+                 ulps(45000,
+                      "two routes; the cubic's conditioning amplifies rounding near close roots "
+                      "(measured 22 eps)"));
     EXPECT_CLOSE(std::abs(c.tracked[i]), l1, ulps(4, "the tracked eigenvalue is the dominant one: a modulus").of(1));
     // Feasibility for r > r_crit,132J (Section 7.1): u_z < 0, alpha u_y - u_x > 0, (P1 u)_y < 0, ...
     const std::size_t nf = c.feas_names.size();

@@ -128,7 +128,8 @@ TEST(FixedPrecision, LongWordsAgreeWithMpfrOrSayUndecided) {
   std::string random_word;
   for (int i = 0; i < 10000; ++i) random_word += static_cast<char>('0' + sym(rng));
   const btob::core::MpfrDigits mp(40);  // the windows module's matrix route in MPFR (long double has no bracket here)
-  const double lo = static_cast<double>(btob::windows::window_lower_bound_in<mpfr_float>(5000, btob::windows::Route::matrix));
+  const double lo =
+      static_cast<double>(btob::windows::window_lower_bound_in<mpfr_float>(5000, btob::windows::Route::matrix));
   const double hi = static_cast<double>(btob::windows::r_crit2(5000, 30));
   const std::string inside = fmt::format("{:.17g}", (lo + hi) / 2);  // in the window of 1^5000 3^5000: stable
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -180,8 +181,8 @@ TEST(FixedPrecision, PrintsOnlyTheDigitsItVouchesFor) {
       const int d = significant_digits(text);
       ASSERT_GT(d, 0) << text;
       const mpfr_float unit = pow(mpfr_float(10), floor(log10(abs(printed))) - (d - 1));
-      EXPECT_LE(abs(printed - want), unit) << p << " mu" << i + 1 << " printed " << text << " (" << d
-                                           << " digits), MPFR " << want.str(20);
+      EXPECT_LE(abs(printed - want), unit)
+          << p << " mu" << i + 1 << " printed " << text << " (" << d << " digits), MPFR " << want.str(20);
     }
   }
 }

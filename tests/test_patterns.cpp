@@ -32,7 +32,8 @@ Word W(const char* s) { return parse_word(s); }
 
 // Absolute tolerance helper with the reason stated at each call.
 void expect_near_mp(const mpfr_float& got, const char* expected, const char* tol, const char* what) {
-  EXPECT_LT(abs(got - mpfr_float(expected)), mpfr_float(tol)) << what << ": got " << got.str(30) << ", expected " << expected;
+  EXPECT_LT(abs(got - mpfr_float(expected)), mpfr_float(tol))
+      << what << ": got " << got.str(30) << ", expected " << expected;
 }
 
 // A polynomial in r from integer coefficients, highest power first, divided by `den`.
@@ -58,7 +59,7 @@ TEST(Words, ParsesThePapersNotations) {
   EXPECT_EQ(to_digits(W("132^3312^3")), "1322231222");
   EXPECT_EQ(to_digits(W("132^{3}312^{3}")), "1322231222");
   EXPECT_EQ(to_digits(W("131312^3313132^3")), "1313122231313222");
-  EXPECT_EQ(W("132^67312^67").size(), 138u);  // Section 6.2: 138 b-collisions
+  EXPECT_EQ(W("132^67312^67").size(), 138u);      // Section 6.2: 138 b-collisions
   EXPECT_EQ(collisions(W("132^67312^67")), 410);  // ... and 410 collisions in total
   EXPECT_EQ(to_digits(W("(ab)(cb)(acb)")), "132");
   EXPECT_EQ(to_digits(W("(ab)(cb)(cab)")), "132");
@@ -113,7 +114,8 @@ TEST(Words, CanonicalFormIsInvariantUnderRotationAndJ) {
   std::mt19937 g(3);
   for (int t = 0; t < 500; ++t) {
     Word w;
-    for (int i = 0, n = 1 + static_cast<int>(g() % 14); i < n; ++i) w.s.push_back(static_cast<std::uint8_t>(1 + g() % 3));
+    for (int i = 0, n = 1 + static_cast<int>(g() % 14); i < n; ++i)
+      w.s.push_back(static_cast<std::uint8_t>(1 + g() % 3));
     const Word c = canonical(w);
     EXPECT_EQ(canonical(apply_J(w)), c);
     EXPECT_EQ(canonical(rotate(w, g() % w.size())), c);
@@ -198,10 +200,11 @@ TEST(Theorem71, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   EXPECT_EQ(chi.c2, poly_hi({7, -24, -29, 0, 21, -8, 1}, 32));
   EXPECT_EQ(chi.c1, poly_hi({1, -8, 21, 0, -29, -24, 7, 0, 0, 0, 0, 0}, 32));
   EXPECT_EQ(chi.c0, poly_hi({1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
-  const RationalPoly Q = poly_hi({49, -1150, 11561, -64272, 210772, -445384, 907556, -1807728, 1753646, -3227252, 1753646,
-                                  -1807728, 907556, -445384, 210772, -64272, 11561, -1150, 49});
+  const RationalPoly Q = poly_hi({49, -1150, 11561, -64272, 210772, -445384, 907556, -1807728, 1753646, -3227252,
+                                  1753646, -1807728, 907556, -445384, 210772, -64272, 11561, -1150, 49});
   const RationalPoly r10 = pow(RationalPoly{0, 1}, 10);
-  const RationalPoly expected = rational(-1, 113246208) * r10 * pow(RationalPoly{-1, 1}, 4) * pow(RationalPoly{1, 1}, 2) * Q;
+  const RationalPoly expected =
+      rational(-1, 113246208) * r10 * pow(RationalPoly{-1, 1}, 4) * pow(RationalPoly{1, 1}, 2) * Q;
   EXPECT_EQ(discriminant(chi), expected);
 }
 
@@ -214,8 +217,8 @@ TEST(Theorem71, CriticalValuesTo20Digits) {
   expect_near_mp(set[0].lo, "0.22006978614631047521", "1e-20", "r_crit,132J");
   EXPECT_EQ(set[0].lo_reason, "feas1");  // alpha y - x = 0 (eq. r_crit,132J,2)
   EXPECT_EQ(set[0].hi, 1);
-  const mpfr_float r1 = quantity_root<mpfr_float>(W("132312"), mpfr_float("0.15"), mpfr_float("0.2"), Track::dominant_real,
-                                                  Quantity::x_component, tol);
+  const mpfr_float r1 = quantity_root<mpfr_float>(W("132312"), mpfr_float("0.15"), mpfr_float("0.2"),
+                                                  Track::dominant_real, Quantity::x_component, tol);
   expect_near_mp(r1, "0.18261545379260806055", "1e-20", "r_crit,132J,1");
   // The same endpoint in double to 1e-14 (the brief's accuracy in double).
   const auto sd = stability_set<double>(W("132312"), default_grid(), 1e-15);
@@ -251,9 +254,10 @@ TEST(Theorem73, CharacteristicPolynomialAndDiscriminantEqualThePapers) {
   EXPECT_EQ(chi.c2, poly_hi({-7, 42, -18, -58, 24, 38, -30, 10, -1}, 64));
   EXPECT_EQ(chi.c1, poly_hi({-1, 10, -30, 38, 24, -58, -18, 42, -7, 0, 0, 0, 0, 0, 0}, 64));
   EXPECT_EQ(chi.c0, pow(RationalPoly{0, 1}, 14));
-  const RationalPoly Q = poly_hi({49, -1666, 25057, -221216, 1281770, -5145140, 14717738, -31143328, 54462799, -92352670,
-                                  144006079, -174418496, 197859020, -246451544, 197859020, -174418496, 144006079, -92352670,
-                                  54462799, -31143328, 14717738, -5145140, 1281770, -221216, 25057, -1666, 49});
+  const RationalPoly Q =
+      poly_hi({49,        -1666,     25057,      -221216,   1281770,    -5145140,  14717738,   -31143328, 54462799,
+               -92352670, 144006079, -174418496, 197859020, -246451544, 197859020, -174418496, 144006079, -92352670,
+               54462799,  -31143328, 14717738,   -5145140,  1281770,    -221216,   25057,      -1666,     49});
   const RationalPoly expected =
       rational(-1, 1811939328) * pow(RationalPoly{0, 1}, 12) * pow(RationalPoly{1, 1, 1, 1}, 2) * Q;
   EXPECT_EQ(discriminant(chi), expected);
@@ -270,8 +274,10 @@ TEST(Theorem73, CriticalValuesTo20Digits) {
   expect_near_mp(root("0.18", "0.5", Quantity::dominance_gap), "0.25112749544281462755", "1e-20", "r_crit,1322J,2");
   expect_near_mp(root("0.2", "0.25", Quantity::x_component), "0.23636180678365848104", "1e-20", "r_crit,1322J,3");
   const mpfr_float s = 3 - 2 * sqrt(mpfr_float(2));
-  EXPECT_LT(abs(root("0.165", "0.2", Quantity::z_component) - s), mpfr_float("1e-30")) << "r_crit,1322J,4 = 3 - 2 sqrt 2";
-  EXPECT_LT(abs(root("0.165", "0.2", Quantity::alpha_y_minus_x) - s), mpfr_float("1e-30")) << "r_crit,1322J,5 = 3 - 2 sqrt 2";
+  EXPECT_LT(abs(root("0.165", "0.2", Quantity::z_component) - s), mpfr_float("1e-30"))
+      << "r_crit,1322J,4 = 3 - 2 sqrt 2";
+  EXPECT_LT(abs(root("0.165", "0.2", Quantity::alpha_y_minus_x) - s), mpfr_float("1e-30"))
+      << "r_crit,1322J,5 = 3 - 2 sqrt 2";
 }
 
 TEST(Theorem73, NeverStableOnAFineGrid) {
@@ -397,13 +403,20 @@ TEST(Spectrum, SaddleOrbitOf13223122AtSmallR) {
 
 // ---------------------------------------------------------------- Table 6.1
 TEST(Table61, EveryPatternIsStableWhereThePaperSawIt) {
-  const std::vector<std::pair<const char*, double>> seen = {
-      {"111333", 0.1},   {"111333", 0.101}, {"1133", 0.15},       {"1133", 0.16},         {"1133", 0.17},
-      {"132^36", 0.172}, {"312^36", 0.172}, {"132^14", 0.174},    {"132^10", 0.176},      {"132^8", 0.178},
-      {"132^7312^7", 0.18}, {"132^4", 0.19}, {"132^3312^3", 0.2}, {"132^2", 0.21},        {"132^3312^3", 0.21},
-      {"132^2", 0.22},   {"132^2", 0.23},   {"132^2", 0.24},      {"132312", 0.24},       {"312^2", 0.25},
-      {"132312", 0.25},  {"132312", 0.3},   {"132312", 0.34},     {"132312", 0.5},        {"132312", 0.6},
-      {"131312^3313132^3", 0.58}, {"132^67312^67", 0.1717}};
+  const std::vector<std::pair<const char*, double>> seen = {{"111333", 0.1},         {"111333", 0.101},
+                                                            {"1133", 0.15},          {"1133", 0.16},
+                                                            {"1133", 0.17},          {"132^36", 0.172},
+                                                            {"312^36", 0.172},       {"132^14", 0.174},
+                                                            {"132^10", 0.176},       {"132^8", 0.178},
+                                                            {"132^7312^7", 0.18},    {"132^4", 0.19},
+                                                            {"132^3312^3", 0.2},     {"132^2", 0.21},
+                                                            {"132^3312^3", 0.21},    {"132^2", 0.22},
+                                                            {"132^2", 0.23},         {"132^2", 0.24},
+                                                            {"132312", 0.24},        {"312^2", 0.25},
+                                                            {"132312", 0.25},        {"132312", 0.3},
+                                                            {"132312", 0.34},        {"132312", 0.5},
+                                                            {"132312", 0.6},         {"131312^3313132^3", 0.58},
+                                                            {"132^67312^67", 0.1717}};
   for (const auto& [p, r] : seen) {
     const auto v = analyse<double>(W(p), r);
     EXPECT_EQ(v.outcome, Outcome::stable) << p << " at r = " << r << ": " << v.reason;
@@ -458,8 +471,8 @@ template <class F> std::string invalid_field(F&& f) {
 }  // namespace
 
 TEST(PatternRequests, ValidationNamesTheField) {
-  using btob::patterns::WordRequest;
   using btob::patterns::AtlasRequest;
+  using btob::patterns::WordRequest;
   EXPECT_EQ(invalid_field([] { WordRequest{"14", "0.3"}.validate(); }), "word");
   EXPECT_EQ(invalid_field([] { WordRequest{"", "0.3"}.validate(); }), "word");
   EXPECT_EQ(invalid_field([] { WordRequest{"132", "1.2"}.validate(); }), "r");

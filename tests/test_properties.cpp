@@ -142,10 +142,10 @@ std::vector<Sample> samples(double r, std::mt19937_64& g) {
   std::vector<Sample> out;
   for (const Sample& s : base) {
     out.push_back(s);
-    out.push_back({s.r, s.u * 0x1p-1060, "subnormal"});   // exact: every coordinate becomes subnormal or 0
+    out.push_back({s.r, s.u * 0x1p-1060, "subnormal"});  // exact: every coordinate becomes subnormal or 0
     out.push_back({s.r, s.u * 1e300, "scaled 1e300"});
     out.push_back({s.r, s.u * 1e-300, "scaled 1e-300"});
-    out.push_back({s.r, -s.u, "negated"});               // the other half of the domain x*z <= 0
+    out.push_back({s.r, -s.u, "negated"});  // the other half of the domain x*z <= 0
   }
   return out;
 }
@@ -212,7 +212,8 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
         // only there: on a coordinate plane, or within 4 eps of a boundary (points put there by construction,
         // alpha*y rounded: within 1 eps).
         EXPECT_TRUE(ref.degenerate || d < 4 * eps)
-            << "Definition 2.1 broke down away from the excluded planes, at distance " << d << ": " << ref.u.transpose();
+            << "Definition 2.1 broke down away from the excluded planes, at distance " << d << ": "
+            << ref.u.transpose();
         ++def21_breakdowns;
         continue;
       }
@@ -221,8 +222,8 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
       const double tol21 = 8 * eps * ref.condition;
       if (symbol_of(ref.letters) != scalar.sym[i]) {
         EXPECT_SMALL(d, ulps(8, "Definition 2.1's signs are off by eps times its condition").of(ref.condition))
-            << "Definition 2.1 letters " << ref.letters << ", scalar loop " << scalar.sym[i]
-                            << " (condition " << ref.condition << ")";
+            << "Definition 2.1 letters " << ref.letters << ", scalar loop " << scalar.sym[i] << " (condition "
+            << ref.condition << ")";
         ++boundary_cases;
         continue;
       }
@@ -232,9 +233,10 @@ TEST(Properties, KernelScalarLoopAndDefinition21AgreeOnOneStep) {
       worst_def21 = std::max(worst_def21, d21 / (tol21 + tol));
     }
   }
-  std::printf("%zu points, %zu symbol differences within rounding of a boundary, %zu through Definition 2.1 "
-              "(%zu degenerate, %zu breakdowns on a boundary); worst error/tolerance: kernel %.3f, Definition 2.1 %.3f\n",
-              points, boundary_cases, def21_checked, def21_degenerate, def21_breakdowns, worst_kernel, worst_def21);
+  std::printf(
+      "%zu points, %zu symbol differences within rounding of a boundary, %zu through Definition 2.1 "
+      "(%zu degenerate, %zu breakdowns on a boundary); worst error/tolerance: kernel %.3f, Definition 2.1 %.3f\n",
+      points, boundary_cases, def21_checked, def21_degenerate, def21_breakdowns, worst_kernel, worst_def21);
   EXPECT_GT(def21_checked, points / 2);  // the comparison with Definition 2.1 is not vacuous
 }
 

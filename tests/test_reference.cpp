@@ -136,8 +136,7 @@ TEST(CrossProduct, LinearMapIsAccurateAgainstQuadPrecision) {
       const V exact(static_cast<double>(c.u(0)), static_cast<double>(c.u(1)), static_cast<double>(c.u(2)));
       const double a = angle(s.u, exact);
       // Measured <= 0.9 eps |P| |u| / |P u| (at most 8e-14, at r = 0.01); 1e-12 leaves margin.
-      ASSERT_SMALL(a,
-                   ulps(4500, "0.9 eps |P| |u| / |P u| measured, at most 8e-14"))
+      ASSERT_SMALL(a, ulps(4500, "0.9 eps |P| |u| / |P u| measured, at most 8e-14"))
           << "r=" << r << " u=" << u.transpose();
       ASSERT_SMALL(a,
                    ulps(4, "eps |P| |u| / |P u| of the product, plus the normalisation").of(linear_condition(u, r) + 1))
@@ -188,7 +187,8 @@ TEST(Particles, AgreesWithLinearMap) {
                           .at_least(1e-12))
           << "r=" << r << " u=" << u.transpose() << " condition " << sim.condition;
       worst = std::max(worst, a);
-      if (!near_boundary(u, r, 1e-12)) ASSERT_EQ(sim.letters, core::letters(s.symbol, core::to_quadrant(u))) << "r=" << r;
+      if (!near_boundary(u, r, 1e-12))
+        ASSERT_EQ(sim.letters, core::letters(s.symbol, core::to_quadrant(u))) << "r=" << r;
     }
     // With q orthogonal to p most starts separate before the cycle ends and need the shift q - lambda p.
     EXPECT_GT(shifted, 0);
@@ -406,7 +406,8 @@ TEST(TrigDensity, CountsBreakdownsAndMatchesLinearOnStableOrbits) {
   const auto imgl = lin.merge();
   long moved = 0;
   for (std::size_t col = 1; col < 3; ++col)
-    for (std::size_t b = 0; b < bins; ++b) moved += std::abs(static_cast<long>(imgl[col * bins + b]) - static_cast<long>(img1[col * bins + b]));
+    for (std::size_t b = 0; b < bins; ++b)
+      moved += std::abs(static_cast<long>(imgl[col * bins + b]) - static_cast<long>(img1[col * bins + b]));
   EXPECT_LE(moved, 4);
   // Fewer per-thread images than threads asked for is a usage error.
   btob::iterate::DensityRecorder small(coord, ens, iterations, tail, bins, 0, hi, 1);

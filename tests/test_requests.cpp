@@ -68,8 +68,9 @@ TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
   try {
     iterate::parse_grid("strip:axb", 1, "grid");
   } catch (const std::exception& e) {
-    EXPECT_STREQ(e.what(), "grid: got 'strip:axb', expected strip:NxM[:w1min:w1max] with N, M >= 1 and finite w1min < "
-                           "w1max");
+    EXPECT_STREQ(e.what(),
+                 "grid: got 'strip:axb', expected strip:NxM[:w1min:w1max] with N, M >= 1 and finite w1min < "
+                 "w1max");
   }
 }
 
@@ -143,7 +144,7 @@ TEST(Fields, IntegersAcceptExactScientificNotationOnly) {
   EXPECT_EQ(as_long("2.5e3"), 2500);
   EXPECT_EQ(as_long("-3E2"), -300);
   EXPECT_EQ(as_long("1.000e3"), 1000);
-  EXPECT_EQ(as_long("12000e-3"), 12);            // a negative exponent is fine where the value stays whole
+  EXPECT_EQ(as_long("12000e-3"), 12);  // a negative exponent is fine where the value stays whole
   EXPECT_EQ(as_long("9223372036854775807"), LONG_MAX);
   EXPECT_EQ(as_long("-9223372036854775808"), LONG_MIN);
   std::uint64_t seed = 0;
@@ -160,8 +161,9 @@ TEST(Fields, IntegersAcceptExactScientificNotationOnly) {
   try {
     as_long("1.5e0");
   } catch (const core::InvalidField& e) {
-    EXPECT_STREQ(e.what(), "iterations: got '1.5e0', expected an integer (1000000, or exactly in scientific notation: "
-                           "1e6, 2.5e3)");
+    EXPECT_STREQ(e.what(),
+                 "iterations: got '1.5e0', expected an integer (1000000, or exactly in scientific notation: "
+                 "1e6, 2.5e3)");
   }
 }
 
@@ -173,15 +175,15 @@ TEST(Fields, IntegersAcceptExactScientificNotationOnly) {
 TEST(Fields, DecimalKeepsItsTextAndReadsLikeADouble) {
   core::Decimal d;
   core::set_field(d, {" 0.10 "}, "r");
-  EXPECT_EQ(d.text, "0.10");                                  // trimmed, otherwise as given
-  EXPECT_EQ(d.value, 0.1);                                    // strtod of the text, as a double field reads it
+  EXPECT_EQ(d.text, "0.10");                                         // trimmed, otherwise as given
+  EXPECT_EQ(d.value, 0.1);                                           // strtod of the text, as a double field reads it
   EXPECT_EQ(core::field_text(d), std::vector<std::string>{"0.10"});  // manifests record the text
-  EXPECT_EQ(fmt::format("{}", d), "0.1");                     // messages and titles print the double, as before
+  EXPECT_EQ(fmt::format("{}", d), "0.1");                            // messages and titles print the double, as before
   core::Decimal many;
   core::set_field(many, {"0.1000000000000000000000001"}, "r");  // more digits than a double holds: kept
   EXPECT_EQ(many.value, 0.1);
   EXPECT_EQ(many.text, "0.1000000000000000000000001");
-  EXPECT_EQ(core::Decimal(0.0717).text, "0.0717");            // a double's shortest exact form
+  EXPECT_EQ(core::Decimal(0.0717).text, "0.0717");  // a double's shortest exact form
   EXPECT_EQ(failing_field([] {
               core::Decimal x;
               core::set_field(x, {"0.1x"}, "r-min");
@@ -205,8 +207,8 @@ TEST(Fields, DecimalKeepsItsTextAndReadsLikeADouble) {
 template <class T> bool is_nearest(const T& x, const std::string& digits, const std::string& ten_power) {
   core::MpfrDigits wide(130);  // 430 bits
   const core::mpfr_float exact = core::mpfr_float(digits) / core::mpfr_float(ten_power);
-  using std::nextafter;
   using boost::multiprecision::nextafter;
+  using std::nextafter;
   const T up = nextafter(x, T(1)), down = nextafter(x, T(0));
   const core::mpfr_float d = abs(core::mpfr_float(x) - exact);
   return d <= abs(core::mpfr_float(up) - exact) && d <= abs(core::mpfr_float(down) - exact);
@@ -255,13 +257,15 @@ TEST(RInPrecision, RangeIsEvaluatedInThePrecisionAndIsBitwiseInDouble) {
     // The exact r_i = (717 (n - 1) + 1000 i) / (10000 (n - 1)).
     const core::mpfr_float exact = core::mpfr_float(717 * (n - 1) + 1000 * i) / core::mpfr_float(10000 * (n - 1));
     const core::float128 q = e.r_at<core::float128>(j);
-    const core::float128 lo = boost::lexical_cast<core::float128>("0.0717"), hi = boost::lexical_cast<core::float128>("0.1717");
+    const core::float128 lo = boost::lexical_cast<core::float128>("0.0717"),
+                         hi = boost::lexical_cast<core::float128>("0.1717");
     EXPECT_EQ(q, i == 0 ? lo : i == n - 1 ? hi : core::float128(lo + (hi - lo) * i / (n - 1))) << i;
     worst_quad = std::max(worst_quad, static_cast<double>(abs(core::mpfr_float(q) - exact) / exact));
     worst_double = std::max(worst_double, static_cast<double>(abs(core::mpfr_float(e.r[j]) - exact) / exact));
     EXPECT_EQ(e.r_at<float>(j), static_cast<float>(e.r[j])) << i;  // float: the committed float runs' r (see README)
   }
-  EXPECT_SMALL(worst_quad, ulps<core::float128>(4, "four float128 roundings: lo, hi, the difference, the product, the quotient"));
+  EXPECT_SMALL(worst_quad,
+               ulps<core::float128>(4, "four float128 roundings: lo, hi, the difference, the product, the quotient"));
   EXPECT_GT(worst_double, 1e3 * static_cast<double>(std::numeric_limits<core::float128>::epsilon()));  // what it fixes
   // A part of a sweep keeps the whole range and its items' indices.
   iterate::Ensemble part;
@@ -358,7 +362,8 @@ TEST(RInPrecision, OrbitRequestReadsRInItsPrecision) {
   o.blocks = req.blocks;
   const core::Vec3<double> u = core::parse_point(req.point, "point");
   const core::Vec3<core::float128> uq(u(0), u(1), u(2));
-  const lyapunov::ProjectiveResult t = lyapunov::projective_exponents<core::float128>(uq, boost::lexical_cast<core::float128>("0.11"), o);
+  const lyapunov::ProjectiveResult t =
+      lyapunov::projective_exponents<core::float128>(uq, boost::lexical_cast<core::float128>("0.11"), o);
   const lyapunov::ProjectiveResult w = lyapunov::projective_exponents<core::float128>(uq, core::float128(0.11), o);
   EXPECT_EQ(a.weighted, t.weighted);
   EXPECT_TRUE(a.final_point == t.final_point);
@@ -449,8 +454,8 @@ TEST(LyapunovRequest, MapDescribesEveryArrayWithItsShape) {
   const auto res = lyapunov::run(m);
   core::Contents c;
   res.describe(c);
-  for (const char* n : {"r", "lambda1", "err1", "lambda2", "err2", "lambda_max", "err_max", "lambda_min", "err_min", "chi1",
-                        "median", "median_err", "min_err", "max_err", "frac_zero"}) {
+  for (const char* n : {"r", "lambda1", "err1", "lambda2", "err2", "lambda_max", "err_max", "lambda_min", "err_min",
+                        "chi1", "median", "median_err", "min_err", "max_err", "frac_zero"}) {
     const core::ArrayView* a = c.find(n);
     ASSERT_NE(a, nullptr) << n;
     std::size_t total = 1;

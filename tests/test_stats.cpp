@@ -2,11 +2,11 @@
 // Tests of src/stats: C_N by FFT equals the direct sum (float, double, long double; random and orbit
 // series); periodic, quasi-periodic and chaotic C_N; empirical measures in one basin and on distinct
 // invariant curves; the SeriesRecorder against the TailRecorder; errors (API and command line).
+#include "core/fields.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
-#include "stats/stats.hpp"
 #include "stats/requests.hpp"
-#include "core/fields.hpp"
+#include "stats/stats.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -45,7 +45,7 @@ template <class T> double max_rel_diff(const std::vector<T>& a, const std::vecto
   for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, static_cast<double>(std::fabs(a[i] - b[i])));
   return d / max_abs(b);
 }
-const iterate::Vec3<double> kGrid0{1, -3, -1.1};   // first point of the Section 4 grid (g = 1, h = 1)
+const iterate::Vec3<double> kGrid0{1, -3, -1.1};     // first point of the Section 4 grid (g = 1, h = 1)
 const iterate::Vec3<double> kRotation{1, 0.02, -1};  // inside the P2 rotation region near (1, 0, -1) (Section 5.2)
 
 std::vector<double> random_series(std::size_t n, std::uint64_t seed) {
@@ -67,7 +67,7 @@ TEST(Fft, RoundTripAndLengths) {
   EXPECT_CLOSE(f.spectrum()[0].real(), 506 - 36, terms);
   f.inverse();
   for (int k = 0; k < 12; ++k) EXPECT_CLOSE(f.data()[k] / 12, k * k - 3.0, terms);  // unnormalised: n x
-  EXPECT_EQ(fast_fft_length(1100000), 1105920);  // 2^13 3^3 5
+  EXPECT_EQ(fast_fft_length(1100000), 1105920);                                     // 2^13 3^3 5
   EXPECT_EQ(fast_fft_length(1), 1);
   EXPECT_EQ(fast_fft_length(7), 8);
   EXPECT_THROW(RealFft<float>(0), std::invalid_argument);
@@ -167,11 +167,10 @@ TEST(Correlation, PeriodicOrbitGivesPeriodicCN) {
     const auto cn = c(x, x);
     double worst = 0;
     for (long n = 0; n + 4 <= 1000; ++n) worst = std::max(worst, std::fabs(cn[n + 4] - cn[n]));
-    EXPECT_SMALL(worst,
-                 ulps(4500, "the required p-periodicity: the sink is reached to rounding (measured 96 eps)"))
+    EXPECT_SMALL(worst, ulps(4500, "the required p-periodicity: the sink is reached to rounding (measured 96 eps)"))
         << observable_name(o);
     EXPECT_GT(max_abs(cn), 1e-3) << observable_name(o);  // and not trivially zero
-    double worst2 = 0;  // but not 2-periodic (period exactly 4)
+    double worst2 = 0;                                   // but not 2-periodic (period exactly 4)
     for (long n = 0; n + 2 <= 1000; ++n) worst2 = std::max(worst2, std::fabs(cn[n + 2] - cn[n]));
     EXPECT_GT(worst2, 1e-3) << observable_name(o);
   }
@@ -185,8 +184,9 @@ TEST(Correlation, QuasiPeriodicDoesNotDecay) {
   const Decay d = fit_decay(cq, 1000, 50, 4 * cq[0] / std::sqrt(1e5));
   const auto env = envelope(cq, 50);
   const double lo = *std::min_element(env.begin(), env.end()), hi = *std::max_element(env.begin(), env.end());
-  std::printf("quasi-periodic r = 0.2: C_N(0) = %.4g, envelope over windows of 50 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
-              cq[0], lo, hi, d.rate, d.rate_error);
+  std::printf(
+      "quasi-periodic r = 0.2: C_N(0) = %.4g, envelope over windows of 50 lags in [%.4g, %.4g], rate %.3g +- %.2g\n",
+      cq[0], lo, hi, d.rate, d.rate_error);
   EXPECT_FALSE(d.decays);
   EXPECT_EQ(d.verdict, "not decaying") << d.reason;
   EXPECT_EQ(d.windows, 20);  // every window stays above the noise floor
@@ -202,22 +202,24 @@ TEST(Correlation, ChaoticDecays) {
   const auto cx = c(x, x);
   const double floor = 4 * cx[0] / std::sqrt(static_cast<double>(N));
   const Decay d = fit_decay(cx, 400, 4, floor);
-  std::printf("chaotic r = 0.11: C_N(0) = %.4g, rate %.4g +- %.2g per iteration over %ld windows of 4 lags, envelope "
-              "%.3g -> %.3g (floor %.2g)\n",
-              cx[0], d.rate, d.rate_error, d.windows, d.envelope_first, d.envelope_last, floor);
+  std::printf(
+      "chaotic r = 0.11: C_N(0) = %.4g, rate %.4g +- %.2g per iteration over %ld windows of 4 lags, envelope "
+      "%.3g -> %.3g (floor %.2g)\n",
+      cx[0], d.rate, d.rate_error, d.windows, d.envelope_first, d.envelope_last, floor);
   // The README's claim: |C_N| falls by two decades within about 30 lags: max |C_N| over lags 30..60 (the decay,
   // not the noise of 370 further lags) and the first lag after which |C_N| stays below C_0/100.
   const double after30 = max_abs(std::vector<double>(cx.begin() + 30, cx.begin() + 61)) / cx[0];
   const double after200 = max_abs(std::vector<double>(cx.begin() + 200, cx.end())) / cx[0];
   long below = 400;
   while (below > 0 && std::fabs(cx[below - 1]) < 0.01 * cx[0]) --below;
-  std::printf("chaotic r = 0.11: max |C_N|/C_0 over N = 30..60: %.4g, over N >= 200: %.4g; below C_0/100 from lag %ld\n",
-              after30, after200, below);
+  std::printf(
+      "chaotic r = 0.11: max |C_N|/C_0 over N = 30..60: %.4g, over N >= 200: %.4g; below C_0/100 from lag %ld\n",
+      after30, after200, below);
   // A significant exponential decay (not d.decays: its tenfold fall must happen before the envelope meets the noise
   // floor, which one chaotic realisation does (0.25 -> 0.016, release) and another does not (0.25 -> 0.036 in 4
   // windows, the unoptimised sanitizer build)); the two decades are checked directly below.
   EXPECT_GT(d.rate, 3 * d.rate_error);
-  EXPECT_GT(d.rate, 0.01);  // faster than 1% per iteration (fitted ~0.1, see notes)
+  EXPECT_GT(d.rate, 0.01);   // faster than 1% per iteration (fitted ~0.1, see notes)
   EXPECT_LT(after30, 0.01);  // two decades by lag 30 (README); measured 0.0049, below C_0/100 from lag 20
   // Beyond 200 lags only noise is left: |C_N|/C_0 ~ 1/sqrt(N) = 0.0022 per lag; measured max 0.0065 (release) and
   // 0.0106 (sanitizer build: another chaotic realisation); 0.02 is about twice the larger (was 0.05, which a
@@ -260,7 +262,8 @@ TEST(Measures, OneBasinGivesOneMeasure) {
 TEST(Measures, DistinctInvariantCurvesGiveDistinctMeasures) {
   // r = 0.2: orbits on different invariant curves of the P2 rotation have different measures (Section 8.1).
   const auto s = orbit_series(0.2, std::vector<iterate::Vec3<double>>{{1, 0.01, -1}, {1, 0.06, -1}}, 1000, 100000);
-  const Measure a = empirical_measure(s[0], Chart::strip, 200, 200), b = empirical_measure(s[1], Chart::strip, 200, 200);
+  const Measure a = empirical_measure(s[0], Chart::strip, 200, 200),
+                b = empirical_measure(s[1], Chart::strip, 200, 200);
   EXPECT_GT(total_variation(a, b), 0.5);  // nested curves: nearly disjoint supports
   EXPECT_EQ(group_measures({a, b}, 0.05), (std::vector<int>{0, 1}));
   // Each curve's own measure converges: first half vs second half of its orbit.
@@ -286,7 +289,12 @@ TEST(Stats, BadInputNamesTheField) {
   expect_message([&] { Correlator<double>(50, 50); }, "n-max: got 50, expected 0 <= n-max < N = 50");
   expect_message([&] { correlation_direct(x, x, 50, 60); }, "n-max");
   expect_message([&] { correlation_direct(x, x, 90, 20); }, "series: got 100 and 100 values");
-  expect_message([&] { Correlator<double> c(90, 20); c(x, x); }, "series");
+  expect_message(
+      [&] {
+        Correlator<double> c(90, 20);
+        c(x, x);
+      },
+      "series");
   expect_message([] { parse_observable("psi"); }, "observable: got 'psi', expected one of theta");
   expect_message([] { parse_chart("polar"); }, "coords: got 'polar'");
   const OrbitSeries s = orbit_series(0.3, kGrid0, 10, 100);
@@ -538,8 +546,8 @@ TEST(Cli, BadInputIsOneLineNamingTheFieldExit2) {
   EXPECT_FALSE(std::filesystem::exists(out)) << "bad input must not create the output directory";
 }
 
-// Undecided correlations: at r = 0.11 with the default N = 1e5, |C_N| reaches the noise floor 4 C_N(0)/sqrt(N) = 0.0145 at
-// lag 21, after two windows of 10 lags: no line with an error can be fitted, so the verdict is "undecided" (it was
+// Undecided correlations: at r = 0.11 with the default N = 1e5, |C_N| reaches the noise floor 4 C_N(0)/sqrt(N) = 0.0145
+// at lag 21, after two windows of 10 lags: no line with an error can be fitted, so the verdict is "undecided" (it was
 // "not decaying, rate 0 +- 0"), with the lag and the windows reported.  With N = 1e6 the floor is 0.0046, three
 // windows are above it and the verdict is "decaying"; its 95% interval contains the rate of an independent fit (N =
 // 2e6, windows of 2 lags: 12 points, a different set of lags).
@@ -607,7 +615,8 @@ TEST(Cli, CorrelateVerdictOnTheTerminalIsTheManifests) {
   EXPECT_NE(r.err.find("undecided: 2 window(s)"), std::string::npos) << r.err;
   const auto value = [&](const std::string& key) {  // the number after "key": in the manifest
     const std::size_t p = json.find("\"" + key + "\": ");
-    return p == std::string::npos ? std::string() : json.substr(p + key.size() + 4, json.find_first_of(",\n", p) - p - key.size() - 4);
+    return p == std::string::npos ? std::string()
+                                  : json.substr(p + key.size() + 4, json.find_first_of(",\n", p) - p - key.size() - 4);
   };
   const std::string lag = value("decay_floor_lag"), first = value("envelope_first");
   ASSERT_FALSE(lag.empty());

@@ -346,8 +346,10 @@ TEST(Sweep, WindowsPrecisionAnyPartitionEqualsRun) {
     const auto &a = whole.rows[i], &b = merged.rows[i];
     EXPECT_EQ(a.precision + a.route, b.precision + b.route) << i;
     EXPECT_EQ(a.n, b.n) << i;
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.value), std::bit_cast<std::uint64_t>(b.value)) << a.precision << " n = " << a.n;
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.abs_error), std::bit_cast<std::uint64_t>(b.abs_error)) << a.precision << " n = " << a.n;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.value), std::bit_cast<std::uint64_t>(b.value))
+        << a.precision << " n = " << a.n;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.abs_error), std::bit_cast<std::uint64_t>(b.abs_error))
+        << a.precision << " n = " << a.n;
     EXPECT_EQ(a.correct_12, b.correct_12) << a.precision << " n = " << a.n;
   }
   ASSERT_EQ(whole.summary.size(), 10u);

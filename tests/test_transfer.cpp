@@ -3,10 +3,10 @@
 // known in closed form (logistic map at 4: arcsine; baker map: uniform), the ergodic decomposition against a
 // hand-made chain, the block spectrum against Spectra on the whole matrix, the two routes of P^_r against each
 // other, thread independence, and the request's errors.
-#include "transfer/transfer.hpp"
 #include "attractors/attractors.hpp"
 #include "iterate/ensemble.hpp"
 #include "transfer/stages.hpp"
+#include "transfer/transfer.hpp"
 #include "transfer/transfer_impl.hpp"
 
 #include "csv_cells.hpp"
@@ -132,8 +132,8 @@ TEST(Transfer, LogisticArcsineDensityConvergesWithTheBoxes) {
     const auto u = invariant(P);
     std::vector<double> exact(static_cast<std::size_t>(n));
     for (long i = 0; i < n; ++i)
-      exact[static_cast<std::size_t>(i)] = 2 / std::numbers::pi *
-                                           (std::asin(std::sqrt(double(i + 1) / n)) - std::asin(std::sqrt(double(i) / n)));
+      exact[static_cast<std::size_t>(i)] =
+          2 / std::numbers::pi * (std::asin(std::sqrt(double(i + 1) / n)) - std::asin(std::sqrt(double(i) / n)));
     const double d = tv(u, exact);
     // Ulam's method converges in L1 for this map (Li 1976); the arcsine density's 1/sqrt singularities at 0
     // and 1 make the boxes next to them converge like h^(1/2) (measured: TV 0.064, 0.036, 0.020 at n = 64, 256,
@@ -244,8 +244,8 @@ TEST(Transfer, BlockSpectrumAgreesWithSpectraOnTheWholeMatrix) {
   ASSERT_GE(whole.size(), 3u);
   // Both are Arnoldi / QR to ~1e-10 relative (Spectra's tolerance); the leading three moduli must agree to 1e-8.
   for (std::size_t k = 0; k < 3; ++k)
-    EXPECT_CLOSE(std::abs(blocks[k].value), std::abs(whole[k]),
-                 bound(1e-8, "two Arnoldi runs to Spectra's 1e-10")) << k;
+    EXPECT_CLOSE(std::abs(blocks[k].value), std::abs(whole[k]), bound(1e-8, "two Arnoldi runs to Spectra's 1e-10"))
+        << k;
   EXPECT_CLOSE(blocks[0].value.real(), 1.0, bound(1e-10, "Spectra's convergence tolerance"));
 }
 
@@ -254,7 +254,8 @@ TEST(Transfer, RoutesAgreeAndThreadsDoNotMatter) {
   core::RunControl one, two;
   one.threads = 1, two.threads = 2;
   for (const char* route : {"direct", "kernel"}) {
-    const auto a = ulam_btob(0.2, Domain::strip, p, 16, route, one), b = ulam_btob(0.2, Domain::strip, p, 16, route, two);
+    const auto a = ulam_btob(0.2, Domain::strip, p, 16, route, one),
+               b = ulam_btob(0.2, Domain::strip, p, 16, route, two);
     EXPECT_EQ(a.row_ptr, b.row_ptr) << route;
     EXPECT_EQ(a.col, b.col) << route;
     EXPECT_EQ(a.val, b.val) << route;
@@ -525,8 +526,10 @@ TEST(Transfer, BasinsWithoutTheSpectrumAreThoseWithIt) {
   EXPECT_EQ(cyc[1][csv_column(cyc[0], "radius99")], "");
   core::Contents c;
   without.describe(c);
-  for (const char* name : {"density", "second", "component", "eig_re", "lebesgue"}) EXPECT_EQ(c.find(name), nullptr) << name;
-  for (const char* name : {"basin", "basin_probability", "basin_fraction", "cycle_points"}) EXPECT_NE(c.find(name), nullptr) << name;
+  for (const char* name : {"density", "second", "component", "eig_re", "lebesgue"})
+    EXPECT_EQ(c.find(name), nullptr) << name;
+  for (const char* name : {"basin", "basin_probability", "basin_fraction", "cycle_points"})
+    EXPECT_NE(c.find(name), nullptr) << name;
   for (const char* name : {"tv_boxes", "near_one_count", "second_value", "cycle_1_mass_boxes"})
     EXPECT_EQ(c.attrs.count(name), 0u) << name;
   EXPECT_EQ(std::get<long>(c.attrs.at("eigenvalues")), 0);

@@ -54,7 +54,7 @@ TEST(TrigMatlab, NoOrbitOfTheGridTakesAComplexAcosWhereOctaveFindsNone) {
     for (int b = 0; b < 100; ++b) drawn += m.counts[ir * 100 + b];
     // Every tail state is drawn, NaN, outside [0, pi] or never reached: nothing is dropped silently.
     EXPECT_EQ(drawn + m.nan_points[ir] + m.outside[ir] + m.stalled[ir], static_cast<std::uint64_t>(32 * tail));
-    EXPECT_GE(m.stalled[ir], 8u) << "r = " << e.r[ir];   // Octave: 15-20 of 32
+    EXPECT_GE(m.stalled[ir], 8u) << "r = " << e.r[ir];  // Octave: 15-20 of 32
     EXPECT_LE(m.stalled[ir], 28u) << "r = " << e.r[ir];
   }
 }

@@ -20,9 +20,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <numeric>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,38 +41,38 @@ struct TableB2Row {
   const char* developed;
   const char* factorised;
 };
-const TableB2Row kTableB2[] = {
-    {1,
-     R"(\frac{1}{16}r^4 - \frac{1}{4}r^3 - \frac{5}{8}r^2 - \frac{1}{4}r + \frac{1}{16})",
-     R"(\frac{1}{16}(r+1)^2(r^2-6r+1))"},
-    {2,
-     R"(\frac{5}{256}r^8 - \frac{5}{32}r^7 + \frac{3}{64}r^6 - \frac{3}{32}r^5 + \frac{81}{128}r^4 - \frac{3}{32}r^3 + \frac{3}{64}r^2 - \frac{5}{32}r + \frac{5}{256})",
-     R"(\frac{1}{256}(r+1)^2(5r^6-50r^5+107r^4-188r^3+107r^2-50r+5))"},
-    {3,
-     R"(\frac{21}{4096}r^{12} -\frac{73}{1024}r^{11} +\frac{357}{2048}r^{10} +\frac{59}{1024}r^9 +\frac{283}{4096}r^8 +\frac{7}{512}r^7 -\frac{509}{1024}r^6 +\frac{7}{512}r^5 +\frac{283}{4096}r^4 + \frac{59}{1024}r^3 + \frac{357}{2048}r^2 - \frac{73}{1024}r + \frac{21}{4096})",
-     R"(\frac{1}{4096}(r^2-1)^2(21r^8 - 292 r^7 + 756 r^6 - 348 r^5 + 1774 r^4 - 348 r^3 + 756 r^2 - 292 r + 21))"},
-    {4,
-     R"(\frac{85}{65536}r^{16} - \frac{53}{2048}r^{15} + \frac{1095}{8192}r^{14} - \frac{211}{2048}r^{13} - \frac{1277}{16384}r^{12} - \frac{137}{2048}r^{11} - \frac{303}{8192}r^{10} - \frac{111}{2048}r^9 - \frac{17697}{32768}r^8 - \frac{111}{2048}r^7 - \frac{303}{8192}r^6 - \frac{137}{2048}r^5 - \frac{1277}{16384}r^4 - \frac{211}{2048}r^3 + \frac{1095}{8192}r^2 - \frac{53}{2048}r + \frac{85}{65536})",
-     R"(\frac{1}{65536}(r + 1)^2(85 r^{14} - 1866 r^{13} + 12407 r^{12} - 29700 r^{11} + 41885 r^{10} - 58454 r^9 + 72599 r^8 - 90296 r^7 + 72599 r^6 - 58454 r^5 + 41885 r^4 - 29700 r^3 + 12407 r^2 - 1866 r + 85))"},
-    {5,
-     R"(\frac{341}{1048576}r^{20} - \frac{2215}{262144}r^{19} + \frac{35547}{524288}r^{18} - \frac{42543}{262144}r^{17} - \frac{10319}{1048576}r^{16} + \frac{1325}{65536}r^{15} + \frac{2977}{131072}r^{14} - \frac{159}{65536}r^{13} - \frac{17155}{524288}r^{12} - \frac{12721}{131072}r^{11} - \frac{156383}{262144}r^{10} - \frac{12721}{131072}r^9 - \frac{17155}{524288}r^8 - \frac{159}{65536}r^7 + \frac{2977}{131072}r^6 + \frac{1325}{65536}r^5 - \frac{10319}{1048576}r^4 - \frac{42543}{262144}r^3 + \frac{35547}{524288}r^2 - \frac{2215}{262144}r + \frac{341}{1048576})",
-     R"(\frac{1}{1048576} (r + 1)^2(341r^{18} - 9542r^{17} + 89837r^{16} - 340304r^{15} + 580452r^{14} - 799400r^{13} + 1042164r^{12} - 1287472r^{11} + 1498470r^{10} - 1811236r^9 + 1498470r^8 - 1287472r^7 + 1042164r^6 - 799400r^5 + 580452r^4 - 340304r^3 + 89837r^2 - 9542r + 341))"},
-    {6,
-     R"(\frac{1365}{16777216}r^{24} - \frac{5459}{2097152}r^{23} + \frac{119361}{4194304}r^{22} - \frac{249245}{2097152}r^{21} + \frac{1046837}{8388608}r^{20} + \frac{178783}{2097152}r^{19} + \frac{198397}{4194304}r^{18} + \frac{41649}{2097152}r^{17} + \frac{324955}{16777216}r^{16} + \frac{32985}{1048576}r^{15} + \frac{74977}{2097152}r^{14} - \frac{15849}{1048576}r^{13} - \frac{2145421}{4194304}r^{12} - \frac{15849}{1048576}r^{11} + \frac{74977}{2097152}r^{10} + \frac{32985}{1048576}r^9 + \frac{324955}{16777216}r^8 + \frac{41649}{2097152}r^7 + \frac{198397}{4194304}r^6 + \frac{178783}{2097152}r^5 + \frac{1046837}{8388608}r^4 - \frac{249245}{2097152}r^3 + \frac{119361}{4194304}r^2 - \frac{5459}{2097152}r + \frac{1365}{16777216})",
-     R"(\frac{1}{16777216}(r^2 - 1)^2(1365r^{20} - 43672r^{19} + 480174r^{18} - 2081304r^{17} + 3052657r^{16} - 2688672r^{15} + 6418728r^{14} - 2962848r^{13} + 10109754r^{12} - 2709264r^{11} + 14400596r^{10} - 2709264r^9 + 10109754r^8 - 2962848r^7 + 6418728r^6 - 2688672r^5 + 3052657r^4 - 2081304r^3 + 480174r^2 - 43672r + 1365))"},
-    {7,
-     R"(\frac{5461}{268435456}r^{28} - \frac{51877}{67108864}r^{27} + \frac{1438737}{134217728}r^{26} - \frac{4339241}{67108864}r^{25} + \frac{40022743}{268435456}r^{24} - \frac{1129031}{33554432}r^{23} - \frac{5192403}{67108864}r^{22} - \frac{2073279}{33554432}r^{21} - \frac{6301571}{268435456}r^{20} - \frac{655231}{67108864}r^{19} - \frac{2823425}{134217728}r^{18} - \frac{1836819}{67108864}r^{17} - \frac{4944041}{268435456}r^{16} - \frac{872357}{16777216}r^{15} - \frac{18088117}{33554432}r^{14} - \frac{872357}{16777216}r^{13} - \frac{4944041}{268435456}r^{12} - \frac{1836819}{67108864}r^{11} - \frac{2823425}{134217728}r^{10} - \frac{655231}{67108864}r^9 - \frac{6301571}{268435456}r^8 - \frac{2073279}{33554432}r^7 - \frac{5192403}{67108864}r^6 - \frac{1129031}{33554432}r^5 + \frac{40022743}{268435456}r^4 - \frac{4339241}{67108864}r^3 + \frac{1438737}{134217728}r^2 - \frac{51877}{67108864}r + \frac{5461}{268435456})",
-     R"(\frac{1}{268435456}(r + 1)^2(5461r^{26} - 218430r^{25} + 3308873r^{24} - 23756280r^{23} + 84226430r^{22} - 153728828r^{21} + 202461614r^{20} - 267780632r^{19} + 326798079r^{18} - 388436450r^{17} + 444427971r^{16} - 507766768r^{15} + 566161524r^{14} - 638513992r^{13} + 566161524r^{12} - 507766768r^{11} + 444427971r^{10} - 388436450r^9 + 326798079r^8 - 267780632r^7 + 202461614r^6 - 153728828r^5 + 84226430r^4 - 23756280r^3 + 3308873r^2 - 218430r + 5461))"},
-    {8,
-     R"(\frac{21845}{4294967296}r^{32} - \frac{60073}{268435456}r^{31} + \frac{1010289}{268435456}r^{30} - \frac{8010651}{268435456}r^{29} + \frac{58278227}{536870912}r^{28} - \frac{34802629}{268435456}r^{27} - \frac{15076669}{268435456}r^{26} + \frac{2386713}{268435456}r^{25} + \frac{18759667}{1073741824}r^{24} - \frac{3118757}{268435456}r^{23} - \frac{3881071}{268435456}r^{22} + \frac{3019329}{268435456}r^{21} + \frac{9472389}{536870912}r^{20} - \frac{1744673}{268435456}r^{19} - \frac{8984773}{268435456}r^{18} - \frac{24778123}{268435456}r^{17} - \frac{1259891681}{2147483648}r^{16} - \frac{24778123}{268435456}r^{15} - \frac{8984773}{268435456}r^{14} - \frac{1744673}{268435456}r^{13} + \frac{9472389}{536870912}r^{12} + \frac{3019329}{268435456}r^{11} - \frac{3881071}{268435456}r^{10} - \frac{3118757}{268435456}r^9 + \frac{18759667}{1073741824}r^8 + \frac{2386713}{268435456}r^7 - \frac{15076669}{268435456}r^6 - \frac{34802629}{268435456}r^5 + \frac{58278227}{536870912}r^4 - \frac{8010651}{268435456}r^3 + \frac{1010289}{268435456}r^2 - \frac{60073}{268435456}r + \frac{21845}{4294967296})",
-     R"(\frac{1}{4294967296}(r + 1)^2(21845r^{30} - 1004858r^{29} + 18152495r^{28} - 163470548r^{27} + 775014417r^{26} - 1943400350r^{25} + 2870559579r^{24} - 3759531400r^{23} + 4723541889r^{22} - 5737452490r^{21} + 6689265955r^{20} - 7592770156r^{19} + 8572053469r^{18} - 9579251550r^{17} + 10442693263r^{16} - 11702584944r^{15} + 10442693263r^{14} - 9579251550r^{13} + 8572053469r^{12} - 7592770156r^{11} + 6689265955r^{10} - 5737452490r^9 + 4723541889r^8 - 3759531400r^7 + 2870559579r^6 - 1943400350r^5 + 775014417r^4 - 163470548r^3 + 18152495r^2 - 1004858r + 21845))"},
-    {9,
-     R"(\frac{87381}{68719476736}r^{36} - \frac{1092259}{17179869184}r^{35} + \frac{43209447}{34359738368}r^{34} - \frac{212853619}{17179869184}r^{33} + \frac{4269713485}{68719476736}r^{32} - \frac{296590343}{2147483648}r^{31} + \frac{252213133}{4294967296}r^{30} + \frac{188040453}{2147483648}r^{29} + \frac{905801569}{17179869184}r^{28} + \frac{159965871}{4294967296}r^{27} + \frac{416297761}{8589934592}r^{26} + \frac{116931159}{4294967296}r^{25} - \frac{243450859}{17179869184}r^{24} - \frac{30883381}{2147483648}r^{23} + \frac{81855995}{4294967296}r^{22} + \frac{79821671}{2147483648}r^{21} + \frac{1070869059}{34359738368}r^{20} - \frac{208374721}{8589934592}r^{19} - \frac{8911424427}{17179869184}r^{18} - \frac{208374721}{8589934592}r^{17} + \frac{1070869059}{34359738368}r^{16} + \frac{79821671}{2147483648}r^{15} + \frac{81855995}{4294967296}r^{14} - \frac{30883381}{2147483648}r^{13} - \frac{243450859}{17179869184}r^{12} + \frac{116931159}{4294967296}r^{11} + \frac{416297761}{8589934592}r^{10} + \frac{159965871}{4294967296}r^9 + \frac{905801569}{17179869184}r^8 + \frac{188040453}{2147483648}r^7 + \frac{252213133}{4294967296}r^6 - \frac{296590343}{2147483648}r^5 + \frac{4269713485}{68719476736}r^4 - \frac{212853619}{17179869184}r^3 + \frac{43209447}{34359738368}r^2 - \frac{1092259}{17179869184}r + \frac{87381}{68719476736})",
-     R"(\frac{1}{68719476736}(r^2 - 1)^2(87381r^{32} - 4369036r^{31} + 86593656r^{30} - 860152548r^{29} + 4442813416r^{28} - 11206827036r^{27} + 12834443304r^{26} - 15536207028r^{25} + 24849279468r^{24} - 17306133084r^{23} + 40194497720r^{22} - 17205160596r^{21} + 54565912536r^{20} - 18092456300r^{19} + 70247023272r^{18} - 16425458532r^{17} + 88069872126r^{16} - 16425458532r^{15} + 70247023272r^{14} - 18092456300r^{13} + 54565912536r^{12} - 17205160596r^{11} + 40194497720r^{10} - 17306133084r^9 + 24849279468r^8 - 15536207028r^7 + 12834443304r^6 - 11206827036r^5 + 4442813416r^4 - 860152548r^3 + 86593656r^2 - 4369036r + 87381))"},
-    {10,
-     R"(\frac{349525}{1099511627776}r^{40} - \frac{2446673}{137438953472}r^{39} + \frac{111323415}{274877906944}r^{38} - \frac{656403031}{137438953472}r^{37} + \frac{16860878795}{549755813888}r^{36} - \frac{13880529647}{137438953472}r^{35} + \frac{35431771167}{274877906944}r^{34} + \frac{3945563655}{137438953472}r^{33} - \frac{51933796943}{1099511627776}r^{32} - \frac{1902386801}{34359738368}r^{31} - \frac{3442320253}{68719476736}r^{30} - \frac{1723679415}{34359738368}r^{29} - \frac{1719740815}{137438953472}r^{28} + \frac{1000292645}{34359738368}r^{27} + \frac{834339215}{68719476736}r^{26} - \frac{947288877}{34359738368}r^{25} - \frac{18459801603}{549755813888}r^{24} - \frac{1260871583}{68719476736}r^{23} - \frac{1215137471}{137438953472}r^{22} - \frac{3475964857}{68719476736}r^{21} - \frac{148356134671}{274877906944}r^{20} - \frac{3475964857}{68719476736}r^{19} - \frac{1215137471}{137438953472}r^{18} - \frac{1260871583}{68719476736}r^{17} - \frac{18459801603}{549755813888}r^{16} - \frac{947288877}{34359738368}r^{15} + \frac{834339215}{68719476736}r^{14} + \frac{1000292645}{34359738368}r^{13} - \frac{1719740815}{137438953472}r^{12} - \frac{1723679415}{34359738368}r^{11} - \frac{3442320253}{68719476736}r^{10} - \frac{1902386801}{34359738368}r^9 - \frac{51933796943}{1099511627776}r^8 + \frac{3945563655}{137438953472}r^7 + \frac{35431771167}{274877906944}r^6 - \frac{13880529647}{137438953472}r^5 + \frac{16860878795}{549755813888}r^4 - \frac{656403031}{137438953472}r^3 + \frac{111323415}{274877906944}r^2 - \frac{2446673}{137438953472}r + \frac{349525}{1099511627776})",
-     R"(\frac{1}{1099511627776}(r + 1)^2(349525r^{38} - 20272434r^{37} + 485489003r^{36} - 6201929820r^{35} + 45640128227r^{34} - 196122563810r^{33} + 488332084061r^{32} - 748977095072r^{31} + 957688309140r^{30} - 1227275900840r^{29} + 1441786368492r^{28} - 1711454577424r^{27} + 1967364859836r^{26} - 2191265777608r^{25} + 2428516122820r^{24} - 2696079712096r^{23} + 2926723698166r^{22} - 3177541629564r^{21} + 3418638461194r^{20} - 3715350730536r^{19} + 3418638461194r^{18} - 3177541629564r^{17} + 2926723698166r^{16} - 2696079712096r^{15} + 2428516122820r^{14} - 2191265777608r^{13} + 1967364859836r^{12} - 1711454577424r^{11} + 1441786368492r^{10} - 1227275900840r^9 + 957688309140r^8 - 748977095072r^7 + 488332084061r^6 - 196122563810r^5 + 45640128227r^4 - 6201929820r^3 + 485489003r^2 - 20272434r + 349525))"},
+// clang-format off: the rows are the paper's LaTeX, one formula per line
+const TableB2Row kTableB2[] =
+    {
+        {1, R"(\frac{1}{16}r^4 - \frac{1}{4}r^3 - \frac{5}{8}r^2 - \frac{1}{4}r + \frac{1}{16})",
+         R"(\frac{1}{16}(r+1)^2(r^2-6r+1))"},
+        {2,
+         R"(\frac{5}{256}r^8 - \frac{5}{32}r^7 + \frac{3}{64}r^6 - \frac{3}{32}r^5 + \frac{81}{128}r^4 - \frac{3}{32}r^3 + \frac{3}{64}r^2 - \frac{5}{32}r + \frac{5}{256})",
+         R"(\frac{1}{256}(r+1)^2(5r^6-50r^5+107r^4-188r^3+107r^2-50r+5))"},
+        {3,
+         R"(\frac{21}{4096}r^{12} -\frac{73}{1024}r^{11} +\frac{357}{2048}r^{10} +\frac{59}{1024}r^9 +\frac{283}{4096}r^8 +\frac{7}{512}r^7 -\frac{509}{1024}r^6 +\frac{7}{512}r^5 +\frac{283}{4096}r^4 + \frac{59}{1024}r^3 + \frac{357}{2048}r^2 - \frac{73}{1024}r + \frac{21}{4096})",
+         R"(\frac{1}{4096}(r^2-1)^2(21r^8 - 292 r^7 + 756 r^6 - 348 r^5 + 1774 r^4 - 348 r^3 + 756 r^2 - 292 r + 21))"},
+        {4,
+         R"(\frac{85}{65536}r^{16} - \frac{53}{2048}r^{15} + \frac{1095}{8192}r^{14} - \frac{211}{2048}r^{13} - \frac{1277}{16384}r^{12} - \frac{137}{2048}r^{11} - \frac{303}{8192}r^{10} - \frac{111}{2048}r^9 - \frac{17697}{32768}r^8 - \frac{111}{2048}r^7 - \frac{303}{8192}r^6 - \frac{137}{2048}r^5 - \frac{1277}{16384}r^4 - \frac{211}{2048}r^3 + \frac{1095}{8192}r^2 - \frac{53}{2048}r + \frac{85}{65536})",
+         R"(\frac{1}{65536}(r + 1)^2(85 r^{14} - 1866 r^{13} + 12407 r^{12} - 29700 r^{11} + 41885 r^{10} - 58454 r^9 + 72599 r^8 - 90296 r^7 + 72599 r^6 - 58454 r^5 + 41885 r^4 - 29700 r^3 + 12407 r^2 - 1866 r + 85))"},
+        {5,
+         R"(\frac{341}{1048576}r^{20} - \frac{2215}{262144}r^{19} + \frac{35547}{524288}r^{18} - \frac{42543}{262144}r^{17} - \frac{10319}{1048576}r^{16} + \frac{1325}{65536}r^{15} + \frac{2977}{131072}r^{14} - \frac{159}{65536}r^{13} - \frac{17155}{524288}r^{12} - \frac{12721}{131072}r^{11} - \frac{156383}{262144}r^{10} - \frac{12721}{131072}r^9 - \frac{17155}{524288}r^8 - \frac{159}{65536}r^7 + \frac{2977}{131072}r^6 + \frac{1325}{65536}r^5 - \frac{10319}{1048576}r^4 - \frac{42543}{262144}r^3 + \frac{35547}{524288}r^2 - \frac{2215}{262144}r + \frac{341}{1048576})",
+         R"(\frac{1}{1048576} (r + 1)^2(341r^{18} - 9542r^{17} + 89837r^{16} - 340304r^{15} + 580452r^{14} - 799400r^{13} + 1042164r^{12} - 1287472r^{11} + 1498470r^{10} - 1811236r^9 + 1498470r^8 - 1287472r^7 + 1042164r^6 - 799400r^5 + 580452r^4 - 340304r^3 + 89837r^2 - 9542r + 341))"},
+        {6,
+         R"(\frac{1365}{16777216}r^{24} - \frac{5459}{2097152}r^{23} + \frac{119361}{4194304}r^{22} - \frac{249245}{2097152}r^{21} + \frac{1046837}{8388608}r^{20} + \frac{178783}{2097152}r^{19} + \frac{198397}{4194304}r^{18} + \frac{41649}{2097152}r^{17} + \frac{324955}{16777216}r^{16} + \frac{32985}{1048576}r^{15} + \frac{74977}{2097152}r^{14} - \frac{15849}{1048576}r^{13} - \frac{2145421}{4194304}r^{12} - \frac{15849}{1048576}r^{11} + \frac{74977}{2097152}r^{10} + \frac{32985}{1048576}r^9 + \frac{324955}{16777216}r^8 + \frac{41649}{2097152}r^7 + \frac{198397}{4194304}r^6 + \frac{178783}{2097152}r^5 + \frac{1046837}{8388608}r^4 - \frac{249245}{2097152}r^3 + \frac{119361}{4194304}r^2 - \frac{5459}{2097152}r + \frac{1365}{16777216})", R"(\frac{1}{16777216}(r^2 - 1)^2(1365r^{20} - 43672r^{19} + 480174r^{18} - 2081304r^{17} + 3052657r^{16} - 2688672r^{15} + 6418728r^{14} - 2962848r^{13} + 10109754r^{12} - 2709264r^{11} + 14400596r^{10} - 2709264r^9 + 10109754r^8 - 2962848r^7 + 6418728r^6 - 2688672r^5 + 3052657r^4 - 2081304r^3 + 480174r^2 - 43672r + 1365))"},
+        {7,
+         R"(\frac{5461}{268435456}r^{28} - \frac{51877}{67108864}r^{27} + \frac{1438737}{134217728}r^{26} - \frac{4339241}{67108864}r^{25} + \frac{40022743}{268435456}r^{24} - \frac{1129031}{33554432}r^{23} - \frac{5192403}{67108864}r^{22} - \frac{2073279}{33554432}r^{21} - \frac{6301571}{268435456}r^{20} - \frac{655231}{67108864}r^{19} - \frac{2823425}{134217728}r^{18} - \frac{1836819}{67108864}r^{17} - \frac{4944041}{268435456}r^{16} - \frac{872357}{16777216}r^{15} - \frac{18088117}{33554432}r^{14} - \frac{872357}{16777216}r^{13} - \frac{4944041}{268435456}r^{12} - \frac{1836819}{67108864}r^{11} - \frac{2823425}{134217728}r^{10} - \frac{655231}{67108864}r^9 - \frac{6301571}{268435456}r^8 - \frac{2073279}{33554432}r^7 - \frac{5192403}{67108864}r^6 - \frac{1129031}{33554432}r^5 + \frac{40022743}{268435456}r^4 - \frac{4339241}{67108864}r^3 + \frac{1438737}{134217728}r^2 - \frac{51877}{67108864}r + \frac{5461}{268435456})",
+         R"(\frac{1}{268435456}(r + 1)^2(5461r^{26} - 218430r^{25} + 3308873r^{24} - 23756280r^{23} + 84226430r^{22} - 153728828r^{21} + 202461614r^{20} - 267780632r^{19} + 326798079r^{18} - 388436450r^{17} + 444427971r^{16} - 507766768r^{15} + 566161524r^{14} - 638513992r^{13} + 566161524r^{12} - 507766768r^{11} + 444427971r^{10} - 388436450r^9 + 326798079r^8 - 267780632r^7 + 202461614r^6 - 153728828r^5 + 84226430r^4 - 23756280r^3 + 3308873r^2 - 218430r + 5461))"},
+        {8,
+         R"(\frac{21845}{4294967296}r^{32} - \frac{60073}{268435456}r^{31} + \frac{1010289}{268435456}r^{30} - \frac{8010651}{268435456}r^{29} + \frac{58278227}{536870912}r^{28} - \frac{34802629}{268435456}r^{27} - \frac{15076669}{268435456}r^{26} + \frac{2386713}{268435456}r^{25} + \frac{18759667}{1073741824}r^{24} - \frac{3118757}{268435456}r^{23} - \frac{3881071}{268435456}r^{22} + \frac{3019329}{268435456}r^{21} + \frac{9472389}{536870912}r^{20} - \frac{1744673}{268435456}r^{19} - \frac{8984773}{268435456}r^{18} - \frac{24778123}{268435456}r^{17} - \frac{1259891681}{2147483648}r^{16} - \frac{24778123}{268435456}r^{15} - \frac{8984773}{268435456}r^{14} - \frac{1744673}{268435456}r^{13} + \frac{9472389}{536870912}r^{12} + \frac{3019329}{268435456}r^{11} - \frac{3881071}{268435456}r^{10} - \frac{3118757}{268435456}r^9 + \frac{18759667}{1073741824}r^8 + \frac{2386713}{268435456}r^7 - \frac{15076669}{268435456}r^6 - \frac{34802629}{268435456}r^5 + \frac{58278227}{536870912}r^4 - \frac{8010651}{268435456}r^3 + \frac{1010289}{268435456}r^2 - \frac{60073}{268435456}r + \frac{21845}{4294967296})", R"(\frac{1}{4294967296}(r + 1)^2(21845r^{30} - 1004858r^{29} + 18152495r^{28} - 163470548r^{27} + 775014417r^{26} - 1943400350r^{25} + 2870559579r^{24} - 3759531400r^{23} + 4723541889r^{22} - 5737452490r^{21} + 6689265955r^{20} - 7592770156r^{19} + 8572053469r^{18} - 9579251550r^{17} + 10442693263r^{16} - 11702584944r^{15} + 10442693263r^{14} - 9579251550r^{13} + 8572053469r^{12} - 7592770156r^{11} + 6689265955r^{10} - 5737452490r^9 + 4723541889r^8 - 3759531400r^7 + 2870559579r^6 - 1943400350r^5 + 775014417r^4 - 163470548r^3 + 18152495r^2 - 1004858r + 21845))"},
+        {9,
+         R"(\frac{87381}{68719476736}r^{36} - \frac{1092259}{17179869184}r^{35} + \frac{43209447}{34359738368}r^{34} - \frac{212853619}{17179869184}r^{33} + \frac{4269713485}{68719476736}r^{32} - \frac{296590343}{2147483648}r^{31} + \frac{252213133}{4294967296}r^{30} + \frac{188040453}{2147483648}r^{29} + \frac{905801569}{17179869184}r^{28} + \frac{159965871}{4294967296}r^{27} + \frac{416297761}{8589934592}r^{26} + \frac{116931159}{4294967296}r^{25} - \frac{243450859}{17179869184}r^{24} - \frac{30883381}{2147483648}r^{23} + \frac{81855995}{4294967296}r^{22} + \frac{79821671}{2147483648}r^{21} + \frac{1070869059}{34359738368}r^{20} - \frac{208374721}{8589934592}r^{19} - \frac{8911424427}{17179869184}r^{18} - \frac{208374721}{8589934592}r^{17} + \frac{1070869059}{34359738368}r^{16} + \frac{79821671}{2147483648}r^{15} + \frac{81855995}{4294967296}r^{14} - \frac{30883381}{2147483648}r^{13} - \frac{243450859}{17179869184}r^{12} + \frac{116931159}{4294967296}r^{11} + \frac{416297761}{8589934592}r^{10} + \frac{159965871}{4294967296}r^9 + \frac{905801569}{17179869184}r^8 + \frac{188040453}{2147483648}r^7 + \frac{252213133}{4294967296}r^6 - \frac{296590343}{2147483648}r^5 + \frac{4269713485}{68719476736}r^4 - \frac{212853619}{17179869184}r^3 + \frac{43209447}{34359738368}r^2 - \frac{1092259}{17179869184}r + \frac{87381}{68719476736})",
+         R"(\frac{1}{68719476736}(r^2 - 1)^2(87381r^{32} - 4369036r^{31} + 86593656r^{30} - 860152548r^{29} + 4442813416r^{28} - 11206827036r^{27} + 12834443304r^{26} - 15536207028r^{25} + 24849279468r^{24} - 17306133084r^{23} + 40194497720r^{22} - 17205160596r^{21} + 54565912536r^{20} - 18092456300r^{19} + 70247023272r^{18} - 16425458532r^{17} + 88069872126r^{16} - 16425458532r^{15} + 70247023272r^{14} - 18092456300r^{13} + 54565912536r^{12} - 17205160596r^{11} + 40194497720r^{10} - 17306133084r^9 + 24849279468r^8 - 15536207028r^7 + 12834443304r^6 - 11206827036r^5 + 4442813416r^4 - 860152548r^3 + 86593656r^2 - 4369036r + 87381))"},
+        {10,
+         R"(\frac{349525}{1099511627776}r^{40} - \frac{2446673}{137438953472}r^{39} + \frac{111323415}{274877906944}r^{38} - \frac{656403031}{137438953472}r^{37} + \frac{16860878795}{549755813888}r^{36} - \frac{13880529647}{137438953472}r^{35} + \frac{35431771167}{274877906944}r^{34} + \frac{3945563655}{137438953472}r^{33} - \frac{51933796943}{1099511627776}r^{32} - \frac{1902386801}{34359738368}r^{31} - \frac{3442320253}{68719476736}r^{30} - \frac{1723679415}{34359738368}r^{29} - \frac{1719740815}{137438953472}r^{28} + \frac{1000292645}{34359738368}r^{27} + \frac{834339215}{68719476736}r^{26} - \frac{947288877}{34359738368}r^{25} - \frac{18459801603}{549755813888}r^{24} - \frac{1260871583}{68719476736}r^{23} - \frac{1215137471}{137438953472}r^{22} - \frac{3475964857}{68719476736}r^{21} - \frac{148356134671}{274877906944}r^{20} - \frac{3475964857}{68719476736}r^{19} - \frac{1215137471}{137438953472}r^{18} - \frac{1260871583}{68719476736}r^{17} - \frac{18459801603}{549755813888}r^{16} - \frac{947288877}{34359738368}r^{15} + \frac{834339215}{68719476736}r^{14} + \frac{1000292645}{34359738368}r^{13} - \frac{1719740815}{137438953472}r^{12} - \frac{1723679415}{34359738368}r^{11} - \frac{3442320253}{68719476736}r^{10} - \frac{1902386801}{34359738368}r^9 - \frac{51933796943}{1099511627776}r^8 + \frac{3945563655}{137438953472}r^7 + \frac{35431771167}{274877906944}r^6 - \frac{13880529647}{137438953472}r^5 + \frac{16860878795}{549755813888}r^4 - \frac{656403031}{137438953472}r^3 + \frac{111323415}{274877906944}r^2 - \frac{2446673}{137438953472}r + \frac{349525}{1099511627776})",
+         R"(\frac{1}{1099511627776}(r + 1)^2(349525r^{38} - 20272434r^{37} + 485489003r^{36} - 6201929820r^{35} + 45640128227r^{34} - 196122563810r^{33} + 488332084061r^{32} - 748977095072r^{31} + 957688309140r^{30} - 1227275900840r^{29} + 1441786368492r^{28} - 1711454577424r^{27} + 1967364859836r^{26} - 2191265777608r^{25} + 2428516122820r^{24} - 2696079712096r^{23} + 2926723698166r^{22} - 3177541629564r^{21} + 3418638461194r^{20} - 3715350730536r^{19} + 3418638461194r^{18} - 3177541629564r^{17} + 2926723698166r^{16} - 2696079712096r^{15} + 2428516122820r^{14} - 2191265777608r^{13} + 1967364859836r^{12} - 1711454577424r^{11} + 1441786368492r^{10} - 1227275900840r^9 + 957688309140r^8 - 748977095072r^7 + 488332084061r^6 - 196122563810r^5 + 45640128227r^4 - 6201929820r^3 + 485489003r^2 - 20272434r + 349525))"},
 };
+// clang-format on
 
 // Parses a LaTeX polynomial in r: terms [+-] [\frac{a}{b} | a] [r[^k | ^{k}]].  Returns power -> coefficient.
 std::map<int, mpq_class> parse_latex_poly(const std::string& text) {
@@ -210,7 +210,8 @@ TEST(WindowPolynomial, FactorisedFormEqualsTableB2) {
     EXPECT_EQ(f.minus_one, e.minus_one) << "n = " << row.n;
     ASSERT_EQ(f.cofactor.degree(), e.cofactor.rbegin()->first) << "n = " << row.n;
     for (int k = 0; k <= f.cofactor.degree(); ++k)
-      EXPECT_EQ(mpq_class(f.cofactor[static_cast<std::size_t>(k)]), e.cofactor.count(k) ? e.cofactor.at(k) : mpq_class(0))
+      EXPECT_EQ(mpq_class(f.cofactor[static_cast<std::size_t>(k)]),
+                e.cofactor.count(k) ? e.cofactor.at(k) : mpq_class(0))
           << "n = " << row.n << ", cofactor coefficient of r^" << k;
   }
 }
@@ -239,8 +240,8 @@ TEST(WindowPolynomial, TraceMatchesFloatingMatrixPower) {
     const RationalPoly p = trace_polynomial(n);
     mpq_class v = 0, x(3, 10), xp = 1;
     for (int k = 0; k <= p.degree(); ++k, xp *= x) v += p.coefficient(k) * xp;
-    EXPECT_CLOSE(v.get_d(), M[6] + M[4] + M[2],
-                 ulps(225, "a dozen double products of entries below 2").of(2)) << "n = " << n;
+    EXPECT_CLOSE(v.get_d(), M[6] + M[4] + M[2], ulps(225, "a dozen double products of entries below 2").of(2))
+        << "n = " << n;
   }
 }
 
@@ -264,7 +265,7 @@ TEST(WindowBounds, UpperBoundsEqualTableB1) {
     if (is_erratum_b1_upper(row.n)) {
       EXPECT_NE(ours, row.upper);
       EXPECT_NE(fixed(r_crit2(row.n, 20), 20).substr(0, 14), row.upper);  // not a truncation either
-      EXPECT_EQ(ours.substr(0, 13), row.upper.substr(0, 13));          // first 11 decimals agree
+      EXPECT_EQ(ours.substr(0, 13), row.upper.substr(0, 13));             // first 11 decimals agree
     } else {
       EXPECT_EQ(ours, row.upper) << "n = " << row.n;
     }
@@ -325,13 +326,14 @@ TEST(WindowCertificates, SturmCountsKnownPolynomials) {
   EXPECT_EQ(sturm_count(seq, mpq_class(3, 2), mpq_class(5, 2)), 1);
   EXPECT_EQ(sturm_count_to_infinity(seq, mpq_class(7, 2)), 0);
   // (x^2 - 2)^2 (x + 5): distinct roots -5, -sqrt2, sqrt2; negative leading coefficient variant too.
-  const IntPoly q = IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) * IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) *
-                    IntPoly::x_plus(5);
+  const IntPoly q = IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) *
+                    IntPoly({mpz_class(-2), mpz_class(0), mpz_class(1)}) * IntPoly::x_plus(5);
   EXPECT_EQ(sturm_count(sturm_sequence(q), mpq_class(-10), mpq_class(10)), 3);
   EXPECT_EQ(sturm_count(sturm_sequence(mpz_class(-3) * q), mpq_class(-1), mpq_class(10)), 1);  // only sqrt 2
   EXPECT_EQ(sturm_count_to_infinity(sturm_sequence(q), mpq_class(-6)), 3);
   // Palindromic reduction: x^2 + 3x + 1 = x (s + 3).
-  EXPECT_EQ(palindromic_reduce(IntPoly({mpz_class(1), mpz_class(3), mpz_class(1)})), IntPoly({mpz_class(3), mpz_class(1)}));
+  EXPECT_EQ(palindromic_reduce(IntPoly({mpz_class(1), mpz_class(3), mpz_class(1)})),
+            IntPoly({mpz_class(3), mpz_class(1)}));
 }
 
 // Descartes (VCA bisection) against Sturm on the same polynomials and intervals: products of known linear
@@ -343,17 +345,20 @@ IntPoly from_roots(const std::vector<mpq_class>& roots) {
 }
 
 TEST(WindowCertificates, DescartesAgreesWithSturm) {
-  const std::vector<mpq_class> roots = {mpq_class(1, 3), mpq_class(1, 2), mpq_class(50001, 100000), mpq_class(2),
-                                        mpq_class(-7, 5), mpq_class(355, 113), mpq_class(3)};
+  const std::vector<mpq_class> roots = {mpq_class(1, 3), mpq_class(1, 2),  mpq_class(50001, 100000),
+                                        mpq_class(2),    mpq_class(-7, 5), mpq_class(355, 113),
+                                        mpq_class(3)};
   const IntPoly p = from_roots(roots) * IntPoly({mpz_class(1), mpz_class(0), mpz_class(1)});  // and x^2 + 1
   const auto seq = sturm_sequence(p);
   // Brackets with dyadic/decimal ends between the roots (never a root), from very short to all of them.
-  const std::vector<mpq_class> ends = {mpq_class(-2), mpq_class(0), mpq_class(1, 4), mpq_class(4, 10),
-                                       mpq_class(500005, 1000000), mpq_class(1), mpq_class(31, 10), mpq_class(1000)};
+  const std::vector<mpq_class> ends = {
+      mpq_class(-2), mpq_class(0),      mpq_class(1, 4), mpq_class(4, 10), mpq_class(500005, 1000000),
+      mpq_class(1),  mpq_class(31, 10), mpq_class(1000)};
   int compared = 0;
   for (std::size_t i = 0; i < ends.size(); ++i) {
     for (std::size_t j = i + 1; j < ends.size(); ++j, ++compared)
-      EXPECT_EQ(descartes_count(p, ends[i], ends[j]), sturm_count(seq, ends[i], ends[j])) << ends[i].get_str() << " " << ends[j].get_str();
+      EXPECT_EQ(descartes_count(p, ends[i], ends[j]), sturm_count(seq, ends[i], ends[j]))
+          << ends[i].get_str() << " " << ends[j].get_str();
     EXPECT_EQ(descartes_count_to_infinity(p, ends[i]), sturm_count_to_infinity(seq, ends[i])) << ends[i].get_str();
     std::vector<IntPoly> cache;
     EXPECT_EQ(root_count_to_infinity(p, ends[i], &cache), sturm_count_to_infinity(seq, ends[i]));
@@ -451,12 +456,14 @@ TEST(WindowDirect, MatrixRouteAgreesWithPolynomialRoots) {
     const mpfr_float exact = window_lower_bound(n, 40);
     mpfr_float::default_precision(60);
     const mpfr_float m = window_lower_bound_in<mpfr_float>(n, Route::matrix);
-    EXPECT_LT(abs(m - exact), mpfr_float("1e-40")) << "n = " << n;  // 60 digits minus ~20 lost near the double eigenvalue
+    EXPECT_LT(abs(m - exact), mpfr_float("1e-40"))
+        << "n = " << n;  // 60 digits minus ~20 lost near the double eigenvalue
   }
   // In double the matrix route is exact to 12 decimals for small n (the precision study measures the limit).
   for (int n = 1; n <= 10; ++n)
     EXPECT_CLOSE(window_lower_bound_in<double>(n, Route::matrix), static_cast<double>(window_lower_bound(n, 20)),
-                 ulps(2250, "the matrix route in double, good to 12 decimals for small n")) << n;
+                 ulps(2250, "the matrix route in double, good to 12 decimals for small n"))
+        << n;
   // The sign convention: Q_n > 0 at 7 - 4 sqrt 3 and < 0 at r_crit,2(n).
   EXPECT_GT(window_condition<double>(10, 7 - 4 * std::sqrt(3.0)), 0);
   EXPECT_LT(window_condition<double>(10, static_cast<double>(r_crit2(10, 20))), 0);
@@ -492,9 +499,12 @@ TEST(WindowErrors, MessagesNameTheField) {
     }
     return std::string("no throw");
   };
-  EXPECT_EQ(message([] { window_polynomial(0); }), "n: got 0, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
-  EXPECT_EQ(message([] { window_polynomial(5001); }), "n: got 5001, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
-  EXPECT_EQ(message([] { r_crit2(1, 20); }), "n: got 1, expected an integer in 2..5000 (Q_n costs minutes at n = 5000)");
+  EXPECT_EQ(message([] { window_polynomial(0); }),
+            "n: got 0, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
+  EXPECT_EQ(message([] { window_polynomial(5001); }),
+            "n: got 5001, expected an integer in 1..5000 (Q_n costs minutes at n = 5000)");
+  EXPECT_EQ(message([] { r_crit2(1, 20); }),
+            "n: got 1, expected an integer in 2..5000 (Q_n costs minutes at n = 5000)");
   EXPECT_EQ(message([] { window_lower_bound(3, 9); }), "digits: got 9, expected 10..10000");
   EXPECT_EQ(message([] { window_lower_bound(3, 10001); }), "digits: got 10001, expected 10..10000");
   EXPECT_EQ(message([] { thin_stripes(0, 20); }), "m: got 0, expected an integer in 1..100000");
@@ -506,8 +516,8 @@ TEST(WindowVerify, IteratorSeesPatternInsideAndNotBelowTwoToTwenty) {
   const auto rows = verify_windows(2, 20);
   ASSERT_EQ(rows.size(), 19u * 4u);
   for (const auto& row : rows)
-    EXPECT_TRUE(row.pass()) << "n = " << row.n << " " << row.position << " r = " << row.r << ": " << row.on_pattern << " of "
-                            << row.orbits << " on pattern";
+    EXPECT_TRUE(row.pass()) << "n = " << row.n << " " << row.position << " r = " << row.r << ": " << row.on_pattern
+                            << " of " << row.orbits << " on pattern";
 }
 
 TEST(WindowVerify, PatternDetector) {
@@ -515,7 +525,7 @@ TEST(WindowVerify, PatternDetector) {
       wrong{1, 3, 1, 3, 1, 3, 1, 3, 1, 3}, broken{1, 1, 3, 3, 1, 1, 3, 2, 1, 1};
   EXPECT_TRUE(on_pattern(good.data(), 10, 2));
   EXPECT_TRUE(on_pattern(rotated.data(), 10, 2));
-  EXPECT_FALSE(on_pattern(wrong.data(), 10, 2));   // (13)^n is the n = 1 pattern, not n = 2
+  EXPECT_FALSE(on_pattern(wrong.data(), 10, 2));  // (13)^n is the n = 1 pattern, not n = 2
   EXPECT_TRUE(on_pattern(wrong.data(), 10, 1));
   EXPECT_FALSE(on_pattern(broken.data(), 10, 2));  // one symbol 2 breaks it
   EXPECT_FALSE(on_pattern(good.data(), 7, 2));     // shorter than two periods
@@ -558,7 +568,10 @@ TEST(WindowRequests, ValidationNamesTheField) {
   EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, -1}.validate(); }).first, "per-n");
   EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, 0, 1000}.validate(); }).first, "tail");
   EXPECT_EQ(invalid([] { VerifyRequest{"2..3", 1000, 0, 10, "float"}.validate(); }).first, "precision");
-  EXPECT_EQ(invalid([] { BoundPrecisionRequest{"1..3", 9}.validate(); }).second, "mpfr-digits: got 9, expected 10..1000");
+  EXPECT_EQ(invalid([] {
+              BoundPrecisionRequest{"1..3", 9}.validate();
+            }).second,
+            "mpfr-digits: got 9, expected 10..1000");
   EXPECT_EQ(invalid([] { run(BoundsRequest{"5..4"}); }).first, "n");  // run validates too
 }
 
@@ -603,8 +616,9 @@ TEST(WindowRequests, BoundsEqualTableB1AndTheCertificatesHold) {
             "n,lower_bound,upper_bound,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified,lower_status,"
             "upper_status");
   // The certificate proves the lower bound; r_crit,2(n) stays the paper's conjecture (docs/reference/numbers.md).
-  EXPECT_NE(csv.find("\n2,0.127544097592,0.171572875254,0.127544097591,0.127544097592,1,-1,0,1,yes,certified,conjectured\n"),
-            std::string::npos);
+  EXPECT_NE(
+      csv.find("\n2,0.127544097592,0.171572875254,0.127544097591,0.127544097592,1,-1,0,1,yes,certified,conjectured\n"),
+      std::string::npos);
   btob::core::Contents c;
   res.describe(c);
   ASSERT_NE(c.find("lower_bound"), nullptr);
@@ -616,10 +630,10 @@ TEST(WindowRequests, ThresholdsAndStripesAgainstClosedForms) {
   const ThresholdsResult t = run(ThresholdsRequest{30});
   ASSERT_EQ(t.value.size(), 4u);
   // Python's decimal module, 60 digits, rounded to 30 decimals (an independent arbitrary-precision route).
-  EXPECT_EQ(t.text[0], "0.071796769724490825890214633977");  // 7 - 4 sqrt 3
-  EXPECT_EQ(t.text[1], "0.171572875253809902396622551581");  // 3 - 2 sqrt 2
-  EXPECT_EQ(t.text[2], "0.101020514433643803605431850588");  // 5 - 2 sqrt 6
-  EXPECT_EQ(t.text[3], "0.587401051968199474751705639272");  // 2^(2/3) - 1
+  EXPECT_EQ(t.text[0], "0.071796769724490825890214633977");                         // 7 - 4 sqrt 3
+  EXPECT_EQ(t.text[1], "0.171572875253809902396622551581");                         // 3 - 2 sqrt 2
+  EXPECT_EQ(t.text[2], "0.101020514433643803605431850588");                         // 5 - 2 sqrt 6
+  EXPECT_EQ(t.text[3], "0.587401051968199474751705639272");                         // 2^(2/3) - 1
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(t.value[i], std::stod(t.text[i]));  // both correctly rounded
   // The closed forms in double lose to cancellation: 7 - 4 sqrt 3 errs by up to ulp(4 sqrt 3) ~ 8.9e-16 plus
   // the final rounding, so 2e-15 absolute.
@@ -692,7 +706,8 @@ TEST(WindowRequests, PrecisionStudyRunsAtTwoPrecisionsInOneProcess) {
     for (const auto& row : res->rows) {
       if (row.precision.rfind("mpfr:", 0) != 0) continue;
       btob::core::MpfrDigits guard(digits);
-      const mpfr_float alone = window_lower_bound_in<mpfr_float>(row.n, row.route == "matrix" ? Route::matrix : Route::polynomial);
+      const mpfr_float alone =
+          window_lower_bound_in<mpfr_float>(row.n, row.route == "matrix" ? Route::matrix : Route::polynomial);
       EXPECT_EQ(row.value, static_cast<double>(alone)) << row.precision << " " << row.route << " n = " << row.n;
     }
   }
@@ -708,10 +723,11 @@ TEST(WindowOverlays, LinesAreTheBoundsInTheRange) {
   const auto lines = window_overlay(0.09, 0.2);
   // n = 2: lower 0.12754..., r_crit,2 = 3 - 2 sqrt 2; n = 3: lower 0.09452, r_crit,2 = 5 - 2 sqrt 6; n = 1's lower
   // 3 - 2 sqrt 2 too.
-  std::vector<std::pair<double, int>> want = {
-      {static_cast<double>(r_crit2(2, 20)), 0}, {static_cast<double>(window_lower_bound(1, 20)), 1},
-      {static_cast<double>(window_lower_bound(2, 20)), 1}, {static_cast<double>(r_crit2(3, 20)), 0},
-      {static_cast<double>(window_lower_bound(3, 20)), 1}};
+  std::vector<std::pair<double, int>> want = {{static_cast<double>(r_crit2(2, 20)), 0},
+                                              {static_cast<double>(window_lower_bound(1, 20)), 1},
+                                              {static_cast<double>(window_lower_bound(2, 20)), 1},
+                                              {static_cast<double>(r_crit2(3, 20)), 0},
+                                              {static_cast<double>(window_lower_bound(3, 20)), 1}};
   auto sorted = [](std::vector<std::pair<double, int>> v) {
     std::sort(v.begin(), v.end());
     return v;

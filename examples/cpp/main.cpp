@@ -17,8 +17,7 @@ int main() try {
   orbit.validate();
   const btob::lyapunov::ProjectiveResult lyap = btob::lyapunov::run(orbit);
   std::printf("lyapunov r=0.3 point=1,0.2,-0.5: lambda1 = %.6f +- %.1e, lambda2 = %.6f +- %.1e (%ld iterations)\n",
-              lyap.lambda[0].value, lyap.lambda[0].error, lyap.lambda[1].value, lyap.lambda[1].error,
-              lyap.iterations);
+              lyap.lambda[0].value, lyap.lambda[0].error, lyap.lambda[1].value, lyap.lambda[1].error, lyap.iterations);
 
   // The attractors at r = 0.3 and the fraction of the sphere of directions each one attracts.
   btob::attractors::BasinsRequest basins;
@@ -31,8 +30,8 @@ int main() try {
               res.basins.attractors.size(), res.undecided_count, res.points());
   for (std::size_t i = 0; i < res.basins.attractors.size(); ++i) {
     const auto& a = res.basins.attractors[i];
-    std::printf("  attractor %d %-12s fraction %.4f [%.4f, %.4f]\n", a.id, a.pattern.empty() ? a.key.c_str() : a.pattern.c_str(),
-                res.fraction[i], res.ci_low[i], res.ci_high[i]);
+    std::printf("  attractor %d %-12s fraction %.4f [%.4f, %.4f]\n", a.id,
+                a.pattern.empty() ? a.key.c_str() : a.pattern.c_str(), res.fraction[i], res.ci_low[i], res.ci_high[i]);
   }
   return 0;
 } catch (const std::exception& e) {

@@ -37,9 +37,9 @@ enum class Type : std::uint8_t { undecided = 0, collapse = 1, periodic = 2, quas
 const char* type_name(Type t);
 
 struct Options {
-  long transient = 5000;       // steps before the window (paper: 5000 iterations), >= 1
-  long window = 1000;          // window of pass 1, >= max_period
-  int max_period = 256;        // longest period searched (132^67312^67 has 138 symbols), 1 .. 1024
+  long transient = 5000;  // steps before the window (paper: 5000 iterations), >= 1
+  long window = 1000;     // window of pass 1, >= max_period
+  int max_period = 256;   // longest period searched (132^67312^67 has 138 symbols), 1 .. 1024
   // Return tolerance on unit vectors (max norm): a stable orbit contracts by e^(lambda2 p) per period, so
   // after the transient its returns are ~1e-15; quasi-periodic orbits do not return closer than ~1e-6
   // within 256 steps at the grid sizes we use.  In (0, 1e-3].
@@ -57,7 +57,7 @@ struct Options {
   // average converges faster than any power of 1/n on a smooth invariant curve (Das-Yorke), to ~1e-10
   // at n = 4000; chaotic orbits differ by ~1e-2.  In (0, 0.1].
   double rotation_tol = 1e-6;
-  int refine_factor = 10;  // refinement pass: transient multiplied by this for undecided orbits, 0 = off, <= 1000
+  int refine_factor = 10;   // refinement pass: transient multiplied by this for undecided orbits, 0 = off, <= 1000
   iterate::RunOptions run;  // threads (results never depend on them), progress
 };
 // Throws std::invalid_argument "field: got X, expected Y" naming the option.
@@ -66,22 +66,22 @@ void validate(const Options& opt);
 // The verdict on one orbit, with its evidence.
 struct OrbitVerdict {
   Type type = Type::undecided;
-  int period = 0;            // in map iterations (periodic; 1 for collapse)
-  patterns::Word word;       // periodic: the symbols of one period from the window's first point
-  std::string key;           // attractor identity key (see attractor_key)
-  double residual = 0;       // periodic: return distance |u_p - u_0|; else the closest return up to max_period
-  int closest_return = 0;    // j of that closest return
+  int period = 0;          // in map iterations (periodic; 1 for collapse)
+  patterns::Word word;     // periodic: the symbols of one period from the window's first point
+  std::string key;         // attractor identity key (see attractor_key)
+  double residual = 0;     // periodic: return distance |u_p - u_0|; else the closest return up to max_period
+  int closest_return = 0;  // j of that closest return
   // pass 2: lambda1 and err1 its batch-means standard error (lyapunov's method, floored at 4 eps max(1, |lambda1|));
   // periodic / collapse: the exact exponent log|l2/l1|/p in double, err1 that floor (its rounding)
   double lambda1 = 0, err1 = 0;
   // Pass 2, for the orbits they decide (lambda1 zero within its bar, r > 3 - 2 sqrt(2)); 0 for the others:
-  double rotation = 0, rotation_delta = 0;  // turns per iteration, and |full - half| of the weighted averages
+  double rotation = 0, rotation_delta = 0;     // turns per iteration, and |full - half| of the weighted averages
   double invariant = 0, invariant_spread = 0;  // weighted mean of I and (max - min) / mean over the record
-  bool p2_region = false;    // no symbol 1 or 3 in the window (an orbit of the P2 parallelogram)
-  long iterations = 0;       // map iterations spent on this orbit
-  Vec3<double> point;        // a point on the attractor (the window's first point, unit, in Q)
-  std::string detail;        // why undecided, or extra evidence
-  template <class A> void members(A& a) {  // core/pack.hpp
+  bool p2_region = false;                      // no symbol 1 or 3 in the window (an orbit of the P2 parallelogram)
+  long iterations = 0;                         // map iterations spent on this orbit
+  Vec3<double> point;                          // a point on the attractor (the window's first point, unit, in Q)
+  std::string detail;                          // why undecided, or extra evidence
+  template <class A> void members(A& a) {      // core/pack.hpp
     a(type, period, word.s, key, residual, closest_return, lambda1, err1, rotation, rotation_delta, invariant,
       invariant_spread, p2_region, iterations, point, detail);
   }
@@ -104,21 +104,21 @@ OrbitVerdict classify_point(const Vec3<double>& u0, double r, const Options& opt
 
 // An attractor found at one r.
 struct Attractor {
-  int id = 0;                   // 1-based, by sorted key (0 is reserved for undecided points)
+  int id = 0;  // 1-based, by sorted key (0 is reserved for undecided points)
   Type type = Type::undecided;
   std::string key;
-  std::string pattern;          // paper notation (132^3312^3; 312^2 for the J-mirror of 132^2; "1" / "3" collapse)
-  std::string canonical;        // patterns::canonical in paper notation (mirrors share it)
+  std::string pattern;    // paper notation (132^3312^3; 312^2 for the J-mirror of 132^2; "1" / "3" collapse)
+  std::string canonical;  // patterns::canonical in paper notation (mirrors share it)
   int period = 0;
-  int collisions = 0;           // letters a, b, c per period (Table 6.1's last column)
-  std::string letters;          // collision letters from the exact periodic point (acb / cab resolved)
-  std::string stability;        // periodic: the pattern tool's outcome at r, and its reason if not stable
-  double lyapunov2 = 0;         // periodic: the pattern tool's projective exponent log|l2/l1|/p
-  Vec3<double> point;           // representative: the exact periodic point (periodic) or the point of the
-                                // lowest-index orbit of the basin
-  std::size_t count = 0;        // basin size (orbits)
+  int collisions = 0;     // letters a, b, c per period (Table 6.1's last column)
+  std::string letters;    // collision letters from the exact periodic point (acb / cab resolved)
+  std::string stability;  // periodic: the pattern tool's outcome at r, and its reason if not stable
+  double lyapunov2 = 0;   // periodic: the pattern tool's projective exponent log|l2/l1|/p
+  Vec3<double> point;     // representative: the exact periodic point (periodic) or the point of the
+                          // lowest-index orbit of the basin
+  std::size_t count = 0;  // basin size (orbits)
   double rotation_min = 0, rotation_max = 0, invariant_min = 0, invariant_max = 0;  // quasi-periodic ranges
-  template <class A> void members(A& a) {  // core/pack.hpp
+  template <class A> void members(A& a) {                                           // core/pack.hpp
     a(id, type, key, pattern, canonical, period, collisions, letters, stability, lyapunov2, point, count, rotation_min,
       rotation_max, invariant_min, invariant_max);
   }
@@ -161,15 +161,15 @@ std::vector<Vec3<double>> grid_points(const Grid& g, double du = 0, double dv = 
 struct Basins {
   double r = 0;
   Grid grid;
-  std::vector<Attractor> attractors;       // union over the main grid and the replicates, ids by key
-  std::vector<std::uint32_t> labels;       // main grid, index i2 * n1 + i1 (row-major, w2 rows)
-  std::vector<Fraction> fractions;         // per attractor (main grid); undecided last
+  std::vector<Attractor> attractors;  // union over the main grid and the replicates, ids by key
+  std::vector<std::uint32_t> labels;  // main grid, index i2 * n1 + i1 (row-major, w2 rows)
+  std::vector<Fraction> fractions;    // per attractor (main grid); undecided last
   Fraction undecided;
   std::vector<std::vector<double>> replicate_fractions;  // [attractor][replicate]; undecided appended last
-  std::size_t undecided_first_pass = 0;    // before refinement
-  long iterations_total = 0;               // map iterations of the grids' orbits (all passes, all grids; not the
-                                           // early exit's probe and checks)
-  std::size_t certified = 0;               // orbits decided early (all grids): see basin_rows
+  std::size_t undecided_first_pass = 0;                  // before refinement
+  long iterations_total = 0;  // map iterations of the grids' orbits (all passes, all grids; not the
+                              // early exit's probe and checks)
+  std::size_t certified = 0;  // orbits decided early (all grids): see basin_rows
   // Basin entropies on boxes of entropy_box cells (main and replicate grids), the uncertainty exponent and the Wada
   // test of the main grid (attractors/boundary.hpp).
   BoundaryGeometry boundary;
@@ -216,15 +216,15 @@ struct BasinClass {
   }
 };
 struct BasinRows {
-  std::vector<std::size_t> items;       // ascending
-  std::vector<std::uint32_t> labels;    // n1 per item, in item order: 1 + class, 0 undecided
-  std::vector<BasinClass> classes;      // the attractors its orbits reached
-  std::vector<std::size_t> undecided;   // undecided orbits per grid
+  std::vector<std::size_t> items;        // ascending
+  std::vector<std::uint32_t> labels;     // n1 per item, in item order: 1 + class, 0 undecided
+  std::vector<BasinClass> classes;       // the attractors its orbits reached
+  std::vector<std::size_t> undecided;    // undecided orbits per grid
   std::size_t undecided_first_pass = 0;  // main grid: undecided after the first pass (before refinement)
-  long iterations = 0;                  // map iterations spent (all passes, all its grids)
-  std::size_t certified = 0;            // orbits decided before the full length (early exit), all its grids
+  long iterations = 0;                   // map iterations spent (all passes, all its grids)
+  std::size_t certified = 0;             // orbits decided before the full length (early exit), all its grids
   double seconds = 0;
-  int threads = 0;                      // threads the part ran on (reported, not computed with)
+  int threads = 0;  // threads the part ran on (reported, not computed with)
   template <class A> void members(A& a) {
     a(items, labels, classes, undecided, undecided_first_pass, iterations, certified, seconds, threads);
   }

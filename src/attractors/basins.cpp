@@ -62,12 +62,9 @@ double sphere_share(const Grid& g) {
 
 std::string measure_name(const Grid& g) {
   switch (g.kind) {
-    case core::GridKind::sphere:
-      return "uniform on the sphere of directions of the domain (equal-area grid)";
-    case core::GridKind::strip:
-      return strip_measure_name(g.axis1.lo, g.axis1.hi);
-    default:
-      return "uniform in the angles (theta, phi), not the sphere's area";
+    case core::GridKind::sphere: return "uniform on the sphere of directions of the domain (equal-area grid)";
+    case core::GridKind::strip: return strip_measure_name(g.axis1.lo, g.axis1.hi);
+    default: return "uniform in the angles (theta, phi), not the sphere's area";
   }
 }
 
@@ -555,8 +552,7 @@ std::map<ClassKey, std::uint32_t> name_attractors(const JoinedClasses& joined,
     b.fractions.push_back(fraction(c.count[0], n));
   }
   std::vector<double> per_grid(grids);
-  for (std::size_t kk = 0; kk < grids; ++kk)
-    per_grid[kk] = static_cast<double>(undecided[kk]) / static_cast<double>(n);
+  for (std::size_t kk = 0; kk < grids; ++kk) per_grid[kk] = static_cast<double>(undecided[kk]) / static_cast<double>(n);
   b.replicate_fractions.push_back(std::move(per_grid));
   b.undecided = fraction(undecided[0], n);
   return id_of;

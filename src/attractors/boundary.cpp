@@ -107,9 +107,10 @@ UncertaintyFit fit_uncertainty(std::vector<UncertainFraction> points) {
   if (m < 3 || std::exp(x.back() - x.front()) < 10 - 1e-9) {
     fit.why = m == 0 ? "no eps with 0 < f(eps) <= 1/2 (no boundary at the grid's resolution, or f saturated from "
                        "one cell: a finer grid is needed)"
-                     : fmt::format("{} eps with 0 < f(eps) <= 1/2, spanning less than a decade (at least three "
-                                   "spanning a decade needed: a grid of at least 80 x 80 cells, f not saturated)",
-                                   m);
+                     : fmt::format(
+                           "{} eps with 0 < f(eps) <= 1/2, spanning less than a decade (at least three "
+                           "spanning a decade needed: a grid of at least 80 x 80 cells, f not saturated)",
+                           m);
     return fit;
   }
   double mx = 0, my = 0;
@@ -253,8 +254,8 @@ Spread spread(const std::vector<double>& v) {
   return s;
 }
 
-BoundaryGeometry boundary_geometry(const std::vector<std::vector<std::uint32_t>>& grids, std::size_t n1,
-                                   std::size_t n2, int box) {
+BoundaryGeometry boundary_geometry(const std::vector<std::vector<std::uint32_t>>& grids, std::size_t n1, std::size_t n2,
+                                   int box) {
   if (grids.empty()) throw std::logic_error("boundary geometry: no grid");
   BoundaryGeometry g;
   std::vector<double> sb, sbb, share;

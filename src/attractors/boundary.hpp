@@ -22,16 +22,16 @@ struct LabelImage {
 };
 
 // Basin entropy on boxes of `box` x `box` cells (the whole boxes from the image's corner (0, 0); a remainder of
-// fewer than `box` columns or rows is left out; an image smaller than one box has no boxes and entropies 0).  In box b the colours have shares p_bj and the box's entropy is
-// S_b = -sum_j p_bj log p_bj (natural log).  Over the N boxes, S_b = (1/N) sum_b S_b; over the N_b boxes with
-// S_b > 0 (the boundary boxes), S_bb = (1/N_b) sum S_b (0 when there are none).  S_bb > log 2 is the sufficient
-// condition of Daza et al. for a fractal boundary (the "log 2 criterion").
+// fewer than `box` columns or rows is left out; an image smaller than one box has no boxes and entropies 0).  In box b
+// the colours have shares p_bj and the box's entropy is S_b = -sum_j p_bj log p_bj (natural log).  Over the N boxes,
+// S_b = (1/N) sum_b S_b; over the N_b boxes with S_b > 0 (the boundary boxes), S_bb = (1/N_b) sum S_b (0 when there are
+// none).  S_bb > log 2 is the sufficient condition of Daza et al. for a fractal boundary (the "log 2 criterion").
 struct BoxEntropy {
   int box = 0;
   std::size_t boxes = 0, boundary_boxes = 0;
   double sb = 0, sbb = 0;
-  std::size_t columns = 0;          // boxes a row (n1 / box)
-  std::vector<double> per_box;      // each box's entropy, row-major [n2 / box, n1 / box]
+  std::size_t columns = 0;      // boxes a row (n1 / box)
+  std::vector<double> per_box;  // each box's entropy, row-major [n2 / box, n1 / box]
   double boundary_share() const { return boxes ? static_cast<double>(boundary_boxes) / static_cast<double>(boxes) : 0; }
   template <class A> void members(A& a) { a(box, boxes, boundary_boxes, sb, sbb, columns, per_box); }
 };
@@ -42,7 +42,7 @@ BoxEntropy box_entropy(const LabelImage& img, int box);
 // cells for every e), those for which one of the four cells e away along the axes has another label.  For a
 // boundary of box-counting dimension D in the plane, f(eps) ~ eps^alpha with alpha = 2 - D (MGOY 1985).
 struct UncertainFraction {
-  int eps = 0;             // cells
+  int eps = 0;  // cells
   std::size_t uncertain = 0, points = 0;
   double f = 0, low = 0, high = 0;  // uncertain / points with its Clopper-Pearson 95% interval
   template <class A> void members(A& a) { a(eps, uncertain, points, f, low, high); }
@@ -58,10 +58,10 @@ std::vector<int> uncertainty_eps(std::size_t n1, std::size_t n2);
 struct UncertaintyFit {
   std::vector<UncertainFraction> points;
   bool fitted = false;
-  std::string why;                  // empty when fitted
+  std::string why;  // empty when fitted
   double alpha = 0, low = 0, high = 0, se = 0;
-  int eps_min = 0, eps_max = 0;     // the range fitted (cells)
-  std::size_t used = 0;             // eps values fitted
+  int eps_min = 0, eps_max = 0;  // the range fitted (cells)
+  std::size_t used = 0;          // eps values fitted
   double dimension() const { return 2 - alpha; }
   template <class A> void members(A& a) { a(points, fitted, why, alpha, low, high, se, eps_min, eps_max, used); }
 };
@@ -75,17 +75,17 @@ UncertaintyFit uncertainty_exponent(const LabelImage& img);
 // (chessboard distance) of every other B_j: the largest such distance, the Hausdorff distance H of the boundaries, is
 // at most `cells` (default: wada_cells, 2% of the grid's smaller side and at least 3 cells: a fractal Wada boundary
 // sampled on a grid loses its thinnest filaments, e.g. Newton's z^3 = 1 on 300 x 300 cells has H = 4, while
-// boundaries that separate only two basins somewhere sit a finite share of the grid apart).  With fewer than three basins the test does not apply.  Also the grid method's first level
-// (Daza et al. 2015): the share of boundary cells (a 4-neighbour of another label) that see every basin within
-// `cells` cells.
+// boundaries that separate only two basins somewhere sit a finite share of the grid apart).  With fewer than three
+// basins the test does not apply.  Also the grid method's first level (Daza et al. 2015): the share of boundary cells
+// (a 4-neighbour of another label) that see every basin within `cells` cells.
 struct WadaTest {
-  int basins = 0;                 // basins in the image (labels >= 1 with at least one cell)
-  bool applies = false;           // at least three basins
-  int hausdorff = 0;              // max over i != j of the largest distance of a cell of B_j from B_i (cells)
-  int cells = 0;                  // the resolution of the verdict (cells)
-  bool wada = false;              // applies and hausdorff <= cells
-  double all_basins_share = 0;    // grid method, first level
-  std::string verdict() const;    // "Wada at this resolution", "not Wada ...", "not applicable ..."
+  int basins = 0;               // basins in the image (labels >= 1 with at least one cell)
+  bool applies = false;         // at least three basins
+  int hausdorff = 0;            // max over i != j of the largest distance of a cell of B_j from B_i (cells)
+  int cells = 0;                // the resolution of the verdict (cells)
+  bool wada = false;            // applies and hausdorff <= cells
+  double all_basins_share = 0;  // grid method, first level
+  std::string verdict() const;  // "Wada at this resolution", "not Wada ...", "not applicable ..."
   template <class A> void members(A& a) { a(basins, applies, hausdorff, cells, wada, all_basins_share); }
 };
 int wada_cells(std::size_t n1, std::size_t n2);
@@ -101,14 +101,14 @@ struct Spread {
 Spread spread(const std::vector<double>& per_grid);  // per_grid[0] is the main grid's value
 
 struct BoundaryGeometry {
-  BoxEntropy entropy;          // main grid
+  BoxEntropy entropy;              // main grid
   Spread sb, sbb, boundary_share;  // over main and replicate grids
-  UncertaintyFit uncertainty;  // main grid
-  WadaTest wada;               // main grid
+  UncertaintyFit uncertainty;      // main grid
+  WadaTest wada;                   // main grid
   template <class A> void members(A& a) { a(entropy, sb, sbb, boundary_share, uncertainty, wada); }
 };
 // grids[0] is the main grid's image, then the replicates'.
-BoundaryGeometry boundary_geometry(const std::vector<std::vector<std::uint32_t>>& grids, std::size_t n1,
-                                   std::size_t n2, int box);
+BoundaryGeometry boundary_geometry(const std::vector<std::vector<std::uint32_t>>& grids, std::size_t n1, std::size_t n2,
+                                   int box);
 
 }  // namespace btob::attractors

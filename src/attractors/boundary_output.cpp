@@ -77,17 +77,20 @@ void BasinsResult::describe_boundary(core::Contents& c) const {
   // The boxes' centres in grid cells (box i covers cells i box .. (i + 1) box - 1 of its axis), as the coordinates of
   // the two box axes.
   std::vector<double> row_centres(rows), column_centres(g.entropy.columns);
-  for (std::size_t i = 0; i < rows; ++i) row_centres[i] = (static_cast<double>(i) + 0.5) * static_cast<double>(g.entropy.box);
+  for (std::size_t i = 0; i < rows; ++i)
+    row_centres[i] = (static_cast<double>(i) + 0.5) * static_cast<double>(g.entropy.box);
   for (std::size_t j = 0; j < column_centres.size(); ++j)
     column_centres[j] = (static_cast<double>(j) + 0.5) * static_cast<double>(g.entropy.box);
-  c.coordinate_array("box_row", std::move(row_centres), {"box row"}, "cells", "centre of each entropy box's rows, in grid cells");
+  c.coordinate_array("box_row", std::move(row_centres), {"box row"}, "cells",
+                     "centre of each entropy box's rows, in grid cells");
   c.coordinate_array("box_column", std::move(column_centres), {"box column"}, "cells",
                      "centre of each entropy box's columns, in grid cells");
   c.array("uncertainty_eps", eps_cells, {eps_cells.size()}, "eps", "cells", "perturbation eps in grid cells");
   c.array("uncertainty_fraction", eps_fraction, {eps_fraction.size()}, "eps", "1",
           "fraction f(eps) of eps-uncertain cells of the main grid");
   c.array("uncertainty_ci_low", eps_ci_low, {eps_ci_low.size()}, "eps", "1", "Clopper-Pearson 95% lower end of f(eps)");
-  c.array("uncertainty_ci_high", eps_ci_high, {eps_ci_high.size()}, "eps", "1", "Clopper-Pearson 95% upper end of f(eps)");
+  c.array("uncertainty_ci_high", eps_ci_high, {eps_ci_high.size()}, "eps", "1",
+          "Clopper-Pearson 95% upper end of f(eps)");
   c.coordinate("eps", "uncertainty_eps");
   c.attr("entropy_box", static_cast<long>(g.entropy.box));
   c.attr("entropy_boxes", static_cast<long>(g.entropy.boxes));
@@ -111,7 +114,8 @@ std::string BasinsResult::boundary_csv() const {
   const std::string boxes = fmt::format("boxes of {} cells: {} boxes, {} boundary boxes (main grid)", g.entropy.box,
                                         g.entropy.boxes, g.entropy.boundary_boxes);
   row("basin_entropy", g.sb, boxes);
-  row("boundary_basin_entropy", g.sbb, boxes + (g.entropy.sbb > std::log(2.0) ? "; above log 2: fractal boundary" : ""));
+  row("boundary_basin_entropy", g.sbb,
+      boxes + (g.entropy.sbb > std::log(2.0) ? "; above log 2: fractal boundary" : ""));
   row("boundary_box_share", g.boundary_share, boxes);
   const UncertaintyFit& u = g.uncertainty;
   if (u.fitted) {
@@ -132,17 +136,18 @@ std::string BasinsResult::boundary_csv() const {
 }
 
 std::string boundary_summary(const BoundaryGeometry& g) {
-  std::string s = fmt::format("  boundary (boxes of {} cells, {} boxes, {} on the boundary; 95% t interval over the grids):"
-                              " S_b {}, S_bb {}{}, boundary boxes {}\n",
-                              g.entropy.box, g.entropy.boxes, g.entropy.boundary_boxes, interval(g.sb), interval(g.sbb),
-                              g.entropy.sbb > std::log(2.0) ? " (> log 2: fractal)" : "", interval(g.boundary_share));
+  std::string s = fmt::format(
+      "  boundary (boxes of {} cells, {} boxes, {} on the boundary; 95% t interval over the grids):"
+      " S_b {}, S_bb {}{}, boundary boxes {}\n",
+      g.entropy.box, g.entropy.boxes, g.entropy.boundary_boxes, interval(g.sb), interval(g.sbb),
+      g.entropy.sbb > std::log(2.0) ? " (> log 2: fractal)" : "", interval(g.boundary_share));
   const UncertaintyFit& u = g.uncertainty;
   if (u.fitted)
-    s += fmt::format("  uncertainty exponent alpha {:.3f} [{:.3f}, {:.3f}] over eps = {}..{} cells, boundary dimension "
-                     "D = {:.3f}\n",
-                     u.alpha, u.low, u.high, u.eps_min, u.eps_max, u.dimension());
-  else
-    s += "  uncertainty exponent not fitted: " + u.why + "\n";
+    s += fmt::format(
+        "  uncertainty exponent alpha {:.3f} [{:.3f}, {:.3f}] over eps = {}..{} cells, boundary dimension "
+        "D = {:.3f}\n",
+        u.alpha, u.low, u.high, u.eps_min, u.eps_max, u.dimension());
+  else s += "  uncertainty exponent not fitted: " + u.why + "\n";
   return s + "  Wada test (merging): " + g.wada.verdict() + "\n";
 }
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 
 #include "attractors/recorders.hpp"
-#include "core/error_bar.hpp"
 #include "attractors/stages.hpp"
 #include "core/coords.hpp"
+#include "core/error_bar.hpp"
 #include "iterate/cocycle.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/maps.hpp"
@@ -230,10 +230,8 @@ PassTwo run_pass_two(const iterate::Ensemble& pass_two, const Options& opt) {
   PassTwo two;
   two.rotation_index.assign(pass_two.initial.size(), PassTwo::none);
   two.last.resize(pass_two.initial.size());
-  if (iterate::cocycle_accepts<double>(pass_two.r))
-    pass_two_fused(pass_two, opt, two);
-  else
-    pass_two_plain(pass_two, opt, two);
+  if (iterate::cocycle_accepts<double>(pass_two.r)) pass_two_fused(pass_two, opt, two);
+  else pass_two_plain(pass_two, opt, two);
   return two;
 }
 
@@ -250,8 +248,8 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
   }
   const int sign = lyapunov::classify(v.lambda1, v.err1, opt.lyap_iterations);
   const core::ValueWithError shown = core::with_error(v.lambda1, v.err1);  // the interval contains lambda1
-  const std::string lam = fmt::format("lambda1 = {} +- {} (batch means, without the finite-time bias)", shown.value,
-                                      shown.error);
+  const std::string lam =
+      fmt::format("lambda1 = {} +- {} (batch means, without the finite-time bias)", shown.value, shown.error);
   // "zero" means within lyapunov::classify's bar, which the detail states: three standard errors plus the
   // finite-time floor 10 / n, so that an exponent many standard errors from 0 but under the floor reads as such.
   const std::string zero = fmt::format("{} is zero within 3 batch_err + 10/n = {:.2g}", lam,
@@ -272,8 +270,8 @@ void exponent_verdict(const PassTwo& two, std::size_t i, double r, const Options
     v.detail = fmt::format("{}; rotation {:.10f} turns (half-record change {:.2g}), I = {:.6g}", zero, v.rotation,
                            v.rotation_delta, v.invariant);
   } else {
-    v.detail = fmt::format("{}, but the weighted rotation number did not converge (change {:.2g})", zero,
-                           v.rotation_delta);
+    v.detail =
+        fmt::format("{}, but the weighted rotation number did not converge (change {:.2g})", zero, v.rotation_delta);
   }
 }
 
@@ -318,15 +316,12 @@ void refine(const iterate::Ensemble& ens, const Options& opt, const std::vector<
     const std::string first = v.detail;
     v = std::move(refined[i]);
     v.iterations += before;
-    if (v.type == Type::undecided)
-      v.detail += " (also after refinement)";
-    else
-      v.detail += " (after refinement; first pass: " + first + ")";
+    if (v.type == Type::undecided) v.detail += " (also after refinement)";
+    else v.detail += " (after refinement; first pass: " + first + ")";
   }
 }
 
-template <class F>
-void check(bool ok, const char* field, F&& got, const std::string& expected) {
+template <class F> void check(bool ok, const char* field, F&& got, const std::string& expected) {
   if (!ok) throw core::InvalidField(field, got(), expected);
 }
 
@@ -347,16 +342,11 @@ std::vector<OrbitVerdict> stages::classify_from(const iterate::Ensemble& ens, co
 
 const char* type_name(Type t) {
   switch (t) {
-    case Type::collapse:
-      return "collapse";
-    case Type::periodic:
-      return "periodic";
-    case Type::quasi_periodic:
-      return "quasi-periodic";
-    case Type::chaotic:
-      return "chaotic";
-    default:
-      return "undecided";  // Type::undecided: the window cannot decide
+    case Type::collapse: return "collapse";
+    case Type::periodic: return "periodic";
+    case Type::quasi_periodic: return "quasi-periodic";
+    case Type::chaotic: return "chaotic";
+    default: return "undecided";  // Type::undecided: the window cannot decide
   }
 }
 

@@ -21,7 +21,6 @@ using iterate::checked_bytes;
 using iterate::Ensemble;
 using iterate::Vec3;
 
-
 // |u|^2 with its multiply-adds spelled out in the order GCC contracts X X + Y Y + Z Z in scalar code (Y Y, then X X
 // and Z Z added): the same bits in scalar and in vector loops, which would otherwise each contract it their own way.
 inline double norm2(double X, double Y, double Z) { return std::fma(Z, Z, std::fma(X, X, Y * Y)); }
@@ -63,11 +62,16 @@ struct ReturnRecorder {
   std::size_t n_orbits;
   std::vector<double> s0x, s0y, s0z, fx, fy, fz, best_d, resid;
   std::vector<std::int32_t> best_j, period, n1, n3;
-  std::vector<std::uint64_t> syms;  // word w of orbit o at w * n_orbits + o: a step's symbols are contiguous over a batch
+  std::vector<std::uint64_t>
+      syms;  // word w of orbit o at w * n_orbits + o: a step's symbols are contiguous over a batch
 
   ReturnRecorder(std::size_t orbits, long transient_, long window_, int max_period_, double return_tol_)
-      : transient(transient_), window(window_), max_period(max_period_), return_tol(return_tol_),
-        words((2 * max_period_ + 63) / 64), n_orbits(orbits) {
+      : transient(transient_),
+        window(window_),
+        max_period(max_period_),
+        return_tol(return_tol_),
+        words((2 * max_period_ + 63) / 64),
+        n_orbits(orbits) {
     checked_bytes(orbits, 8 * 8 + 4 * 4 + 8 * static_cast<std::size_t>(words), "orbits (return recorder)");
     // The return test's arrays have room for a whole batch of the widest kernel after the last orbit (as
     // RotationRecorder's): its vector loop runs over a full batch even for the last, partial one.

@@ -30,7 +30,9 @@ Options run_options(const Options& thresholds, const core::RunControl& control) 
 }
 
 namespace {
-int threads_of(const core::RunControl& control) { return control.threads > 0 ? control.threads : omp_get_max_threads(); }
+int threads_of(const core::RunControl& control) {
+  return control.threads > 0 ? control.threads : omp_get_max_threads();
+}
 
 // The attractor's own spelling (mirror-aware) from a one-verdict collection.
 std::string pattern_of(const OrbitVerdict& v, double r) {
@@ -109,8 +111,9 @@ core::Work work(const ClassifyRequest& req) {
   core::Work w;
   core::Term one;
   one.route = "classify pass 1 double";
-  one.units = static_cast<double>(o.transient + o.window) +
-              (o.refine_factor > 0 ? static_cast<double>(o.transient) * o.refine_factor + static_cast<double>(o.window) : 0.0);
+  one.units =
+      static_cast<double>(o.transient + o.window) +
+      (o.refine_factor > 0 ? static_cast<double>(o.transient) * o.refine_factor + static_cast<double>(o.window) : 0.0);
   one.what = "map steps of pass 1 in double (transient + iterations, and transient x refine-factor + iterations)";
   one.probe = [](double n, const core::RunControl& c) {
     const ClassifyRequest p = classify_probe(std::max(1L, static_cast<long>(n)), 20, 20);
@@ -130,7 +133,8 @@ core::Work work(const ClassifyRequest& req) {
   w.bound = "pass 1 decides periodic orbits and collapses without pass 2, and only an undecided orbit is refined";
   w.output_bytes = 400;  // one printed row (or NAME.json with its attributes under --out)
   // Pass 1 keeps the window's states (3 doubles and a symbol each); pass 2 the rotation record (2 doubles a step).
-  w.peak_bytes = 32 * static_cast<double>(o.window + o.max_period) + 16 * static_cast<double>(o.lyap_iterations) + 65536;
+  w.peak_bytes =
+      32 * static_cast<double>(o.window + o.max_period) + 16 * static_cast<double>(o.lyap_iterations) + 65536;
   return w;
 }
 
@@ -140,15 +144,17 @@ namespace {
 // average with the batch-means standard error of lyapunov's method (err).
 core::Status lambda1_status(const OrbitVerdict& v, const Options& o) {
   if (v.type == Type::periodic || v.type == Type::collapse)
-    return core::estimated("the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; batch_err = "
-                           "4 eps max(1, |lambda1|), its rounding (no average, no batch means)",
-                           "a numerical bound without proof (no statistical error: the exponent is not an average)");
-  return core::estimated(fmt::format("average over {} steps after {} (pass 2); batch_err its batch-means standard error "
-                                     "over {} blocks, at least 4 eps max(1, |lambda1|) (lyapunov's err1); the "
-                                     "finite-time bias (up to about log(n)/n on invariant curves) is not in it: the "
-                                     "verdict's zero band is 3 batch_err + 10/n",
-                                     o.lyap_iterations, o.lyap_transient, o.lyap_blocks),
-                         "one standard error of the block means (68% if they are normal), bias excluded");
+    return core::estimated(
+        "the detected cycle's exponent log|mu2/mu1|/p from its period matrix in double; batch_err = "
+        "4 eps max(1, |lambda1|), its rounding (no average, no batch means)",
+        "a numerical bound without proof (no statistical error: the exponent is not an average)");
+  return core::estimated(
+      fmt::format("average over {} steps after {} (pass 2); batch_err its batch-means standard error "
+                  "over {} blocks, at least 4 eps max(1, |lambda1|) (lyapunov's err1); the "
+                  "finite-time bias (up to about log(n)/n on invariant curves) is not in it: the "
+                  "verdict's zero band is 3 batch_err + 10/n",
+                  o.lyap_iterations, o.lyap_transient, o.lyap_blocks),
+      "one standard error of the block means (68% if they are normal), bias excluded");
 }
 }  // namespace
 
@@ -187,8 +193,7 @@ void BasinsRequest::validate() const {
   if (!(std::isfinite(w1_range[0]) && std::isfinite(w1_range[1]) && w1_range[0] < w1_range[1]))  // any grid kind
     throw core::InvalidField("w1-range", fmt::format("[{}, {}]", w1_range[0], w1_range[1]), "finite a < b");
   attractors::validate(thresholds);
-  if (replicates < 0 || replicates > 100)
-    throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
+  if (replicates < 0 || replicates > 100) throw core::InvalidField("replicates", std::to_string(replicates), "0..100");
   if (entropy_box < 1 || entropy_box > 1000)
     throw core::InvalidField("entropy-box", std::to_string(entropy_box), "1..1000 cells");
   const Grid g = parsed_grid();
@@ -200,7 +205,8 @@ std::size_t BasinsRequest::work_items() const { return basin_items(parsed_grid()
 
 BasinRows run_part(const BasinsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
-  BasinRows part = basin_rows(req.r, req.parsed_grid(), req.replicates, req.seed, run_options(req.thresholds, control), items);
+  BasinRows part =
+      basin_rows(req.r, req.parsed_grid(), req.replicates, req.seed, run_options(req.thresholds, control), items);
   part.threads = threads_of(control);
   return part;
 }
@@ -210,7 +216,8 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
   BasinsResult res;
   res.request = req;
   for (const auto& p : parts) res.threads = std::max(res.threads, p.threads);
-  res.basins = merge_basins(req.r, req.parsed_grid(), req.replicates, req.thresholds, std::move(parts), req.entropy_box);
+  res.basins =
+      merge_basins(req.r, req.parsed_grid(), req.replicates, req.thresholds, std::move(parts), req.entropy_box);
   res.fill_boundary();
   const Basins& b = res.basins;
   for (const auto& f : b.fractions) {
@@ -232,7 +239,6 @@ BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts) {
   res.axis2 = b.grid.axis2.centres();
   return res;
 }
-
 
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
@@ -257,9 +263,10 @@ void BasinsResult::describe(core::Contents& c) const {
   c.array("replicate_sd", replicate_sd, {replicate_sd.size()}, "attractor then undecided", "1",
           "sample standard deviation of the fraction over the main and replicate grids (0 with one grid)");
   c.attr("interval", "Clopper-Pearson 95% (sampling only)");
-  c.status_of("fraction", core::estimated("the share of the main grid's points in each basin; its bar ci_low .. ci_high "
-                                          "(sampling only; the grid's own error shows in replicate_sd)",
-                                          "95% Clopper-Pearson"));
+  c.status_of("fraction",
+              core::estimated("the share of the main grid's points in each basin; its bar ci_low .. ci_high "
+                              "(sampling only; the grid's own error shows in replicate_sd)",
+                              "95% Clopper-Pearson"));
   const std::size_t n = points();
   c.attr("r", request.r);
   c.attr("grid", request.grid);
@@ -338,7 +345,8 @@ void BasinsRRequest::validate() const {
     if (r_min <= r_max) core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   }
   const std::vector<double> rs = all_r();
-  if (rs.empty() && !table_pending) throw core::InvalidField("r-values", "none", "a list of r in (0, 1), a range (r-min, r-max, r-count) or --table");
+  if (rs.empty() && !table_pending)
+    throw core::InvalidField("r-values", "none", "a list of r in (0, 1), a range (r-min, r-max, r-count) or --table");
   for (double r : rs) require_r_double(r, "r-values");
   const auto pts = iterate::parse_grid(grid, seed, "grid");
   if (pts.empty()) throw core::InvalidField("grid", "'" + grid + "' with no points", "at least one");
@@ -358,7 +366,8 @@ bool has_boundary_grid(const BasinsRRequest& req) { return req.boundary_grid != 
 // A strip boundary grid spans the basins default w1 range [-2, 2].
 Grid boundary_grid_of(const BasinsRRequest& req) { return parse_grid(req.boundary_grid, -2, 2, "boundary-grid"); }
 
-BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
+BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items,
+                     const core::RunControl& control) {
   req.validate();
   require_table(req);
   const auto t0 = std::chrono::steady_clock::now();
@@ -538,17 +547,38 @@ core::Tables BasinsResult::tables() const {
   for (std::size_t i = 0; i < b.attractors.size(); ++i) {
     const auto& at = b.attractors[i];
     const auto w = core::strip<double>(at.point);
-    t.row({fmt::format("{}", at.id), type_name(at.type), at.pattern, f(b.fractions[i].value),
-           f(b.fractions[i].low), f(b.fractions[i].high), fmt::format("{}", at.count), f(replicate_mean[i]),
-           f(replicate_sd[i]), at.canonical, fmt::format("{}", at.period), fmt::format("{}", at.collisions),
-           at.stability, fmt::format("{:.6g}", at.lyapunov2), fmt::format("{:.10g}", at.rotation_min),
-           fmt::format("{:.10g}", at.rotation_max), fmt::format("{:.8g}", at.invariant_min),
-           fmt::format("{:.8g}", at.invariant_max), fmt::format("{:.12g}", w.first), fmt::format("{:.12g}", w.second),
-           at.letters, measure});
+    t.row({fmt::format("{}", at.id),
+           type_name(at.type),
+           at.pattern,
+           f(b.fractions[i].value),
+           f(b.fractions[i].low),
+           f(b.fractions[i].high),
+           fmt::format("{}", at.count),
+           f(replicate_mean[i]),
+           f(replicate_sd[i]),
+           at.canonical,
+           fmt::format("{}", at.period),
+           fmt::format("{}", at.collisions),
+           at.stability,
+           fmt::format("{:.6g}", at.lyapunov2),
+           fmt::format("{:.10g}", at.rotation_min),
+           fmt::format("{:.10g}", at.rotation_max),
+           fmt::format("{:.8g}", at.invariant_min),
+           fmt::format("{:.8g}", at.invariant_max),
+           fmt::format("{:.12g}", w.first),
+           fmt::format("{:.12g}", w.second),
+           at.letters,
+           measure});
   }
   const std::size_t u = b.attractors.size();
-  std::vector<std::string> row = {"0", "undecided", "", f(b.undecided.value), f(b.undecided.low),
-                                  f(b.undecided.high), fmt::format("{}", undecided_count), f(replicate_mean[u]),
+  std::vector<std::string> row = {"0",
+                                  "undecided",
+                                  "",
+                                  f(b.undecided.value),
+                                  f(b.undecided.low),
+                                  f(b.undecided.high),
+                                  fmt::format("{}", undecided_count),
+                                  f(replicate_mean[u]),
                                   f(replicate_sd[u])};
   row.resize(t.columns().size());
   row.back() = measure;
@@ -565,10 +595,9 @@ std::string BasinsRResult::fractions_csv() const {
                          type_name(row.attractors[i].type), core::csv_text(row.attractors[i].pattern),
                          row.fractions[i].value, row.fractions[i].low, row.fractions[i].high, row.attractors[i].count,
                          core::csv_text(row.attractors[i].stability), measure));
-    t.line(fmt::format("{},,undecided,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.undecided.value, row.undecided.low,
-                       row.undecided.high,
-                       static_cast<std::size_t>(std::llround(row.undecided.value * static_cast<double>(points))),
-                       measure));
+    t.line(fmt::format(
+        "{},,undecided,,{:.6f},{:.6f},{:.6f},{},,{}", row.r, row.undecided.value, row.undecided.low, row.undecided.high,
+        static_cast<std::size_t>(std::llround(row.undecided.value * static_cast<double>(points))), measure));
   }
   return t.text();
 }
@@ -587,8 +616,9 @@ std::string BasinsRResult::comparison_csv() const {
     }
     const std::string paper_found = c.in_table ? fmt::format("{}/{}", c.paper_found, c.paper_total) : "";
     cmp.line(fmt::format("{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", c.r, c.paper_percent, pci_lo, pci_hi,
-                         consistent, core::csv_text(c.paper_patterns), c.periodic.value, c.periodic.low, c.periodic.high,
-                         core::csv_text(c.found), paper_found, core::csv_text(c.extra), core::csv_text(c.other), measure));
+                         consistent, core::csv_text(c.paper_patterns), c.periodic.value, c.periodic.low,
+                         c.periodic.high, core::csv_text(c.found), paper_found, core::csv_text(c.extra),
+                         core::csv_text(c.other), measure));
   }
   return cmp.text();
 }

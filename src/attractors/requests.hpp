@@ -51,9 +51,9 @@ struct ClassifyRequest {
 
 struct ClassifyResult {
   ClassifyRequest request;  // the request, as run (validated)
-  OrbitVerdict verdict;  // the classifier's verdict: type, period, word, lambda1 and its evidence
-  std::string pattern;  // the attractor's own spelling (mirror-aware); empty when undecided
-  std::string detail;   // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
+  OrbitVerdict verdict;     // the classifier's verdict: type, period, word, lambda1 and its evidence
+  std::string pattern;      // the attractor's own spelling (mirror-aware); empty when undecided
+  std::string detail;       // the verdict's evidence, iterations, and for periodic orbits the pattern tool's verdict
   // Attributes only: type, pattern, period, lambda1, batch_err, detail, iterations; lambda1's status (an estimate).
   // batch_err is what lyapunov's err1 is (batch means floored at the rounding), named so because on a slowly
   // converging orbit (invariant curves: a bias of about log(n)/n) it is not the whole error of lambda1.
@@ -72,16 +72,16 @@ core::Work work(const ClassifyRequest& req);
 
 // ---- basins at one r (`btob basins`) --------------------------------------------------------------------------
 struct BasinsRequest {
-  double r = 0;                          // restitution coefficient, in (0, 1)
-  std::string grid = "sphere:200x200";   // sphere:NxM (equal-area theta x y), strip:NxM (w1 x w2), angles:NxM
-  std::vector<double> w1_range{-2, 2};   // w1 range a < b of a strip grid
-  int replicates = 2;                    // randomly shifted replicate grids, 0..100
-  std::uint64_t seed = 1;                // seed of the replicate shifts
-  int entropy_box = 5;                   // side of the boxes of the basin entropies (cells), 1..1000
-  Options thresholds;                    // classification thresholds (threshold_fields)
+  double r = 0;                         // restitution coefficient, in (0, 1)
+  std::string grid = "sphere:200x200";  // sphere:NxM (equal-area theta x y), strip:NxM (w1 x w2), angles:NxM
+  std::vector<double> w1_range{-2, 2};  // w1 range a < b of a strip grid
+  int replicates = 2;                   // randomly shifted replicate grids, 0..100
+  std::uint64_t seed = 1;               // seed of the replicate shifts
+  int entropy_box = 5;                  // side of the boxes of the basin entropies (cells), 1..1000
+  Options thresholds;                   // classification thresholds (threshold_fields)
 
   void validate() const;
-  Grid parsed_grid() const;  // the grid (validated)
+  Grid parsed_grid() const;        // the grid (validated)
   std::size_t work_items() const;  // rows of the main and replicate grids (core/sweep.hpp, attractors::basin_rows)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)", core::Required{});
@@ -98,8 +98,8 @@ struct BasinsRequest {
 
 struct BasinsResult {
   BasinsRequest request;  // the request, as run (validated)
-  Basins basins;  // the attractors (union over all grids), each grid point's label and the boundary geometry
-  std::vector<double> fraction, ci_low, ci_high;  // [attractors]: main-grid fractions and their 95% intervals
+  Basins basins;          // the attractors (union over all grids), each grid point's label and the boundary geometry
+  std::vector<double> fraction, ci_low, ci_high;     // [attractors]: main-grid fractions and their 95% intervals
   std::vector<double> replicate_mean, replicate_sd;  // [attractors + 1] over main and replicate grids; undecided last
   std::vector<double> axis1, axis2;                  // [n1], [n2]: the main grid's cell centres along each axis
   std::size_t undecided_count = 0;                   // undecided points of the main grid
@@ -122,7 +122,8 @@ struct BasinsResult {
 };
 
 // In parts (core/sweep.hpp): item k * n2 + j is row j of grid k (0: main, then the replicates).
-BasinRows run_part(const BasinsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BasinRows run_part(const BasinsRequest& req, const std::vector<std::size_t>& items,
+                   const core::RunControl& control = {});
 BasinsResult merge(const BasinsRequest& req, std::vector<BasinRows> parts);
 // merge(req, {run_part(req, every row)}).
 BasinsResult run(const BasinsRequest& req, const core::RunControl& control = {});
@@ -144,13 +145,13 @@ std::vector<TableRow> parse_table(const std::string& csv);
 std::string grid_measure(const std::string& spec);
 
 struct BasinsRRequest {
-  std::vector<double> r_values;       // r values in (0, 1)
-  double r_min = 0.1, r_max = 0.6;    // a range of r_count values, both ends included (r_count = 0: none)
+  std::vector<double> r_values;     // r values in (0, 1)
+  double r_min = 0.1, r_max = 0.6;  // a range of r_count values, both ends included (r_count = 0: none)
   long r_count = 0;
-  bool table = false;                 // add the r values of Table 6.1 in [0.1, 0.6]
-  std::string grid = "random:2000";   // initial conditions: random:N, paper, strip:NxM or x,y,z;...
-  std::uint64_t seed = 1;             // seed of random grids
-  std::string reference;              // Table 6.1 as CSV (a path; empty: the lab's own copy, read by the caller)
+  bool table = false;                // add the r values of Table 6.1 in [0.1, 0.6]
+  std::string grid = "random:2000";  // initial conditions: random:N, paper, strip:NxM or x,y,z;...
+  std::uint64_t seed = 1;            // seed of random grids
+  std::string reference;             // Table 6.1 as CSV (a path; empty: the lab's own copy, read by the caller)
   // The boundary geometry per r (attractors/boundary.hpp) from a basins run on this grid ("none": off), with its
   // replicates and entropy boxes; the points of `grid` give the fractions.  200 x 200 is the coarsest sphere grid
   // on which the uncertainty exponent is fitted where the boundary is smooth (r = 0.2, 0.3: f(eps) stays below 1/2
@@ -158,12 +159,12 @@ struct BasinsRRequest {
   std::string boundary_grid = "sphere:200x200";
   int boundary_replicates = 2;
   int entropy_box = 5;
-  Options thresholds;                 // classification thresholds (threshold_fields)
+  Options thresholds;  // classification thresholds (threshold_fields)
   // Not a field: the text of the reference CSV, set by the caller (the command line reads `reference`).
   std::string reference_csv;
 
   void validate() const;
-  std::vector<double> all_r() const;  // r_values, the range's, then Table 6.1's when `table`
+  std::vector<double> all_r() const;                         // r_values, the range's, then Table 6.1's when `table`
   std::size_t work_items() const { return all_r().size(); }  // a sweep over all_r() (core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r-values", r_values, "r values r1,r2,... in (0, 1)");
@@ -187,9 +188,11 @@ struct BasinsRRow {
   std::vector<Attractor> attractors;
   std::vector<Fraction> fractions;  // per attractor
   Fraction undecided;
-  bool has_boundary = false;        // boundary-grid not "none"
-  BoundaryGeometry boundary;        // from a basins run on boundary-grid at r
-  template <class A> void members(A& a) { a(r, attractors, fractions, undecided, has_boundary, boundary); }  // core/pack.hpp
+  bool has_boundary = false;  // boundary-grid not "none"
+  BoundaryGeometry boundary;  // from a basins run on boundary-grid at r
+  template <class A> void members(A& a) {
+    a(r, attractors, fractions, undecided, has_boundary, boundary);
+  }  // core/pack.hpp
 };
 
 // The comparison with Table 6.1 at one r: the periodic fraction (paper: % of 10 orbits) and the patterns found.
@@ -198,25 +201,25 @@ struct Comparison {
   bool in_table = false;
   std::string paper_percent, paper_patterns;
   bool has_percent = false;
-  Fraction paper;          // k of 10 with its 95% interval (has_percent)
-  bool consistent = false; // our periodic fraction within the paper's interval (has_percent)
-  Fraction periodic;       // ours
-  std::string found;       // "pattern (fraction); ..."
+  Fraction paper;           // k of 10 with its 95% interval (has_percent)
+  bool consistent = false;  // our periodic fraction within the paper's interval (has_percent)
+  Fraction periodic;        // ours
+  std::string found;        // "pattern (fraction); ..."
   int paper_found = 0, paper_total = 0;
-  std::string extra;       // periodic patterns found that the paper does not list
-  std::string other;       // other types and undecided with their fractions
+  std::string extra;  // periodic patterns found that the paper does not list
+  std::string other;  // other types and undecided with their fractions
 };
 
 struct BasinsRResult {
-  BasinsRRequest request;  // the request, as run (validated)
-  std::size_t points = 0;  // initial conditions per r (the grid's points)
-  std::vector<BasinsRRow> rows;  // one per r value, ascending: attractors, fractions, boundary
+  BasinsRRequest request;              // the request, as run (validated)
+  std::size_t points = 0;              // initial conditions per r (the grid's points)
+  std::vector<BasinsRRow> rows;        // one per r value, ascending: attractors, fractions, boundary
   std::vector<Comparison> comparison;  // per row
   std::vector<double> r;               // [rows]
   std::vector<double> fraction;        // [rows, columns]: per attractor key (sorted by type, key), undecided last
   std::vector<std::string> columns;    // column labels
-  int threads = 0;  // OpenMP threads used
-  double seconds = 0;  // wall time of the run, seconds
+  int threads = 0;                     // OpenMP threads used
+  double seconds = 0;                  // wall time of the run, seconds
   // Arrays: r [rows], fraction [rows, columns]; with a boundary grid, the boundary geometry per r (boundary_arrays);
   // attributes: column_<j>, the request and timings.
   void describe(core::Contents& c) const;
@@ -238,7 +241,8 @@ struct BasinsRPart {
   int threads = 0;
   template <class A> void members(A& a) { a(items, rows, seconds, threads); }
 };
-BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BasinsRPart run_part(const BasinsRRequest& req, const std::vector<std::size_t>& items,
+                     const core::RunControl& control = {});
 // The boundary geometry in a few lines for the terminal: entropies with their intervals, alpha and D with the fit's
 // range, the Wada verdict.
 std::string boundary_summary(const BoundaryGeometry& g);

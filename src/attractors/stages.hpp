@@ -47,8 +47,7 @@ void widen_curve_ranges(Ranges& into, double rot_lo, double rot_hi, double inv_l
   into.invariant_max = std::max(into.invariant_max, inv_hi);
 }
 // By one verdict's values.
-template <class Ranges>
-void widen_curve_ranges(Ranges& into, const OrbitVerdict& v) {
+template <class Ranges> void widen_curve_ranges(Ranges& into, const OrbitVerdict& v) {
   widen_curve_ranges(into, v.rotation, v.rotation, v.invariant, v.invariant);
 }
 

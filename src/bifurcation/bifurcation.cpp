@@ -47,8 +47,8 @@ Axis axis_of(const Request& req) {
 }
 
 template <class T>
-void run_kernel(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& dens, iterate::TailRecorder* raw,
-                const iterate::RunOptions& opt) {
+void run_kernel(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& dens,
+                iterate::TailRecorder* raw, const iterate::RunOptions& opt) {
   if (raw) {
     iterate::Both<iterate::DensityRecorder, iterate::TailRecorder> both(dens, *raw);
     iterate::run<T>(ens, iterations, both, opt);
@@ -95,7 +95,8 @@ void Request::validate() const {
   (void)axis_of(*this);
   if (algorithm != "linear" && algorithm != "trig")
     throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.3) or trig (Appendix A.1)");
-  if (algorithm == "trig" && (raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
+  if (algorithm == "trig" &&
+      (raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
     throw core::InvalidField("algorithm", "trig with " + std::string(raw ? "--raw" : prec.name()),
                              "trig in double or long-double, without raw tails");
   iterate::Ensemble probe;
@@ -134,8 +135,8 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   opt.progress = control.progress;
   opt.cancel = control.cancel;
   const int threads = control.threads > 0 ? control.threads : omp_get_max_threads();
-  iterate::DensityRecorder dens(ax.coord, ens, req.iterations, req.tail, static_cast<std::size_t>(req.bins), ax.lo, ax.hi,
-                                threads);
+  iterate::DensityRecorder dens(ax.coord, ens, req.iterations, req.tail, static_cast<std::size_t>(req.bins), ax.lo,
+                                ax.hi, threads);
   std::unique_ptr<iterate::TailRecorder> raw;
   if (req.raw) raw = std::make_unique<iterate::TailRecorder>(ax.coord, ens.orbits(), req.iterations, req.tail);
 
@@ -150,9 +151,9 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
                       : reference::trig_density<double>(ens, req.iterations, dens, threads, control.cancel);
     // Re acos lies in [0, pi]: the whole range, so that nothing MATLAB would draw falls outside.
     core::check_cancel(control.cancel);
-    part.matlab = reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
-                                                 static_cast<int>(req.bins), 0.0, std::numbers::pi, threads,
-                                                 control.cancel);
+    part.matlab =
+        reference::trig_density_matlab(ens, req.iterations, req.tail, ax.coord == iterate::Coord::phi,
+                                       static_cast<int>(req.bins), 0.0, std::numbers::pi, threads, control.cancel);
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }
@@ -177,20 +178,26 @@ Result merge(const Request& req, std::vector<Part> parts) {
   ens.seed = req.seed;
   const auto order = core::item_order(parts, ens.r.size());
   const std::size_t bins = static_cast<std::size_t>(req.bins);
-  res.density = core::merge_rows<Part, std::uint32_t>(parts, order, bins, [](const Part& p) -> auto& { return p.density; });
-  res.underflow = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.underflow; });
-  res.overflow = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.overflow; });
-  res.broken = core::merge_rows<Part, std::uint64_t>(parts, order, 1, [](const Part& p) -> auto& { return p.broken; });
+  res.density = core::merge_rows<Part, std::uint32_t>(
+      parts, order, bins, [](const Part& p) -> auto& { return p.density; });
+  res.underflow = core::merge_rows<Part, std::uint64_t>(
+      parts, order, 1, [](const Part& p) -> auto& { return p.underflow; });
+  res.overflow = core::merge_rows<Part, std::uint64_t>(
+      parts, order, 1, [](const Part& p) -> auto& { return p.overflow; });
+  res.broken = core::merge_rows<Part, std::uint64_t>(
+      parts, order, 1, [](const Part& p) -> auto& { return p.broken; });
   if (req.raw)
-    res.tail = core::merge_rows<Part, double>(parts, order, ens.initial.size() * static_cast<std::size_t>(req.tail),
-                                              [](const Part& p) -> auto& { return p.tail; });
+    res.tail = core::merge_rows<Part, double>(
+        parts, order, ens.initial.size() * static_cast<std::size_t>(req.tail),
+        [](const Part& p) -> auto& { return p.tail; });
   if (req.algorithm == "trig") {
     using M = reference::MatlabTrigImage;
     const auto per_r = [&](std::vector<std::uint64_t> M::*field) {
-      return core::merge_rows<Part, std::uint64_t>(parts, order, 1, [field](const Part& p) -> auto& { return p.matlab.*field; });
+      return core::merge_rows<Part, std::uint64_t>(
+          parts, order, 1, [field](const Part& p) -> auto& { return p.matlab.*field; });
     };
-    res.matlab.counts =
-        core::merge_rows<Part, std::uint32_t>(parts, order, bins, [](const Part& p) -> auto& { return p.matlab.counts; });
+    res.matlab.counts = core::merge_rows<Part, std::uint32_t>(
+        parts, order, bins, [](const Part& p) -> auto& { return p.matlab.counts; });
     res.matlab.complex_orbits = per_r(&M::complex_orbits);
     res.matlab.nan_points = per_r(&M::nan_points);
     res.matlab.outside = per_r(&M::outside);
@@ -214,8 +221,9 @@ Result merge(const Request& req, std::vector<Part> parts) {
   res.iterations = req.iterations;
   res.tail_length = req.tail;
   // The interval between exact power-of-two rescalings (0: the trigonometric route normalises every collision).
-  res.renormalisation_interval =
-      req.algorithm == "trig" ? 0 : with_scalar(prec, [&]<class T>(T*) { return iterate::renormalisation_interval<T>(ens.r); });
+  res.renormalisation_interval = req.algorithm == "trig" ? 0 : with_scalar(prec, [&]<class T>(T*) {
+    return iterate::renormalisation_interval<T>(ens.r);
+  });
   return res;
 }
 
@@ -242,7 +250,8 @@ void Result::describe(core::Contents& c) const {
                       "also holds hi ({} in {})",
                       coord, unit));
   c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients (the image's columns)");
-  c.array("bin_centre", bin_centre, {bins}, "bin of " + coord, unit, "centre of each bin of " + coord + " (the image's rows)");
+  c.array("bin_centre", bin_centre, {bins}, "bin of " + coord, unit,
+          "centre of each bin of " + coord + " (the image's rows)");
   c.coordinate("bin of " + coord, "bin_centre");
   c.array("underflow", underflow, {R}, "r", "count", "tail points below lo (or NaN) at each r");
   c.array("overflow", overflow, {R}, "r", "count", "tail points above hi at each r");

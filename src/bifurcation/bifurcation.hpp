@@ -18,20 +18,20 @@ namespace btob::bifurcation {
 
 struct Request {
   core::Decimal r_min = 0.0717, r_max = 0.1717;  // r range, each in (0, 1), kept as given (read in the precision)
-  long r_count = 5000;                    // evenly spaced r values
-  long iterations = 5000;                 // map iterations per orbit
-  long tail = 100;                        // last iterations binned per orbit, 1..iterations
-  std::string coord = "theta";            // theta, phi, w1 or w2 (radians for the angles)
-  bool log = false;                       // log10 theta
-  std::string grid = "paper";             // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
-  std::uint64_t seed = 1;                 // seed of random grids
-  std::string precision = "double";       // float, double, long-double, float128 or mpfr:D
-  long bins = 800;                        // bins of the coordinate axis, 1..100000
-  std::vector<double> range;              // lo hi of the coordinate axis (log10 units with log); default per coord
-  std::vector<double> vline;              // r values drawn as vertical lines (presentation)
-  std::vector<std::string> overlay;       // named overlays (presentation; the command line resolves them)
-  std::string algorithm = "linear";       // linear (Theorem 3.3, batched kernel) or trig (Appendix A.1)
-  bool raw = false;                       // also keep the raw tails (r x initial condition x tail)
+  long r_count = 5000;                           // evenly spaced r values
+  long iterations = 5000;                        // map iterations per orbit
+  long tail = 100;                               // last iterations binned per orbit, 1..iterations
+  std::string coord = "theta";                   // theta, phi, w1 or w2 (radians for the angles)
+  bool log = false;                              // log10 theta
+  std::string grid = "paper";                    // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
+  std::uint64_t seed = 1;                        // seed of random grids
+  std::string precision = "double";              // float, double, long-double, float128 or mpfr:D
+  long bins = 800;                               // bins of the coordinate axis, 1..100000
+  std::vector<double> range;         // lo hi of the coordinate axis (log10 units with log); default per coord
+  std::vector<double> vline;         // r values drawn as vertical lines (presentation)
+  std::vector<std::string> overlay;  // named overlays (presentation; the command line resolves them)
+  std::string algorithm = "linear";  // linear (Theorem 3.3, batched kernel) or trig (Appendix A.1)
+  bool raw = false;                  // also keep the raw tails (r x initial condition x tail)
   // Also classify every orbit (`btob classify` with transient iterations - tail, iterations tail, in double): what
   // extras::of adds after the run (src/extras), so the diagram's run and its speed are the same without it.
   bool attractors = false;
@@ -61,22 +61,25 @@ struct Request {
 };
 
 struct Result {
-  iterate::Ensemble ensemble;  // the r values and initial conditions iterated (the orbits, r-major)
-  double r_min = 0, r_max = 0;         // the requested r range
-  std::string coord;                   // the binned coordinate: theta, log10_theta, phi, w1, w2
-  double lo = 0, hi = 0;               // the axis range
-  std::size_t bins = 0;  // bins of the density along the coordinate
-  std::vector<double> bin_centre;      // [bins]: lo + (i + 1/2) (hi - lo) / bins, the density's coordinates
-  std::vector<std::uint32_t> density;  // [r, bin]: tail points per bin
+  iterate::Ensemble ensemble;                      // the r values and initial conditions iterated (the orbits, r-major)
+  double r_min = 0, r_max = 0;                     // the requested r range
+  std::string coord;                               // the binned coordinate: theta, log10_theta, phi, w1, w2
+  double lo = 0, hi = 0;                           // the axis range
+  std::size_t bins = 0;                            // bins of the density along the coordinate
+  std::vector<double> bin_centre;                  // [bins]: lo + (i + 1/2) (hi - lo) / bins, the density's coordinates
+  std::vector<std::uint32_t> density;              // [r, bin]: tail points per bin
   std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
-  std::vector<std::uint64_t> broken;   // [r]: orbits the trigonometric algorithm lost (acos out of its domain)
-  std::vector<double> tail;            // [r, initial condition, tail] when raw
-  reference::MatlabTrigImage matlab;   // trig only: what the paper's MATLAB code draws (complex continuation past
-                                       // acos's domain, Figure 4.7), over [0, pi]
-  std::vector<double> vlines;          // the request's vertical lines
-  std::string scalar_type, algorithm;  // the arithmetic that ran (float, double, ...) and the request's algorithm (linear or trig)
-  long iterations = 0, tail_length = 0, renormalisation_interval = 0;  // map iterations per orbit, of them the tail binned, steps between renormalisations
-  std::uint64_t degenerate = 0;        // orbits whose final state was not a finite non-zero vector
+  std::vector<std::uint64_t> broken;  // [r]: orbits the trigonometric algorithm lost (acos out of its domain)
+  std::vector<double> tail;           // [r, initial condition, tail] when raw
+  reference::MatlabTrigImage matlab;  // trig only: what the paper's MATLAB code draws (complex continuation past
+                                      // acos's domain, Figure 4.7), over [0, pi]
+  std::vector<double> vlines;         // the request's vertical lines
+  std::string scalar_type,
+      algorithm;  // the arithmetic that ran (float, double, ...) and the request's algorithm (linear or trig)
+  long iterations = 0, tail_length = 0,
+       renormalisation_interval =
+           0;                    // map iterations per orbit, of them the tail binned, steps between renormalisations
+  std::uint64_t degenerate = 0;  // orbits whose final state was not a finite non-zero vector
   double iteration_seconds = 0;  // wall time of the iteration (without plotting or writing), seconds
 
   std::uint64_t points_below() const;

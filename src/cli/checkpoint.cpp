@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The checkpoint of a resumable sweep under MPI (cli/checkpoint.hpp): rank 0 opens the file (io/checkpoint.hpp),
 // every rank learns the finished items or the refusal.
-#include "cli/app.hpp"
 #include "cli/checkpoint.hpp"
+#include "cli/app.hpp"
 
 namespace btob::cli {
 namespace {

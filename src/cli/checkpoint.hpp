@@ -37,7 +37,8 @@ std::shared_ptr<Checkpoint> open_checkpoint(const io::fs::path& path, const std:
 // Computes the items of `req` that `cp` lacks in rounds, appending each round's parts to the checkpoint, and merges
 // them with the parts it held.  `split`: the MPI ranks share each round (rank k takes every P-th remaining item),
 // rank 0 gathers and writes; else this process computes every item.  The result on rank 0, nullopt elsewhere.
-template <core::Sweep Req> auto run_checkpointed(const Req& req, const core::RunControl& control, Checkpoint& cp, bool split) {
+template <core::Sweep Req>
+auto run_checkpointed(const Req& req, const core::RunControl& control, Checkpoint& cp, bool split) {
   io::Ranks on;
   if (split) {
     on.ranks = static_cast<std::size_t>(mpi::size());

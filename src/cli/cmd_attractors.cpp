@@ -52,19 +52,20 @@ void basins(const attractors::BasinsRequest& req, const Output& o, const Context
   const attractors::Basins& b = res.basins;
   const std::size_t n = res.points();
   if (!o.quiet)
-    std::cerr << fmt::format("btob: basins at r = {}: {} points x {} grids in {:.2f} s ({:.3g} points/s, {} threads), "
-                             "{} attractors, undecided {:.4f} ({} before refinement); wrote {}\n",
-                             req.r, n, req.replicates + 1, b.seconds,
-                             static_cast<double>(n * static_cast<std::size_t>(req.replicates + 1)) / b.seconds,
-                             res.threads, b.attractors.size(), b.undecided.value, b.undecided_first_pass,
-                             listing(written));
+    std::cerr << fmt::format(
+        "btob: basins at r = {}: {} points x {} grids in {:.2f} s ({:.3g} points/s, {} threads), "
+        "{} attractors, undecided {:.4f} ({} before refinement); wrote {}\n",
+        req.r, n, req.replicates + 1, b.seconds,
+        static_cast<double>(n * static_cast<std::size_t>(req.replicates + 1)) / b.seconds, res.threads,
+        b.attractors.size(), b.undecided.value, b.undecided_first_pass, listing(written));
   if (o.quiet) return;
   // Each attractor's fraction with its 95% interval (sampling only), of the measure the grid samples.
   std::cerr << "  fractions of the measure: " << attractors::measure_name(b.grid) << "\n";
   if (b.grid.kind == core::GridKind::strip)
-    std::cerr << fmt::format("  the rectangle leaves out {:.4f} of the uniform measure on the sphere of directions "
-                             "(sphere:NxM counts that measure)\n",
-                             1 - attractors::sphere_share(b.grid));
+    std::cerr << fmt::format(
+        "  the rectangle leaves out {:.4f} of the uniform measure on the sphere of directions "
+        "(sphere:NxM counts that measure)\n",
+        1 - attractors::sphere_share(b.grid));
   for (std::size_t i = 0; i < b.attractors.size(); ++i)
     std::cerr << fmt::format("  {} {} {}: {:.4f} [{:.4f}, {:.4f}]\n", b.attractors[i].id,
                              attractors::type_name(b.attractors[i].type), b.attractors[i].pattern, b.fractions[i].value,
@@ -103,9 +104,9 @@ void basins_r(const attractors::BasinsRRequest& req, const Output& o, const Cont
 
 struct Registration {
   Registration() {
-    command<attractors::ClassifyRequest>(
-        "classify", "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or undecided", Output::to_stdout(),
-        classify);
+    command<attractors::ClassifyRequest>("classify",
+                                         "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or undecided",
+                                         Output::to_stdout(), classify);
     command<attractors::BasinsRequest>(
         "basins",
         "Basins of the attractors at one r over a grid: image, fractions, basin entropies, uncertainty exponent, Wada "

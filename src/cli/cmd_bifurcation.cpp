@@ -3,8 +3,8 @@
 #include "bifurcation/bifurcation.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
-#include "extras/extras.hpp"
 #include "cli/sweep.hpp"
+#include "extras/extras.hpp"
 
 #include <fmt/format.h>
 
@@ -27,9 +27,10 @@ void warn(const bifurcation::Request& req, const bifurcation::Result& res) {
                                  ? "; in float, theta underflows to 0 where double still resolves it: use double"
                                  : "; widen --range to see them");
   if (res.degenerate > 0)
-    std::cerr << fmt::format("btob: warning: {} of {} orbits ended in a non-finite or zero state in {}: this precision "
-                             "cannot cope at these r; use double or wider\n",
-                             res.degenerate, res.ensemble.orbits(), res.scalar_type);
+    std::cerr << fmt::format(
+        "btob: warning: {} of {} orbits ended in a non-finite or zero state in {}: this precision "
+        "cannot cope at these r; use double or wider\n",
+        res.degenerate, res.ensemble.orbits(), res.scalar_type);
 }
 
 void body(const bifurcation::Request& req, const Output& o, const Context& ctx) {
@@ -56,15 +57,17 @@ void body(const bifurcation::Request& req, const Output& o, const Context& ctx) 
   const auto written = files.commit();
   const double its = static_cast<double>(res.ensemble.orbits()) * static_cast<double>(req.iterations);
   if (!o.quiet)
-    std::cerr << fmt::format("btob: {} orbits x {} iterations = {:.3g} map iterations in {:.3f} s ({:.3g} it/s, {} threads); "
-                             "wrote {}\n",
-                             res.ensemble.orbits(), req.iterations, its, res.iteration_seconds, its / res.iteration_seconds,
-                             std::get<long>(at["threads"]), listing(written));
+    std::cerr << fmt::format(
+        "btob: {} orbits x {} iterations = {:.3g} map iterations in {:.3f} s ({:.3g} it/s, {} threads); "
+        "wrote {}\n",
+        res.ensemble.orbits(), req.iterations, its, res.iteration_seconds, its / res.iteration_seconds,
+        std::get<long>(at["threads"]), listing(written));
 }
 
 struct Registration {
   Registration() {
-    command<bifurcation::Request>("bifurcation", "Tails of theta or phi against r, as a density image (Figures 4.x, 6.x)",
+    command<bifurcation::Request>("bifurcation",
+                                  "Tails of theta or phi against r, as a density image (Figures 4.x, 6.x)",
                                   Output{"results/bifurcation", "bifurcation", "", 0, false, false}, body);
   }
 } registration;

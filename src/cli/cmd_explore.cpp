@@ -6,11 +6,11 @@
 #include "cli/command.hpp"
 #include "cli/explore.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <httplib.h>
 #include <mpfr.h>
 #include <nlohmann/json.hpp>
-#include <fcntl.h>
 #include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -105,9 +105,9 @@ ex::Params params_of(const httplib::Request& req, std::initializer_list<const ch
     p.emplace(k, v);
   }
   const auto s = p.find("session");
-  if (s != p.end() && (s->second.size() > 64 || s->second.find_first_not_of(
-                                                     "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") !=
-                                                     std::string::npos))
+  if (s != p.end() && (s->second.size() > 64 ||
+                       s->second.find_first_not_of(
+                           "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") != std::string::npos))
     throw core::InvalidField("session", "'" + s->second.substr(0, 64) + "'", "up to 64 letters, digits, - or _");
   return p;
 }
@@ -160,8 +160,8 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 
 // GET /api/bifurcation: parse -> compute -> colour -> encode, each stage timed in the Server-Timing header.
 void bifurcation_png(Jobs& jobs, const Settings& s, const httplib::Request& req, httplib::Response& res) {
-  const ex::Params p = params_of(req, {"r_min", "r_max", "coord", "lo", "hi", "width", "height", "iterations", "tail",
-                                       "grid", "session"});
+  const ex::Params p = params_of(
+      req, {"r_min", "r_max", "coord", "lo", "hi", "width", "height", "iterations", "tail", "grid", "session"});
   const ex::View view = ex::parse_view(p);
   with_job(jobs, s, p, "bifurcation", [&](const core::RunControl& control) {
     auto t = std::chrono::steady_clock::now();
@@ -174,8 +174,9 @@ void bifurcation_png(Jobs& jobs, const Settings& s, const httplib::Request& req,
     const std::string png = ex::encode_png(img, true);
     const double t_png = ms_since(t);
     // compute = iterate (the kernel with its density recorder) + the request's setup and the per-thread images' merge
-    res.set_header("Server-Timing", fmt::format("compute;dur={:.2f}, iterate;dur={:.2f}, colour;dur={:.2f}, png;dur={:.2f}",
-                                                t_compute, 1e3 * r.iteration_seconds, t_colour, t_png));
+    res.set_header("Server-Timing",
+                   fmt::format("compute;dur={:.2f}, iterate;dur={:.2f}, colour;dur={:.2f}, png;dur={:.2f}", t_compute,
+                               1e3 * r.iteration_seconds, t_colour, t_png));
     res.set_header("X-Btob-Orbits", std::to_string(r.ensemble.orbits()));
     res.set_header("X-Btob-Iterations", std::to_string(view.iterations));
     res.set_header("Cache-Control", "no-store");
@@ -215,8 +216,8 @@ void api_routes(httplib::Server& svr, Jobs& jobs, const Settings& s) {
   });
   svr.Post("/api/export", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const ex::Params p = params_of(req, {"r_min", "r_max", "coord", "lo", "hi", "width", "height", "iterations", "tail",
-                                           "grid", "overlay", "session"});
+      const ex::Params p = params_of(req, {"r_min", "r_max", "coord", "lo", "hi", "width", "height", "iterations",
+                                           "tail", "grid", "overlay", "session"});
       json_reply(res, ex::export_view(ex::parse_view(p), s.export_dir));
     });
   });
@@ -236,14 +237,14 @@ void page_routes(httplib::Server& svr) {
     res.set_content(reinterpret_cast<const char*>(it->second.data), it->second.size, it->second.mime);
   });
   svr.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
-    if (res.body.empty()) res.set_content(ex::error_json(fmt::format("HTTP {} for {}", res.status, req.path)), "application/json");
+    if (res.body.empty())
+      res.set_content(ex::error_json(fmt::format("HTTP {} for {}", res.status, req.path)), "application/json");
   });
   // MPFR keeps its constants (pi, log 2) in caches local to the thread that computed them; the server's worker
   // threads compute window bounds and classifications in MPFR and then end with the server, so each request frees
   // its thread's caches instead of leaving them to a thread exit that never frees them.
-  svr.set_post_routing_handler([](const httplib::Request&, httplib::Response&) {
-    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
-  });
+  svr.set_post_routing_handler(
+      [](const httplib::Request&, httplib::Response&) { mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE); });
 }
 
 // Opens `url` with xdg-open when it is on the PATH; never fails (a machine without a desktop just has no browser).
@@ -293,13 +294,19 @@ void serve(const Settings& s) {
   api_routes(svr, jobs, s);
   page_routes(svr);
   const int port = s.port == 0 ? svr.bind_to_any_port(s.host) : (svr.bind_to_port(s.host, s.port) ? s.port : -1);
-  if (port < 0) throw std::runtime_error(fmt::format("cannot listen on {}:{} (in use, or not an address of this machine)", s.host, s.port));
-  const std::string url = fmt::format("http://{}:{}/", s.host.find(':') != std::string::npos ? "[" + s.host + "]" : s.host, port);
+  if (port < 0)
+    throw std::runtime_error(
+        fmt::format("cannot listen on {}:{} (in use, or not an address of this machine)", s.host, s.port));
+  const std::string url =
+      fmt::format("http://{}:{}/", s.host.find(':') != std::string::npos ? "[" + s.host + "]" : s.host, port);
   if (!loopback(s.host))
-    std::cout << fmt::format("btob explore: WARNING: listening on {} exposes the explorer to every machine that can reach "
-                             "it: anyone can run computations (up to the work budget each) and write scenes and PNGs into "
-                             "'{}'; there is no authentication\n", s.host, s.export_dir);
-  std::cout << "btob explore: serving " << url << " (exports go to '" << s.export_dir << "'; Ctrl-C stops)" << std::endl;
+    std::cout << fmt::format(
+        "btob explore: WARNING: listening on {} exposes the explorer to every machine that can reach "
+        "it: anyone can run computations (up to the work budget each) and write scenes and PNGs into "
+        "'{}'; there is no authentication\n",
+        s.host, s.export_dir);
+  std::cout << "btob explore: serving " << url << " (exports go to '" << s.export_dir << "'; Ctrl-C stops)"
+            << std::endl;
   if (!s.no_browser) open_browser(url);
   std::thread watch([&] {  // SIGINT/SIGTERM set the process's token: stop serving, cancel what runs
     while (!cancel_token().cancelled()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -314,13 +321,18 @@ void serve(const Settings& s) {
 
 Register reg([](CLI::App& app) {
   auto s = std::make_shared<Settings>();
-  CLI::App* c = app.add_subcommand("explore", "Serve the bifurcation diagram to a browser, recomputed at every zoom (a server that "
-                                                "runs until stopped: no --dry-run; each view's cost is that of a small "
-                                                "bifurcation request)");
-  c->add_option("--port", s->port, "TCP port, 0..65535 (0: any free port)")->check(CLI::Range(0, 65535))->capture_default_str();
+  CLI::App* c =
+      app.add_subcommand("explore",
+                         "Serve the bifurcation diagram to a browser, recomputed at every zoom (a server that "
+                         "runs until stopped: no --dry-run; each view's cost is that of a small "
+                         "bifurcation request)");
+  c->add_option("--port", s->port, "TCP port, 0..65535 (0: any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
   c->add_option("--host", s->host, "address to listen on (default 127.0.0.1; any other exposes the explorer)");
   c->add_flag("--no-browser", s->no_browser, "do not open a browser");
-  c->add_option("--export", s->export_dir, "folder the page's exports are written to (nothing else is written)")->capture_default_str();
+  c->add_option("--export", s->export_dir, "folder the page's exports are written to (nothing else is written)")
+      ->capture_default_str();
   c->add_option("--threads", s->threads, "OpenMP threads of each computation (default: all cores)");
   c->callback([s] { serve(*s); });
 });

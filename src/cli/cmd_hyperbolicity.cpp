@@ -33,7 +33,8 @@ void strip(const lyapunov::HyperbolicityRequest& req, const Output& o, const Con
   const auto [mn, mx] = std::minmax_element(img.s1.begin(), img.s1.end());
   std::cout << "r,cells,expanding_fraction,s1_min,s1_max\n"
             << fmt::format("{},{},{:.6f},{:.6g},{:.6g}\n", req.r, img.s1.size(), img.expanding_fraction, *mn, *mx);
-  if (!o.quiet) std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", img.s1.size(), res.seconds, listing(written));
+  if (!o.quiet)
+    std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", img.s1.size(), res.seconds, listing(written));
 }
 
 void orbits(const lyapunov::HyperbolicityOrbitsRequest& req, const Output& o, const Context& ctx) {

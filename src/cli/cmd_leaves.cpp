@@ -33,17 +33,19 @@ void body(const leaves::Request& req, const Output& o, const Context& ctx) {
   std::cerr << fmt::format("btob: leaves at {} r values, {} points each, in {:.2f} s; wrote {}\n", res.r.size(),
                            res.grid.cells(), res.seconds, listing(written));
   for (std::size_t i = 0; i < res.r.size(); ++i)
-    std::cerr << fmt::format("  r = {:.10g}: theta/2pi = {:.10f}, region {:.4f}, on a P2 curve {:.4f} [{:.4f}, {:.4f}], "
-                             "landing t mean {:.4f} sd {:.4f}\n",
-                             res.r[i], res.rotation[i], res.region_share[i], res.mass[i], res.mass_low[i],
-                             res.mass_high[i], res.landing_mean[i], res.landing_sd[i]);
+    std::cerr << fmt::format(
+        "  r = {:.10g}: theta/2pi = {:.10f}, region {:.4f}, on a P2 curve {:.4f} [{:.4f}, {:.4f}], "
+        "landing t mean {:.4f} sd {:.4f}\n",
+        res.r[i], res.rotation[i], res.region_share[i], res.mass[i], res.mass_low[i], res.mass_high[i],
+        res.landing_mean[i], res.landing_sd[i]);
 }
 
 struct Registration {
   Registration() {
     command<leaves::Request>(
         "leaves",
-        "P2's invariant curves: labels, region, rotation numbers, where orbits land and the measure on a leaf, at one r "
+        "P2's invariant curves: labels, region, rotation numbers, where orbits land and the measure on a leaf, at one "
+        "r "
         "or across r; writes NAME.csv, NAME_landing.csv, NAME_leaves.csv, NAME.h5, NAME.json, NAME.png",
         Output{"results/leaves", "leaves", "", 0, false, false}, body);
   }

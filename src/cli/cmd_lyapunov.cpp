@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `btob lyapunov`, `btob lyapunov-map`, `btob lyapunov-strip`: flags -> lyapunov::*Request -> run -> files.
 #include "cli/command.hpp"
-#include "cli/sweep.hpp"
 #include "cli/common.hpp"
+#include "cli/sweep.hpp"
 #include "core/csv.hpp"
 #include "core/error_bar.hpp"
 #include "extras/extras.hpp"
@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include <optional>
 #include <fmt/ranges.h>
+#include <optional>
 
 #include <iostream>
 
@@ -34,9 +34,10 @@ void orbit(const lyapunov::OrbitRequest& req, const Output&, const Context& ctx)
     const auto name = [](int c) { return c > 0 ? "positive" : c < 0 ? "negative" : "zero"; };
     const core::ValueWithError dl = core::with_error(rd.lambda[0].value, rd.lambda[0].error);
     if (cf != cd)
-      std::cerr << fmt::format("btob: warning: in double this orbit has lambda1 = {} +- {} ({}), float {:.6g} "
-                               "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
-                               dl.value, dl.error, name(cd), l[0].value, name(cf));
+      std::cerr << fmt::format(
+          "btob: warning: in double this orbit has lambda1 = {} +- {} ({}), float {:.6g} "
+          "({}): float rounding moves orbits off weakly contracting sinks; use --precision double\n",
+          dl.value, dl.error, name(cd), l[0].value, name(cf));
   }
   if (!req.convergence.empty()) {
     core::CsvTable csv("n,lambda1,lambda2");
@@ -73,16 +74,18 @@ void maps(const Req& req, const Output& o, const Context& ctx, const std::string
   const auto written = files.commit();
   if constexpr (std::is_same_v<Req, lyapunov::MapRequest>)
     if (res.float_disagree > 0)
-      std::cerr << fmt::format("btob: warning: float and double give another sign of lambda1 on {} of the {} orbits "
-                               "re-run in double (first at r = {}): float rounding moves orbits off weakly contracting "
-                               "sinks; use --precision double\n",
-                               res.float_disagree, res.float_checked, res.float_disagree_r);
+      std::cerr << fmt::format(
+          "btob: warning: float and double give another sign of lambda1 on {} of the {} orbits "
+          "re-run in double (first at r = {}): float rounding moves orbits off weakly contracting "
+          "sinks; use --precision double\n",
+          res.float_disagree, res.float_checked, res.float_disagree_r);
   const double steps = static_cast<double>(res.ensemble.orbits()) * static_cast<double>(req.transient + req.iterations);
   if (!o.quiet)
-    std::cerr << fmt::format("btob: {} orbits x {} steps = {:.3g} map iterations with the tangent cocycle in {:.3f} s "
-                             "({:.3g} it/s); wrote {}\n",
-                             res.ensemble.orbits(), req.transient + req.iterations, steps, res.iteration_seconds,
-                             steps / res.iteration_seconds, listing(written));
+    std::cerr << fmt::format(
+        "btob: {} orbits x {} steps = {:.3g} map iterations with the tangent cocycle in {:.3f} s "
+        "({:.3g} it/s); wrote {}\n",
+        res.ensemble.orbits(), req.transient + req.iterations, steps, res.iteration_seconds,
+        steps / res.iteration_seconds, listing(written));
 }
 
 struct Registration {
@@ -92,18 +95,18 @@ struct Registration {
         "Both Lyapunov exponents of one orbit (projective derivative cocycle, QR). Only the tangent cocycle is used: "
         "two nearby orbits straddle the branch boundaries of this piecewise-linear map and give wrong exponents.",
         Output::to_stdout(), orbit);
-    command<lyapunov::MapRequest>(
-        "lyapunov-map", "Lyapunov exponents of every orbit over r values x a grid, summarised per r",
-        Output{"results/lyapunov", "lyapunov_map", "", 0, false, false},
-        [](const lyapunov::MapRequest& r, const Output& o, const Context& c) {
-          maps(r, o, c, "lyapunov-map", "lyapunov_map.py");
-        });
-    command<lyapunov::StripRequest>(
-        "lyapunov-strip", "Lyapunov exponent at one r over a strip grid (w1, w2), as an image",
-        Output{"results/lyapunov", "lyapunov_strip", "", 0, false, false},
-        [](const lyapunov::StripRequest& r, const Output& o, const Context& c) {
-          maps(r, o, c, "lyapunov-strip", "lyapunov_strip.py");
-        });
+    command<lyapunov::MapRequest>("lyapunov-map",
+                                  "Lyapunov exponents of every orbit over r values x a grid, summarised per r",
+                                  Output{"results/lyapunov", "lyapunov_map", "", 0, false, false},
+                                  [](const lyapunov::MapRequest& r, const Output& o, const Context& c) {
+                                    maps(r, o, c, "lyapunov-map", "lyapunov_map.py");
+                                  });
+    command<lyapunov::StripRequest>("lyapunov-strip",
+                                    "Lyapunov exponent at one r over a strip grid (w1, w2), as an image",
+                                    Output{"results/lyapunov", "lyapunov_strip", "", 0, false, false},
+                                    [](const lyapunov::StripRequest& r, const Output& o, const Context& c) {
+                                      maps(r, o, c, "lyapunov-strip", "lyapunov_strip.py");
+                                    });
   }
 } registration;
 

@@ -34,9 +34,10 @@ io::Scene read_manifest(const std::string& path) {
     throw UsageError(fmt::format("manifest {}: not valid JSON ({})", path, e.what()));
   }
   if (!j.contains("request") || !j["request"].is_object() || !j["request"].contains("command"))
-    throw UsageError(fmt::format("manifest {}: key 'request': missing; expected a manifest written by btob 0.2 or later "
-                                 "(older manifests record only the command line, under 'command')",
-                                 path));
+    throw UsageError(
+        fmt::format("manifest {}: key 'request': missing; expected a manifest written by btob 0.2 or later "
+                    "(older manifests record only the command line, under 'command')",
+                    path));
   io::Scene s;
   s.name = std::filesystem::path(path).stem().string();
   s.command = j["request"]["command"].get<std::string>();
@@ -44,8 +45,7 @@ io::Scene read_manifest(const std::string& path) {
     std::vector<std::string> vals;
     if (v.is_array())
       for (const auto& e : v) vals.push_back(e.get<std::string>());
-    else
-      vals.push_back(v.get<std::string>());
+    else vals.push_back(v.get<std::string>());
     s.args.push_back({k, vals, false});
   }
   return s;
@@ -65,14 +65,18 @@ void replay_flags(const io::Scene& s, const std::string& path, Args args, std::s
   std::vector<std::string> argv{s.command};
   for (std::size_t i = 0; i < args.size(); ++i) {
     const auto& [k, vals] = args[i];
-    if (i >= injected_from && !sub->get_option_no_throw("--" + k)) continue;  // `btob run --quiet` etc. where unsupported
+    if (i >= injected_from && !sub->get_option_no_throw("--" + k))
+      continue;  // `btob run --quiet` etc. where unsupported
     if (!sub->get_option_no_throw("--" + k)) {
       std::string known;
       for (const CLI::Option* o : sub->get_options())
-        if (!o->get_lnames().empty() && o->get_lnames()[0] != "help") known += (known.empty() ? "" : ", ") + o->get_lnames()[0];
-      throw UsageError(fmt::format("scene {}: key 'args.{}': not a flag of '{}'; expected one of {}", path, k, s.command, known));
+        if (!o->get_lnames().empty() && o->get_lnames()[0] != "help")
+          known += (known.empty() ? "" : ", ") + o->get_lnames()[0];
+      throw UsageError(
+          fmt::format("scene {}: key 'args.{}': not a flag of '{}'; expected one of {}", path, k, s.command, known));
     }
-    if (vals.size() == 1 && (vals[0] == "true" || vals[0] == "false") && sub->get_option("--" + k)->get_expected_max() == 0) {
+    if (vals.size() == 1 && (vals[0] == "true" || vals[0] == "false") &&
+        sub->get_option("--" + k)->get_expected_max() == 0) {
       if (vals[0] == "true") argv.push_back("--" + k);  // a flag
       continue;
     }
@@ -99,9 +103,10 @@ std::string reproduction_folder(const std::string& manifest, const std::string& 
   if (out.empty()) return (original / "reproduced").string();
   std::error_code ec;
   if (fs::exists(out) && fs::equivalent(out, original.empty() ? fs::path(".") : original, ec))
-    throw UsageError(fmt::format("--out: got '{}', the manifest's own folder; expected another folder (a re-run "
-                                 "never writes over the result it reproduces)",
-                                 out));
+    throw UsageError(
+        fmt::format("--out: got '{}', the manifest's own folder; expected another folder (a re-run "
+                    "never writes over the result it reproduces)",
+                    out));
   return out;
 }
 
@@ -144,21 +149,22 @@ void run_scene(const RunFlags& f) {
   // A stdout command writes files when its manifest names them (a result saved by Python, or run with --out).
   const bool writes = it == scene_commands().end() || it->second.files || (manifest && has_name);
   if (!out_override.empty()) args.emplace_back("out", std::vector<std::string>{out_override});
-  else if (!has_out && writes)
-    args.emplace_back("out", std::vector<std::string>{"results/" + s.name});
+  else if (!has_out && writes) args.emplace_back("out", std::vector<std::string>{"results/" + s.name});
   if (!has_name && writes) args.emplace_back("name", std::vector<std::string>{s.name});
   if (!has_title && !s.title.empty()) args.emplace_back("title", std::vector<std::string>{s.title});
   const std::size_t injected_from = args.size();  // the run's own flags, below
   if (f.threads != 0) args.emplace_back("threads", std::vector<std::string>{std::to_string(f.threads)});
   if (f.quiet) args.emplace_back("quiet", std::vector<std::string>{"true"});
-  if (f.no_plot && (it == scene_commands().end() || it->second.files)) args.emplace_back("no-plot", std::vector<std::string>{"true"});
+  if (f.no_plot && (it == scene_commands().end() || it->second.files))
+    args.emplace_back("no-plot", std::vector<std::string>{"true"});
   if (f.dry_run) {
     if (it != scene_commands().end() && !it->second.dry_run)
       throw UsageError(fmt::format("--dry-run: '{}' has no dry run", s.command));
     args.emplace_back("dry-run", std::vector<std::string>{"true"});
   }
   const auto report = [&] {
-    if (manifest && !f.dry_run && mpi::rank() == 0) report_reproduction(path, arg_value(args, "out"), arg_value(args, "name"), f.quiet);
+    if (manifest && !f.dry_run && mpi::rank() == 0)
+      report_reproduction(path, arg_value(args, "out"), arg_value(args, "name"), f.quiet);
   };
   if (it == scene_commands().end()) {
     replay_flags(s, path, args, injected_from);
@@ -181,7 +187,8 @@ void run_scene(const RunFlags& f) {
 
 Register reg([](CLI::App& app) {
   auto f = std::make_shared<RunFlags>();
-  CLI::App* c = app.add_subcommand("run", "Run a scene file (analyses/scenes/*.toml) or re-run a result's manifest (NAME.json)");
+  CLI::App* c =
+      app.add_subcommand("run", "Run a scene file (analyses/scenes/*.toml) or re-run a result's manifest (NAME.json)");
   c->add_option("scene", f->path, "scene file, or a manifest written with a result")->required();
   c->add_option("--out", f->out,
                 "output directory (default: the scene's, else results/<scene name>; for a manifest NAME.json, "

@@ -32,16 +32,18 @@ void correlate(const stats::CorrelateRequest& req, const Output& o, const Contex
   // Everything below is read from the attributes NAME.json and NAME.h5 carry, so the terminal and the files agree.
   const auto num = [&](const char* k) {
     const auto& v = c.attrs.at(k);
-    return std::holds_alternative<long>(v) ? fmt::format("{}", std::get<long>(v)) : fmt::format("{:.4g}", std::get<double>(v));
+    return std::holds_alternative<long>(v) ? fmt::format("{}", std::get<long>(v))
+                                           : fmt::format("{:.4g}", std::get<double>(v));
   };
   const auto has = [&](const char* k) { return c.attrs.count(k) > 0; };
   std::cerr << fmt::format("btob: C_N({}, {}; 0..{}) over N = {} in {:.3g} s ({}, {}); noise floor {}",
                            stats::observable_name(res.phi), stats::observable_name(res.psi), req.n_max, res.N(),
                            res.seconds, req.method, req.precision, num("noise_floor"));
   if (res.fitted) {
-    std::cerr << fmt::format("; {}: {} window(s) of {} lags above the floor", std::get<std::string>(c.attrs.at("decay_verdict")),
-                             num("decay_windows"), req.window);
-    if (has("envelope_first")) std::cerr << fmt::format(", envelope {} .. {}", num("envelope_first"), num("envelope_last"));
+    std::cerr << fmt::format("; {}: {} window(s) of {} lags above the floor",
+                             std::get<std::string>(c.attrs.at("decay_verdict")), num("decay_windows"), req.window);
+    if (has("envelope_first"))
+      std::cerr << fmt::format(", envelope {} .. {}", num("envelope_first"), num("envelope_last"));
     std::cerr << (has("decay_floor_lag") ? fmt::format(", floor reached at lag {}", num("decay_floor_lag"))
                                          : fmt::format(", floor not reached by lag {}", req.fit_lags));
     if (has("decay_rate")) {  // the rate and its bar by core::with_error: the printed interval holds the rate
@@ -76,9 +78,10 @@ void measure(const stats::MeasureRequest& req, const Output& o, const Context& c
   if (!o.no_plot) files.plot("stats_measure.py");
   const auto written = files.commit();
   if (!o.quiet)
-    std::cerr << fmt::format("btob: {} initial conditions in {} group(s) (TV < {}); largest TV within a group {:.3g}; "
-                             "wrote {}\n",
-                             res.initial.size(), res.groups(), req.tv_same, res.tv_max_within_groups(), listing(written));
+    std::cerr << fmt::format(
+        "btob: {} initial conditions in {} group(s) (TV < {}); largest TV within a group {:.3g}; "
+        "wrote {}\n",
+        res.initial.size(), res.groups(), req.tv_same, res.tv_max_within_groups(), listing(written));
 }
 
 struct Registration {
@@ -91,7 +94,8 @@ struct Registration {
     command<stats::MeasureRequest>(
         "measure",
         "Empirical measures mu_{N,x} = (1/N) sum_{k<N} delta_{x_k} of many initial conditions at one r (Section 8.1 "
-        "(2)): 2-D histograms, marginals, total variation and 1-D Wasserstein distances, groups of coinciding measures, "
+        "(2)): 2-D histograms, marginals, total variation and 1-D Wasserstein distances, groups of coinciding "
+        "measures, "
         "convergence against N; writes NAME.h5, NAME_report.csv, NAME.json, NAME.png",
         Output{"results/stats", "measure", "", 0, false, false}, measure);
   }

@@ -18,7 +18,8 @@ struct StripOrbitsCommand : orbits::StripOrbitsRequest {
   long only = 0;       // the plot shows only this orbit (1-based), 0 = all
   void validate() const {
     StripOrbitsRequest::validate();
-    if (!(plot_w1 > 0 && plot_w1 <= 1e6)) throw core::InvalidField("plot-w1", fmt::format("{}", plot_w1), "a number in (0, 1e6]");
+    if (!(plot_w1 > 0 && plot_w1 <= 1e6))
+      throw core::InvalidField("plot-w1", fmt::format("{}", plot_w1), "a number in (0, 1e6]");
     if (only < 0 || only > orbits)
       throw core::InvalidField("only", std::to_string(only), fmt::format("0 (all) or 1..orbits ({})", orbits));
   }
@@ -46,17 +47,17 @@ void body(const StripOrbitsCommand& req, const Output& o, const Context& ctx) {
   if (!o.no_plot) files.plot("strip_orbits.py");  // the script reads NAME.h5 alone
   const auto written = files.commit();
   if (!o.quiet)
-    std::cerr << fmt::format("btob: r = {}: {} orbits x {} iterations, {} periodic, {} quasi-periodic, {} other ({:.2f} s); "
-                             "wrote {}\n",
-                             req.r, req.orbits, req.iterations, res.periodic, res.quasi_periodic, res.other, res.seconds,
-                             listing(written));
+    std::cerr << fmt::format(
+        "btob: r = {}: {} orbits x {} iterations, {} periodic, {} quasi-periodic, {} other ({:.2f} s); "
+        "wrote {}\n",
+        req.r, req.orbits, req.iterations, res.periodic, res.quasi_periodic, res.other, res.seconds, listing(written));
 }
 
 struct Registration {
   Registration() {
-    command<StripOrbitsCommand>("strip-orbits",
-                                "Tails of orbits at one r in the strip (w1, w2), titled by the classifier (Figures 6.9-6.11)",
-                                Output{"results/strip_orbits", "strip_orbits", "", 0, false, false}, body);
+    command<StripOrbitsCommand>(
+        "strip-orbits", "Tails of orbits at one r in the strip (w1, w2), titled by the classifier (Figures 6.9-6.11)",
+        Output{"results/strip_orbits", "strip_orbits", "", 0, false, false}, body);
   }
 } registration;
 

@@ -49,13 +49,15 @@ struct Registration {
         "transfer",
         "Ulam's transfer operator of P^_r on a box partition (Section 8): leading spectrum (Spectra), closed classes "
         "and invariant densities, projection of Lebesgue measure, almost-invariant sets, TV distance to the empirical "
-        "measure, basins from the Ulam graph (absorption into the named attractors; without --cycle, into those found by "
+        "measure, basins from the Ulam graph (absorption into the named attractors; without --cycle, into those found "
+        "by "
         "classifying the closed classes' boxes); writes spectrum.csv, components.csv, cycles.csv, basins.csv, "
         "classes.csv, NAME.h5/.json/.png",
         Output{"results/transfer/r0.15", "transfer", "", 0, false, false}, transfer_body);
     command<transfer::TransferRRequest>(
         "transfer-r",
-        "Peripheral spectrum of Ulam's operator across r (eigenvalues within --peripheral of the unit circle) and its gap "
+        "Peripheral spectrum of Ulam's operator across r (eigenvalues within --peripheral of the unit circle) and its "
+        "gap "
         "to the rest; writes spectrum_r.csv, peripheral_r.csv, windows.csv, NAME.h5/.json/.png",
         Output{"results/transfer/r_scan", "transfer_r", "", 0, false, false}, transfer_r_body);
   }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `btob windows poly|bounds|thresholds|stripes|verify|precision`: flags -> windows::*Request -> run -> stdout or
-// files.  poly, bounds, verify and precision are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n values and
-// rank 0 prints or writes.
+// files.  poly, bounds, verify and precision are sweeps over n (cli/sweep.hpp): under mpirun the ranks share the n
+// values and rank 0 prints or writes.
 #include "cli/app.hpp"
 #include "cli/command.hpp"
 #include "cli/common.hpp"
@@ -17,7 +17,8 @@ namespace btob::cli {
 namespace {
 
 // sweep() with a progress bar on standard error (rank 0 only: the others are quiet): the result on rank 0.
-template <class Req> auto sweep_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
+template <class Req>
+auto sweep_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
   Context run_ctx = ctx;
   const auto bar = terminal_progress(label);
   if (!o.quiet) run_ctx.control.progress = bar.get();
@@ -57,7 +58,8 @@ void precision(const windows::BoundPrecisionRequest& req, const Output& o, const
   const windows::BoundPrecisionResult& res = *got;
   core::Contents c;
   res.describe(c);
-  io::Attrs at = ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));
+  io::Attrs at =
+      ctx.attrs(o, c, "windows_precision", fmt::format("float,double,long-double,float128,mpfr:{}", req.mpfr_digits));
   extras::of(req).apply(at);  // threads = 1: the study runs on one thread
   io::ResultFiles files(o.out, o.name);
   files.tables(res.tables());
@@ -81,27 +83,27 @@ struct Registration {
         Output::to_stdout(), [](const windows::PolyRequest& req, const Output&, const Context& ctx) {
           if (const auto res = sweep(req, ctx)) std::cout << res->text();
         });
-    command<windows::BoundsRequest>(
-        "windows bounds", "CSV n,lower_bound,upper_bound (Table B.1); --certify adds exact certificates",
-        Output::to_stdout(), bounds);
+    command<windows::BoundsRequest>("windows bounds",
+                                    "CSV n,lower_bound,upper_bound (Table B.1); --certify adds exact certificates",
+                                    Output::to_stdout(), bounds);
     command<windows::ThresholdsRequest>(
         "windows thresholds", "7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1 in high precision", Output::to_stdout(),
         [](const windows::ThresholdsRequest& req, const Output&, const Context& ctx) {
           std::cout << windows::run(req, ctx.control).csv();
         });
-    command<windows::StripesRequest>(
-        "windows stripes", "thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max-m", Output::to_stdout(),
-        [](const windows::StripesRequest& req, const Output&, const Context& ctx) {
-          std::cout << windows::run(req, ctx.control).csv();
-        });
+    command<windows::StripesRequest>("windows stripes", "thin stripes r(l/m), eq. (6.3), 1/4 < l/m <= 1/2, m <= max-m",
+                                     Output::to_stdout(),
+                                     [](const windows::StripesRequest& req, const Output&, const Context& ctx) {
+                                       std::cout << windows::run(req, ctx.control).csv();
+                                     });
     command<windows::VerifyRequest>(
         "windows verify",
         "iterate the Section 4 grid inside/below each window; CSV + manifest (file stem verify for n = 2..125, else "
         "verify_A-B, unless --name is given)",
         Output{"results/windows", "", "", 0, false, false}, verify);
-    command<windows::BoundPrecisionRequest>(
-        "windows precision", "largest n with a 12-decimal bound per precision and route; CSV + PNG",
-        Output{"results/windows", "precision", "", 0, false, false}, precision);
+    command<windows::BoundPrecisionRequest>("windows precision",
+                                            "largest n with a 12-decimal bound per precision and route; CSV + PNG",
+                                            Output{"results/windows", "precision", "", 0, false, false}, precision);
   }
 } registration;
 

@@ -30,8 +30,8 @@
 #include <algorithm>
 #include <chrono>
 #include <concepts>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
@@ -79,12 +79,14 @@ struct Output {
     v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
     if (files) v("no-plot", no_plot, "write data only");
     if (tabular && files)
-      v("format", format, "csv (the CSV tables) or latex (also each table as a booktabs LaTeX table, NAME.tex beside "
-                          "NAME.csv: exact decimals as printed, each number's status in a footnote under the table)");
+      v("format", format,
+        "csv (the CSV tables) or latex (also each table as a booktabs LaTeX table, NAME.tex beside "
+        "NAME.csv: exact decimals as printed, each number's status in a footnote under the table)");
     if (tabular && !files)
-      v("format", format, "csv (print the CSV table) or latex (print it as a booktabs LaTeX table instead: exact "
-                          "decimals as printed, each number's status in a footnote under the table; with --out "
-                          "also NAME.tex beside NAME.csv)");
+      v("format", format,
+        "csv (print the CSV table) or latex (print it as a booktabs LaTeX table instead: exact "
+        "decimals as printed, each number's status in a footnote under the table; with --out "
+        "also NAME.tex beside NAME.csv)");
     v("quiet", quiet, "no progress or summary on stderr");
     if (sweep)
       v("dry-run", dry_run,
@@ -141,17 +143,22 @@ core::CancelToken& cancel_token();
 std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label);
 // Runs `req` through its module's run(request, control) (found by argument-dependent lookup) with the terminal's
 // progress bar, unless --quiet.
-template <class Req> auto run_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
+template <class Req>
+auto run_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
   core::RunControl control = ctx.control;
   const auto bar = terminal_progress(label);
   if (!o.quiet) control.progress = bar.get();
   if constexpr (core::Sweep<Req>)
-    if (ctx.checkpoint) return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
+    if (ctx.checkpoint)
+      return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
   return run(req, control);
 }
 
 // A request whose result has CSV tables (core::Tables): its command has --format csv|latex.
-template <class Req> concept Tabular = requires(const Req& q, const core::RunControl& c) { run(q, c).tables(); };
+template <class Req>
+concept Tabular = requires(const Req& q, const core::RunControl& c) {
+  run(q, c).tables();
+};
 
 // A command runnable from a scene or a manifest: sets fields by name and runs.
 struct SceneCommand {
@@ -276,10 +283,12 @@ template <class Req> void print_latex(const Req& req, const Output& o, const Con
     res.describe(c);
     const core::Tables tables = res.tables();
     if (tables.empty())
-      throw UsageError(fmt::format("--format: got 'latex', but this '{}' request has no table; expected csv", ctx.command));
+      throw UsageError(
+          fmt::format("--format: got 'latex', but this '{}' request has no table; expected csv", ctx.command));
     std::string text;
     for (const auto& [role, csv] : tables)
-      text += io::latex_document(csv, c.status, ctx.command_line, ctx.caption() + (role.empty() ? "" : " (" + role + ")"));
+      text +=
+          io::latex_document(csv, c.status, ctx.command_line, ctx.caption() + (role.empty() ? "" : " (" + role + ")"));
     std::cout << text << std::flush;
   }
 }
@@ -303,7 +312,9 @@ template <class Req> using Body = std::function<void(const Req&, const Output&, 
 // The output's defaults a request fills in: its own file stem (e.g. hyperbolicity_strip_r<r>) for a file command,
 // the command's last word for a stdout command ("windows bounds" -> bounds); then the output checked.
 template <class Req> void complete_output(const std::string& name, const Req& req, Output& out, bool threads_given) {
-  if constexpr (requires { { req.default_name() } -> std::convertible_to<std::string>; })
+  if constexpr (requires {
+                  { req.default_name() } -> std::convertible_to<std::string>;
+                })
     if (out.files && out.name.empty()) out.name = req.default_name();
   if (!out.files && out.name.empty()) out.name = name.substr(name.rfind(' ') + 1);
   validate_output(out, threads_given);
@@ -322,14 +333,17 @@ template <class Req> Args recorded_request(Req& req, const Output& out) {
 }
 
 // --dry-run: the sweep's predicted cost from a sample of its own items, on rank 0's stdout; nothing written.
-template <class Req> void print_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+template <class Req>
+void print_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
   if (mpi::rank() == 0)
-    std::cout << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
+    std::cout
+        << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
 }
 
 // --dry-run of a request that is not a sweep: its work at the cached (else calibrated) route rates, on stdout.
-template <class Req> void print_work_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+template <class Req>
+void print_work_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
   std::cout << io::estimate_work(work(req), ctx.control, threads).text(name);
 }
@@ -338,7 +352,8 @@ template <class Req> void print_work_estimate(const std::string& name, const Req
 // once per machine, build and thread count).  Not for a request whose probe is itself (core::self_term): pricing it
 // would run it first.
 constexpr double long_run_seconds = 600;
-template <class Req> void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+template <class Req>
+void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
   core::Work w = work(req);
   for (const core::Term& t : w.terms)
@@ -355,13 +370,15 @@ template <class Req> void note_long_run(const std::string& name, const Req& req,
 
 // Before a sweep that may take over 10 minutes, the estimate from its sample on stderr (rank 0; the other ranks go
 // on to the sweep and wait for it there): core::StepCounted says when it is worth the sample's 0.2-2 s.
-template <class Req> void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
+template <class Req>
+void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   if constexpr (core::StepCounted<Req>) {
     if (out.quiet || mpi::rank() != 0) return;
     const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
     const double fastest = core::fastest_steps_per_second(req.precision) * threads * mpi::size();
     if (req.map_steps() / fastest < 60) return;
-    const core::SweepEstimate e = core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads));
+    const core::SweepEstimate e =
+        core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads));
     if (e.predicted_seconds > long_run_seconds) std::cerr << e.text(name, threads, false) << std::flush;
   }
 }
@@ -371,10 +388,12 @@ template <class Req> void note_long_sweep(const std::string& name, const Req& re
 template <class Req> void remember_self_rate(const Req& req, const Output& out, double seconds) {
   if constexpr (core::Costed<Req> && !core::Sweep<Req>) {
     const core::Work w = work(req);
-    if (w.terms.empty() || !std::all_of(w.terms.begin(), w.terms.end(), [](const core::Term& t) { return t.probe_is_request; }))
+    if (w.terms.empty() ||
+        !std::all_of(w.terms.begin(), w.terms.end(), [](const core::Term& t) { return t.probe_is_request; }))
       return;
     const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
-    for (const core::Term& t : w.terms) io::remember_rate(t, threads, t.units, seconds / static_cast<double>(w.terms.size()));
+    for (const core::Term& t : w.terms)
+      io::remember_rate(t, threads, t.units, seconds / static_cast<double>(w.terms.size()));
   }
 }
 
@@ -488,12 +507,13 @@ void run_from_args(const std::string& name, const Body<Req>& body, Req req, Outp
 template <class Req>
 void command(const std::string& name, const std::string& help, Output output_defaults,
              std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
-  registry().push_back([=](CLI::App& app) {
-    detail::add_flags_command<Req>(app, name, help, body, request_defaults, output_defaults);
-  });
-  scene_commands()[name] = SceneCommand{[=](const Args& args, const std::string& inv) {
-    detail::run_from_args<Req>(name, body, request_defaults, output_defaults, args, inv);
-  }, output_defaults.files, core::Sweep<Req> || core::Costed<Req>};
+  registry().push_back(
+      [=](CLI::App& app) { detail::add_flags_command<Req>(app, name, help, body, request_defaults, output_defaults); });
+  scene_commands()[name] =
+      SceneCommand{[=](const Args& args, const std::string& inv) {
+                     detail::run_from_args<Req>(name, body, request_defaults, output_defaults, args, inv);
+                   },
+                   output_defaults.files, core::Sweep<Req> || core::Costed<Req>};
 }
 
 }  // namespace btob::cli

@@ -17,8 +17,9 @@ std::string& invocation() {
 }
 
 std::string shell_quote(const std::string& word) {
-  const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                             "0123456789_-+=.,:/@%^") == std::string::npos;
+  const bool plain = !word.empty() && word.find_first_not_of(
+                                          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                          "0123456789_-+=.,:/@%^") == std::string::npos;
   if (plain) return word;
   std::string q = "'";
   for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -31,9 +32,7 @@ ProgressAdapter& progress_adapter(io::Progress& p) {
   return *a;
 }
 
-io::fs::file_time_type start_time() {
-  return io::fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
-}
+io::fs::file_time_type start_time() { return io::fs::file_time_type::clock::now() - std::chrono::milliseconds(50); }
 
 void print_written(const std::vector<io::fs::path>& files, io::fs::file_time_type since) {
   std::string s;

@@ -75,9 +75,10 @@ void parse_work(const Params& p, const Limits& lim, View& v) {
   const std::size_t orbits = iterate::parse_grid(v.grid, 1, "grid").size();
   const double work = static_cast<double>(v.width) * static_cast<double>(orbits) * static_cast<double>(v.iterations);
   if (work > lim.work_budget)
-    throw core::InvalidField("iterations", fmt::format("{} x {} orbits x {} columns = {:.3g} map iterations", v.iterations,
-                                                       orbits, v.width, work),
-                             fmt::format("at most {:.3g} map iterations per image", lim.work_budget));
+    throw core::InvalidField(
+        "iterations",
+        fmt::format("{} x {} orbits x {} columns = {:.3g} map iterations", v.iterations, orbits, v.width, work),
+        fmt::format("at most {:.3g} map iterations per image", lim.work_budget));
 }
 }  // namespace
 
@@ -87,7 +88,8 @@ View parse_view(const Params& p, const Limits& lim) {
   v.r_max = required_double(p, "r_max", "a number in (0,1)");
   core::require_r(v.r_min, "r_min");
   core::require_r(v.r_max, "r_max");
-  if (!(v.r_min < v.r_max)) throw core::InvalidField("r_max", fmt::format("{}", v.r_max), fmt::format("> r_min = {}", v.r_min));
+  if (!(v.r_min < v.r_max))
+    throw core::InvalidField("r_max", fmt::format("{}", v.r_max), fmt::format("> r_min = {}", v.r_min));
   parse_frame(p, lim, v);
   parse_work(p, lim, v);
   if (const std::string* o = find(p, "overlay")) {
@@ -133,7 +135,8 @@ const std::vector<std::uint8_t>& palette() {
       const int s = std::min(3, static_cast<int>(t));
       const double f = t - s;
       for (int c = 0; c < 3; ++c)
-        p[static_cast<std::size_t>(3 * i + c)] = static_cast<std::uint8_t>(std::lround(stops[s][c] + f * (stops[s + 1][c] - stops[s][c])));
+        p[static_cast<std::size_t>(3 * i + c)] =
+            static_cast<std::uint8_t>(std::lround(stops[s][c] + f * (stops[s + 1][c] - stops[s][c])));
     }
     return p;
   }();
@@ -194,8 +197,7 @@ bool write_png(png_structp png, png_infop info, const Image& img, bool fast) {
   png_set_compression_level(png, fast ? 1 : 6);
   if (fast) png_set_compression_strategy(png, Z_RLE);
   png_write_info(png, info);
-  for (long y = 0; y < img.height; ++y)
-    png_write_row(png, img.pixels.data() + static_cast<std::size_t>(y * img.width));
+  for (long y = 0; y < img.height; ++y) png_write_row(png, img.pixels.data() + static_cast<std::size_t>(y * img.width));
   png_write_end(png, info);
   return true;
 }
@@ -226,7 +228,8 @@ std::pair<std::vector<double>, std::vector<double>> strip_tail(double r, const c
   iterate::Ensemble e;
   e.r = {r};
   e.initial = {u0};
-  iterate::TailRecorder w1(iterate::Coord::w1, 1, transient + tail, tail), w2(iterate::Coord::w2, 1, transient + tail, tail);
+  iterate::TailRecorder w1(iterate::Coord::w1, 1, transient + tail, tail),
+      w2(iterate::Coord::w2, 1, transient + tail, tail);
   iterate::Both<iterate::TailRecorder, iterate::TailRecorder> both(w1, w2);
   iterate::RunOptions opt;
   opt.threads = 1;
@@ -244,13 +247,18 @@ std::string classify_json(const Params& p, const core::RunControl& control) {
   const long tail = get_long(p, "tail", 300, 1, 100000);
   req.validate();
   const attractors::ClassifyResult res = attractors::run(req, control);
-  const auto [w1, w2] = strip_tail(req.r, core::parse_point(req.point, "point"), req.thresholds.transient, tail, control);
+  const auto [w1, w2] =
+      strip_tail(req.r, core::parse_point(req.point, "point"), req.thresholds.transient, tail, control);
   const attractors::OrbitVerdict& v = res.verdict;
-  json j{{"r", req.r},           {"point", req.point},
+  json j{{"r", req.r},
+         {"point", req.point},
          {"type", attractors::type_name(v.type)},
-         {"pattern", res.pattern}, {"word", patterns::to_digits(v.word)},
-         {"period", v.period},     {"lambda1", v.lambda1},
-         {"err1", v.err1},         {"detail", res.detail},
+         {"pattern", res.pattern},
+         {"word", patterns::to_digits(v.word)},
+         {"period", v.period},
+         {"lambda1", v.lambda1},
+         {"err1", v.err1},
+         {"detail", res.detail},
          {"transient", req.thresholds.transient}};
   j["strip"] = {{"w1", w1}, {"w2", w2}};
   return j.dump();
@@ -267,19 +275,29 @@ std::string basins_json(const Params& p, const core::RunControl& control, const 
   json atts = json::array();
   for (std::size_t a = 0; a < res.basins.attractors.size(); ++a) {
     const attractors::Attractor& at = res.basins.attractors[a];
-    atts.push_back({{"id", at.id}, {"type", attractors::type_name(at.type)}, {"pattern", at.pattern},
-                    {"fraction", res.fraction[a]}, {"low", res.ci_low[a]}, {"high", res.ci_high[a]}});
+    atts.push_back({{"id", at.id},
+                    {"type", attractors::type_name(at.type)},
+                    {"pattern", at.pattern},
+                    {"fraction", res.fraction[a]},
+                    {"low", res.ci_low[a]},
+                    {"high", res.ci_high[a]}});
   }
   const attractors::Fraction& u = res.basins.undecided;
-  return json{{"r", req.r}, {"n1", n}, {"n2", n}, {"grid", req.grid},
-              {"measure", attractors::measure_name(res.basins.grid)}, {"labels", res.basins.labels},
-              {"attractors", atts}, {"undecided", {{"fraction", u.value}, {"low", u.low}, {"high", u.high}}},
+  return json{{"r", req.r},
+              {"n1", n},
+              {"n2", n},
+              {"grid", req.grid},
+              {"measure", attractors::measure_name(res.basins.grid)},
+              {"labels", res.basins.labels},
+              {"attractors", atts},
+              {"undecided", {{"fraction", u.value}, {"low", u.low}, {"high", u.high}}},
               {"seconds", res.basins.seconds}}
       .dump();
 }
 
 std::string overlays_json(const Params& p) {
-  const double r_min = required_double(p, "r_min", "a number in (0,1)"), r_max = required_double(p, "r_max", "a number in (0,1)");
+  const double r_min = required_double(p, "r_min", "a number in (0,1)"),
+               r_max = required_double(p, "r_max", "a number in (0,1)");
   core::require_r(r_min, "r_min");
   core::require_r(r_max, "r_max");
   json j;
@@ -287,7 +305,8 @@ std::string overlays_json(const Params& p) {
   const std::vector<double> win = extras::overlay_values({"windows"}, r_min, r_max);
   j["window_bounds"] = json::array();
   j["r_crit2"] = json::array();
-  for (std::size_t i = 0; i + 1 < win.size(); i += 2) (win[i + 1] == 1 ? j["window_bounds"] : j["r_crit2"]).push_back(win[i]);
+  for (std::size_t i = 0; i + 1 < win.size(); i += 2)
+    (win[i + 1] == 1 ? j["window_bounds"] : j["r_crit2"]).push_back(win[i]);
   for (const char* kind : {"thresholds", "stripes"}) {
     const std::vector<double> lines = extras::overlay_values({kind}, r_min, r_max);
     j[kind] = json::array();
@@ -305,7 +324,8 @@ std::string scene_text(const View& v, const std::string& stem) {
   req.fields(core::ArgsWriter{&args});
   std::string s = fmt::format("# A view of `btob explore`; `btob run {}.toml` computes its density again.\n", stem);
   s += "command = \"bifurcation\"\n";
-  s += fmt::format("title = {}\n", json(fmt::format("explore: {} over r in [{}, {}]", v.coord, v.r_min, v.r_max)).dump());
+  s += fmt::format("title = {}\n",
+                   json(fmt::format("explore: {} over r in [{}, {}]", v.coord, v.r_min, v.r_max)).dump());
   s += "[args]\n";
   for (const auto& [key, vals] : args) {
     if (vals.empty()) continue;
@@ -344,7 +364,8 @@ std::string export_view(const View& v, const std::filesystem::path& dir) {
   io::write_text_atomic(dir / (stem + ".toml"), scene_text(v, stem));
   std::uint64_t points = 0;
   for (std::uint32_t c : res.density) points += c;
-  return json{{"scene", stem + ".toml"}, {"png", stem + ".png"}, {"folder", dir.string()}, {"points_in_range", points}}.dump();
+  return json{{"scene", stem + ".toml"}, {"png", stem + ".png"}, {"folder", dir.string()}, {"points_in_range", points}}
+      .dump();
 }
 
 }  // namespace btob::cli::explore

@@ -27,8 +27,8 @@ using Params = std::map<std::string, std::string>;
 // map iterations (columns x initial conditions x iterations) to about a second of the batched kernel on 2 cores.
 struct Limits {
   long max_side = 4096;
-  double work_budget = 4e9;      // map iterations per image
-  long max_basin_side = 300;     // basin grids up to 300 x 300 points
+  double work_budget = 4e9;   // map iterations per image
+  long max_basin_side = 300;  // basin grids up to 300 x 300 points
 };
 
 // ---- stage 1: the view ------------------------------------------------------------------------------------------
@@ -40,7 +40,7 @@ struct View {
   double lo = 0, hi = 0;
   long width = 1200, height = 700;  // pixels: r columns x coordinate bins
   long iterations = 2000, tail = 100;
-  std::string grid = "paper";   // initial conditions of every column (the bifurcation command's grammar)
+  std::string grid = "paper";        // initial conditions of every column (the bifurcation command's grammar)
   std::vector<std::string> overlay;  // named overlays recorded in an exported scene
 };
 // Parses and validates a view; throws core::InvalidField naming the parameter.

@@ -31,8 +31,8 @@ bool checked();
 
 // Reports an error and ends the process: the single process's line ("btob: " + label + cause) and exit `code`
 // when alone or when every rank failed the same way before the checkpoint; else `btob: rank K: <cause>` and
-// MPI_Abort (the job ends with a non-zero status).  Codes 130 and 143 (SIGINT, SIGTERM) under mpirun end quietly: mpirun
-// sends SIGTERM to every rank when one aborted or when it was interrupted, and the cause was said already.
+// MPI_Abort (the job ends with a non-zero status).  Codes 130 and 143 (SIGINT, SIGTERM) under mpirun end quietly:
+// mpirun sends SIGTERM to every rank when one aborted or when it was interrupted, and the cause was said already.
 [[noreturn]] void fail(const std::string& cause, int code, const std::string& label = "error: ");
 
 // Every rank fails the same way at the same point after the checkpoint (rank 0 found a checkpoint of another
@@ -49,11 +49,11 @@ std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_sec
 // What the last gather cost, on rank 0: recorded in the result's attributes and printed unless --quiet.
 struct Stats {
   int ranks = 1;
-  double compute_min = 0, compute_max = 0;  // seconds of work per rank
-  double wait_seconds = 0;                  // rank 0 waiting at the barrier for the slowest rank
-  double gather_seconds = 0;                // the transfer of all parts to rank 0, after the barrier
+  double compute_min = 0, compute_max = 0;       // seconds of work per rank
+  double wait_seconds = 0;                       // rank 0 waiting at the barrier for the slowest rank
+  double gather_seconds = 0;                     // the transfer of all parts to rank 0, after the barrier
   std::uint64_t bytes_total = 0, bytes_max = 0;  // bytes of the parts sent to rank 0 (all, largest per rank)
-  double merge_seconds = 0;                 // rank 0 unpacking and merging the parts
+  double merge_seconds = 0;                      // rank 0 unpacking and merging the parts
 };
 Stats& stats();
 

@@ -33,11 +33,13 @@ template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   if (mpi::size() == 1) return std::optional<Result>(run(req, ctx.control));
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t n = core::work_items(req, ctx.control.cancel);  // counting may be long (the atlas): polled
-  const auto items = core::cyclic_items(n, static_cast<std::size_t>(mpi::rank()), static_cast<std::size_t>(mpi::size()));
+  const auto items =
+      core::cyclic_items(n, static_cast<std::size_t>(mpi::rank()), static_cast<std::size_t>(mpi::size()));
   Part mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, ctx.control); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Rank 0 keeps its own part as it is; the others send theirs as bytes.
-  std::vector<std::vector<char>> bytes = mpi::gather(mpi::rank() == 0 ? std::vector<char>{} : core::pack(mine), seconds);
+  std::vector<std::vector<char>> bytes =
+      mpi::gather(mpi::rank() == 0 ? std::vector<char>{} : core::pack(mine), seconds);
   if (mpi::rank() != 0) return std::optional<Result>();
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<Part> parts;
@@ -48,10 +50,11 @@ template <core::Sweep Req> auto sweep(const Req& req, const Context& ctx) {
   mpi::Stats& st = mpi::stats();
   st.merge_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if (!ctx.quiet)
-    std::cerr << fmt::format("btob: {} ranks x {} items: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s, "
-                             "merged in {:.4f} s\n",
-                             st.ranks, req.work_items(), st.compute_min, st.compute_max, st.bytes_total,
-                             st.gather_seconds, st.merge_seconds);
+    std::cerr << fmt::format(
+        "btob: {} ranks x {} items: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s, "
+        "merged in {:.4f} s\n",
+        st.ranks, req.work_items(), st.compute_min, st.compute_max, st.bytes_total, st.gather_seconds,
+        st.merge_seconds);
   return res;
 }
 

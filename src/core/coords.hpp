@@ -37,9 +37,7 @@ template <class T> std::pair<T, T> strip(const Vec3<T>& u) {
 }
 
 // The point of the plane x - z = 1 with strip coordinates (w1, w2): u = ((1 + w2)/2, w1, (w2 - 1)/2).
-template <class T> Vec3<T> from_strip(const T& w1, const T& w2) {
-  return Vec3<T>((1 + w2) / 2, w1, (w2 - 1) / 2);
-}
+template <class T> Vec3<T> from_strip(const T& w1, const T& w2) { return Vec3<T>((1 + w2) / 2, w1, (w2 - 1) / 2); }
 
 // u from the angles of eq. (2.18): p0 = (sin th, 0, cos th), q0 = (cos ph cos th, sin ph, -cos ph sin th);
 // u = -(p0 x q0) = (cos th sin ph, -cos ph, -sin th sin ph), a unit vector in Q.

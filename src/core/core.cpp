@@ -23,8 +23,8 @@ void validate_point(double x, double y, double z, const char* field) {
         "{}: got ({}, {}, {}) with x = z = 0, expected x or z non-zero (x = z = 0 puts all four particles in contact)",
         field, x, y, z));
   if (x * z > 0 || (x != 0 && z != 0 && std::signbit(x) == std::signbit(z)))
-    throw std::domain_error(
-        fmt::format("{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.4)", field, x, y, z));
+    throw std::domain_error(fmt::format(
+        "{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.4)", field, x, y, z));
 }
 
 std::string Precision::name() const {
@@ -51,7 +51,10 @@ Precision parse_precision(std::string_view text, const char* field) {
     int d = 0;
     bool ok = !digits.empty();
     for (char c : digits) {
-      if (c < '0' || c > '9' || d > 100000) { ok = false; break; }
+      if (c < '0' || c > '9' || d > 100000) {
+        ok = false;
+        break;
+      }
       d = d * 10 + (c - '0');
     }
     if (!ok || d < 10 || d > 10000)

@@ -74,11 +74,12 @@ CsvTable& CsvTable::row(const std::vector<std::string>& fields) {
 
 CsvTable& CsvTable::line(std::string_view joined) {
   if (joined.find_first_of("\"#\r\n") != std::string_view::npos)
-    throw std::logic_error(fmt::format("CSV row {}: '{}' has a character that needs quoting (use csv_text)", rows_ + 1,
-                                       joined));
+    throw std::logic_error(
+        fmt::format("CSV row {}: '{}' has a character that needs quoting (use csv_text)", rows_ + 1, joined));
   const std::size_t n = static_cast<std::size_t>(std::count(joined.begin(), joined.end(), ',')) + 1;
   if (n != columns_.size())
-    throw std::logic_error(fmt::format("CSV row {}: {} fields for {} columns: '{}'", rows_ + 1, n, columns_.size(), joined));
+    throw std::logic_error(
+        fmt::format("CSV row {}: {} fields for {} columns: '{}'", rows_ + 1, n, columns_.size(), joined));
   text_ += joined;
   text_ += '\n';
   ++rows_;

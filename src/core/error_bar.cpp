@@ -32,15 +32,16 @@ std::string two_digits_up(double x) {
 
 ValueWithError with_error(double value, double error) {
   if (!std::isfinite(value) || !std::isfinite(error) || error < 0)
-    throw std::invalid_argument(fmt::format("with_error: value {} and error {} (a finite value, an error >= 0)", value, error));
+    throw std::invalid_argument(
+        fmt::format("with_error: value {} and error {} (a finite value, an error >= 0)", value, error));
   // Below 1e-300 a bar is printed as 1.0e-300 (rounded up: two digits of a subnormal have no double to hold them).
   const auto bar = [](double e) { return e == 0 ? std::string("0") : two_digits_up(std::max(e, 1e-300)); };
   if (value == 0) return {"0", bar(error)};  // exact
   // The value's last printed digit: one below the error's second significant digit (all 17 digits when the error
   // has no scale to print at: zero or subnormal).
   const int lead = static_cast<int>(std::floor(std::log10(std::fabs(value))));
-  const int unit_exp = error >= std::numeric_limits<double>::min() ? static_cast<int>(std::floor(std::log10(error))) - 2
-                                                                    : lead - 16;
+  const int unit_exp =
+      error >= std::numeric_limits<double>::min() ? static_cast<int>(std::floor(std::log10(error))) - 2 : lead - 16;
   const int significant = std::clamp(lead - unit_exp + 1, 1, 17);
   const std::string v = fmt::format("{:.{}e}", value, significant - 1);
   // The printed value is the value correctly rounded at its last digit (10^(E - significant + 1), E the printed
@@ -48,8 +49,8 @@ ValueWithError with_error(double value, double error) {
   // the bar grows by that half unit (the double 10^k with a relative 4 eps for its own rounding), then is
   // rounded up to two digits.  With 17 digits the text reads back as the same double but is not its exact value.
   const int printed_exp = std::stoi(v.substr(v.find('e') + 1));
-  const double half_unit = 0.5 * std::pow(10.0, printed_exp - significant + 1) *
-                           (1 + 4 * std::numeric_limits<double>::epsilon());
+  const double half_unit =
+      0.5 * std::pow(10.0, printed_exp - significant + 1) * (1 + 4 * std::numeric_limits<double>::epsilon());
   return {fmt::format("{:.{}g}", value, significant), two_digits_up(std::max(error + half_unit, 1e-300))};
 }
 

@@ -50,8 +50,9 @@ struct SweepEstimate {
           "  model: {}\n"
           "  predicted: {:.3g} s on {} process{} x {} threads\n"
           "  data: about {:.3g} MB gathered and written; peak memory about {:.3g} MB on rank 0 (parts and merge)\n",
-          command, dry ? "dry run (a cost model fitted on small instances, nothing written)" : "estimate before the run",
-          items, sampled, sample_seconds, model, predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6,
+          command,
+          dry ? "dry run (a cost model fitted on small instances, nothing written)" : "estimate before the run", items,
+          sampled, sample_seconds, model, predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6,
           2 * bytes / 1e6);
     return fmt::format(
         "btob {}: {}\n"
@@ -59,15 +60,17 @@ struct SweepEstimate {
         "  sample: {} items in {:.3f} s on {} threads ({:.3g} s per item)\n"
         "  predicted: {:.3g} s on {} process{} x {} threads\n"
         "  data: about {:.3g} MB gathered and written; peak memory about {:.3g} MB on rank 0 (parts and merge)\n",
-        command, dry ? "dry run (a sample computed, nothing written)" : "estimate before the run (a sample of its items)",
-        items, sampled, sample_seconds, threads, sampled ? sample_seconds / static_cast<double>(sampled) : 0.0,
+        command,
+        dry ? "dry run (a sample computed, nothing written)" : "estimate before the run (a sample of its items)", items,
+        sampled, sample_seconds, threads, sampled ? sample_seconds / static_cast<double>(sampled) : 0.0,
         predicted_seconds, ranks, ranks == 1 ? "" : "es", threads, bytes / 1e6, 2 * bytes / 1e6);
   }
 };
 
 // A sweep with a cost model in a size: item i has size item_size(i), and sized(s) is the same request for one item
 // of size s (a one-item range).
-template <class Req> concept SizedSweep = Sweep<Req> && requires(const Req& r, std::size_t i, double s) {
+template <class Req>
+concept SizedSweep = Sweep<Req> && requires(const Req& r, std::size_t i, double s) {
   { r.item_size(i) } -> std::convertible_to<double>;
   { r.sized(s) } -> std::convertible_to<Req>;
   { Req::size_parameter } -> std::convertible_to<std::string>;
@@ -87,9 +90,10 @@ template <SizedSweep Req> SweepEstimate estimate_sized(const Req& req, const cor
     largest = std::max(largest, req.item_size(i));
   }
   double part_bytes = 0;
-  const SizeFit f = fit_sizes(Req::size_parameter, std::min(smallest, 8.0), largest, [&](double s) {
-    part_bytes = static_cast<double>(core::pack(run_part(req.sized(s), {0}, control)).size());
-  }, control.cancel);
+  const SizeFit f = fit_sizes(
+      Req::size_parameter, std::min(smallest, 8.0), largest,
+      [&](double s) { part_bytes = static_cast<double>(core::pack(run_part(req.sized(s), {0}, control)).size()); },
+      control.cancel);
   double total = 0;
   for (std::size_t i = 0; i < e.items; ++i) total += f.at(req.item_size(i));
   e.sampled = f.sizes.size();
@@ -130,7 +134,8 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
 // count alone takes over a minute at the fastest kernel rate of its precision (faster than any measured route:
 // double's batched kernel makes ~6e8 steps/s per core, long double ~1e8, float128 and MPFR < 1e7), so a short
 // run pays nothing and a long one the sample's 0.2-2 s.
-template <class Req> concept StepCounted = Sweep<Req> && requires(const Req& r) {
+template <class Req>
+concept StepCounted = Sweep<Req> && requires(const Req& r) {
   { r.map_steps() } -> std::convertible_to<double>;
   { r.precision } -> std::convertible_to<std::string>;
 };

@@ -8,11 +8,11 @@
 
 #include <algorithm>
 #include <bit>
-#include <charconv>
-#include <cerrno>
-#include <cmath>
 #include <cctype>
+#include <cerrno>
+#include <charconv>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 
@@ -191,8 +191,7 @@ template <class T> std::vector<std::string> field_text(const T& value) {
     std::vector<std::string> out;
     for (const Decimal& v : value) out.push_back(v.text);
     return out;
-  }
-  else if constexpr (std::is_same_v<T, std::vector<double>>) {
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
     std::vector<std::string> out;
     for (double v : value) out.push_back(fmt::format("{}", v));
     return out;
@@ -200,7 +199,7 @@ template <class T> std::vector<std::string> field_text(const T& value) {
   else return {std::to_string(value)};
 }
 
-#define BTOB_FIELD_TYPE(T)                                                                  \
+#define BTOB_FIELD_TYPE(T)                                                             \
   template void set_field<T>(T&, const std::vector<std::string>&, const std::string&); \
   template std::vector<std::string> field_text<T>(const T&);
 BTOB_FIELD_TYPE(bool)
@@ -220,7 +219,8 @@ Vec3<double> parse_point(std::string_view text, const std::string& field) {
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = text.find(',', start);
-    const std::string_view item = text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::string_view item =
+        text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     try {
       v.push_back(parse_double(item, field));
     } catch (const InvalidField&) {
@@ -299,8 +299,9 @@ void require_distinct(double lo, double hi, long count, const std::string& count
   if (count < 2 || !(std::isfinite(lo) && std::isfinite(hi) && lo <= hi)) return;  // the range's own checks say why
   const double held = distinct_doubles(lo, hi);
   if (static_cast<double>(count) > held)
-    throw InvalidField(count_field, fmt::format("{} values over {} = [{}, {}]", count, range, lo, hi),
-                       fmt::format("at most {:.0f} (the distinct doubles in that range: more values would repeat)", held));
+    throw InvalidField(
+        count_field, fmt::format("{} values over {} = [{}, {}]", count, range, lo, hi),
+        fmt::format("at most {:.0f} (the distinct doubles in that range: more values would repeat)", held));
 }
 
 std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field) {

@@ -95,7 +95,8 @@ struct FieldDoc {
 // A field visitor that lists the fields' documentation: req.fields(core::DocLister{&docs}).
 struct DocLister {
   std::vector<FieldDoc>* out;
-  template <class T, class... Tag> void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
+  template <class T, class... Tag>
+  void operator()(const std::string& name, T& member, const std::string& help, Tag...) {
     constexpr bool positional = (std::is_same_v<Tag, Positional> || ...);
     constexpr bool required = positional || (std::is_same_v<Tag, Required> || ...);
     out->push_back(FieldDoc{name, field_text(member), help, required, positional});

@@ -18,14 +18,10 @@ namespace btob::core {
 
 const char* grid_kind_name(GridKind kind) {
   switch (kind) {
-    case GridKind::strip:
-      return "strip";
-    case GridKind::sphere:
-      return "sphere";
-    case GridKind::angles:
-      return "angles";
-    default:
-      return "boxes";
+    case GridKind::strip: return "strip";
+    case GridKind::sphere: return "sphere";
+    case GridKind::angles: return "angles";
+    default: return "boxes";
   }
 }
 
@@ -43,12 +39,9 @@ std::vector<double> GridAxis::edges() const {
 
 Vec3<double> Grid::point(double a, double b) const {
   switch (kind) {
-    case GridKind::strip:
-      return from_strip<double>(a, b);
-    case GridKind::sphere:
-      return from_height<double>(a, b);
-    default:
-      return from_angles<double>(a, b);
+    case GridKind::strip: return from_strip<double>(a, b);
+    case GridKind::sphere: return from_height<double>(a, b);
+    default: return from_angles<double>(a, b);
   }
 }
 
@@ -89,8 +82,7 @@ std::optional<GridKind> kind_of(std::string_view name) {
 // a < b with a, b and the width b - a finite (the centres' formula multiplies by b - a).
 bool finite_range(double a, double b) { return std::isfinite(a) && std::isfinite(b) && a < b && std::isfinite(b - a); }
 
-template <class T>
-std::optional<T> number(std::string_view s) {
+template <class T> std::optional<T> number(std::string_view s) {
   T v{};
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size() || s.empty()) return std::nullopt;

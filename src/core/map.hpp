@@ -37,7 +37,7 @@ template <class T> T alpha(const T& r) { return (1 + r) / 2; }  // eq. (2.8)
 template <class T> Mat3<T> P1(const T& r) {
   const T a = alpha(r);
   Mat3<T> m;
-  m << -r, r * a, T(0),  //
+  m << -r, r * a, T(0),      //
       -a, a * a - r, r * a,  //
       T(0), T(0), r * r;
   return m;
@@ -45,7 +45,7 @@ template <class T> Mat3<T> P1(const T& r) {
 template <class T> Mat3<T> P2(const T& r) {
   const T a = alpha(r);
   Mat3<T> m;
-  m << r, -r * a, T(0),  //
+  m << r, -r * a, T(0),      //
       a, -2 * a * a + r, a,  //
       T(0), -r * a, r;
   return m;
@@ -53,7 +53,7 @@ template <class T> Mat3<T> P2(const T& r) {
 template <class T> Mat3<T> P3(const T& r) {
   const T a = alpha(r);
   Mat3<T> m;
-  m << r * r, T(0), T(0),  //
+  m << r * r, T(0), T(0),    //
       r * a, a * a - r, -a,  //
       T(0), r * a, -r;
   return m;

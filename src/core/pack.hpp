@@ -19,9 +19,17 @@
 namespace btob::core {
 
 namespace detail {
-template <class T> concept HasMembers = requires(T& t, int& a) { t.members(a); };
-template <class T> concept FixedEigen = requires { T::RowsAtCompileTime; T::ColsAtCompileTime; typename T::Scalar; } &&
-                                        (T::RowsAtCompileTime > 0) && (T::ColsAtCompileTime > 0);
+template <class T>
+concept HasMembers = requires(T& t, int& a) {
+  t.members(a);
+};
+template <class T>
+concept FixedEigen = requires {
+  T::RowsAtCompileTime;
+  T::ColsAtCompileTime;
+  typename T::Scalar;
+}
+&&(T::RowsAtCompileTime > 0) && (T::ColsAtCompileTime > 0);
 template <class T> struct IsVector : std::false_type {};
 template <class T, class A> struct IsVector<std::vector<T, A>> : std::true_type {};
 template <class T> struct IsPair : std::false_type {};
@@ -48,7 +56,7 @@ class Packer {
     } else if constexpr (detail::IsVector<T>::value) {
       put(static_cast<std::uint64_t>(v.size()));
       using E = typename T::value_type;
-      if constexpr ((std::is_arithmetic_v<E> || std::is_enum_v<E>) && !std::is_same_v<E, bool>)
+      if constexpr ((std::is_arithmetic_v<E> || std::is_enum_v<E>)&&!std::is_same_v<E, bool>)
         raw(v.data(), v.size() * sizeof(E));
       else
         for (const auto& e : v) put(static_cast<const E&>(e));
@@ -74,7 +82,8 @@ class Unpacker {
   const char* p_;
   const char* end_;
   void raw(void* dst, std::size_t n) {
-    if (static_cast<std::size_t>(end_ - p_) < n) throw std::runtime_error("core::Unpacker: message shorter than its contents");
+    if (static_cast<std::size_t>(end_ - p_) < n)
+      throw std::runtime_error("core::Unpacker: message shorter than its contents");
     if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see (UBSan: nonnull)
     std::memcpy(dst, p_, n);
     p_ += n;
@@ -94,7 +103,7 @@ class Unpacker {
       raw(v.data(), v.size());
     } else if constexpr (detail::IsVector<T>::value) {
       using E = typename T::value_type;
-      if constexpr ((std::is_arithmetic_v<E> || std::is_enum_v<E>) && !std::is_same_v<E, bool>) {
+      if constexpr ((std::is_arithmetic_v<E> || std::is_enum_v<E>)&&!std::is_same_v<E, bool>) {
         v.resize(count(sizeof(E)));
         raw(v.data(), v.size() * sizeof(E));
       } else {

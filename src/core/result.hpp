@@ -23,11 +23,11 @@ using AttrValue = std::variant<std::string, double, long>;
 using Attrs = std::map<std::string, AttrValue>;
 
 struct ArrayView {
-  std::string name;                 // HDF5 dataset name, CSV column, Python attribute
-  std::vector<std::size_t> dims;    // row-major shape; the product is the number of elements
-  std::string axes;                 // what each dimension runs over, e.g. "r, initial condition"
-  std::string units;                // e.g. "1/iteration (natural log)", "count", "rad", "1"
-  std::string description;          // one line
+  std::string name;               // HDF5 dataset name, CSV column, Python attribute
+  std::vector<std::size_t> dims;  // row-major shape; the product is the number of elements
+  std::string axes;               // what each dimension runs over, e.g. "r, initial condition"
+  std::string units;              // e.g. "1/iteration (natural log)", "count", "rad", "1"
+  std::string description;        // one line
   std::variant<const std::vector<double>*, const std::vector<std::uint32_t>*, const std::vector<std::uint64_t>*,
                const std::vector<std::uint8_t>*>
       data;

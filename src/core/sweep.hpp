@@ -29,7 +29,8 @@
 
 namespace btob::core {
 
-template <class Req> concept Sweep = requires(const Req& r) {
+template <class Req>
+concept Sweep = requires(const Req& r) {
   { r.work_items() } -> std::convertible_to<std::size_t>;
 };
 
@@ -75,7 +76,8 @@ template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& p
 
 // Rows of `width` values per item, in item order: the part of item i holds its row at index j of its own rows.
 template <class Part, class V, class Get>
-std::vector<V> merge_rows(const std::vector<Part>& parts, const std::vector<ItemRef>& order, std::size_t width, Get get) {
+std::vector<V> merge_rows(const std::vector<Part>& parts, const std::vector<ItemRef>& order, std::size_t width,
+                          Get get) {
   std::vector<V> out(order.size() * width);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::vector<V>& src = get(parts[order[i].part]);

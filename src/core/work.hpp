@@ -73,7 +73,8 @@ template <class Req> Term self_term(const Req& req, std::string route, std::stri
 }
 
 // A request whose cost work(request) predicts.
-template <class Req> concept Costed = requires(const Req& r) {
+template <class Req>
+concept Costed = requires(const Req& r) {
   { work(r) } -> std::convertible_to<Work>;
 };
 

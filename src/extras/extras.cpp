@@ -25,7 +25,8 @@ using OverlayFn =
 // (ab)^2(cb)^2 window 3-2*sqrt(2), end of the (ab)^3(cb)^3 window 5-2*sqrt(6), no four-particle
 // collapse above 2^(2/3)-1.
 std::vector<std::pair<double, int>> thresholds(double, double, const core::CancelToken*) {
-  return {{7 - 4 * std::sqrt(3.0), 0}, {3 - 2 * std::sqrt(2.0), 0}, {5 - 2 * std::sqrt(6.0), 0}, {std::cbrt(4.0) - 1, 0}};
+  return {
+      {7 - 4 * std::sqrt(3.0), 0}, {3 - 2 * std::sqrt(2.0), 0}, {5 - 2 * std::sqrt(6.0), 0}, {std::cbrt(4.0) - 1, 0}};
 }
 
 const std::map<std::string, OverlayFn>& overlays() {
@@ -54,10 +55,11 @@ namespace {
 // lower bounds blue; stripes: r(l/m)).
 std::string line_label(const std::string& overlay, double r, int colour) {
   if (overlay == "thresholds") {
-    const std::pair<double, const char*> known[] = {{7 - 4 * std::sqrt(3.0), "7-4sqrt3 (three-particle collapse)"},
-                                                     {3 - 2 * std::sqrt(2.0), "3-2sqrt2 (end of the (ab)^2(cb)^2 window)"},
-                                                     {5 - 2 * std::sqrt(6.0), "5-2sqrt6 (end of the (ab)^3(cb)^3 window)"},
-                                                     {std::cbrt(4.0) - 1, "2^(2/3)-1 (no four-particle collapse above)"}};
+    const std::pair<double, const char*> known[] = {
+        {7 - 4 * std::sqrt(3.0), "7-4sqrt3 (three-particle collapse)"},
+        {3 - 2 * std::sqrt(2.0), "3-2sqrt2 (end of the (ab)^2(cb)^2 window)"},
+        {5 - 2 * std::sqrt(6.0), "5-2sqrt6 (end of the (ab)^3(cb)^3 window)"},
+        {std::cbrt(4.0) - 1, "2^(2/3)-1 (no four-particle collapse above)"}};
     for (const auto& [v, name] : known)
       if (v == r) return std::string("thresholds: ") + name;
   }

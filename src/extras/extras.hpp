@@ -27,7 +27,8 @@ std::string overlay_names();
 // unknown name throws core::InvalidField("overlay", ...).  `cancel` is polled while they are computed (the windows'
 // bounds take seconds the first time).
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
-                                   std::vector<std::string>* labels = nullptr, const core::CancelToken* cancel = nullptr);
+                                   std::vector<std::string>* labels = nullptr,
+                                   const core::CancelToken* cancel = nullptr);
 
 // The attractor of every orbit of an ensemble (orbit o = r index * initial conditions + initial condition index):
 // attractors::classify at each r with `options`, the orbit's verdict named as `btob classify` names it (its pattern:
@@ -35,12 +36,12 @@ std::vector<double> overlay_values(const std::vector<std::string>& names, double
 // Attractors are indexed over the whole ensemble: 0 is "undecided", then one per (type, key) of classify's verdicts
 // in that order (attractors::collect's order at one r), the same index at every r.
 struct OrbitAttractors {
-  std::vector<std::uint32_t> label;   // [r, initial condition]: the index of the orbit's attractor
-  std::vector<std::uint32_t> count;   // [r, attractor]: orbits of each attractor at each r
+  std::vector<std::uint32_t> label;     // [r, initial condition]: the index of the orbit's attractor
+  std::vector<std::uint32_t> count;     // [r, attractor]: orbits of each attractor at each r
   std::vector<std::string> name, type;  // [attractor]: classify's pattern and type (attractors::type_name)
-  std::vector<std::uint32_t> period;  // [attractor]: map iterations per period (1 for a collapse, 0 when none)
-  std::size_t r_count = 0, n_ic = 0;  // the ensemble's r values and initial conditions
-  attractors::Options options;        // what classify ran with
+  std::vector<std::uint32_t> period;    // [attractor]: map iterations per period (1 for a collapse, 0 when none)
+  std::size_t r_count = 0, n_ic = 0;    // the ensemble's r values and initial conditions
+  attractors::Options options;          // what classify ran with
   void add_to(core::Contents& c) const;
 };
 OrbitAttractors orbit_attractors(const iterate::Ensemble& e, const attractors::Options& options,
@@ -57,7 +58,7 @@ struct Extras {
   OrbitAttractors attractors;         // when has_attractors (the attractors arrays view it)
   std::vector<double> overlay_lines;  // the storage the overlay_lines array views: keep Extras alive with the Contents
   std::vector<std::string> overlay_labels;  // what each line is (the overlay_labels texts view it)
-  core::Attrs attrs;                  // set after the provenance and kind/name/... attributes (they override)
+  core::Attrs attrs;                        // set after the provenance and kind/name/... attributes (they override)
   // Adds the overlay_lines array (when the command has one) to `c`.
   void add_to(core::Contents& c) const;
   // Sets the attributes on `a`.

@@ -83,7 +83,8 @@ std::string read_existing(Checkpoint& cp) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string magic = kMagic;
   const auto refuse = [&](const std::string& why) {
-    return fmt::format("{}: {}; remove it to start again, or resume with the request that made it", cp.path.string(), why);
+    return fmt::format("{}: {}; remove it to start again, or resume with the request that made it", cp.path.string(),
+                       why);
   };
   if (!in.good() && !in.eof()) return refuse("cannot be read");
   if (bytes.compare(0, magic.size(), magic) != 0) return refuse("not a btob checkpoint");

@@ -126,7 +126,8 @@ std::vector<std::size_t> items_left(std::size_t n, const std::vector<std::size_t
 // Computes the items of `req` that `cp` lacks in rounds, appending each round's parts to the checkpoint, and merges
 // them with the parts it held.  Rank k of `ranks` takes every P-th remaining item of each round, rank 0 gathers and
 // writes.  The result on rank 0, nullopt elsewhere.
-template <core::Sweep Req> auto run_in_rounds(const Req& req, const core::RunControl& control, Checkpoint& cp, const Ranks& on) {
+template <core::Sweep Req>
+auto run_in_rounds(const Req& req, const core::RunControl& control, Checkpoint& cp, const Ranks& on) {
   using Part = decltype(run_part(req, std::vector<std::size_t>{}, control));
   using Result = decltype(merge(req, std::vector<Part>{}));
   const std::size_t n = core::work_items(req, control.cancel), ranks = on.ranks, me = on.rank;

@@ -14,9 +14,9 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -225,7 +225,10 @@ std::string json_escape(const std::string& s) {
   std::string o;
   for (char c : s) {
     if (c == '"' || c == '\\') o += '\\';
-    if (c == '\n') { o += "\\n"; continue; }
+    if (c == '\n') {
+      o += "\\n";
+      continue;
+    }
     o += c;
   }
   return o;
@@ -239,7 +242,8 @@ void write_manifest(const fs::path& path, const Attrs& a) {
   for (const auto& [k, v] : a) {
     s << "  \"" << json_escape(k) << "\": ";
     if (const auto* str = std::get_if<std::string>(&v)) s << '"' << json_escape(*str) << '"';
-    else if (const auto* d = std::get_if<double>(&v)) s << (std::isfinite(*d) ? fmt::format("{}", *d) : "null");  // JSON has no nan/inf
+    else if (const auto* d = std::get_if<double>(&v))
+      s << (std::isfinite(*d) ? fmt::format("{}", *d) : "null");  // JSON has no nan/inf
     else s << std::get<long>(v);
     s << (++i < a.size() ? ",\n" : "\n");
   }
@@ -247,7 +251,8 @@ void write_manifest(const fs::path& path, const Attrs& a) {
   write_text_atomic(path, s.str());
 }
 
-Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) != 0), start_(seconds_now()) {}
+Progress::Progress(std::string label)
+    : label_(std::move(label)), tty_(isatty(STDERR_FILENO) != 0), start_(seconds_now()) {}
 Progress::~Progress() {
   if (open_) std::cerr << "\n";
 }
@@ -260,8 +265,10 @@ void Progress::update(std::size_t done, std::size_t total) {
     const bool rate_known = el >= 2 && (100 * done >= total || el >= 30);
     if (rate_known && left > 600) {
       noted_ = true;
-      std::cerr << fmt::format("{}btob: {}: about {:.0f} min left at the rate so far (--dry-run predicts before a run)\n",
-                               open_ ? "\n" : "", label_, left / 60) << std::flush;
+      std::cerr << fmt::format(
+                       "{}btob: {}: about {:.0f} min left at the rate so far (--dry-run predicts before a run)\n",
+                       open_ ? "\n" : "", label_, left / 60)
+                << std::flush;
       open_ = false;
     }
   }
@@ -273,10 +280,10 @@ void Progress::update(std::size_t done, std::size_t total) {
   last_percent_ = p;
   const int w = 30, f = w * p / 100;
   // Remaining time at the rate so far (done units in el seconds); padded so that a shorter line covers a longer one.
-  const std::string left = p < 100 && done > 0
-                               ? fmt::format(", ~{:.0f}s left   ", el * static_cast<double>(total - done) /
-                                                                       static_cast<double>(done))
-                               : std::string(18, ' ');  // the end: blank what an earlier "left" wrote
+  const std::string left =
+      p < 100 && done > 0
+          ? fmt::format(", ~{:.0f}s left   ", el * static_cast<double>(total - done) / static_cast<double>(done))
+          : std::string(18, ' ');  // the end: blank what an earlier "left" wrote
   std::cerr << fmt::format("\r{} [{}{}] {:3d}% {:.1f}s{}", label_, std::string(f, '#'), std::string(w - f, '.'), p, el,
                            left);
   open_ = p < 100;  // a finished bar ends its line at once: what the command prints next starts on a new one
@@ -299,9 +306,10 @@ fs::path data_file(const std::string& rel) {
     if (fs::is_regular_file(p, ec)) return p;
     tried += (tried.empty() ? "" : ", ") + p.string();
   }
-  throw std::runtime_error(fmt::format("cannot find '{}' (looked in {}); set BTOB_DATA_DIR to the folder holding "
-                                       "plot/ and reference/",
-                                       rel, tried));
+  throw std::runtime_error(
+      fmt::format("cannot find '{}' (looked in {}); set BTOB_DATA_DIR to the folder holding "
+                  "plot/ and reference/",
+                  rel, tried));
 }
 
 std::string data_text(const std::string& path, const std::string& default_rel) {
@@ -317,9 +325,7 @@ const core::CancelToken* stop_token = nullptr;
 }  // namespace
 
 void stop_on(const core::CancelToken* token) { stop_token = token; }
-void check_stop() {
-  core::check_cancel(stop_token);
-}
+void check_stop() { core::check_cancel(stop_token); }
 
 // The plot script runs as a child process (no shell: the arguments are passed as they are).  std::system would
 // ignore SIGINT in btob while it waits, so a Ctrl-C during a plot was lost; instead the wait polls the stop token

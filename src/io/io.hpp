@@ -78,7 +78,7 @@ class Progress {
   std::string label_;
   bool tty_;
   int last_percent_ = -1;
-  bool open_ = false;  // a bar is drawn on the current line (ended by 100% or the destructor)
+  bool open_ = false;   // a bar is drawn on the current line (ended by 100% or the destructor)
   bool noted_ = false;  // the long run's remaining time was said
   double start_;
 };

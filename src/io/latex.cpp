@@ -51,7 +51,8 @@ std::vector<Column> group_columns(const std::vector<std::string>& h) {
                h[j].substr(0, h[j].size() - 3) == h[j + 1].substr(0, h[j + 1].size() - 4)) {
       std::string prefix = h[j].substr(0, h[j].size() - 3);
       if (!prefix.empty() && prefix.back() == '_') prefix.pop_back();
-      cols.push_back({Column::interval, j, j + 1, latex_text(prefix.empty() ? "interval" : prefix), " [low, high]", h[j]});  // status: the ends'
+      cols.push_back({Column::interval, j, j + 1, latex_text(prefix.empty() ? "interval" : prefix), " [low, high]",
+                      h[j]});  // status: the ends'
 
       ++j;
     } else {
@@ -76,7 +77,8 @@ std::string cell_of(const Column& c, const std::vector<std::string>& row) {
   const std::string& b = row[c.b];
   if (c.kind == Column::plain) return latex_cell(a);
   if (a.empty() && b.empty()) return "--";
-  if (c.kind == Column::plus_minus && is_number(a) && is_number(b)) return "$" + math_number(a) + " \\pm " + math_number(b) + "$";
+  if (c.kind == Column::plus_minus && is_number(a) && is_number(b))
+    return "$" + math_number(a) + " \\pm " + math_number(b) + "$";
   if (c.kind == Column::plus_minus) return latex_cell(a) + " $\\pm$ " + latex_cell(b);
   return "[" + latex_cell(a) + ", " + latex_cell(b) + "]";
 }
@@ -144,7 +146,16 @@ std::string latex_text(std::string_view s) {
       case '\\': out += "\\textbackslash{}"; break;
       case '~': out += "\\textasciitilde{}"; break;
       case '^': out += "\\textasciicircum{}"; break;
-      case '&': case '%': case '$': case '#': case '_': case '{': case '}': out += '\\'; out += c; break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
+        out += '\\';
+        out += c;
+        break;
       default: out += c;
     }
   }
@@ -170,8 +181,8 @@ std::string latex_table(std::string_view csv, const std::map<std::string, core::
   lines.erase(lines.begin());
   for (std::size_t i = 0; i < lines.size(); ++i)
     if (lines[i].size() != head.size())
-      throw std::invalid_argument(fmt::format("latex_table: row {} has {} fields, the header {}", i + 1,
-                                              lines[i].size(), head.size()));
+      throw std::invalid_argument(
+          fmt::format("latex_table: row {} has {} fields, the header {}", i + 1, lines[i].size(), head.size()));
   const std::vector<Column> cols = group_columns(head);
   const auto [header, notes] = header_and_notes(cols, status);
   std::string t = "\\begin{table}[ht]\n\\centering\n\\begin{tabular}{" + column_spec(cols, lines) + "}\n\\toprule\n" +

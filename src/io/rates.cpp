@@ -57,8 +57,8 @@ void store_rate(const fs::path& path, const std::string& key, const RouteRate& r
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   nlohmann::json rates = load_rates(path);
-  rates[key] = {{"units_per_second", r.units_per_second}, {"probe_units", r.probe_units},
-                {"probe_seconds", r.probe_seconds}};
+  rates[key] = {
+      {"units_per_second", r.units_per_second}, {"probe_units", r.probe_units}, {"probe_seconds", r.probe_seconds}};
   const nlohmann::json j = {{"format", cache_format}, {"rates", rates}};
   fs::path tmp = path;
   tmp += fmt::format(".tmp-{}", getpid());
@@ -125,8 +125,8 @@ RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, i
   c.progress = nullptr;
   // The request's work first, outside the instances' timing (counting it may take a few tenths of a second).
   const double w_req = term.work_of ? term.work_of(term.size) : 0;
-  const core::SizeFit f = core::fit_sizes(term.size_parameter, term.smallest, term.size,
-                                          [&](double s) { term.sized_run(s, c); }, control.cancel);
+  const core::SizeFit f = core::fit_sizes(
+      term.size_parameter, term.smallest, term.size, [&](double s) { term.sized_run(s, c); }, control.cancel);
   RouteRate r;
   r.units_per_second = term.units / std::max(f.at(term.size), 1e-9);
   r.probe_units = static_cast<double>(f.sizes.size());
@@ -137,10 +137,11 @@ RouteRate fitted_rate(const core::Term& term, const core::RunControl& control, i
     const double w = f.sizes.back() >= term.size ? w_last : w_req;  // the request itself timed: its own count
     if (w > 0 && w_last > 0) {
       r.units_per_second = term.units / std::max(f.seconds.back() * w / w_last, 1e-9);
-      r.model = fmt::format("{} from sizes {:.0f}..{:.0f} of {} ({} instances timed in {:.2f} s), in proportion to "
-                            "the counted work ({:.4g} against {:.4g} of the largest instance timed)",
-                            f.extrapolates(term.size) ? "extrapolated" : "interpolated", f.sizes.front(),
-                            f.sizes.back(), term.size_parameter, f.sizes.size(), f.spent, w, w_last);
+      r.model = fmt::format(
+          "{} from sizes {:.0f}..{:.0f} of {} ({} instances timed in {:.2f} s), in proportion to "
+          "the counted work ({:.4g} against {:.4g} of the largest instance timed)",
+          f.extrapolates(term.size) ? "extrapolated" : "interpolated", f.sizes.front(), f.sizes.back(),
+          term.size_parameter, f.sizes.size(), f.spent, w, w_last);
     }
   }
   return r;
@@ -185,11 +186,12 @@ WorkEstimate estimate_work(core::Work work, const core::RunControl& control, int
   e.threads = threads;
   for (const core::Term& t : work.terms) {
     // Two terms of one route share its rate (and its probe runs once).
-    auto same = std::find_if(work.terms.begin(), work.terms.end(), [&](const core::Term& u) { return u.route == t.route; });
+    auto same =
+        std::find_if(work.terms.begin(), work.terms.end(), [&](const core::Term& u) { return u.route == t.route; });
     const auto k = static_cast<std::size_t>(same - work.terms.begin());
     e.rates.push_back(k < e.rates.size() ? e.rates[k]
-                      : t.sized_run     ? fitted_rate(t, control, threads)
-                                        : route_rate(t, control, threads));
+                      : t.sized_run      ? fitted_rate(t, control, threads)
+                                         : route_rate(t, control, threads));
     e.predicted_seconds += t.units / e.rates.back().units_per_second;
   }
   e.work = std::move(work);
@@ -199,9 +201,11 @@ WorkEstimate estimate_work(core::Work work, const core::RunControl& control, int
 std::string WorkEstimate::text(const std::string& command, bool dry_run) const {
   std::ostringstream s;
   if (dry_run)
-    s << fmt::format("btob {}: dry run (only the probes of routes not yet calibrated, or small instances of a sized request, run; nothing written)\n", command);
-  else
-    s << fmt::format("btob {}: a long run; its estimate first (--dry-run prints it without running)\n", command);
+    s << fmt::format(
+        "btob {}: dry run (only the probes of routes not yet calibrated, or small instances of a sized request, run; "
+        "nothing written)\n",
+        command);
+  else s << fmt::format("btob {}: a long run; its estimate first (--dry-run prints it without running)\n", command);
   for (std::size_t i = 0; i < work.terms.size(); ++i) {
     const core::Term& t = work.terms[i];
     const RouteRate& r = rates[i];
@@ -220,7 +224,8 @@ std::string WorkEstimate::text(const std::string& command, bool dry_run) const {
                    size_text(work.output_bytes), size_text(work.peak_bytes));
   const fs::path p = rates_path();
   s << "  rates: " << (p.empty() ? "not cached (neither XDG_CACHE_HOME nor HOME is set)" : "cached in " + p.string())
-    << "\n" << (dry_run ? "  nothing written (no result file, no output)\n" : "");
+    << "\n"
+    << (dry_run ? "  nothing written (no result file, no output)\n" : "");
   return s.str();
 }
 

@@ -28,7 +28,7 @@ std::string rate_key(const std::string& route, int threads);
 // One route's rate and where it came from.
 struct RouteRate {
   double units_per_second = 0;
-  bool cached = false;              // read from the cache; else calibrated now by its probe
+  bool cached = false;                        // read from the cache; else calibrated now by its probe
   double probe_units = 0, probe_seconds = 0;  // the probe that measured it (now or when it was cached)
   std::string model;  // a sized term's (core::Term::sized_run): how its time was fitted, "extrapolated from ..."
 };

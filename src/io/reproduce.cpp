@@ -105,9 +105,7 @@ std::map<std::string, std::string> tables(const fs::path& dir, const std::string
 }
 
 // Sorts the union of a's and b's keys into the report's four lists.
-bool is_timing(const std::string& name) {
-  return name.size() >= 7 && name.compare(name.size() - 7, 7, "seconds") == 0;
-}
+bool is_timing(const std::string& name) { return name.size() >= 7 && name.compare(name.size() - 7, 7, "seconds") == 0; }
 
 template <class Map> void compare(const Map& a, const Map& b, Reproduction& r) {
   for (const auto& [k, v] : a) {

@@ -6,8 +6,8 @@
 #include "io/latex.hpp"
 
 #include <H5Cpp.h>
-#include <hdf5_hl.h>
 #include <fmt/format.h>
+#include <hdf5_hl.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -250,7 +250,8 @@ void write_by_chunks(H5::DataSet& ds, const V* data, const std::vector<hsize_t>&
     file.selectHyperslab(H5S_SELECT_SET, count.data(), start.data());
     ds.write(data, h5_type<V>(), mem, file);
     int i = rank - 1;  // the next chunk: an odometer over the chunk grid, last dimension fastest
-    while (i >= 0 && (++index[static_cast<std::size_t>(i)]) * chunk[static_cast<std::size_t>(i)] >= d[static_cast<std::size_t>(i)])
+    while (i >= 0 && (++index[static_cast<std::size_t>(i)]) * chunk[static_cast<std::size_t>(i)] >=
+                         d[static_cast<std::size_t>(i)])
       index[static_cast<std::size_t>(i--)] = 0;
     if (i < 0) return;
   }
@@ -265,7 +266,8 @@ void write_array(H5::H5File& file, const core::ArrayView& a) {
         std::size_t total = 1;
         for (auto x : a.dims) total *= x;
         if (total != vec->size())
-          throw std::logic_error(fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
+          throw std::logic_error(
+              fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
         H5::DataSpace space(static_cast<int>(d.size()), d.data());
         const std::vector<hsize_t> chunk = array_chunk(d, total);
         H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, array_layout(chunk));
@@ -324,7 +326,8 @@ void ResultFiles::manifest(const Attrs& attrs, const std::string& command,
   nlohmann::ordered_json req;
   req["command"] = command;
   nlohmann::ordered_json a = nlohmann::ordered_json::object();
-  for (const auto& [k, vals] : args) a[k] = vals.size() == 1 ? nlohmann::ordered_json(vals[0]) : nlohmann::ordered_json(vals);
+  for (const auto& [k, vals] : args)
+    a[k] = vals.size() == 1 ? nlohmann::ordered_json(vals[0]) : nlohmann::ordered_json(vals);
   req["args"] = a;
   j["request"] = req;
   text(name_ + ".json", j.dump(2) + "\n");
@@ -353,7 +356,8 @@ bool ResultFiles::plot_figures(const std::string& script, const std::vector<std:
   std::error_code ec;
   std::vector<std::string> images;
   for (const auto& e : fs::directory_iterator(tmp_, ec))
-    if (e.path().extension() == ".png" || e.path().extension() == ".gif") images.push_back(e.path().filename().string());
+    if (e.path().extension() == ".png" || e.path().extension() == ".gif")
+      images.push_back(e.path().filename().string());
   std::sort(images.begin(), images.end());  // a stable listing
   for (const auto& f : images) staged(f);
   return ran && !images.empty();

@@ -63,7 +63,8 @@ Scene read_scene(const std::filesystem::path& path) {
     }
   }
   if (s.command.empty())
-    throw std::invalid_argument(fmt::format("scene {}: key 'command' missing, expected the btob subcommand to run", path.string()));
+    throw std::invalid_argument(
+        fmt::format("scene {}: key 'command' missing, expected the btob subcommand to run", path.string()));
   return s;
 }
 

@@ -30,10 +30,10 @@ template <class T> struct CocycleLanes {
 
 // v <- M_s v with the masks of the point's step (kernel_impl.hpp, map_step): the same three matrices written with
 // selections, since the signs of a y - x and a y - z along v are not those along u:
-//   M1 v = (d1, k (d1 + r vz) - vy, r vz),  M3 v = (r vx, k (r vx + d3) - vy, d3),  M2 v = (-d1, k (-d1 - d3) + vy, -d3)
+//   M1 v = (d1, k (d1 + r vz) - vy, r vz),  M3 v = (r vx, k (r vx + d3) - vy, d3),  M2 v = (-d1, k (-d1 - d3) + vy,
+//   -d3)
 // with d1 = a vy - vx, d3 = a vy - vz (the identities of map_step: k r = a).  12 operations per lane.
-template <class V, class M>
-inline void tangent_step(V& vx, V& vy, V& vz, V r, V a, V k, M s1, M s3) {
+template <class V, class M> inline void tangent_step(V& vx, V& vy, V& vz, V r, V a, V k, M s1, M s3) {
   const V ay = a * vy;
   const V d1 = ay - vx, d3 = ay - vz;
   const V tx = s3 ? V(r * vx) : (s1 ? d1 : V(-d1));
@@ -231,7 +231,8 @@ template <class T> struct CocycleBatchState {
 
 // The batch of orbits o0..: every lane's start (a partial batch padded with its last orbit), r, alpha = (1 + r) / 2
 // and alpha / r in T, the sums at zero.
-template <class T> void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, CocycleBatchState<T>& b) {
+template <class T>
+void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, CocycleBatchState<T>& b) {
   constexpr int B = CocycleBatchState<T>::B;
   const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
   b.o0 = o0;
@@ -294,7 +295,8 @@ std::size_t cocycle_batch(CocycleBatchState<T>& b, long iterations, Rec& rec, co
     step += done;
     if (failed) {
       const int n = static_cast<int>(std::min<long>(K, want - done));
-      redone += static_cast<std::size_t>(cocycle_redo<T>(b.cur, b.pre, b.r, b.a, b.k, n, budget, b.blk, b.loss, b.lanes));
+      redone +=
+          static_cast<std::size_t>(cocycle_redo<T>(b.cur, b.pre, b.r, b.a, b.k, n, budget, b.blk, b.loss, b.lanes));
       cocycle_flush<T>(b, b.blk);
       step += n;
     }
@@ -314,8 +316,9 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
   const std::size_t n_orbits = ens.orbits();
   if (n_orbits == 0 || iterations < 0) return;
   if (!cocycle_accepts<T>(ens.r))
-    throw std::invalid_argument("r: too small for the cocycle kernel in this precision (the state would leave the "
-                                "normal range within one projection interval)");
+    throw std::invalid_argument(
+        "r: too small for the cocycle kernel in this precision (the state would leave the "
+        "normal range within one projection interval)");
   const std::size_t n_batches = (n_orbits + B - 1) / B;
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
   detail::RunTally tally;

@@ -86,7 +86,8 @@ template std::vector<long double> Ensemble::r_in<long double>() const;
 template std::vector<core::float128> Ensemble::r_in<core::float128>() const;
 template std::vector<core::mpfr_float> Ensemble::r_in<core::mpfr_float>() const;
 
-void Ensemble::set_r_range(const core::Decimal& lo, const core::Decimal& hi, long n, const std::vector<std::size_t>* items) {
+void Ensemble::set_r_range(const core::Decimal& lo, const core::Decimal& hi, long n,
+                           const std::vector<std::size_t>* items) {
   std::vector<double> all = linspace_r(lo.value, hi.value, n);
   r_text.clear();
   r_lo = lo.text;
@@ -141,7 +142,8 @@ std::vector<Vec3<double>> paper_grid() {
 
 std::vector<Vec3<double>> strip_grid(const core::Grid& g) {
   const std::size_t n = checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells),
-                                      sizeof(Vec3<double>), "grid") / sizeof(Vec3<double>);
+                                      sizeof(Vec3<double>), "grid") /
+                        sizeof(Vec3<double>);
   std::vector<Vec3<double>> pts;
   pts.reserve(n);
   for (long i = 0; i < g.axis1.cells; ++i)
@@ -150,8 +152,7 @@ std::vector<Vec3<double>> strip_grid(const core::Grid& g) {
 }
 
 std::vector<Vec3<double>> strip_grid(long n1, long n2, double w1_min, double w1_max) {
-  if (n1 < 1 || n2 < 1)
-    throw core::InvalidField("grid", fmt::format("strip:{}x{}", n1, n2), "at least 1x1 points");
+  if (n1 < 1 || n2 < 1) throw core::InvalidField("grid", fmt::format("strip:{}x{}", n1, n2), "at least 1x1 points");
   core::Grid g = core::make_grid(core::GridKind::strip, n1, n2);
   try {
     g.set_range1(w1_min, w1_max, "grid");
@@ -257,15 +258,16 @@ std::size_t checked_bytes(std::size_t count, std::size_t item_bytes, const char*
   const double budget = pages > 0 && page > 0 ? 0.75 * static_cast<double>(pages) * static_cast<double>(page) : 16e9;
   const double need = static_cast<double>(count) * static_cast<double>(item_bytes);
   if (need > budget)
-    throw std::length_error(fmt::format("{}: needs {:.3g} GB of memory, more than the {:.3g} GB this machine allows "
-                                        "(3/4 of physical memory); ask for fewer points or iterations",
-                                        field, need / 1e9, budget / 1e9));
+    throw std::length_error(
+        fmt::format("{}: needs {:.3g} GB of memory, more than the {:.3g} GB this machine allows "
+                    "(3/4 of physical memory); ask for fewer points or iterations",
+                    field, need / 1e9, budget / 1e9));
   return static_cast<std::size_t>(need);
 }
 
 std::size_t checked_bytes(std::size_t count1, std::size_t count2, std::size_t item_bytes, const char* field) {
   const double n = static_cast<double>(count1) * static_cast<double>(count2);  // exact enough: compared to a budget
-  if (n > 1e18) checked_bytes(std::size_t(1) << 62, item_bytes, field);         // throws, naming the field
+  if (n > 1e18) checked_bytes(std::size_t(1) << 62, item_bytes, field);        // throws, naming the field
   return checked_bytes(count1 * count2, item_bytes, field);
 }
 

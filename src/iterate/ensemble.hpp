@@ -24,10 +24,10 @@ using core::Vec3;
 // set_r_list to keep the source; r assigned directly (values computed in double: window bounds, probes) has none,
 // and r_at<T> widens the double exactly.
 struct Ensemble {
-  std::vector<double> r;                 // restitution coefficients, each in (0, 1)
-  std::vector<Vec3<double>> initial;     // initial directions, each in the domain x*z <= 0
-  std::string grid_description;          // how `initial` was made (recorded in every result)
-  std::uint64_t seed = 0;                // seed of random grids (0 when none)
+  std::vector<double> r;              // restitution coefficients, each in (0, 1)
+  std::vector<Vec3<double>> initial;  // initial directions, each in the domain x*z <= 0
+  std::string grid_description;       // how `initial` was made (recorded in every result)
+  std::uint64_t seed = 0;             // seed of random grids (0 when none)
 
   // The decimal source of r: a list (r_text[j] is the text of r[j]) or a range (r[j] is the value of index
   // r_index[j] of r_count evenly spaced values from r_lo to r_hi); both empty when r has no decimal source.
@@ -50,7 +50,8 @@ struct Ensemble {
 
   // r = the values of the given indices (all when null) of linspace_r(lo, hi, n), with their source: a sweep's part
   // keeps the whole request's range and its items' indices.
-  void set_r_range(const core::Decimal& lo, const core::Decimal& hi, long n, const std::vector<std::size_t>* items = nullptr);
+  void set_r_range(const core::Decimal& lo, const core::Decimal& hi, long n,
+                   const std::vector<std::size_t>* items = nullptr);
   // r = the listed values, with their texts.
   void set_r_list(const std::vector<core::Decimal>& values);
   // The ensemble restricted to the r values of the given indices (source kept), same initial conditions.

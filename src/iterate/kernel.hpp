@@ -55,7 +55,8 @@ template <class T> int renormalisation_interval(const std::vector<double>& r);
 // Iterates every orbit of the ensemble `iterations` times with the batched kernel (T = float or
 // double with SIMD; long double, float128, MPFR per lane).  Each orbit starts from its initial vector
 // scaled by a power of two (exact), in the quadrant Q.
-template <class T, Recorder Rec> void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
+template <class T, Recorder Rec>
+void run(const Ensemble& ensemble, long iterations, Rec& rec, const RunOptions& opt = {});
 
 // One step of the double kernel from one point, bit for bit a lane of the batched step (compiled in the kernel's
 // unit with its instruction set): u brought into Q, then M_s u = P_s u / r (not normalised) and the branch s.

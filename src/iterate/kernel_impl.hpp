@@ -46,9 +46,7 @@ inline vf64 negabs_of(vf64 v) { return (vf64)((vi64)v | (vi64{} + INT64_MIN)); }
 inline vf32 abs_of(vf32 v) { return (vf32)((vi32)v & ~(vi32{} + INT32_MIN)); }
 inline vf32 negabs_of(vf32 v) { return (vf32)((vi32)v | (vi32{} + INT32_MIN)); }
 
-template <class V> struct StepResult {
-  V x, y, z;
-};
+template <class V> struct StepResult { V x, y, z; };
 template <class T> inline T abs_of(const T& v) {
   using std::fabs;  // and boost::multiprecision's fabs by argument-dependent lookup
   return fabs(v);
@@ -113,7 +111,8 @@ template <class V> inline bool any_zero(V v) {
 #endif
 #if defined(__AVX__)
   if constexpr (sizeof(V) == 32) {
-    if constexpr (std::is_same_v<V, vf64>) return _mm256_movemask_pd(_mm256_cmp_pd((__m256d)v, _mm256_setzero_pd(), _CMP_EQ_OQ));
+    if constexpr (std::is_same_v<V, vf64>)
+      return _mm256_movemask_pd(_mm256_cmp_pd((__m256d)v, _mm256_setzero_pd(), _CMP_EQ_OQ));
     else return _mm256_movemask_ps(_mm256_cmp_ps((__m256)v, _mm256_setzero_ps(), _CMP_EQ_OQ));
   }
 #endif
@@ -143,8 +142,7 @@ template <class V, class M> inline void settle_ties(V x, V y, V z, V a, V& c1, V
   }
 }
 
-template <class V, class M>
-inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
+template <class V, class M> inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
   // 4 multiply-class operations per lane (two fused a y - x, a y - z, r x, r z, one FMA) and 3 additions:
   // on a core whose 512-bit multiplies and additions issue on separate pipes the step costs ~4 cycles per
   // vector.  V(...) around each arm: expression-template types (Boost.Multiprecision) need one common type.
@@ -190,8 +188,7 @@ inline StepResult<V> map_step(V x, V y, V z, V r, V a, V k, M& s1, M& s3) {
   const V sy = (s1 | s3) ? V(-y) : y;
   if constexpr (std::is_same_v<V, double> || std::is_same_v<V, float> || !std::is_same_v<M, bool>)
     return {xn, fma_add(k, V(xn + zn), sy), zn};
-  else
-    return {xn, V(k * (xn + zn) + sy), zn};
+  else return {xn, V(k * (xn + zn) + sy), zn};
 }
 
 // Generic lanes (long double, or any T without a vector type): the per-lane loop.
@@ -227,8 +224,8 @@ template <> struct SimdTypes<float> {
 };
 template <class T> struct Simd {
   static constexpr int W = kVectorBytes / sizeof(T);  // lanes per vector
-  static constexpr int NV = kVectorsInFlight;  // vectors in flight
-  static constexpr int B = W * NV;          // lanes per batch
+  static constexpr int NV = kVectorsInFlight;         // vectors in flight
+  static constexpr int B = W * NV;                    // lanes per batch
   using V = typename SimdTypes<T>::V;
   using I = typename SimdTypes<T>::I;
   static V load(const T* p) {
@@ -269,8 +266,8 @@ inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, con
     S::store(ys + j * S::W, y[j]);
     S::store(zs + j * S::W, z[j]);
     if constexpr (Sym) {
-      // Narrowed as one vector (a byte per lane; lane by lane, GCC inserts and extracts each: half of the classification's
-      // first pass went there).
+      // Narrowed as one vector (a byte per lane; lane by lane, GCC inserts and extracts each: half of the
+      // classification's first pass went there).
       using Bytes = typename SimdTypes<T>::Bytes;
       const I code = s1[j] ? I{} + 1 : (s3[j] ? I{} + 3 : I{} + 2);
       const Bytes narrow = __builtin_convertvector(code, Bytes);
@@ -314,14 +311,14 @@ inline void advance(T* __restrict x, T* __restrict y, T* __restrict z, const T* 
 template <class T, int B> inline void renormalise(T* __restrict x, T* __restrict y, T* __restrict z) {
   if constexpr (std::is_same_v<T, double> || std::is_same_v<T, float>) {
     using U = std::conditional_t<std::is_same_v<T, double>, std::uint64_t, std::uint32_t>;
-    constexpr int mant = std::numeric_limits<T>::digits - 1;        // 52 / 23
+    constexpr int mant = std::numeric_limits<T>::digits - 1;                // 52 / 23
     constexpr U two_bias = 2 * (std::numeric_limits<T>::max_exponent - 1);  // 2046 / 254
 #pragma omp simd
     for (int l = 0; l < B; ++l) {
       const T ax = std::fabs(x[l]), ay = std::fabs(y[l]), az = std::fabs(z[l]);
       const T mxy = ax > ay ? ax : ay;
-      const T m = mxy > az ? mxy : az;  // by value: std::max's references make GCC emit gathers
-      const U e = std::bit_cast<U>(m) >> mant;           // biased exponent of m (m >= 0, normal)
+      const T m = mxy > az ? mxy : az;          // by value: std::max's references make GCC emit gathers
+      const U e = std::bit_cast<U>(m) >> mant;  // biased exponent of m (m >= 0, normal)
       const T s = std::bit_cast<T>(static_cast<U>((two_bias - e) << mant));  // 2^-(unbiased exponent)
       x[l] *= s;
       y[l] *= s;

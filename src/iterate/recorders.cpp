@@ -28,13 +28,20 @@ const char* coord_name(Coord c) {
   return "?";
 }
 
-DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, long tail_, std::size_t bins_, double lo_,
-                                 double hi_, int threads)
-    : coord(c), iterations(iterations_), tail(tail_), n_ic(e.initial.size()), columns(e.r.size()), bins(bins_), lo(lo_),
+DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, long tail_, std::size_t bins_,
+                                 double lo_, double hi_, int threads)
+    : coord(c),
+      iterations(iterations_),
+      tail(tail_),
+      n_ic(e.initial.size()),
+      columns(e.r.size()),
+      bins(bins_),
+      lo(lo_),
       hi(hi_) {
   if (bins < 1) throw core::InvalidField("bins", fmt::format("{}", bins), "at least 1");
   if (bins > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-    throw core::InvalidField("bins", fmt::format("{}", bins), fmt::format("at most {}", std::numeric_limits<std::int32_t>::max()));
+    throw core::InvalidField("bins", fmt::format("{}", bins),
+                             fmt::format("at most {}", std::numeric_limits<std::int32_t>::max()));
   if (!(lo < hi)) throw core::InvalidField("range", fmt::format("[{}, {}]", lo, hi), "lo < hi");
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
@@ -56,7 +63,7 @@ std::vector<std::uint32_t> DensityRecorder::merge() {
   for (std::size_t t = 1; t < per_thread.size(); ++t) {
     const std::uint32_t* src = per_thread[t].data();
     std::uint32_t* dst = img.data();
-#pragma omp parallel for simd schedule(static) num_threads(static_cast<int>(per_thread.size()))
+#pragma omp parallel for simd schedule(static) num_threads(static_cast <int>(per_thread.size()))
     for (std::size_t i = 0; i < n; ++i) dst[i] += src[i];
   }
   per_thread.clear();

@@ -30,12 +30,18 @@ template <class T> [[gnu::always_inline]] inline T atan_pos(T a, T b) {
   const bool big = t > T(0.66);
   const T tt = big ? (t - T(1)) / (t + T(1)) : t;
   const T zz = tt * tt;
-  const T p = (((T(-8.750608600031904122785E-1) * zz + T(-1.615753718733365076637E1)) * zz +
-                T(-7.500855792314704667340E1)) * zz + T(-1.228866684490136173410E2)) * zz +
-              T(-6.485021904942025371773E1);
-  const T q = ((((zz + T(2.485846490142306297962E1)) * zz + T(1.650270098316988542046E2)) * zz +
-                T(4.328810604912902668951E2)) * zz + T(4.853903996359136964868E2)) * zz +
-              T(1.945506571482613964425E2);
+  const T p =
+      (((T(-8.750608600031904122785E-1) * zz + T(-1.615753718733365076637E1)) * zz + T(-7.500855792314704667340E1)) *
+           zz +
+       T(-1.228866684490136173410E2)) *
+          zz +
+      T(-6.485021904942025371773E1);
+  const T q =
+      ((((zz + T(2.485846490142306297962E1)) * zz + T(1.650270098316988542046E2)) * zz + T(4.328810604912902668951E2)) *
+           zz +
+       T(4.853903996359136964868E2)) *
+          zz +
+      T(1.945506571482613964425E2);
   constexpr T pio4 = T(0.78539816339744830962), pio2 = T(1.57079632679489661923);
   constexpr T morebits = T(6.123233995736765886130E-17);  // pi/2 - double(pi/2)
   T res = tt + tt * (zz * p / q);
@@ -64,7 +70,8 @@ inline constexpr double kAtanFastError = 2e-7;
   rd = rd * (2.0 - d * rd);
   const double u = nn * rd;
   const double s = u * u;
-  const double p = 0.9999974560342069 + s * (-0.33313351949743975 + s * (0.1957022354347687 + s * -0.10739878673227493));
+  const double p =
+      0.9999974560342069 + s * (-0.33313351949743975 + s * (0.1957022354347687 + s * -0.10739878673227493));
   constexpr double pio4 = 0.78539816339744830962, pio2 = 1.57079632679489661923;
   const double res = u * p + (big ? pio4 : 0.0);
   return normal ? (swap ? pio2 - res : res) : std::numeric_limits<double>::quiet_NaN();
@@ -101,11 +108,11 @@ template <class T> [[gnu::always_inline]] inline T coord_value(Coord c, const T&
   return T(0);
 }
 
-// out[i * stride] = coord_value<T>(c, x[i], y[i], z[i]) for i < n, in double: one vector loop over whole blocks of 64 lanes (a
-// partial block padded with its last state), so that every caller in a translation unit gets the same vector code's
-// value.  coord_value<T> in a vectorised loop and in scalar code may contract its multiply-adds differently and differ
-// by an ulp (seen: phi in float, 2.65536857 against 2.65536833); the density image's exact route and the recorded
-// tails must agree to the bit.
+// out[i * stride] = coord_value<T>(c, x[i], y[i], z[i]) for i < n, in double: one vector loop over whole blocks of 64
+// lanes (a partial block padded with its last state), so that every caller in a translation unit gets the same vector
+// code's value.  coord_value<T> in a vectorised loop and in scalar code may contract its multiply-adds differently and
+// differ by an ulp (seen: phi in float, 2.65536857 against 2.65536833); the density image's exact route and the
+// recorded tails must agree to the bit.
 //
 // This function and every recorder function that vectorises are inlined (always_inline): an out-of-line copy of a
 // function defined in a header is emitted by every translation unit that calls it, each compiled for its own
@@ -139,7 +146,10 @@ struct TailRecorder {
   long iterations, tail;
   std::vector<double> out;
   TailRecorder(Coord c, std::size_t orbits, long iterations_, long tail_)
-      : coord(c), iterations(iterations_), tail(tail_), out(checked_bytes(orbits, sizeof(double) * tail_, "tail") / sizeof(double)) {}
+      : coord(c),
+        iterations(iterations_),
+        tail(tail_),
+        out(checked_bytes(orbits, sizeof(double) * tail_, "tail") / sizeof(double)) {}
   long first_step() const { return iterations - tail + 1; }
   template <class T>
   [[gnu::always_inline]] void record(std::size_t o0, int lanes, long k, const T* x, const T* y, const T* z,
@@ -189,8 +199,11 @@ struct StateTailRecorder {
   long iterations, tail;
   std::vector<double> x, y, z;
   StateTailRecorder(std::size_t orbits, long iterations_, long tail_)
-      : iterations(iterations_), tail(tail_),
-        x(checked_bytes(orbits, 3 * sizeof(double) * tail_, "states") / (3 * sizeof(double))), y(x.size()), z(x.size()) {}
+      : iterations(iterations_),
+        tail(tail_),
+        x(checked_bytes(orbits, 3 * sizeof(double) * tail_, "states") / (3 * sizeof(double))),
+        y(x.size()),
+        z(x.size()) {}
   long first_step() const { return iterations - tail + 1; }
   template <class T>
   void record(std::size_t o0, int lanes, long k, const T* px, const T* py, const T* pz, const std::uint8_t*) {
@@ -205,9 +218,9 @@ struct StateTailRecorder {
 };
 
 // The density image of a bifurcation diagram: counts[col * bins + bin] of the tail values of one
-// coordinate, one column per r value, `bins` equal bins over [lo, hi] (hi in the last bin).  Values outside (and -inf of
-// log10(0)) go to the under/overflow counters.  Each thread counts into its own image; merge() adds
-// them in thread order (integer sums, so the result is independent of the thread count).
+// coordinate, one column per r value, `bins` equal bins over [lo, hi] (hi in the last bin).  Values outside (and -inf
+// of log10(0)) go to the under/overflow counters.  Each thread counts into its own image; merge() adds them in thread
+// order (integer sums, so the result is independent of the thread count).
 struct DensityRecorder {
   static constexpr bool needs_symbols = false;
   Coord coord;
@@ -275,7 +288,8 @@ struct DensityRecorder {
     else ++per_thread[static_cast<std::size_t>(t)][col * bins + std::min(static_cast<std::size_t>(f), bins - 1)];
   }
   // bin[l] = the bin of lane l where the fast route proves it, -1 elsewhere (always -1 for the wide types).
-  template <class T> [[gnu::always_inline]] void certain_bins(int n, const T* x, const T* y, const T* z, std::int32_t* bin) const {
+  template <class T>
+  [[gnu::always_inline]] void certain_bins(int n, const T* x, const T* y, const T* z, std::int32_t* bin) const {
     if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) {
       const double scale = this->scale(), nb = static_cast<double>(bins), lo_ = lo;
       // Guard in bin units: the two routes' distance (fast_error), and the rounding of (v - lo) * scale (a few ulps
@@ -307,8 +321,7 @@ struct DensityRecorder {
           return bins_of([&](int l) { return static_cast<double>(coord_value<T>(Coord::w1, x[l], y[l], z[l])); });
         case Coord::w2:
           return bins_of([&](int l) { return static_cast<double>(coord_value<T>(Coord::w2, x[l], y[l], z[l])); });
-        default:
-          break;
+        default: break;
       }
     }
     for (int l = 0; l < n; ++l) bin[l] = -1;

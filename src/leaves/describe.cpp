@@ -10,13 +10,18 @@ namespace {
 void per_r_arrays(const Result& res, core::Contents& c) {
   const std::size_t R = res.r.size();
   c.array("r", res.r, {R}, "r", "1", "restitution coefficient");
-  c.array("cos_theta", res.cos_theta, {R}, "r", "1", "cos(theta) = 1 - (1 + r)^2 / (4 r): P2 / r's eigenvalues e^{+-i theta}");
-  c.array("rotation", res.rotation, {R}, "r", "turns/iteration", "theta / (2 pi): the rotation number of every leaf with t <= 1");
-  c.array("I_max", res.I_max, {R}, "r", "1", "(2 r - alpha^2) / r: the largest invariant I of a leaf inside P2's region (t = 1)");
-  c.array("region_share", res.region_share, {R}, "r", "1",
-          "the region {t <= 1} filled by the leaves inside P2's region, as a fraction of the grid's measure (closed form)");
+  c.array("cos_theta", res.cos_theta, {R}, "r", "1",
+          "cos(theta) = 1 - (1 + r)^2 / (4 r): P2 / r's eigenvalues e^{+-i theta}");
+  c.array("rotation", res.rotation, {R}, "r", "turns/iteration",
+          "theta / (2 pi): the rotation number of every leaf with t <= 1");
+  c.array("I_max", res.I_max, {R}, "r", "1",
+          "(2 r - alpha^2) / r: the largest invariant I of a leaf inside P2's region (t = 1)");
+  c.array(
+      "region_share", res.region_share, {R}, "r", "1",
+      "the region {t <= 1} filled by the leaves inside P2's region, as a fraction of the grid's measure (closed form)");
   c.array("region_mean", res.region_mean, {R}, "r", "1", "mean label t of the grid's measure restricted to the region");
-  c.array("mass", res.mass, {R}, "r", "1", "fraction of the grid's points whose orbit lands on a P2 invariant curve (Q2)");
+  c.array("mass", res.mass, {R}, "r", "1",
+          "fraction of the grid's points whose orbit lands on a P2 invariant curve (Q2)");
   c.array("mass_low", res.mass_low, {R}, "r", "1", "Clopper-Pearson 95% lower end of mass");
   c.array("mass_high", res.mass_high, {R}, "r", "1", "Clopper-Pearson 95% upper end of mass");
   c.array("outside_mass", res.outside_mass, {R}, "r", "1", "mass - region_share: landing mass from outside the region");
@@ -31,18 +36,22 @@ void landing_arrays(const Result& res, core::Contents& c) {
   const std::size_t R = res.r.size(), B = static_cast<std::size_t>(res.request.bins);
   c.coordinate_array("t", core::bin_centres(0, 1, B), {"t"}, "1", "bin centres of the label t in [0, 1]");
   c.coordinate_array("t_coarse", core::bin_centres(0, 1, B / 2), {"t_coarse"}, "1", "bin centres, bins / 2 bins");
-  c.array("density", res.density, {R, B}, "r, t", "1/unit t", "landing label density (count / (N h)): total mass = mass");
+  c.array("density", res.density, {R, B}, "r, t", "1/unit t",
+          "landing label density (count / (N h)): total mass = mass");
   c.array("density_low", res.density_low, {R, B}, "r, t", "1/unit t", "Clopper-Pearson 95% lower end per bin");
   c.array("density_high", res.density_high, {R, B}, "r, t", "1/unit t", "Clopper-Pearson 95% upper end per bin");
-  c.array("kde", res.kde, {R, B}, "r, t", "1/unit t", "Gaussian kernel density (bandwidth 1/bins, reflected at 0 and 1)");
-  c.array("density_coarse", res.density_coarse, {R, B / 2}, "r, t_coarse", "1/unit t", "the landing density with bins / 2 bins");
+  c.array("kde", res.kde, {R, B}, "r, t", "1/unit t",
+          "Gaussian kernel density (bandwidth 1/bins, reflected at 0 and 1)");
+  c.array("density_coarse", res.density_coarse, {R, B / 2}, "r, t_coarse", "1/unit t",
+          "the landing density with bins / 2 bins");
   c.array("region_density", res.region_density, {R, B}, "r, t", "1/unit t",
           "the grid measure's density of labels inside the region (closed form): the points that start on a leaf");
   const core::GridAxis &a1 = res.grid.axis1, &a2 = res.grid.axis2;
   c.array(a1.name, res.axis1, {res.axis1.size()}, a1.name, a1.units, a1.meaning);
   c.array(a2.name, res.axis2, {res.axis2.size()}, a2.name, a2.units, a2.meaning);
   c.array("label_map", res.label_map, {R, static_cast<std::size_t>(a2.cells), static_cast<std::size_t>(a1.cells)},
-          fmt::format("r, {}, {}", a2.name, a1.name), "1", "landing label t of each grid point's orbit (-1: not on a P2 curve)");
+          fmt::format("r, {}, {}", a2.name, a1.name), "1",
+          "landing label t of each grid point's orbit (-1: not on a P2 curve)");
 }
 
 void leaf_arrays(const Result& res, core::Contents& c) {
@@ -52,16 +61,20 @@ void leaf_arrays(const Result& res, core::Contents& c) {
   c.array("leaf_exact", res.leaf_exact, {R, L}, "r, leaf", "turns/iteration", "theta / (2 pi)");
   c.array("leaf_birkhoff", res.leaf_birkhoff, {R, L}, "r, leaf", "turns/iteration",
           "weighted (Das-Yorke) Birkhoff average of the eigen-angle increments along the map's orbit");
-  c.array("leaf_birkhoff_half", res.leaf_birkhoff_half, {R, L}, "r, leaf", "turns/iteration", "the same over the first half");
+  c.array("leaf_birkhoff_half", res.leaf_birkhoff_half, {R, L}, "r, leaf", "turns/iteration",
+          "the same over the first half");
   c.array("leaf_stays", res.leaf_stays, {R, L}, "r, leaf", "1", "1 when every step of the orbit used P2");
   c.array("leaf_exit", res.leaf_exit, {R, L}, "r, leaf", "iterations", "first step with symbol 1 or 3 (-1: none)");
   c.array("leaf_drift", res.leaf_drift, {R, L}, "r, leaf", "1", "max |t_k - t| before the exit (rounding)");
   c.array("ks_uniform", res.ks_uniform, {R, L}, "r, leaf", "1", "KS distance of the eigen-angles to the uniform law");
-  c.array("ks_strip", res.ks_strip, {R, L}, "r, leaf", "1", "KS distance to normalised arc length in the strip (w1, w2)");
+  c.array("ks_strip", res.ks_strip, {R, L}, "r, leaf", "1",
+          "KS distance to normalised arc length in the strip (w1, w2)");
   c.array("ks_sphere", res.ks_sphere, {R, L}, "r, leaf", "1", "KS distance to normalised arc length on the sphere");
-  c.array("law_strip", res.law_strip, {R, L}, "r, leaf", "1", "sup |uniform - strip arc length| (CDFs in the eigen-angle)");
+  c.array("law_strip", res.law_strip, {R, L}, "r, leaf", "1",
+          "sup |uniform - strip arc length| (CDFs in the eigen-angle)");
   c.array("law_sphere", res.law_sphere, {R, L}, "r, leaf", "1", "sup |uniform - sphere arc length|");
-  c.array("stripe_r", res.stripe_r, {res.stripe_r.size()}, "resonance", "1", "r(l/m) of eq. (6.3): theta / (2 pi) = l / m");
+  c.array("stripe_r", res.stripe_r, {res.stripe_r.size()}, "resonance", "1",
+          "r(l/m) of eq. (6.3): theta / (2 pi) = l / m");
   c.array("stripe_l", res.stripe_l, {res.stripe_l.size()}, "resonance", "1", "l");
   c.array("stripe_m", res.stripe_m, {res.stripe_m.size()}, "resonance", "1", "m");
 }

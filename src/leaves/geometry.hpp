@@ -25,12 +25,12 @@ using core::Vec3;
 //  * The eigen-angle psi = atan2(eta, xi) in (-pi, pi]; rotation numbers in turns per iteration.
 struct Geometry {
   double r = 0, alpha = 0;
-  bool defined = false;   // r > 3 - 2 sqrt(2): P2 / r has a complex pair (else the fields below are 0)
-  double cos_theta = 0;   // 1 - (1 + r)^2 / (4 r)
-  double theta = 0;       // acos(cos_theta), in (pi/2, pi)
-  double rotation = 0;    // theta / (2 pi): the rotation number of every leaf with t <= 1, in (1/4, 1/2)
-  double c_eta = 0;       // sqrt(r - alpha^2 / 2)
-  double I_max = 0;       // (2 r - alpha^2) / r
+  bool defined = false;  // r > 3 - 2 sqrt(2): P2 / r has a complex pair (else the fields below are 0)
+  double cos_theta = 0;  // 1 - (1 + r)^2 / (4 r)
+  double theta = 0;      // acos(cos_theta), in (pi/2, pi)
+  double rotation = 0;   // theta / (2 pi): the rotation number of every leaf with t <= 1, in (1/4, 1/2)
+  double c_eta = 0;      // sqrt(r - alpha^2 / 2)
+  double I_max = 0;      // (2 r - alpha^2) / r
 };
 Geometry geometry(double r);
 

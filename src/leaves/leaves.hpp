@@ -25,13 +25,13 @@ namespace btob::leaves {
 //    are far more even, D_n = O(log n / n) against its own law, so this scale is conservative for acceptance).
 struct LeafStudy {
   double t = 0, I = 0;
-  double exact_rotation = 0;                  // theta / (2 pi)
-  double birkhoff = 0, birkhoff_half = 0;     // weighted averages over n and over the first n / 2 increments
-  bool stays = true;                          // every step used P2 (symbol 2)
-  long exit_step = -1;                        // first step with symbol 1 or 3 (-1: none)
-  double label_drift = 0;                     // max |t_k - t| over the steps before the exit (rounding only)
+  double exact_rotation = 0;                           // theta / (2 pi)
+  double birkhoff = 0, birkhoff_half = 0;              // weighted averages over n and over the first n / 2 increments
+  bool stays = true;                                   // every step used P2 (symbol 2)
+  long exit_step = -1;                                 // first step with symbol 1 or 3 (-1: none)
+  double label_drift = 0;                              // max |t_k - t| over the steps before the exit (rounding only)
   double ks_uniform = 0, ks_strip = 0, ks_sphere = 0;  // D_n against the three laws
-  double law_strip = 0, law_sphere = 0;       // sup |U - G| for each arc-length law
+  double law_strip = 0, law_sphere = 0;                // sup |U - G| for each arc-length law
 };
 LeafStudy study_leaf(double t, const Geometry& g, long n, const core::CancelToken* cancel = nullptr);
 double ks_critical(long n);  // 1.358 / sqrt(n): the asymptotic 95% point of sqrt(n) D_n (Kolmogorov)

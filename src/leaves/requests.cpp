@@ -43,7 +43,9 @@ double density_in(const attractors::Grid& grid, double x, const Geometry& g) {
   return 2 * pi * x * g.I_max / std::sqrt(8 * g.r - 4 * g.alpha * g.alpha) / (2 * (grid.axis1.hi - grid.axis1.lo));
 }
 
-template <class T> void append(std::vector<T>& to, const std::vector<T>& from) { to.insert(to.end(), from.begin(), from.end()); }
+template <class T> void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
 
 // The closed forms at r: theta, the rotation number, I_max, the region's share and the law of labels it carries
 // (density per bin centre; its mean by the midpoint rule on 64 x bins points).
@@ -113,9 +115,11 @@ void Request::validate() const {
   // A strip grid must hold the region (|w1| <= 1 / sqrt(2 r) on it) for the closed-form share of its measure.
   const double r_lo = r_count == 0 ? r : r_min, reach = 1 / std::sqrt(2 * r_lo);
   if (g.kind == core::GridKind::strip && !(g.axis1.lo <= -reach && g.axis1.hi >= reach))
-    throw core::InvalidField("w1-range", fmt::format("[{}, {}]", g.axis1.lo, g.axis1.hi),
-                             fmt::format("a range holding [-{0:.6g}, {0:.6g}] (the region's w1 at r = {1})", reach, r_lo));
-  if (bins < 2 || bins > 1000 || bins % 2 != 0) throw core::InvalidField("bins", fmt::format("{}", bins), "even, 2..1000");
+    throw core::InvalidField(
+        "w1-range", fmt::format("[{}, {}]", g.axis1.lo, g.axis1.hi),
+        fmt::format("a range holding [-{0:.6g}, {0:.6g}] (the region's w1 at r = {1})", reach, r_lo));
+  if (bins < 2 || bins > 1000 || bins % 2 != 0)
+    throw core::InvalidField("bins", fmt::format("{}", bins), "even, 2..1000");
   if (labels.empty() || labels.size() > 100)
     throw core::InvalidField("labels", fmt::format("{} values", labels.size()), "1..100 labels");
   for (double t : labels)
@@ -130,7 +134,8 @@ std::vector<double> Request::all_r() const {
   if (r_count == 0) return {r};
   std::vector<double> v;
   for (long k = 0; k < r_count; ++k)
-    v.push_back(r_count == 1 ? r_min : r_min + (r_max - r_min) * static_cast<double>(k) / static_cast<double>(r_count - 1));
+    v.push_back(r_count == 1 ? r_min
+                             : r_min + (r_max - r_min) * static_cast<double>(k) / static_cast<double>(r_count - 1));
   return v;
 }
 
@@ -181,11 +186,11 @@ Result merge(const Request& q, std::vector<Part> parts) {
   per_r_arrays(res, static_cast<std::size_t>(q.bins), res.grid.cells(), q.labels.size(), [&](auto& out, std::size_t w) {
     using V = typename std::decay_t<decltype(out)>::value_type;
     const std::size_t mine = idx++;
-    out = core::merge_rows<Part, V>(parts, order, w, [&](const Part& p) -> const std::vector<V>& {
-      return nth_array<V>(p.rows, mine);
-    });
+    out = core::merge_rows<Part, V>(parts, order, w,
+                                    [&](const Part& p) -> const std::vector<V>& { return nth_array<V>(p.rows, mine); });
   });
-  for (const Part& p : parts) res.seconds = std::max(res.seconds, p.seconds), res.threads = std::max(res.threads, p.threads);
+  for (const Part& p : parts)
+    res.seconds = std::max(res.seconds, p.seconds), res.threads = std::max(res.threads, p.threads);
   for (const windows::Stripe& s : windows::thin_stripes(q.max_m, 20)) {
     if (s.value.convert_to<double>() >= 1) continue;
     res.stripe_l.push_back(static_cast<std::uint64_t>(s.l)), res.stripe_m.push_back(static_cast<std::uint64_t>(s.m));
@@ -201,8 +206,9 @@ Result run(const Request& q, const core::RunControl& control) {
 
 core::Tables Result::tables() const {
   const std::size_t R = r.size(), B = static_cast<std::size_t>(request.bins), L = request.labels.size();
-  core::CsvTable per_r("r,cos_theta,rotation,I_max,region_share,region_mean,mass,mass_low,mass_high,outside_mass,"
-                       "landing_mean,landing_sd,q2,above_one,undecided,points,measure");
+  core::CsvTable per_r(
+      "r,cos_theta,rotation,I_max,region_share,region_mean,mass,mass_low,mass_high,outside_mass,"
+      "landing_mean,landing_sd,q2,above_one,undecided,points,measure");
   const std::string measure = attractors::measure_name(grid);
   for (std::size_t i = 0; i < R; ++i)
     per_r.row({fmt_g(r[i]), fmt_g(cos_theta[i]), fmt_g(rotation[i]), fmt_g(I_max[i]), fmt_g(region_share[i]),
@@ -218,13 +224,14 @@ core::Tables Result::tables() const {
                 fmt_g(density_high[j]), fmt_g(kde[j]), fmt_g(density_coarse[i * (B / 2) + k / 2]),
                 fmt_g(region_density[j])});
     }
-  core::CsvTable lv("r,t,exact_rotation,birkhoff_rotation,difference,birkhoff_half,stays,exit_step,label_drift,"
-                    "ks_uniform,ks_strip_arc,ks_sphere_arc,law_distance_strip,law_distance_sphere,ks_critical,law");
+  core::CsvTable lv(
+      "r,t,exact_rotation,birkhoff_rotation,difference,birkhoff_half,stays,exit_step,label_drift,"
+      "ks_uniform,ks_strip_arc,ks_sphere_arc,law_distance_strip,law_distance_sphere,ks_critical,law");
   for (std::size_t i = 0; i < R; ++i)
     for (std::size_t k = 0; k < L; ++k) {
       const std::size_t j = i * L + k;
       const bool u = ks_uniform[j] < ks_critical, a = ks_strip[j] < ks_critical, s = ks_sphere[j] < ks_critical;
-      const std::string law = !leaf_stays[j] ? "leaves the region"
+      const std::string law = !leaf_stays[j]  ? "leaves the region"
                               : u && !a && !s ? "uniform eigen-angle; arc length rejected"
                               : u             ? "uniform eigen-angle; arc length not resolved at this n"
                                               : "uniform eigen-angle rejected (a resonance?)";

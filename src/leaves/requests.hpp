@@ -29,12 +29,12 @@ struct Request {
   std::vector<double> w1_range{-2, 2};  // w1 range of a strip grid
   int bins = 20;                        // label bins over [0, 1] (even: the coarse histogram has bins / 2)
   std::vector<double> labels{0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 1.05, 1.2};  // leaves followed by the map
-  long leaf_iterations = 20000;         // map steps along each of those leaves
-  int max_m = 12;                       // resonances l / m with m <= max-m
-  attractors::Options thresholds;       // the classifier's thresholds (attractors::threshold_fields)
+  long leaf_iterations = 20000;                                          // map steps along each of those leaves
+  int max_m = 12;                                                        // resonances l / m with m <= max-m
+  attractors::Options thresholds;  // the classifier's thresholds (attractors::threshold_fields)
 
   void validate() const;
-  std::vector<double> all_r() const;    // r, or the range
+  std::vector<double> all_r() const;                         // r, or the range
   std::size_t work_items() const { return all_r().size(); }  // a sweep over all_r() (core/sweep.hpp)
   attractors::Grid parsed_grid() const;
   template <class V> void fields(V&& v) {
@@ -53,8 +53,8 @@ struct Request {
 };
 
 struct Result {
-  Request request;  // the request, as run (validated)
-  attractors::Grid grid;  // the strip grid of initial conditions (n1 cells along w1, n2 along w2)
+  Request request;                   // the request, as run (validated)
+  attractors::Grid grid;             // the strip grid of initial conditions (n1 cells along w1, n2 along w2)
   std::vector<double> axis1, axis2;  // the grid's cell centres
   // [R] per r:
   std::vector<double> r, cos_theta, rotation, I_max, region_share, region_mean;
@@ -62,7 +62,7 @@ struct Result {
   std::vector<std::uint64_t> q2, above_one, undecided;
   // [R, bins] (coarse: [R, bins / 2]):
   std::vector<double> density, density_low, density_high, kde, density_coarse, region_density;
-  std::vector<double> label_map;     // [R, n2, n1]: the landing label, -1 off the P2 curves
+  std::vector<double> label_map;  // [R, n2, n1]: the landing label, -1 off the P2 curves
   // [R, labels]: the leaves followed by the map
   std::vector<double> leaf_exact, leaf_birkhoff, leaf_birkhoff_half, leaf_exit, leaf_drift;
   std::vector<double> ks_uniform, ks_strip, ks_sphere, law_strip, law_sphere;

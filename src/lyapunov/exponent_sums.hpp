@@ -22,8 +22,8 @@ struct ExponentSums {
   const iterate::Ensemble* ens;
   long transient, n;
   int blocks;
-  std::vector<long> block_end;    // averaged-step counts ending each block: n j / blocks, j = 1..blocks
-  std::vector<long> steps;        // the checkpoints: transient, transient + block_end[j]
+  std::vector<long> block_end;  // averaged-step counts ending each block: n j / blocks, j = 1..blocks
+  std::vector<long> steps;      // the checkpoints: transient, transient + block_end[j]
   std::vector<double> cum;
 
   ExponentSums(const iterate::Ensemble& e, long transient_, long iterations_, int blocks_)
@@ -41,7 +41,8 @@ struct ExponentSums {
 
   template <class T> void record(const iterate::CocycleBatch<T>& b) {
     constexpr double ln2 = 0.6931471805599453094;
-    const std::size_t j = static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), b.step) - steps.begin());
+    const std::size_t j =
+        static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), b.step) - steps.begin());
     for (int l = 0; l < b.lanes; ++l) {
       const std::size_t o = b.orbit0 + static_cast<std::size_t>(l);
       double* c = cum.data() + (o * static_cast<std::size_t>(blocks + 1) + j) * 3;

@@ -64,7 +64,7 @@ double quantile(std::vector<double> v, double q) {
 
 template std::array<double, 2> singular_values<double>(const Mat3<double>&, const double&, const Vec3<double>&);
 template std::array<long double, 2> singular_values<long double>(const Mat3<long double>&, const long double&,
-                                                                  const Vec3<long double>&);
+                                                                 const Vec3<long double>&);
 template ClvResult covariant_vectors<double>(const Vec3<double>&, const double&, const ClvOptions&);
 template ClvResult covariant_vectors<long double>(const Vec3<long double>&, const long double&, const ClvOptions&);
 

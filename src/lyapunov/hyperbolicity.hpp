@@ -59,15 +59,15 @@ struct ClvOptions {
 void validate(const ClvOptions& o);
 
 struct ClvResult {
-  std::vector<double> angle;           // per window step, radians in [0, pi/2]
+  std::vector<double> angle;            // per window step, radians in [0, pi/2]
   std::vector<std::uint8_t> expanding;  // per window step: 1 when s1 >= 1 at that point
   std::vector<std::uint8_t> symbols;    // per window step: the branch 1, 2, 3
-  double expanding_fraction = 0;       // mean of `expanding`
-  std::array<double, 2> lambda{};      // exponents from the forward QR over the window (per step, natural log)
-  bool degenerate = false;             // lambda1 - lambda2 < 10 / window: the splitting is not resolved
+  double expanding_fraction = 0;        // mean of `expanding`
+  std::array<double, 2> lambda{};       // exponents from the forward QR over the window (per step, natural log)
+  bool degenerate = false;              // lambda1 - lambda2 < 10 / window: the splitting is not resolved
   double median_angle = 0, q05_angle = 0, min_angle = 0;  // radians
-  std::vector<double> histogram;       // counts of `angle` in `bins` equal bins over [0, pi/2]
-  std::vector<Vec3<double>> points, clv1, clv2;  // if keep_vectors: u_k (unit, in Q) and unit CLVs at u_k
+  std::vector<double> histogram;                          // counts of `angle` in `bins` equal bins over [0, pi/2]
+  std::vector<Vec3<double>> points, clv1, clv2;           // if keep_vectors: u_k (unit, in Q) and unit CLVs at u_k
 };
 
 // Ginelli et al. (PRL 99, 130601, 2007): forward QR D_k V_k = V_{k+1} R_k over transient + window +
@@ -110,7 +110,7 @@ ClvRows covariant_vectors_batched(const std::vector<double>& r, const std::vecto
 
 extern template std::array<double, 2> singular_values<double>(const Mat3<double>&, const double&, const Vec3<double>&);
 extern template std::array<long double, 2> singular_values<long double>(const Mat3<long double>&, const long double&,
-                                                                         const Vec3<long double>&);
+                                                                        const Vec3<long double>&);
 extern template ClvResult covariant_vectors<double>(const Vec3<double>&, const double&, const ClvOptions&);
 extern template ClvResult covariant_vectors<long double>(const Vec3<long double>&, const long double&,
                                                          const ClvOptions&);

@@ -39,8 +39,7 @@ template <class T> struct QrStep {
   Eigen::Matrix<T, 3, 2> V;
   std::array<T, 3> R;
 };
-template <class T>
-QrStep<T> qr_step(const Mat3<T>& P, const Eigen::Matrix<T, 3, 2>& V, const Vec3<T>& w, const T& g) {
+template <class T> QrStep<T> qr_step(const Mat3<T>& P, const Eigen::Matrix<T, 3, 2>& V, const Vec3<T>& w, const T& g) {
   Eigen::Matrix<T, 3, 2> W = P * V;
   W -= w * (w.transpose() * W);
   W /= g;
@@ -69,8 +68,8 @@ template <class T> struct GinelliForward {
 
 // Forward over transient + window + backward transient steps from u0: the QR of every step, and in the window the
 // expanding flags, symbols (and points) into res.
-template <class T> GinelliForward<T> ginelli_forward(const Vec3<T>& u0, const T& r, const ClvOptions& opt,
-                                                     ClvResult& res) {
+template <class T>
+GinelliForward<T> ginelli_forward(const Vec3<T>& u0, const T& r, const ClvOptions& opt, ClvResult& res) {
   using std::log;
   const long T0 = opt.transient, N = opt.window, Nb = opt.backward_transient, K = T0 + N + Nb;
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};

@@ -37,8 +37,7 @@ void HyperbolicityRequest::validate() const {
   core::require_r(r, "r");
   const core::Grid s = strip();
   // The grid, the four images and the symbols.
-  iterate::checked_bytes(s.cells(),
-                         sizeof(iterate::Vec3<double>) + 4 * sizeof(double) + 1, "grid");
+  iterate::checked_bytes(s.cells(), sizeof(iterate::Vec3<double>) + 4 * sizeof(double) + 1, "grid");
 }
 
 std::string HyperbolicityRequest::default_name() const { return fmt::format("hyperbolicity_strip_r{}", r); }
@@ -83,8 +82,10 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
   m.w1_min = s.axis1.lo;
   m.w1_max = s.axis1.hi;
   using V = std::vector<double>;
-  m.s1 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s1; });
-  m.s2 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2, [](const HyperbolicityPart& p) -> const V& { return p.s2; });
+  m.s1 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2,
+                                                     [](const HyperbolicityPart& p) -> const V& { return p.s1; });
+  m.s2 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2,
+                                                     [](const HyperbolicityPart& p) -> const V& { return p.s2; });
   m.symbol = core::merge_rows<HyperbolicityPart, std::uint8_t>(
       parts, order, n2, [](const HyperbolicityPart& p) -> const std::vector<std::uint8_t>& { return p.symbol; });
   const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
@@ -96,7 +97,8 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
     expanding += m.s1[i] >= 1;
   }
   m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
-  for (long i = 0; i < s.axis1.cells; ++i) res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
+  for (long i = 0; i < s.axis1.cells; ++i)
+    res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
   for (long j = 0; j < s.axis2.cells; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
   for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
   return res;
@@ -115,7 +117,8 @@ void HyperbolicityResult::describe(core::Contents& c) const {
   c.array("symbol", m.symbol, dims, axes, "branch", "branch 1, 2 or 3 of the map at the cell centre");
   c.array("w1", m.w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
   c.array("w2", m.w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
-  c.array("w1_cell", w1_cell, {w1_cell.size()}, "w1 cell", "1", "strip coordinate w1 (eq. (6.4)) of each column of cells");
+  c.array("w1_cell", w1_cell, {w1_cell.size()}, "w1 cell", "1",
+          "strip coordinate w1 (eq. (6.4)) of each column of cells");
   c.array("w2_cell", w2_cell, {w2_cell.size()}, "w2 cell", "1", "strip coordinate w2 (eq. (6.4)) of each row of cells");
   c.coordinate("w1 cell", "w1_cell");
   c.coordinate("w2 cell", "w2_cell");
@@ -298,7 +301,8 @@ void HyperbolicityOrbitsResult::describe(core::Contents& c) const {
   c.array("angle_min", angle_min, {R}, "r", rad, "smallest pooled CLV angle");
   c.array("frac_degenerate", frac_degenerate, {R}, "r", "1", "fraction of orbits with lambda1 - lambda2 < 10/window");
   c.array("lambda1_median", summary.median, {R}, "r", per, "median of lambda1 (batched tangent recorder)");
-  c.array("lambda1_frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
+  c.array("lambda1_frac_positive", summary.frac_positive, {R}, "r", "1",
+          "fraction of orbits with lambda1 > 3 err1 + 10/n");
   c.array("lambda1_qr_median", lambda1_qr_median, {R}, "r", per, "median of the forward-QR lambda1 over the window");
   c.array("angle_histogram", angle_histogram, {R, bins}, "r, angle bin over [0, pi/2]", "count",
           "CLV angles of the non-degenerate orbits per bin");

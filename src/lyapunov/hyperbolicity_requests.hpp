@@ -19,9 +19,9 @@ namespace btob::lyapunov {
 
 // ---- singular values over a strip grid (`btob hyperbolicity`) -----------------------------------------------
 struct HyperbolicityRequest {
-  double r = 0;                       // restitution coefficient, in (0, 1)
-  std::string grid = "strip:400x200"; // strip:NxM, cells along w1 x w2 (core::parse_grid; no range here)
-  std::string w1_range = "-2,2";      // w1 range a,b of the image, finite, a < b (w2 runs over [-1, 1])
+  double r = 0;                        // restitution coefficient, in (0, 1)
+  std::string grid = "strip:400x200";  // strip:NxM, cells along w1 x w2 (core::parse_grid; no range here)
+  std::string w1_range = "-2,2";       // w1 range a,b of the image, finite, a < b (w2 runs over [-1, 1])
 
   void validate() const;
   std::size_t work_items() const;  // columns of w1 cells, N of strip:NxM (a sweep, core/sweep.hpp)
@@ -36,10 +36,10 @@ struct HyperbolicityRequest {
 };
 
 struct HyperbolicityResult {
-  HyperbolicityRequest request;  // the request, as run (validated)
-  StripSingularValues image;  // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
+  HyperbolicityRequest request;          // the request, as run (validated)
+  StripSingularValues image;             // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
   std::vector<double> w1_cell, w2_cell;  // [n1], [n2]: the cell centres along each axis
-  double seconds = 0;  // wall time of the run, seconds
+  double seconds = 0;                    // wall time of the run, seconds
 
   // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.
   void describe(core::Contents& c) const;
@@ -89,7 +89,7 @@ struct HyperbolicityOrbitsRequest {
 struct HyperbolicityOrbitsResult {
   HyperbolicityOrbitsRequest request;  // the request, as run (validated)
   iterate::Ensemble ensemble;  // the r values and initial conditions iterated (orbit = r index * I + initial condition)
-  std::size_t bins = 0;  // bins of the CLV angle histogram (angle_histogram)
+  std::size_t bins = 0;        // bins of the CLV angle histogram (angle_histogram)
   // Per r [R]: pooled over the orbits (angles only from non-degenerate ones), NaN when no orbit contributes.
   std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;
   std::vector<double> angle_histogram;  // [R, bins]
@@ -112,7 +112,8 @@ struct HyperbolicityOrbitsResult {
 // on its own orbits only, so they are rows like the rest.
 struct HyperbolicityOrbitsPart {
   std::vector<std::size_t> items;
-  std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;  // [items]
+  std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate,
+      lambda1_qr_median;                // [items]
   std::vector<double> angle_histogram;  // [items, bins]
   std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr;
   std::vector<std::uint8_t> orbit_degenerate;  // [items, I]

@@ -83,7 +83,7 @@ struct Sums {
 // A batch's stored steps: row j (B lanes) is step transient + j.
 struct Store {
   double *A, *Bc, *rho;
-  std::uint8_t *sym, *expd;  // window rows, only with keep_steps
+  std::uint8_t *sym, *expd;         // window rows, only with keep_steps
   const core::CancelToken* cancel;  // polled every core::cancel_stride blocks of steps (clv_phase)
 };
 
@@ -150,8 +150,7 @@ inline void clv_block(Regs& s, Sums& w, const V* r, const V* a, const V* k, int 
 }
 
 // Exact power-of-two rescaling of u, e1 (and e2) after a block whose last stored row is `last`.
-template <bool Stored, bool Window>
-inline void clv_rescale(Regs& s, Sums& w, long last, const Store& st) {
+template <bool Stored, bool Window> inline void clv_rescale(Regs& s, Sums& w, long last, const Store& st) {
   using iterate::detail::max_exponent;
   using iterate::detail::scale_for;
   for (int j = 0; j < NV; ++j) {
@@ -279,8 +278,7 @@ struct KeyRows {
   std::size_t len = 0;
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
   std::size_t size() const { return row.size() * len; }
-  template <class F>
-  void each(F f) const {
+  template <class F> void each(F f) const {
     for (const double* r : row)
       for (std::size_t i = 0; i < len; ++i) f(r[i]);
   }
@@ -430,10 +428,8 @@ WindowEnd forward_pass(Lanes& b, long transient, long window, long backward, int
                        NormsAt& start) {
   clv_phase<false, false, false>(b.s, b.w, b.r, b.a, b.k, transient, 0, K, st);
   start = start_window(b);
-  if (keep_steps)
-    clv_phase<true, true, true>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
-  else
-    clv_phase<true, true, false>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
+  if (keep_steps) clv_phase<true, true, true>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
+  else clv_phase<true, true, false>(b.s, b.w, b.r, b.a, b.k, window, 0, K, st);
   const WindowEnd end = end_window(b);
   // The backward transient composes its steps' maps into t -> alpha t + beta.
   for (int j = 0; j < NV; ++j) b.w.alpha[j] = one(), b.w.beta[j] = V{};
@@ -472,9 +468,9 @@ void lane_exponents(const NormsAt& start, const WindowEnd& end, int l, double r,
   const double n = static_cast<double>(window);
   // Sum of log r11 and of log det D over the window.
   const double e1 = -sums[4][l] + sums[5][l] - sums[1][l];
-  const double s11 = 0.5 * (std::log(start.uu[l]) - std::log(end.norms.uu[l]) + std::log(end.norms.q1[l]) -
-                            std::log(start.q1[l])) +
-                     e1 * ln2 - std::log(sums[0][l]);
+  const double s11 =
+      0.5 * (std::log(start.uu[l]) - std::log(end.norms.uu[l]) + std::log(end.norms.q1[l]) - std::log(start.q1[l])) +
+      e1 * ln2 - std::log(sums[0][l]);
   const double sdet =
       sums[2][l] * std::log(r) + 1.5 * (std::log(start.uu[l]) - std::log(end.norms.uu[l]) - 2 * ln2 * sums[4][l]);
   c.lambda = {s11 / n, (sdet - s11) / n};
@@ -563,10 +559,8 @@ void pool_row(RoundKeys& keys, std::size_t ir, std::size_t bins, ThreadStore& ts
     pooled.hi = std::max(pooled.hi, keys.hi[ir * keys.orbits + o]);
     for (std::size_t b = 0; b < bins; ++b) row.histogram[b] += c.histogram[b];
   }
-  if (!pooled.row.empty())
-    angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, ts.count, ts.gather);
-  else
-    row.median_angle = row.q05_angle = row.min_angle = std::numeric_limits<double>::quiet_NaN();
+  if (!pooled.row.empty()) angle_stats(pooled, row.median_angle, row.q05_angle, row.min_angle, ts.count, ts.gather);
+  else row.median_angle = row.q05_angle = row.min_angle = std::numeric_limits<double>::quiet_NaN();
 }
 
 // The inputs checked (r, points, the options) and the memory of the threads' windows refused when too large.
@@ -618,7 +612,8 @@ ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vect
       }
 #pragma omp for schedule(dynamic)
       for (std::size_t i = 0; i < g; ++i)
-        if (!(run.cancel && run.cancel->cancelled())) pool_row(keys, i, static_cast<std::size_t>(opt.bins), ts, rows[r0 + i]);
+        if (!(run.cancel && run.cancel->cancelled()))
+          pool_row(keys, i, static_cast<std::size_t>(opt.bins), ts, rows[r0 + i]);
 #pragma omp single nowait
       if (run.progress) run.progress->update(r0 + g, rs.size());
     }

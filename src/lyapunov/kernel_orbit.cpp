@@ -29,7 +29,8 @@ template <class T> [[gnu::always_inline]] inline T mul_add(const T& k, const T& 
 // A tangent vector's step under the branch (s1, s3) the point took: M_s v with the kernel's formulas, the signs that
 // the point's |c1| and -|c3| stand for written out (c1 > 0 on branch 1, c1 <= 0 on 2; c3 < 0 on 3, c3 >= 0 on 2).
 template <class T>
-[[gnu::always_inline]] inline void tangent_step(T& x, T& y, T& z, bool s1, bool s3, const T& r, const T& a, const T& k) {
+[[gnu::always_inline]] inline void tangent_step(T& x, T& y, T& z, bool s1, bool s3, const T& r, const T& a,
+                                                const T& k) {
   const T d1 = mul_sub(a, y, x), d3 = mul_sub(a, y, z);
   const T xn = s3 ? T(r * x) : (s1 ? d1 : T(-d1));
   const T zn = s1 ? T(r * z) : (s3 ? d3 : T(-d3));
@@ -66,7 +67,8 @@ template <class T> [[gnu::always_inline]] inline Masks<T> masks(bool s1, bool s3
           static_cast<U>(U(!s3) << top), static_cast<U>(U(s1 || s3) << top)};
 }
 
-template <class T> [[gnu::always_inline]] inline void blended_tangent(T& x, T& y, T& z, const Masks<T>& m, T r, T a, T k) {
+template <class T>
+[[gnu::always_inline]] inline void blended_tangent(T& x, T& y, T& z, const Masks<T>& m, T r, T a, T k) {
   using std::fma;
   const T d1 = core::fms<T>(a, y, x), d3 = core::fms<T>(a, y, z);
   const T xn = blend(m.m3, T(r * x), flip(m.not1, d1));

@@ -7,9 +7,13 @@
 #include "lyapunov/tangent.hpp"
 
 namespace btob::iterate {
-template void run<double, lyapunov::TangentRecorder>(const Ensemble&, long, lyapunov::TangentRecorder&, const RunOptions&);
-template void run<float, lyapunov::TangentRecorder>(const Ensemble&, long, lyapunov::TangentRecorder&, const RunOptions&);
+template void run<double, lyapunov::TangentRecorder>(const Ensemble&, long, lyapunov::TangentRecorder&,
+                                                     const RunOptions&);
+template void run<float, lyapunov::TangentRecorder>(const Ensemble&, long, lyapunov::TangentRecorder&,
+                                                    const RunOptions&);
 template void run_scalar<double, lyapunov::TangentRecorder>(const Ensemble&, long, lyapunov::TangentRecorder&);
-template void run_cocycle<double, lyapunov::ExponentSums>(const Ensemble&, long, lyapunov::ExponentSums&, const RunOptions&);
-template void run_cocycle<float, lyapunov::ExponentSums>(const Ensemble&, long, lyapunov::ExponentSums&, const RunOptions&);
+template void run_cocycle<double, lyapunov::ExponentSums>(const Ensemble&, long, lyapunov::ExponentSums&,
+                                                          const RunOptions&);
+template void run_cocycle<float, lyapunov::ExponentSums>(const Ensemble&, long, lyapunov::ExponentSums&,
+                                                         const RunOptions&);
 }  // namespace btob::iterate

@@ -19,7 +19,8 @@ void validate(const Options& o) {
     throw core::InvalidField("reorthonormalise", fmt::format("{}", o.reorthonormalise), "at least 1");
   if (o.blocks < 2) throw core::InvalidField("blocks", fmt::format("{}", o.blocks), "at least 2");
   if (o.blocks > o.iterations)
-    throw core::InvalidField("blocks", fmt::format("{}", o.blocks), fmt::format("at most iterations = {}", o.iterations));
+    throw core::InvalidField("blocks", fmt::format("{}", o.blocks),
+                             fmt::format("at most iterations = {}", o.iterations));
 }
 
 namespace detail {
@@ -78,7 +79,7 @@ std::array<double, 2> periodic_exponents(const std::vector<int>& period_symbols,
   Mat3<double> M = Mat3<double>::Identity();
   double log_det = 0;
   for (int s : period_symbols) {
-    M = core::P<double>(s, r) * M;  // P_{s_p} ... P_{s_1}
+    M = core::P<double>(s, r) * M;              // P_{s_p} ... P_{s_1}
     log_det += (s == 2 ? 3 : 4) * std::log(r);  // det P1 = det P3 = r^4, det P2 = r^3 (Section 5.1)
   }
   const Eigen::EigenSolver<Mat3<double>> es(M, false);
@@ -116,7 +117,8 @@ template Eigen::Matrix<long double, 3, 2> tangent_basis<long double>(const Vec3<
 template Mat3<double> projective_derivative<double>(const Mat3<double>&, const Vec3<double>&);
 template Mat3<long double> projective_derivative<long double>(const Mat3<long double>&, const Vec3<long double>&);
 template ProjectiveResult projective_exponents<double>(const Vec3<double>&, const double&, const Options&);
-template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&, const Options&);
+template ProjectiveResult projective_exponents<long double>(const Vec3<long double>&, const long double&,
+                                                            const Options&);
 template ProjectiveResult projective_exponents_qr<double>(const Vec3<double>&, const double&, const Options&);
 template ProjectiveResult projective_exponents_qr<long double>(const Vec3<long double>&, const long double&,
                                                                const Options&);

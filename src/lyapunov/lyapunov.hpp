@@ -50,18 +50,18 @@ struct Estimate {
 
 // Exponent against the number of averaged steps n (powers of two and block ends, increasing).
 struct Convergence {
-  std::vector<std::uint64_t> n;  // averaged-step counts: powers of two and block ends
+  std::vector<std::uint64_t> n;                // averaged-step counts: powers of two and block ends
   std::vector<std::vector<double>> exponents;  // exponents[i][j]: exponent i at n[j]
 };
 
 struct ProjectiveResult {
   std::array<Estimate, 2> lambda;  // lambda1 >= lambda2 of the projective cocycle
   std::array<double, 2> weighted;  // the same, as weighted Birkhoff averages (fast on (quasi-)periodic orbits)
-  long iterations = 0;  // map iterations averaged (the request's, after the transient)
-  int blocks = 0;  // batch-means blocks of the error bars (the request's)
-  Convergence convergence;  // the running averages at every checkpoint (what --convergence writes)
-  std::vector<int> symbols_tail;  // symbols of the last min(iterations, 4096) steps (for period detection)
-  Vec3<double> final_point;       // u after transient + iterations steps (unit, in Q)
+  long iterations = 0;             // map iterations averaged (the request's, after the transient)
+  int blocks = 0;                  // batch-means blocks of the error bars (the request's)
+  Convergence convergence;         // the running averages at every checkpoint (what --convergence writes)
+  std::vector<int> symbols_tail;   // symbols of the last min(iterations, 4096) steps (for period detection)
+  Vec3<double> final_point;        // u after transient + iterations steps (unit, in Q)
   // Attributes lambda1, err1, lambda2, err2, lambda1_weighted, lambda2_weighted, iterations, blocks (the
   // columns `btob lyapunov --weighted` prints); arrays convergence_n, convergence_lambda1, convergence_lambda2 (the
   // table `btob lyapunov --convergence FILE` writes: the running averages at every checkpoint).  lambda1 and
@@ -77,7 +77,7 @@ struct ProjectiveResult {
 };
 
 struct LinearResult {
-  std::array<Estimate, 3> chi;  // in frame order: chi1 = growth of the orbit vector, then QR order
+  std::array<Estimate, 3> chi;     // in frame order: chi1 = growth of the orbit vector, then QR order
   std::array<double, 3> weighted;  // the same, as weighted Birkhoff averages
   long iterations = 0;
   int blocks = 0;

@@ -35,7 +35,8 @@ struct Schedule {
   int m, blocks;
   std::vector<long> block_end;   // averaged-step counts at which blocks end, increasing, last = n
   std::vector<long> checkpoint;  // averaged-step counts recorded in the convergence report
-  explicit Schedule(const Options& o) : transient(o.transient), n(o.iterations), m(o.reorthonormalise), blocks(o.blocks) {
+  explicit Schedule(const Options& o)
+      : transient(o.transient), n(o.iterations), m(o.reorthonormalise), blocks(o.blocks) {
     for (int j = 1; j <= blocks; ++j) block_end.push_back(n * j / blocks);
     for (long p = 1; p < n; p *= 2) checkpoint.push_back(p);
     checkpoint.insert(checkpoint.end(), block_end.begin(), block_end.end());
@@ -103,8 +104,8 @@ template <int N> Estimate Accumulator<N>::estimate(int i) const {
 // 4 eps |lambda| (eps of T, and at least double's: the result is reported in double); measured errors on
 // sinks: float 1.6 eps, double 2.5 eps.
 template <class T> Estimate with_rounding_floor(Estimate e) {
-  const double eps = std::max(static_cast<double>(std::numeric_limits<T>::epsilon()),
-                              std::numeric_limits<double>::epsilon());
+  const double eps =
+      std::max(static_cast<double>(std::numeric_limits<T>::epsilon()), std::numeric_limits<double>::epsilon());
   e.error = std::max(e.error, 4 * eps * std::max(1.0, std::fabs(e.value)));
   return e;
 }
@@ -226,7 +227,7 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
     const int s = core::branch(u, r);
     const Vec3<T> pu = detail::apply(s, u, r);
     u = detail::pow2_scaled<T>(pu);  // the orbit, computed exactly as in the projective route (projective_exponents)
-    Q = Pm[s - 1] * Q;   // the linear cocycle: products of P_i along the orbit
+    Q = Pm[s - 1] * Q;               // the linear cocycle: products of P_i along the orbit
     if (sc.qr_at(k, acc.next_cp)) {
       const Eigen::HouseholderQR<Mat3<T>> qr(Q);
       const Mat3<T> R = qr.matrixQR().template triangularView<Eigen::Upper>();

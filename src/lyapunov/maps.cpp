@@ -4,9 +4,9 @@
 
 #include "iterate/cocycle.hpp"
 #include "lyapunov/exponent_sums.hpp"
-#include "lyapunov/tangent.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
+#include "lyapunov/tangent.hpp"
 
 #include <fmt/format.h>
 
@@ -49,8 +49,8 @@ OrbitExponents exponents_from(const iterate::Ensemble& ens, long n, int blocks, 
     for (std::size_t j = 0; j < B; ++j) {
       const double* e = c + (j + 1) * 3;
       const double dL = e[0] - c[0], dG = e[1] - c[1], dn = e[2] - c[2];
-      c1[j] = dL - dG;                          // log |D^n v0|
-      c2[j] = dn * logr - 3 * dG - c1[j];       // log |det D^n| - log |D^n v0|
+      c1[j] = dL - dG;                                        // log |D^n v0|
+      c2[j] = dn * logr - 3 * dG - c1[j];                     // log |det D^n| - log |D^n v0|
       cc[j] = dG + static_cast<double>(block_end[j]) * logr;  // log |P^n u0|
     }
     const Estimate l1 = detail::batch_means(c1, block_end), l2 = detail::batch_means(c2, block_end),

@@ -13,12 +13,12 @@ namespace btob::lyapunov {
 struct TangentRecorder;
 
 struct MapOptions {
-  long transient = 1000;     // steps before averaging (orbit and tangent vector together), >= 0
-  long iterations = 10000;   // averaged steps per orbit, >= blocks
-  int blocks = 10;           // batch-means blocks, >= 2
+  long transient = 1000;          // steps before averaging (orbit and tangent vector together), >= 0
+  long iterations = 10000;        // averaged steps per orbit, >= blocks
+  int blocks = 10;                // batch-means blocks, >= 2
   bool single_precision = false;  // run the plain kernel in float, the tangent recorder in double (otherwise: the fused
                                   // cocycle kernel in double, iterate/cocycle.hpp)
-  iterate::RunOptions run;   // threads, progress
+  iterate::RunOptions run;        // threads, progress
 };
 
 // Per-orbit exponents, in the ensemble's orbit order (o = r index * initial.size() + ic index).
@@ -30,9 +30,9 @@ struct MapOptions {
 // by O(1/n) either way, which batch means do not see: lambda2 > lambda1 then says nothing.  lambda_max >= lambda_min
 // are the same two numbers ordered, each with its own error.
 struct OrbitExponents {
-  std::vector<double> lambda1, err1, lambda2, err2;  // projective exponents and batch-means errors
+  std::vector<double> lambda1, err1, lambda2, err2;              // projective exponents and batch-means errors
   std::vector<double> lambda_max, err_max, lambda_min, err_min;  // the same, ordered
-  std::vector<double> chi1;                          // growth rate of the orbit vector under P (linear cocycle)
+  std::vector<double> chi1;  // growth rate of the orbit vector under P (linear cocycle)
   long iterations = 0;
   int blocks = 0;
 };

@@ -19,10 +19,10 @@
 // The arithmetic's error enters the error bar: each Gram-Schmidt step adds (len + 2) eps rho to the logs' worst-case
 // error, and the reported error is at least that sum over the averaged steps divided by their number.
 // A user interval (Options::reorthonormalise > 1) is kept fixed (at most K), as the QR route kept it.
+#include "lyapunov/orbit.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
-#include "lyapunov/orbit.hpp"
 
 #include <array>
 #include <cmath>
@@ -65,10 +65,11 @@ template <class T> struct Orbit {
 
   // Project the tangent vector on u^perp, restart it as the unit vector there, and rescale u by a power of two
   // (exact: the orbit's bits do not change).  The projective tangent vector is p / |u| (the derivative of
-  // u -> M u / |M u| at a unit u is (I - w w^T) M / |M u|), so lambda1's log of growth is log |p| - log |u| + log |u_prev|,
-  // with p from a unit start.  lambda1 + lambda2 is the log of the area growth of the same map, whose Jacobian on the
-  // sphere is |det M| / |M u|^3 at a unit u: over the interval, n13 log r - 3 log(|u| / |u_prev|) (det M_s = det P_s / r^3
-  // = r on branches 1 and 3, 1 on branch 2; Section 5.1's det P_i), exact up to rounding, without a second vector.
+  // u -> M u / |M u| at a unit u is (I - w w^T) M / |M u|), so lambda1's log of growth is log |p| - log |u| + log
+  // |u_prev|, with p from a unit start.  lambda1 + lambda2 is the log of the area growth of the same map, whose
+  // Jacobian on the sphere is |det M| / |M u|^3 at a unit u: over the interval, n13 log r - 3 log(|u| / |u_prev|) (det
+  // M_s = det P_s / r^3 = r on branches 1 and 3, 1 on branch 2; Section 5.1's det P_i), exact up to rounding, without a
+  // second vector.
   Growth gram_schmidt(long n13, long double log_r) {
     using std::sqrt;
     const T uu = dot3(f.u, f.u);
@@ -82,7 +83,8 @@ template <class T> struct Orbit {
     const long double log_ratio = std::log(static_cast<long double>(T(unorm / un)));  // log(|u_prev| / |u|)
     const long double log1 = std::log(static_cast<long double>(n1)) + log_ratio;
     const long double sum = static_cast<long double>(n13) * log_r + 3 * log_ratio;  // lambda1 + lambda2's log
-    const Growth g{{log1, sum - log1}, static_cast<double>(std::log2(std::max(vlen / static_cast<long double>(n1), 1.0L)))};
+    const Growth g{{log1, sum - log1},
+                   static_cast<double>(std::log2(std::max(vlen / static_cast<long double>(n1), 1.0L)))};
     using std::fabs;
     using std::frexp;
     using std::ldexp;
@@ -115,8 +117,8 @@ std::vector<int> ring_tail(const std::array<std::uint8_t, kSymbolRing>& ring, lo
   return tail;
 }
 
-template <class T> ProjectiveResult finish(const Accumulator<2>& acc, const Orbit<T>& o, long double loss,
-                                           const Options& opt) {
+template <class T>
+ProjectiveResult finish(const Accumulator<2>& acc, const Orbit<T>& o, long double loss, const Options& opt) {
   using std::sqrt;
   ProjectiveResult res;
   const double floor = static_cast<double>(loss / static_cast<long double>(opt.iterations));

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s / r,
-// iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
-// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  Not yet what projective_exponents
-// runs (lyapunov_impl.hpp says why).
+// One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s /
+// r, iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
+// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  Not yet what
+// projective_exponents runs (lyapunov_impl.hpp says why).
 #pragma once
 
 #include "lyapunov/lyapunov.hpp"
@@ -13,9 +13,9 @@ namespace btob::lyapunov {
 
 // The single-orbit route at the scalar limit: the point stepped by the batched kernel's
 // step (M_s = P_s / r, the kernel's orbit bit for bit) with two tangent vectors stepped by the same M_s, no division or
-// normalisation per step, one tangent vector projected every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1 fixes it).
-// Exponents differ from projective_exponents_qr's in the last digits (other roundings), within the error bars.
-// float, double, long double, float128, MPFR (include core/scalar.hpp for the last two).
+// normalisation per step, one tangent vector projected every `len` steps (adaptive, see orbit.cpp; reorthonormalise > 1
+// fixes it). Exponents differ from projective_exponents_qr's in the last digits (other roundings), within the error
+// bars. float, double, long double, float128, MPFR (include core/scalar.hpp for the last two).
 template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T& r, const Options& opt);
 
 // The route before projective_orbit, kept as the reference of the tests and benchmarks: P_s u with the tangent plane
@@ -40,7 +40,7 @@ inline constexpr long kSymbolRing = 4096;
 template <class T> struct OrbitFrame {
   T u[3];
   T v[3];
-  T r, a, k;  // r, alpha = (1 + r) / 2 and k = alpha / r, in T (the kernel's)
+  T r, a, k;     // r, alpha = (1 + r) / 2 and k = alpha / r, in T (the kernel's)
   T scratch[5];  // the MPFR step's temporaries, allocated once per orbit (unused by the other precisions)
 };
 

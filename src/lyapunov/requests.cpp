@@ -3,11 +3,11 @@
 #include "lyapunov/requests.hpp"
 
 #include "core/cancel.hpp"
+#include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/error_bar.hpp"
 #include "core/fields.hpp"
 #include "core/scalar.hpp"
-#include "core/coords.hpp"
 
 #include <fmt/format.h>
 
@@ -20,10 +20,11 @@ namespace btob::lyapunov {
 namespace {
 // What an orbit's exponent is (docs/reference/numbers.md): an estimate whose bar is the batch-means standard error.
 core::Status exponent_status(int blocks) {
-  return core::estimated(fmt::format("batch-means standard error over {} blocks (err1, err2), at least 4 eps |lambda| "
-                                     "for the arithmetic; the finite-time bias of a slowly converging orbit is not in it",
-                                     blocks),
-                         "one standard error (68% if the block means are normal)");
+  return core::estimated(
+      fmt::format("batch-means standard error over {} blocks (err1, err2), at least 4 eps |lambda| "
+                  "for the arithmetic; the finite-time bias of a slowly converging orbit is not in it",
+                  blocks),
+      "one standard error (68% if the block means are normal)");
 }
 }  // namespace
 
@@ -49,8 +50,10 @@ void ProjectiveResult::describe(core::Contents& c) const {
   const core::Status st = exponent_status(blocks);
   c.status_of("lambda1", st);
   c.status_of("lambda2", st);
-  const core::Status w = core::estimated("weighted Birkhoff average (super-polynomial convergence on periodic and "
-                                         "quasi-periodic orbits only)", "no error bar");
+  const core::Status w = core::estimated(
+      "weighted Birkhoff average (super-polynomial convergence on periodic and "
+      "quasi-periodic orbits only)",
+      "no error bar");
   c.status_of("lambda1_weighted", w);
   c.status_of("lambda2_weighted", w);
   if (convergence.exponents.size() < 2) return;  // a result that was never run
@@ -69,9 +72,11 @@ void check_lengths(long iterations, long transient, int blocks) {
   if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
   if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
   if (transient > iterations)
-    throw core::InvalidField("transient", std::to_string(transient), fmt::format("at most iterations = {}", iterations));
+    throw core::InvalidField("transient", std::to_string(transient),
+                             fmt::format("at most iterations = {}", iterations));
   if (blocks < 2 || blocks > iterations)
-    throw core::InvalidField("blocks", std::to_string(blocks), fmt::format("2 <= blocks <= iterations = {}", iterations));
+    throw core::InvalidField("blocks", std::to_string(blocks),
+                             fmt::format("2 <= blocks <= iterations = {}", iterations));
 }
 
 void check_kernel_precision(const std::string& p) {
@@ -82,16 +87,18 @@ void check_kernel_precision(const std::string& p) {
 template <class T> void all_finite(const T& values, const std::string& what) {
   for (double v : values)
     if (!std::isfinite(v))
-      throw std::domain_error(fmt::format("{}: a non-finite exponent; this precision cannot represent the run "
-                                          "(use a wider --precision)",
-                                          what));
+      throw std::domain_error(
+          fmt::format("{}: a non-finite exponent; this precision cannot represent the run "
+                      "(use a wider --precision)",
+                      what));
 }
 }  // namespace
 
 void OrbitRequest::validate() const {
   core::require_r(r, "r");
   check_lengths(iterations, transient, blocks);
-  if (reorthonormalise < 1) throw core::InvalidField("reorthonormalise", std::to_string(reorthonormalise), "at least 1");
+  if (reorthonormalise < 1)
+    throw core::InvalidField("reorthonormalise", std::to_string(reorthonormalise), "at least 1");
   (void)core::parse_point(point, "point");
   core::require_r_exponents(r, core::parse_precision(precision, "precision"), "r");
 }
@@ -138,7 +145,8 @@ namespace {
 // collapse, no period, so every step costs what a long run's steps cost) with the request's QR interval.
 core::Term cocycle_term(const std::string& precision, int reorthonormalise, double steps) {
   core::Term t;
-  t.route = fmt::format("lyapunov cocycle {} QR/{}", core::parse_precision(precision, "precision").name(), reorthonormalise);
+  t.route =
+      fmt::format("lyapunov cocycle {} QR/{}", core::parse_precision(precision, "precision").name(), reorthonormalise);
   t.units = steps;
   t.what = fmt::format("map steps of the derivative cocycle in {} (transient + iterations)", precision);
   t.probe = [precision, reorthonormalise](double n, const core::RunControl& c) {
@@ -181,7 +189,8 @@ void MapRequest::validate() const {
   core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min", {"float", "double"});  // r-min <= r-max from here on
+  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min",
+                            {"float", "double"});  // r-min <= r-max from here on
   (void)iterate::parse_grid(grid, seed, "grid");
   // classify runs in double from transient >= 1 (attractors::validate refuses the rest of its options).
   if (attractors && precision != "double")
@@ -206,7 +215,8 @@ void StripRequest::validate() const {
   const core::Grid g = spec();  // N, M >= 1 and the range checked by the parser
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
-  core::require_r_exponents(r, core::parse_precision(precision), "r", {"float", "double"});  // the cocycle runs in this precision
+  core::require_r_exponents(r, core::parse_precision(precision), "r",
+                            {"float", "double"});  // the cocycle runs in this precision
   iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 200, "grid");
 }
 
@@ -237,7 +247,8 @@ MapResult merge_exponents(std::vector<MapPart>& parts, std::size_t items, std::s
   OrbitExponents& e = res.exponents;
   using V = std::vector<double>;
   const auto rows = [&](V OrbitExponents::*f) {
-    return core::merge_rows<MapPart, double>(parts, order, width, [f](const MapPart& p) -> const V& { return p.exponents.*f; });
+    return core::merge_rows<MapPart, double>(parts, order, width,
+                                             [f](const MapPart& p) -> const V& { return p.exponents.*f; });
   };
   e.lambda1 = rows(&OrbitExponents::lambda1);
   e.err1 = rows(&OrbitExponents::err1);
@@ -322,7 +333,8 @@ MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items,
 MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {
   req.validate();
   const core::Grid g = req.spec();
-  MapResult res = merge_exponents(parts, req.work_items(), static_cast<std::size_t>(g.axis2.cells), req.iterations, req.blocks);
+  MapResult res =
+      merge_exponents(parts, req.work_items(), static_cast<std::size_t>(g.axis2.cells), req.iterations, req.blocks);
   iterate::Ensemble& ens = res.ensemble;
   ens.set_r_list({req.r});
   ens.initial = iterate::strip_grid(g);
@@ -353,7 +365,8 @@ void MapResult::describe(core::Contents& c) const {
   c.array("lambda1", e.lambda1, dims, axes, per,
           "projective exponent of one tangent vector (v0 = e1; converges to the larger one), = chi2 - chi1");
   c.array("err1", e.err1, dims, axes, per, "batch-means standard error of lambda1");
-  c.array("lambda2", e.lambda2, dims, axes, per, "log|det D^n|/n - lambda1, = chi3 - chi1 (may exceed lambda1 by O(1/n))");
+  c.array("lambda2", e.lambda2, dims, axes, per,
+          "log|det D^n|/n - lambda1, = chi3 - chi1 (may exceed lambda1 by O(1/n))");
   c.array("err2", e.err2, dims, axes, per, "batch-means standard error of lambda2");
   c.array("lambda_max", e.lambda_max, dims, axes, per, "the larger of lambda1, lambda2");
   c.array("err_max", e.err_max, dims, axes, per, "batch-means standard error of lambda_max");
@@ -379,7 +392,8 @@ void MapResult::describe(core::Contents& c) const {
     c.array("max_err", summary.err_max, {R}, "r", per, "batch-means error of the orbit realising max");
     c.array("frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
     c.array("frac_zero", summary.frac_zero, {R}, "r", "1", "fraction of orbits with |lambda1| <= 3 err1 + 10/n");
-    c.array("frac_negative", summary.frac_negative, {R}, "r", "1", "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
+    c.array("frac_negative", summary.frac_negative, {R}, "r", "1",
+            "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
   }
   c.attr("iterations", e.iterations);
   c.attr("blocks", static_cast<long>(e.blocks));

@@ -19,15 +19,15 @@ namespace btob::lyapunov {
 
 // ---- one orbit (`btob lyapunov`) --------------------------------------------------------------------------
 struct OrbitRequest {
-  core::Decimal r = 0;        // restitution coefficient, in (0, 1), kept as given (read in the precision)
-  std::string point;          // initial direction x,y,z (x*z <= 0)
-  long iterations = 100000;   // averaged map iterations, >= blocks
-  long transient = 1000;      // iterations discarded first, 0..iterations
-  int reorthonormalise = 1;   // QR every this many steps, >= 1
-  int blocks = 20;            // batch-means blocks, 2..iterations
+  core::Decimal r = 0;               // restitution coefficient, in (0, 1), kept as given (read in the precision)
+  std::string point;                 // initial direction x,y,z (x*z <= 0)
+  long iterations = 100000;          // averaged map iterations, >= blocks
+  long transient = 1000;             // iterations discarded first, 0..iterations
+  int reorthonormalise = 1;          // QR every this many steps, >= 1
+  int blocks = 20;                   // batch-means blocks, 2..iterations
   std::string precision = "double";  // float, double, long-double, float128 or mpfr:D
-  std::string convergence;    // also write exponent against n to this CSV file (command line only)
-  bool weighted = false;      // also report the weighted Birkhoff averages
+  std::string convergence;           // also write exponent against n to this CSV file (command line only)
+  bool weighted = false;             // also report the weighted Birkhoff averages
 
   void validate() const;
   template <class V> void fields(V&& v) {
@@ -54,13 +54,13 @@ core::Work work(const OrbitRequest& req);
 // ---- maps over r x initial conditions (`btob lyapunov-map`) and a strip at one r (`btob lyapunov-strip`) ----
 struct MapRequest {
   core::Decimal r_min = 0.0717, r_max = 0.6;  // r range, each in (0, 1), kept as given (float reads it)
-  long r_count = 5000;                 // evenly spaced r values, >= 1
-  std::string grid = "paper";          // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
-  std::uint64_t seed = 1;              // seed of random grids
+  long r_count = 5000;                        // evenly spaced r values, >= 1
+  std::string grid = "paper";                 // paper, strip:NxM[:w1min:w1max], random:N, or x,y,z;...
+  std::uint64_t seed = 1;                     // seed of random grids
   long iterations = 10000, transient = 1000;
   int blocks = 10;
-  std::string precision = "double";    // float or double: the whole cocycle (point, tangent vector, projections)
-  std::vector<std::string> overlay;    // named r overlays drawn on the figure (not part of the computation)
+  std::string precision = "double";  // float or double: the whole cocycle (point, tangent vector, projections)
+  std::vector<std::string> overlay;  // named r overlays drawn on the figure (not part of the computation)
   // Also classify every orbit (`btob classify` with this transient and iterations, in double): what extras::of adds
   // after the run (src/extras), so the exponents' run and its speed are the same with or without it.
   bool attractors = false;
@@ -84,8 +84,8 @@ struct MapRequest {
 };
 
 struct StripRequest {
-  core::Decimal r = 0.3;                     // restitution coefficient, in (0, 1), kept as given (float reads it)
-  std::string grid = "strip:200x100";        // cells n1 along w1 x n2 along w2, w1 range (default [-2, 2])
+  core::Decimal r = 0.3;               // restitution coefficient, in (0, 1), kept as given (float reads it)
+  std::string grid = "strip:200x100";  // cells n1 along w1 x n2 along w2, w1 range (default [-2, 2])
   long iterations = 5000, transient = 500;
   int blocks = 10;
   std::string precision = "double";
@@ -93,7 +93,9 @@ struct StripRequest {
   void validate() const;
   // The grid: "strip:NxM[:w1min:w1max]" (iterate::parse_strip: core::parse_grid with the strip syntax).
   core::Grid spec() const { return iterate::parse_strip(grid, "grid"); }
-  std::size_t work_items() const { return static_cast<std::size_t>(spec().axis1.cells); }  // columns of w1 cells (core/sweep.hpp)
+  std::size_t work_items() const {
+    return static_cast<std::size_t>(spec().axis1.cells);
+  }                          // columns of w1 cells (core/sweep.hpp)
   double map_steps() const;  // cells x (transient + iterations) (core::StepCounted)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
@@ -109,17 +111,17 @@ struct StripRequest {
 // their summary per r.
 struct MapResult {
   iterate::Ensemble ensemble;  // the r values and initial conditions iterated (orbit = r index * I + initial condition)
-  OrbitExponents exponents;  // per orbit: lambda1, lambda2 and their batch-means errors, chi1, iterations
-  RSummary summary;                  // lyapunov-map only
-  std::vector<double> w1, w2;        // lyapunov-strip only: the cell centres, n1 x n2
+  OrbitExponents exponents;    // per orbit: lambda1, lambda2 and their batch-means errors, chi1, iterations
+  RSummary summary;            // lyapunov-map only
+  std::vector<double> w1, w2;  // lyapunov-strip only: the cell centres, n1 x n2
   std::vector<double> w1_cell, w2_cell;  // lyapunov-strip only: the cell centres along each axis, [n1] and [n2]
-  std::size_t n1 = 0, n2 = 0;        // lyapunov-strip only
-  double iteration_seconds = 0;  // wall time of the iteration, seconds
+  std::size_t n1 = 0, n2 = 0;            // lyapunov-strip only
+  double iteration_seconds = 0;          // wall time of the iteration, seconds
   // lyapunov-map --precision float only: the orbits of every k-th r value (at most 64 r values) re-run in double,
   // and how many of them get another sign class (positive / zero / negative, maps.hpp classify).  Float rounds the
   // orbit at 6e-8 per step: near-neutral sinks (r just above 3 - 2 sqrt(2)) lose their orbits to it.
   long float_checked = 0, float_disagree = 0;
-  double float_disagree_r = 0;       // the first r value with a disagreement
+  double float_disagree_r = 0;  // the first r value with a disagreement
 
   // Arrays: r [R]; lambda1, err1, lambda2, err2, chi1 [R, I] (map) or [n1, n2] (strip); summary [R].
   void describe(core::Contents& c) const;
@@ -136,8 +138,8 @@ struct MapPart {
   double iteration_seconds = 0;
   template <class A> void members(A& a) {
     a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max,
-      exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations, exponents.blocks,
-      iteration_seconds);
+      exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations,
+      exponents.blocks, iteration_seconds);
   }
 };
 MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});

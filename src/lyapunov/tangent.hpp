@@ -20,7 +20,6 @@ using iterate::checked_bytes;
 using iterate::Ensemble;
 using iterate::Vec3;
 
-
 // For every orbit, one tangent vector v of the sphere is pushed through the derivative of
 // u -> M u / |M u| (M = P_s / r, the kernel's matrices: same projective map, same derivative), from the
 // recorder's copy of the previous kernel state s and the step's symbol:
@@ -65,8 +64,7 @@ struct TangentRecorder {
   }
   long first_step() const { return 1; }
   // Lanes per kernel batch (iterate/lanes.hpp: detail::batch_lanes).
-  template <class T>
-  static constexpr int kLanes = iterate::detail::batch_lanes<T>();
+  template <class T> static constexpr int kLanes = iterate::detail::batch_lanes<T>();
   long total_steps() const { return transient + n; }  // the run's `iterations`
 
   template <class T>
@@ -81,10 +79,8 @@ struct TangentRecorder {
       tangent_steps<T, kLanes<T>>(rr.data() + o0, aa.data() + o0, kk.data() + o0, x, y, z, sym, sx.data() + o0,
                                   sy.data() + o0, sz.data() + o0, vx.data() + o0, vy.data() + o0, vz.data() + o0,
                                   pg.data() + o0, eg.data() + o0, ev.data() + o0, n13.data() + o0);
-    else
-      partial_batch<T>(o0, lanes, x, y, z, sym);
-    if (k == transient)
-      store(o0, lanes, 0);
+    else partial_batch<T>(o0, lanes, x, y, z, sym);
+    if (k == transient) store(o0, lanes, 0);
     else if (k > transient) {
       const auto it = std::lower_bound(block_end.begin(), block_end.end(), k - transient);
       if (it != block_end.end() && *it == k - transient) store(o0, lanes, static_cast<int>(it - block_end.begin()) + 1);
@@ -113,11 +109,11 @@ struct TangentRecorder {
 
   // One step of the cocycle for B orbits; restrict-qualified parameters.
   template <class T, int B>
-  static void tangent_steps(const double* __restrict R, const double* __restrict A,
-                            const double* __restrict K, const T* __restrict x, const T* __restrict y,
-                            const T* __restrict z, const std::uint8_t* __restrict sym, double* __restrict SX,
-                            double* __restrict SY, double* __restrict SZ, double* __restrict VX, double* __restrict VY,
-                            double* __restrict VZ, double* __restrict PG, double* __restrict EG, double* __restrict EV,
+  static void tangent_steps(const double* __restrict R, const double* __restrict A, const double* __restrict K,
+                            const T* __restrict x, const T* __restrict y, const T* __restrict z,
+                            const std::uint8_t* __restrict sym, double* __restrict SX, double* __restrict SY,
+                            double* __restrict SZ, double* __restrict VX, double* __restrict VY, double* __restrict VZ,
+                            double* __restrict PG, double* __restrict EG, double* __restrict EV,
                             double* __restrict N13) {
     // Symbols widened to 64 bits first: a loop mixing 8-bit and 64-bit data gets a vectorisation factor of
     // 64 lanes (one 512-bit byte vector), more than a 32-lane batch, and GCC 12 then does not vectorise it.
@@ -174,8 +170,7 @@ struct TangentRecorder {
   }
   // State at step 0: the kernel's initial vector (normalised, in Q, rounded to T), and the tangent vector
   // e1 = u x axis / |u x axis| with the coordinate axis least aligned with u.
-  template <class T>
-  void init(std::size_t o0, int lanes) {
+  template <class T> void init(std::size_t o0, int lanes) {
     for (int l = 0; l < lanes; ++l) {
       const std::size_t o = o0 + static_cast<std::size_t>(l);
       const Vec3<double>& u0 = ens->initial[o % n_ic];

@@ -22,11 +22,11 @@ namespace btob::orbits {
 //  * States: iterations k = 0 .. iterations; the tail holds k = iterations - tail + 1 .. iterations (the
 //    paper: 5000 iterations, the last 2000 drawn).
 struct StripOrbitsRequest {
-  double r = 0.2;             // restitution coefficient, in (0, 1)
-  long orbits = 10;           // number of orbits, 1 .. 1000
-  long iterations = 5000;     // map iterations per orbit, tail .. 1e7
-  long tail = 2000;           // last states kept per orbit, 1 .. iterations (and orbits * tail <= 1e8)
-  std::uint64_t seed = 1;     // seed of the initial conditions
+  double r = 0.2;                       // restitution coefficient, in (0, 1)
+  long orbits = 10;                     // number of orbits, 1 .. 1000
+  long iterations = 5000;               // map iterations per orbit, tail .. 1e7
+  long tail = 2000;                     // last states kept per orbit, 1 .. iterations (and orbits * tail <= 1e8)
+  std::uint64_t seed = 1;               // seed of the initial conditions
   std::vector<double> w1_range{-2, 2};  // initial w1 range a,b (strip units), a < b, |a|, |b| <= 1e6
 
   void validate() const;
@@ -41,16 +41,16 @@ struct StripOrbitsRequest {
 };
 
 struct StripOrbitsResult {
-  StripOrbitsRequest request;  // the request, as run (validated)
+  StripOrbitsRequest request;              // the request, as run (validated)
   std::vector<double> start_w1, start_w2;  // [orbits]: the initial points
   std::vector<double> w1, w2;              // [orbits x tail], row-major: orbit o, state iterations - tail + 1 + j
   std::vector<attractors::OrbitVerdict> verdicts;  // [orbits]: the classifier's verdict (transient = iterations)
-  std::vector<std::string> pattern;        // [orbits]: paper notation of the periodic word ("" otherwise)
-  std::vector<std::string> verdict;        // [orbits]: panel_word of the verdict (the panel titles)
-  std::vector<std::uint32_t> period;       // [orbits]: the verdict's period (map iterations; 0 when none)
-  std::vector<double> rotation;            // [orbits]: the verdict's rotation number (turns per iteration; 0 when none)
+  std::vector<std::string> pattern;                // [orbits]: paper notation of the periodic word ("" otherwise)
+  std::vector<std::string> verdict;                // [orbits]: panel_word of the verdict (the panel titles)
+  std::vector<std::uint32_t> period;               // [orbits]: the verdict's period (map iterations; 0 when none)
+  std::vector<double> rotation;  // [orbits]: the verdict's rotation number (turns per iteration; 0 when none)
   std::size_t periodic = 0, quasi_periodic = 0, other = 0;  // summary counts
-  double seconds = 0;                      // wall time of iteration and classification
+  double seconds = 0;                                       // wall time of iteration and classification
 
   // One CSV line per orbit: where it started and what the classifier says (the panel titles).
   std::string csv() const;

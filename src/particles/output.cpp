@@ -30,11 +30,14 @@ std::vector<std::size_t> convergence_rows(std::size_t periods) {
   return rows;
 }
 
-const char* ParticlesResult::row_header() { return "word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse"; }
+const char* ParticlesResult::row_header() {
+  return "word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse";
+}
 
 std::string ParticlesResult::row() const {
-  return fmt::format("{},{},{},{},{},{},{},{}", core::csv_text(word), r, periods, letters, sequence_ok ? "true" : "false",
-                     g15(length_contraction), g15(length_predicted), g15(time_to_collapse));
+  return fmt::format("{},{},{},{},{},{},{},{}", core::csv_text(word), r, periods, letters,
+                     sequence_ok ? "true" : "false", g15(length_contraction), g15(length_predicted),
+                     g15(time_to_collapse));
 }
 
 std::string ParticlesResult::row_csv(bool header) const {
@@ -44,13 +47,15 @@ std::string ParticlesResult::row_csv(bool header) const {
 }
 
 std::string ParticlesResult::csv() const {
-  core::CsvTable t(std::string(row_header()) +
-                   ",word_digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
-                   "length_spread,energy_ratio,collisions_unrescaled,collisions_limit_predicted,failure");
+  core::CsvTable t(
+      std::string(row_header()) +
+      ",word_digits,outcome,periods_ok,velocity_contraction,velocity_predicted,time_contraction,time_predicted,"
+      "length_spread,energy_ratio,collisions_unrescaled,collisions_limit_predicted,failure");
   t.line(row() + fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}", digits, core::csv_text(outcome), periods_ok,
-                             g15(velocity_contraction), g15(velocity_predicted), g15(time_contraction), g15(time_predicted),
-                             core::csv_number(length_spread, "{:.3g}"), g15(energy_ratio), collisions_unrescaled,
-                             core::csv_number(collisions_limit_predicted, "{:.1f}"), core::csv_text(failure)));
+                             g15(velocity_contraction), g15(velocity_predicted), g15(time_contraction),
+                             g15(time_predicted), core::csv_number(length_spread, "{:.3g}"), g15(energy_ratio),
+                             collisions_unrescaled, core::csv_number(collisions_limit_predicted, "{:.1f}"),
+                             core::csv_text(failure)));
   return t.text();
 }
 

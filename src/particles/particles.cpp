@@ -18,16 +18,16 @@
 
 namespace btob::particles {
 
-#define BTOB_PARTICLES_INSTANTIATE_G(T, G)                                \
-  template void collide<T, G>(Vec<T, G>&, int, const T&);                 \
-  template int next_collision<T, G>(const Gaps<T, G>&, T&);               \
-  template void advance<T, G>(Gaps<T, G>&, const T&, int, const T&);      \
-  template Eigen::Matrix<T, G + 1, 1> absolute<T, G>(const Vec<T, G>&);   \
+#define BTOB_PARTICLES_INSTANTIATE_G(T, G)                              \
+  template void collide<T, G>(Vec<T, G>&, int, const T&);               \
+  template int next_collision<T, G>(const Gaps<T, G>&, T&);             \
+  template void advance<T, G>(Gaps<T, G>&, const T&, int, const T&);    \
+  template Eigen::Matrix<T, G + 1, 1> absolute<T, G>(const Vec<T, G>&); \
   template T kinetic_energy<T, G>(const Vec<T, G>&);
-#define BTOB_PARTICLES_INSTANTIATE(T)  \
-  BTOB_PARTICLES_INSTANTIATE_G(T, 1)   \
-  BTOB_PARTICLES_INSTANTIATE_G(T, 2)   \
-  BTOB_PARTICLES_INSTANTIATE_G(T, 3)   \
+#define BTOB_PARTICLES_INSTANTIATE(T)                                                                           \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 1)                                                                            \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 2)                                                                            \
+  BTOB_PARTICLES_INSTANTIATE_G(T, 3)                                                                            \
   template PatternRun<T> simulate_pattern<T>(const Gaps<T, 3>&, const std::string&, const T&, long, bool, long, \
                                              const core::CancelToken*);
 BTOB_PARTICLES_INSTANTIATE(double)
@@ -63,7 +63,8 @@ template <class T> T sqrt_(const T& x) {
 
 // The restriction of K_w to the plane normal to u (invariant: u is a left eigenvector of K_w, since
 // cof(K_w) u = r^n2 M_w u is parallel to u), in the orthonormal basis e1 = p/|p|, e2 = u x e1.
-template <class T> bool self_similar_start(const core::Vec3<T>& u, const std::string& letters, const T& r, Gaps<T, 3>& out) {
+template <class T>
+bool self_similar_start(const core::Vec3<T>& u, const std::string& letters, const T& r, Gaps<T, 3>& out) {
   const core::Particles<T> normal = core::to_particles<T>(u);
   out = {normal.p, normal.q};
   const Vec<T, 3>& p = normal.p;
@@ -90,11 +91,12 @@ template <class T> bool self_similar_start(const core::Vec3<T>& u, const std::st
   return true;
 }
 
-template bool self_similar_start<double>(const core::Vec3<double>&, const std::string&, const double&, Gaps<double, 3>&);
+template bool self_similar_start<double>(const core::Vec3<double>&, const std::string&, const double&,
+                                         Gaps<double, 3>&);
 template bool self_similar_start<long double>(const core::Vec3<long double>&, const std::string&, const long double&,
                                               Gaps<long double, 3>&);
-template bool self_similar_start<core::float128>(const core::Vec3<core::float128>&, const std::string&, const core::float128&,
-                                                 Gaps<core::float128, 3>&);
+template bool self_similar_start<core::float128>(const core::Vec3<core::float128>&, const std::string&,
+                                                 const core::float128&, Gaps<core::float128, 3>&);
 template bool self_similar_start<core::mpfr_float>(const core::Vec3<core::mpfr_float>&, const std::string&,
                                                    const core::mpfr_float&, Gaps<core::mpfr_float, 3>&);
 
@@ -102,8 +104,9 @@ namespace {
 
 // The word's verdict at r as the result's header: names, moduli of M_w (squares of those of J M_h when
 // w = h J(h)), and whether K_w predicts a self-similar collapse.  Returns the moduli in T.
-template <class T> std::vector<T> pattern_header(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
-                                                 ParticlesResult& res, const core::CancelToken* cancel) {
+template <class T>
+std::vector<T> pattern_header(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
+                              ParticlesResult& res, const core::CancelToken* cancel) {
   res.word = patterns::to_paper(v.word);
   res.digits = patterns::to_digits(v.word);
   res.letters = v.letters;
@@ -122,8 +125,8 @@ template <class T> std::vector<T> pattern_header(const ParticlesRequest& req, co
 
 // The contractions per period of length, velocity and time that the period matrix predicts for a collapse (NaN
 // and the reason otherwise).
-template <class T> void predict_contractions(const patterns::Verdict<T>& v, const T& r, const std::vector<T>& mod,
-                                             ParticlesResult& res) {
+template <class T>
+void predict_contractions(const patterns::Verdict<T>& v, const T& r, const std::vector<T>& mod, ParticlesResult& res) {
   if (res.collapse) {
     const int o = v.orbit_eigen, ia = o == 0 ? 1 : 0, ib = o == 2 ? 1 : 2;
     long n2 = 0;
@@ -135,8 +138,9 @@ template <class T> void predict_contractions(const patterns::Verdict<T>& v, cons
     res.time_predicted = static_cast<double>(T(mod[ib] / mod[ia]));
   } else {
     res.length_predicted = res.velocity_predicted = res.time_predicted = std::nan("");
-    res.failure = "no collapse: the eigenvalues of K_w on the orbit's plane are not real with a positive dominant one "
-                  "(M_w's other two eigenvalues are not real, or tie); started normal";
+    res.failure =
+        "no collapse: the eigenvalues of K_w on the orbit's plane are not real with a positive dominant one "
+        "(M_w's other two eigenvalues are not real, or tie); started normal";
   }
 }
 
@@ -144,8 +148,9 @@ template <class T> void predict_contractions(const patterns::Verdict<T>& v, cons
 // exact self-similar collapse when asked and predicted, else the best of q - lambda p for lambda = 0, then
 // 4^k |q| / |p| (k = 0..40): the first that reproduces three periods (or fewer if asked), else the one that
 // reproduces the most collisions.
-template <class T> Gaps<T, 3> pattern_start(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r,
-                                            bool collapse, const core::RunControl& control) {
+template <class T>
+Gaps<T, 3> pattern_start(const ParticlesRequest& req, const patterns::Verdict<T>& v, const T& r, bool collapse,
+                         const core::RunControl& control) {
   const Vec<T, 3> u = v.orbit.front();
   const core::Particles<T> normal = core::to_particles<T>(u);
   Gaps<T, 3> start{normal.p, normal.q};
@@ -172,9 +177,9 @@ template <class T> Gaps<T, 3> pattern_start(const ParticlesRequest& req, const p
 // The rescaled run, polling the cancellation token every core::cancel_stride periods: the first diagram_periods
 // with their events (kept in res.events), then, when more are asked, all periods again from the start (the first
 // diagram_periods recomputed identically; the cost is negligible) so that the run is one trajectory.
-template <class T> PatternRun<T> rescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start,
-                                              const std::string& letters, const T& r, const core::RunControl& control,
-                                              ParticlesResult& res) {
+template <class T>
+PatternRun<T> rescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start, const std::string& letters, const T& r,
+                           const core::RunControl& control, ParticlesResult& res) {
   PatternRun<T> run = simulate_pattern<T>(start, letters, r, std::min<long>(req.periods, req.diagram_periods), true,
                                           req.diagram_periods, control.cancel);
   res.events = run.events;
@@ -189,8 +194,8 @@ template <class T> PatternRun<T> rescaled_run(const ParticlesRequest& req, const
 // The measured contractions: per-period ratios, their last values, the spread of the length ratio over the second
 // half, and the time to collapse (the simulated periods plus the geometric tail with the last ratio; NaN when the
 // particles left the pattern).
-template <class T> void measured_contractions(const ParticlesRequest& req, const PatternRun<T>& run,
-                                              ParticlesResult& res) {
+template <class T>
+void measured_contractions(const ParticlesRequest& req, const PatternRun<T>& run, ParticlesResult& res) {
   res.periods_ok = run.periods_ok;
   res.sequence_ok = run.periods_ok == req.periods;
   if (!run.failure.empty()) res.failure = res.failure.empty() ? run.failure : res.failure + "; " + run.failure;
@@ -208,7 +213,8 @@ template <class T> void measured_contractions(const ParticlesRequest& req, const
     const double q = N > 1 ? res.time_ratio.back() : res.time_predicted;
     res.time_to_collapse = static_cast<double>(run.total_time) + (q < 1 ? run.duration.back() * q / (1 - q) : INFINITY);
   }
-  if (N == 0) res.length_contraction = res.velocity_contraction = res.time_contraction = res.energy_ratio = std::nan("");
+  if (N == 0)
+    res.length_contraction = res.velocity_contraction = res.time_contraction = res.energy_ratio = std::nan("");
   if (!res.sequence_ok) res.time_to_collapse = std::nan("");
 }
 
@@ -234,8 +240,9 @@ template <class T> std::vector<double> timed_events(const PatternRun<T>& run, co
 }
 
 // Without rescaling: the same run until the gaps underflow, against the collisions T's range predicts.
-template <class T> void unrescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start, const std::string& letters,
-                                       const T& r, const core::RunControl& control, ParticlesResult& res) {
+template <class T>
+void unrescaled_run(const ParticlesRequest& req, const Gaps<T, 3>& start, const std::string& letters, const T& r,
+                    const core::RunControl& control, ParticlesResult& res) {
   const PatternRun<T> raw = simulate_pattern<T>(start, letters, r, req.periods, false, 0, control.cancel);
   res.collisions_unrescaled = raw.collisions;
   res.unrescaled_end = raw.failure.empty() ? fmt::format("all {} periods reproduced", req.periods) : raw.failure;
@@ -280,10 +287,12 @@ void ParticlesRequest::validate() const {
   try {
     prec = core::parse_precision(precision, "precision");
   } catch (const std::exception&) {
-    throw InvalidField("precision", "'" + precision + "'", "double, long-double, float128 or mpfr:D (10 <= D <= 10000)");
+    throw InvalidField("precision", "'" + precision + "'",
+                       "double, long-double, float128 or mpfr:D (10 <= D <= 10000)");
   }
   if (prec.kind == core::Precision::Kind::f32)
-    throw InvalidField("precision", "'float'", "double, long-double, float128 or mpfr:D (float is too short for the check)");
+    throw InvalidField("precision", "'float'",
+                       "double, long-double, float128 or mpfr:D (float is too short for the check)");
   if (start != "self-similar" && start != "normal")
     throw InvalidField("start", "'" + start + "'", "self-similar or normal");
   if (diagram_periods < 1 || diagram_periods > 50)
@@ -332,9 +341,11 @@ core::Work work(const ParticlesRequest& req) {
   core::Term t;
   t.route = "particles events " + prec.name();
   t.units = collisions(letters, req.periods, req.diagram_periods, mpfr);
-  t.what = fmt::format("particle collisions in {} ({} per period x ({} periods{}))", req.precision, letters,
-                       req.periods, mpfr ? " rescaled + as many unrescaled" : " rescaled; the unrescaled run stops "
-                                                                              "where its gaps underflow, not counted");
+  t.what =
+      fmt::format("particle collisions in {} ({} per period x ({} periods{}))", req.precision, letters, req.periods,
+                  mpfr ? " rescaled + as many unrescaled"
+                       : " rescaled; the unrescaled run stops "
+                         "where its gaps underflow, not counted");
   t.probe = [precision = req.precision, mpfr](double n, const core::RunControl& c) {
     ParticlesRequest p;  // 1133 at r = 0.15: a stable collapse, simulated to the last period
     p.word = "1133";

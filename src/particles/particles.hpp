@@ -53,26 +53,27 @@ template <class T, int G> T kinetic_energy(const Vec<T, G>& q);
 // multiplied by exact powers of two after every period (a space and a time scaling: the letters and the
 // ratios are unchanged, and the run equals the unrescaled one bit for bit until the latter underflows).
 template <class T> struct PatternRun {
-  long periods_ok = 0;          // periods whose letters all matched
-  long collisions = 0;          // collisions that matched
-  std::string failure;          // "" or why the run stopped (wrong letter, separation, non-finite state)
+  long periods_ok = 0;  // periods whose letters all matched
+  long collisions = 0;  // collisions that matched
+  std::string failure;  // "" or why the run stopped (wrong letter, separation, non-finite state)
   std::vector<double> length_ratio, velocity_ratio;  // per period: |p| and |q| after / before (size periods_ok)
-  std::vector<double> duration;  // per period, in units |p0| / |q0| (double: may underflow to 0 late)
+  std::vector<double> duration;    // per period, in units |p0| / |q0| (double: may underflow to 0 late)
   std::vector<double> time_ratio;  // per period: duration / previous duration (NaN for the first), from T
-  T total_time{};                // sum of the durations, in T
+  T total_time{};                  // sum of the durations, in T
   // Events of the first record_periods periods: period, time since the period's start, x1..x4 (centre-of-mass
   // frame, units |p0|), letter (0 start, 1 a, 2 b, 3 c); row-major, 7 values per event.
   std::vector<double> events;
 };
 template <class T>
-PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods, bool rescale,
-                               long record_periods = 0, const core::CancelToken* cancel = nullptr);
+PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods,
+                               bool rescale, long record_periods = 0, const core::CancelToken* cancel = nullptr);
 
 // The self-similar start from the periodic point u (in Q) of a word with one period of letters `letters`:
 // p = (-z, 0, x) / |.| (u x e_y) and q the unit eigenvector, with q2 > 0, of K_w (the product of the collision
 // matrices of the letters) on the plane normal to u, for its eigenvalue of largest modulus.  Returns false
 // (and q normal to p) when K_w's eigenvalues on that plane are not real with a positive dominant one.
-template <class T> bool self_similar_start(const core::Vec3<T>& u, const std::string& letters, const T& r, Gaps<T, 3>& out);
+template <class T>
+bool self_similar_start(const core::Vec3<T>& u, const std::string& letters, const T& r, Gaps<T, 3>& out);
 
 // ---- the request/result contract (src/core/request.hpp) ----
 
@@ -101,18 +102,18 @@ struct ParticlesResult {
   std::string letters;       // collision letters of one period from the periodic point
   std::string outcome;       // "stable" or "unstable": the periodic point used (patterns::analyse)
   bool collapse = false;     // patterns::Classification::collapse: K_w has real eigenvalues on the orbit's plane
-  double r = 0;  // restitution coefficient, in (0, 1)
-  long periods = 0;  // periods of the pattern the particles were run for (the request's)
-  std::string precision;  // the arithmetic of the event-driven run (the request's)
+  double r = 0;              // restitution coefficient, in (0, 1)
+  long periods = 0;          // periods of the pattern the particles were run for (the request's)
+  std::string precision;     // the arithmetic of the event-driven run (the request's)
   std::string start;         // the request's start
   bool sequence_ok = false;  // every period's letters matched
-  long periods_ok = 0;  // periods whose collision letters matched the pattern's
-  std::string failure;  // why the run stopped matching the pattern (empty when every period matched)
+  long periods_ok = 0;       // periods whose collision letters matched the pattern's
+  std::string failure;       // why the run stopped matching the pattern (empty when every period matched)
   // Last period's contraction against the prediction from M_w's eigenvalues (see the conventions).
   double length_contraction = 0, length_predicted = 0;
   double velocity_contraction = 0, velocity_predicted = 0;
   double time_contraction = 0, time_predicted = 0;
-  double length_spread = 0;   // max over the last half of the periods of |rho_n / rho_last - 1| (convergence)
+  double length_spread = 0;     // max over the last half of the periods of |rho_n / rho_last - 1| (convergence)
   double time_to_collapse = 0;  // units |p0| / |q0|: simulated periods plus the geometric tail
   double energy_ratio = 0;      // kinetic energy after / before one period (= sigma^2 asymptotically)
   std::vector<double> moduli;   // |eigenvalues| of M_w, decreasing (3)
@@ -135,22 +136,22 @@ struct ParticlesResult {
   std::vector<std::string> event_letter;
   double seconds = 0;
 
-  void split_events();              // fills the event_* columns from `events`
+  void split_events();  // fills the event_* columns from `events`
 
   // What `btob particles` writes (output.cpp); every value that is not a finite number is an empty cell.
-  static const char* row_header();  // word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse
-  std::string row() const;          // those columns, one line without its end
+  static const char* row_header();         // word,r,periods,letters,sequence_ok,contraction,predicted,time_to_collapse
+  std::string row() const;                 // those columns, one line without its end
   std::string row_csv(bool header) const;  // the printed row, with its header line first if asked
-  std::string csv() const;          // particles.csv: the row's columns, then digits, outcome, ..., failure
-  std::string convergence_csv() const;  // period,length_ratio,velocity_ratio,time_ratio at convergence_rows()
-  std::string events_csv() const;   // period,time,time_to_collapse,x1,x2,x3,x4,letter
-  core::Tables tables() const {     // NAME.csv, convergence.csv, events.csv
+  std::string csv() const;                 // particles.csv: the row's columns, then digits, outcome, ..., failure
+  std::string convergence_csv() const;     // period,length_ratio,velocity_ratio,time_ratio at convergence_rows()
+  std::string events_csv() const;          // period,time,time_to_collapse,x1,x2,x3,x4,letter
+  core::Tables tables() const {            // NAME.csv, convergence.csv, events.csv
     return {{"", csv()}, {"convergence.csv", convergence_csv()}, {"events.csv", events_csv()}};
   }
-  // Arrays length_ratio, velocity_ratio, time_ratio, the event_* columns, moduli; the summary as attributes (JSON has no NaN:
-  // a value that is not finite is the string "nan", "inf" or "-inf").
+  // Arrays length_ratio, velocity_ratio, time_ratio, the event_* columns, moduli; the summary as attributes (JSON has
+  // no NaN: a value that is not finite is the string "nan", "inf" or "-inf").
   void describe(core::Contents& c) const;
-  std::string summary() const;      // the line printed on stderr
+  std::string summary() const;  // the line printed on stderr
 };
 
 // The periods (0-based) convergence.csv lists out of `periods`: every one up to 100, then about 20 per decade

@@ -81,8 +81,8 @@ template <class T> bool finite(const Vec<T, 3>& v) {
 }  // namespace detail
 
 template <class T>
-PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods, bool rescale,
-                               long record_periods, const core::CancelToken* cancel) {
+PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& letters, const T& r, long periods,
+                               bool rescale, long record_periods, const core::CancelToken* cancel) {
   using std::ldexp;
   PatternRun<T> out;
   Gaps<T, 3> s = start;
@@ -126,8 +126,9 @@ PatternRun<T> simulate_pattern(const Gaps<T, 3>& start, const std::string& lette
     out.velocity_ratio.push_back(static_cast<double>(T(detail::norm3(s.q) / q0)));
     const T d = ldexp(t_period, static_cast<int>(ep - eq));
     out.duration.push_back(static_cast<double>(d));
-    out.time_ratio.push_back(n == 0 ? std::numeric_limits<double>::quiet_NaN()
-                                    : static_cast<double>(T(ldexp(T(t_period / prev_t), static_cast<int>(ep - eq - prev_d)))));
+    out.time_ratio.push_back(
+        n == 0 ? std::numeric_limits<double>::quiet_NaN()
+               : static_cast<double>(T(ldexp(T(t_period / prev_t), static_cast<int>(ep - eq - prev_d)))));
     prev_t = t_period;
     prev_d = ep - eq;
     out.total_time += d;

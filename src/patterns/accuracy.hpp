@@ -97,7 +97,10 @@ struct Check {
   std::array<double, 3> error{};                // per eigenvalue: |mu - mu_ref| / |mu_ref|
   int lyapunov_digits = 10;                     // the exponents' (printed with 10 at most)
   bool same_outcome = true;
-  void fill(int digits) { re_digits.fill(digits); im_digits.fill(digits); }
+  void fill(int digits) {
+    re_digits.fill(digits);
+    im_digits.fill(digits);
+  }
 };
 
 template <class T> std::array<core::mpfr_float, 2> eigen_mp(const EigenInfo<T>& e) {
@@ -118,7 +121,12 @@ template <class T, class H> Check check(const Verdict<T>& v, const Verdict<H>& r
       const auto [fr, fi] = eigen_mp(f);
       const core::mpfr_float d = hypot(core::mpfr_float(re - fr), core::mpfr_float(im - fi));
       const double rel = relative_difference(d, 0, hypot(fr, fi));
-      if (rel < c.error[i]) { c.error[i] = rel; dist = d; ref_re = fr; ref_im = fi; }
+      if (rel < c.error[i]) {
+        c.error[i] = rel;
+        dist = d;
+        ref_re = fr;
+        ref_im = fi;
+      }
     }
     const auto part_digits = [&](const core::mpfr_float& part) {
       return vouched_digits(relative_difference(dist, 0, part), max_digits<T>());

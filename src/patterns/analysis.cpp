@@ -31,15 +31,15 @@ std::string classification_name(const Classification& c) {
   return std::string(outcome_name(c.outcome)) + " (no collapse)";
 }
 
-#define BTOB_PATTERNS_INSTANTIATE(T)                                                                          \
-  template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                              \
-  template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                                  \
-  template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&,         \
-                                                     const core::CancelToken*);                                 \
-  template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);                     \
-  template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                         \
+#define BTOB_PATTERNS_INSTANTIATE(T)                                                                              \
+  template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                                \
+  template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                                    \
+  template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&,           \
+                                                     const core::CancelToken*);                                   \
+  template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);                       \
+  template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                           \
   template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, const T&, \
-                                                               const core::CancelToken*);                       \
+                                                               const core::CancelToken*);                         \
   template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&, const core::CancelToken*);
 
 BTOB_PATTERNS_INSTANTIATE(float)

@@ -24,12 +24,30 @@
 namespace btob::patterns {
 namespace detail {
 
-template <class T> T abs_(const T& x) { using std::abs; return abs(x); }
-template <class T> T sqrt_(const T& x) { using std::sqrt; return sqrt(x); }
-template <class T> T log_(const T& x) { using std::log; return log(x); }
-template <class T> T exp_(const T& x) { using std::exp; return exp(x); }
-template <class T> T cos_(const T& x) { using std::cos; return cos(x); }
-template <class T> T acos_(const T& x) { using std::acos; return acos(x); }
+template <class T> T abs_(const T& x) {
+  using std::abs;
+  return abs(x);
+}
+template <class T> T sqrt_(const T& x) {
+  using std::sqrt;
+  return sqrt(x);
+}
+template <class T> T log_(const T& x) {
+  using std::log;
+  return log(x);
+}
+template <class T> T exp_(const T& x) {
+  using std::exp;
+  return exp(x);
+}
+template <class T> T cos_(const T& x) {
+  using std::cos;
+  return cos(x);
+}
+template <class T> T acos_(const T& x) {
+  using std::acos;
+  return acos(x);
+}
 template <class T> T cbrt_(const T& x) {
   if (x == 0) return T(0);
   const T a = abs_(x);
@@ -129,7 +147,8 @@ template <class T> std::array<Root<T>, 3> cubic_roots(const T& a, const T& b, co
   bool three_real = false;
   const T l = largest_root(a, b, c, three_real);
   std::array<Root<T>, 3> r;
-  const T P = l != 0 ? T(-c / l) : T(b + l * (a + l));  // product of the other two (l dominant: -c/l has no cancellation)
+  const T P =
+      l != 0 ? T(-c / l) : T(b + l * (a + l));  // product of the other two (l dominant: -c/l has no cancellation)
   // Their sum S: -a - l carries an absolute error of eps |l|, all of S's when the two are far below l; then
   // b = l S + P with |P| << |b| gives S = (b - P) / l to b's relative accuracy instead.
   const T S = l != 0 && abs_<T>(P) <= abs_<T>(b) / 2 ? T((b - P) / l) : T(-a - l);
@@ -163,7 +182,10 @@ template <class T> Vec3<T> eigenvector(const Mat3<T>& A, const T& l) {
     const Vec3<T> v(B(i, 1) * B(j, 2) - B(i, 2) * B(j, 1), B(i, 2) * B(j, 0) - B(i, 0) * B(j, 2),
                     B(i, 0) * B(j, 1) - B(i, 1) * B(j, 0));
     const T n = v.squaredNorm();
-    if (n > bn) { bn = n; best = v; }
+    if (n > bn) {
+      bn = n;
+      best = v;
+    }
   }
   if (!(bn > 0)) return Vec3<T>(T(1), T(0), T(0));  // A = l I: every vector (does not occur for P_r words)
   return best / sqrt_<T>(bn);
@@ -240,20 +262,24 @@ int feasibility(const Word& w, const T& r, Vec3<T> v, std::vector<T>* margins = 
   const Vec3<T> first = v;
   v = core::to_quadrant(v);
   std::size_t at = 0;  // point(k) is called for k = 0, 1, ... in order
-  return feasibility_walk<T>(w, r, first, [&](std::size_t k) -> const Vec3<T>& {
-    for (; at < k; ++at) {
-      v = P[w.s[at] - 1] * v;
-      v /= v.norm();
-    }
-    return v;
-  }, margins, cancel);
+  return feasibility_walk<T>(
+      w, r, first,
+      [&](std::size_t k) -> const Vec3<T>& {
+        for (; at < k; ++at) {
+          v = P[w.s[at] - 1] * v;
+          v /= v.norm();
+        }
+        return v;
+      },
+      margins, cancel);
 }
 
 // Feasibility of given orbit points u_0 .. u_{p-1} (orbit_points).
 template <class T>
 int feasibility_of(const Word& w, const T& r, const std::vector<Vec3<T>>& u, std::vector<T>* margins = nullptr,
                    const core::CancelToken* cancel = nullptr) {
-  return feasibility_walk<T>(w, r, u[0], [&](std::size_t k) -> const Vec3<T>& { return u[k]; }, margins, cancel);
+  return feasibility_walk<T>(
+      w, r, u[0], [&](std::size_t k) -> const Vec3<T>& { return u[k]; }, margins, cancel);
 }
 
 // A bound on the error of the unit eigenvector (eigenvector()) of the simple root i of a normalised matrix
@@ -265,7 +291,8 @@ template <class T> T eigenvector_error(const std::array<Root<T>, 3>& roots, int 
   T gap = std::numeric_limits<T>::infinity();
   for (int j = 0; j < 3; ++j)
     if (j != i) {
-      const T dr = roots[j].re - roots[i].re, di = (roots[j].real ? T(0) : roots[j].im) - (roots[i].real ? T(0) : roots[i].im);
+      const T dr = roots[j].re - roots[i].re,
+              di = (roots[j].real ? T(0) : roots[j].im) - (roots[i].real ? T(0) : roots[i].im);
       gap = std::min<T>(gap, sqrt_<T>(dr * dr + di * di));
     }
   return 64 * eps_<T>() / gap;
@@ -278,7 +305,8 @@ template <class T> struct Spectrum {
 };
 // The characteristic polynomial l^3 - tr l^2 + c2 l - det of the normalised analysed matrix m = A e^-s
 // (A = analysed_matrix), with c2 and det not taken from m's entries.  Those are O(1) while det A = -r^14 for 13223122
-// (J M_h, h = 1322), ~1e-30 at r = 0.008, so det3(m) is cancellation noise (eps against ~1e-30) and so are the small roots.  Instead:
+// (J M_h, h = 1322), ~1e-30 at r = 0.008, so det3(m) is cancellation noise (eps against ~1e-30) and so are the small
+// roots.  Instead:
 //   det A = det(J)^[reduced] prod det P_{w_k},  det P1 = det P3 = r^4, det P2 = r^3, det J = -1
 // (expand P1 along its last row: r^2 ((-r)(a^2 - r) + r a^2) = r^4; P2 along its first column: r^3), and
 //   c2 = trace cof(A),  cof(A) = cof(J)^[reduced] cof(P_{w_n}) ... cof(P_{w_1}),  cof(J) = -J
@@ -286,7 +314,8 @@ template <class T> struct Spectrum {
 // own O(r) entries with at most one cancellation of terms r a^2 (relative error eps / (4 r)), so c2 = l1 l2 + l1 l3
 // + l2 l3 keeps its relative accuracy where m's 2x2 minors cancel down to it.
 template <class T>
-std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A, const core::CancelToken* cancel) {
+std::array<T, 3> char_poly(const Word& w, const T& r, bool reduced, const Scaled<T>& A,
+                           const core::CancelToken* cancel) {
   const std::size_t n = reduced ? w.size() / 2 : w.size();
   const std::array<Mat3<T>, 3> C = {cofactor<T>(core::P1(r)), cofactor<T>(core::P2(r)), cofactor<T>(core::P3(r))};
   Scaled<T> cof;
@@ -366,8 +395,7 @@ template <class T> struct OrbitWalk {
 };
 
 // mu_3's orbit (orbit_points): backward with cof(P)^T = det P P^-1 from the converged u_0.
-template <class T>
-void smallest_points(OrbitWalk<T>& walk, const std::array<Mat3<T>, 3>& P, std::vector<Vec3<T>>& u) {
+template <class T> void smallest_points(OrbitWalk<T>& walk, const std::array<Mat3<T>, 3>& P, std::vector<Vec3<T>>& u) {
   const std::array<Mat3<T>, 3> CT = {cofactor<T>(P[0]).transpose(), cofactor<T>(P[1]).transpose(),
                                      cofactor<T>(P[2]).transpose()};  // P^-1 up to det P
   Vec3<T> x = walk.converge(CT, u[0], true);
@@ -377,8 +405,7 @@ void smallest_points(OrbitWalk<T>& walk, const std::array<Mat3<T>, 3>& P, std::v
 
 // mu_2's orbit (orbit_points): u_k = y_3,k x y_1,k, y_1 carried backward by P^T and y_3 forward by cof P.
 template <class T>
-void saddle_points(OrbitWalk<T>& walk, const Spectrum<T>& s, const std::array<Mat3<T>, 3>& P,
-                   std::vector<Vec3<T>>& u) {
+void saddle_points(OrbitWalk<T>& walk, const Spectrum<T>& s, const std::array<Mat3<T>, 3>& P, std::vector<Vec3<T>>& u) {
   const std::size_t p = u.size();
   const Mat3<T> At = s.A.m.transpose();
   const std::array<Mat3<T>, 3> PT = {P[0].transpose(), P[1].transpose(), P[2].transpose()};
@@ -471,7 +498,8 @@ namespace detail {
 // The eigenvalues of M_w (of A = J M_h when reduced), unnormalised, by decreasing modulus; each real one with its
 // eigenvector in Q and the first feasibility condition it fails.
 template <class T>
-std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s, const core::CancelToken* cancel) {
+std::vector<EigenInfo<T>> eigen_infos(const Word& w, const T& r, const Spectrum<T>& s,
+                                      const core::CancelToken* cancel) {
   std::vector<EigenInfo<T>> out;
   const T scale = exp_(s.A.log_scale);  // eigenvalues of the unnormalised matrix
   for (int i = 0; i < 3; ++i) {
@@ -538,9 +566,7 @@ void periodic_orbit(const T& r, const Spectrum<T>& s, Verdict<T>& v, const core:
 
 // log |mu_1|, log |mu_1 mu_2| and log |det| of M_w (= A^2 when reduced): from its spectrum and its second exterior
 // power (cofactor matrix, Lambda^2).
-template <class T> struct LogModuli {
-  T l1, l1l2, det;
-};
+template <class T> struct LogModuli { T l1, l1l2, det; };
 template <class T> LogModuli<T> log_moduli(const Word& w, const T& r, const core::CancelToken* cancel) {
   const std::array<Mat3<T>, 3> P = {core::P1(r), core::P2(r), core::P3(r)};
   Scaled<T> C;
@@ -640,7 +666,8 @@ template <class T> Verdict<T> analyse(const Word& w0, const T& r, const core::Ca
   }
   v.spectrum = eigen_infos(v.word, r, s, cancel);
   verdict_outcome(r, v, cancel);
-  if (v.outcome != Outcome::stable && below_range(v.word, v.spectrum[0])) {  // the domain test read an underflowed component
+  if (v.outcome != Outcome::stable &&
+      below_range(v.word, v.spectrum[0])) {  // the domain test read an underflowed component
     v.outcome = Outcome::undecided;
     v.reason = "range";
     v.orbit_eigen = -1;

@@ -46,12 +46,13 @@ std::string atlas_csv(const std::vector<AtlasEntry>& atlas) {
   core::CsvTable s("word,r_low,r_high,low_reason,high_reason");
   for (const auto& e : atlas)
     for (const auto& iv : e.intervals)
-      s.row({to_paper(e.word), fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi), iv.lo_reason, iv.hi_reason});
+      s.row(
+          {to_paper(e.word), fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi), iv.lo_reason, iv.hi_reason});
   return s.text();
 }
 
-std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
-                                                  long* words_scanned) {
+std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol,
+                                                  int threads, long* words_scanned) {
   const std::vector<Word> words = enumerate_canonical(max_length);
   if (words_scanned) *words_scanned = static_cast<long>(words.size());
   std::vector<FeasibleEntry> out;
@@ -87,9 +88,9 @@ std::string feasible_csv(const std::vector<FeasibleEntry>& atlas) {
   core::CsvTable s("word,digits,length,collisions,r_low,r_high,outcome,collapse,low_reason,high_reason");
   for (const auto& e : atlas)
     for (const auto& iv : e.intervals)
-      s.row({to_paper(e.word), to_digits(e.word), fmt::format("{}", e.word.size()), fmt::format("{}", collisions(e.word)),
-             fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi), outcome_name(iv.outcome),
-             iv.collapse ? "true" : "false", iv.lo_reason, iv.hi_reason});
+      s.row({to_paper(e.word), to_digits(e.word), fmt::format("{}", e.word.size()),
+             fmt::format("{}", collisions(e.word)), fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi),
+             outcome_name(iv.outcome), iv.collapse ? "true" : "false", iv.lo_reason, iv.hi_reason});
   return s.text();
 }
 
@@ -129,7 +130,8 @@ std::string feasible_counts_csv(const FeasibleCounts& c) {
 template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, long max_periods) {
   const Verdict<T> v = analyse<T>(w0, r);
   Followed f;
-  if (v.orbit_eigen < 0) throw core::InvalidField("word", "a word with no feasible periodic point at this r", "a feasible word");
+  if (v.orbit_eigen < 0)
+    throw core::InvalidField("word", "a word with no feasible periodic point at this r", "a feasible word");
   const Word& w = v.word;
   // Expansion per period of M_w (moduli squared when analysed through J M_h).
   const T lo = v.spectrum[v.orbit_eigen].modulus, l1 = v.spectrum[0].modulus;
@@ -138,7 +140,8 @@ template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, lo
   // The orbit's own points: a saddle's carried forward from its first would leave it (detail::orbit_points).
   if (v.orbit_eigen == 0) (void)detail::feasibility(w, r, v.orbit.front(), &margins);
   else (void)detail::feasibility_of(w, r, v.orbit, &margins);
-  T m = margins.front() > 0 ? detail::sqrt_<T>(margins.front()) : T(0);  // domain margin -x z: a product, its square root
+  T m =
+      margins.front() > 0 ? detail::sqrt_<T>(margins.front()) : T(0);  // domain margin -x z: a product, its square root
   for (std::size_t k = 1; k < margins.size(); ++k) m = std::min<T>(m, margins[k]);
   f.margin = static_cast<double>(m);
   const double eps = static_cast<double>(std::numeric_limits<T>::epsilon());
@@ -157,12 +160,13 @@ template <class T> Followed follow_periodic_orbit(const Word& w0, const T& r, lo
 template Followed follow_periodic_orbit<double>(const Word&, const double&, long);
 template Followed follow_periodic_orbit<long double>(const Word&, const long double&, long);
 
-std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked) {
+std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree,
+                         long* checked) {
   return followed_table(atlas, follow_unstable(atlas, max_periods, threads), max_periods, agree, checked);
 }
 
-std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads,
-                                                   const core::CancelToken* cancel) {
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods,
+                                                   int threads, const core::CancelToken* cancel) {
   struct Row {
     const Word* w;
     double r;
@@ -201,7 +205,8 @@ std::string followed_table(const std::vector<FeasibleEntry>& atlas, const std::v
   for (std::size_t k = 0; k < atlas.size(); ++k) {
     std::size_t j = 0;
     for (const auto& iv : atlas[k].intervals)
-      if (iv.outcome == Outcome::unstable) rows.push_back({&atlas[k].word, (iv.lo + iv.hi) / 2, &followed.at(k).at(j++)});
+      if (iv.outcome == Outcome::unstable)
+        rows.push_back({&atlas[k].word, (iv.lo + iv.hi) / 2, &followed.at(k).at(j++)});
   }
   long a = 0, c = 0;
   core::CsvTable s("word,r,expansion,margin,predicted,followed");
@@ -254,7 +259,8 @@ DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterat
   for (std::size_t ir = 0; ir < r.size(); ++ir) {
     std::map<Word, long> counts;
     for (long o = 0; o < ics; ++o) {
-      const std::uint8_t* s = rec.out.data() + (ir * static_cast<std::size_t>(ics) + static_cast<std::size_t>(o)) * rec.count;
+      const std::uint8_t* s =
+          rec.out.data() + (ir * static_cast<std::size_t>(ics) + static_cast<std::size_t>(o)) * rec.count;
       const int p = eventual_period(s, rec.count, max_period);
       if (p == 0) continue;
       ++d.periodic[ir];
@@ -263,7 +269,8 @@ DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterat
     }
     std::vector<Detected> level;
     for (const auto& [w, c] : counts) level.push_back({r[ir], w, c});
-    std::stable_sort(level.begin(), level.end(), [](const Detected& a, const Detected& b) { return a.count > b.count; });
+    std::stable_sort(level.begin(), level.end(),
+                     [](const Detected& a, const Detected& b) { return a.count > b.count; });
     d.found.insert(d.found.end(), level.begin(), level.end());
   }
   return d;

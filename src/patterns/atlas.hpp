@@ -13,8 +13,8 @@
 namespace btob::patterns {
 
 struct AtlasEntry {
-  Word word;                               // canonical, primitive
-  std::vector<Interval<double>> intervals; // stability set in (0, 1), endpoints to `tol`
+  Word word;                                // canonical, primitive
+  std::vector<Interval<double>> intervals;  // stability set in (0, 1), endpoints to `tol`
 };
 
 // Every canonical primitive word of length 1..max_length with its stability set (OpenMP over words,
@@ -36,8 +36,8 @@ struct FeasibleEntry {
   Word word;  // canonical, primitive
   std::vector<FeasibleInterval<double>> intervals;
 };
-std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol, int threads,
-                                                  long* words_scanned = nullptr);
+std::vector<FeasibleEntry> compute_feasible_atlas(int max_length, const std::vector<double>& grid, double tol,
+                                                  int threads, long* words_scanned = nullptr);
 // The same for the given words, in their order, words never feasible included (with no interval).
 std::vector<FeasibleEntry> compute_feasible_atlas(const std::vector<Word>& words, const std::vector<double>& grid,
                                                   double tol, int threads, const core::CancelToken* cancel = nullptr);
@@ -65,21 +65,22 @@ std::string feasible_counts_csv(const FeasibleCounts& counts);
 // reach the smallest branch margin m along the orbit (unit vectors): after about ln(m / eps) / ln(Lambda)
 // periods, which followed_prediction returns (infinity when Lambda <= 1).
 struct Followed {
-  long periods = 0;         // measured
-  double predicted = 0;     // ln(m / eps) / ln(Lambda)
-  double expansion = 0;     // Lambda per period
-  double margin = 0;        // m
+  long periods = 0;                                                                    // measured
+  double predicted = 0;                                                                // ln(m / eps) / ln(Lambda)
+  double expansion = 0;                                                                // Lambda per period
+  double margin = 0;                                                                   // m
   template <class A> void members(A& a) { a(periods, predicted, expansion, margin); }  // core/pack.hpp
 };
 template <class T> Followed follow_periodic_orbit(const Word& w, const T& r, long max_periods);
 // follow_periodic_orbit<double> at the middle of every unstable interval of the atlas (OpenMP over rows):
 // CSV word,r,expansion,margin,predicted,followed.  `checked` receives the number of rows with an expansion > 1
 // and 2 predicted + 2 < max_periods, `agree` those of them followed within [predicted / 2 - 2, 2 predicted + 2].
-std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree, long* checked);
+std::string followed_csv(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads, long* agree,
+                         long* checked);
 // Its two halves: follow_unstable gives, entry by entry, the Followed of each unstable interval in order (periods
 // -1: not feasible at the midpoint; OpenMP over all of them); followed_table writes the CSV and the counts.
-std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods, int threads,
-                                                   const core::CancelToken* cancel = nullptr);
+std::vector<std::vector<Followed>> follow_unstable(const std::vector<FeasibleEntry>& atlas, long max_periods,
+                                                   int threads, const core::CancelToken* cancel = nullptr);
 std::string followed_table(const std::vector<FeasibleEntry>& atlas, const std::vector<std::vector<Followed>>& followed,
                            long max_periods, long* agree, long* checked);
 
@@ -95,8 +96,8 @@ struct DetectionRun {
   std::vector<double> r;
   long ics = 0, iterations = 0, tail = 0;
   std::uint64_t seed = 0;
-  std::vector<long> periodic;     // per r: orbits with an eventual period
-  std::vector<Detected> found;    // sorted by r, then count (descending)
+  std::vector<long> periodic;   // per r: orbits with an eventual period
+  std::vector<Detected> found;  // sorted by r, then count (descending)
 };
 DetectionRun detect_patterns(const std::vector<double>& r, long ics, long iterations, long tail, std::uint64_t seed,
                              int max_period, int threads, const core::CancelToken* cancel = nullptr);

@@ -101,7 +101,9 @@ struct Instances {
 }  // namespace
 
 core::Work work(const WordRequest& req) {
-  const char* mode = req.mode() == WordRequest::Mode::verdict ? "verdict" : req.mode() == WordRequest::Mode::window ? "window" : "charpoly";
+  const char* mode = req.mode() == WordRequest::Mode::verdict  ? "verdict"
+                     : req.mode() == WordRequest::Mode::window ? "window"
+                                                               : "charpoly";
   const std::string word = core::abbreviate(req.word);  // a route name and a line, not the whole of a long word
   core::Work w;
   if (req.mode() == WordRequest::Mode::verdict) {
@@ -112,8 +114,10 @@ core::Work work(const WordRequest& req) {
     core::Term t;
     t.route = fmt::format("pattern verdict {} r={} {}", word, req.r, req.precision);
     t.units = 1;
-    t.what = fmt::format("verdict of the word {} ({} symbols in its primitive root; one indivisible computation, "
-                         "priced from shorter instances by the counted work of its orbit walks)", word, u.size());
+    t.what = fmt::format(
+        "verdict of the word {} ({} symbols in its primitive root; one indivisible computation, "
+        "priced from shorter instances by the counted work of its orbit walks)",
+        word, u.size());
     t.size_parameter = "word length";
     t.size = static_cast<double>(u.size());
     t.smallest = 16;
@@ -121,8 +125,8 @@ core::Work work(const WordRequest& req) {
     // separate eigenvalues that double ties: the whole (132312)^2000 1 counts 18 steps a symbol in double, 37 in long
     // double; priced from the double count, its long-double dry run predicted a quarter of the run), else in double.
     const core::Precision::Kind kind = core::parse_precision(req.precision, "precision").kind;
-    const auto instances = std::make_shared<Instances>(
-        u, req.r, kind != core::Precision::Kind::f32 && kind != core::Precision::Kind::f64);
+    const auto instances =
+        std::make_shared<Instances>(u, req.r, kind != core::Precision::Kind::f32 && kind != core::Precision::Kind::f64);
     // Each instance's work as it ran in the request's precision (its orbit walks may need more periods than in
     // double: a short prefix's eigenvalue ratio per period is moderate, and MPFR converges to its own epsilon), per
     // analysis: a fixed-size precision's verdict runs its check in the next wider type too (patterns/accuracy.hpp).

@@ -3,8 +3,8 @@
 #include "patterns/curves.hpp"
 
 #include "core/cancel.hpp"
-#include "core/fields.hpp"
 #include "core/csv.hpp"
+#include "core/fields.hpp"
 #include "iterate/parallel.hpp"
 
 #include "patterns/analysis_impl.hpp"
@@ -26,7 +26,7 @@ struct Point {
   std::array<detail::Root<L>, 3> roots;  // real ascending, then complex
   int tracked = -1;
   double dominance = std::numeric_limits<double>::quiet_NaN();
-  Vec3<L> u;  // tracked eigenvector, unit
+  Vec3<L> u;      // tracked eigenvector, unit
   L u_error = 0;  // bound on the error of u's components (detail::eigenvector_error)
 };
 
@@ -145,7 +145,8 @@ void curve_row(const Word& w, bool negative, std::size_t i, double r, CurvesResu
 
 // The roots of f between consecutive r of the grid where its sign changes (both ends finite), bisected on f down
 // to 1e-15 (a few ulps of r).  The token is polled every core::cancel_stride grid intervals.
-template <class F> std::vector<double> sign_changes(const std::vector<double>& grid, F f, const core::CancelToken* cancel) {
+template <class F>
+std::vector<double> sign_changes(const std::vector<double>& grid, F f, const core::CancelToken* cancel) {
   std::vector<double> roots;
   for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
     core::poll_cancel(cancel, static_cast<long>(i));
@@ -180,9 +181,13 @@ void critical_points(const Word& w, bool negative, CurvesResult& res, const core
     const Point pt = at(w, res.reduced, rc, negative);
     const auto i = static_cast<std::size_t>(std::upper_bound(res.r.begin(), res.r.end(), rc) - res.r.begin());
     const bool decided = i > 0 && i < res.r.size() && certain(res.r[i - 1]) && certain(res.r[i]);
-    res.critical.push_back({!decided ? "undecided in long double" : std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0" : "u_z = 0", rc});
+    res.critical.push_back({!decided                                ? "undecided in long double"
+                            : std::abs(pt.u(0)) < std::abs(pt.u(2)) ? "u_x = 0"
+                                                                    : "u_z = 0",
+                            rc});
   }
-  for (double rc : sign_changes(res.r, [&](double r) { return at(w, res.reduced, r, negative).dominance; }, cancel))
+  for (double rc : sign_changes(
+           res.r, [&](double r) { return at(w, res.reduced, r, negative).dominance; }, cancel))
     res.critical.push_back({"dominance", rc});
   for (const auto& c : res.critical) {
     res.critical_r.push_back(c.r);

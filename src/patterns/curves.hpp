@@ -24,10 +24,10 @@ namespace btob::patterns {
 //    alpha y - x < 0 < alpha y - z), and the domain quantity u_z (< 0 in the domain).  For 132312 the paper's
 //    six inequalities are u_z, (alpha y - x)(v_0), y(v_1), (alpha y - z)(v_1), (alpha y - x)(v_2), (alpha y - z)(v_2).
 struct CurvesRequest {
-  std::string word = "132312";  // a word over 1,2,3 (132312, 13223122, 132^3312^3, letters)
-  double r_min = 0.0005;        // smallest r, in (0, 1)
-  double r_max = 0.9995;        // largest r, in (r_min, 1)
-  long r_count = 2000;          // evenly spaced r values, 2 .. 1e6
+  std::string word = "132312";     // a word over 1,2,3 (132312, 13223122, 132^3312^3, letters)
+  double r_min = 0.0005;           // smallest r, in (0, 1)
+  double r_max = 0.9995;           // largest r, in (r_min, 1)
+  long r_count = 2000;             // evenly spaced r values, 2 .. 1e6
   std::string track = "dominant";  // "dominant": the real eigenvalue of largest modulus; "negative": the
                                    // negative real eigenvalue of largest modulus (lambda^real of 13223122)
 
@@ -42,17 +42,17 @@ struct CurvesRequest {
 };
 
 struct CurvesResult {
-  CurvesRequest request;  // the request, as run (validated)
-  std::string word;                 // paper notation of the primitive root
-  bool reduced = false;             // analysed through J M_h
-  std::string analysed;             // the analysed word (h or w), digits
-  std::vector<double> r;            // [n]
+  CurvesRequest request;                        // the request, as run (validated)
+  std::string word;                             // paper notation of the primitive root
+  bool reduced = false;                         // analysed through J M_h
+  std::string analysed;                         // the analysed word (h or w), digits
+  std::vector<double> r;                        // [n]
   std::vector<double> eig_re, eig_im, modulus;  // [n x 3] row-major; real roots ascending, then the complex pair
-  std::vector<double> tracked;      // [n] the tracked eigenvalue (NaN where none is real / negative)
-  std::vector<double> dominance;    // [n] (|tracked| - max |other|) / |tracked|: > 0 where it dominates
-  std::vector<double> feas;         // [n x (1 + 3 p)] row-major: u_z, then y, ay-x, ay-z of v_0 .. v_{p-1}
-  std::vector<std::string> feas_names;  // [1 + 3 p]: "u_z", "y(v0)", "ay-x(v0)", "ay-z(v0)", ...
-  std::vector<double> u_error;      // [n] bound on the error of the tracked unit eigenvector (NaN: none tracked)
+  std::vector<double> tracked;                  // [n] the tracked eigenvalue (NaN where none is real / negative)
+  std::vector<double> dominance;                // [n] (|tracked| - max |other|) / |tracked|: > 0 where it dominates
+  std::vector<double> feas;                     // [n x (1 + 3 p)] row-major: u_z, then y, ay-x, ay-z of v_0 .. v_{p-1}
+  std::vector<std::string> feas_names;          // [1 + 3 p]: "u_z", "y(v0)", "ay-x(v0)", "ay-z(v0)", ...
+  std::vector<double> u_error;         // [n] bound on the error of the tracked unit eigenvector (NaN: none tracked)
   std::vector<std::uint8_t> resolved;  // [n] 1 where u_error < 1e-3: the feasibility quantities are computed
   struct Critical {
     std::string what;  // "u_x = 0", "u_z = 0" (u leaves the domain), "dominance" (the tracked eigenvalue
@@ -60,11 +60,11 @@ struct CurvesResult {
                        // where the eigenvector is below long double's resolution)
     double r = 0;
   };
-  std::vector<Critical> critical;   // bisected to 1e-15 from the grid's sign changes
-  std::vector<double> critical_r;   // [critical]: their r
+  std::vector<Critical> critical;          // bisected to 1e-15 from the grid's sign changes
+  std::vector<double> critical_r;          // [critical]: their r
   std::vector<std::string> critical_what;  // [critical]: what changes there (Critical::what)
 
-  std::string critical_csv() const;  // what,r (16 decimals)
+  std::string critical_csv() const;                                       // what,r (16 decimals)
   core::Tables tables() const { return {{"critical", critical_csv()}}; }  // NAME_critical.csv
   void describe(core::Contents& c) const;
 };

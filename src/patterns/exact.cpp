@@ -93,7 +93,8 @@ PMat P(int s) {
   const RationalPoly one = RationalPoly::constant(1);
   switch (s) {
     case 1: return {{{rational(-1) * r, r * a, zero}, {rational(-1) * a, a * a - r, r * a}, {zero, zero, r * r}}};
-    case 2: return {{{r, rational(-1) * r * a, zero}, {a, rational(-2) * a * a + r, a}, {zero, rational(-1) * r * a, r}}};
+    case 2:
+      return {{{r, rational(-1) * r * a, zero}, {a, rational(-2) * a * a + r, a}, {zero, rational(-1) * r * a, r}}};
     default: return {{{r * r, zero, zero}, {r * a, a * a - r, rational(-1) * a}, {zero, r * a, rational(-1) * r}}};
   }
 }

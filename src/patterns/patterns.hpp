@@ -37,15 +37,15 @@ struct Word {
 // "(ab)(cb)(acb)", "abcbacb" (letters, greedy: ab -> 1, cb -> 3, acb / cab -> 2) or plain digits.
 // Throws std::invalid_argument naming `field` on an empty word, other characters or a bad exponent.
 Word parse_word(std::string_view text, const char* field = "word");
-std::string to_digits(const Word& w);   // "1322231222"
-std::string to_paper(const Word& w);    // "132^3312^3" (runs of 2 of length >= 2 and of 1, 3 of length >= 4)
-std::string to_letters(const Word& w);  // "abcbacb...": symbol 2 written acb (Section 7.3)
-int collisions(const Word& w);          // number of collisions a, b, c in one period
-Word apply_J(const Word& w);            // 1 <-> 3
+std::string to_digits(const Word& w);       // "1322231222"
+std::string to_paper(const Word& w);        // "132^3312^3" (runs of 2 of length >= 2 and of 1, 3 of length >= 4)
+std::string to_letters(const Word& w);      // "abcbacb...": symbol 2 written acb (Section 7.3)
+int collisions(const Word& w);              // number of collisions a, b, c in one period
+Word apply_J(const Word& w);                // 1 <-> 3
 Word rotate(const Word& w, std::size_t k);  // w_{k+1} ... w_p w_1 ... w_k
-Word primitive_root(const Word& w);     // shortest u with w = u^m
+Word primitive_root(const Word& w);         // shortest u with w = u^m
 bool is_primitive(const Word& w);
-Word canonical(const Word& w);          // smallest rotation of w and J(w), order 1 < 3 < 2
+Word canonical(const Word& w);  // smallest rotation of w and J(w), order 1 < 3 < 2
 // w = h J(h) (Section 7.1): then M_w = (J M_h)^2 and the reduced matrix J M_h is studied instead.
 bool is_J_square(const Word& w);
 // Every primitive canonical word of length 1..max_length (sorted by length, then canonical order).  The odometer
@@ -64,33 +64,33 @@ const char* outcome_name(Outcome o);
 
 // One eigenvalue of the analysed matrix (M_w, or J M_h when w = h J(h)), with its eigenvector when real.
 template <class T> struct EigenInfo {
-  T re{}, im{};          // eigenvalue (0 or a subnormal when it lies below T's range, inf above: see scaled_*)
+  T re{}, im{};  // eigenvalue (0 or a subnormal when it lies below T's range, inf above: see scaled_*)
   T modulus{};
   // The same eigenvalue as (scaled_re + i scaled_im) e^log_scale, scaled_modulus e^log_scale: the roots of the
   // normalised product (max entry 1) and its log-scale, finite for any word length where re, im, modulus under- or
   // overflow (a word of 10^4 symbols at r = 0.07: |mu1| ~ 1e-2300).
   T scaled_re{}, scaled_im{}, scaled_modulus{}, log_scale{};
   bool real = false;
-  Vec3<T> vector;        // unit eigenvector brought into Q = {x >= 0, z <= 0} (real eigenvalues only)
+  Vec3<T> vector;          // unit eigenvector brought into Q = {x >= 0, z <= 0} (real eigenvalues only)
   bool in_domain = false;  // x z < 0 (strictly inside the domain of P)
   bool feasible = false;   // in the domain and all p feasibility inequalities hold strictly
   int first_failure = -1;  // -1 feasible, 0 domain, k = 1..p the k-th feasibility inequality (symbol w_k)
 };
 
 template <class T> struct Verdict {
-  Word word;                       // the primitive root of the input word, which is what is analysed
+  Word word;  // the primitive root of the input word, which is what is analysed
   T r{};
-  bool reduced = false;            // analysed through J M_h (Section 7.1)
+  bool reduced = false;                // analysed through J M_h (Section 7.1)
   std::vector<EigenInfo<T>> spectrum;  // 3 entries, by decreasing modulus
   Outcome outcome = Outcome::none;
-  int orbit_eigen = -1;            // index in spectrum of the reported periodic point (-1: none)
-  std::vector<Vec3<T>> orbit;      // the p points u_0 .. u_{p-1} of the orbit (unit, in Q)
-  std::string letters;             // its collision letters (acb or cab chosen by the sign of y)
+  int orbit_eigen = -1;        // index in spectrum of the reported periodic point (-1: none)
+  std::vector<Vec3<T>> orbit;  // the p points u_0 .. u_{p-1} of the orbit (unit, in Q)
+  std::string letters;         // its collision letters (acb or cab chosen by the sign of y)
   // Projective Lyapunov exponents per iteration of P_r: log(|l2|/|l1|)/p and log(|l3|/|l1|)/p of M_w
   // (natural log; from the second exterior power, accurate even when |l2/l1| underflows).
   T lyapunov2{}, lyapunov3{};
-  std::string reason;              // why not stable: "complex", "dominance", "domain", "feasN"; "range" (undecided:
-                                   // the spectrum or the dominant eigenvector's x or z left T's range)
+  std::string reason;  // why not stable: "complex", "dominance", "domain", "feasN"; "range" (undecided:
+                       // the spectrum or the dominant eigenvector's x or z left T's range)
 };
 
 // The analysis of Section 7 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.
@@ -160,10 +160,12 @@ enum class Quantity {
   alpha_y_minus_x,  // alpha y - x with x > 0: first feasibility inequality (r_crit,132J, r_crit,1322J,5)
   dominance_gap     // (|l_tracked| - max |l_other|) / |l_tracked|        (r_crit,1322J,1 and 2)
 };
-template <class T> T quantity(const Word& w, const T& r, Track track, Quantity q, const core::CancelToken* cancel = nullptr);
+template <class T>
+T quantity(const Word& w, const T& r, Track track, Quantity q, const core::CancelToken* cancel = nullptr);
 // A root of quantity(w, ., track, q) in [lo, hi] (sign change required) by bisection down to tol.
 template <class T>
-T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol, const core::CancelToken* cancel = nullptr);
+T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol,
+                const core::CancelToken* cancel = nullptr);
 
 }  // namespace btob::patterns
 
@@ -171,14 +173,14 @@ T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol
 
 namespace btob::patterns {
 #define BTOB_PATTERNS_EXTERN(T)                                                                                \
-  extern template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                       \
-  extern template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                           \
-  extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&,  \
-                                                            const core::CancelToken*);                          \
-  extern template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);              \
-  extern template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                  \
-  extern template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&,  \
-                                                                      const T&, const core::CancelToken*);      \
+  extern template Verdict<T> analyse<T>(const Word&, const T&, const core::CancelToken*);                      \
+  extern template bool is_stable<T>(const Word&, const T&, const core::CancelToken*);                          \
+  extern template std::vector<Interval<T>> stability_set<T>(const Word&, const std::vector<double>&, const T&, \
+                                                            const core::CancelToken*);                         \
+  extern template T quantity<T>(const Word&, const T&, Track, Quantity, const core::CancelToken*);             \
+  extern template Classification classify<T>(const Word&, const T&, const core::CancelToken*);                 \
+  extern template std::vector<FeasibleInterval<T>> feasibility_set<T>(const Word&, const std::vector<double>&, \
+                                                                      const T&, const core::CancelToken*);     \
   extern template T quantity_root<T>(const Word&, T, T, Track, Quantity, const T&, const core::CancelToken*);
 BTOB_PATTERNS_EXTERN(float)
 BTOB_PATTERNS_EXTERN(double)

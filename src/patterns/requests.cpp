@@ -37,7 +37,8 @@ template <class T> T from_text(const std::string& s) {
 }
 
 template <class T>
-void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits, const core::CancelToken* cancel) {
+void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int digits,
+                  const core::CancelToken* cancel) {
   const Verdict<T> v = analyse<T>(w, from_text<T>(r_text), cancel);
   accuracy::Check chk;  // the digits printed: those the reference in the next wider type confirms (accuracy.hpp)
   chk.fill(digits);
@@ -48,7 +49,8 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
     const Verdict<H> ref = analyse<H>(w, from_text<H>(r_text), cancel);
     chk = accuracy::check(v, ref);
     ref_outcome = outcome_name(ref.outcome);
-    ref_type = std::is_same_v<H, core::mpfr_float> ? fmt::format("mpfr:{}", accuracy::mpfr_digits) : core::scalar_name<H>();
+    ref_type =
+        std::is_same_v<H, core::mpfr_float> ? fmt::format("mpfr:{}", accuracy::mpfr_digits) : core::scalar_name<H>();
   }
   const Word& u = v.word;
   res.scalar_type = core::scalar_name<T>();
@@ -61,7 +63,8 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
     const int dr = chk.re_digits[i], di = chk.im_digits[i];
     t.re = accuracy::scaled_text(e.scaled_re, e.log_scale, dr, str(e.re, dr), e.re);
     const T abs_im = e.im < 0 ? T(-e.im) : e.im;
-    t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di), abs_im);
+    t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di),
+                                 abs_im);
     if (e.im < 0) t.im = "-" + t.im;
     // |mu|/|mu1| from the normalised moduli (the same scale): never 0/0
     const T ratio = e.scaled_modulus / v.spectrum[0].scaled_modulus;
@@ -87,7 +90,8 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
   res.lyapunov3 = str(v.lyapunov3, std::max(chk.lyapunov_digits, 1));
   if (!chk.same_outcome) {  // the verdict is not the precision's to give: no orbit is vouched for either
     res.outcome = outcome_name(Outcome::undecided);
-    res.reason = fmt::format("precision: {} in {}, {} in {}", outcome_name(v.outcome), res.scalar_type, ref_outcome, ref_type);
+    res.reason =
+        fmt::format("precision: {} in {}, {} in {}", outcome_name(v.outcome), res.scalar_type, ref_outcome, ref_type);
     return;
   }
   if (v.orbit_eigen < 0) return;
@@ -164,7 +168,8 @@ void WordRequest::validate() const {
   const Word w = parse_word(word, "word");  // throws naming the field
   (void)w;
   if (window && charpoly) throw core::InvalidField("charpoly", "with --window", "one of --window, --charpoly or --r R");
-  if (charpoly && !r.empty()) throw core::InvalidField("charpoly", "with --r " + r, "no --r with --charpoly (exact in r)");
+  if (charpoly && !r.empty())
+    throw core::InvalidField("charpoly", "with --r " + r, "no --r with --charpoly (exact in r)");
   if (window && !r.empty()) throw core::InvalidField("r", r, "no --r with --window (the window is a set of r)");
   if (!window && !charpoly && r.empty())
     throw core::InvalidField("r", "nothing", "one of --r R (verdict at one r), --window or --charpoly");
@@ -305,8 +310,8 @@ void missed_table(const std::vector<double>& rs, const std::set<std::pair<double
     for (const auto& e : res.entries)
       for (const auto& iv : e.intervals)
         if (iv.lo < r && r < iv.hi && !seen.count({r, e.word})) {
-          missed.row({fmt::format("{}", r), to_paper(e.word), fmt::format("{}", e.word.size()), fmt::format("{:.17g}", iv.lo),
-                      fmt::format("{:.17g}", iv.hi)});
+          missed.row({fmt::format("{}", r), to_paper(e.word), fmt::format("{}", e.word.size()),
+                      fmt::format("{:.17g}", iv.lo), fmt::format("{:.17g}", iv.hi)});
           res.missed_entries.r.push_back(r);
           res.missed_entries.word.push_back(to_paper(e.word));
           res.missed_entries.symbols.push_back(static_cast<double>(e.word.size()));
@@ -379,7 +384,7 @@ void feasible_atlas(AtlasResult& res, const std::vector<std::vector<Followed>>& 
   res.counts = feasible_counts(res.feasible_entries, rs);
   res.csv.emplace_back("counts", feasible_counts_csv(res.counts));
   res.csv.emplace_back("unstable_followed", followed_table(res.feasible_entries, followed, followed_max_periods,
-                                                          &res.followed_agree, &res.followed_checked));
+                                                           &res.followed_agree, &res.followed_checked));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -421,7 +426,8 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
   part.items = items;
   auto t0 = std::chrono::steady_clock::now();
   if (!req.feasible) {
-    for (auto& e : compute_atlas(words, default_grid(), stable_tol, control.threads, control.cancel)) part.stable.push_back(std::move(e.intervals));
+    for (auto& e : compute_atlas(words, default_grid(), stable_tol, control.threads, control.cancel))
+      part.stable.push_back(std::move(e.intervals));
   } else {
     const std::vector<FeasibleEntry> f =
         compute_feasible_atlas(words, feasible_grid(), feasible_tol, control.threads, control.cancel);
@@ -437,7 +443,8 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
     part.periodic = d.periodic;
     part.found.resize(rs.size());
     for (const auto& f : d.found)  // sorted by r in the order of rs
-      part.found[static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin())].emplace_back(f.word, f.count);
+      part.found[static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin())].emplace_back(f.word,
+                                                                                                           f.count);
     part.check_seconds = seconds_since(t0);
   }
   core::check_cancel(control.cancel);
@@ -451,8 +458,8 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
   // A part's items are ascending, words first: its r items follow its `words` word items.
   std::vector<std::size_t> words_in(parts.size(), 0);
   for (std::size_t p = 0; p < parts.size(); ++p)
-    words_in[p] = static_cast<std::size_t>(std::count_if(parts[p].items.begin(), parts[p].items.end(),
-                                                         [&](std::size_t i) { return i < W; }));
+    words_in[p] = static_cast<std::size_t>(
+        std::count_if(parts[p].items.begin(), parts[p].items.end(), [&](std::size_t i) { return i < W; }));
   AtlasResult res;
   res.request = req;
   res.feasible = req.feasible;
@@ -504,17 +511,19 @@ AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
 
 std::string AtlasResult::summary() const {
   if (feasible)
-    return fmt::format("feasible atlas of {} canonical primitive words: {} feasible for some r ({} stable somewhere, {} only "
-                       "unstable) ({:.1f} s); unstable orbits followed by the map in double from their periodic point: {} "
-                       "of {} within a factor 2 (+-2 periods) of ln(margin/eps)/ln(expansion)",
-                       words_scanned, feasible_entries.size(), stable_words, unstable_only_words, atlas_seconds,
-                       followed_agree, followed_checked);
-  std::string s = fmt::format("atlas of {} canonical primitive words: {} with a stability window ({:.1f} s)", words_scanned,
-                              stable_words, atlas_seconds);
+    return fmt::format(
+        "feasible atlas of {} canonical primitive words: {} feasible for some r ({} stable somewhere, {} only "
+        "unstable) ({:.1f} s); unstable orbits followed by the map in double from their periodic point: {} "
+        "of {} within a factor 2 (+-2 periods) of ln(margin/eps)/ln(expansion)",
+        words_scanned, feasible_entries.size(), stable_words, unstable_only_words, atlas_seconds, followed_agree,
+        followed_checked);
+  std::string s = fmt::format("atlas of {} canonical primitive words: {} with a stability window ({:.1f} s)",
+                              words_scanned, stable_words, atlas_seconds);
   if (checked)
-    s += fmt::format("; iterator check at {} r values: {} (r, pattern) pairs, {} not stable in the analysis, {} "
-                     "quasi-periodic (neutral period matrix), {} stable atlas entries not reached ({:.1f} s)",
-                     table_6_1_r().size(), detected, disagreements, quasi_periodic, missed, check_seconds);
+    s += fmt::format(
+        "; iterator check at {} r values: {} (r, pattern) pairs, {} not stable in the analysis, {} "
+        "quasi-periodic (neutral period matrix), {} stable atlas entries not reached ({:.1f} s)",
+        table_6_1_r().size(), detected, disagreements, quasi_periodic, missed, check_seconds);
   return s;
 }
 
@@ -553,7 +562,8 @@ void AtlasResult::describe(core::Contents& c) const {
   c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the intervals in r (all words, CSV order)");
   c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the intervals in r");
   c.array("symbols", symbols, {symbols.size()}, "interval", "symbols", "length of the interval's word");
-  c.array("stable", stable, {stable.size()}, "interval", "1", "1: a stable periodic orbit on the interval, 0: unstable");
+  c.array("stable", stable, {stable.size()}, "interval", "1",
+          "1: a stable periodic orbit on the interval, 0: unstable");
   c.text("word", word, "interval", "word", "the interval's word in the paper's notation (e.g. 132^3312^3)");
   c.text("low_reason", low_reason, "interval", "text", "what begins the interval at r_low (the analysis's words)");
   c.text("high_reason", high_reason, "interval", "text", "what ends the interval at r_high");

@@ -24,7 +24,7 @@ struct WordRequest {
   std::string r;                     // decimal text, read in the precision (exact to its digits): verdict mode
   std::string precision = "double";  // verdict: float, double, long-double, float128, mpfr:D; window: mpfr:D
   bool window = false, charpoly = false;
-  long digits = 0;                   // window: digits of the endpoints, 5..1000 (> 15 computes in MPFR); 0: 17
+  long digits = 0;  // window: digits of the endpoints, 5..1000 (> 15 computes in MPFR); 0: 17
 
   enum class Mode { verdict, window, charpoly };
   Mode mode() const { return charpoly ? Mode::charpoly : window ? Mode::window : Mode::verdict; }
@@ -41,7 +41,7 @@ struct WordRequest {
 
 // One eigenvalue of the period matrix, as text in the precision's digits.
 struct EigenText {
-  std::string re, im, ratio;          // ratio: |l| / |l1|
+  std::string re, im, ratio;  // ratio: |l| / |l1|
   bool real = false, in_domain = false, feasible = false;
   int first_failure = -1;             // -1 feasible, 0 domain, k: the k-th feasibility inequality
   int failing_symbol = 0;             // the symbol of that inequality
@@ -49,17 +49,18 @@ struct EigenText {
 };
 
 struct WordResult {
-  WordRequest::Mode mode = WordRequest::Mode::verdict;  // what was computed: the verdict at r, the stability window, or the characteristic polynomial
-  std::string scalar_type;            // the type the numbers were computed in
+  WordRequest::Mode mode = WordRequest::Mode::verdict;  // what was computed: the verdict at r, the stability window, or
+                                                        // the characteristic polynomial
+  std::string scalar_type;                              // the type the numbers were computed in
   Word word, primitive;  // the word as given and its primitive root (the shortest period)
   // verdict
-  std::string r;                      // r as the precision holds it
-  bool reduced = false;               // analysed through J M_h (Section 7.1)
-  std::vector<EigenText> spectrum;    // by decreasing modulus
-  std::string outcome, reason;        // stable / unstable / neutral / undecided / none; why not stable
-  std::string lyapunov2, lyapunov3;   // the orbit's exponents lambda1 >= lambda2 along its tangent directions,
-                                      // log(|mu_j|/|mu_k|)/p (natural log, per iteration; patterns::Verdict)
-  std::string letters;                // collision letters of the periodic orbit (when there is one)
+  std::string r;                     // r as the precision holds it
+  bool reduced = false;              // analysed through J M_h (Section 7.1)
+  std::vector<EigenText> spectrum;   // by decreasing modulus
+  std::string outcome, reason;       // stable / unstable / neutral / undecided / none; why not stable
+  std::string lyapunov2, lyapunov3;  // the orbit's exponents lambda1 >= lambda2 along its tangent directions,
+                                     // log(|mu_j|/|mu_k|)/p (natural log, per iteration; patterns::Verdict)
+  std::string letters;               // collision letters of the periodic orbit (when there is one)
   std::vector<std::array<std::string, 7>> orbit;  // k-th point: x y z theta w1 w2 (text) and its symbol first
   std::vector<double> eigen_re, eigen_im, eigen_modulus, orbit_xyz;  // numeric views [3], [3], [3], [p, 3]
   // The same numbers as decimals with the precision's digits (NAME.h5 and Python, beside the doubles): [3], [3],
@@ -67,16 +68,17 @@ struct WordResult {
   std::vector<std::string> eigen_re_decimal, eigen_im_decimal, exponents_decimal, orbit_decimal;
   // window
   std::vector<std::array<std::string, 4>> intervals;  // r_low, r_high, low_reason, high_reason
-  std::vector<double> r_low, r_high;  // window: each interval's ends as doubles (the decimals are r_low_decimal, r_high_decimal)
+  std::vector<double> r_low,
+      r_high;  // window: each interval's ends as doubles (the decimals are r_low_decimal, r_high_decimal)
   std::vector<std::string> r_low_decimal, r_high_decimal, low_reason, high_reason;  // the columns of intervals
   std::string window_tol;  // the bisection's tolerance in r (decimal text)
   int window_digits = 0;   // significant digits of the printed ends
   // charpoly: chi(lambda) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r
   std::string c2, c1, c0, discriminant;
 
-  std::string text() const;           // what the command line prints
-  std::string window_csv() const;     // word,r_low,r_high,low_reason,high_reason,status
-  core::Tables tables() const;        // window mode: NAME.csv (window_csv); none otherwise
+  std::string text() const;        // what the command line prints
+  std::string window_csv() const;  // word,r_low,r_high,low_reason,high_reason,status
+  core::Tables tables() const;     // window mode: NAME.csv (window_csv); none otherwise
   void describe(core::Contents& c) const;
   void describe_window(core::Contents& c) const;
   void describe_verdict_decimals(core::Contents& c) const;
@@ -121,22 +123,28 @@ struct AtlasRequest {
 };
 
 struct AtlasResult {
-  AtlasRequest request;                    // what was computed (its lengths and check sizes go to the attributes)
+  AtlasRequest request;   // what was computed (its lengths and check sizes go to the attributes)
   bool feasible = false;  // the request's mode: every feasible periodic orbit (true) or the stable atlas (false)
-  double tol = 0;                          // bisection width in r
-  long grid_points = 0;  // r values of the scan's grid
-  std::vector<AtlasEntry> entries;         // stable atlas
-  std::vector<FeasibleEntry> feasible_entries;  // feasible atlas: every feasible periodic orbit's interval, stable or not
-  long words_scanned = 0, stable_words = 0, unstable_only_words = 0;  // words scanned; of them, stable somewhere, and feasible but never stable
-  long followed_checked = 0, followed_agree = 0;  // feasible atlas: unstable orbits followed by the map with a predicted escape time, and of them those that escaped within [predicted / 2 - 2, 2 predicted + 2] periods
-  bool checked = false;                    // the iterator check ran
-  long detected = 0, disagreements = 0, quasi_periodic = 0, missed = 0;  // the iterator check's counts: periodic orbits detected, detections the atlas does not confirm, quasi-periodic orbits, atlas windows it missed
+  double tol = 0;         // bisection width in r
+  long grid_points = 0;   // r values of the scan's grid
+  std::vector<AtlasEntry> entries;  // stable atlas
+  std::vector<FeasibleEntry>
+      feasible_entries;  // feasible atlas: every feasible periodic orbit's interval, stable or not
+  long words_scanned = 0, stable_words = 0,
+       unstable_only_words = 0;  // words scanned; of them, stable somewhere, and feasible but never stable
+  long followed_checked = 0,
+       followed_agree = 0;  // feasible atlas: unstable orbits followed by the map with a predicted escape time, and of
+                            // them those that escaped within [predicted / 2 - 2, 2 predicted + 2] periods
+  bool checked = false;     // the iterator check ran
+  long detected = 0, disagreements = 0, quasi_periodic = 0,
+       missed = 0;  // the iterator check's counts: periodic orbits detected, detections the atlas does not confirm,
+                    // quasi-periodic orbits, atlas windows it missed
   double atlas_seconds = 0, check_seconds = 0;  // wall times of the atlas and of the iterator check, seconds
-  core::Tables csv;  // (role, content) in writing order: NAME.csv, NAME_detected.csv, ...
-  std::vector<double> r_low, r_high, symbols;             // one row per interval (stable atlas; feasible: all)
-  std::vector<std::uint8_t> stable;                       // per row: 1 stable, 0 unstable (feasible atlas)
-  std::vector<std::string> word;                          // per row: the word, paper notation
-  std::vector<std::string> low_reason, high_reason;       // per row: what begins / ends the interval (CSV columns)
+  core::Tables csv;                             // (role, content) in writing order: NAME.csv, NAME_detected.csv, ...
+  std::vector<double> r_low, r_high, symbols;   // one row per interval (stable atlas; feasible: all)
+  std::vector<std::uint8_t> stable;             // per row: 1 stable, 0 unstable (feasible atlas)
+  std::vector<std::string> word;                // per row: the word, paper notation
+  std::vector<std::string> low_reason, high_reason;  // per row: what begins / ends the interval (CSV columns)
   // The iterator check's tables as arrays (NAME_detected.csv, NAME_long_windows.csv, NAME_missed.csv: the same
   // rows and values), and the feasible atlas's counts (NAME_counts.csv), so that NAME.h5 holds every table.
   struct Detections {
@@ -155,7 +163,7 @@ struct AtlasResult {
   FeasibleCounts counts;  // feasible atlas: the counts of NAME_counts.csv
 
   core::Tables tables() const { return csv; }
-  std::string summary() const;             // the lines the command line prints
+  std::string summary() const;  // the lines the command line prints
   void describe(core::Contents& c) const;
   void describe_check(core::Contents& c) const;  // the iterator check's datasets (describe calls it)
 };
@@ -169,9 +177,12 @@ struct AtlasPart {
   std::vector<long> periodic;                                   // per r: orbits with an eventual period
   std::vector<std::vector<std::pair<Word, long>>> found;        // per r: patterns and counts, as detect_patterns
   double atlas_seconds = 0, check_seconds = 0;
-  template <class A> void members(A& a) { a(items, stable, feasible, followed, periodic, found, atlas_seconds, check_seconds); }
+  template <class A> void members(A& a) {
+    a(items, stable, feasible, followed, periodic, found, atlas_seconds, check_seconds);
+  }
 };
-AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items,
+                   const core::RunControl& control = {});
 // The tables and counts of the whole atlas from its parts (the check's status column, the stability sets of the
 // found patterns longer than max-length and the missed entries are derived here, on one process); the seconds
 // are the parts' summed.

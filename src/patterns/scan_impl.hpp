@@ -45,13 +45,15 @@ T quantity_root(const Word& w, T lo, T hi, Track track, Quantity q, const T& tol
   T flo = quantity(w, lo, track, q, cancel);
   const T fhi = quantity(w, hi, track, q, cancel);
   if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
-    throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]", static_cast<double>(lo),
-                                        static_cast<double>(hi)));
+    throw std::domain_error(fmt::format("bracket: got no sign change of the quantity on [{}, {}]",
+                                        static_cast<double>(lo), static_cast<double>(hi)));
   for (int it = 0; it < 100000 && hi - lo > tol; ++it) {
     const T mid = (lo + hi) / 2;
     const T fm = quantity(w, mid, track, q, cancel);
-    if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; }
-    else hi = mid;
+    if ((fm < 0) == (flo < 0)) {
+      lo = mid;
+      flo = fm;
+    } else hi = mid;
   }
   return (lo + hi) / 2;
 }
@@ -107,9 +109,15 @@ template <class T, class V, class Eval, class Empty> struct Refiner {
     while (!todo.empty()) {
       auto [a, b] = std::move(todo.back());
       todo.pop_back();
-      if (!(abs_<T>(T(b.r - a.r)) > tol)) { at.push_back(a.r); continue; }
+      if (!(abs_<T>(T(b.r - a.r)) > tol)) {
+        at.push_back(a.r);
+        continue;
+      }
       ScanSample<T, V> m = eval(T((a.r + b.r) / 2));
-      if (!empty(m.value)) { found.push_back(std::move(m)); continue; }
+      if (!empty(m.value)) {
+        found.push_back(std::move(m));
+        continue;
+      }
       if (a.sig != m.sig) todo.emplace_back(a, m);
       if (m.sig != b.sig) todo.emplace_back(m, b);
     }
@@ -117,7 +125,10 @@ template <class T, class V, class Eval, class Empty> struct Refiner {
       for (int side : {1, -1})
         for (T d = 2 * tol; side > 0 ? e + d < b0.r : e - d > a0.r; d *= 2) {
           ScanSample<T, V> m = eval(T(e + side * d));
-          if (!empty(m.value)) { found.push_back(std::move(m)); break; }
+          if (!empty(m.value)) {
+            found.push_back(std::move(m));
+            break;
+          }
         }
   }
   bool event(const ScanSample<T, V>& a, const ScanSample<T, V>& b) const {
@@ -132,13 +143,19 @@ template <class T, class V, class Eval, class Empty> struct Refiner {
     const bool cut = depth < 3 && (depth == 0 || 2 * with_events < g.size());
     for (std::size_t i = 0; i + 1 < g.size(); ++i) {
       if (!empty(g[i].value) || !empty(g[i + 1].value)) continue;
-      if (event(g[i], g[i + 1])) { events(g[i], g[i + 1]); continue; }
+      if (event(g[i], g[i + 1])) {
+        events(g[i], g[i + 1]);
+        continue;
+      }
       const bool near = (i > 0 && event(g[i - 1], g[i])) || (i + 2 < g.size() && event(g[i + 1], g[i + 2]));
       if (!cut || !near || !(abs_<T>(T(g[i + 1].r - g[i].r)) > 16 * tol)) continue;
       std::vector<ScanSample<T, V>> sub{g[i]};
       for (int k = 1; k < 16; ++k) {
         sub.push_back(eval(T(g[i].r + (g[i + 1].r - g[i].r) * k / 16)));
-        if (!empty(sub.back().value)) { found.push_back(sub.back()); break; }
+        if (!empty(sub.back().value)) {
+          found.push_back(sub.back());
+          break;
+        }
       }
       if (!empty(sub.back().value)) continue;
       sub.push_back(g[i + 1]);
@@ -186,14 +203,21 @@ std::vector<Interval<T>> stability_set(const Word& w0, const std::vector<double>
   };
   std::vector<Interval<T>> out;
   for (std::size_t i = 0; i < st.size();) {
-    if (!st[i].value) { ++i; continue; }
+    if (!st[i].value) {
+      ++i;
+      continue;
+    }
     std::size_t j = i;
     while (j + 1 < st.size() && st[j + 1].value) ++j;
     Interval<T> iv;
-    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
-    else std::tie(iv.lo, iv.lo_reason) = refine(st[i].r, st[i - 1].r);
-    if (j + 1 == st.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
-    else std::tie(iv.hi, iv.hi_reason) = refine(st[j].r, st[j + 1].r);
+    if (i == 0) {
+      iv.lo = T(0);
+      iv.lo_reason = "end";
+    } else std::tie(iv.lo, iv.lo_reason) = refine(st[i].r, st[i - 1].r);
+    if (j + 1 == st.size()) {
+      iv.hi = T(1);
+      iv.hi_reason = "end";
+    } else std::tie(iv.hi, iv.hi_reason) = refine(st[j].r, st[j + 1].r);
     out.push_back(iv);
     i = j + 1;
   }
@@ -212,9 +236,8 @@ std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vect
     const Spectrum<T> s = spectrum(w, r, red, cancel);
     return Sample{r, classify_of<T>(w, r, s, red, cancel), spectral_signature(s)};
   };
-  const std::vector<Sample> o =
-      scan_samples<T, Classification>(grid, tol, eval,
-                                      [](const Classification& c) { return c.outcome == Outcome::none; });
+  const std::vector<Sample> o = scan_samples<T, Classification>(
+      grid, tol, eval, [](const Classification& c) { return c.outcome == Outcome::none; });
   // Bisects between a (classification ca) and b (another one); returns the endpoint and b's name.
   const auto refine = [&](T a, T b, const Classification& ca) {
     for (int it = 0; it < 100000 && abs_<T>(T(b - a)) > tol; ++it) {
@@ -226,16 +249,23 @@ std::vector<FeasibleInterval<T>> feasibility_set(const Word& w0, const std::vect
   };
   std::vector<FeasibleInterval<T>> out;
   for (std::size_t i = 0; i < o.size();) {
-    if (o[i].value.outcome == Outcome::none) { ++i; continue; }
+    if (o[i].value.outcome == Outcome::none) {
+      ++i;
+      continue;
+    }
     std::size_t j = i;
     while (j + 1 < o.size() && o[j + 1].value == o[i].value) ++j;
     FeasibleInterval<T> iv;
     iv.outcome = o[i].value.outcome;
     iv.collapse = o[i].value.collapse;
-    if (i == 0) { iv.lo = T(0); iv.lo_reason = "end"; }
-    else std::tie(iv.lo, iv.lo_reason) = refine(o[i].r, o[i - 1].r, o[i].value);
-    if (j + 1 == o.size()) { iv.hi = T(1); iv.hi_reason = "end"; }
-    else std::tie(iv.hi, iv.hi_reason) = refine(o[j].r, o[j + 1].r, o[i].value);
+    if (i == 0) {
+      iv.lo = T(0);
+      iv.lo_reason = "end";
+    } else std::tie(iv.lo, iv.lo_reason) = refine(o[i].r, o[i - 1].r, o[i].value);
+    if (j + 1 == o.size()) {
+      iv.hi = T(1);
+      iv.hi_reason = "end";
+    } else std::tie(iv.hi, iv.hi_reason) = refine(o[j].r, o[j + 1].r, o[i].value);
     out.push_back(iv);
     i = j + 1;
   }

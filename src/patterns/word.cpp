@@ -52,14 +52,16 @@ std::size_t min_rotation(const Word& w) {
 // core::InvalidField "<field>: got '<text>', <what is wrong>; expected <...>" (the request API's one error type).
 [[noreturn]] void bad(const char* field, std::string_view text, const std::string& what) {
   const auto cut = what.rfind("expected ", 0) == 0 ? 0 : what.find("; expected ");
-  const std::string got = fmt::format("'{}'", text) + (cut == 0 ? "" : ", " + what.substr(0, cut == std::string::npos ? what.size() : cut));
+  const std::string got =
+      fmt::format("'{}'", text) + (cut == 0 ? "" : ", " + what.substr(0, cut == std::string::npos ? what.size() : cut));
   std::string trimmed = got;
   while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == ';')) trimmed.pop_back();
-  throw core::InvalidField(field, trimmed,
-                           cut == std::string::npos ? "a word over 1, 2, 3" : what.substr(what.find("expected ", cut) + 9));
+  throw core::InvalidField(
+      field, trimmed, cut == std::string::npos ? "a word over 1, 2, 3" : what.substr(what.find("expected ", cut) + 9));
 }
 
-constexpr const char* kExpectedWord = "expected a word over 1, 2, 3 such as 132312, 132^3312^3, (ab)(cb)(acb) or abcbacb";
+constexpr const char* kExpectedWord =
+    "expected a word over 1, 2, 3 such as 132312, 132^3312^3, (ab)(cb)(acb) or abcbacb";
 
 // The paper's notation read left to right: units (a symbol, a group in parentheses, or letters), each with an
 // optional exponent; spaces and dots are skipped.  Errors are core::InvalidField naming `field`.
@@ -72,9 +74,18 @@ struct WordReader {
 
   // Greedy letter parsing at k: ab -> 1, cb -> 3, acb / cab -> 2; false when none starts there.
   bool letters_at(std::size_t& k, std::vector<std::uint8_t>& out) const {
-    if (at(k) == 'a' && at(k + 1) == 'b') { out.push_back(1); k += 2; return true; }
-    if (at(k) == 'c' && at(k + 1) == 'b') { out.push_back(3); k += 2; return true; }
-    if ((at(k) == 'a' && at(k + 1) == 'c' && at(k + 2) == 'b') || (at(k) == 'c' && at(k + 1) == 'a' && at(k + 2) == 'b')) {
+    if (at(k) == 'a' && at(k + 1) == 'b') {
+      out.push_back(1);
+      k += 2;
+      return true;
+    }
+    if (at(k) == 'c' && at(k + 1) == 'b') {
+      out.push_back(3);
+      k += 2;
+      return true;
+    }
+    if ((at(k) == 'a' && at(k + 1) == 'c' && at(k + 2) == 'b') ||
+        (at(k) == 'c' && at(k + 1) == 'a' && at(k + 2) == 'b')) {
       out.push_back(2);
       k += 3;
       return true;
@@ -109,7 +120,8 @@ struct WordReader {
     } else if (c == ' ' || c == '.') {
       ++i;
     } else if (c == 'a' || c == 'c') {
-      if (!letters_at(i, unit)) bad(field, text, fmt::format("letters at position {} that are not ab, cb, acb or cab", i + 1));
+      if (!letters_at(i, unit))
+        bad(field, text, fmt::format("letters at position {} that are not ab, cb, acb or cab", i + 1));
     } else {
       bad(field, text, fmt::format("unexpected '{}' at position {}; {}", c, i + 1, kExpectedWord));
     }
@@ -127,7 +139,8 @@ struct WordReader {
     if (end < text.size() && text[end] == '^' && len >= 2) {
       const std::size_t last = text.rfind('^');
       std::string_view tail = text.substr(last + 1);
-      if (!tail.empty() && tail.front() == '{') tail = tail.substr(1, tail.find('}') == std::string_view::npos ? 0 : tail.find('}') - 1);
+      if (!tail.empty() && tail.front() == '{')
+        tail = tail.substr(1, tail.find('}') == std::string_view::npos ? 0 : tail.find('}') - 1);
       const std::string_view run = text.substr(i, len);
       len = (!tail.empty() && tail.size() < len && run.substr(0, tail.size()) == tail) ? tail.size() : len - 1;
     }
@@ -151,7 +164,10 @@ struct WordReader {
     }
     long times = 0;
     for (char d : e) {
-      if (d < '0' || d > '9' || times > 100000) { times = -1; break; }
+      if (d < '0' || d > '9' || times > 100000) {
+        times = -1;
+        break;
+      }
       times = times * 10 + (d - '0');
     }
     if (e.empty() || times < 1 || times > 10000) bad(field, text, "an exponent that is not an integer in 1..10000");
@@ -173,7 +189,8 @@ Word parse_word(std::string_view text, const char* field) {
     for (long t = 0; t < times; ++t) w.s.insert(w.s.end(), unit.begin(), unit.end());
     if (w.size() > 100000) bad(field, text, "a word longer than 100000 symbols");
   }
-  if (w.s.empty()) bad(field, text, std::string("no symbol (only spaces or dots); ") + kExpectedWord);  // " " gave an empty word
+  if (w.s.empty())
+    bad(field, text, std::string("no symbol (only spaces or dots); ") + kExpectedWord);  // " " gave an empty word
   return w;
 }
 
@@ -277,8 +294,7 @@ std::vector<Word> enumerate_canonical_uncached(int max_length, const core::Cance
 }  // namespace
 
 std::vector<Word> enumerate_canonical(int max_length, const core::CancelToken* cancel) {
-  if (max_length < 1 || max_length > 18)
-    throw core::InvalidField("max-length", fmt::format("{}", max_length), "1..18");
+  if (max_length < 1 || max_length > 18) throw core::InvalidField("max-length", fmt::format("{}", max_length), "1..18");
   {
     const std::lock_guard<std::mutex> lock(canonical_mutex);
     if (const auto it = canonical_lists().find(max_length); it != canonical_lists().end()) return it->second;

@@ -52,14 +52,20 @@ void WordResult::describe_window(core::Contents& c) const {
   const std::size_t N = r_low.size();
   const core::Status st = window_status(*this);
   c.attr("mode", std::string("window"));
-  c.array("r_low", r_low, {N}, "interval", "1", "lower ends of the stability intervals in r (double view of r_low_decimal)");
-  c.array("r_high", r_high, {N}, "interval", "1", "upper ends of the stability intervals in r (double view of r_high_decimal)");
-  c.decimal("r_low_decimal", r_low_decimal, "interval", "1", "lower ends of the stability intervals, the digits computed", st);
-  c.decimal("r_high_decimal", r_high_decimal, "interval", "1", "upper ends of the stability intervals, the digits computed", st);
+  c.array("r_low", r_low, {N}, "interval", "1",
+          "lower ends of the stability intervals in r (double view of r_low_decimal)");
+  c.array("r_high", r_high, {N}, "interval", "1",
+          "upper ends of the stability intervals in r (double view of r_high_decimal)");
+  c.decimal("r_low_decimal", r_low_decimal, "interval", "1",
+            "lower ends of the stability intervals, the digits computed", st);
+  c.decimal("r_high_decimal", r_high_decimal, "interval", "1",
+            "upper ends of the stability intervals, the digits computed", st);
   c.status_of("r_low", st);
   c.status_of("r_high", st);
-  c.text("low_reason", low_reason, "interval", "reason", "what begins the interval at r_low (docs/reference/numbers.md)");
-  c.text("high_reason", high_reason, "interval", "reason", "what ends the interval at r_high (docs/reference/numbers.md)");
+  c.text("low_reason", low_reason, "interval", "reason",
+         "what begins the interval at r_low (docs/reference/numbers.md)");
+  c.text("high_reason", high_reason, "interval", "reason",
+         "what ends the interval at r_high (docs/reference/numbers.md)");
   c.attr("window_tol", window_tol);
   c.attr("window_digits", static_cast<long>(window_digits));
 }
@@ -69,11 +75,13 @@ void WordResult::describe_verdict_decimals(core::Contents& c) const {
   const core::Status st = verdict_status(*this);
   c.decimal("eigen_re_decimal", eigen_re_decimal, "eigenvalue (decreasing modulus)", "1",
             "real parts of the period matrix's eigenvalues, the digits computed", st);
-  c.decimal("eigen_im_decimal", eigen_im_decimal, "eigenvalue (decreasing modulus)", "1", "imaginary parts, the digits computed", st);
+  c.decimal("eigen_im_decimal", eigen_im_decimal, "eigenvalue (decreasing modulus)", "1",
+            "imaginary parts, the digits computed", st);
   c.decimal("exponents_decimal", exponents_decimal, "exponent (lambda1, lambda2)", "1/iteration (natural log)",
             "the orbit's projective exponents lambda1 >= lambda2 (empty without a periodic orbit)", st);
   c.decimal("orbit_decimal", orbit_decimal, "coordinate (x, y, z of u_0, then u_1, ...)", "1",
-            "the periodic orbit's points, flattened point-major, the digits computed (empty without a periodic point)", st);
+            "the periodic orbit's points, flattened point-major, the digits computed (empty without a periodic point)",
+            st);
   for (const char* name : {"eigen_re", "eigen_im", "eigen_modulus", "orbit"}) c.status_of(name, st);
 }
 
@@ -87,7 +95,8 @@ std::string WordResult::text() const {
           "chi(lambda) = det(lambda I - A) = lambda^3 + c2 lambda^2 + c1 lambda + c0, exact in r:\n"
           "c2            {}\nc1            {}\nc0            {}\ndiscriminant  {}\n"
           "              (the paper's sign: (q/2)^2 + (p/3)^3 of the depressed cubic; < 0: three real roots)\n",
-          to_paper(word), word.size(), reduced ? "A = J M_h, M_w = A^2 (w = h J(h))" : "A = M_w", c2, c1, c0, discriminant);
+          to_paper(word), word.size(), reduced ? "A = J M_h, M_w = A^2 (w = h J(h))" : "A = M_w", c2, c1, c0,
+          discriminant);
   }
   return {};
 }

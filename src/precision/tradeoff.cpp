@@ -57,7 +57,8 @@ void TradeoffRequest::validate() const {
   for (double v : r) core::require_r(v, "r-values");
   if (window_n.empty()) throw core::InvalidField("window-n", "no value", "one or more integers 2..400");
   for (double n : window_n)
-    if (!(n >= 2 && n <= 400 && n == std::floor(n))) throw core::InvalidField("window-n", fmt::format("{}", n), "2..400");
+    if (!(n >= 2 && n <= 400 && n == std::floor(n)))
+      throw core::InvalidField("window-n", fmt::format("{}", n), "2..400");
 }
 
 namespace {
@@ -199,7 +200,7 @@ struct Method {
   SymFn sym;
   std::function<double(const Ensemble&, long, const RunOptions&)> rate;
   std::function<Trace(const Ensemble&, long, const RunOptions&)> tr;
-  std::function<double()> lyapunov;  // empty for trig
+  std::function<double()> lyapunov;               // empty for trig
   std::function<double()> lyapunov_near_neutral;  // empty for trig
 };
 
@@ -214,8 +215,13 @@ Method mpfr_method(int d) {
       return f(args...);
     };
   };
-  return {fmt::format("linear/mpfr:{}", d), d, at(symbols<mpfr_float>), at(throughput<mpfr_float>),
-          at(trace<mpfr_float>), at(lyapunov_error<mpfr_float>), at(lyapunov_error_near_neutral<mpfr_float>)};
+  return {fmt::format("linear/mpfr:{}", d),
+          d,
+          at(symbols<mpfr_float>),
+          at(throughput<mpfr_float>),
+          at(trace<mpfr_float>),
+          at(lyapunov_error<mpfr_float>),
+          at(lyapunov_error_near_neutral<mpfr_float>)};
 }
 
 // The row of one method: agreement with the reference per r, throughput, window test, Lyapunov error.
@@ -256,7 +262,8 @@ TradeoffRow measure(const Method& m, const TradeoffRequest& req, const Ensemble&
   row.rate = m.rate(w, m.digits > 34 ? 200 : 2000, ro);
   row.n_max = m.name.starts_with("trig") ? -1 : window_n_max(m.sym, window_n, ro);
   row.lyapunov_error = m.lyapunov ? m.lyapunov() : std::numeric_limits<double>::quiet_NaN();
-  row.lyapunov_near_neutral = m.lyapunov_near_neutral ? m.lyapunov_near_neutral() : std::numeric_limits<double>::quiet_NaN();
+  row.lyapunov_near_neutral =
+      m.lyapunov_near_neutral ? m.lyapunov_near_neutral() : std::numeric_limits<double>::quiet_NaN();
   return row;
 }
 
@@ -353,9 +360,10 @@ std::string TradeoffResult::notes(const TradeoffRequest& req) {
       "matrix in 60-digit MPFR (exponents are reported in double: 0 means below the double resolution, ~1e-16); "
       "lyapunov_error_near_neutral: the same on the weakly contracting sink 312^150 (period 152, lambda1 = -0.0116) at "
       "r = 0.171599 from the Section 4 grid's first point, 4e5 steps after 1e5, whatever the orbit does. ";
-  s += fmt::format("orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
-                   "the middle of window n, 20000+400n iterations, n in [{}]",
-                   req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "));
+  s += fmt::format(
+      "orbits={} random:{} seed={} iterations={} window test: 8 orbits of the Section 4 grid at "
+      "the middle of window n, 20000+400n iterations, n in [{}]",
+      req.orbits, req.orbits, req.seed, req.iterations, fmt::join(req.window_n, " "));
   return s;
 }
 
@@ -367,9 +375,11 @@ std::string TradeoffResult::csv() const {
     std::string s = fmt::format("{},{},{:.4g}", row.method, row.digits, row.rate);
     for (std::size_t i = 0; i < row.agree_min.size(); ++i)
       s += fmt::format(",{},{},{:.3g}", row.agree_min[i], row.agree_median[i], row.error_median[i]);
-    t.line(s + fmt::format(",{},{}", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
-                           std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error)) +
-           (std::isnan(row.lyapunov_near_neutral) ? std::string(",") : fmt::format(",{:.3g}", row.lyapunov_near_neutral)));
+    t.line(
+        s +
+        fmt::format(",{},{}", row.n_max < 0 ? std::string("") : std::to_string(row.n_max),
+                    std::isnan(row.lyapunov_error) ? std::string("") : fmt::format("{:.3g}", row.lyapunov_error)) +
+        (std::isnan(row.lyapunov_near_neutral) ? std::string(",") : fmt::format(",{:.3g}", row.lyapunov_near_neutral)));
   }
   return t.text();
 }

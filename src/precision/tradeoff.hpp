@@ -22,7 +22,7 @@ struct TradeoffRequest {
   long iterations = 3000;                              // symbols compared per orbit, 10..1000000
   std::vector<core::Decimal> r{0.11, 0.2, 0.3, 0.58};  // r values of the symbol comparison, each in (0, 1), as given
   std::vector<double> window_n{2, 3, 5, 8, 12, 20, 30, 45, 60, 80, 100, 125};  // integers 2..400
-  std::uint64_t seed = 7;                              // seed of the random initial conditions
+  std::uint64_t seed = 7;                                                      // seed of the random initial conditions
 
   void validate() const;
   template <class V> void fields(V&& v) {
@@ -36,14 +36,14 @@ struct TradeoffRequest {
 
 // One method (an arithmetic and an algorithm) against the reference.
 struct TradeoffRow {
-  std::string method;    // linear/float .. linear/mpfr:100, trig/double
-  int digits = 0;        // decimal digits of the arithmetic
-  double rate = 0;       // iterations per second (all threads of the run)
+  std::string method;                         // linear/float .. linear/mpfr:100, trig/double
+  int digits = 0;                             // decimal digits of the arithmetic
+  double rate = 0;                            // iterations per second (all threads of the run)
   std::vector<long> agree_min, agree_median;  // [R] leading symbols equal to the reference's (min, median over orbits)
   std::vector<double> error_median;           // [R] median angle (rad) between the final state and the reference's
-  double lyapunov_error = 0;  // largest |lambda1 - exact| on the three sinks; NaN for trig or off a sink
+  double lyapunov_error = 0;         // largest |lambda1 - exact| on the three sinks; NaN for trig or off a sink
   double lyapunov_near_neutral = 0;  // |lambda1 - exact| on the weak sink 312^150 at r = 0.171599; NaN for trig
-  int n_max = 0;              // largest listed window n resolved (with every smaller listed n); -1 for trig
+  int n_max = 0;                     // largest listed window n resolved (with every smaller listed n); -1 for trig
 };
 
 struct TradeoffResult {
@@ -71,9 +71,10 @@ TradeoffResult run(const TradeoffRequest& req, const core::RunControl& control =
 core::Work work(const TradeoffRequest& req);
 
 // lambda1 = log|l2/l1| / p of the periodic word `period` (symbols 1, 2, 3) at r (read from its decimal
-// text to 60 digits: the r that T's runs read, not double's value widened), in MPFR with 60 digits: the period matrix, its dominant eigenvalue l1 by Newton on det(t - M) from the
-// double estimate, and l2, l3 from t^2 - (tr M - l1) t + det M / l1 (a complex pair when the discriminant is
-// negative, then |l2| = sqrt(det M / l1)).  MPFR's default precision is restored on return.
+// text to 60 digits: the r that T's runs read, not double's value widened), in MPFR with 60 digits: the period matrix,
+// its dominant eigenvalue l1 by Newton on det(t - M) from the double estimate, and l2, l3 from t^2 - (tr M - l1) t +
+// det M / l1 (a complex pair when the discriminant is negative, then |l2| = sqrt(det M / l1)).  MPFR's default
+// precision is restored on return.
 double exact_lambda1(const std::vector<int>& period, const core::Decimal& r);
 
 }  // namespace btob::precision

@@ -18,12 +18,12 @@ const char* trig_status_name(TrigStatus s) {
   return "?";
 }
 
-#define BTOB_REFERENCE_INSTANTIATE(T)                                                   \
-  template Mat3<T> collision_matrix<T>(char, const T&);                                 \
-  template CrossProductImage<T> cross_product_map<T>(const Vec3<T>&, const T&);         \
-  template ParticleCycle<T> simulate_b_to_b<T>(const core::Particles<T>&, const T&);    \
-  template TrigState<T> trig_start<T>(const T&, const T&);                              \
-  template TrigStatus trig_collision<T>(TrigState<T>&, const T&, T*, T*);               \
+#define BTOB_REFERENCE_INSTANTIATE(T)                                                \
+  template Mat3<T> collision_matrix<T>(char, const T&);                              \
+  template CrossProductImage<T> cross_product_map<T>(const Vec3<T>&, const T&);      \
+  template ParticleCycle<T> simulate_b_to_b<T>(const core::Particles<T>&, const T&); \
+  template TrigState<T> trig_start<T>(const T&, const T&);                           \
+  template TrigStatus trig_collision<T>(TrigState<T>&, const T&, T*, T*);            \
   template TrigCycle<T> trig_b_to_b<T>(TrigState<T>&, const T&);
 BTOB_REFERENCE_INSTANTIATE(float)
 BTOB_REFERENCE_INSTANTIATE(double)
@@ -32,8 +32,8 @@ BTOB_REFERENCE_INSTANTIATE(core::float128)
 #undef BTOB_REFERENCE_INSTANTIATE
 
 template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int,
-                                                          const core::CancelToken*);
+                                                         const core::CancelToken*);
 template std::vector<std::uint64_t> trig_density<long double>(const iterate::Ensemble&, long, iterate::DensityRecorder&,
-                                                               int, const core::CancelToken*);
+                                                              int, const core::CancelToken*);
 
 }  // namespace btob::reference

@@ -7,8 +7,8 @@
 #include <Eigen/Geometry>  // cross(); core/coords.hpp uses it without including it (see notes)
 
 #include "core/coords.hpp"
-#include "core/request.hpp"
 #include "core/map.hpp"
+#include "core/request.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/recorders.hpp"
@@ -55,9 +55,9 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u, cons
 // ---- Event-driven particle simulation ----------------------------------------------------------
 
 enum class ParticleStatus : std::uint8_t {
-  ok,             // reached the next b-collision
-  separated,      // no pair approaches any more before a b-collision (even after the retries below)
-  too_many,       // more than 3 collisions without a b (impossible by Prop. 4.5 of DoHR025)
+  ok,         // reached the next b-collision
+  separated,  // no pair approaches any more before a b-collision (even after the retries below)
+  too_many,   // more than 3 collisions without a b (impossible by Prop. 4.5 of DoHR025)
 };
 
 template <class T> struct ParticleCycle {
@@ -133,8 +133,9 @@ template <class T> TrigCycle<T> trig_b_to_b(TrigState<T>& s, const T& r);
 template <class T>
 // `cancel` (here and in trig_density_matlab): polled per orbit and every core::cancel_stride steps; a cancelled
 // run throws core::Cancelled after its parallel region.
-std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ensemble, long iterations, iterate::DensityRecorder& rec,
-                                        int threads = 0, const core::CancelToken* cancel = nullptr);
+std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ensemble, long iterations,
+                                        iterate::DensityRecorder& rec, int threads = 0,
+                                        const core::CancelToken* cancel = nullptr);
 
 // The same orbits with MATLAB's semantics, i.e. what the paper's code draws: acos of an argument outside
 // [-1, 1] returns a complex number (acos z = -i log(z + i sqrt(1 - z^2)), principal branches, as MATLAB) and
@@ -152,22 +153,23 @@ struct MatlabTrigImage {
 MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ensemble, long iterations, long tail, bool phi, int bins,
                                     double lo, double hi, int threads = 0, const core::CancelToken* cancel = nullptr);
 
-#define BTOB_REFERENCE_EXTERN(T)                                                                                 \
-  extern template Mat3<T> collision_matrix<T>(char, const T&);                                                    \
-  extern template CrossProductImage<T> cross_product_map<T>(const Vec3<T>&, const T&);                            \
-  extern template ParticleCycle<T> simulate_b_to_b<T>(const core::Particles<T>&, const T&);                       \
-  extern template TrigState<T> trig_start<T>(const T&, const T&);                                                 \
-  extern template TrigStatus trig_collision<T>(TrigState<T>&, const T&, T*, T*);                                  \
+#define BTOB_REFERENCE_EXTERN(T)                                                            \
+  extern template Mat3<T> collision_matrix<T>(char, const T&);                              \
+  extern template CrossProductImage<T> cross_product_map<T>(const Vec3<T>&, const T&);      \
+  extern template ParticleCycle<T> simulate_b_to_b<T>(const core::Particles<T>&, const T&); \
+  extern template TrigState<T> trig_start<T>(const T&, const T&);                           \
+  extern template TrigStatus trig_collision<T>(TrigState<T>&, const T&, T*, T*);            \
   extern template TrigCycle<T> trig_b_to_b<T>(TrigState<T>&, const T&);
 BTOB_REFERENCE_EXTERN(float)
 BTOB_REFERENCE_EXTERN(double)
 BTOB_REFERENCE_EXTERN(long double)
 BTOB_REFERENCE_EXTERN(core::float128)
 #undef BTOB_REFERENCE_EXTERN
-extern template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long, iterate::DensityRecorder&, int,
-                                                                 const core::CancelToken*);
+extern template std::vector<std::uint64_t> trig_density<double>(const iterate::Ensemble&, long,
+                                                                iterate::DensityRecorder&, int,
+                                                                const core::CancelToken*);
 extern template std::vector<std::uint64_t> trig_density<long double>(const iterate::Ensemble&, long,
-                                                                      iterate::DensityRecorder&, int,
-                                                                      const core::CancelToken*);
+                                                                     iterate::DensityRecorder&, int,
+                                                                     const core::CancelToken*);
 
 }  // namespace btob::reference

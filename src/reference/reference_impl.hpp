@@ -42,9 +42,19 @@ template <class T> Mat3<T> collision_matrix(char letter, const T& r) {
   const T a = core::alpha(r);
   Mat3<T> m = Mat3<T>::Identity();
   switch (letter) {  // eq. (2.7): column i carries the collision of pair i
-    case 'a': m(0, 0) = -r; m(1, 0) = a; break;
-    case 'b': m(0, 1) = a; m(1, 1) = -r; m(2, 1) = a; break;
-    case 'c': m(1, 2) = a; m(2, 2) = -r; break;
+    case 'a':
+      m(0, 0) = -r;
+      m(1, 0) = a;
+      break;
+    case 'b':
+      m(0, 1) = a;
+      m(1, 1) = -r;
+      m(2, 1) = a;
+      break;
+    case 'c':
+      m(1, 2) = a;
+      m(2, 2) = -r;
+      break;
     default: throw std::invalid_argument(std::string("collision letter: got '") + letter + "', expected a, b or c");
   }
   return m;
@@ -97,7 +107,7 @@ template <class T> CrossProductImage<T> cross_product_map(const Vec3<T>& u_in, c
     const Vec3<T> p1 = detail::cross_counted(detail::unit_vector<T>(j), u, out.condition);
     const Vec3<T> q1 = K[j] * q;
     u = detail::cross_counted(q1, p1, out.condition);  // step 4
-    u /= u.norm();     // u stays on S^2 (only its direction is used)
+    u /= u.norm();                                     // u stays on S^2 (only its direction is used)
     out.letters += contact;
     if (contact == 'b') break;  // step 5
   }
@@ -133,9 +143,9 @@ template <class T> ParticleCycle<T> particle_attempt(const core::Particles<T>& s
     const T before = p.norm() + t_first * q.norm();
     p += t_first * q;  // free flight (eq. 2.5b)
     out.condition += before / p.norm();
-    p(first) = T(0);   // exactly in contact
+    p(first) = T(0);                                          // exactly in contact
     for (int j = 0; j < 3; ++j) p(j) = std::max(p(j), T(0));  // rounding must not cross another wall
-    q = K[first] * q;  // eq. (2.6)
+    q = K[first] * q;                                         // eq. (2.6)
     out.time += t_first;
     out.letters += static_cast<char>('a' + first);
     if (first == 1) {
@@ -200,16 +210,31 @@ template <class T> TrigStatus trig_collision(TrigState<T>& s, const T& r, T* the
   char letter;
   switch (c) {
     case 1:
-      if (low) { X = Vec3<T>(ct * sp, T(0), cp); letter = 'b'; }
-      else { X = Vec3<T>(st * sp, -cp, T(0)); letter = 'c'; }
+      if (low) {
+        X = Vec3<T>(ct * sp, T(0), cp);
+        letter = 'b';
+      } else {
+        X = Vec3<T>(st * sp, -cp, T(0));
+        letter = 'c';
+      }
       break;
     case 2:
-      if (low) { X = Vec3<T>(cp, ct * sp, T(0)); letter = 'c'; }
-      else { X = Vec3<T>(T(0), st * sp, -cp); letter = 'a'; }
+      if (low) {
+        X = Vec3<T>(cp, ct * sp, T(0));
+        letter = 'c';
+      } else {
+        X = Vec3<T>(T(0), st * sp, -cp);
+        letter = 'a';
+      }
       break;
     default:
-      if (low) { X = Vec3<T>(T(0), cp, ct * sp); letter = 'a'; }
-      else { X = Vec3<T>(-cp, T(0), st * sp); letter = 'b'; }
+      if (low) {
+        X = Vec3<T>(T(0), cp, ct * sp);
+        letter = 'a';
+      } else {
+        X = Vec3<T>(-cp, T(0), st * sp);
+        letter = 'b';
+      }
       break;
   }
   X = X / X.norm();
@@ -303,9 +328,9 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
   const long tail = iterations >= first ? iterations - first + 1 : 0;
   const int nt = threads > 0 ? threads : omp_get_max_threads();
   if (static_cast<std::size_t>(nt) > rec.per_thread.size())
-    throw core::InvalidField("threads", std::to_string(nt),
-                             "at most the " + std::to_string(rec.per_thread.size()) +
-                                 " threads the density recorder was made for");
+    throw core::InvalidField(
+        "threads", std::to_string(nt),
+        "at most the " + std::to_string(rec.per_thread.size()) + " threads the density recorder was made for");
   iterate::parallel_for_scratch(
       n_orbits, nt, [&] { return std::vector<double>(static_cast<std::size_t>(3 * std::max<long>(tail, 1))); },
       [&](std::vector<double>& buf, std::size_t o) {

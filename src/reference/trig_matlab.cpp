@@ -62,8 +62,7 @@ void collision(State& s, double r, C& theta, C& phi) {
       if (low) {
         X << ct * sp, 0.0, cp;
         letter = 'b';
-      }
-      else {
+      } else {
         X << st * sp, -cp, 0.0;
         letter = 'c';
       }
@@ -72,8 +71,7 @@ void collision(State& s, double r, C& theta, C& phi) {
       if (low) {
         X << cp, ct * sp, 0.0;
         letter = 'c';
-      }
-      else {
+      } else {
         X << 0.0, st * sp, -cp;
         letter = 'a';
       }
@@ -82,8 +80,7 @@ void collision(State& s, double r, C& theta, C& phi) {
       if (low) {
         X << 0.0, cp, ct * sp;
         letter = 'a';
-      }
-      else {
+      } else {
         X << -cp, 0.0, st * sp;
         letter = 'b';
       }
@@ -208,8 +205,8 @@ MatlabTrigImage trig_density_matlab(const iterate::Ensemble& ens, long iteration
   const double scale = bins / (hi - lo);
   iterate::parallel_for(n_r, threads, [&](std::size_t ir) {
     if (cancel && cancel->cancelled()) return;  // no exception may leave an OpenMP region
-    const MatlabColumn count{&img.counts[ir * static_cast<std::size_t>(bins)], img.nan_points[ir], img.outside[ir],
-                             bins, lo, hi, scale};
+    const MatlabColumn count{
+        &img.counts[ir * static_cast<std::size_t>(bins)], img.nan_points[ir], img.outside[ir], bins, lo, hi, scale};
     for (std::size_t ic = 0; ic < n_ic; ++ic) {
       bool complex = false;
       const long k = matlab_orbit(ens.initial[ic], ens.r[ir], iterations, first, want_phi, count, cancel, complex);

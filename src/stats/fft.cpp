@@ -20,18 +20,18 @@ std::mutex& planner_mutex() {  // FFTW's planner (and plan destruction) is not t
 }
 
 template <class T> struct Fftw;
-#define BTOB_FFTW_TRAITS(T, P)                                                                              \
-  template <> struct Fftw<T> {                                                                              \
-    using plan = P##_plan;                                                                                  \
-    using complex = P##_complex;                                                                            \
-    static T* alloc_real(std::size_t n) { return P##_alloc_real(n); }                                      \
-    static complex* alloc_complex(std::size_t n) { return P##_alloc_complex(n); }                          \
-    static void free(void* p) { P##_free(p); }                                                              \
-    static plan r2c(int n, T* in, complex* out) { return P##_plan_dft_r2c_1d(n, in, out, FFTW_ESTIMATE); } \
-    static plan c2r(int n, complex* in, T* out) { return P##_plan_dft_c2r_1d(n, in, out, FFTW_ESTIMATE); } \
+#define BTOB_FFTW_TRAITS(T, P)                                                                                 \
+  template <> struct Fftw<T> {                                                                                 \
+    using plan = P##_plan;                                                                                     \
+    using complex = P##_complex;                                                                               \
+    static T* alloc_real(std::size_t n) { return P##_alloc_real(n); }                                          \
+    static complex* alloc_complex(std::size_t n) { return P##_alloc_complex(n); }                              \
+    static void free(void* p) { P##_free(p); }                                                                 \
+    static plan r2c(int n, T* in, complex* out) { return P##_plan_dft_r2c_1d(n, in, out, FFTW_ESTIMATE); }     \
+    static plan c2r(int n, complex* in, T* out) { return P##_plan_dft_c2r_1d(n, in, out, FFTW_ESTIMATE); }     \
     static void exec_r2c(void* p, T* in, complex* out) { P##_execute_dft_r2c(static_cast<plan>(p), in, out); } \
     static void exec_c2r(void* p, complex* in, T* out) { P##_execute_dft_c2r(static_cast<plan>(p), in, out); } \
-    static void destroy(void* p) { P##_destroy_plan(static_cast<plan>(p)); }                                \
+    static void destroy(void* p) { P##_destroy_plan(static_cast<plan>(p)); }                                   \
   };
 BTOB_FFTW_TRAITS(float, fftwf)
 BTOB_FFTW_TRAITS(double, fftw)
@@ -81,8 +81,7 @@ long fast_fft_length(long n) {
 
 template <class T> RealFft<T>::RealFft(long n, const core::CancelToken* cancel) : n_(n) {
   using F = Fftw<T>;
-  if (n < 1 || n > INT_MAX)
-    throw std::invalid_argument(fmt::format("fft length: got {}, expected 1..{}", n, INT_MAX));
+  if (n < 1 || n > INT_MAX) throw std::invalid_argument(fmt::format("fft length: got {}, expected 1..{}", n, INT_MAX));
   p_ = std::make_shared<Plans>();
   execute(n, kInlineLength, cancel, p_, [p = p_.get(), n] {
     std::lock_guard<std::mutex> lock(planner_mutex());  // released before the Plans' destructor takes it

@@ -29,8 +29,8 @@ template <class T> class RealFft {
   RealFft(const RealFft&) = delete;
   RealFft& operator=(const RealFft&) = delete;
   long size() const { return n_; }
-  T* data() { return in_; }                      // n real values
-  std::complex<T>* spectrum() { return out_; }   // n/2 + 1 complex values
+  T* data() { return in_; }                                 // n real values
+  std::complex<T>* spectrum() { return out_; }              // n/2 + 1 complex values
   void forward(const core::CancelToken* cancel = nullptr);  // data() -> spectrum()
   void inverse(const core::CancelToken* cancel = nullptr);  // spectrum() -> data()
 

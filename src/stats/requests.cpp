@@ -35,8 +35,8 @@ std::pair<Observable, Observable> observables(const std::string& spec) {
 
 // C_N in precision T by the chosen route; the result in double.
 template <class T>
-std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max, bool fft,
-                                 const core::CancelToken* cancel) {
+std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max,
+                                 bool fft, const core::CancelToken* cancel) {
   // The series in T, copied 2^20 values at a time between polls (a second for two series of 6e7 values).
   const auto in_t = [cancel](const std::vector<double>& v) {
     constexpr std::size_t block = std::size_t(1) << 20;
@@ -59,8 +59,9 @@ std::vector<double> correlate_in(const std::vector<double>& x, const std::vector
   }
   return {c.begin(), c.end()};
 }
-std::vector<double> correlate_as(const std::string& precision, const std::vector<double>& x, const std::vector<double>& y,
-                                 long N, long n_max, bool fft, const core::CancelToken* cancel) {
+std::vector<double> correlate_as(const std::string& precision, const std::vector<double>& x,
+                                 const std::vector<double>& y, long N, long n_max, bool fft,
+                                 const core::CancelToken* cancel) {
   if (precision == "float") return correlate_in<float>(x, y, N, n_max, fft, cancel);
   if (precision == "long-double") return correlate_in<long double>(x, y, N, n_max, fft, cancel);
   return correlate_in<double>(x, y, N, n_max, fft, cancel);
@@ -127,8 +128,9 @@ core::Work work(const CorrelateRequest& req) {
   core::Term orbit;
   orbit.route = "correlate orbit and fft " + req.precision;
   orbit.units = static_cast<double>(req.transient) + N + M;
-  orbit.what = "map steps of one orbit in double (transient + iterations + n-max), priced with its FFT correlation "
-               "(O(N log N)) and spectrum by the probe";
+  orbit.what =
+      "map steps of one orbit in double (transient + iterations + n-max), priced with its FFT correlation "
+      "(O(N log N)) and spectrum by the probe";
   orbit.probe = [precision = req.precision](double n, const core::RunControl& c) {
     return correlate_probe(precision, "fft", static_cast<long>(n), c);
   };
@@ -302,8 +304,7 @@ void distances(MeasureResult& res, const std::vector<Measure>& ms) {
 
 // Convergence against N: at N = 16, 32, ..., the largest TV within each group between mu_N of its members and
 // mu_N of its first member, and the TV between mu_N of the first member and its mu at the full length.
-template <class MeasureOf>
-void convergence(MeasureResult& res, const std::vector<Measure>& ms, MeasureOf measure) {
+template <class MeasureOf> void convergence(MeasureResult& res, const std::vector<Measure>& ms, MeasureOf measure) {
   const MeasureRequest& a = res.request;
   const std::size_t G = res.groups();
   std::vector<long> checkpoints;
@@ -328,7 +329,8 @@ void convergence(MeasureResult& res, const std::vector<Measure>& ms, MeasureOf m
 
 std::size_t MeasureRequest::work_items() const { return iterate::parse_grid(grid, seed, "grid").size(); }
 
-MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
+MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& items,
+                     const core::RunControl& control) {
   req.validate();
   core::check_cancel(control.cancel);
   MeasurePart p;
@@ -376,7 +378,8 @@ MeasureResult merge(const MeasureRequest& req, std::vector<MeasurePart> parts) {
   convergence(res, ms, measure);
   for (std::size_t g = 0; g < res.groups(); ++g) {
     const auto& m = ms[res.head[g]];
-    for (double v : m.mass) res.counts.push_back(static_cast<std::uint32_t>(std::llround(v * static_cast<double>(m.points))));
+    for (double v : m.mass)
+      res.counts.push_back(static_cast<std::uint32_t>(std::llround(v * static_cast<double>(m.points))));
     const auto mu = m.marginal_u(), mv = m.marginal_v();
     res.outside.push_back(m.outside);
     res.marginal_u.insert(res.marginal_u.end(), mu.begin(), mu.end());

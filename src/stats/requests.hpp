@@ -47,19 +47,19 @@ struct CorrelateRequest {
 };
 
 struct CorrelateResult {
-  CorrelateRequest request;  // the request, as run (validated)
+  CorrelateRequest request;                                 // the request, as run (validated)
   Observable phi = Observable::phi, psi = Observable::phi;  // the two observables of C_N (the request's)
-  std::vector<double> c;           // C_N(n), n = 0..n-max (computed in the request's precision)
-  std::vector<double> c_direct;    // method both: the direct sum, else empty
-  std::vector<double> envelope;    // max |C_N| over windows of `window` lags from lag 1
-  std::vector<double> frequency;   // periodogram of phi over the first N values, averaged to <= 8192 points
-  std::vector<double> power;  // the periodogram's power at each `frequency`
+  std::vector<double> c;                   // C_N(n), n = 0..n-max (computed in the request's precision)
+  std::vector<double> c_direct;            // method both: the direct sum, else empty
+  std::vector<double> envelope;            // max |C_N| over windows of `window` lags from lag 1
+  std::vector<double> frequency;           // periodogram of phi over the first N values, averaged to <= 8192 points
+  std::vector<double> power;               // the periodogram's power at each `frequency`
   double seconds = 0, seconds_direct = 0;  // wall times of the FFT route and of the direct sum (method both), seconds
-  double max_rel_diff = 0;         // method both: max |fft - direct| / max |direct|
-  double peak_frequency = 0;       // of the unaveraged periodogram, cycles per iteration
-  double noise_floor = 0;          // 4 |C_N(0)| / sqrt(N)
-  bool fitted = false;             // n-max >= fit-lags >= 3 window: `decay` holds the fit
-  Decay decay;  // the fitted decay rate of the |C_N| envelope (when `fitted`)
+  double max_rel_diff = 0;                 // method both: max |fft - direct| / max |direct|
+  double peak_frequency = 0;               // of the unaveraged periodogram, cycles per iteration
+  double noise_floor = 0;                  // 4 |C_N(0)| / sqrt(N)
+  bool fitted = false;                     // n-max >= fit-lags >= 3 window: `decay` holds the fit
+  Decay decay;                             // the fitted decay rate of the |C_N| envelope (when `fitted`)
 
   long N() const { return request.iterations; }
   // Arrays: C_N [n-max + 1], C_N_direct [n-max + 1] (method both), envelope [windows], spectrum_frequency and
@@ -76,18 +76,18 @@ core::Work work(const CorrelateRequest& req);
 
 // ---- empirical measures at one r (`btob measure`) ------------------------------------------------------------
 struct MeasureRequest {
-  double r = 0.15;                  // restitution coefficient, in (0, 1)
-  std::string grid = "paper";       // initial conditions: paper, strip:NxM[:w1min:w1max], random:N, x,y,z;...
-  std::uint64_t seed = 1;           // seed of random grids
-  long iterations = 100000;         // N, points per measure (after the transient), >= 16
-  long transient = 10000;           // map iterations discarded first, >= 0
-  int bins = 200;                   // bins per direction, 1..4000
-  std::string coords = "strip";     // strip or angles
-  std::vector<double> extent;       // empty, or u_lo,u_hi,v_lo,v_hi (zoom; mass outside kept as one cell)
-  double tv_same = 0.05;            // measures closer than this in total variation are one group, in (0, 1]
+  double r = 0.15;               // restitution coefficient, in (0, 1)
+  std::string grid = "paper";    // initial conditions: paper, strip:NxM[:w1min:w1max], random:N, x,y,z;...
+  std::uint64_t seed = 1;        // seed of random grids
+  long iterations = 100000;      // N, points per measure (after the transient), >= 16
+  long transient = 10000;        // map iterations discarded first, >= 0
+  int bins = 200;                // bins per direction, 1..4000
+  std::string coords = "strip";  // strip or angles
+  std::vector<double> extent;    // empty, or u_lo,u_hi,v_lo,v_hi (zoom; mass outside kept as one cell)
+  double tv_same = 0.05;         // measures closer than this in total variation are one group, in (0, 1]
 
   void validate() const;
-  std::size_t work_items() const;   // the initial conditions of the grid (a sweep, core/sweep.hpp)
+  std::size_t work_items() const;  // the initial conditions of the grid (a sweep, core/sweep.hpp)
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient, in (0,1)");
     v("grid", grid, "initial conditions: paper (Section 4, 32 points), strip:NxM, random:N, x,y,z;...");
@@ -103,19 +103,19 @@ struct MeasureRequest {
 };
 
 struct MeasureResult {
-  MeasureRequest request;  // the request, as run (validated)
-  std::vector<iterate::Vec3<double>> initial;  // the initial conditions, in grid order
-  std::vector<int> group;                      // per initial condition: its group 0..G-1 (by first appearance)
-  std::vector<std::uint64_t> group_index;      // the same as uint64 (the HDF5 dataset `group`)
-  std::vector<std::uint64_t> head, size;       // per group: its first member and its number of members
-  std::vector<double> tv, w1_u, w1_v;          // per initial condition: distances to the head of its group
-  std::vector<double> tv_max_group;            // per group: largest TV between two of its members
-  std::vector<double> conv_n;                  // N = 16, 32, ..., iterations
+  MeasureRequest request;                         // the request, as run (validated)
+  std::vector<iterate::Vec3<double>> initial;     // the initial conditions, in grid order
+  std::vector<int> group;                         // per initial condition: its group 0..G-1 (by first appearance)
+  std::vector<std::uint64_t> group_index;         // the same as uint64 (the HDF5 dataset `group`)
+  std::vector<std::uint64_t> head, size;          // per group: its first member and its number of members
+  std::vector<double> tv, w1_u, w1_v;             // per initial condition: distances to the head of its group
+  std::vector<double> tv_max_group;               // per group: largest TV between two of its members
+  std::vector<double> conv_n;                     // N = 16, 32, ..., iterations
   std::vector<double> conv_within, conv_to_full;  // [checkpoints, G]
-  std::vector<std::uint32_t> counts;           // [G, bins, bins]: the head's counts per bin (mass * N)
-  std::vector<double> marginal_u, marginal_v;  // [G, bins]
-  std::vector<double> outside;                 // [G]: the head's mass outside the extent
-  std::vector<double> extent;                  // the histogram's u_lo, u_hi, v_lo, v_hi
+  std::vector<std::uint32_t> counts;              // [G, bins, bins]: the head's counts per bin (mass * N)
+  std::vector<double> marginal_u, marginal_v;     // [G, bins]
+  std::vector<double> outside;                    // [G]: the head's mass outside the extent
+  std::vector<double> extent;                     // the histogram's u_lo, u_hi, v_lo, v_hi
   std::size_t groups() const { return head.size(); }
   double tv_max_within_groups() const;
 

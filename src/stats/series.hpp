@@ -14,7 +14,6 @@ using iterate::checked_bytes;
 using iterate::Ensemble;
 using iterate::Vec3;
 
-
 // Keeps, for steps from..from+count-1 of every orbit, the state normalised to a unit vector (in double,
 // whatever the kernel's T) and the symbol 1/2/3 of the step that produced it:
 //     x[o * count + j], y[...], z[...], symbol[...]  for state k = from + j  (k >= 1: steps done).
@@ -26,10 +25,13 @@ struct SeriesRecorder {
   std::vector<double> x, y, z;
   std::vector<std::uint8_t> symbol;
   SeriesRecorder(std::size_t orbits, long from_, long count_)
-      : from(from_), count(count_),
+      : from(from_),
+        count(count_),
         x(checked_bytes(orbits * static_cast<std::size_t>(count_), 3 * sizeof(double) + 1, "series") /
           (3 * sizeof(double) + 1)),
-        y(x.size()), z(x.size()), symbol(x.size()) {}
+        y(x.size()),
+        z(x.size()),
+        symbol(x.size()) {}
   long first_step() const { return from; }
   template <class T>
   void record(std::size_t o0, int lanes, long k, const T* px, const T* py, const T* pz, const std::uint8_t* sym) {

@@ -44,7 +44,8 @@ std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<
   iterate::run<double>(e, transient + length, rec, opt);
   std::vector<OrbitSeries> out(u0.size());
   for (std::size_t o = 0; o < u0.size(); ++o) {
-    const auto b = static_cast<std::ptrdiff_t>(o * static_cast<std::size_t>(length)), n = static_cast<std::ptrdiff_t>(length);
+    const auto b = static_cast<std::ptrdiff_t>(o * static_cast<std::size_t>(length)),
+               n = static_cast<std::ptrdiff_t>(length);
     out[o].x.assign(rec.x.begin() + b, rec.x.begin() + b + n);
     out[o].y.assign(rec.y.begin() + b, rec.y.begin() + b + n);
     out[o].z.assign(rec.z.begin() + b, rec.z.begin() + b + n);
@@ -85,10 +86,10 @@ std::string observable_name(Observable o) {
 double value(Observable o, const iterate::Vec3<double>& u, int symbol) {
   const double x = u(0), y = u(1), z = u(2);  // a unit vector in Q: x >= 0, z <= 0
   switch (o) {
-    case Observable::theta: return std::atan2(-z, x);                          // Section 4
-    case Observable::phi: return std::atan2(std::sqrt(x * x + z * z), -y);    // eq. (6.1), cos phi = -y/|u|
-    case Observable::w1: return y / (x - z);                                   // eq. (6.4)
-    case Observable::w2: return (x + z) / (x - z);                             // eq. (6.4)
+    case Observable::theta: return std::atan2(-z, x);                       // Section 4
+    case Observable::phi: return std::atan2(std::sqrt(x * x + z * z), -y);  // eq. (6.1), cos phi = -y/|u|
+    case Observable::w1: return y / (x - z);                                // eq. (6.4)
+    case Observable::w2: return (x + z) / (x - z);                          // eq. (6.4)
     case Observable::cos_phi: return -y;
     case Observable::symbol1: return symbol == 1;
     case Observable::symbol2: return symbol == 2;
@@ -149,10 +150,11 @@ void fit_line(const std::vector<double>& xs, const std::vector<double>& ys, Deca
 void decide(Decay& d, double span) {
   if (d.windows < 3) {
     d.verdict = "undecided";
-    d.reason = d.floor_lag >= 0 ? fmt::format("|C_N| reaches the noise floor at lag {} after {} window(s): too few to "
-                                              "fit a rate (more iterations lower the floor, a smaller window gives "
-                                              "more points)",
-                                              d.floor_lag, d.windows)
+    d.reason = d.floor_lag >= 0 ? fmt::format(
+                                      "|C_N| reaches the noise floor at lag {} after {} window(s): too few to "
+                                      "fit a rate (more iterations lower the floor, a smaller window gives "
+                                      "more points)",
+                                      d.floor_lag, d.windows)
                                 : "fewer than 3 windows of lags to fit";
     return;
   }
@@ -165,14 +167,16 @@ void decide(Decay& d, double span) {
     d.reason = fmt::format("rate > 0 at 95% and the envelope fell {:.3g}-fold before the noise floor", fall);
   } else if (falls) {
     d.verdict = "undecided";
-    d.reason = fmt::format("rate > 0 at 95% but the envelope fell only {:.3g}-fold before the noise floor or the end "
-                           "of the fit (more fit lags or iterations)",
-                           fall);
+    d.reason = fmt::format(
+        "rate > 0 at 95% but the envelope fell only {:.3g}-fold before the noise floor or the end "
+        "of the fit (more fit lags or iterations)",
+        fall);
   } else if (d.floor_lag < 0 && d.rate_high * span < std::log(10.0)) {
     d.verdict = "not decaying";
-    d.reason = fmt::format("above the noise floor over all {} lags, and at the 95% upper rate the envelope would fall "
-                           "less than tenfold over them",
-                           static_cast<long>(span));
+    d.reason = fmt::format(
+        "above the noise floor over all {} lags, and at the 95% upper rate the envelope would fall "
+        "less than tenfold over them",
+        static_cast<long>(span));
   } else {
     d.verdict = "undecided";
     d.reason = "no significant decay, but a tenfold fall over the fitted lags is not excluded";
@@ -287,7 +291,8 @@ template <class F> void each_cell(const OrbitSeries& s, const Measure& m, bool w
 void masses(Measure& m, const std::vector<long>& counts, long out, long count) {
   m.mass.assign(counts.size(), 0);
   m.points = count;
-  for (std::size_t b = 0; b < counts.size(); ++b) m.mass[b] = static_cast<double>(counts[b]) / static_cast<double>(count);
+  for (std::size_t b = 0; b < counts.size(); ++b)
+    m.mass[b] = static_cast<double>(counts[b]) / static_cast<double>(count);
   m.outside = static_cast<double>(out) / static_cast<double>(count);
 }
 }  // namespace
@@ -326,9 +331,9 @@ Measure measure_of_cells(const Measure& frame, const std::int32_t* cells, long c
 double total_variation(const Measure& a, const Measure& b) {
   if (a.bins_u != b.bins_u || a.bins_v != b.bins_v || a.chart != b.chart || a.u_lo != b.u_lo || a.u_hi != b.u_hi ||
       a.v_lo != b.v_lo || a.v_hi != b.v_hi)
-    throw std::invalid_argument(fmt::format("measure: got {} {}x{} and {} {}x{}, expected the same chart, extent and bins",
-                                            chart_name(a.chart), a.bins_u, a.bins_v, chart_name(b.chart), b.bins_u,
-                                            b.bins_v));
+    throw std::invalid_argument(
+        fmt::format("measure: got {} {}x{} and {} {}x{}, expected the same chart, extent and bins", chart_name(a.chart),
+                    a.bins_u, a.bins_v, chart_name(b.chart), b.bins_u, b.bins_v));
   double s = 0;
   for (std::size_t i = 0; i < a.mass.size(); ++i) s += std::fabs(a.mass[i] - b.mass[i]);
   return 0.5 * (s + std::fabs(a.outside - b.outside));
@@ -336,8 +341,8 @@ double total_variation(const Measure& a, const Measure& b) {
 
 double wasserstein_1d(const std::vector<double>& a, const std::vector<double>& b, double lo, double hi) {
   if (a.size() != b.size() || a.empty())
-    throw std::invalid_argument(
-        fmt::format("marginal: got {} and {} bins, expected two non-empty marginals on the same bins", a.size(), b.size()));
+    throw std::invalid_argument(fmt::format(
+        "marginal: got {} and {} bins, expected two non-empty marginals on the same bins", a.size(), b.size()));
   const double dx = (hi - lo) / static_cast<double>(a.size());
   double fa = 0, fb = 0, s = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {

@@ -116,13 +116,13 @@ template <class T> class Periodogram {
 //   undecided     anything else, in particular fewer than 3 windows above the floor (no line with an error):
 //                 C_N reaches the noise floor too fast for this N and window; `reason` says which.
 struct Decay {
-  double rate = 0, rate_error = 0;                // |C_N| ~ exp(-rate n); one-sigma error of the slope (>= 3 windows)
-  double rate_low = 0, rate_high = 0;             // 95% interval of the rate (Student t, windows - 2 dof)
-  double envelope_first = 0, envelope_last = 0;   // first and last windows above the floor (>= 1 window)
-  long windows = 0;                               // windows above the floor, all fitted
-  long floor_lag = -1;                            // first lag of the first window at or below the floor; -1: not
-                                                  // reached up to n_fit
-  bool decays = false;                            // verdict == "decaying"
+  double rate = 0, rate_error = 0;               // |C_N| ~ exp(-rate n); one-sigma error of the slope (>= 3 windows)
+  double rate_low = 0, rate_high = 0;            // 95% interval of the rate (Student t, windows - 2 dof)
+  double envelope_first = 0, envelope_last = 0;  // first and last windows above the floor (>= 1 window)
+  long windows = 0;                              // windows above the floor, all fitted
+  long floor_lag = -1;                           // first lag of the first window at or below the floor; -1: not
+                                                 // reached up to n_fit
+  bool decays = false;                           // verdict == "decaying"
   std::string verdict = "undecided", reason;
 };
 std::vector<double> envelope(const std::vector<double>& c, long window);  // windows over lags 1..
@@ -170,8 +170,8 @@ std::vector<int> group_measures(const std::vector<Measure>& ms, double tv_same);
 
 extern template std::vector<float> correlation_direct(const std::vector<float>&, const std::vector<float>&, long, long,
                                                       const core::CancelToken*);
-extern template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long, long,
-                                                       const core::CancelToken*);
+extern template std::vector<double> correlation_direct(const std::vector<double>&, const std::vector<double>&, long,
+                                                       long, const core::CancelToken*);
 extern template std::vector<long double> correlation_direct(const std::vector<long double>&,
                                                             const std::vector<long double>&, long, long,
                                                             const core::CancelToken*);

@@ -169,8 +169,7 @@ AbsorptionSystem absorption_system(const UlamMatrix& P, const std::vector<std::u
       if (v < 0) continue;
       if (!diag && v >= u) {
         diag = true;
-        if (v > u)
-          a_col.push_back(u), a_val.push_back(1.0);
+        if (v > u) a_col.push_back(u), a_val.push_back(1.0);
         else {
           a_col.push_back(u), a_val.push_back(1.0 - P.val[at(e)]);
           continue;
@@ -191,7 +190,8 @@ double spread_target(std::uint32_t k, const Eigen::VectorXd& h, const Absorption
                      const std::vector<std::uint32_t>& target, const std::vector<double>& mu, Basins& out) {
   double fraction = 0;
   for (std::size_t i = 0; i < target.size(); ++i) {
-    const double p = target[i] ? (target[i] == k ? 1.0 : 0.0) : (s.unknown[i] >= 0 ? std::clamp(h(s.unknown[i]), 0.0, 1.0) : 0.0);
+    const double p =
+        target[i] ? (target[i] == k ? 1.0 : 0.0) : (s.unknown[i] >= 0 ? std::clamp(h(s.unknown[i]), 0.0, 1.0) : 0.0);
     fraction += mu[i] * p;
     if (!target[i] && p > out.basin_probability[i]) out.basin_probability[i] = p, out.basin_of_box[i] = k;
   }
@@ -211,7 +211,8 @@ struct CancellableDiagonal : Eigen::DiagonalPreconditioner<double> {
 
 }  // namespace
 
-Basins absorb(const UlamMatrix& P, BasinTargets targets, const std::vector<double>& mu, const core::CancelToken* cancel) {
+Basins absorb(const UlamMatrix& P, BasinTargets targets, const std::vector<double>& mu,
+              const core::CancelToken* cancel) {
   Basins out;
   out.basins = std::move(targets.basins);
   if (out.basins.empty()) return out;

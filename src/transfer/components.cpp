@@ -30,7 +30,8 @@ std::vector<double> closed_class_density(const UlamMatrix& P, const Decompositio
                                          const core::CancelToken* cancel) {
   const Eigenpair* best = nullptr;
   for (const auto& e : pairs)
-    if (e.block == k && std::abs(e.value - 1.0) < 1e-8 && (!best || std::abs(e.value - 1.0) < std::abs(best->value - 1.0)))
+    if (e.block == k && std::abs(e.value - 1.0) < 1e-8 &&
+        (!best || std::abs(e.value - 1.0) < std::abs(best->value - 1.0)))
       best = &e;
   std::vector<double> full;
   if (best) {

@@ -75,7 +75,7 @@ class Tarjan {
 // The closed components (no transition leaves them; an empty row, whose samples all left the chart, is not
 // closed), ordered by their first box (deterministic, independent of the traversal); their sizes and first boxes.
 struct ClosedComponents {
-  std::vector<int> order;           // closed components, by first box
+  std::vector<int> order;             // closed components, by first box
   std::vector<long> first_box, size;  // per component
 };
 ClosedComponents closed_components(const UlamMatrix& P, const std::vector<int>& scc, int components) {

@@ -55,8 +55,8 @@ void name_class(std::uint32_t k, const std::vector<attractors::OrbitVerdict>& ve
   std::stable_sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.count > y.count; });
   long decided = 0;
   for (const auto& a : found) {
-    out.reached.push_back({static_cast<int>(k), a.pattern, attractors::type_name(a.type), verdict_of(a),
-                           static_cast<long>(a.count)});
+    out.reached.push_back(
+        {static_cast<int>(k), a.pattern, attractors::type_name(a.type), verdict_of(a), static_cast<long>(a.count)});
     decided += static_cast<long>(a.count);
     if (verdict_of(a) == "stable" &&
         std::find(out.stable_words.begin(), out.stable_words.end(), a.pattern) == out.stable_words.end())

@@ -75,7 +75,8 @@ void describe_arrays(const TransferResult& res, core::Contents& c) {
             "leading real eigenvector with 0 < lambda < 1 (real part, max |.| = 1; all 0 when there is none)");
     c.array("component", res.component_of_box, box_dims, kBoxAxes, "index",
             "component of each box (1-based, as in components.csv), 0 for none");
-    c.array("eig_re", res.eig_re, {res.eig_re.size()}, "eigenvalue", "1", "real parts of the leading eigenvalues (block route)");
+    c.array("eig_re", res.eig_re, {res.eig_re.size()}, "eigenvalue", "1",
+            "real parts of the leading eigenvalues (block route)");
     c.array("eig_im", res.eig_im, {res.eig_im.size()}, "eigenvalue", "1", "imaginary parts of the leading eigenvalues");
     c.array("eig_block", res.eig_block, {res.eig_block.size()}, "eigenvalue", "index",
             "block of each eigenvalue: 0 the transient block, c >= 1 closed class c");
@@ -154,7 +155,8 @@ void describe_basins_and_cycles(const TransferResult& res, core::Contents& c) {
                                 "on the strip; any empty cell: not a finite number")
                   : std::string("cycles.csv: mass_boxes, mass_neighbourhood, component_share, radius99 and "
                                 "radius99_component (eigenvalues 0: no spectrum, no density; component is then the "
-                                "closed class holding every box of the cycle, 0 for none); basins.csv: exact except for the P2 region on the strip; any empty cell: "
+                                "closed class holding every box of the cycle, 0 for none); basins.csv: exact except "
+                                "for the P2 region on the strip; any empty cell: "
                                 "not a finite number"));
 }
 
@@ -177,9 +179,9 @@ std::string TransferResult::spectrum_csv() const {
   core::CsvTable t("k,re,im,modulus,block,whole_re,whole_im,whole_modulus");
   for (std::size_t k = 0; k < eig_re.size(); ++k) {
     const bool w = k < whole_re.size();
-    t.line(fmt::format("{},{},{},{},{},{},{},{}", k + 1, num(eig_re[k]), num(eig_im[k]), num(std::hypot(eig_re[k], eig_im[k])),
-                       eig_block[k], w ? num(whole_re[k]) : "", w ? num(whole_im[k]) : "",
-                       w ? num(std::hypot(whole_re[k], whole_im[k])) : ""));
+    t.line(fmt::format("{},{},{},{},{},{},{},{}", k + 1, num(eig_re[k]), num(eig_im[k]),
+                       num(std::hypot(eig_re[k], eig_im[k])), eig_block[k], w ? num(whole_re[k]) : "",
+                       w ? num(whole_im[k]) : "", w ? num(std::hypot(whole_re[k], whole_im[k])) : ""));
   }
   return t.text();
 }
@@ -200,20 +202,21 @@ std::string TransferResult::components_csv() const {
 
 std::string TransferResult::cycles_csv() const {
   if (cycles.empty()) return "";
-  core::CsvTable t("word,outcome,points,boxes_found,mass_boxes,mass_neighbourhood,component,component_share,radius99,"
-                   "radius99_component");
+  core::CsvTable t(
+      "word,outcome,points,boxes_found,mass_boxes,mass_neighbourhood,component,component_share,radius99,"
+      "radius99_component");
   const auto f6 = [](double v) { return core::csv_number(v, "{:.6f}"); };
   for (const CycleCheck& c : cycles) {
     long found = 0;
     for (long b : c.boxes) found += b >= 0;
     if (!request.spectrum()) {  // no density: its columns empty; component: the closed class holding the cycle
-      t.line(fmt::format("{},{},{},{},,,{},,,", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(), found,
-                         c.component));
+      t.line(fmt::format("{},{},{},{},,,{},,,", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(),
+                         found, c.component));
       continue;
     }
-    t.line(fmt::format("{},{},{},{},{},{},{},{},{},{}", core::csv_text(c.word), core::csv_text(c.outcome), c.boxes.size(),
-                       found, f6(c.mass_boxes), f6(c.mass_neighbourhood), c.component, f6(c.component_share), c.radius99,
-                       c.radius99_component));
+    t.line(fmt::format("{},{},{},{},{},{},{},{},{},{}", core::csv_text(c.word), core::csv_text(c.outcome),
+                       c.boxes.size(), found, f6(c.mass_boxes), f6(c.mass_neighbourhood), c.component,
+                       f6(c.component_share), c.radius99, c.radius99_component));
   }
   return t.text();
 }
@@ -258,34 +261,39 @@ std::string TransferResult::summary() const {
   const TransferRequest& q = request;
   std::string s;
   if (!q.spectrum()) {
-    s = fmt::format("btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, total {:.2f} s; "
-                    "{} closed classes; no spectrum (eigenvalues 0): basins only\n",
-                    q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix,
-                    seconds_total, closed_classes());
+    s = fmt::format(
+        "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, total {:.2f} s; "
+        "{} closed classes; no spectrum (eigenvalues 0): basins only\n",
+        q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix, seconds_total,
+        closed_classes());
     for (std::size_t k = 0; k < classes.size(); ++k)
       s += fmt::format("  closed class {}: {} boxes, period {}\n", k + 1, classes[k].boxes, classes[k].period);
     for (const CycleCheck& c : cycles) {
       long found = 0;
       for (long b : c.boxes) found += b >= 0;
-      s += fmt::format("  cycle {} ({}): {} of its {} points in the chart; {}\n", c.word, c.outcome, found, c.boxes.size(),
+      s += fmt::format("  cycle {} ({}): {} of its {} points in the chart; {}\n", c.word, c.outcome, found,
+                       c.boxes.size(),
                        c.component > 0 ? fmt::format("every one in closed class {}", c.component)
                                        : std::string("not within one closed class"));
     }
   } else {
     s = fmt::format(
-        "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, total "
-        "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the empirical "
+        "btob: transfer at r = {}: {} boxes x {} samples, nnz {} ({:.1f} MB), matrix {:.2f} s, spectrum {:.2f} s, "
+        "total "
+        "{:.2f} s; {} closed classes, {} eigenvalues within {} of 1; lambda_2 (real, < 1) = {:.6f}; TV to the "
+        "empirical "
         "measure {:.3f} ({}x{} boxes), {:.3f} ({}x{})\n",
         q.r, part.size(), q.samples, nnz, static_cast<double>(matrix_bytes) / 1e6, seconds_matrix, seconds_spectrum,
-        seconds_total, closed_classes(), near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2, tv_coarse,
-        q.tv_bins, q.tv_bins);
+        seconds_total, closed_classes(), near_one_count, q.near_one, second_value, tv_boxes, part.n1, part.n2,
+        tv_coarse, q.tv_bins, q.tv_bins);
     for (std::size_t k = 0; k < components.size(); ++k)
       s += fmt::format("  component {}: {} boxes, period {}, rho {:.6f}, Lebesgue fraction {:.4f}\n", k + 1,
                        components[k].boxes, components[k].period, components[k].rho, components[k].lebesgue);
     for (const CycleCheck& c : cycles)
-      s += fmt::format("  cycle {} ({}): mass {:.4f} on its boxes, {:.4f} on their 3x3 neighbourhoods, 99% within {} boxes; "
-                       "component {} (99% of it within {} boxes)\n",
-                       c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
+      s += fmt::format(
+          "  cycle {} ({}): mass {:.4f} on its boxes, {:.4f} on their 3x3 neighbourhoods, 99% within {} boxes; "
+          "component {} (99% of it within {} boxes)\n",
+          c.word, c.outcome, c.mass_boxes, c.mass_neighbourhood, c.radius99, c.component, c.radius99_component);
   }
   if (q.cycles.empty()) s += class_lines(class_names);
   for (const BasinInfo& b : basins)
@@ -303,11 +311,13 @@ std::string TransferResult::summary() const {
 void TransferRResult::describe(core::Contents& c) const {
   const std::size_t R = r.size(), K = static_cast<std::size_t>(this->K);
   c.array("r", r, {R}, "r", "1", "restitution coefficients");
-  c.array("re", re, {R, K}, "r, eigenvalue", "1", "real parts of the K leading eigenvalues (NaN where fewer converged)");
+  c.array("re", re, {R, K}, "r, eigenvalue", "1",
+          "real parts of the K leading eigenvalues (NaN where fewer converged)");
   c.array("im", im, {R, K}, "r, eigenvalue", "1", "imaginary parts of the K leading eigenvalues");
   c.array("peripheral_count", peripheral_count, {R}, "r", "count", "eigenvalues with 1 - |lambda| < peripheral");
   c.array("closed_classes", closed_classes, {R}, "r", "count", "closed classes of Ulam's matrix");
-  c.array("rest_modulus", rest_modulus, {R}, "r", "1", "largest |lambda| outside the peripheral set (NaN: none within K)");
+  c.array("rest_modulus", rest_modulus, {R}, "r", "1",
+          "largest |lambda| outside the peripheral set (NaN: none within K)");
   c.array("gap", gap, {R}, "r", "1", "min |peripheral| - max |rest| (NaN: no peripheral or no rest within K)");
   c.array("p2_beta", p2_beta, {R}, "r", "rad",
           "rotation angle beta of P2's invariant curves, cos beta = -(1 - r)^2 / (4 r) (NaN below r = 3 - 2 sqrt 2)");
@@ -318,9 +328,10 @@ void TransferRResult::describe(core::Contents& c) const {
   request_attrs(request, c);
   c.attr("seconds", seconds);
   c.attr("csv_empty_cells",
-         std::string("peripheral_r.csv: rest_modulus when every eigenvalue within K is peripheral, gap when there is no "
-                     "peripheral eigenvalue or no other within K, p2_beta below r = 3 - 2 sqrt 2 (no P2 invariant curves); "
-                     "windows.csv: upper for n = 1 (no r_crit,2)"));
+         std::string(
+             "peripheral_r.csv: rest_modulus when every eigenvalue within K is peripheral, gap when there is no "
+             "peripheral eigenvalue or no other within K, p2_beta below r = 3 - 2 sqrt 2 (no P2 invariant curves); "
+             "windows.csv: upper for n = 1 (no r_crit,2)"));
 }
 
 std::string TransferRResult::spectrum_csv() const {

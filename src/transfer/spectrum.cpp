@@ -132,9 +132,8 @@ std::vector<LocalPair> block_eigenpairs(const ColMat& A, int k, bool vectors, lo
     if (out.empty() && m <= kDenseFallbackBoxes) dense = true;
   }
   if (dense) out = dense_eigenpairs(A, vectors, cancel);
-  std::stable_sort(out.begin(), out.end(), [](const LocalPair& x, const LocalPair& y) {
-    return std::abs(x.value) > std::abs(y.value);
-  });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const LocalPair& x, const LocalPair& y) { return std::abs(x.value) > std::abs(y.value); });
   return out;
 }
 
@@ -190,11 +189,12 @@ std::vector<Eigenpair> leading_eigenpairs(const UlamMatrix& P, const Decompositi
   return all;
 }
 
-std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k, const core::CancelToken* cancel) {
+std::vector<std::complex<double>> leading_eigenvalues_whole(const UlamMatrix& P, int k,
+                                                            const core::CancelToken* cancel) {
   std::vector<long> boxes(at(P.n));
   std::iota(boxes.begin(), boxes.end(), 0L);
-  const auto pairs = detail::block_eigenpairs(detail::block_transpose(P, boxes), k, false, 0,
-                                              Spectra::SortRule::LargestMagn, cancel);
+  const auto pairs =
+      detail::block_eigenpairs(detail::block_transpose(P, boxes), k, false, 0, Spectra::SortRule::LargestMagn, cancel);
   std::vector<std::complex<double>> values;
   for (std::size_t j = 0; j < pairs.size() && j < static_cast<std::size_t>(k); ++j) values.push_back(pairs[j].value);
   return values;

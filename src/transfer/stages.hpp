@@ -35,8 +35,8 @@ Spectrum leading_spectrum(const UlamMatrix& P, const Decomposition& d, const Tra
 // components (a real eigenvalue of the transient block within near_one of 1: its eigenvector's largest entry names
 // the strongly connected component).
 struct Absorber {
-  int block = 0;                // class c >= 1, or -s - 1 (transient strongly connected component s)
-  double rho = 1;               // mass kept per step: 1 for a class, the eigenvalue for a transient component
+  int block = 0;   // class c >= 1, or -s - 1 (transient strongly connected component s)
+  double rho = 1;  // mass kept per step: 1 for a class, the eigenvalue for a transient component
   std::vector<long> boxes;
   std::vector<double> density;  // on `boxes`, sum 1
 };
@@ -62,8 +62,8 @@ Projection project_lebesgue(const UlamMatrix& P, const Absorbers& absorbers, con
 // is the class's density weighted by chi.
 struct Components {
   std::vector<ComponentInfo> info;
-  std::vector<std::uint32_t> of_box;       // 0: none, k: info[k - 1]
-  std::vector<double> density;             // sum_k lebesgue_k * (density of k), mass per box
+  std::vector<std::uint32_t> of_box;           // 0: none, k: info[k - 1]
+  std::vector<double> density;                 // sum_k lebesgue_k * (density of k), mass per box
   std::vector<std::vector<double>> densities;  // per component, over all boxes, sum 1
 };
 Components split_components(const UlamMatrix& P, const Decomposition& d, const Partition& partition,

@@ -85,7 +85,8 @@ UlamMatrix ulam_btob(double r, Domain d, const Partition& p, int samples, const 
                      const core::RunControl& c) {
   const int threads = c.threads > 0 ? c.threads : omp_get_max_threads();
   if (route == "kernel")
-    return ulam(p, samples, [&](double* a, double* b, std::size_t n) { map_kernel(r, d, a, b, n, threads); }, c);
+    return ulam(
+        p, samples, [&](double* a, double* b, std::size_t n) { map_kernel(r, d, a, b, n, threads); }, c);
   return ulam(
       p, samples,
       [&](double* a, double* b, std::size_t n) {
@@ -118,10 +119,11 @@ void check_size(long n, long samples) {
   // Memory: per box its row (<= samples entries of 12 bytes, counted at most 32 per box: rows of a map
   // concentrate), the chunk buffers, the decomposition and K eigenvectors (~ 400 bytes); refused up front.
   try {
-    iterate::checked_bytes(static_cast<std::size_t>(n), 12 * static_cast<std::size_t>(std::min<long>(samples, 32)) + 400,
-                           "boxes");
+    iterate::checked_bytes(static_cast<std::size_t>(n),
+                           12 * static_cast<std::size_t>(std::min<long>(samples, 32)) + 400, "boxes");
   } catch (const std::length_error& e) {
-    throw core::InvalidField("boxes", fmt::format("{} boxes", n), "a partition that fits in memory (" + std::string(e.what()) + ")");
+    throw core::InvalidField("boxes", fmt::format("{} boxes", n),
+                             "a partition that fits in memory (" + std::string(e.what()) + ")");
   }
 }
 }  // namespace
@@ -143,7 +145,8 @@ namespace {
 // eigenvalues_min: 1 for transfer-r (its output is the spectrum), 0 for transfer (0: no spectrum, only the basins).
 void check_common(double r, const std::string& boxes, const std::string& domain, int samples, int eigenvalues,
                   const std::string& route, const char* r_field, int eigenvalues_min = 1) {
-  if (!(r > 0 && r < 1)) throw core::InvalidField(r_field, str(r), "a restitution coefficient in the open interval (0, 1)");
+  if (!(r > 0 && r < 1))
+    throw core::InvalidField(r_field, str(r), "a restitution coefficient in the open interval (0, 1)");
   const auto [n1, n2] = parse_boxes(boxes);
   parse_domain(domain);
   if (samples < 1 || samples > kMaxSamples)
@@ -171,14 +174,16 @@ std::vector<std::string> TransferRequest::cycle_words() const {
 bool TransferRequest::names_an_attractor() const {
   if (detail::p2_level(r) > 0) return true;  // the P2 region exists
   for (const auto& w : cycle_words())
-    if (patterns::analyse<double>(patterns::parse_word(w, "cycle"), r).outcome == patterns::Outcome::stable) return true;
+    if (patterns::analyse<double>(patterns::parse_word(w, "cycle"), r).outcome == patterns::Outcome::stable)
+      return true;
   return false;
 }
 
 void TransferRequest::validate() const {
   check_common(r, boxes, domain, samples, eigenvalues, route, "r", 0);
   if (!(near_one > 0 && near_one < 1)) throw core::InvalidField("near-one", str(near_one), "a distance in (0, 1)");
-  if (w1_range.size() != 2 || !(w1_range[0] < w1_range[1]) || !std::isfinite(w1_range[0]) || !std::isfinite(w1_range[1]))
+  if (w1_range.size() != 2 || !(w1_range[0] < w1_range[1]) || !std::isfinite(w1_range[0]) ||
+      !std::isfinite(w1_range[1]))
     throw core::InvalidField("w1-range", fmt::format("{} values", w1_range.size()), "two finite numbers a < b");
   if (measure_orbits < 0 || measure_orbits > 64)
     throw core::InvalidField("measure-orbits", std::to_string(measure_orbits), "0..64 (an NxN grid; 0 skips)");
@@ -196,17 +201,19 @@ void TransferRequest::validate() const {
     throw core::InvalidField("eigenvalues", fmt::format("0 at r = {} with no stable --cycle and no P2 region", str(r)),
                              "1 or more, or an attractor for the basins (0 computes only them)");
   if (measure_orbits > 0)
-    iterate::checked_bytes(static_cast<std::size_t>(measure_orbits * measure_orbits) * 2 *
-                               static_cast<std::size_t>(measure_iterations),
-                           25, "measure-iterations");
+    iterate::checked_bytes(
+        static_cast<std::size_t>(measure_orbits * measure_orbits) * 2 * static_cast<std::size_t>(measure_iterations),
+        25, "measure-iterations");
 }
 
 void TransferRRequest::validate() const {
   check_common(r_min, boxes, domain, samples, eigenvalues, route, "r-min");
-  if (!(r_max > r_min && r_max < 1)) throw core::InvalidField("r-max", str(r_max), fmt::format("a value in ({}, 1)", r_min));
+  if (!(r_max > r_min && r_max < 1))
+    throw core::InvalidField("r-max", str(r_max), fmt::format("a value in ({}, 1)", r_min));
   if (r_count < 1 || r_count > 100000) throw core::InvalidField("r-count", std::to_string(r_count), "1..100000");
   core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
-  if (!(peripheral > 0 && peripheral < 1)) throw core::InvalidField("peripheral", str(peripheral), "a distance in (0, 1)");
+  if (!(peripheral > 0 && peripheral < 1))
+    throw core::InvalidField("peripheral", str(peripheral), "a distance in (0, 1)");
 }
 
 // ---- btob transfer ----------------------------------------------------------------------------------------
@@ -296,7 +303,8 @@ void file_arrays(TransferResult& res) {
   if (res.second.empty() && res.request.spectrum()) res.second.assign(res.density.size(), 0);
   for (const auto& ci : res.components) res.lebesgue.push_back(ci.lebesgue);
   for (const auto& cc : res.cycles)
-    for (std::size_t k = 0; k < cc.a.size(); ++k) res.cycle_points.push_back(cc.a[k]), res.cycle_points.push_back(cc.b[k]);
+    for (std::size_t k = 0; k < cc.a.size(); ++k)
+      res.cycle_points.push_back(cc.a[k]), res.cycle_points.push_back(cc.b[k]);
 }
 
 }  // namespace
@@ -331,7 +339,6 @@ TransferResult run(const TransferRequest& q, const core::RunControl& control) {
   res.seconds_total = detail::seconds_since(started);
   return res;
 }
-
 
 // ---- the cost of transfer and transfer-r (core/work.hpp) -------------------------------------------------------
 namespace {
@@ -467,13 +474,15 @@ TransferRResult run(const TransferRRequest& q, const core::RunControl& c) {
     res.peripheral_count.push_back(static_cast<std::uint32_t>(per));
     res.closed_classes.push_back(static_cast<std::uint32_t>(d.classes.size()));
     res.rest_modulus.push_back(max_rest);
-    res.gap.push_back(per > 0 && std::isfinite(max_rest) ? min_per - max_rest : std::numeric_limits<double>::quiet_NaN());
+    res.gap.push_back(per > 0 && std::isfinite(max_rest) ? min_per - max_rest
+                                                         : std::numeric_limits<double>::quiet_NaN());
     res.p2_beta.push_back(p2_rotation_angle(res.r[ir]));
     if (c.progress) c.progress->update(ir + 1, R);
   }
   for (int n = 1; n <= 12; ++n) {
     res.window_lower.push_back(static_cast<double>(windows::window_lower_bound(n, 12)));
-    res.window_upper.push_back(n >= 2 ? static_cast<double>(windows::r_crit2(n, 20)) : std::numeric_limits<double>::quiet_NaN());
+    res.window_upper.push_back(n >= 2 ? static_cast<double>(windows::r_crit2(n, 20))
+                                      : std::numeric_limits<double>::quiet_NaN());
   }
   res.seconds = detail::seconds_since(t0);
   return res;

@@ -45,7 +45,7 @@ struct UlamMatrix {
   long n = 0;
   std::vector<int> row_ptr, col;  // row_ptr has n + 1 entries
   std::vector<double> val;
-  std::uint64_t lost = 0;         // samples whose image was outside the chart or not finite
+  std::uint64_t lost = 0;  // samples whose image was outside the chart or not finite
   long nnz() const { return static_cast<long>(col.size()); }
 };
 
@@ -62,10 +62,10 @@ struct ClassInfo {
   int period = 1;
 };
 struct Decomposition {
-  std::vector<int> scc;                   // strongly connected component of each box, 0-based
+  std::vector<int> scc;  // strongly connected component of each box, 0-based
   int components = 0;
   std::vector<std::uint32_t> class_of_box;  // 0: transient, c >= 1: closed class c
-  std::vector<ClassInfo> classes;         // classes[c - 1]
+  std::vector<ClassInfo> classes;           // classes[c - 1]
 };
 Decomposition decompose(const UlamMatrix& P);
 
@@ -83,7 +83,7 @@ Decomposition decompose(const UlamMatrix& P);
 constexpr long kDenseMaxBoxes = 600;
 struct Eigenpair {
   std::complex<double> value;
-  int block = 0;                          // 0: transient block, c >= 1: closed class c
+  int block = 0;                             // 0: transient block, c >= 1: closed class c
   std::vector<std::complex<double>> vector;  // n entries
 };
 // `cancel` (here and below): polled before every matrix-vector product of the Arnoldi iteration; throws
@@ -115,33 +115,33 @@ double p2_rotation_angle(double r);
 
 // ---- btob transfer ----------------------------------------------------------------------------------------
 struct TransferRequest {
-  double r = 0.15;                  // restitution coefficient, (0, 1)
-  std::string boxes = "256x256";    // NxM boxes (N in the first chart coordinate), N, M >= 1
-  std::string domain = "strip";     // strip | angles
-  int samples = 64;                 // sample points per box, 1..65536
+  double r = 0.15;                // restitution coefficient, (0, 1)
+  std::string boxes = "256x256";  // NxM boxes (N in the first chart coordinate), N, M >= 1
+  std::string domain = "strip";   // strip | angles
+  int samples = 64;               // sample points per box, 1..65536
   // K leading eigenvalues reported, 1 .. number of boxes; 0: no spectrum, only the basins from the Ulam graph (the
   // outputs that need eigenvectors are left out: spectrum.csv, components.csv, the density, the Lebesgue projection,
   // the cycles' masses, the TV distance); allowed when the request names an attractor and check_whole is off.
   int eigenvalues = 16;
-  std::string route = "direct";     // direct | kernel (how sample images are computed)
-  double near_one = 1e-2;           // distance to 1 of the eigenvalues counted as ergodic components
+  std::string route = "direct";  // direct | kernel (how sample images are computed)
+  double near_one = 1e-2;        // distance to 1 of the eigenvalues counted as ergodic components
   // Lebesgue measure projected on the eigenvectors: the rectangle w1 in [a, b] x w2 in [-1, 1] of the strip
   // (the measure of `btob basins --grid strip`); the whole chart for angles.
   std::vector<double> w1_range{-2, 2};
   int measure_orbits = 16;          // empirical measure: an NxN strip grid of initial conditions (0: skip)
   long measure_iterations = 20000;  // points per orbit after the transient
   long measure_transient = 1000;
-  int tv_bins = 64;                 // TV distance also on a coarser tv_bins x tv_bins grid (divides N and M)
+  int tv_bins = 64;  // TV distance also on a coarser tv_bins x tv_bins grid (divides N and M)
   // Periodic words whose exact cycles (patterns::analyse) are located in the boxes: the density's mass on
   // their boxes and on the 3x3 neighbourhoods of those boxes, and the component hosting each.
   std::vector<std::string> cycles;
-  bool check_whole = false;         // also run Spectra on the whole matrix (cross-check; doubles the time)
+  bool check_whole = false;  // also run Spectra on the whole matrix (cross-check; doubles the time)
   // The words of `cycles`, in order: an item holding commas gives several (--cycle 1322,3122,132^3312^3).
   std::vector<std::string> cycle_words() const;
   // Whether the basins have a target: the P2 region exists at r (r > 3 - 2 sqrt 2) or a cycle word is stable at r.
   bool names_an_attractor() const;
   bool spectrum() const { return eigenvalues > 0; }
-  void validate() const;            // throws core::InvalidField
+  void validate() const;  // throws core::InvalidField
   template <class V> void fields(V&& v) {
     v("r", r, "restitution coefficient in (0, 1)");
     v("boxes", boxes, "NxM boxes of the chart, N, M >= 1");
@@ -161,23 +161,23 @@ struct TransferRequest {
 };
 
 struct ComponentInfo {
-  int block = 0;                   // closed class c >= 1, or -s - 1 for an almost-invariant transient component s
+  int block = 0;  // closed class c >= 1, or -s - 1 for an almost-invariant transient component s
   long boxes = 0;
   int period = 1;
   // Mass kept per step: 1 for a whole closed class; the eigenvalue (quasi-stationary rate) of an almost-invariant
   // transient component; for a PCCA+ part of a class, its metastability sum_i w_i (P chi)_i / sum_i w_i.
   double rho = 1;
-  double lebesgue = 0;             // projection of Lebesgue measure: fraction of it that ends in this component
-  std::vector<double> centre;      // mass-weighted chart centre (a, b)
+  double lebesgue = 0;         // projection of Lebesgue measure: fraction of it that ends in this component
+  std::vector<double> centre;  // mass-weighted chart centre (a, b)
 };
 
 struct CycleCheck {
-  std::string word;                // as given
-  std::string outcome;             // patterns::analyse at r: stable, unstable or none
-  std::vector<long> boxes;         // the boxes of its points (one per point of the cycle)
-  std::vector<double> a, b;        // chart coordinates of its points
-  double mass_boxes = 0;           // density mass on those boxes (a box counted once)
-  double mass_neighbourhood = 0;   // on their 3x3 neighbourhoods
+  std::string word;               // as given
+  std::string outcome;            // patterns::analyse at r: stable, unstable or none
+  std::vector<long> boxes;        // the boxes of its points (one per point of the cycle)
+  std::vector<double> a, b;       // chart coordinates of its points
+  double mass_boxes = 0;          // density mass on those boxes (a box counted once)
+  double mass_neighbourhood = 0;  // on their 3x3 neighbourhoods
   // Smallest R such that the boxes within Chebyshev distance R (in boxes) of the cycle's boxes hold 99% of the
   // density (of the whole density, and of the hosting component's density): for a sink, Ulam's smearing spreads
   // its mass over a number of boxes that does not shrink with h, so R stays bounded and R h -> 0.
@@ -185,7 +185,7 @@ struct CycleCheck {
   // Component (1-based) whose density puts most mass on the neighbourhoods; without a spectrum, the closed class
   // that holds every box of the cycle (0: none, or boxes in several or in the transient block).
   int component = 0;
-  double component_share = 0;      // that component's own density mass on the neighbourhoods
+  double component_share = 0;  // that component's own density mass on the neighbourhoods
 };
 
 // Basins from the Ulam graph: the chain made absorbing on the boxes of the attractors the request names (each
@@ -222,44 +222,45 @@ struct ClassNames {
   std::vector<std::string> name, verdict;  // per closed class: the attractor more than half its starts reach, or
                                            // "undecided"
   std::vector<std::uint32_t> classified, majority;  // per closed class: starts classified, starts reaching it
-  std::vector<ClassAttractor> reached;     // every attractor each class's starts reach, by class, then by count
-  std::vector<std::string> stable_words;   // the distinct stable periodic words, in order of first class
+  std::vector<ClassAttractor> reached;    // every attractor each class's starts reach, by class, then by count
+  std::vector<std::string> stable_words;  // the distinct stable periodic words, in order of first class
 };
 
 struct TransferResult {
-  TransferRequest request;  // the request, as run (validated)
-  Partition part;  // the box partition of the chart (boxes along each coordinate and their ranges)
-  long nnz = 0;  // non-zero entries of the Ulam matrix
-  std::uint64_t lost = 0;  // samples whose image left the chart or was not finite
+  TransferRequest request;             // the request, as run (validated)
+  Partition part;                      // the box partition of the chart (boxes along each coordinate and their ranges)
+  long nnz = 0;                        // non-zero entries of the Ulam matrix
+  std::uint64_t lost = 0;              // samples whose image left the chart or was not finite
   std::vector<double> eig_re, eig_im;  // K leading eigenvalues by decreasing modulus (block route)
-  std::vector<std::uint32_t> eig_block;  // their blocks (0 transient, c closed class)
+  std::vector<std::uint32_t> eig_block;    // their blocks (0 transient, c closed class)
   std::vector<double> whole_re, whole_im;  // Spectra on the whole matrix (cross-check)
-  std::vector<ClassInfo> classes;      // the closed classes' sizes and periods (class c = classes[c - 1])
+  std::vector<ClassInfo> classes;          // the closed classes' sizes and periods (class c = classes[c - 1])
   int closed_classes() const { return static_cast<int>(classes.size()); }
-  int near_one_count = 0;              // eigenvalues with |lambda - 1| <= near_one
-  std::vector<ComponentInfo> components;  // closed classes, then almost-invariant transient components
+  int near_one_count = 0;                       // eigenvalues with |lambda - 1| <= near_one
+  std::vector<ComponentInfo> components;        // closed classes, then almost-invariant transient components
   std::vector<std::uint32_t> component_of_box;  // n1 x n2 row-major, 0 none, k = components[k - 1]
-  std::vector<double> density;         // n1 x n2: sum_k lebesgue_k * (invariant density of k), mass per box
-  double unabsorbed = 0;               // Lebesgue mass left unresolved by the projection
+  std::vector<double> density;                  // n1 x n2: sum_k lebesgue_k * (invariant density of k), mass per box
+  double unabsorbed = 0;                        // Lebesgue mass left unresolved by the projection
   // Sign structure of the leading real eigenvector with 0 < lambda < 1 - 1e-9 (almost-invariant sets).
   double second_value = 0;
   int second_block = 0;
-  std::vector<double> second;          // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block; all 0
-                                       // when there is no such eigenvalue)
+  std::vector<double> second;  // n1 x n2, real part, normalised to max |.| = 1 (0 outside its block; all 0
+                               // when there is no such eigenvalue)
   double second_positive_mass = 0, second_negative_mass = 0;  // L1 mass of the two signs, sum 1
-  long second_positive_boxes = 0, second_negative_boxes = 0;  // boxes where the second eigenvector is positive, negative
+  long second_positive_boxes = 0,
+       second_negative_boxes = 0;  // boxes where the second eigenvector is positive, negative
   // Empirical measure of orbits started on a strip grid (stats::orbit_series / empirical_measure).
   std::vector<CycleCheck> cycles;
   // Without --cycle: the stable periodic attractors found in the closed classes (words, paper notation), which
   // `cycles` then checks and `basins` targets; empty when cycles were named or none was found.
   std::vector<std::string> attractors_found;
-  ClassNames class_names;              // without --cycle: how the closed classes were named (empty with --cycle)
+  ClassNames class_names;  // without --cycle: how the closed classes were named (empty with --cycle)
   double tv_boxes = -1, tv_coarse = -1;
   long measure_points = 0;
   double seconds_matrix = 0, seconds_spectrum = 0, seconds_total = 0;
   std::size_t matrix_bytes = 0;
-  std::vector<double> lebesgue;        // per component: components[k].lebesgue
-  std::vector<double> cycle_points;    // (a, b) of every point of every cycle, the cycles in order (rows of 2)
+  std::vector<double> lebesgue;      // per component: components[k].lebesgue
+  std::vector<double> cycle_points;  // (a, b) of every point of every cycle, the cycles in order (rows of 2)
   // Basins from the Ulam graph (empty when the request names no attractor: no stable cycle, no P2 region).
   std::vector<BasinInfo> basins;
   std::vector<std::uint32_t> basin_of_box;  // n1 x n2: the target (1-based) of largest absorption probability, 0: none
@@ -279,8 +280,8 @@ struct TransferResult {
   std::string cycles_csv() const;      // word,outcome,points,boxes_found,mass_boxes,...; "" when no cycle was asked
   std::string basins_csv() const;      // attractor,kind,target_boxes,fraction,exact; "" when there is no target
   std::string classes_csv() const;     // closed_class,attractor,type,verdict,starts; "" with --cycle
-  core::Tables tables() const {  // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some),
-                                 // classes.csv (without --cycle)
+  core::Tables tables() const {        // spectrum.csv, components.csv, cycles.csv, basins.csv (when there are some),
+                                       // classes.csv (without --cycle)
     core::Tables t;
     if (request.spectrum()) t = {{"spectrum.csv", spectrum_csv()}, {"components.csv", components_csv()}};
     if (!cycles.empty()) t.emplace_back("cycles.csv", cycles_csv());
@@ -288,7 +289,7 @@ struct TransferResult {
     if (request.cycles.empty()) t.emplace_back("classes.csv", classes_csv());
     return t;
   }
-  std::string summary() const;         // the lines printed on stderr
+  std::string summary() const;  // the lines printed on stderr
 };
 TransferResult run(const TransferRequest& q, const core::RunControl& c = {});
 // Its cost (core/work.hpp): Ulam's sample images (boxes x samples), the stages on the matrix (decomposition, Arnoldi,
@@ -304,7 +305,7 @@ struct TransferRRequest {
   std::string domain = "strip";
   int samples = 16;
   int eigenvalues = 24;
-  double peripheral = 1e-2;          // 1 - |lambda| below this: peripheral, (0, 1)
+  double peripheral = 1e-2;  // 1 - |lambda| below this: peripheral, (0, 1)
   std::string route = "direct";
   void validate() const;
   template <class V> void fields(V&& v) {
@@ -320,15 +321,15 @@ struct TransferRRequest {
   }
 };
 struct TransferRResult {
-  TransferRRequest request;  // the request, as run (validated)
-  std::vector<double> r;  // [R]: the r values, ascending
-  long K = 0;  // eigenvalues kept per r (the request's, at most the number of boxes)
-  std::vector<double> re, im;          // r.size() x K row-major (NaN where fewer converged)
+  TransferRRequest request;                     // the request, as run (validated)
+  std::vector<double> r;                        // [R]: the r values, ascending
+  long K = 0;                                   // eigenvalues kept per r (the request's, at most the number of boxes)
+  std::vector<double> re, im;                   // r.size() x K row-major (NaN where fewer converged)
   std::vector<std::uint32_t> peripheral_count;  // per r
   std::vector<std::uint32_t> closed_classes;    // per r
-  std::vector<double> gap;             // min |peripheral| - max |rest| (NaN when no rest within K)
-  std::vector<double> rest_modulus;    // max |lambda| outside the peripheral set
-  std::vector<double> p2_beta;         // p2_rotation_angle(r) per r (NaN below 3 - 2 sqrt 2)
+  std::vector<double> gap;                      // min |peripheral| - max |rest| (NaN when no rest within K)
+  std::vector<double> rest_modulus;             // max |lambda| outside the peripheral set
+  std::vector<double> p2_beta;                  // p2_rotation_angle(r) per r (NaN below 3 - 2 sqrt 2)
   // The windows [root of Q_n, r_crit,2(n)] of (ab)^n(cb)^n (src/windows), n = 1..12 (narrower windows are below
   // the resolution of any r grid we draw); n = 1 has no r_crit,2 (NaN).
   std::vector<double> window_lower, window_upper;

@@ -22,8 +22,8 @@ struct Rows {
 };
 
 // The samples of the boxes box0 .. box0 + count - 1, box after box (S = off.size() each), into a and b.
-inline void place_samples(const Partition& p, const std::vector<std::pair<double, double>>& off, long box0,
-                          long count, std::vector<double>& a, std::vector<double>& b, int threads) {
+inline void place_samples(const Partition& p, const std::vector<std::pair<double, double>>& off, long box0, long count,
+                          std::vector<double>& a, std::vector<double>& b, int threads) {
   const std::size_t S = off.size();
   const double h1 = (p.hi1 - p.lo1) / static_cast<double>(p.n1), h2 = (p.hi2 - p.lo2) / static_cast<double>(p.n2);
   a.resize(static_cast<std::size_t>(count) * S);
@@ -81,7 +81,8 @@ inline UlamMatrix compress(Rows& rows, std::uint64_t lost) {
   P.n = static_cast<long>(rows.cols.size());
   P.lost = lost;
   P.row_ptr.assign(rows.cols.size() + 1, 0);
-  for (std::size_t i = 0; i < rows.cols.size(); ++i) P.row_ptr[i + 1] = P.row_ptr[i] + static_cast<int>(rows.cols[i].size());
+  for (std::size_t i = 0; i < rows.cols.size(); ++i)
+    P.row_ptr[i + 1] = P.row_ptr[i] + static_cast<int>(rows.cols[i].size());
   P.col.reserve(static_cast<std::size_t>(P.row_ptr.back()));
   P.val.reserve(static_cast<std::size_t>(P.row_ptr.back()));
   for (std::size_t i = 0; i < rows.cols.size(); ++i) {

@@ -16,7 +16,8 @@ namespace btob::windows {
 // long double, which the precision study (results/windows/precision.csv) shows correct to ~20 decimals for every
 // n <= 150, while the polynomial route for n = 150..400 costs ~20 s in all.  Computed once per n (thread-safe).
 // `cancel` is polled before every n (core::Cancelled): the first use over the whole r range takes seconds.
-std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel = nullptr);
+std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max,
+                                                   const core::CancelToken* cancel = nullptr);
 
 // The thin stripes r(l/m) of eq. (6.3) with m <= 120 (Figure 6.8) in [r_min, r_max], colour 1.
 std::vector<std::pair<double, int>> stripes_overlay(double r_min, double r_max);

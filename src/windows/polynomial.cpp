@@ -37,7 +37,8 @@ IntPoly operator*(const IntPoly& a, const IntPoly& b) {
   std::vector<mpz_class> c(a.c_.size() + b.c_.size() - 1);
   for (std::size_t i = 0; i < a.c_.size(); ++i) {
     if (a.c_[i] == 0) continue;
-    for (std::size_t j = 0; j < b.c_.size(); ++j) mpz_addmul(c[i + j].get_mpz_t(), a.c_[i].get_mpz_t(), b.c_[j].get_mpz_t());
+    for (std::size_t j = 0; j < b.c_.size(); ++j)
+      mpz_addmul(c[i + j].get_mpz_t(), a.c_[i].get_mpz_t(), b.c_[j].get_mpz_t());
   }
   return IntPoly(std::move(c));
 }
@@ -89,7 +90,8 @@ IntPoly IntPoly::primitive() const {
 }
 
 int IntPoly::divide_out(long root) {
-  if (root != 1 && root != -1) throw std::invalid_argument("divide_out: got root " + std::to_string(root) + ", expected +1 or -1");
+  if (root != 1 && root != -1)
+    throw std::invalid_argument("divide_out: got root " + std::to_string(root) + ", expected +1 or -1");
   int count = 0;
   while (degree() >= 1 && sign_at(mpz_class(root), mpz_class(1)) == 0) {
     // Synthetic division by (x - root): q_{k-1} = c_k + root * q_k, from the top.
@@ -199,7 +201,8 @@ std::vector<int> signs_at(const std::vector<IntPoly>& seq, const mpq_class& x) {
 
 long sturm_count(const std::vector<IntPoly>& seq, const mpq_class& a, const mpq_class& b) {
   if (seq.empty()) throw std::invalid_argument("sturm_count: empty sequence");
-  if (!(a < b)) throw std::invalid_argument("sturm_count: expected a < b, got a = " + a.get_str() + ", b = " + b.get_str());
+  if (!(a < b))
+    throw std::invalid_argument("sturm_count: expected a < b, got a = " + a.get_str() + ", b = " + b.get_str());
   if (seq.front().sign_at(a) == 0 || seq.front().sign_at(b) == 0)
     throw std::domain_error("sturm_count: an endpoint is a root of the polynomial");
   return variations(signs_at(seq, a)) - variations(signs_at(seq, b));
@@ -282,7 +285,8 @@ Coeffs shifted_to(const IntPoly& p, const mpz_class& u, const mpz_class& den) {
 }
 
 void check_interval(const IntPoly& p, const mpq_class& a, const mpq_class& b) {
-  if (!(a < b)) throw std::invalid_argument("descartes_count: expected a < b, got a = " + a.get_str() + ", b = " + b.get_str());
+  if (!(a < b))
+    throw std::invalid_argument("descartes_count: expected a < b, got a = " + a.get_str() + ", b = " + b.get_str());
   if (p.is_zero()) throw std::invalid_argument("descartes_count: the zero polynomial");
 }
 
@@ -334,7 +338,8 @@ long descartes_count_to_infinity(const IntPoly& p, const mpq_class& a_in, int ma
 
 long root_count(const IntPoly& p, const mpq_class& a, const mpq_class& b, std::vector<IntPoly>* seq_cache,
                 const core::CancelToken* cancel) {
-  if (p.sign_at(a) == 0 || p.sign_at(b) == 0) throw std::domain_error("root_count: an endpoint is a root of the polynomial");
+  if (p.sign_at(a) == 0 || p.sign_at(b) == 0)
+    throw std::domain_error("root_count: an endpoint is a root of the polynomial");
   const long d = descartes_count(p, a, b, 64, cancel);
   if (d >= 0) return d;
   if (seq_cache->empty()) *seq_cache = sturm_sequence(p, cancel);
@@ -352,7 +357,8 @@ long root_count_to_infinity(const IntPoly& p, const mpq_class& a, std::vector<In
 
 IntPoly palindromic_reduce(const IntPoly& p) {
   const int d = p.degree();
-  if (d < 0 || d % 2 != 0) throw std::invalid_argument("palindromic_reduce: got degree " + std::to_string(d) + ", expected an even degree");
+  if (d < 0 || d % 2 != 0)
+    throw std::invalid_argument("palindromic_reduce: got degree " + std::to_string(d) + ", expected an even degree");
   for (int i = 0; i <= d; ++i)
     if (p[static_cast<std::size_t>(i)] != p[static_cast<std::size_t>(d - i)])
       throw std::invalid_argument("palindromic_reduce: coefficients are not palindromic");

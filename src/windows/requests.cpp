@@ -49,7 +49,8 @@ namespace {
 // items, and calls f(part, n) for each item's n in the items' order, checking cancellation before and reporting
 // progress after each.  Returns the part, its items set.
 template <class Part, class Req, class F>
-Part for_each_n(const Req& req, int min_n, const std::vector<std::size_t>& items, const core::RunControl& control, F&& f) {
+Part for_each_n(const Req& req, int min_n, const std::vector<std::size_t>& items, const core::RunControl& control,
+                F&& f) {
   req.validate();
   const NRange r = parse_n_range(req.n, min_n, "n");
   check_items(items, r);
@@ -64,8 +65,8 @@ Part for_each_n(const Req& req, int min_n, const std::vector<std::size_t>& items
 }
 
 // The merge preamble of a per-n sweep: the request's n range and where each of its items is among the parts.
-template <class Part> std::pair<NRange, std::vector<core::ItemRef>> n_order(const std::string& n, int min_n,
-                                                                            const std::vector<Part>& parts) {
+template <class Part>
+std::pair<NRange, std::vector<core::ItemRef>> n_order(const std::string& n, int min_n, const std::vector<Part>& parts) {
   const NRange r = parse_n_range(n, min_n, "n");
   return {r, core::item_order(parts, static_cast<std::size_t>(r.count()))};
 }
@@ -233,8 +234,9 @@ core::Status BoundsResult::lower_status() const {
   const bool all = certified_run && std::all_of(certificates.begin(), certificates.end(),
                                                 [](const Certificate& c) { return c.valid(); });
   if (all)
-    return core::certified("certificate per n: a_decimal < root < b_decimal, sign_Q_a * sign_Q_b < 0, "
-                           "sturm_roots_0_a = 0, sturm_roots_a_b = 1 (exact rationals); dataset certified = 1");
+    return core::certified(
+        "certificate per n: a_decimal < root < b_decimal, sign_Q_a * sign_Q_b < 0, "
+        "sturm_roots_0_a = 0, sturm_roots_a_b = 1 (exact rationals); dataset certified = 1");
   return core::estimated(certified_run ? "a certificate failed (dataset certified = 0): root of Q_n in MPFR, "
                                          "rounded to `digits` decimals"
                                        : "root of Q_n in MPFR with 20 guard digits, rounded to `digits` decimals; "
@@ -244,8 +246,9 @@ core::Status BoundsResult::lower_status() const {
 
 // r_crit,2(n) (eq. (4.6)) is where the paper conjectures the window ends; nothing here proves the window reaches it.
 core::Status BoundsResult::upper_status() const {
-  return core::conjectured("r_crit,2(n), eq. (4.6), computed to `digits` decimals: the paper's conjecture that the "
-                           "window of (ab)^n(cb)^n ends there (Section 4); the certificate covers the lower bound only");
+  return core::conjectured(
+      "r_crit,2(n), eq. (4.6), computed to `digits` decimals: the paper's conjecture that the "
+      "window of (ab)^n(cb)^n ends there (Section 4); the certificate covers the lower bound only");
 }
 
 void BoundsResult::describe(core::Contents& c) const {
@@ -256,19 +259,22 @@ void BoundsResult::describe(core::Contents& c) const {
   if (certified_run) {
     c.array("sign_Q_a", sign_a, {N}, "n", "1", "exact sign of Q_n at a = floor(lower 10^D) / 10^D");
     c.array("sign_Q_b", sign_b, {N}, "n", "1", "exact sign of Q_n at b = a + 10^-D");
-    c.array("sturm_roots_0_a", roots_0_a, {N}, "n", "count", "distinct real roots of Q_n in (0, a] (Descartes rule after Moebius transforms, Sturm fallback)");
-    c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count", "distinct real roots of Q_n in (a, b) (Descartes rule after Moebius transforms, Sturm fallback)");
+    c.array("sturm_roots_0_a", roots_0_a, {N}, "n", "count",
+            "distinct real roots of Q_n in (0, a] (Descartes rule after Moebius transforms, Sturm fallback)");
+    c.array("sturm_roots_a_b", roots_a_b, {N}, "n", "count",
+            "distinct real roots of Q_n in (a, b) (Descartes rule after Moebius transforms, Sturm fallback)");
     c.array("certified", valid, {N}, "n", "1", "1 when the certificate proves the lower bound lies in (a, b)");
   }
   const core::Status lower = lower_status(), upper = upper_status();
-  c.decimal("lower_bound_decimal", lower_text, "n", "1", "smallest positive root of Q_n, `digits` decimals (correctly rounded)",
-            lower);
+  c.decimal("lower_bound_decimal", lower_text, "n", "1",
+            "smallest positive root of Q_n, `digits` decimals (correctly rounded)", lower);
   c.status_of("lower_bound", lower);
   c.decimal("upper_bound_decimal", upper_text, "n", "1", "r_crit,2(n), `digits` decimals (empty for n = 1)", upper);
   c.status_of("upper_bound", upper);
   if (certified_run) {
-    const core::Status exact = core::certified("exact: a = floor(lower 10^D) / 10^D and b = a + 10^-D are D-decimal "
-                                               "fractions, printed with all D decimals");
+    const core::Status exact = core::certified(
+        "exact: a = floor(lower 10^D) / 10^D and b = a + 10^-D are D-decimal "
+        "fractions, printed with all D decimals");
     c.decimal("a_decimal", a_text, "n", "1", "the certificate's a, an exact D-decimal fraction", exact);
     c.decimal("b_decimal", b_text, "n", "1", "the certificate's b = a + 10^-D", exact);
   }
@@ -281,14 +287,16 @@ namespace {
 // What the thresholds' and the stripes' decimals are (docs/reference/numbers.md): closed forms evaluated in MPFR,
 // not interval arithmetic, so their last decimal is vouched for numerically, not proved.
 core::Status threshold_status() {
-  return core::estimated("closed form (names' formulas) evaluated in MPFR with 10 guard digits, rounded to `digits` "
-                         "decimals",
-                         "error bar one unit of the last decimal, a numerical bound without proof");
+  return core::estimated(
+      "closed form (names' formulas) evaluated in MPFR with 10 guard digits, rounded to `digits` "
+      "decimals",
+      "error bar one unit of the last decimal, a numerical bound without proof");
 }
 core::Status stripe_status() {
-  return core::estimated("eq. (6.3) with xi = cos(pi - 2 pi l/m) evaluated in MPFR with 10 guard digits, rounded to "
-                         "`digits` decimals",
-                         "error bar one unit of the last decimal, a numerical bound without proof");
+  return core::estimated(
+      "eq. (6.3) with xi = cos(pi - 2 pi l/m) evaluated in MPFR with 10 guard digits, rounded to "
+      "`digits` decimals",
+      "error bar one unit of the last decimal, a numerical bound without proof");
 }
 }  // namespace
 
@@ -314,14 +322,17 @@ std::string ThresholdsResult::csv() const {
 }
 
 void ThresholdsResult::describe(core::Contents& c) const {
-  c.array("value", value, {value.size()}, "threshold", "1", "threshold values rounded to double, in the order of names");
+  c.array("value", value, {value.size()}, "threshold", "1",
+          "threshold values rounded to double, in the order of names");
   std::string names;
   for (const auto& t : thresholds) names += (names.empty() ? "" : ",") + t.name;
   c.attr("names", names);
   const core::Status st = threshold_status();
-  c.decimal("value_decimal", text, "threshold", "1", "threshold values with `digits` decimals, in the order of names", st);
+  c.decimal("value_decimal", text, "threshold", "1", "threshold values with `digits` decimals, in the order of names",
+            st);
   c.status_of("value", st);
-  for (std::size_t i = 0; i < thresholds.size(); ++i) c.attr(thresholds[i].name, thresholds[i].formula + " = " + text[i]);
+  for (std::size_t i = 0; i < thresholds.size(); ++i)
+    c.attr(thresholds[i].name, thresholds[i].formula + " = " + text[i]);
 }
 
 void StripesRequest::validate() const {
@@ -346,7 +357,8 @@ StripesResult run(const StripesRequest& req, const core::RunControl& control) {
 std::string StripesResult::csv() const {
   core::CsvTable t("l,m,mirror_l,r,status");
   const std::string st = stripe_status().kind;
-  for (std::size_t i = 0; i < l.size(); ++i) t.line(fmt::format("{},{},{},{},{}", l[i], m[i], mirror_l[i], text[i], st));
+  for (std::size_t i = 0; i < l.size(); ++i)
+    t.line(fmt::format("{},{},{},{},{}", l[i], m[i], mirror_l[i], text[i], st));
   return t.text();
 }
 
@@ -368,8 +380,10 @@ core::Work work(const ThresholdsRequest& req) {
   core::Term t;
   t.route = fmt::format("windows thresholds {} digits", req.digits);
   t.units = 1;
-  t.what = fmt::format("run of the four thresholds at {} decimals (one indivisible computation, priced by a cost "
-                       "model in the digits)", req.digits);
+  t.what = fmt::format(
+      "run of the four thresholds at {} decimals (one indivisible computation, priced by a cost "
+      "model in the digits)",
+      req.digits);
   t.size_parameter = "digits";
   t.size = req.digits;
   t.smallest = 10;
@@ -480,8 +494,8 @@ std::string VerifyResult::csv() const {
   core::CsvTable t("n,position,r,lower_bound,upper_bound,iterations,orbits,on_pattern,expected,verdict");
   for (const auto& row : rows)
     t.line(fmt::format("{},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{}", row.n, core::csv_text(row.position), row.r,
-                       row.lower, row.upper, row.iterations, row.orbits, row.on_pattern, row.expected_on ? "all" : "none",
-                       row.pass() ? "pass" : "fail"));
+                       row.lower, row.upper, row.iterations, row.orbits, row.on_pattern,
+                       row.expected_on ? "all" : "none", row.pass() ? "pass" : "fail"));
   return t.text();
 }
 
@@ -496,7 +510,8 @@ void VerifyResult::describe(core::Contents& c) const {
   c.array("steps", iterations_run, {R}, axes, "iteration", "map iterations of each orbit");
   c.array("orbits", orbits, {R}, axes, "count", "orbits of the Section 4 grid");
   c.array("on_pattern", on_pattern, {R}, axes, "count", "orbits ending on (ab)^n(cb)^n");
-  c.array("expected_on", expected_on, {R}, axes, "1", "1: all orbits expected on the pattern (inside), 0: none (below)");
+  c.array("expected_on", expected_on, {R}, axes, "1",
+          "1: all orbits expected on the pattern (inside), 0: none (below)");
   c.array("pass", pass, {R}, axes, "1", "1 when the check passes");
   c.attr("n_first", static_cast<long>(range.first));
   c.attr("n_last", static_cast<long>(range.last));
@@ -539,8 +554,7 @@ std::string precision_name(int k, int mpfr_digits) {
 
 // One bound of precision T by `route` against the certified value `exact`; `mpfr_digits` > 0 for the MPFR row (its
 // working precision, held by a guard for the bound).
-template <class T>
-void study(Route route, int n, const mpfr_float& exact, int mpfr_digits, BoundPrecisionPart& part) {
+template <class T> void study(Route route, int n, const mpfr_float& exact, int mpfr_digits, BoundPrecisionPart& part) {
   std::optional<core::MpfrDigits> working;
   if (mpfr_digits > 0) working.emplace(mpfr_digits);
   const auto t0 = std::chrono::steady_clock::now();
@@ -659,7 +673,8 @@ void BoundPrecisionResult::describe(core::Contents& c) const {
   c.attr("rows", names);
   c.attr("n_first", static_cast<long>(range.first));
   c.attr("n_last", static_cast<long>(range.last));
-  c.attr("reference", std::string("window_lower_bound(n, 40 decimals), certified route (Q_n in MPFR, root counts checked exactly)"));
+  c.attr("reference",
+         std::string("window_lower_bound(n, 40 decimals), certified route (Q_n in MPFR, root counts checked exactly)"));
   c.attr("criterion", std::string("|value - reference| <= 5e-13 (correct to 12 decimals)"));
   c.attr("root_finder", std::string("toms748 on (7-4sqrt3, r_crit2(n)), tolerance all but 2 bits of T"));
   c.attr("total_seconds", total_seconds);

@@ -51,12 +51,12 @@ struct PolyRequest {
 };
 
 struct PolyResult {
-  std::vector<std::uint32_t> n, degree;     // [N]: n and the degree 4n of Q_n
-  std::vector<std::string> developed;       // [N] Table B.2 left ("" unless asked for)
-  std::vector<std::string> factorised;      // [N] Table B.2 right ("" unless asked for)
+  std::vector<std::uint32_t> n, degree;  // [N]: n and the degree 4n of Q_n
+  std::vector<std::string> developed;    // [N] Table B.2 left ("" unless asked for)
+  std::vector<std::string> factorised;   // [N] Table B.2 right ("" unless asked for)
   // "Q_n = ..." lines, developed before factorised for each n.
   std::string text() const;
-  void describe(core::Contents& c) const;   // arrays n, degree; attributes Q_<n>_developed / Q_<n>_factorised
+  void describe(core::Contents& c) const;  // arrays n, degree; attributes Q_<n>_developed / Q_<n>_factorised
 };
 // Some n of the range (items: ascending indices, n = first + item): Q_n's degree and text, item-major.
 struct PolyPart {
@@ -95,21 +95,21 @@ struct BoundsRequest {
 };
 
 struct BoundsResult {
-  int digits = 12;  // the request's digits of the printed bounds
-  bool certified_run = false;  // the request's certify: the bounds were proved in exact arithmetic
-  std::vector<std::uint32_t> n;                 // [N]
-  std::vector<std::string> lower_text;          // [N] lower bound, `digits` decimals (correctly rounded)
-  std::vector<std::string> upper_text;          // [N] r_crit,2(n), `digits` decimals; "" for n = 1
+  int digits = 12;                               // the request's digits of the printed bounds
+  bool certified_run = false;                    // the request's certify: the bounds were proved in exact arithmetic
+  std::vector<std::uint32_t> n;                  // [N]
+  std::vector<std::string> lower_text;           // [N] lower bound, `digits` decimals (correctly rounded)
+  std::vector<std::string> upper_text;           // [N] r_crit,2(n), `digits` decimals; "" for n = 1
   std::vector<double> lower_bound, upper_bound;  // [N] the same in double (upper NaN for n = 1)
-  std::vector<Certificate> certificates;        // [N] when certify
-  std::vector<std::string> a_text, b_text;      // [N] the certificate's a, b: exact D-decimal fractions
+  std::vector<Certificate> certificates;         // [N] when certify
+  std::vector<std::string> a_text, b_text;       // [N] the certificate's a, b: exact D-decimal fractions
   std::vector<double> sign_a, sign_b, roots_0_a, roots_a_b, valid;  // [N] when certify (valid: 1 or 0)
 
   // n,lower_bound,upper_bound[,a,b,sign_Q_a,sign_Q_b,sturm_roots_0_a,sturm_roots_a_b,certified],lower_status,upper_status
   std::string csv() const;
   core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
-  core::Status lower_status() const;  // certified when every certificate holds, else estimated
-  core::Status upper_status() const;  // conjectured: r_crit,2(n)
+  core::Status lower_status() const;                     // certified when every certificate holds, else estimated
+  core::Status upper_status() const;                     // conjectured: r_crit,2(n)
   void describe(core::Contents& c) const;
 };
 // Some n of the range (items ascending, n = first + item), item-major: the bounds, and with --certify the
@@ -125,7 +125,8 @@ struct BoundsPart {
     x(items, lower_text, upper_text, lower_bound, upper_bound, a, b, sign_a, sign_b, roots_0_a, roots_a_b);
   }
 };
-BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+BoundsPart run_part(const BoundsRequest& req, const std::vector<std::size_t>& items,
+                    const core::RunControl& control = {});
 BoundsResult merge(const BoundsRequest& req, std::vector<BoundsPart> parts);
 // merge(req, {run_part(req, every n)}).
 BoundsResult run(const BoundsRequest& req, const core::RunControl& control = {});
@@ -139,10 +140,11 @@ struct ThresholdsRequest {
 };
 
 struct ThresholdsResult {
-  std::vector<Threshold> thresholds;  // 7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1: name, formula and value (windows::thresholds)
-  std::vector<std::string> text;  // [4] the values with `digits` decimals
-  std::vector<double> value;      // [4] the values in double
-  std::string csv() const;        // name,formula,value,status
+  std::vector<Threshold>
+      thresholds;  // 7-4sqrt3, 3-2sqrt2, 5-2sqrt6, 2^(2/3)-1: name, formula and value (windows::thresholds)
+  std::vector<std::string> text;                         // [4] the values with `digits` decimals
+  std::vector<double> value;                             // [4] the values in double
+  std::string csv() const;                               // name,formula,value,status
   core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
   void describe(core::Contents& c) const;
 };
@@ -162,10 +164,10 @@ struct StripesRequest {
 };
 
 struct StripesResult {
-  std::vector<std::uint32_t> l, m, mirror_l;  // [S] l/m and its mirror (m - l)/m, sorted by r
-  std::vector<std::string> text;              // [S] r(l/m) with `digits` decimals
-  std::vector<double> r;                      // [S] r(l/m) in double
-  std::string csv() const;                    // l,m,mirror_l,r,status
+  std::vector<std::uint32_t> l, m, mirror_l;             // [S] l/m and its mirror (m - l)/m, sorted by r
+  std::vector<std::string> text;                         // [S] r(l/m) with `digits` decimals
+  std::vector<double> r;                                 // [S] r(l/m) in double
+  std::string csv() const;                               // l,m,mirror_l,r,status
   core::Tables tables() const { return {{"", csv()}}; }  // NAME.csv (--out, Python's save())
   void describe(core::Contents& c) const;
 };
@@ -196,11 +198,11 @@ struct VerifyRequest {
 };
 
 struct VerifyResult {
-  NRange range;  // the window indices n checked
-  VerifyOptions options;  // the check's iterations, tail and arithmetic
+  NRange range;                 // the window indices n checked
+  VerifyOptions options;        // the check's iterations, tail and arithmetic
   std::vector<VerifyRow> rows;  // 4 per n: below, inside_25, inside_50, inside_75
-  long passed = 0, total = 0;  // checks that passed, of all
-  double total_seconds = 0;  // wall time of the run, seconds
+  long passed = 0, total = 0;   // checks that passed, of all
+  double total_seconds = 0;     // wall time of the run, seconds
   // Flat views of the rows for describe(): [4N] each.
   std::vector<std::uint32_t> n, position, on_pattern, orbits, iterations_run, expected_on, pass;
   std::vector<double> r, lower, upper;
@@ -216,7 +218,8 @@ struct VerifyPart {
   double seconds = 0;
   template <class A> void members(A& a) { a(items, rows, seconds); }
 };
-VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
+VerifyPart run_part(const VerifyRequest& req, const std::vector<std::size_t>& items,
+                    const core::RunControl& control = {});
 // total_seconds is the parts' seconds summed (one process: its run's time).
 VerifyResult merge(const VerifyRequest& req, std::vector<VerifyPart> parts);
 // merge(req, {run_part(req, every n)}).
@@ -250,10 +253,10 @@ struct BoundPrecisionSummary {
   double seconds_per_bound = 0;
 };
 struct BoundPrecisionResult {
-  NRange range;  // the window indices n compared
-  std::vector<BoundPrecisionRow> rows;  // (route, precision, n) in that order of nesting
+  NRange range;                                // the window indices n compared
+  std::vector<BoundPrecisionRow> rows;         // (route, precision, n) in that order of nesting
   std::vector<BoundPrecisionSummary> summary;  // per precision and route: correct digits and time per bound
-  double total_seconds = 0;  // wall time of the run, seconds
+  double total_seconds = 0;                    // wall time of the run, seconds
   // Flat views for describe(): [P, N] with P = the precision x route rows of the summary.
   std::vector<double> value, abs_error, seconds;
   std::vector<std::uint8_t> correct_12;

@@ -34,7 +34,8 @@ std::vector<VerifyRow> verify_windows(int first, int last, const VerifyOptions& 
     throw core::InvalidField("iterations", std::to_string(opt.base_iterations), "at least 100");
   if (opt.per_n < 0) throw core::InvalidField("per-n", std::to_string(opt.per_n), "at least 0");
   if (opt.tail < 1 || opt.tail >= opt.base_iterations)
-    throw core::InvalidField("tail", std::to_string(opt.tail), "1..iterations-1 = " + std::to_string(opt.base_iterations - 1));
+    throw core::InvalidField("tail", std::to_string(opt.tail),
+                             "1..iterations-1 = " + std::to_string(opt.base_iterations - 1));
   const std::vector<core::Vec3<double>> grid = iterate::paper_grid();
   const char* names[4] = {"below", "inside_25", "inside_50", "inside_75"};
   std::vector<VerifyRow> rows;
@@ -65,7 +66,8 @@ std::vector<VerifyRow> verify_windows(int first, int last, const VerifyOptions& 
       row.orbits = static_cast<long>(grid.size());
       row.expected_on = j > 0;
       for (std::size_t i = 0; i < grid.size(); ++i)
-        row.on_pattern += on_pattern(&rec.out[(j * grid.size() + i) * static_cast<std::size_t>(rec.count)], rec.count, n);
+        row.on_pattern +=
+            on_pattern(&rec.out[(j * grid.size() + i) * static_cast<std::size_t>(rec.count)], rec.count, n);
       rows.push_back(row);
     }
   }

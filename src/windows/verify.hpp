@@ -32,7 +32,9 @@ struct VerifyRow {
   long iterations = 0, orbits = 0, on_pattern = 0;
   bool expected_on = false;  // inside: all orbits on pattern; below: none
   bool pass() const { return expected_on ? on_pattern == orbits : on_pattern == 0; }
-  template <class A> void members(A& a) { a(n, position, r, lower, upper, iterations, orbits, on_pattern, expected_on); }
+  template <class A> void members(A& a) {
+    a(n, position, r, lower, upper, iterations, orbits, on_pattern, expected_on);
+  }
 };
 
 // Rows for n = first..last (2 <= first <= last); throws core::InvalidField naming the field.

@@ -31,8 +31,7 @@ void validate_n(long n, long min_n, const char* field) {
 void validate_digits(long digits, const char* field) {
   // Below 10 digits the double overlays would be coarser than the paper's table; above 10000 the
   // polynomial evaluations take minutes per root for no reader.
-  if (digits < 10 || digits > 10000)
-    throw core::InvalidField(field, std::to_string(digits), "10..10000");
+  if (digits < 10 || digits > 10000) throw core::InvalidField(field, std::to_string(digits), "10..10000");
 }
 
 namespace {
@@ -265,8 +264,8 @@ mpfr_float lower_bound_by_bracketing(const RationalPoly& q, int n, int decimals,
     }
     const int target_bits = static_cast<int>((decimals + 6) * 3.33) + 8;  // 6 decimals beyond the request
     std::uintmax_t max_iter = 500;
-    auto [a, b] = boost::math::tools::toms748_solve(f, lo, hi, flo, fhi,
-                                                    boost::math::tools::eps_tolerance<mpfr_float>(target_bits), max_iter);
+    auto [a, b] = boost::math::tools::toms748_solve(
+        f, lo, hi, flo, fhi, boost::math::tools::eps_tolerance<mpfr_float>(target_bits), max_iter);
     mpfr_float x = (a + b) / 2;
     // Reliability: at x -+ 10^-(D+3) the signs must be opposite and larger than the error bound.
     const mpfr_float delta = pow(mpfr_float(10), -(decimals + 3));
@@ -297,7 +296,8 @@ bool reliable_root(const std::vector<mpfr_float>& c, const mpfr_float& x, int de
 // Many decimals: Newton's iteration from the root to 30 decimals, at a working precision chosen once from
 // Horner's running error bound there (digits lost ~ log10(2 mu / |x Q'(x)|)), then the same reliability
 // check as the bracketing.  Returns false (and the caller brackets) when it does not converge near the seed.
-bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_float& out, const core::CancelToken* cancel) {
+bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_float& out,
+                           const core::CancelToken* cancel) {
   const int seed_decimals = 30;
   const mpfr_float seed = lower_bound_by_bracketing(q, n, seed_decimals, cancel);
   int lost = 0;
@@ -322,7 +322,7 @@ bool lower_bound_by_newton(const RationalPoly& q, int n, int decimals, mpfr_floa
     const mpfr_float dx = v / dv;
     x -= dx;
     if (abs(x - seed) > near) return false;  // left the seed's neighbourhood
-    if (abs(dx) < stop) break;  // quadratic convergence: x is now good to ~2x as many decimals
+    if (abs(dx) < stop) break;               // quadratic convergence: x is now good to ~2x as many decimals
   }
   if (!reliable_root(c, x, decimals)) return false;
   out = x;

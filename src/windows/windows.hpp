@@ -28,7 +28,7 @@ struct RationalPoly {
   IntPoly numerator;
   mpz_class denominator = 1;
   int degree() const { return numerator.degree(); }
-  mpq_class coefficient(int i) const;  // reduced
+  mpq_class coefficient(int i) const;                  // reduced
   std::string developed(const char* var = "r") const;  // "5/256r^8 - 5/32r^7 + ..." (Table B.2, left)
 };
 
@@ -40,7 +40,7 @@ struct Factorised {
   std::string to_string(const char* var = "r") const;  // "1/256 (r+1)^2 (5r^6 - ...)"; (r^2-1)^k when equal
 };
 
-RationalPoly trace_polynomial(int n);   // P_n = tr(J (BA)^n), degree 2n (Section 4)
+RationalPoly trace_polynomial(int n);  // P_n = tr(J (BA)^n), degree 2n (Section 4)
 // Q_n = r^(2n) P_n(r) P_n(1/r) - r^(2n), eq. (4.3), degree 4n; `cancel` polled at every matrix power and product row.
 RationalPoly window_polynomial(int n, const core::CancelToken* cancel = nullptr);
 Factorised factorise(const RationalPoly& q);
