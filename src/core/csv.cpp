@@ -38,17 +38,18 @@ bool valid_name(const std::string& n) {
                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; });
 }
 
-std::vector<std::string> split(std::string_view joined) {
+}  // namespace
+
+std::vector<std::string> csv_fields(std::string_view line) {
   std::vector<std::string> f(1);
-  for (char c : joined) {
+  for (char c : line) {
     if (c == ',') f.emplace_back();
     else f.back() += c;
   }
   return f;
 }
-}  // namespace
 
-CsvTable::CsvTable(std::string_view header) : CsvTable(split(header)) {}
+CsvTable::CsvTable(std::string_view header) : CsvTable(csv_fields(header)) {}
 
 CsvTable::CsvTable(const std::vector<std::string>& columns) : columns_(columns) {
   for (std::size_t i = 0; i < columns_.size(); ++i) {

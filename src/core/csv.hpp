@@ -30,6 +30,9 @@ std::string csv_text(std::string_view s);
 // result's manifest (or a column saying so).
 std::string csv_number(double v, std::string_view spec = "{:.17g}");
 
+// The fields of one line of such a table: split at every ',' (no field is quoted, so a comma always ends a field).
+std::vector<std::string> csv_fields(std::string_view line);
+
 class CsvTable {
  public:
   // `header`: the column names separated by commas; throws std::logic_error on an empty, repeated or ill-formed name.

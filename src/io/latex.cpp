@@ -2,6 +2,8 @@
 // Tables for papers: CSV -> booktabs LaTeX (latex.hpp).
 #include "io/latex.hpp"
 
+#include "core/csv.hpp"
+
 #include <fmt/format.h>
 
 #include <regex>
@@ -10,17 +12,6 @@
 
 namespace btob::io {
 namespace {
-
-std::vector<std::string> split(std::string_view line) {
-  std::vector<std::string> f;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = line.find(',', start);
-    f.emplace_back(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-    if (comma == std::string_view::npos) return f;
-    start = comma + 1;
-  }
-}
 
 bool ends_with(const std::string& s, std::string_view tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
@@ -173,7 +164,7 @@ std::string latex_table(std::string_view csv, const std::map<std::string, core::
   for (std::size_t start = 0; start < csv.size();) {
     std::size_t nl = csv.find('\n', start);
     if (nl == std::string_view::npos) nl = csv.size();
-    if (nl > start) lines.push_back(split(csv.substr(start, nl - start)));
+    if (nl > start) lines.push_back(core::csv_fields(csv.substr(start, nl - start)));
     start = nl + 1;
   }
   if (lines.empty()) throw std::invalid_argument("latex_table: an empty CSV table (no header)");
