@@ -7,6 +7,8 @@
 // its decimals (multiprecision values as decimal.Decimal) and its attributes.
 #pragma once
 
+#include "commands/commands.hpp"
+#include "commands/execute.hpp"
 #include "core/cancel.hpp"
 #include "core/estimate.hpp"
 #include "core/field_types.hpp"
@@ -42,24 +44,10 @@ namespace py = pybind11;
 // A flag name as a Python keyword: "r-min" -> "r_min".
 std::string keyword(const std::string& flag);
 
-// What Python holds of one result: its Contents (views into the derived object's members) and attributes.
 using Args = core::Args;  // fields as a manifest records them (core/fields.hpp)
-struct ResultBase {
-  core::Contents contents;
-  core::Attrs attrs;
-  std::string function, command, plot;  // the Python function, the CLI command, the plot script (or "")
-  Args request;                         // the request's fields (flag names, text values)
-  core::Tables tables;                  // the CSV files of the command line (results with tables())
-  // How the plot script reads the result: empty, from NAME.h5 (draw(f) in Python); else the files it is given, as
-  // suffixes of NAME (".h5", ".csv", "_critical.csv", ".json"), and whether it writes several PNGs into a folder.
-  std::vector<std::string> plot_inputs;
-  bool plot_many = false;
-  virtual ~ResultBase() = default;
-};
-template <class Res> struct ResultOf : ResultBase {
-  Res res;
-  extras::Extras extras;
-};
+// What Python holds of one result: the record the command line writes (commands/execute.hpp), the result itself
+// kept beside it in commands::Recorded (its Contents are views into it).
+using ResultBase = commands::Record;
 
 // The numpy view of one array of `owner`'s contents; its base is `owner` (no copy, read-only).
 py::array array_view(const core::ArrayView& a, py::handle owner);
@@ -147,35 +135,15 @@ struct AtomicProgress : core::ProgressSink {
 // Python exception (KeyboardInterrupt) it cancels the run, joins the worker and re-raises.
 void run_released(const std::function<void(const core::RunControl&)>& work, int threads, py::object progress);
 
-long default_threads();  // omp_get_max_threads(): what threads = 0 uses
-
 // Checks threads (0 = all cores, else 1..RunControl::max_threads); ValueError otherwise.
 int threads_of(const py::kwargs& kw);
 
-// How a request type is presented in Python; specialised per request in module.cpp (names and strings only):
-//   function  the Python function (btob.<function>)          kind, stem  the attributes kind and name (as the CLI)
-//   plot      analyses/plot script drawing it ("" for none)   help        the docstring's first line
-// and, from RouteBase, defaults(), prepare(req) (before the run), scalar(req, res) (the scalar_type attribute),
-// plot_of(req) (the script, when the request chooses it), plot_inputs() and plot_many (scripts that read the
-// command line's files rather than draw(f); see ResultBase).
-template <class Req> struct Route;
-template <class Req, class Derived> struct RouteBase {
-  static Req defaults() { return Req{}; }
-  static void prepare(Req&) {}
-  template <class Res> static std::string scalar(const Req&, const Res&) { return "double"; }
-  static std::string name_of(const Req&) { return Derived::stem; }
-  static std::string kind_of(const Req&) { return Derived::kind; }
-  static std::string plot_of(const Req&) { return Derived::plot; }
-  static std::vector<std::string> plot_inputs() { return {}; }
-  static constexpr bool plot_many = false;
-};
-
 namespace detail {
 
-// The request of a call: Route<Req>::defaults() with the keywords applied; an unknown keyword or a missing required
-// one is a TypeError naming it (threads and progress are the call's, not the request's).
+// The request of a call: commands::Spec<Req>::defaults() with the keywords applied; an unknown keyword or a missing
+// required one is a TypeError naming it (threads and progress are the call's, not the request's).
 template <class Req> Req request_of(const py::kwargs& kw) {
-  using R = Route<Req>;
+  using R = commands::Spec<Req>;
   Req req = R::defaults();
   std::set<std::string> used{"threads", "progress"}, missing;
   if constexpr (core::Sweep<Req>) used.insert("resume");
@@ -190,25 +158,11 @@ template <class Req> Req request_of(const py::kwargs& kw) {
   return req;
 }
 
-// The result's Python face: contents (with the extras), the request as text, the provenance attributes, the route's
-// names and the CSV tables.
-template <class Req, class Res> void present(Req& req, int threads, ResultOf<Res>& holder) {
-  using R = Route<Req>;
-  holder.res.describe(holder.contents);
-  holder.extras.add_to(holder.contents);
-  req.fields(core::ArgsWriter{&holder.request});
-  const long used_threads = threads > 0 ? threads : default_threads();
+// The call that reproduces a request, "btob.f(k='v', ...)": the provenance attribute `command` of a Python result.
+template <class Req> std::string call_text(Req req) {
   std::string call;
   req.fields(CallWriter{&call});
-  holder.attrs = io::result_attrs("btob." + std::string(R::function) + "(" + call + ")", holder.contents,
-                                  R::kind_of(req), R::name_of(req), "", R::scalar(req, holder.res), used_threads);
-  holder.extras.apply(holder.attrs);
-  holder.function = R::function;
-  holder.command = R::command;
-  holder.plot = R::plot_of(req);
-  holder.plot_inputs = R::plot_inputs();
-  holder.plot_many = R::plot_many;
-  if constexpr (requires { holder.res.tables(); }) holder.tables = holder.res.tables();
+  return "btob." + std::string(commands::Spec<Req>::function) + "(" + call + ")";
 }
 
 // resume= of a sweep: the checkpoint's path (str or os.PathLike), "" when absent or None.
@@ -226,51 +180,43 @@ template <class Req> std::unique_ptr<io::Checkpoint> open_resume(const Req& req,
   Args args;
   Req copy = req;
   copy.fields(core::ArgsWriter{&args});
-  cp->identity = io::checkpoint_identity(Route<Req>::command, args);
+  cp->identity = io::checkpoint_identity(commands::Spec<Req>::command, args);
   if (const std::string why = io::open_checkpoint_file(*cp); !why.empty()) throw py::value_error(why);
   return cp;
 }
 
-// run(req), or with a checkpoint its items in rounds kept in the file and merged with those it held (bitwise run()).
-template <class Req> auto run_or_resume(const Req& req, const core::RunControl& c, io::Checkpoint* cp) {
-  if constexpr (core::Sweep<Req>)
-    if (cp) return std::move(*io::run_in_rounds(req, c, *cp, io::alone()));
-  return run(req, c);
-}
-
-// One call of btob.<function>(**kw): request -> validate -> run (released) -> Result.  A sweep given
-// resume="DIR/NAME.checkpoint" keeps its finished items there and continues from them; the file is removed once the
-// result is complete and kept when the run stops (KeyboardInterrupt, an error, a kill).
+// One call of btob.<function>(**kw), through the one path of commands/execute.hpp: request -> ready (prepare,
+// validate) -> compute (released) -> record -> Result.  A sweep given resume="DIR/NAME.checkpoint" keeps its
+// finished items there and continues from them; the file is removed once the result is complete and kept when the
+// run stops (KeyboardInterrupt, an error, a kill).
 template <class Req> py::object call(py::kwargs kw) {
-  using R = Route<Req>;
-  using Res = std::decay_t<decltype(run(std::declval<const Req&>(), std::declval<const core::RunControl&>()))>;
+  using S = commands::Spec<Req>;
   Req req = request_of<Req>(kw);
   const int threads = threads_of(kw);
-  req.validate();
-  auto holder = std::make_shared<ResultOf<Res>>();
-  extras::check(req);  // unknown overlay names fail before any work
-  R::prepare(req);
+  commands::ready(req);
   std::unique_ptr<io::Checkpoint> cp;
   if constexpr (core::Sweep<Req>)
     if (const std::string path = resume_of(kw); !path.empty()) cp = open_resume(req, path);
   // The overlays (window bounds in MPFR, ~0.5 s) are computed on the worker after the run, as the command
   // line does, not on this thread: while it holds the GIL and computes, Ctrl-C is not seen.
+  std::shared_ptr<commands::Recorded<Req>> rec;
   run_released(
       [&](const core::RunControl& c) {
-        holder->res = run_or_resume(req, c, cp.get());
-        core::check_cancel(c.cancel);
-        holder->extras = extras::of(req, holder->res, c);
+        commands::How how;
+        how.control = c;
+        how.checkpoint = cp.get();
+        rec = commands::compute(req, how);
       },
       threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
   if (cp) io::remove_checkpoint(*cp);
-  present(req, threads, *holder);
-  return py::cast(std::static_pointer_cast<ResultBase>(holder));
+  commands::record(*rec, commands::Provenance{call_text(req), S::stem_of(req), "", commands::threads_used(threads)});
+  return py::cast(std::static_pointer_cast<ResultBase>(rec));
 }
 
 // The bound functions, their commands and keyword arguments with their defaults as text, for tests that must
 // cover every request ({function: command}, {function: [(keyword, default)]}).
 template <class Req> void list_function(py::module_& m, Req defaults) {
-  using R = Route<Req>;
+  using R = commands::Spec<Req>;
   if (!py::hasattr(m, "_commands")) m.attr("_commands") = py::dict();
   if (!py::hasattr(m, "_fields")) m.attr("_fields") = py::dict();
   m.attr("_commands")[R::function] = R::command;
@@ -306,17 +252,16 @@ template <class Req> void list_function(py::module_& m, Req defaults) {
 // peak_bytes); the same keywords as the function (threads included), nothing returned but the numbers.  The sweeps'
 // names are also in _btob._sweeps (the functions that take resume=).
 template <class Req> void bind_estimate(py::module_& m) {
-  using R = Route<Req>;
+  using R = commands::Spec<Req>;
   if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
   if (!py::hasattr(m, "_sweeps")) m.attr("_sweeps") = py::set();
   m.attr("_sweeps").attr("add")(R::function);
   m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
     Req req = request_of<Req>(kw);
     const int threads = threads_of(kw);
-    req.validate();
-    R::prepare(req);
+    commands::ready(req);
     core::SweepEstimate e;
-    const auto start = static_cast<std::size_t>(threads > 0 ? threads : default_threads());
+    const auto start = static_cast<std::size_t>(commands::threads_used(threads));
     run_released([&](const core::RunControl& c) { e = core::estimate_sweep(req, c, 1, start); }, threads, py::none());
     py::dict d;
     d["items"] = e.items;
@@ -334,15 +279,14 @@ template <class Req> void bind_estimate(py::module_& m) {
 // (io/rates.hpp).  _btob._estimators[function](**kwargs) -> dict(terms, predicted_seconds, threads, upper_bound,
 // bytes, peak_bytes), terms a list of dict(route, units, what, units_per_second, cached).
 template <class Req> void bind_work_estimate(py::module_& m) {
-  using R = Route<Req>;
+  using R = commands::Spec<Req>;
   if (!py::hasattr(m, "_estimators")) m.attr("_estimators") = py::dict();
   m.attr("_estimators")[R::function] = py::cpp_function([](py::kwargs kw) -> py::dict {
     Req req = request_of<Req>(kw);
     const int threads = threads_of(kw);
-    req.validate();
-    R::prepare(req);
+    commands::ready(req);
     io::WorkEstimate e;
-    const int used = static_cast<int>(threads > 0 ? threads : default_threads());
+    const int used = commands::threads_used(threads);
     run_released([&](const core::RunControl& c) { e = io::estimate_work(work(req), c, used); }, threads, py::none());
     py::list terms;
     for (std::size_t i = 0; i < e.work.terms.size(); ++i) {
@@ -368,10 +312,11 @@ template <class Req> void bind_work_estimate(py::module_& m) {
 
 }  // namespace detail
 
-// Binds `Route<Req>::function` as a module function: kwargs -> Req -> validate -> run (released) -> Result.
+// Binds the declared request Req (commands/commands.hpp) as btob.<function>: kwargs -> Req -> the one path of
+// commands/execute.hpp -> Result; lists it in _btob._functions (in the declarations' order).
 template <class Req> void bind(py::module_& m) {
-  using R = Route<Req>;
-  std::string doc = std::string(R::help) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
+  using R = commands::Spec<Req>;
+  std::string doc = std::string(R::summary) + "\n\nKeyword arguments (the command line's flags, '-' -> '_'):\n";
   Req defaults = R::defaults();
   std::vector<core::FieldDoc> docs;
   std::vector<core::FieldTypeDoc> types;
@@ -387,6 +332,8 @@ template <class Req> void bind(py::module_& m) {
         "it (the "
         "command line's --resume; refused for another request or build; removed once the result is complete)\n";
   m.def(R::function, &detail::call<Req>, doc.c_str());
+  if (!py::hasattr(m, "_functions")) m.attr("_functions") = py::list();
+  m.attr("_functions").attr("append")(R::function);
   detail::list_function(m, defaults);
   if constexpr (core::Sweep<Req>) detail::bind_estimate<Req>(m);
   else if constexpr (core::Costed<Req>) detail::bind_work_estimate<Req>(m);

@@ -87,42 +87,19 @@ py::object attr_value(const core::AttrValue& v) {
   return std::visit([](const auto& x) -> py::object { return py::cast(x); }, v);
 }
 
-// Writes the result as the command line does: NAME.h5 (when it has arrays), NAME.json (attributes and the request,
-// so that `btob run NAME.json` reproduces it) and NAME.png (when `plot` and the command draws one), all together:
-// a figure that cannot be drawn is an error and nothing is written (the command line warns and keeps the data).
+// Writes the result as the command line does (commands::write, the one writer of results): NAME.h5 (when it has
+// arrays), the CSV tables, NAME.json (attributes and the request, so that `btob run NAME.json` reproduces it) and the
+// figure (when `plot` and the command draws one), all together: a figure that cannot be drawn is an error and nothing
+// is written (the command line warns and keeps the data).
 std::vector<std::string> save(const ResultBase& r, const std::string& out, const std::string& name,
                               const std::string& title, bool plot) {
-  core::Attrs at = r.attrs;
-  at["name"] = name;
-  at["title"] = title;
-  Args args = r.request;
-  args.emplace_back("name", std::vector<std::string>{name});
-  args.emplace_back("title", std::vector<std::string>{title});
-  io::ResultFiles files(out, name);
-  files.tables(r.tables);
-  if (io::ResultFiles::has_data(r.contents)) files.h5(r.contents, at);
-  files.manifest(at, r.command, args);  // lists the files staged so far
-  if (plot && !r.plot.empty()) {
-    bool drawn = false;
-    if (r.plot_inputs.empty()) {
-      drawn = r.contents.arrays.empty() || files.plot(r.plot);
-    } else {  // the script reads the command line's files, as the command line calls it
-      std::vector<std::string> inputs;
-      for (const auto& suffix : r.plot_inputs) inputs.push_back(name + suffix);
-      drawn = r.plot_many ? files.plot_figures(r.plot, inputs) : files.plot_inputs(r.plot, inputs);
-    }
-    if (!drawn)
-      throw std::runtime_error(
-          fmt::format("save: the figure's script {} failed (its message is above); nothing was "
-                      "written to {} (plot=False writes the data alone)",
-                      r.plot, out));
-  }
+  commands::WriteOptions opts;
+  opts.plot = plot;
+  opts.plot_required = true;
   std::vector<std::string> written;
-  for (const auto& p : files.commit()) written.push_back(p.string());
+  for (const auto& p : commands::write(r, out, name, title, opts)) written.push_back(p.string());
   return written;
 }
-
-long default_threads() { return static_cast<long>(omp_get_max_threads()); }
 
 int threads_of(const py::kwargs& kw) {
   if (!kw.contains("threads")) return 0;

@@ -15,7 +15,7 @@ FLOORS = {"core": 0, "iterate": 1, "reference": 2,
           "bifurcation": 3, "windows": 3, "patterns": 3, "lyapunov": 3, "stats": 3,
           "attractors": 4, "particles": 4, "precision": 4,
           "orbits": 5, "transfer": 5, "extras": 5, "leaves": 5,
-          "io": 6, "cli": 7, "python": 7}
+          "io": 6, "commands": 7, "cli": 8, "python": 8}
 # Folders outside src/ that are modules too.
 OUTSIDE = {"python": "python"}
 # io depends on core only: results reach it as core::Contents.

@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Sweeps over MPI ranks (src/cli/sweep.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3 writes the data files of
+# Sweeps over MPI ranks (commands::compute, src/commands/execute.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3 writes the data files of
 # the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files and standard output byte
 # for byte), and a rank that fails ends the job with one line naming it, a non-zero status and no files.
 #

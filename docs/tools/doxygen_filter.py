@@ -239,8 +239,28 @@ class Filter:
         return self.out
 
 
+def join_literals(lines):
+    """Adjacent string literals on consecutive lines joined into the first line (the later lines left empty, so that
+    every line keeps its place): Breathe's C++ parser reads `= "a" "b";`, which Doxygen puts on one line, as the end
+    of the declaration after "a"."""
+    out = list(lines)
+    i = 0
+    while i < len(out):
+        code, col = split_comment(out[i])
+        j = i + 1
+        while col < 0 and code.rstrip().endswith('"') and j < len(out) and out[j].lstrip().startswith('"'):
+            code = code.rstrip()[:-1] + out[j].lstrip()[1:]
+            out[j] = ""
+            code, col = split_comment(code)
+            j += 1
+        if j > i + 1:
+            out[i] = code
+        i = j
+    return out
+
+
 def filter_lines(lines):
-    return Filter(lines).run()
+    return Filter(join_literals(lines)).run()
 
 
 def main():

@@ -42,6 +42,10 @@ SMALL = {
     "strip_orbits": dict(r=0.2),
     "leaves": dict(r=0.25, grid="sphere:6x6", transient=300, iterations=300, lyap_iterations=400, lyap_transient=50,
                    labels=(0.5, 1.2), leaf_iterations=500),
+    "transfer": dict(r=0.15, boxes="16x16", samples=4, eigenvalues=4, tv_bins=16, measure_orbits=2,
+                     measure_iterations=500),
+    "transfer_r": dict(r_min=0.2, r_max=0.3, r_count=2, boxes="16x16", samples=4, eigenvalues=4),
+    "particles": dict(word="1133", r=0.15, periods=20),
 }
 
 

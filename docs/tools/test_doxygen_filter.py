@@ -33,6 +33,12 @@ struct DemoRequest {
   }
 };
 
+// A declaration with a long text.
+struct Spec {
+  static constexpr const char* summary = "one text written "
+                                         "over two lines";
+};
+
 }  // namespace btob::demo'''
 
 
@@ -71,6 +77,10 @@ class FilterTest(unittest.TestCase):
         # own comment stays its documentation.
         self.assertTrue(self.line("w1_range").endswith("///< the strip's w1 range"))
         self.assertTrue(self.line("void validate").startswith("/** @} */   void validate"))
+
+    def test_adjacent_string_literals_are_joined_in_place(self):
+        self.assertIn('summary = "one text written over two lines";', self.line("one text written"))
+        self.assertEqual(self.line("over two lines").strip(), "")
 
     def test_braced_initialiser_and_function_bodies(self):
         self.assertIn("///< the strip's w1 range", self.line("w1_range"))

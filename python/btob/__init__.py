@@ -38,10 +38,9 @@ def cite(format="bibtex"):
     Returns the text (print it); another format raises ValueError naming the accepted ones."""
     return _btob.cite(format)
 
-FUNCTIONS = ["bifurcation", "lyapunov", "lyapunov_map", "lyapunov_strip", "hyperbolicity", "hyperbolicity_orbits",
-             "classify", "basins", "basins_r", "correlate", "measure", "precision_study", "windows_poly",
-             "windows_bounds", "windows_thresholds", "windows_stripes", "windows_verify", "windows_precision", "pattern",
-             "pattern_atlas", "pattern_curves", "strip_orbits", "leaves"]
+# The analyses, one function per command of the command line, in the order of its declarations (the compiled
+# module lists them: commands/commands.hpp declares every command once).
+FUNCTIONS = list(_btob._functions)
 
 
 def _default(annotation, texts):

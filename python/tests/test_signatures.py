@@ -97,3 +97,26 @@ def test_help_shows_the_signature():
     sig = str(inspect.signature(btob.bifurcation))
     assert sig.startswith("(*, ") and "r_min: 'float | str' = 0.0717" in sig, sig
     assert "threads: 'int' = 0" in sig
+
+
+def subcommands(words=()):
+    """The commands under `btob WORDS`, each as its words joined by spaces: those whose --help has options of a
+    request (--threads); a parent that only groups its subcommands (`windows`) is listed through its children, and
+    `pattern` is both a command and the parent of `pattern atlas`."""
+    text = subprocess.run(["btob", *words, "--help"], executable=exe(), capture_output=True, text=True).stdout
+    out = [" ".join(words)] if words and "--threads" in text else []
+    if "Subcommands:" not in text:
+        return out
+    names = [line.split()[0] for line in text.split("Subcommands:", 1)[1].splitlines()
+             if line.startswith("  ") and not line.startswith("   ")]
+    for n in names:
+        out += subcommands((*words, n))
+    return out
+
+
+def test_every_command_of_the_command_line_is_a_python_function():
+    """One declaration per command (src/commands/commands.hpp): the command line's request commands and Python's
+    functions are the same set (the command line's own: explore, cite and run, are not requests)."""
+    cli = set(subcommands()) - {"explore", "cite", "run"}
+    assert cli == set(btob._btob._commands.values())
+    assert list(btob._btob._commands) == btob.FUNCTIONS

@@ -3,6 +3,12 @@
 #include "cli/command.hpp"
 #include "cli/mpi.hpp"
 #include "io/io.hpp"
+#include "io/latex.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -30,24 +36,54 @@ std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label) 
   return std::make_unique<TerminalProgress>(label);
 }
 
-io::Attrs Context::attrs(const Output& o, const core::Contents& c, const std::string& kind,
-                         const std::string& scalar) const {
-  io::Attrs a = io::result_attrs(command_line, c, kind, o.name, o.title, scalar,
-                                 static_cast<long>(control.threads > 0 ? control.threads : omp_get_max_threads()));
-  if (mpi::size() > 1) {  // threads are per rank; what the split and the gather cost (cli/mpi.hpp)
-    const mpi::Stats& st = mpi::stats();
-    a["mpi_ranks"] = static_cast<long>(st.ranks);
-    a["mpi_compute_seconds_min"] = st.compute_min;
-    a["mpi_compute_seconds_max"] = st.compute_max;
-    a["mpi_wait_seconds"] = st.wait_seconds;
-    a["mpi_gather_seconds"] = st.gather_seconds;
-    a["mpi_gathered_bytes"] = static_cast<long>(st.bytes_total);
-    a["mpi_merge_seconds"] = st.merge_seconds;
+namespace detail {
+commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::ProgressSink* bar) {
+  commands::How how;
+  how.control = ctx.control;
+  how.control.progress = bar;
+  how.checkpoint = ctx.checkpoint.get();
+  if (sweep && mpi::size() > 1) {
+    if (!mpi::checked()) throw std::logic_error("a sweep split over MPI ranks before the checkpoint of cli::execute");
+    how.ranks.ranks = static_cast<std::size_t>(mpi::size());
+    how.ranks.rank = static_cast<std::size_t>(mpi::rank());
+    how.ranks.gather = [](std::vector<char> bytes, double seconds) { return mpi::gather(std::move(bytes), seconds); };
+    const bool quiet = o.quiet;
+    how.merged = [quiet](double seconds) {
+      mpi::Stats& st = mpi::stats();
+      st.merge_seconds = seconds;
+      if (!quiet)
+        std::cerr << fmt::format(
+            "btob: {} ranks: work {:.3f}..{:.3f} s per rank; gathered {} bytes in {:.4f} s, merged in {:.4f} s\n",
+            st.ranks, st.compute_min, st.compute_max, st.bytes_total, st.gather_seconds, st.merge_seconds);
+    };
   }
-  return a;
+  return how;
 }
 
-namespace detail {
+void add_mpi_attrs(core::Attrs& a) {
+  if (mpi::size() <= 1) return;
+  // threads are per rank; what the split and the gather cost (cli/mpi.hpp)
+  const mpi::Stats& st = mpi::stats();
+  a["mpi_ranks"] = static_cast<long>(st.ranks);
+  a["mpi_compute_seconds_min"] = st.compute_min;
+  a["mpi_compute_seconds_max"] = st.compute_max;
+  a["mpi_wait_seconds"] = st.wait_seconds;
+  a["mpi_gather_seconds"] = st.gather_seconds;
+  a["mpi_gathered_bytes"] = static_cast<long>(st.bytes_total);
+  a["mpi_merge_seconds"] = st.merge_seconds;
+}
+
+void print_latex(const commands::Record& rec, const Context& ctx) {
+  if (rec.tables.empty())
+    throw UsageError(
+        fmt::format("--format: got 'latex', but this '{}' request has no table; expected csv", ctx.command));
+  std::string text;
+  for (const auto& [role, csv] : rec.tables)
+    text += io::latex_document(csv, rec.contents.status, ctx.command_line,
+                               ctx.caption() + (role.empty() ? "" : " (" + role + ")"));
+  std::cout << text << std::flush;
+}
+
 void validate_output(const Output& o, bool threads_given) {
   if (threads_given && (o.threads < 1 || o.threads > core::RunControl::max_threads))
     throw core::InvalidField("threads", std::to_string(o.threads),

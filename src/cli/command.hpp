@@ -1,18 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// One mechanism for every subcommand built on a request (core/request.hpp): its flags, its scene keys and its
-// manifest's "request" object are the request's fields(), read and written by the same code.
+// The command line generated from the declarations of commands/commands.hpp: for each declared request,
 //
-//   command<lyapunov::OrbitRequest>("lyapunov", "help", Output{...}, [](const auto& req, const Output& o,
-//                                                                        const Context& ctx) { ... });
+//   declare<lyapunov::OrbitRequest>();
 //
-// registers `btob lyapunov` with one flag per field, and the same command for `btob run SCENE.toml` and
-// `btob run results/NAME/NAME.json`, which set the fields by name (an unknown key is an error naming it).
+// registers `btob lyapunov` with one flag per field of the request and of its output, and the same command for
+// `btob run SCENE.toml` and `btob run results/NAME/NAME.json`, which set the fields by name (an unknown key is an
+// error naming it).  Every command then runs through the one path of commands/execute.hpp (ready -> dry run or
+// checkpoint -> compute -> record -> write); what this layer adds is the command line's own: flags, MPI ranks,
+// --dry-run's text and the terminal's words (the declaration's warn, print and report).
 #pragma once
 
 #include "cli/app.hpp"
 #include "cli/checkpoint.hpp"
 #include "cli/common.hpp"
 #include "cli/mpi.hpp"
+#include "commands/commands.hpp"
+#include "commands/execute.hpp"
 #include "core/estimate.hpp"
 #include "core/field_types.hpp"
 #include "core/fields.hpp"
@@ -119,40 +122,14 @@ struct Context {
   bool latex = false;        // --format latex: the result's tables also as LaTeX (Context::manifest writes them)
   std::string title;         // --title, the LaTeX tables' caption
   std::shared_ptr<Checkpoint> checkpoint;  // --resume: the sweep's checkpoint (every rank), else null
-  // The manifest's request record: {"command": command, "args": request_args}.
-  void manifest(io::ResultFiles& files, const io::Attrs& attrs) const {
-    if (latex) files.latex(command_line, caption());
-    files.manifest(attrs, command, request_args);
-  }
   // The caption of its LaTeX tables: --title, else "btob COMMAND".
   std::string caption() const { return title.empty() ? "btob " + command : title; }
-  // Provenance, the result's own attributes, and kind, name, title, scalar_type, threads.
-  io::Attrs attrs(const Output& o, const core::Contents& c, const std::string& kind, const std::string& scalar) const;
 };
-
-// "a, b, c": the files a command wrote, for its closing line.
-inline std::string listing(const std::vector<io::fs::path>& files) {
-  std::string s;
-  for (const auto& f : files) s += (s.empty() ? "" : ", ") + f.string();
-  return s;
-}
 
 // The process-wide cancellation token, set by SIGINT/SIGTERM (main installs the handler).
 core::CancelToken& cancel_token();
 // The progress sink of the terminal (a bar on stderr when it is a terminal, else nothing), for one run.
 std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label);
-// Runs `req` through its module's run(request, control) (found by argument-dependent lookup) with the terminal's
-// progress bar, unless --quiet.
-template <class Req>
-auto run_with_progress(const Req& req, const Output& o, const Context& ctx, const std::string& label) {
-  core::RunControl control = ctx.control;
-  const auto bar = terminal_progress(label);
-  if (!o.quiet) control.progress = bar.get();
-  if constexpr (core::Sweep<Req>)
-    if (ctx.checkpoint)
-      return std::move(*run_checkpointed(req, control, *ctx.checkpoint, false));  // this process alone
-  return run(req, control);
-}
 
 // A request whose result has CSV tables (core::Tables): its command has --format csv|latex.
 template <class Req>
@@ -250,73 +227,17 @@ struct NameLister {
 
 void validate_output(const Output& o, bool threads_given);
 
-// The scalar_type attribute of a result written by write_files: the result's own, else the request's precision.
-template <class Req, class Res> std::string scalar_of(const Req& req, const Res& res) {
-  if constexpr (requires { std::string(res.scalar_type); }) return res.scalar_type;
-  else if constexpr (requires { std::string(req.precision); }) return req.precision;
-  else return "double";
-}
-
-// A stdout command given --out: the result's files as Python's Result.save() writes them (NAME.h5 when the
-// result has arrays, its CSV tables, NAME.json), so that a saved result and `btob run` of its manifest agree.
-template <class Req> void write_files(const Req& req, const Output& o, const Context& ctx, const std::string& kind) {
-  const extras::Extras ex = extras::of(req);
-  const auto res = run_with_progress(req, o, ctx, kind);
-  core::Contents c;
-  res.describe(c);
-  ex.add_to(c);
-  io::Attrs at = ctx.attrs(o, c, kind, scalar_of(req, res));
-  ex.apply(at);
-  io::ResultFiles files(o.out, o.name);
-  if constexpr (requires { res.tables(); }) files.tables(res.tables());
-  if (io::ResultFiles::has_data(c)) files.h5(c, at);
-  ctx.manifest(files, at);
-  const auto written = files.commit();
-  if (!o.quiet) std::cerr << "btob: wrote " << listing(written) << "\n";
-}
-// A stdout command given --format latex (and no --out): its tables as booktabs LaTeX on stdout instead of the CSV
-// (io/latex.hpp), the status of each number from the result's Contents.  Nothing is printed when it has no table.
-template <class Req> void print_latex(const Req& req, const Output& o, const Context& ctx, const std::string& kind) {
-  if constexpr (Tabular<Req>) {
-    const auto res = run_with_progress(req, o, ctx, kind);
-    core::Contents c;
-    res.describe(c);
-    const core::Tables tables = res.tables();
-    if (tables.empty())
-      throw UsageError(
-          fmt::format("--format: got 'latex', but this '{}' request has no table; expected csv", ctx.command));
-    std::string text;
-    for (const auto& [role, csv] : tables)
-      text +=
-          io::latex_document(csv, c.status, ctx.command_line, ctx.caption() + (role.empty() ? "" : " (" + role + ")"));
-    std::cout << text << std::flush;
-  }
-}
 // Adds subcommand `name` to `app`; a name of several words ("windows bounds") goes under the subcommands named by
 // the words before the last, each found or else created (a parent registered earlier keeps its help and settings).
 CLI::App* add_nested(CLI::App& app, const std::string& name, const std::string& help);
 Context make_context(const std::string& command, const Output& o, const std::string& invocation, Args request_args);
 }  // namespace detail
 
-// Data files a request reads before it is validated, estimated or run (a request does no I/O of its own):
-// specialised beside the command's body, as basins-r's Table 6.1 (cmd_attractors.cpp).  The command line's
-// counterpart of a Python route's prepare(): both fill the request before its dry run samples its items, which
-// a body filling them too late left empty (`basins-r --table --dry-run` saw 0 items).
-template <class Req> struct Prepare {
-  static void apply(Req&) {}
-};
-
 namespace detail {
-template <class Req> using Body = std::function<void(const Req&, const Output&, const Context&)>;
-
-// The output's defaults a request fills in: its own file stem (e.g. hyperbolicity_strip_r<r>) for a file command,
-// the command's last word for a stdout command ("windows bounds" -> bounds); then the output checked.
-template <class Req> void complete_output(const std::string& name, const Req& req, Output& out, bool threads_given) {
-  if constexpr (requires {
-                  { req.default_name() } -> std::convertible_to<std::string>;
-                })
-    if (out.files && out.name.empty()) out.name = req.default_name();
-  if (!out.files && out.name.empty()) out.name = name.substr(name.rfind(' ') + 1);
+// The output's defaults a request fills in: its declared file stem (commands::SpecBase::stem_of: e.g.
+// hyperbolicity_strip_r<r>, or the command's last word for a stdout command); then the output checked.
+template <class Req> void complete_output(const Req& req, Output& out, bool threads_given) {
+  if (out.name.empty()) out.name = commands::Spec<Req>::stem_of(req);
   validate_output(out, threads_given);
 }
 
@@ -335,7 +256,7 @@ template <class Req> Args recorded_request(Req& req, const Output& out) {
 // --dry-run: the sweep's predicted cost from a sample of its own items, on rank 0's stdout; nothing written.
 template <class Req>
 void print_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  const int threads = commands::threads_used(out.threads);
   if (mpi::rank() == 0)
     std::cout
         << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
@@ -344,7 +265,7 @@ void print_estimate(const std::string& name, const Req& req, const Output& out, 
 // --dry-run of a request that is not a sweep: its work at the cached (else calibrated) route rates, on stdout.
 template <class Req>
 void print_work_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  const int threads = commands::threads_used(out.threads);
   std::cout << io::estimate_work(work(req), ctx.control, threads).text(name);
 }
 
@@ -354,7 +275,7 @@ void print_work_estimate(const std::string& name, const Req& req, const Output& 
 constexpr double long_run_seconds = 600;
 template <class Req>
 void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+  const int threads = commands::threads_used(out.threads);
   core::Work w = work(req);
   for (const core::Term& t : w.terms)
     if (t.probe_is_request || t.sized_run) return;  // pricing would run it, or instances of it for a second
@@ -374,7 +295,7 @@ template <class Req>
 void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   if constexpr (core::StepCounted<Req>) {
     if (out.quiet || mpi::rank() != 0) return;
-    const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+    const int threads = commands::threads_used(out.threads);
     const double fastest = core::fastest_steps_per_second(req.precision) * threads * mpi::size();
     if (req.map_steps() / fastest < 60) return;
     const core::SweepEstimate e =
@@ -391,37 +312,59 @@ template <class Req> void remember_self_rate(const Req& req, const Output& out, 
     if (w.terms.empty() ||
         !std::all_of(w.terms.begin(), w.terms.end(), [](const core::Term& t) { return t.probe_is_request; }))
       return;
-    const int threads = out.threads > 0 ? out.threads : omp_get_max_threads();
+    const int threads = commands::threads_used(out.threads);
     for (const core::Term& t : w.terms)
       io::remember_rate(t, threads, t.units, seconds / static_cast<double>(w.terms.size()));
   }
 }
 
-// The body, or the files of a stdout command given --out.
-template <class Req>
-void run_body(const std::string& name, const Body<Req>& body, const Req& req, const Output& out, const Context& ctx) {
-  if (!out.files && (!out.out.empty() || out.format == "latex")) {
-    std::string kind = name;  // the kind Python records: "windows bounds" -> windows_bounds
-    std::replace(kind.begin(), kind.end(), ' ', '_');
-    if (mpi::rank() == 0) {
-      if (out.out.empty()) print_latex(req, out, ctx, kind);
-      else write_files(req, out, ctx, kind);
-    }
+// How this process runs its share: threads, the terminal's bar (unless --quiet), SIGINT's token, the MPI ranks
+// (a sweep splits over them), the checkpoint of --resume, and the MPI statistics of the merge.
+commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::ProgressSink* bar);
+
+// The attributes the command line adds to a record: the MPI job's split and gather (cli/mpi.hpp), under mpirun.
+void add_mpi_attrs(core::Attrs& at);
+
+// A stdout command given --format latex (and no --out): its tables as booktabs LaTeX on stdout instead of its text
+// (io/latex.hpp), the status of each number from the result's Contents.
+void print_latex(const commands::Record& rec, const Context& ctx);
+
+// The body every command runs: compute (this process's share; null on the other ranks) -> the declaration's warnings
+// -> the files (a file command; a stdout command given --out) -> the declaration's text on stdout and closing report.
+template <class Req> void run_body(const Req& req, const Output& o, const Context& ctx) {
+  using S = commands::Spec<Req>;
+  std::shared_ptr<commands::Recorded<Req>> rec;
+  {
+    const auto bar = terminal_progress(S::command);
+    rec = commands::compute(req, how_of(o, ctx, core::Sweep<Req>, o.quiet ? nullptr : bar.get()));
+  }                  // the bar ends its line before anything else is said
+  if (!rec) return;  // another MPI rank: rank 0 writes
+  S::warn(req, rec->res, ctx.control);
+  const bool latex_text = !o.files && o.out.empty() && o.format == "latex";
+  if (!o.writes() && !latex_text) return S::print(req, rec->res);
+  commands::record(*rec, commands::Provenance{ctx.command_line, o.name, o.title, commands::threads_used(o.threads)});
+  add_mpi_attrs(rec->attrs);
+  if (latex_text) return print_latex(*rec, ctx);
+  const commands::WriteOptions opts{o.files && !o.no_plot, false, o.format == "latex", ctx.command_line, ctx.caption()};
+  const commands::Written w{commands::write(*rec, o.out, o.name, o.title, opts), o.quiet,
+                            commands::threads_used(o.threads)};
+  if (!o.files) {  // a stdout command given --out writes its files instead of printing, as Python's save() does
+    if (!o.quiet) std::cerr << "btob: wrote " << w.listing() << "\n";
     return;
   }
-  body(req, out, ctx);
+  S::print(req, rec->res);
+  S::report(req, rec->res, rec->contents, w);
 }
 
-// prepare -> validate -> output -> record -> (MPI checkpoint) -> --dry-run, or --resume's checkpoint -> the body.
-template <class Req>
-void execute(const std::string& name, const Body<Req>& body, Req req, Output out, bool threads_given,
-             const std::string& invocation) {
-  Prepare<Req>::apply(req);
-  req.validate();
-  complete_output(name, req, out, threads_given);
+// The command line's stages around commands::ready and run_body: the output completed and checked, the request
+// recorded, the MPI ranks' checkpoint, then --dry-run, or --resume's checkpoint, then the body.
+template <class Req> void execute(Req req, Output out, bool threads_given, const std::string& invocation) {
+  const std::string name = commands::Spec<Req>::command;
+  commands::ready(req);
+  complete_output(req, out, threads_given);
   Args recorded = recorded_request(req, out);
-  // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks
-  // (its body calls cli::sweep); any other request runs on rank 0 alone.  Only rank 0 speaks.
+  // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks; any other
+  // request runs on rank 0 alone.  Only rank 0 speaks.
   mpi::checkpoint();
   if (mpi::rank() != 0) {
     if constexpr (!core::Sweep<Req>) return;
@@ -439,7 +382,7 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    run_body(name, body, req, out, ctx);
+    run_body(req, out, ctx);
   } catch (const core::Cancelled&) {
     if (ctx.checkpoint && mpi::rank() == 0 && !out.quiet)
       std::cerr << "btob: the finished items are kept in " << ctx.checkpoint->path.string()
@@ -451,40 +394,47 @@ void execute(const std::string& name, const Body<Req>& body, Req req, Output out
   remember_self_rate(req, out, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
+// The output's flags and defaults of a declared request: a file command's folder and stem, or a stdout command.
+template <class Req> Output output_defaults() {
+  using S = commands::Spec<Req>;
+  Output o = commands::writes_files<Req>() ? Output{} : Output::to_stdout();
+  if (commands::writes_files<Req>()) {
+    o.out = S::folder;
+    o.name = S::stem;
+  }
+  o.sweep = core::Sweep<Req>;
+  o.costed = core::Costed<Req>;
+  o.tabular = Tabular<Req>;
+  return o;
+}
+
 // The subcommand on the command line: a flag per field of the request and of the output, applied when it runs.
-template <class Req>
-void add_flags_command(CLI::App& app, const std::string& name, const std::string& help, const Body<Req>& body,
-                       const Req& request_defaults, const Output& output_defaults) {
+template <class Req> void add_flags_command(CLI::App& app) {
+  using S = commands::Spec<Req>;
   struct State {
     Req req;
     Output out;
     std::map<std::string, std::shared_ptr<std::vector<std::string>>> raw;
     std::map<std::string, CLI::Option*> opts;
   };
-  Output defaults = output_defaults;
-  defaults.sweep = core::Sweep<Req>;
-  defaults.costed = core::Costed<Req>;
-  defaults.tabular = Tabular<Req>;
-  auto s = std::make_shared<State>(State{request_defaults, defaults, {}, {}});
-  CLI::App* c = add_nested(app, name, help);
+  auto s = std::make_shared<State>(State{S::defaults(), output_defaults<Req>(), {}, {}});
+  CLI::App* c = add_nested(app, S::command, S::summary);
   mpi::request_apps().push_back(c);
   s->req.fields(FlagBinder{c, &s->raw, &s->opts});
   s->out.fields(FlagBinder{c, &s->raw, &s->opts});
-  c->callback([s, name, body, c] {
+  c->callback([s, c] {
     if (!c->get_subcommands().empty()) return;  // `btob pattern atlas` runs the atlas, not `pattern`
     s->req.fields(FlagApplier{&s->raw, &s->opts});
     s->out.fields(FlagApplier{&s->raw, &s->opts});
-    execute<Req>(name, body, s->req, s->out, s->opts["threads"]->count() > 0, invocation());
+    execute<Req>(s->req, s->out, s->opts["threads"]->count() > 0, invocation());
   });
 }
 
 // The command from a scene or a manifest: fields set by name; a key that is no field is an error listing the known.
-template <class Req>
-void run_from_args(const std::string& name, const Body<Req>& body, Req req, Output out, const Args& args,
-                   const std::string& invocation) {
-  out.sweep = core::Sweep<Req>;
-  out.costed = core::Costed<Req>;
-  out.tabular = Tabular<Req>;
+template <class Req> void run_from_args(const Args& args, const std::string& invocation) {
+  using S = commands::Spec<Req>;
+  Req req = S::defaults();
+  Output out = output_defaults<Req>();
   std::vector<bool> used(args.size(), false);
   req.fields(ArgsApplier{&args, &used});
   out.fields(ArgsApplier{&args, &used});
@@ -493,27 +443,23 @@ void run_from_args(const std::string& name, const Body<Req>& body, Req req, Outp
       std::string known;
       req.fields(NameLister{&known});
       out.fields(NameLister{&known});
-      throw UsageError(fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, name, known));
+      throw UsageError(
+          fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, S::command, known));
     }
   bool threads_given = false;
   for (const auto& a : args) threads_given |= a.first == "threads";
-  execute<Req>(name, body, std::move(req), std::move(out), threads_given, invocation);
+  execute<Req>(std::move(req), std::move(out), threads_given, invocation);
 }
 }  // namespace detail
 
-// Registers subcommand `name` for a request type Req (fields(), validate()) and its body.  `name` may be a
-// subcommand of a subcommand, "windows bounds": the command line then reads `btob windows bounds ...`, and scenes
-// and manifests name it in full (command = "windows bounds").
-template <class Req>
-void command(const std::string& name, const std::string& help, Output output_defaults,
-             std::function<void(const Req&, const Output&, const Context&)> body, Req request_defaults = {}) {
-  registry().push_back(
-      [=](CLI::App& app) { detail::add_flags_command<Req>(app, name, help, body, request_defaults, output_defaults); });
-  scene_commands()[name] =
-      SceneCommand{[=](const Args& args, const std::string& inv) {
-                     detail::run_from_args<Req>(name, body, request_defaults, output_defaults, args, inv);
-                   },
-                   output_defaults.files, core::Sweep<Req> || core::Costed<Req>};
+// Registers the declared request Req (commands/commands.hpp) as a subcommand and as a command of scenes and
+// manifests.  A name of several words, "windows bounds", is a subcommand of a subcommand: the command line reads
+// `btob windows bounds ...`, and scenes and manifests name it in full (command = "windows bounds").
+template <class Req> void declare() {
+  registry().push_back([](CLI::App& app) { detail::add_flags_command<Req>(app); });
+  scene_commands()[commands::Spec<Req>::command] =
+      SceneCommand{[](const Args& args, const std::string& inv) { detail::run_from_args<Req>(args, inv); },
+                   commands::writes_files<Req>(), core::Sweep<Req> || core::Costed<Req>};
 }
 
 }  // namespace btob::cli

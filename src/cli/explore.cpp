@@ -5,6 +5,7 @@
 
 #include "attractors/requests.hpp"
 #include "cli/command.hpp"
+#include "commands/execute.hpp"
 #include "core/fields.hpp"
 #include "extras/extras.hpp"
 #include "io/io.hpp"
@@ -120,8 +121,12 @@ bifurcation::Request to_request(const View& v) {
   return r;
 }
 
+// The view's request through the commands' one path (commands/execute.hpp: ready, then run; the overlays are the
+// page's own, /api/overlays).
 bifurcation::Result compute(const View& v, const core::RunControl& control) {
-  return bifurcation::run(to_request(v), control);
+  bifurcation::Request req = to_request(v);
+  commands::ready(req);
+  return std::move(*commands::run_request(req, commands::How{control}));
 }
 
 const std::vector<std::uint8_t>& palette() {
@@ -245,8 +250,8 @@ std::string classify_json(const Params& p, const core::RunControl& control) {
   const std::string* point = find(p, "point");
   req.point = point ? *point : "1,-3,-1.1";  // the first point of the paper's grid (Section 4)
   const long tail = get_long(p, "tail", 300, 1, 100000);
-  req.validate();
-  const attractors::ClassifyResult res = attractors::run(req, control);
+  commands::ready(req);
+  const attractors::ClassifyResult res = std::move(*commands::run_request(req, commands::How{control}));
   const auto [w1, w2] =
       strip_tail(req.r, core::parse_point(req.point, "point"), req.thresholds.transient, tail, control);
   const attractors::OrbitVerdict& v = res.verdict;
@@ -270,8 +275,8 @@ std::string basins_json(const Params& p, const core::RunControl& control, const 
   const long n = get_long(p, "n", 100, 2, lim.max_basin_side);
   req.grid = fmt::format("sphere:{}x{}", n, n);
   req.replicates = 0;
-  req.validate();
-  const attractors::BasinsResult res = attractors::run(req, control);
+  commands::ready(req);
+  const attractors::BasinsResult res = std::move(*commands::run_request(req, commands::How{control}));
   json atts = json::array();
   for (std::size_t a = 0; a < res.basins.attractors.size(); ++a) {
     const attractors::Attractor& at = res.basins.attractors[a];

@@ -176,8 +176,10 @@ template <class V, class M> inline StepResult<V> map_step(V x, V y, V z, V r, V 
     if (__builtin_expect(any_zero(V(c1 * c3)), 0)) settle_ties(x, y, z, a, c1, c3, s1, s3);
 #endif
     // With FMA, c1 = fl(a y - x) is zero only at an exact tie (symbol 2, as the rule says) or when a y - x is
-    // below the smallest subnormal, which needs |y| < 2^-916 (else the exact value is a multiple of at least
-    // 2^-1021): a lane whose y lies 2^-409 below its largest component (>= 2^-507 between renormalisations).
+    // below the smallest subnormal: the exact value is a multiple of 2^(e_y - 105) (e_y the exponent of y), so that
+    // needs |y| < 2^-968.  The corner kept out below has the margin |y| < 2^-916 (at or above it the exact value
+    // is a multiple of 2^-1021 or coarser, a normal number): a lane whose y lies 2^-409 below its largest component
+    // (>= 2^-507 between renormalisations).
     // That corner is not settled here (a test per vector-step made the plain kernel 1.7x slower): run() steps a
     // batch whose start has such a lane lane by lane (first_step_exact), and one step leaves the corner.  The
     // dynamics re-enter it only within 2^-409 of the direction (0, 0, 1), which no orbit from another start

@@ -1,0 +1,177 @@
+// The one path from a request to its result and files, shared by every front end (the command line, `btob run`'s
+// scenes and manifests, Python):
+//
+//   ready(req)                          prepare (Spec::prepare: data files) -> validate -> the overlays' names
+//   estimate_* (req, ...)               a dry run: the sweep's sample, or the counted work at the route rates
+//   compute(req, how)                   run (split over MPI ranks, or in rounds kept in a checkpoint, or run(req))
+//                                       -> Spec::also_write -> the overlays of the result (extras)
+//   record(rec, provenance)             Contents, attributes, the request as text, the tables, the figure's script
+//   write(rec, out, name, title, opts)  NAME.h5, the CSV (and LaTeX) tables, NAME.json, the figure: all or nothing
+//
+// A front end adds only what is its own: the command line its flags, MPI, --dry-run's text and the terminal's words
+// (Spec::warn, print, report); Python its keywords, the released GIL and the Result object (whose save() is write).
+#pragma once
+
+#include "commands/spec.hpp"
+#include "core/estimate.hpp"
+#include "core/fields.hpp"
+#include "core/pack.hpp"
+#include "core/request.hpp"
+#include "core/sweep.hpp"
+#include "core/work.hpp"
+#include "extras/extras.hpp"
+#include "io/checkpoint.hpp"
+#include "io/io.hpp"
+#include "io/rates.hpp"
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace btob::commands {
+
+// The result type of a request: what run(req, control) returns (found by argument-dependent lookup).
+template <class Req>
+using ResultOf = std::decay_t<decltype(run(std::declval<const Req&>(), std::declval<const core::RunControl&>()))>;
+
+// What is written of one result, and what Python holds of it: its Contents (views into the result kept beside it in
+// Recorded), attributes, the request as text, its CSV tables and how its figure is drawn (commands/spec.hpp).
+struct Record {
+  core::Contents contents;
+  core::Attrs attrs;
+  std::string command;  // the command (the manifest's "command": `btob run NAME.json` runs it again)
+  std::string function;  // the Python function
+  Args request;          // the request's fields as text (flag names)
+  core::Tables tables;   // the CSV files (results with tables())
+  std::string plot;      // analyses/plot script, "" for none
+  std::vector<std::string> plot_inputs;
+  bool plot_many = false;
+  double start_seconds = 0;  // steady clock at the start of compute (for Spec::timed's total_seconds)
+  virtual ~Record() = default;
+};
+template <class Req> struct Recorded : Record {
+  Req req;
+  ResultOf<Req> res;
+  extras::Extras extras;
+};
+
+// Stage 1: the request made ready to run: its data files read, validated, its overlays' names checked (an unknown
+// name fails before any work).
+template <class Req> void ready(Req& req) {
+  Spec<Req>::prepare(req);
+  req.validate();
+  extras::check(req);
+}
+
+// How a request runs: the front end's control (threads, progress, cancellation), the MPI ranks sharing a sweep
+// (io::alone() for one process) and the checkpoint of a resumed sweep (null: none).
+struct How {
+  core::RunControl control;
+  io::Ranks ranks = io::alone();
+  io::Checkpoint* checkpoint = nullptr;
+  // Called on rank 0 after a split sweep's parts are merged: the seconds the merge took (MPI statistics).
+  std::function<void(double)> merged;
+};
+
+// A sweep's items split over the ranks (rank k takes items k, k + P, ...; core::cyclic_items) and merged on rank 0;
+// the result on rank 0, nullopt elsewhere.
+template <core::Sweep Req> std::optional<ResultOf<Req>> run_split(const Req& req, const How& how) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = core::work_items(req, how.control.cancel);  // counting may be long (the atlas): polled
+  const auto items = core::cyclic_items(n, how.ranks.rank, how.ranks.ranks);
+  auto mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, how.control); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // Rank 0 keeps its own part as it is; the others send theirs as bytes.
+  std::vector<std::vector<char>> bytes =
+      how.ranks.gather(how.ranks.rank == 0 ? std::vector<char>{} : core::pack(mine), seconds);
+  if (how.ranks.rank != 0) return std::nullopt;
+  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<decltype(mine)> parts;
+  parts.push_back(std::move(mine));
+  for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<decltype(mine)>(bytes[k]));
+  bytes.clear();
+  std::optional<ResultOf<Req>> res(merge(req, std::move(parts)));
+  if (how.merged) how.merged(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+  return res;
+}
+
+// The run itself: a resumed sweep in rounds kept in its checkpoint, a sweep split over ranks, else run(req) (a
+// request that is not a sweep runs on rank 0 alone).  Bit for bit the same result in every case.
+template <class Req> std::optional<ResultOf<Req>> run_request(const Req& req, const How& how) {
+  if constexpr (core::Sweep<Req>) {
+    if (how.checkpoint) return io::run_in_rounds(req, how.control, *how.checkpoint, how.ranks);
+    if (how.ranks.ranks > 1) return run_split(req, how);
+  }
+  if (how.ranks.rank != 0) return std::nullopt;
+  return run(req, how.control);
+}
+
+// Stage 3: the run, the files the request itself names (Spec::also_write) and the result's overlays; null on the
+// ranks other than 0.
+template <class Req> std::shared_ptr<Recorded<Req>> compute(const Req& req, const How& how) {
+  const double start = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  std::optional<ResultOf<Req>> res = run_request(req, how);
+  if (!res) return nullptr;
+  core::check_cancel(how.control.cancel);
+  auto rec = std::make_shared<Recorded<Req>>();
+  rec->req = req;
+  rec->res = std::move(*res);
+  rec->start_seconds = start;
+  if constexpr (requires { Spec<Req>::also_write(req, rec->res); }) Spec<Req>::also_write(req, rec->res);
+  rec->extras = extras::of(req, rec->res, how.control);  // the windows' bounds, the orbits' attractors, ...
+  return rec;
+}
+
+// Who asked, for the attributes: the command line (or Python call) that reproduces the request, the result's
+// name and title, and the threads used.
+struct Provenance {
+  std::string command_line, name, title;
+  long threads = 1;
+};
+
+// Stage 4: what is written of the result (and what Python shows of it).
+template <class Req> void record(Recorded<Req>& rec, const Provenance& p) {
+  using S = Spec<Req>;
+  rec.res.describe(rec.contents);
+  rec.extras.add_to(rec.contents);
+  rec.req.fields(core::ArgsWriter{&rec.request});
+  rec.attrs = io::result_attrs(p.command_line, rec.contents, S::kind_of(rec.req), p.name, p.title,
+                               S::scalar(rec.req, rec.res), p.threads);
+  rec.extras.apply(rec.attrs);
+  S::attrs(rec.req, rec.res, rec.attrs);
+  if constexpr (S::timed)
+    rec.attrs["total_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
+        rec.start_seconds;
+  rec.command = S::command;
+  rec.function = S::function;
+  if constexpr (requires { rec.res.tables(); }) rec.tables = rec.res.tables();
+  rec.plot = S::plot_of(rec.req);
+  rec.plot_inputs = S::plot_inputs();
+  rec.plot_many = S::plot_many;
+}
+
+// How write() treats the figure and the LaTeX tables.
+struct WriteOptions {
+  bool plot = true;               // draw the figure (when the command has one)
+  bool plot_required = false;     // a figure that cannot be drawn is an error and nothing is written (Python's save);
+                                  // else a warning and the data are kept (the command line)
+  bool latex = false;             // each CSV table also as booktabs LaTeX (io/latex.hpp)
+  std::string command_line;       // heads the LaTeX tables
+  std::string caption;            // their caption
+};
+
+// Stage 5, the one writer of results: NAME.h5 (when the result has arrays), the CSV tables, NAME.json (the
+// attributes and the request with name and title: `btob run out/NAME.json` reproduces it) and the figure, into a
+// temporary folder moved into `out` when complete (io/result_files.hpp).  Returns the files written.
+std::vector<std::filesystem::path> write(const Record& rec, const std::string& out, const std::string& name,
+                                         const std::string& title, const WriteOptions& opts);
+
+// The threads a run uses: `requested`, else (0) all cores (OpenMP's default).
+int threads_used(int requested);
+
+}  // namespace btob::commands
