@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Whether two builds of btob give the same results: every committed manifest (results/**/NAME.json that records a
 request) is run by both executables with `btob run NAME.json --out DIR --no-plot`, and every file they write is
 compared: HDF5 datasets bitwise (tests/h5_same_data.py's rule: attributes hold provenance and are not compared),

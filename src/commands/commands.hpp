@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every command of btob, declared once (commands/spec.hpp says what a declaration holds).  The command line's
 // subcommands and their flags, `btob run`'s scenes and manifests, and the Python module's functions and keywords are
 // all generated from this list by for_each_command; none of them names a command anywhere else.
@@ -67,8 +68,7 @@ template <> struct Spec<bifurcation::Request> : SpecBase<bifurcation::Request, S
   static constexpr const char* plot = "bifurcation.py";
   static constexpr bool timed = true;
   static void warn(const bifurcation::Request&, const bifurcation::Result&, const core::RunControl&);
-  static void report(const bifurcation::Request&, const bifurcation::Result&, const core::Contents&,
-                     const Written&);
+  static void report(const bifurcation::Request&, const bifurcation::Result&, const core::Contents&, const Written&);
 };
 
 // ---- Lyapunov exponents ----
@@ -106,8 +106,7 @@ template <> struct Spec<lyapunov::StripRequest> : SpecBase<lyapunov::StripReques
   static constexpr const char* stem = "lyapunov_strip";
   static constexpr const char* kind = "lyapunov-strip";
   static constexpr const char* plot = "lyapunov_strip.py";
-  static void report(const lyapunov::StripRequest&, const lyapunov::MapResult&, const core::Contents&,
-                     const Written&);
+  static void report(const lyapunov::StripRequest&, const lyapunov::MapResult&, const core::Contents&, const Written&);
 };
 
 template <>
@@ -121,8 +120,8 @@ struct Spec<lyapunov::HyperbolicityRequest>
   static constexpr const char* kind = "hyperbolicity-strip";
   static constexpr const char* plot = "hyperbolicity_strip.py";
   static void print(const lyapunov::HyperbolicityRequest&, const lyapunov::HyperbolicityResult&);
-  static void report(const lyapunov::HyperbolicityRequest&, const lyapunov::HyperbolicityResult&,
-                     const core::Contents&, const Written&);
+  static void report(const lyapunov::HyperbolicityRequest&, const lyapunov::HyperbolicityResult&, const core::Contents&,
+                     const Written&);
 };
 
 template <>
@@ -211,8 +210,7 @@ template <> struct Spec<stats::MeasureRequest> : SpecBase<stats::MeasureRequest,
   static constexpr const char* stem = "measure";
   static constexpr const char* kind = "measure";
   static constexpr const char* plot = "stats_measure.py";
-  static void report(const stats::MeasureRequest&, const stats::MeasureResult&, const core::Contents&,
-                     const Written&);
+  static void report(const stats::MeasureRequest&, const stats::MeasureResult&, const core::Contents&, const Written&);
 };
 
 // ---- precision ----
@@ -428,8 +426,7 @@ template <> struct Spec<ParticlesRequest> : SpecBase<ParticlesRequest, Spec<Part
   static constexpr bool plot_many = true;
   static void warn(const ParticlesRequest&, const particles::ParticlesResult&, const core::RunControl&);
   static void print(const ParticlesRequest&, const particles::ParticlesResult&);
-  static void report(const ParticlesRequest&, const particles::ParticlesResult&, const core::Contents&,
-                     const Written&);
+  static void report(const ParticlesRequest&, const particles::ParticlesResult&, const core::Contents&, const Written&);
 };
 
 // Calls f.template operator()<Req>() for every declared request, in the order of `btob --help` and of the Python

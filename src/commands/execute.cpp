@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one writer of results (commands/execute.hpp).
 #include "commands/execute.hpp"
 

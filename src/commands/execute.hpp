@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one path from a request to its result and files, shared by every front end (the command line, `btob run`'s
 // scenes and manifests, Python):
 //
@@ -43,7 +44,7 @@ using ResultOf = std::decay_t<decltype(run(std::declval<const Req&>(), std::decl
 struct Record {
   core::Contents contents;
   core::Attrs attrs;
-  std::string command;  // the command (the manifest's "command": `btob run NAME.json` runs it again)
+  std::string command;   // the command (the manifest's "command": `btob run NAME.json` runs it again)
   std::string function;  // the Python function
   Args request;          // the request's fields as text (flag names)
   core::Tables tables;   // the CSV files (results with tables())
@@ -145,8 +146,7 @@ template <class Req> void record(Recorded<Req>& rec, const Provenance& p) {
   S::attrs(rec.req, rec.res, rec.attrs);
   if constexpr (S::timed)
     rec.attrs["total_seconds"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
-        rec.start_seconds;
+        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() - rec.start_seconds;
   rec.command = S::command;
   rec.function = S::function;
   if constexpr (requires { rec.res.tables(); }) rec.tables = rec.res.tables();
@@ -157,12 +157,12 @@ template <class Req> void record(Recorded<Req>& rec, const Provenance& p) {
 
 // How write() treats the figure and the LaTeX tables.
 struct WriteOptions {
-  bool plot = true;               // draw the figure (when the command has one)
-  bool plot_required = false;     // a figure that cannot be drawn is an error and nothing is written (Python's save);
-                                  // else a warning and the data are kept (the command line)
-  bool latex = false;             // each CSV table also as booktabs LaTeX (io/latex.hpp)
-  std::string command_line;       // heads the LaTeX tables
-  std::string caption;            // their caption
+  bool plot = true;            // draw the figure (when the command has one)
+  bool plot_required = false;  // a figure that cannot be drawn is an error and nothing is written (Python's save);
+                               // else a warning and the data are kept (the command line)
+  bool latex = false;          // each CSV table also as booktabs LaTeX (io/latex.hpp)
+  std::string command_line;    // heads the LaTeX tables
+  std::string caption;         // their caption
 };
 
 // Stage 5, the one writer of results: NAME.h5 (when the result has arrays), the CSV tables, NAME.json (the

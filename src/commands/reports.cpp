@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The command line's words around a run (commands/spec.hpp: warn, print, report), and the few declarations that
 // need code (prepare, attrs, also_write, validate).  Presentation only: nothing here is part of a result.
 #include "commands/commands.hpp"
@@ -128,8 +129,7 @@ void Spec<lyapunov::HyperbolicityRequest>::report(const lyapunov::HyperbolicityR
                                                   const lyapunov::HyperbolicityResult& res, const core::Contents&,
                                                   const Written& w) {
   if (!w.quiet)
-    std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", res.image.s1.size(), res.seconds,
-                             w.listing());
+    std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", res.image.s1.size(), res.seconds, w.listing());
 }
 
 void Spec<lyapunov::HyperbolicityOrbitsRequest>::report(const lyapunov::HyperbolicityOrbitsRequest& req,
@@ -146,9 +146,8 @@ void Spec<attractors::ClassifyRequest>::print(const attractors::ClassifyRequest&
   std::cout << res.csv();
 }
 
-void Spec<attractors::BasinsRequest>::report(const attractors::BasinsRequest& req,
-                                             const attractors::BasinsResult& res, const core::Contents&,
-                                             const Written& w) {
+void Spec<attractors::BasinsRequest>::report(const attractors::BasinsRequest& req, const attractors::BasinsResult& res,
+                                             const core::Contents&, const Written& w) {
   if (w.quiet) return;
   const attractors::Basins& b = res.basins;
   const std::size_t n = res.points();
@@ -236,8 +235,7 @@ void Spec<stats::MeasureRequest>::report(const stats::MeasureRequest& req, const
 }
 
 // ---- precision ----
-void Spec<precision::TradeoffRequest>::print(const precision::TradeoffRequest&,
-                                             const precision::TradeoffResult& res) {
+void Spec<precision::TradeoffRequest>::print(const precision::TradeoffRequest&, const precision::TradeoffResult& res) {
   for (const auto& [role, text] : res.tables()) std::cout << text;
 }
 
@@ -256,8 +254,7 @@ void Spec<windows::BoundsRequest>::print(const windows::BoundsRequest&, const wi
   std::cout << res.csv() << std::flush;
 }
 
-void Spec<windows::ThresholdsRequest>::print(const windows::ThresholdsRequest&,
-                                             const windows::ThresholdsResult& res) {
+void Spec<windows::ThresholdsRequest>::print(const windows::ThresholdsRequest&, const windows::ThresholdsResult& res) {
   std::cout << res.csv();
 }
 
@@ -318,8 +315,7 @@ void StripOrbitsRequest::validate() const {
     throw core::InvalidField("only", std::to_string(only), fmt::format("0 (all) or 1..orbits ({})", orbits));
 }
 
-void Spec<StripOrbitsRequest>::attrs(const StripOrbitsRequest& req, const orbits::StripOrbitsResult&,
-                                     core::Attrs& at) {
+void Spec<StripOrbitsRequest>::attrs(const StripOrbitsRequest& req, const orbits::StripOrbitsResult&, core::Attrs& at) {
   at["plot_w1"] = req.plot_w1;
   at["only"] = req.only;
 }
@@ -353,9 +349,8 @@ void Spec<transfer::TransferRequest>::report(const transfer::TransferRequest&, c
   if (!w.quiet) std::cerr << res.summary() << "btob: wrote " << w.listing() << "\n";
 }
 
-void Spec<transfer::TransferRRequest>::report(const transfer::TransferRRequest&,
-                                              const transfer::TransferRResult& res, const core::Contents&,
-                                              const Written& w) {
+void Spec<transfer::TransferRRequest>::report(const transfer::TransferRRequest&, const transfer::TransferRResult& res,
+                                              const core::Contents&, const Written& w) {
   if (!w.quiet) std::cerr << res.summary() << "btob: wrote " << w.listing() << "\n";
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The declaration of a command: everything about a request that is not in the request itself (its fields(),
 // validate(), run(), and its result's describe() and tables() are the module's).  One specialisation of Spec per
 // request, all in commands/commands.hpp; the command line (src/cli), scenes and manifests (`btob run`), and the
