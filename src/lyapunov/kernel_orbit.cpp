@@ -78,7 +78,18 @@ template <class T>
   z = zn;
 }
 
-template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
+// The state after step i into the trace (weighted.hpp reads it): six stores, off the step's dependency chain.
+template <class T, class W>
+[[gnu::always_inline]] inline void record(const Trace<W>& tr, long i, const T& x, const T& y, const T& z, const T& p,
+                                          const T& q, const T& w) {
+  W* at = tr.at + i;
+  const long s = tr.stride;
+  at[0] = static_cast<W>(x), at[s] = static_cast<W>(y), at[2 * s] = static_cast<W>(z);
+  at[3 * s] = static_cast<W>(p), at[4 * s] = static_cast<W>(q), at[5 * s] = static_cast<W>(w);
+}
+
+template <class T, bool Record>
+void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<double> tr) {
   using std::fabs;
   using std::fma;
   T x = f.u[0], y = f.u[1], z = f.u[2];
@@ -99,20 +110,16 @@ template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, st
     z = zn;
     blended_tangent(p, q, w, m, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(2 - s1 + s3);
+    if constexpr (Record) record(tr, i + 1, x, y, z, p, q, w);
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
   f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
-}  // namespace
-
-// Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
-// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored.  The
-// dependency chain through the point is fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
-template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
-#if defined(__FMA__)
-  if constexpr (hardware_fma<T>) return advance_blended<T>(f, n, first, ring);
-#endif
+// The same step for every precision, the branch by map_step's exact rule (long double, float128; and float, double
+// without FMA).
+template <class T, bool Record>
+void advance_generic(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<TraceReal<T>> tr) {
   T x = f.u[0], y = f.u[1], z = f.u[2];
   T p = f.v[0], q = f.v[1], w = f.v[2];
   const T r = f.r, a = f.a, k = f.k;
@@ -124,14 +131,29 @@ template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8
     z = o.z;
     tangent_step(p, q, w, s1, s3, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(s1 ? 1 : (s3 ? 3 : 2));
+    if constexpr (Record) record(tr, i + 1, x, y, z, p, q, w);
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
   f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
-template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*);
-template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*);
-template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*);
-template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*);
+}  // namespace
+
+// Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
+// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored (and six
+// numbers over the averaged steps, for the weighted average).  The dependency chain through the point is
+// fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
+template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<TraceReal<T>> tr) {
+#if defined(__FMA__)
+  if constexpr (hardware_fma<T>)
+    return tr.at ? advance_blended<T, true>(f, n, first, ring, tr) : advance_blended<T, false>(f, n, first, ring, tr);
+#endif
+  return tr.at ? advance_generic<T, true>(f, n, first, ring, tr) : advance_generic<T, false>(f, n, first, ring, tr);
+}
+
+template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*, Trace<TraceReal<float>>);
+template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*, Trace<TraceReal<double>>);
+template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*, Trace<TraceReal<long double>>);
+template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*, Trace<TraceReal<core::float128>>);
 
 }  // namespace btob::lyapunov::detail

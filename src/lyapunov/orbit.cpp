@@ -23,13 +23,17 @@
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
+#include "lyapunov/weighted.hpp"
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace btob::lyapunov::detail {
 // Defined in orbit_mpfr.cpp (the mpfr_* C API): declared wherever the MPFR frame is stepped.
-template <> void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring);
+template <>
+void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring,
+                               Trace<long double> tr);
 }  // namespace btob::lyapunov::detail
 
 namespace btob::lyapunov {
@@ -61,6 +65,14 @@ template <class T> struct Orbit {
     f.a = (T(1) + r) / T(2);
     f.k = f.a / r;
     unorm = un;
+  }
+
+  // The state right after the previous projection, as the trace's state 0 (weighted.hpp).
+  void start_trace(const Trace<TraceReal<T>>& tr) const {
+    for (int c = 0; c < 3; ++c) {
+      tr.at[c * tr.stride] = static_cast<TraceReal<T>>(f.u[c]);
+      tr.at[(c + 3) * tr.stride] = static_cast<TraceReal<T>>(f.v[c]);
+    }
   }
 
   // Project the tangent vector on u^perp, restart it as the unit vector there, and rescale u by a power of two
@@ -154,15 +166,25 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
   std::array<std::uint8_t, detail::kSymbolRing> ring{};
   const long double eps = static_cast<long double>(std::numeric_limits<T>::epsilon());
   const double bits_allowed = std::max(2.0, -std::log2(static_cast<double>(eps)) / 6);  // B of the header comment
-  const int cap = std::max(1, iterate::renormalisation_interval<T>({static_cast<double>(r)}));
+  // K of T, and of the trace's type (weighted.hpp squares the states in it: MPFR's range is wider than long double's).
+  const std::vector<double> rv{static_cast<double>(r)};
+  const int cap = std::max(1, std::min(iterate::renormalisation_interval<T>(rv),
+                                       iterate::renormalisation_interval<detail::TraceReal<T>>(rv)));
   const long double log_r = std::log(static_cast<long double>(r));
   const bool fixed = opt.reorthonormalise > 1;
   int len = fixed ? std::min(opt.reorthonormalise, cap) : 1;
   long double loss = 0;  // worst-case error of the summed logs: sum of (len + 2) eps rho over the averaged steps
   const long total = sc.transient + sc.n;
+  using W = detail::TraceReal<T>;
+  std::vector<W> trace(6 * static_cast<std::size_t>(cap + 1));
+  detail::WeightedSums ws;
+  acc.weigh_intervals = false;  // weighed step by step below (weighted.hpp)
   for (long done = 0; done < total;) {
     const long next = detail::next_stop(done, len, sc, acc.next_cp);
-    detail::advance<T>(o.f, next - done, done + 1, ring.data());
+    const detail::Trace<W> tr{done >= sc.transient ? trace.data() : nullptr, cap + 1};
+    if (tr.at) o.start_trace(tr);
+    detail::advance<T>(o.f, next - done, done + 1, ring.data(), tr);
+    if (tr.at) detail::weigh<W>(tr, next - done, ring.data(), done, done - sc.transient, sc.n, log_r, ws);
     if ((next >> 8) != (done >> 8)) core::check_cancel(opt.cancel);  // about every core::cancel_stride steps
     long n13 = 0;  // steps on branches 1 and 3 (det M = r) since the last projection
     for (long i = done + 1; i <= next; ++i) n13 += ring[i & (detail::kSymbolRing - 1)] != 2;
@@ -170,7 +192,7 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
     acc.add(next, g.logs);
     if (next > sc.transient)
       loss += static_cast<long double>(next - done + 2) * eps * std::exp2(static_cast<long double>(g.bits));
-    if (!fixed && next <= sc.transient) {  // fixed over the averaged steps: see the header (weighted averages)
+    if (!fixed && next <= sc.transient) {  // chosen on the transient, held over the averaged steps
       const double per_step = g.bits / static_cast<double>(next - done);
       // At most doubling: an interval measured on a quiet stretch must not jump to K on a chaotic one.
       const int want = per_step > bits_allowed / cap ? std::max(1, static_cast<int>(bits_allowed / per_step)) : cap;
@@ -180,6 +202,8 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
     }
     done = next;
   }
+  acc.wsum = {ws.lambda1, ws.area - ws.lambda1};
+  acc.wnorm = ws.norm;
   ProjectiveResult res = detail::finish<T>(acc, o, loss, opt);
   res.symbols_tail = detail::ring_tail(ring, total, std::min<long>(opt.iterations, 4096));
   return res;

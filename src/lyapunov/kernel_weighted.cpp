@@ -1,0 +1,133 @@
+// The weighted sums of lyapunov/weighted.hpp, compiled with the kernel's flags so that the loops over an interval
+// vectorise (double: the log and exp below are branch-free polynomials on the bits; long double: libm).
+#include "lyapunov/weighted.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+namespace btob::lyapunov::detail {
+namespace {
+
+constexpr double kLn2Hi = 0x1.62e42fefa3800p-1, kLn2Lo = 0x1.ef35793c76730p-45;  // ln 2 = hi + lo, hi * k exact
+constexpr long kMaxLen = 1025;  // iterate::renormalisation_interval's cap + 1 states
+constexpr int kLanes = 8;       // independent partial sums: the reduction vectorises without reassociation
+
+// log x for a positive normal double: x = 2^e m with m in [sqrt(1/2), sqrt(2)) (the bits minus sqrt(1/2)'s give e),
+// log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716: the series to s^23 leaves < 2e-19 (|s|^25 / 25); the
+// error is that of the division and the Horner sum, a few ulp of log m, and e ln 2 is exact to 2^-60 e.
+inline double log_bits(double x) {
+  const std::uint64_t b = std::bit_cast<std::uint64_t>(x);
+  const std::int64_t e = static_cast<std::int64_t>(b - 0x3fe6a09e667f3bcdULL) >> 52;
+  const double m = std::bit_cast<double>(b - (static_cast<std::uint64_t>(e) << 52));
+  const double s = (m - 1) / (m + 1), s2 = s * s;
+  double p = 1.0 / 23;
+  for (int j = 21; j >= 1; j -= 2) p = std::fma(p, s2, 1.0 / j);
+  const double ed = static_cast<double>(e);
+  return std::fma(ed, kLn2Hi, std::fma(ed, kLn2Lo, 2 * s * p));
+}
+
+// exp g for g in [-700, 0]: g = k ln 2 + h, |h| <= ln 2 / 2, e^h by its Taylor series to h^13 (|h|^14 / 14! < 4e-18),
+// times 2^k on the exponent bits (k >= -1010: a normal number).
+inline double exp_bits(double g) {
+  constexpr double shift = 0x1.8p52;  // adding it rounds g / ln 2 to the integer in the low bits
+  const double kd0 = std::fma(g, 1 / 0x1.62e42fefa39efp-1, shift);
+  const std::int64_t k =
+      static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(kd0) - std::bit_cast<std::uint64_t>(shift));
+  const double kd = kd0 - shift;
+  const double h = std::fma(-kd, kLn2Lo, std::fma(-kd, kLn2Hi, g));
+  constexpr double inv_factorial[14] = {1.0,
+                                        1.0,
+                                        1.0 / 2,
+                                        1.0 / 6,
+                                        1.0 / 24,
+                                        1.0 / 120,
+                                        1.0 / 720,
+                                        1.0 / 5040,
+                                        1.0 / 40320,
+                                        1.0 / 362880,
+                                        1.0 / 3628800,
+                                        1.0 / 39916800,
+                                        1.0 / 479001600,
+                                        1.0 / 6227020800.0};
+  double p = inv_factorial[13];
+  for (int j = 12; j >= 0; --j) p = std::fma(p, h, inv_factorial[j]);
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(p) + (static_cast<std::uint64_t>(k) << 52));
+}
+
+// log Z_k and log Y_k of weighted.hpp for k = 0..len, in T (double: the bit-level log; long double: libm).  Z is
+// formed as |(u x v) / Y|^2: no intermediate leaves the range where the kernel's interval keeps u and v.
+template <class W> void state_logs(const Trace<W>& tr, long len, W* lz, W* ly) {
+  const long s = tr.stride;
+  const W *ux = tr.at, *uy = ux + s, *uz = uy + s, *vx = uz + s, *vy = vx + s, *vz = vy + s;
+  for (long k = 0; k <= len; ++k) {
+    const W y = ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k];
+    const W inv = 1 / y;
+    const W cx = (uy[k] * vz[k] - uz[k] * vy[k]) * inv, cy = (uz[k] * vx[k] - ux[k] * vz[k]) * inv,
+            cz = (ux[k] * vy[k] - uy[k] * vx[k]) * inv;
+    const W z = cx * cx + cy * cy + cz * cz;
+    if constexpr (std::is_same_v<W, double>) {
+      lz[k] = log_bits(z);
+      ly[k] = log_bits(y);
+    } else {
+      lz[k] = std::log(z);
+      ly[k] = std::log(y);
+    }
+  }
+}
+
+// The sums over k = 1..len in kLanes independent lanes (step k's lane: k % kLanes), then added in lane order.
+template <class W>
+void lane_sums(const W* lz, const W* ly, const W* n13, long len, long j0, long n, W log_r, WeightedSums& sums) {
+  W l1[kLanes] = {}, ar[kLanes] = {}, no[kLanes] = {};
+  const W inv_n = W(1) / static_cast<W>(n);
+  for (long k0 = 1; k0 <= len; k0 += kLanes) {
+    for (int l = 0; l < kLanes; ++l) {
+      const long k = std::min(k0 + l, len);  // past the end: step len again with weight 0
+      const W t = (static_cast<W>(j0 + k) - W(0.5)) * inv_n;
+      const W g = std::max(W(-1) / (t * (1 - t)), W(-700));
+      W w;
+      if constexpr (std::is_same_v<W, double>) w = exp_bits(g);
+      else w = std::exp(g);
+      w = k0 + l <= len ? w : W(0);
+      l1[l] += w * (W(0.5) * (lz[k] - lz[k - 1]));
+      ar[l] += w * (n13[k] * log_r - W(1.5) * (ly[k] - ly[k - 1]));
+      no[l] += w;
+    }
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    sums.lambda1 += static_cast<long double>(l1[l]);
+    sums.area += static_cast<long double>(ar[l]);
+    sums.norm += static_cast<long double>(no[l]);
+  }
+}
+
+}  // namespace
+
+template <class W>
+void weigh(const Trace<W>& tr, long len, const std::uint8_t* ring, long step0, long j0, long n, long double log_r,
+           WeightedSums& sums) {
+  alignas(64) W lz[kMaxLen], ly[kMaxLen], n13[kMaxLen];
+  for (long k = 1; k <= len; ++k) n13[k] = ring[(step0 + k) & (kSymbolRing - 1)] != 2 ? W(1) : W(0);
+  state_logs(tr, len, lz, ly);
+  bool finite = true;  // Z or Y out of double's range (a far-fetched interval): the block again in long double
+  for (long k = 0; k <= len; ++k) finite &= std::isfinite(lz[k]) && std::isfinite(ly[k]);
+  if constexpr (std::is_same_v<W, double>) {
+    if (!finite) {
+      alignas(64) static thread_local long double wide[6 * kMaxLen];
+      for (int c = 0; c < 6; ++c)
+        for (long k = 0; k <= len; ++k) wide[c * kMaxLen + k] = tr.at[c * tr.stride + k];
+      return weigh<long double>({wide, kMaxLen}, len, ring, step0, j0, n, log_r, sums);
+    }
+  }
+  lane_sums<W>(lz, ly, n13, len, j0, n, static_cast<W>(log_r), sums);
+}
+
+template void weigh<double>(const Trace<double>&, long, const std::uint8_t*, long, long, long, long double,
+                            WeightedSums&);
+template void weigh<long double>(const Trace<long double>&, long, const std::uint8_t*, long, long, long, long double,
+                                 WeightedSums&);
+
+}  // namespace btob::lyapunov::detail
