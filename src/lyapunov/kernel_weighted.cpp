@@ -13,7 +13,6 @@ namespace {
 
 constexpr double kLn2Hi = 0x1.62e42fefa3800p-1, kLn2Lo = 0x1.ef35793c76730p-45;  // ln 2 = hi + lo, hi * k exact
 constexpr long kMaxLen = 1025;  // iterate::renormalisation_interval's cap + 1 states
-constexpr int kLanes = 8;       // independent partial sums: the reduction vectorises without reassociation
 
 // log x for a positive normal double: x = 2^e m with m in [sqrt(1/2), sqrt(2)) (the bits minus sqrt(1/2)'s give e),
 // log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716: the series to s^23 leaves < 2e-19 (|s|^25 / 25); the
@@ -24,6 +23,7 @@ inline double log_bits(double x) {
   const double m = std::bit_cast<double>(b - (static_cast<std::uint64_t>(e) << 52));
   const double s = (m - 1) / (m + 1), s2 = s * s;
   double p = 1.0 / 23;
+#pragma GCC unroll 16
   for (int j = 21; j >= 1; j -= 2) p = std::fma(p, s2, 1.0 / j);
   const double ed = static_cast<double>(e);
   return std::fma(ed, kLn2Hi, std::fma(ed, kLn2Lo, 2 * s * p));
@@ -53,6 +53,7 @@ inline double exp_bits(double g) {
                                         1.0 / 479001600,
                                         1.0 / 6227020800.0};
   double p = inv_factorial[13];
+#pragma GCC unroll 16
   for (int j = 12; j >= 0; --j) p = std::fma(p, h, inv_factorial[j]);
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(p) + (static_cast<std::uint64_t>(k) << 52));
 }
@@ -62,6 +63,7 @@ inline double exp_bits(double g) {
 template <class W> void state_logs(const Trace<W>& tr, long len, W* lz, W* ly) {
   const long s = tr.stride;
   const W *ux = tr.at, *uy = ux + s, *uz = uy + s, *vx = uz + s, *vy = vx + s, *vz = vy + s;
+#pragma omp simd
   for (long k = 0; k <= len; ++k) {
     const W y = ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k];
     const W inv = 1 / y;
@@ -78,30 +80,25 @@ template <class W> void state_logs(const Trace<W>& tr, long len, W* lz, W* ly) {
   }
 }
 
-// The sums over k = 1..len in kLanes independent lanes (step k's lane: k % kLanes), then added in lane order.
+// The sums over k = 1..len (an OpenMP simd reduction: a fixed order for a given interval, whatever the threads).
 template <class W>
-void lane_sums(const W* lz, const W* ly, const W* n13, long len, long j0, long n, W log_r, WeightedSums& sums) {
-  W l1[kLanes] = {}, ar[kLanes] = {}, no[kLanes] = {};
+void interval_sums(const W* lz, const W* ly, const W* n13, long len, long j0, long n, W log_r, WeightedSums& sums) {
+  W l1 = 0, ar = 0, no = 0;
   const W inv_n = W(1) / static_cast<W>(n);
-  for (long k0 = 1; k0 <= len; k0 += kLanes) {
-    for (int l = 0; l < kLanes; ++l) {
-      const long k = std::min(k0 + l, len);  // past the end: step len again with weight 0
-      const W t = (static_cast<W>(j0 + k) - W(0.5)) * inv_n;
-      const W g = std::max(W(-1) / (t * (1 - t)), W(-700));
-      W w;
-      if constexpr (std::is_same_v<W, double>) w = exp_bits(g);
-      else w = std::exp(g);
-      w = k0 + l <= len ? w : W(0);
-      l1[l] += w * (W(0.5) * (lz[k] - lz[k - 1]));
-      ar[l] += w * (n13[k] * log_r - W(1.5) * (ly[k] - ly[k - 1]));
-      no[l] += w;
-    }
+#pragma omp simd reduction(+ : l1, ar, no)
+  for (long k = 1; k <= len; ++k) {
+    const W t = (static_cast<W>(j0 + k) - W(0.5)) * inv_n;
+    const W g = std::max(W(-1) / (t * (1 - t)), W(-700));
+    W w;
+    if constexpr (std::is_same_v<W, double>) w = exp_bits(g);
+    else w = std::exp(g);
+    l1 += w * (W(0.5) * (lz[k] - lz[k - 1]));
+    ar += w * (n13[k] * log_r - W(1.5) * (ly[k] - ly[k - 1]));
+    no += w;
   }
-  for (int l = 0; l < kLanes; ++l) {
-    sums.lambda1 += static_cast<long double>(l1[l]);
-    sums.area += static_cast<long double>(ar[l]);
-    sums.norm += static_cast<long double>(no[l]);
-  }
+  sums.lambda1 += static_cast<long double>(l1);
+  sums.area += static_cast<long double>(ar);
+  sums.norm += static_cast<long double>(no);
 }
 
 }  // namespace
@@ -122,7 +119,7 @@ void weigh(const Trace<W>& tr, long len, const std::uint8_t* ring, long step0, l
       return weigh<long double>({wide, kMaxLen}, len, ring, step0, j0, n, log_r, sums);
     }
   }
-  lane_sums<W>(lz, ly, n13, len, j0, n, static_cast<W>(log_r), sums);
+  interval_sums<W>(lz, ly, n13, len, j0, n, static_cast<W>(log_r), sums);
 }
 
 template void weigh<double>(const Trace<double>&, long, const std::uint8_t*, long, long, long, long double,
