@@ -127,8 +127,7 @@ void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, T
 struct PairMasks {
   __m128d m1, m3;  // all-ones in both lanes where the point took branch 1 (resp. 3)
 };
-[[gnu::always_inline]] inline PairMasks pair_masks(__m128d c1, __m128d c3, __m128d a, __m128d y, __m128d x,
-                                                   __m128d z) {
+[[gnu::always_inline]] inline PairMasks pair_masks(__m128d c1, __m128d c3, __m128d a, __m128d y, __m128d x, __m128d z) {
   const __m128d zero = _mm_setzero_pd();
   if (__builtin_expect(_mm_cvtsd_f64(c1) == 0 || _mm_cvtsd_f64(c3) == 0, 0)) {  // a tie or an underflow: exact signs
     const double a0 = _mm_cvtsd_f64(a), y0 = _mm_cvtsd_f64(y);
@@ -213,6 +212,7 @@ template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8
 template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*, Trace<TraceReal<float>>);
 template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*, Trace<TraceReal<double>>);
 template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*, Trace<TraceReal<long double>>);
-template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*, Trace<TraceReal<core::float128>>);
+template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*,
+                                      Trace<TraceReal<core::float128>>);
 
 }  // namespace btob::lyapunov::detail

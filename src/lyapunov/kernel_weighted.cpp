@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 namespace btob::lyapunov::detail {
@@ -38,51 +39,43 @@ inline double exp_bits(double g) {
       static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(kd0) - std::bit_cast<std::uint64_t>(shift));
   const double kd = kd0 - shift;
   const double h = std::fma(-kd, kLn2Lo, std::fma(-kd, kLn2Hi, g));
-  constexpr double inv_factorial[14] = {1.0,
-                                        1.0,
-                                        1.0 / 2,
-                                        1.0 / 6,
-                                        1.0 / 24,
-                                        1.0 / 120,
-                                        1.0 / 720,
-                                        1.0 / 5040,
-                                        1.0 / 40320,
-                                        1.0 / 362880,
-                                        1.0 / 3628800,
-                                        1.0 / 39916800,
-                                        1.0 / 479001600,
-                                        1.0 / 6227020800.0};
+  constexpr double inv_factorial[14] = {
+      1.0,        1.0,         1.0 / 2,      1.0 / 6,       1.0 / 24,       1.0 / 120,       1.0 / 720,
+      1.0 / 5040, 1.0 / 40320, 1.0 / 362880, 1.0 / 3628800, 1.0 / 39916800, 1.0 / 479001600, 1.0 / 6227020800.0};
   double p = inv_factorial[13];
 #pragma GCC unroll 16
   for (int j = 12; j >= 0; --j) p = std::fma(p, h, inv_factorial[j]);
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(p) + (static_cast<std::uint64_t>(k) << 52));
 }
 
-// log Z_k and log Y_k of weighted.hpp for k = 0..len, in T (double: the bit-level log; long double: libm).  Z is
-// formed as |(u x v) / Y|^2: no intermediate leaves the range where the kernel's interval keeps u and v.
-template <class W> void state_logs(const Trace<W>& tr, long len, W* lz, W* ly) {
+// log |u_k x v_k|^2 and log Y_k (weighted.hpp: log Z = log |u x v|^2 - 2 log Y) for k = 0..len, in W (double: the
+// bit-level log, which needs a positive normal argument; long double: libm).  Returns whether every argument was a
+// positive normal number of W (else the caller redoes the interval in long double, whose range holds the squares).
+template <class W> bool state_logs(const Trace<W>& tr, long len, W* lc, W* ly) {
   const long s = tr.stride;
   const W *ux = tr.at, *uy = ux + s, *uz = uy + s, *vx = uz + s, *vy = vx + s, *vz = vy + s;
-#pragma omp simd
+  W lo = std::numeric_limits<W>::max(), hi = 0;
+#pragma omp simd reduction(min : lo) reduction(max : hi)
   for (long k = 0; k <= len; ++k) {
     const W y = ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k];
-    const W inv = 1 / y;
-    const W cx = (uy[k] * vz[k] - uz[k] * vy[k]) * inv, cy = (uz[k] * vx[k] - ux[k] * vz[k]) * inv,
-            cz = (ux[k] * vy[k] - uy[k] * vx[k]) * inv;
-    const W z = cx * cx + cy * cy + cz * cz;
+    const W cx = uy[k] * vz[k] - uz[k] * vy[k], cy = uz[k] * vx[k] - ux[k] * vz[k], cz = ux[k] * vy[k] - uy[k] * vx[k];
+    const W c = cx * cx + cy * cy + cz * cz;
+    lo = std::min(lo, std::min(c, y));
+    hi = std::max(hi, std::max(c, y));
     if constexpr (std::is_same_v<W, double>) {
-      lz[k] = log_bits(z);
+      lc[k] = log_bits(c);
       ly[k] = log_bits(y);
     } else {
-      lz[k] = std::log(z);
+      lc[k] = std::log(c);
       ly[k] = std::log(y);
     }
   }
+  return lo >= std::numeric_limits<W>::min() && hi <= std::numeric_limits<W>::max();
 }
 
 // The sums over k = 1..len (an OpenMP simd reduction: a fixed order for a given interval, whatever the threads).
 template <class W>
-void interval_sums(const W* lz, const W* ly, const W* n13, long len, long j0, long n, W log_r, WeightedSums& sums) {
+void interval_sums(const W* lc, const W* ly, const W* n13, long len, long j0, long n, W log_r, WeightedSums& sums) {
   W l1 = 0, ar = 0, no = 0;
   const W inv_n = W(1) / static_cast<W>(n);
 #pragma omp simd reduction(+ : l1, ar, no)
@@ -92,7 +85,7 @@ void interval_sums(const W* lz, const W* ly, const W* n13, long len, long j0, lo
     W w;
     if constexpr (std::is_same_v<W, double>) w = exp_bits(g);
     else w = std::exp(g);
-    l1 += w * (W(0.5) * (lz[k] - lz[k - 1]));
+    l1 += w * (W(0.5) * (lc[k] - lc[k - 1]) - (ly[k] - ly[k - 1]));  // (log Z_k - log Z_{k-1}) / 2
     ar += w * (n13[k] * log_r - W(1.5) * (ly[k] - ly[k - 1]));
     no += w;
   }
@@ -106,20 +99,18 @@ void interval_sums(const W* lz, const W* ly, const W* n13, long len, long j0, lo
 template <class W>
 void weigh(const Trace<W>& tr, long len, const std::uint8_t* ring, long step0, long j0, long n, long double log_r,
            WeightedSums& sums) {
-  alignas(64) W lz[kMaxLen], ly[kMaxLen], n13[kMaxLen];
+  alignas(64) W lc[kMaxLen], ly[kMaxLen], n13[kMaxLen];
   for (long k = 1; k <= len; ++k) n13[k] = ring[(step0 + k) & (kSymbolRing - 1)] != 2 ? W(1) : W(0);
-  state_logs(tr, len, lz, ly);
-  bool finite = true;  // Z or Y out of double's range (a far-fetched interval): the block again in long double
-  for (long k = 0; k <= len; ++k) finite &= std::isfinite(lz[k]) && std::isfinite(ly[k]);
+  const bool in_range = state_logs(tr, len, lc, ly);
   if constexpr (std::is_same_v<W, double>) {
-    if (!finite) {
+    if (!in_range) {  // a square outside double's normal range (far-fetched r): the interval again in long double
       alignas(64) static thread_local long double wide[6 * kMaxLen];
       for (int c = 0; c < 6; ++c)
         for (long k = 0; k <= len; ++k) wide[c * kMaxLen + k] = tr.at[c * tr.stride + k];
       return weigh<long double>({wide, kMaxLen}, len, ring, step0, j0, n, log_r, sums);
     }
   }
-  interval_sums<W>(lz, ly, n13, len, j0, n, static_cast<W>(log_r), sums);
+  interval_sums<W>(lc, ly, n13, len, j0, n, static_cast<W>(log_r), sums);
 }
 
 template void weigh<double>(const Trace<double>&, long, const std::uint8_t*, long, long, long, long double,

@@ -27,10 +27,10 @@ template <class T> Vec3<T> apply(int s, const Vec3<T>& u, const T& r) {
   return Vec3<T>(-r * c1, -a * c1 - a * c3 + r * u(1), -r * c3);
 }
 
-// One step of the batched kernel's orbit in scalar form (iterate/kernel_impl.hpp map_step with exact signs: c1 = a y - x
-// and c3 = a y - z fused, x' = r x or |c1|, z' = r z or -|c3|, y' = k (x' + z') -+ y, fused in float and double), so
-// that linear_exponents follows projective_orbit's orbit bit for bit (M_s u = P_s u / r: the same direction as P_s u,
-// other roundings).  k = a / r in T, as the kernel's.  Returns the symbol.
+// One step of the batched kernel's orbit in scalar form (iterate/kernel_impl.hpp map_step with exact signs: the fused
+// c1 = a y - x and c3 = a y - z, x' = r x or |c1|, z' = r z or -|c3|, y' = k (x' + z') -+ y, fused in float and
+// double), so that linear_exponents follows projective_orbit's orbit bit for bit (M_s u = P_s u / r: the same direction
+// as P_s u, other roundings).  k = a / r in T, as the kernel's.  Returns the symbol.
 template <class T> int orbit_step(Vec3<T>& u, const T& r, const T& a, const T& k) {
   using std::fabs;
   using std::fma;
@@ -75,7 +75,7 @@ template <int N> struct Accumulator {
   std::array<long double, N> sum{}, wsum{};
   long double wnorm = 0;
   bool weigh_intervals = true;  // false: the caller fills wsum and wnorm step by step (projective_orbit)
-  long last = 0;  // averaged-step count at the previous QR
+  long last = 0;                // averaged-step count at the previous QR
   std::vector<std::array<double, N>> at_block_end;
   std::size_t next_cp = 0, next_block = 0;
   Convergence conv;
@@ -243,7 +243,7 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   detail::Accumulator<3> acc(sc);
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
   Vec3<T> u = detail::pow2_scaled<T>(core::to_quadrant<T>(u0));  // branches of the user's point, to the last bit
-  const T a = (T(1) + r) / T(2), kr = T(a / r);                    // the kernel's alpha and k (OrbitFrame)
+  const T a = (T(1) + r) / T(2), kr = T(a / r);                  // the kernel's alpha and k (OrbitFrame)
   Mat3<T> Q;
   Q.col(0) = u / u.norm();
   Q.template rightCols<2>() = tangent_basis(u);
