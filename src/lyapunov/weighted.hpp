@@ -3,7 +3,7 @@
 // The weight exp(-1/(t (1 - t))) (Das, Sander, Yorke 2017; lyapunov.hpp) makes the average of a quasi-periodic
 // sequence converge faster than any power of 1/n only if every step carries its own weight: weighting the log-growth
 // of a whole Gram-Schmidt interval by the weight at its middle is a step-function weight, and its average converges
-// like C len / n again (measured: off by 1e-6 on the weakly contracting sink 312^150 at r = 0.171599 with 4e5 steps,
+// like C len / n again (measured: off by 3e-7 on the weakly contracting sink 312^150 at r = 0.171599 with 4e5 steps,
 // intervals of ~200 steps; the QR route, one step per interval, is within 1e-11).  The per-step log-growth is
 // recovered from the states between two projections, which advance writes to a trace over the averaged steps:
 // with u the point and v the unprojected tangent vector (both stepped by M_s, v orthogonal to u at the interval's
