@@ -49,6 +49,27 @@ template <class T, bool Orbit = false> void BM_qr_route(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * (o.transient + o.iterations));
 }
 
+// The orbit: r = 0.12 from (1, -0.5, -1.1), chaotic (lambda1 = 0.58: the symbols are unpredictable, so a
+// branchy step would pay a mispredicted jump on about every other step), one orbit by the route `btob lyapunov` runs.
+// Arguments: steps, MPFR digits, weighted: 1 = n/10 transient + n averaged steps (the weighted averages read every
+// averaged step's state, weighted.hpp), 0 = n transient steps + 2 averaged (the step and the Gram-Schmidt alone).
+template <class T> void BM_orbit_chaotic(benchmark::State& st) {
+  if constexpr (std::is_same_v<T, core::mpfr_float>)
+    core::mpfr_float::default_precision(static_cast<unsigned>(st.range(1)));
+  const long n = st.range(0);
+  lyapunov::Options o;
+  o.blocks = 2;
+  o.transient = st.range(2) ? n / 10 : n;
+  o.iterations = st.range(2) ? n : 2;
+  const Eigen::Matrix<T, 3, 1> u0(T(1), T(-0.5), T(-1.1));
+  const T r = core::from_decimal<T>("0.12");
+  for (auto _ : st) {
+    auto res = lyapunov::projective_exponents<T>(u0, r, o);
+    benchmark::DoNotOptimize(res.lambda[0].value);
+  }
+  st.SetItemsProcessed(st.iterations() * (o.transient + o.iterations));
+}
+
 // The batched map: r_count values x 32 orbits, transient n/10 + n steps each, `threads` threads.
 template <bool Float> void BM_map(benchmark::State& st) {
   const iterate::Ensemble e = workload(st.range(0));
@@ -138,6 +159,31 @@ BENCHMARK(BM_qr_route<core::mpfr_float, true>)
     ->Name("orbit/mpfr")
     ->Args({100000, 50})
     ->Args({100000, 100})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_orbit_chaotic<float>)
+    ->Name("orbit_chaotic/float")
+    ->Args({10000000, 0, 1})
+    ->Args({10000000, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_orbit_chaotic<double>)
+    ->Name("orbit_chaotic/double")
+    ->Args({10000000, 0, 1})
+    ->Args({10000000, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_orbit_chaotic<long double>)
+    ->Name("orbit_chaotic/long-double")
+    ->Args({2000000, 0, 1})
+    ->Args({2000000, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_orbit_chaotic<core::float128>)
+    ->Name("orbit_chaotic/float128")
+    ->Args({200000, 0, 1})
+    ->Args({200000, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_orbit_chaotic<core::mpfr_float>)
+    ->Name("orbit_chaotic/mpfr")
+    ->Args({200000, 50, 1})
+    ->Args({200000, 50, 0})
     ->Unit(benchmark::kMillisecond);
 BTOB_PLAIN_REFERENCE;
 BENCHMARK(BM_map<false>)

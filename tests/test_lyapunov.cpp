@@ -569,6 +569,13 @@ TEST(LyapunovOrbit, SinkExponentIsThePeriodMatrixEigenvaluesWithinTheErrorBar) {
       Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5), mpfr_float(-1.1)), mpfr_float(r), o);
   EXPECT_CLOSE(m.lambda[0].value, static_cast<double>(exact),
                statistical(m.lambda[0].error, "the MPFR route's own error bar"));
+  // MPFR at 100 digits: the weighted pass reads long double states, so the interval keeps the projection's
+  // cancellation within long double's bits, not MPFR's (with B from 332 bits the weighted lambda1 was 4.9e-6 off).
+  core::MpfrDigits digits100(100);
+  const auto m100 = lyapunov::projective_orbit<mpfr_float>(
+      Eigen::Matrix<mpfr_float, 3, 1>(mpfr_float(1), mpfr_float(-0.5), mpfr_float(-1.1)), mpfr_float(r), o);
+  EXPECT_CLOSE(m100.weighted[0], static_cast<double>(exact),
+               bound(1e-12, "as double's weighted average above: the per-step logs from long double states"));
 }
 
 TEST(LyapunovOrbit, AgreesWithTheQrRouteWithinTheErrorBars) {
@@ -595,4 +602,32 @@ TEST(LyapunovOrbit, AgreesWithTheQrRouteWithinTheErrorBars) {
     EXPECT_CLOSE(fast.lambda[i].value, mp.lambda[i].value, statistical(5 * e_mp, "5 error bars of the difference"));
   }
   EXPECT_GT(fast.lambda[0].value, 10 * fast.lambda[0].error);  // chaotic: lambda1 > 0
+}
+
+TEST(LyapunovOrbit, WeightedAverageOnTheWeaklyContractingSinkWeighsEveryStep) {
+  // The precision study's hard case: the sink 312^150 (period 152, a complex pair, lambda1 = lambda2 = -0.0116) at
+  // r = 0.171599 from the Section 4 grid's first point, 1e5 transient + 4e5 averaged steps.  With one weight per
+  // Gram-Schmidt interval (~200 steps here) the weighted average was off by 1e-6 (a step-function weight converges
+  // like C len / n); weighing every step (weighted.hpp) gives the period matrix's exponent as the QR route does.
+  const double r = 0.171599;
+  std::vector<int> word = {3, 1};
+  word.insert(word.end(), 150, 2);
+  lyapunov::Options o;
+  o.transient = 100000;
+  o.iterations = 400000;
+  const auto res = lyapunov::projective_orbit<double>(iterate::paper_grid()[0], r, o);
+  const auto qr = lyapunov::projective_exponents_qr<double>(iterate::paper_grid()[0], r, o);
+  const long double exact = sink_lambda1(word, 0.171599L);
+  // long double: the trace and the weighted pass in long double with libm (the path of float128 and MPFR too).
+  const Eigen::Matrix<long double, 3, 1> u0 = iterate::paper_grid()[0].cast<long double>();
+  const auto wide = lyapunov::projective_orbit<long double>(u0, core::from_decimal<long double>("0.171599"), o);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto why =
+        "the weighted average of 4e5 steps of a period-152 orbit whose frame rotates: the precision "
+        "study's bound (QR route, every step weighed: 1e-11 measured)";
+    EXPECT_CLOSE(res.weighted[i], static_cast<double>(exact), bound(1e-10, why));
+    EXPECT_CLOSE(wide.weighted[i], static_cast<double>(exact), bound(1e-10, why));
+    EXPECT_CLOSE(res.weighted[i], qr.weighted[i],
+                 bound(1e-12, "the same orbit and the same weights; the per-step logs from other roundings"));
+  }
 }

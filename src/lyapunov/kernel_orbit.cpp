@@ -5,6 +5,8 @@
 #include "iterate/kernel_impl.hpp"
 #include "lyapunov/orbit.hpp"
 
+#include <immintrin.h>
+
 #include <bit>
 #include <cstdint>
 #include <type_traits>
@@ -78,7 +80,18 @@ template <class T>
   z = zn;
 }
 
-template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
+// The state after step i into the trace (weighted.hpp reads it): six stores, off the step's dependency chain.
+template <class T, class W>
+[[gnu::always_inline]] inline void record(const Trace<W>& tr, long i, const T& x, const T& y, const T& z, const T& p,
+                                          const T& q, const T& w) {
+  W* at = tr.at + i;
+  const long s = tr.stride;
+  at[0] = static_cast<W>(x), at[s] = static_cast<W>(y), at[2 * s] = static_cast<W>(z);
+  at[3 * s] = static_cast<W>(p), at[4 * s] = static_cast<W>(q), at[5 * s] = static_cast<W>(w);
+}
+
+template <class T, bool Record>
+void advance_blended(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<double> tr) {
   using std::fabs;
   using std::fma;
   T x = f.u[0], y = f.u[1], z = f.u[2];
@@ -99,20 +112,68 @@ template <class T> void advance_blended(OrbitFrame<T>& f, long n, long first, st
     z = zn;
     blended_tangent(p, q, w, m, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(2 - s1 + s3);
+    if constexpr (Record) record(tr, i + 1, x, y, z, p, q, w);
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
   f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
-}  // namespace
+#if defined(__AVX__) && defined(__FMA__)
+// double: the point and the tangent vector as the two lanes of one 128-bit vector (lane 0 the point, lane 1 the
+// tangent vector), so that the branch's masks never leave the vector registers: the chain per step is fused a y - x
+// (4 cycles) -> compare (3) -> the mask to both lanes (1) -> blend (1) -> x' + z' (3) -> fused y' (4), where the
+// scalar blends above move each value to the integer registers and back (about 3 cycles each way).  The values are
+// advance_blended's bit for bit: lane 0 takes |c1| and -|c3| (the kernel's), lane 1 d or -d with the point's signs.
+struct PairMasks {
+  __m128d m1, m3;  // all-ones in both lanes where the point took branch 1 (resp. 3)
+};
+[[gnu::always_inline]] inline PairMasks pair_masks(__m128d c1, __m128d c3, __m128d a, __m128d y, __m128d x, __m128d z) {
+  const __m128d zero = _mm_setzero_pd();
+  if (__builtin_expect(_mm_cvtsd_f64(c1) == 0 || _mm_cvtsd_f64(c3) == 0, 0)) {  // a tie or an underflow: exact signs
+    const double a0 = _mm_cvtsd_f64(a), y0 = _mm_cvtsd_f64(y);
+    const bool s1 = core::sign_of_fms<double>(a0, y0, _mm_cvtsd_f64(x), _mm_cvtsd_f64(c1)) > 0;
+    const bool s3 = core::sign_of_fms<double>(a0, y0, _mm_cvtsd_f64(z), _mm_cvtsd_f64(c3)) < 0;
+    const __m128d ones = _mm_castsi128_pd(_mm_set1_epi64x(-1));
+    return {s1 ? ones : zero, s3 ? ones : zero};
+  }
+  return {_mm_movedup_pd(_mm_cmp_pd(c1, zero, _CMP_GT_OQ)), _mm_movedup_pd(_mm_cmp_pd(c3, zero, _CMP_LT_OQ))};
+}
 
-// Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
-// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored.  The
-// dependency chain through the point is fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
-template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring) {
-#if defined(__FMA__)
-  if constexpr (hardware_fma<T>) return advance_blended<T>(f, n, first, ring);
+template <bool Record>
+void advance_paired(OrbitFrame<double>& f, long n, long first, std::uint8_t* ring, Trace<double> tr) {
+  __m128d x = _mm_set_pd(f.v[0], f.u[0]), y = _mm_set_pd(f.v[1], f.u[1]), z = _mm_set_pd(f.v[2], f.u[2]);
+  const __m128d r = _mm_set1_pd(f.r), a = _mm_set1_pd(f.a), k = _mm_set1_pd(f.k);
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const __m128d abs_point = _mm_castsi128_pd(_mm_set_epi64x(-1, 0x7fffffffffffffffLL));  // lane 0: |c|
+  const __m128d neg_point = _mm_set_pd(0.0, -0.0);                                       // lane 0: -|c|
+  const __m128d flip_tangent = _mm_set_pd(-0.0, 0.0);                                    // lane 1: -d
+  for (long i = 0; i < n; ++i) {
+    const __m128d c1 = _mm_fmsub_pd(a, y, x), c3 = _mm_fmsub_pd(a, y, z);
+    const PairMasks m = pair_masks(c1, c3, a, y, x, z);
+    const __m128d xc = _mm_xor_pd(_mm_and_pd(c1, abs_point), _mm_andnot_pd(m.m1, flip_tangent));
+    const __m128d zc = _mm_xor_pd(_mm_or_pd(c3, neg_point), _mm_andnot_pd(m.m3, flip_tangent));
+    const __m128d xn = _mm_blendv_pd(xc, _mm_mul_pd(r, x), m.m3);
+    const __m128d zn = _mm_blendv_pd(zc, _mm_mul_pd(r, z), m.m1);
+    const __m128d sy = _mm_xor_pd(y, _mm_and_pd(_mm_or_pd(m.m1, m.m3), sign));
+    y = _mm_fmadd_pd(k, _mm_add_pd(xn, zn), sy);
+    x = xn;
+    z = zn;
+    const int s1 = _mm_movemask_pd(m.m1) & 1, s3 = _mm_movemask_pd(m.m3) & 1;
+    ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(2 - s1 + s3);
+    if constexpr (Record)
+      record(tr, i + 1, _mm_cvtsd_f64(x), _mm_cvtsd_f64(y), _mm_cvtsd_f64(z), _mm_cvtsd_f64(_mm_unpackhi_pd(x, x)),
+             _mm_cvtsd_f64(_mm_unpackhi_pd(y, y)), _mm_cvtsd_f64(_mm_unpackhi_pd(z, z)));
+  }
+  f.u[0] = _mm_cvtsd_f64(x), f.u[1] = _mm_cvtsd_f64(y), f.u[2] = _mm_cvtsd_f64(z);
+  f.v[0] = _mm_cvtsd_f64(_mm_unpackhi_pd(x, x)), f.v[1] = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
+  f.v[2] = _mm_cvtsd_f64(_mm_unpackhi_pd(z, z));
+}
 #endif
+
+// The same step for every precision, the branch by map_step's exact rule (long double, float128; and float, double
+// without FMA).
+template <class T, bool Record>
+void advance_generic(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<TraceReal<T>> tr) {
   T x = f.u[0], y = f.u[1], z = f.u[2];
   T p = f.v[0], q = f.v[1], w = f.v[2];
   const T r = f.r, a = f.a, k = f.k;
@@ -124,14 +185,34 @@ template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8
     z = o.z;
     tangent_step(p, q, w, s1, s3, r, a, k);
     ring[(first + i) & (kSymbolRing - 1)] = static_cast<std::uint8_t>(s1 ? 1 : (s3 ? 3 : 2));
+    if constexpr (Record) record(tr, i + 1, x, y, z, p, q, w);
   }
   f.u[0] = x, f.u[1] = y, f.u[2] = z;
   f.v[0] = p, f.v[1] = q, f.v[2] = w;
 }
 
-template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*);
-template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*);
-template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*);
-template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*);
+}  // namespace
+
+// Per step: the point (iterate::detail::map_step, the kernel's roundings and exact signs: 2 fused a y - x, a y - z, at
+// most one r x or r z, one addition, one FMA) and the same for the tangent vector, then one byte stored (and six
+// numbers over the averaged steps, for the weighted average).  The dependency chain through the point is
+// fms -> |c1| -> x' + z' -> fma (docs/performance.md: the ceiling).
+template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<TraceReal<T>> tr) {
+#if defined(__AVX__) && defined(__FMA__)
+  if constexpr (std::is_same_v<T, double>)
+    return tr.at ? advance_paired<true>(f, n, first, ring, tr) : advance_paired<false>(f, n, first, ring, tr);
+#endif
+#if defined(__FMA__)
+  if constexpr (hardware_fma<T>)
+    return tr.at ? advance_blended<T, true>(f, n, first, ring, tr) : advance_blended<T, false>(f, n, first, ring, tr);
+#endif
+  return tr.at ? advance_generic<T, true>(f, n, first, ring, tr) : advance_generic<T, false>(f, n, first, ring, tr);
+}
+
+template void advance<float>(OrbitFrame<float>&, long, long, std::uint8_t*, Trace<TraceReal<float>>);
+template void advance<double>(OrbitFrame<double>&, long, long, std::uint8_t*, Trace<TraceReal<double>>);
+template void advance<long double>(OrbitFrame<long double>&, long, long, std::uint8_t*, Trace<TraceReal<long double>>);
+template void advance<core::float128>(OrbitFrame<core::float128>&, long, long, std::uint8_t*,
+                                      Trace<TraceReal<core::float128>>);
 
 }  // namespace btob::lyapunov::detail

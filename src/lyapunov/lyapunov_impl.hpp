@@ -27,6 +27,25 @@ template <class T> Vec3<T> apply(int s, const Vec3<T>& u, const T& r) {
   return Vec3<T>(-r * c1, -a * c1 - a * c3 + r * u(1), -r * c3);
 }
 
+// One step of the batched kernel's orbit in scalar form (iterate/kernel_impl.hpp map_step with exact signs: the fused
+// c1 = a y - x and c3 = a y - z, x' = r x or |c1|, z' = r z or -|c3|, y' = k (x' + z') -+ y, fused in float and
+// double), so that linear_exponents follows projective_orbit's orbit bit for bit (M_s u = P_s u / r: the same direction
+// as P_s u, other roundings).  k = a / r in T, as the kernel's.  Returns the symbol.
+template <class T> int orbit_step(Vec3<T>& u, const T& r, const T& a, const T& k) {
+  using std::fabs;
+  using std::fma;
+  const T c1 = core::fms<T>(a, u(1), u(0)), c3 = core::fms<T>(a, u(1), u(2));
+  const bool s1 = core::sign_of_fms<T>(a, u(1), u(0), c1) > 0, s3 = core::sign_of_fms<T>(a, u(1), u(2), c3) < 0;
+  const T xn = s3 ? T(r * u(0)) : T(fabs(c1));
+  const T zn = s1 ? T(r * u(2)) : T(-fabs(c3));
+  const T sy = (s1 || s3) ? T(-u(1)) : T(u(1));
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, float>) u(1) = fma(k, T(xn + zn), sy);
+  else u(1) = T(k * T(xn + zn) + sy);
+  u(0) = xn;
+  u(2) = zn;
+  return s1 ? 1 : (s3 ? 3 : 2);
+}
+
 // Where QR happens and where exponents are recorded.  Steps are numbered 1..transient+iterations; step
 // k is "averaged" when k > transient.  QR at every multiple of m counted from the transient's end, at
 // the transient's end, and at every checkpoint (block ends, powers of two of the averaged length).
@@ -55,7 +74,8 @@ template <int N> struct Accumulator {
   const Schedule& sc;
   std::array<long double, N> sum{}, wsum{};
   long double wnorm = 0;
-  long last = 0;  // averaged-step count at the previous QR
+  bool weigh_intervals = true;  // false: the caller fills wsum and wnorm step by step (projective_orbit)
+  long last = 0;                // averaged-step count at the previous QR
   std::vector<std::array<double, N>> at_block_end;
   std::size_t next_cp = 0, next_block = 0;
   Convergence conv;
@@ -64,6 +84,11 @@ template <int N> struct Accumulator {
     if (k <= sc.transient) return;
     for (int i = 0; i < N; ++i) sum[i] += static_cast<long double>(logs[i]);
     const long j = k - sc.transient;
+    if (weigh_intervals) weigh_interval(j, logs);
+    last = j;
+    record(j);
+  }
+  template <class T> void weigh_interval(long j, const std::array<T, N>& logs) {
     // Weighted Birkhoff average (Das, Sander, Yorke 2017): weight exp(-1/(t(1-t))) at the middle t of the
     // steps since the last QR.  On periodic and quasi-periodic orbits the per-step logs are quasi-periodic
     // and this average converges faster than any power of 1/n, where the plain one converges like 1/n.
@@ -71,7 +96,8 @@ template <int N> struct Accumulator {
     const long double w = (j - last) * std::exp(-1 / (t * (1 - t)));
     for (int i = 0; i < N; ++i) wsum[i] += w * static_cast<long double>(logs[i]) / (j - last);
     wnorm += w;
-    last = j;
+  }
+  void record(long j) {
     if (next_cp < sc.checkpoint.size() && sc.checkpoint[next_cp] == j) {
       conv.n.push_back(j);
       for (int i = 0; i < N; ++i) conv.exponents[i].push_back(static_cast<double>(sum[i] / j));
@@ -151,11 +177,10 @@ template <class T> Mat3<T> projective_derivative(const Mat3<T>& P, const Vec3<T>
   return (Mat3<T>::Identity() - w * w.transpose()) * P / g;
 }
 
-// The QR route stays the default: projective_orbit's weighted Birkhoff average is off by up to 1e-6 on the weakly
-// contracting sink 312^150 at r = 0.171599 (precision study, lyapunov_error_near_neutral; the QR route: < 1e-10) and
-// by ~1e-8 on the 1133 sink with deferred projection, so it runs where asked (benchmarks, tests) until it matches.
+// The one-orbit route at the scalar limit (orbit.hpp); the QR route (below) stays as the tests' and benchmarks'
+// reference.  Its weighted averages weigh every step (weighted.hpp), as the QR route's do.
 template <class T> ProjectiveResult projective_exponents(const Vec3<T>& u0, const T& r, const Options& opt) {
-  return projective_exponents_qr<T>(u0, r, opt);
+  return projective_orbit<T>(u0, r, opt);
 }
 
 template <class T> ProjectiveResult projective_exponents_qr(const Vec3<T>& u0, const T& r, const Options& opt) {
@@ -218,16 +243,16 @@ template <class T> LinearResult linear_exponents(const Vec3<T>& u0, const T& r, 
   detail::Accumulator<3> acc(sc);
   const Mat3<T> Pm[3] = {core::P1(r), core::P2(r), core::P3(r)};
   Vec3<T> u = detail::pow2_scaled<T>(core::to_quadrant<T>(u0));  // branches of the user's point, to the last bit
+  const T a = (T(1) + r) / T(2), kr = T(a / r);                  // the kernel's alpha and k (OrbitFrame)
   Mat3<T> Q;
   Q.col(0) = u / u.norm();
   Q.template rightCols<2>() = tangent_basis(u);
   const long total = opt.transient + opt.iterations;
   for (long k = 1; k <= total; ++k) {
     core::poll_cancel(opt.cancel, k);
-    const int s = core::branch(u, r);
-    const Vec3<T> pu = detail::apply(s, u, r);
-    u = detail::pow2_scaled<T>(pu);  // the orbit, computed exactly as in the projective route (projective_exponents)
-    Q = Pm[s - 1] * Q;               // the linear cocycle: products of P_i along the orbit
+    const int s = detail::orbit_step<T>(u, r, a, kr);  // the orbit of projective_exponents (projective_orbit)
+    u = detail::pow2_scaled<T>(u);
+    Q = Pm[s - 1] * Q;  // the linear cocycle: products of P_i along the orbit
     if (sc.qr_at(k, acc.next_cp)) {
       const Eigen::HouseholderQR<Mat3<T>> qr(Q);
       const Mat3<T> R = qr.matrixQR().template triangularView<Eigen::Upper>();

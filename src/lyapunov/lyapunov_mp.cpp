@@ -9,7 +9,9 @@
 
 namespace btob::lyapunov::detail {
 // Defined in orbit_mpfr.cpp (the mpfr_* C API): declared wherever the MPFR frame is stepped.
-template <> void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring);
+template <>
+void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring,
+                               Trace<long double> tr);
 }  // namespace btob::lyapunov::detail
 
 namespace btob::lyapunov {

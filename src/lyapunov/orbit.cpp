@@ -7,29 +7,33 @@
 // of a step is relative to the whole vector |v|, so after the projection p carries a relative error of at most about
 // (len + 2) eps rho, rho = |v| / |p| (len steps of rounding and the cancellation of the projection).  rho is
 // measured at every Gram-Schmidt step (free: both norms are computed there), and the next interval is chosen so that
-// rho stays below 2^B, B = a sixth of T's bits (double: 8 bits, so the logs keep 45 of their 53 bits; MPFR at 50
-// digits: 27 bits): with g = log2(rho) / len measured over the last interval, len = B / g, at least 1, at most the
-// kernel's renormalisation interval K (iterate::renormalisation_interval: over K steps no vector of the frame
-// leaves T's range, so no step tests a range either).  A worst-case bound from the matrices alone (rho <= the
-// product of cond(M_s)) is useless at small r (cond(M_s) ~ 1 / r^2), hence the measured one.  rho grows only where
-// lambda1 < 0 (u outgrows the tangent vector): on a chaotic orbit len stays at K.  lambda2 comes from the area
-// growth (Orbit::gram_schmidt), so no second vector has to be kept apart from the first: a Gram-Schmidt pair loses
-// (lambda1 - lambda2) / ln 2 bits per step to each other (2.4 on the chaotic orbit at r = 0.12), which would force
-// len ~ 3 there.
-// The arithmetic's error enters the error bar: each Gram-Schmidt step adds (len + 2) eps rho to the logs' worst-case
-// error, and the reported error is at least that sum over the averaged steps divided by their number.
-// A user interval (Options::reorthonormalise > 1) is kept fixed (at most K), as the QR route kept it.
+// rho stays below 2^B, B = a sixth of the bits of T or of the trace's type if fewer (weighted.hpp; double: 8 bits, so
+// the logs keep 45 of their 53 bits; MPFR: 10, a sixth of long double's 64): with g = log2(rho) / len measured over the
+// last interval, len = B / g, at least 1, at most the kernel's renormalisation interval K
+// (iterate::renormalisation_interval: over K steps no vector of the frame leaves T's range, so no step tests a range
+// either).  A worst-case bound from the matrices alone (rho <= the product of cond(M_s)) is useless at small r
+// (cond(M_s) ~ 1 / r^2), hence the measured one.  rho grows only where lambda1 < 0 (u outgrows the tangent vector): on
+// a chaotic orbit len stays at K.  lambda2 comes from the area growth (Orbit::gram_schmidt), so no second vector has to
+// be kept apart from the first: a Gram-Schmidt pair loses (lambda1 - lambda2) / ln 2 bits per step to each other (2.4
+// on the chaotic orbit at r = 0.12), which would force len ~ 3 there. The arithmetic's error enters the error bar: each
+// Gram-Schmidt step adds (len + 2) eps rho to the logs' worst-case error, and the reported error is at least that sum
+// over the averaged steps divided by their number. A user interval (Options::reorthonormalise > 1) is kept fixed (at
+// most K), as the QR route kept it.
 #include "lyapunov/orbit.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "lyapunov/lyapunov_impl.hpp"
+#include "lyapunov/weighted.hpp"
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace btob::lyapunov::detail {
 // Defined in orbit_mpfr.cpp (the mpfr_* C API): declared wherever the MPFR frame is stepped.
-template <> void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring);
+template <>
+void advance<core::mpfr_float>(OrbitFrame<core::mpfr_float>& f, long n, long first, std::uint8_t* ring,
+                               Trace<long double> tr);
 }  // namespace btob::lyapunov::detail
 
 namespace btob::lyapunov {
@@ -61,6 +65,14 @@ template <class T> struct Orbit {
     f.a = (T(1) + r) / T(2);
     f.k = f.a / r;
     unorm = un;
+  }
+
+  // The state right after the previous projection, as the trace's state 0 (weighted.hpp).
+  void start_trace(const Trace<TraceReal<T>>& tr) const {
+    for (int c = 0; c < 3; ++c) {
+      tr.at[c * tr.stride] = static_cast<TraceReal<T>>(f.u[c]);
+      tr.at[(c + 3) * tr.stride] = static_cast<TraceReal<T>>(f.v[c]);
+    }
   }
 
   // Project the tangent vector on u^perp, restart it as the unit vector there, and rescale u by a power of two
@@ -153,16 +165,31 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
   detail::Orbit<T> o(u0, r);
   std::array<std::uint8_t, detail::kSymbolRing> ring{};
   const long double eps = static_cast<long double>(std::numeric_limits<T>::epsilon());
-  const double bits_allowed = std::max(2.0, -std::log2(static_cast<double>(eps)) / 6);  // B of the header comment
-  const int cap = std::max(1, iterate::renormalisation_interval<T>({static_cast<double>(r)}));
+  // B of the header comment, of T's bits and of the trace's: the weighted pass forms u x v from the trace's states
+  // (weighted.hpp), where the projection's cancellation costs the same log2(rho) bits.  MPFR at 100 digits with B
+  // from its own 332 bits (55) left long double's cross product 9 bits: its weighted lambda1 on the sink 1133 was off
+  // by 4.9e-6.
+  const double trace_eps = std::numeric_limits<detail::TraceReal<T>>::epsilon();
+  const double bits_allowed = std::max(2.0, std::min(-std::log2(static_cast<double>(eps)), -std::log2(trace_eps)) / 6);
+  // K of T, and of the trace's type (weighted.hpp squares the states in it: MPFR's range is wider than long double's).
+  const std::vector<double> rv{static_cast<double>(r)};
+  const int cap = std::max(1, std::min(iterate::renormalisation_interval<T>(rv),
+                                       iterate::renormalisation_interval<detail::TraceReal<T>>(rv)));
   const long double log_r = std::log(static_cast<long double>(r));
   const bool fixed = opt.reorthonormalise > 1;
   int len = fixed ? std::min(opt.reorthonormalise, cap) : 1;
   long double loss = 0;  // worst-case error of the summed logs: sum of (len + 2) eps rho over the averaged steps
   const long total = sc.transient + sc.n;
+  using W = detail::TraceReal<T>;
+  std::vector<W> trace(6 * static_cast<std::size_t>(cap + 1));
+  detail::WeightedSums ws;
+  acc.weigh_intervals = false;  // weighed step by step below (weighted.hpp)
   for (long done = 0; done < total;) {
     const long next = detail::next_stop(done, len, sc, acc.next_cp);
-    detail::advance<T>(o.f, next - done, done + 1, ring.data());
+    const detail::Trace<W> tr{done >= sc.transient ? trace.data() : nullptr, cap + 1};
+    if (tr.at) o.start_trace(tr);
+    detail::advance<T>(o.f, next - done, done + 1, ring.data(), tr);
+    if (tr.at) detail::weigh<W>(tr, next - done, ring.data(), done, done - sc.transient, sc.n, log_r, ws);
     if ((next >> 8) != (done >> 8)) core::check_cancel(opt.cancel);  // about every core::cancel_stride steps
     long n13 = 0;  // steps on branches 1 and 3 (det M = r) since the last projection
     for (long i = done + 1; i <= next; ++i) n13 += ring[i & (detail::kSymbolRing - 1)] != 2;
@@ -170,16 +197,16 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
     acc.add(next, g.logs);
     if (next > sc.transient)
       loss += static_cast<long double>(next - done + 2) * eps * std::exp2(static_cast<long double>(g.bits));
-    if (!fixed && next <= sc.transient) {  // fixed over the averaged steps: see the header (weighted averages)
+    if (!fixed) {  // adapted all along: the weighted averages weigh every step whatever the intervals
       const double per_step = g.bits / static_cast<double>(next - done);
-      // At most doubling: an interval measured on a quiet stretch must not jump to K on a chaotic one.
       const int want = per_step > bits_allowed / cap ? std::max(1, static_cast<int>(bits_allowed / per_step)) : cap;
-      len = std::min(want, 2 * static_cast<int>(next - done));
-    } else if (!fixed && g.bits > 2 * bits_allowed && len > 1) {
-      len /= 2;  // the averaged steps met a stretch the transient did not show
+      // At most doubling: an interval measured on a quiet stretch must not jump to K on a chaotic one.
+      len = std::min(want, 2 * len);
     }
     done = next;
   }
+  acc.wsum = {ws.lambda1, ws.area - ws.lambda1};
+  acc.wnorm = ws.norm;
   ProjectiveResult res = detail::finish<T>(acc, o, loss, opt);
   res.symbols_tail = detail::ring_tail(ring, total, std::min<long>(opt.iterations, 4096));
   return res;

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One orbit at the scalar limit: the point and two tangent vectors stepped together by the kernel's step (M_s = P_s /
 // r, iterate/kernel_impl.hpp map_step, the exact branch rule), with no division, normalisation, allocation or indirect
-// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp).  Not yet what
-// projective_exponents runs (lyapunov_impl.hpp says why).
+// call per step; Gram-Schmidt only every few steps (the interval derived in orbit.cpp), the weighted Birkhoff averages
+// step by step from the states between (weighted.hpp).  What projective_exponents runs.
 #pragma once
 
 #include "lyapunov/lyapunov.hpp"
 
 #include <cstdint>
+#include <type_traits>
 
 namespace btob::lyapunov {
 
@@ -44,9 +45,22 @@ template <class T> struct OrbitFrame {
   T scratch[5];  // the MPFR step's temporaries, allocated once per orbit (unused by the other precisions)
 };
 
-// n steps of the frame from step number `first` (the symbol of step first + i goes to ring[(first + i) % kSymbolRing]).
-// Defined in kernel_orbit.cpp (the kernel's flags: FMA inline) for float, double, long double and float128, and in
-// orbit_mpfr.cpp for MPFR (the mpfr_* C API on preallocated numbers).
-template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring);
+// The type in which the weighted Birkhoff average reads the orbit's states (weighted.hpp): double for float and double,
+// long double (its 15-bit exponent: the squares of the states of one interval stay in range) for the others.
+template <class T>
+using TraceReal = std::conditional_t<std::is_same_v<T, float> || std::is_same_v<T, double>, double, long double>;
+
+// Where advance writes the state after each step when the weighted average needs it: component c (u0, u1, u2, v0, v1,
+// v2) of the state after step i (1..n) at at[c * stride + i]; at[c * stride] is the caller's (the start).
+template <class W> struct Trace {
+  W* at = nullptr;
+  long stride = 0;
+};
+
+// n steps of the frame from step number `first` (the symbol of step first + i goes to ring[(first + i) % kSymbolRing]),
+// and the states into `trace` when trace.at is not null (over the averaged steps).  Defined in kernel_orbit.cpp (the
+// kernel's flags: FMA inline) for float, double, long double and float128, and in orbit_mpfr.cpp for MPFR (the mpfr_*
+// C API on preallocated numbers).
+template <class T> void advance(OrbitFrame<T>& f, long n, long first, std::uint8_t* ring, Trace<TraceReal<T>> trace);
 
 }  // namespace btob::lyapunov::detail

@@ -142,11 +142,12 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
 
 namespace {
 // One term of cocycle steps in `precision`, probed on a fixed chaotic orbit (r = 0.2 from (1, -0.5, -1.1): no
-// collapse, no period, so every step costs what a long run's steps cost) with the request's QR interval.
+// collapse, no period, so every step costs what a long run's steps cost) with the request's interval.
 core::Term cocycle_term(const std::string& precision, int reorthonormalise, double steps) {
   core::Term t;
   t.route =
-      fmt::format("lyapunov cocycle {} QR/{}", core::parse_precision(precision, "precision").name(), reorthonormalise);
+      fmt::format("lyapunov orbit {} interval/{}", core::parse_precision(precision, "precision").name(),
+                  reorthonormalise);  // the one-orbit route (orbit.hpp): a rate cached for the QR route is not its
   t.units = steps;
   t.what = fmt::format("map steps of the derivative cocycle in {} (transient + iterations)", precision);
   t.probe = [precision, reorthonormalise](double n, const core::RunControl& c) {
