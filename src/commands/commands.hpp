@@ -76,9 +76,10 @@ template <> struct Spec<lyapunov::OrbitRequest> : SpecBase<lyapunov::OrbitReques
   static constexpr const char* command = "lyapunov";
   static constexpr const char* function = "lyapunov";
   static constexpr const char* summary =
-      "Both Lyapunov exponents of one orbit (projective derivative cocycle, QR) with batch-means error bars. Only the "
-      "tangent cocycle is used: two nearby orbits straddle the branch boundaries of this piecewise-linear map and "
-      "give wrong exponents";
+      "Both Lyapunov exponents of one orbit (the projective derivative cocycle along the kernel's orbit: one tangent "
+      "vector, Gram-Schmidt every few steps, lambda2 from the area growth) with batch-means error bars and weighted "
+      "Birkhoff averages. Only the tangent cocycle is used: two nearby orbits straddle the branch boundaries of this "
+      "piecewise-linear map and give wrong exponents";
   static constexpr const char* kind = "lyapunov";
   static void warn(const lyapunov::OrbitRequest&, const lyapunov::ProjectiveResult&, const core::RunControl&);
   static void print(const lyapunov::OrbitRequest&, const lyapunov::ProjectiveResult&);

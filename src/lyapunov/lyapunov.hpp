@@ -37,6 +37,9 @@ struct Options {
   long iterations = 100000;  // averaged steps, >= blocks
   int reorthonormalise = 1;  // QR every this many steps (also at the transient's end and block ends), >= 1
   int blocks = 20;           // batch-means blocks, >= 2
+  // The weighted Birkhoff averages too (projective_orbit: a trace of the states between projections and a pass over
+  // it, about 40% of a double step).  false: ProjectiveResult::weighted is not computed (has_weighted = false).
+  bool weighted = true;
   const core::CancelToken* cancel = nullptr;  // how to run, not what: polled every core::cancel_stride steps
 };
 
@@ -57,6 +60,7 @@ struct Convergence {
 struct ProjectiveResult {
   std::array<Estimate, 2> lambda;  // lambda1 >= lambda2 of the projective cocycle
   std::array<double, 2> weighted;  // the same, as weighted Birkhoff averages (fast on (quasi-)periodic orbits)
+  bool has_weighted = true;        // whether `weighted` was computed (Options::weighted)
   long iterations = 0;             // map iterations averaged (the request's, after the transient)
   int blocks = 0;                  // batch-means blocks of the error bars (the request's)
   Convergence convergence;         // the running averages at every checkpoint (what --convergence writes)

@@ -186,7 +186,7 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
   acc.weigh_intervals = false;  // weighed step by step below (weighted.hpp)
   for (long done = 0; done < total;) {
     const long next = detail::next_stop(done, len, sc, acc.next_cp);
-    const detail::Trace<W> tr{done >= sc.transient ? trace.data() : nullptr, cap + 1};
+    const detail::Trace<W> tr{opt.weighted && done >= sc.transient ? trace.data() : nullptr, cap + 1};
     if (tr.at) o.start_trace(tr);
     detail::advance<T>(o.f, next - done, done + 1, ring.data(), tr);
     if (tr.at) detail::weigh<W>(tr, next - done, ring.data(), done, done - sc.transient, sc.n, log_r, ws);
@@ -208,6 +208,8 @@ template <class T> ProjectiveResult projective_orbit(const Vec3<T>& u0, const T&
   acc.wsum = {ws.lambda1, ws.area - ws.lambda1};
   acc.wnorm = ws.norm;
   ProjectiveResult res = detail::finish<T>(acc, o, loss, opt);
+  res.has_weighted = opt.weighted;
+  if (!opt.weighted) res.weighted = {0, 0};  // not computed: never read (describe and csv skip them)
   res.symbols_tail = detail::ring_tail(ring, total, std::min<long>(opt.iterations, 4096));
   return res;
 }

@@ -43,19 +43,21 @@ void ProjectiveResult::describe(core::Contents& c) const {
   c.attr("err1", lambda[0].error);
   c.attr("lambda2", lambda[1].value);
   c.attr("err2", lambda[1].error);
-  c.attr("lambda1_weighted", weighted[0]);
-  c.attr("lambda2_weighted", weighted[1]);
   c.attr("iterations", iterations);
   c.attr("blocks", static_cast<long>(blocks));
   const core::Status st = exponent_status(blocks);
   c.status_of("lambda1", st);
   c.status_of("lambda2", st);
-  const core::Status w = core::estimated(
+  if (has_weighted) {  // computed when asked (OrbitRequest::weighted; the library's default)
+    c.attr("lambda1_weighted", weighted[0]);
+    c.attr("lambda2_weighted", weighted[1]);
+    const core::Status w = core::estimated(
       "weighted Birkhoff average (super-polynomial convergence on periodic and "
-      "quasi-periodic orbits only)",
-      "no error bar");
-  c.status_of("lambda1_weighted", w);
-  c.status_of("lambda2_weighted", w);
+        "quasi-periodic orbits only)",
+        "no error bar");
+    c.status_of("lambda1_weighted", w);
+    c.status_of("lambda2_weighted", w);
+  }
   if (convergence.exponents.size() < 2) return;  // a result that was never run
   const std::vector<std::size_t> dims{convergence.n.size()};
   c.array("convergence_n", convergence.n, dims, "checkpoint", "iterations",
@@ -112,6 +114,7 @@ ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   o.transient = req.transient;
   o.reorthonormalise = req.reorthonormalise;
   o.blocks = req.blocks;
+  o.weighted = req.weighted;  // the weighted averages' pass only when asked for
   o.cancel = control.cancel;
   // The orbit and the tangent frame are iterated in T, r is T's own value of the request's r (a float128 run
   // at r = 0.1 uses float128's 0.1 when the request came as text), the sums of log R_ii accumulated in long
