@@ -558,10 +558,10 @@ TEST(Errors, NameTheField) {
   o = {};
   o.rotation_tol = 0;
   EXPECT_NE(msg([&] { validate(o); }).find("rotation-tol"), std::string::npos);
-  EXPECT_THROW(basins(1.0, parse_grid("strip:2x2", -2, 2), 0, 1, {}), std::domain_error);
+  EXPECT_THROW(basins(1.0, parse_grid("strip:2x2", -2, 2), 0, 1, {}), core::InvalidField);
   EXPECT_NE(msg([] { basins(0.0, parse_grid("strip:2x2", -2, 2), 0, 1, {}); }).find("r: got 0"), std::string::npos);
   EXPECT_THROW(basins(0.2, parse_grid("strip:2x2", -2, 2), -1, 1, {}), std::invalid_argument);
-  EXPECT_THROW(classify_point(Vec3<double>(1, 0, 1), 0.2, {}), std::domain_error);  // x z > 0
+  EXPECT_THROW(classify_point(Vec3<double>(1, 0, 1), 0.2, {}), core::InvalidField);  // x z > 0
   // A grid that cannot fit is refused before any work, with the size it needs.
   EXPECT_THROW(basins(0.2, parse_grid("strip:4000000x4000000", -2, 2), 0, 1, {}), std::length_error);
 }

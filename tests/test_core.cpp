@@ -272,15 +272,15 @@ TEST(Validation, PointErrors) {
   EXPECT_NO_THROW(validate_point(0, 1, -1));
   EXPECT_NO_THROW(validate_point(-1, 0, 2));
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  expect_error<std::domain_error>([&] { validate_point(nan, 0, -1); }, {"point: got", "finite"});
-  expect_error<std::domain_error>([&] { validate_point(1, inf, -1, "initial"); }, {"initial: got", "finite"});
-  expect_error<std::domain_error>([&] { validate_point(0, 0, 0); }, {"point: got the zero vector", "non-zero"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(nan, 0, -1); }, {"point: got", "finite"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(1, inf, -1, "initial"); }, {"initial: got", "finite"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(0, 0, 0); }, {"point: got the zero vector", "non-zero"});
   // x = z = 0: p = (-z, 0, x) = 0, all four particles in contact; no strip point, no particles.
-  expect_error<std::domain_error>([&] { validate_point(0, 1, 0); }, {"point: got (0, 1, 0)", "x = z = 0"});
-  expect_error<std::domain_error>([&] { validate_point(1, 0, 1); }, {"point: got (1, 0, 1)", "x*z <= 0"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(0, 1, 0); }, {"point: got (0, 1, 0)", "x = z = 0"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(1, 0, 1); }, {"point: got (1, 0, 1)", "x*z <= 0"});
   // x*z underflows to 0 but the signs agree: still outside the domain.
-  expect_error<std::domain_error>([&] { validate_point(1e-200, 0, 1e-200, "grid"); }, {"grid:", "x*z <= 0"});
-  expect_error<std::domain_error>([&] { validate_point(-1e-200, 0, -1e-200); }, {"point:", "x*z <= 0"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(1e-200, 0, 1e-200, "grid"); }, {"grid:", "x*z <= 0"});
+  expect_error<btob::core::InvalidField>([&] { validate_point(-1e-200, 0, -1e-200); }, {"point:", "x*z <= 0"});
 }
 
 TEST(Validation, RErrors) {
@@ -289,9 +289,9 @@ TEST(Validation, RErrors) {
   EXPECT_NO_THROW(validate_r(1e-300));
   for (double r :
        {0.0, 1.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
-    expect_error<std::domain_error>([&] { validate_r(r); }, {"r: got", "open interval (0, 1)"});
-  expect_error<std::domain_error>([] { validate_r(2.0, "r-max"); }, {"r-max: got 2", "(0, 1)"});
-  expect_error<std::domain_error>([] { validate_r(0.0L); }, {"r: got 0"});
+    expect_error<btob::core::InvalidField>([&] { validate_r(r); }, {"r: got", "open interval (0, 1)"});
+  expect_error<btob::core::InvalidField>([] { validate_r(2.0, "r-max"); }, {"r-max: got 2", "(0, 1)"});
+  expect_error<btob::core::InvalidField>([] { validate_r(0.0L); }, {"r: got 0"});
 }
 
 TEST(Validation, PrecisionNames) {

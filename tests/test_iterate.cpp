@@ -84,9 +84,9 @@ TEST(Ensemble, ErrorsNameTheField) {
   EXPECT_THROW(parse_grid("strip:0x4", 1), std::invalid_argument);
   EXPECT_THROW(parse_grid("random:-3", 1), std::invalid_argument);
   EXPECT_THROW(parse_grid("hexagon", 1), std::invalid_argument);
-  EXPECT_THROW(parse_grid("1,2,3", 1), std::domain_error);  // x*z > 0: outside the domain
-  EXPECT_THROW(parse_grid("0,0,0", 1), std::domain_error);
-  EXPECT_THROW(parse_grid("nan,1,-1", 1), std::domain_error);
+  EXPECT_THROW(parse_grid("1,2,3", 1), core::InvalidField);  // x*z > 0: outside the domain
+  EXPECT_THROW(parse_grid("0,0,0", 1), core::InvalidField);
+  EXPECT_THROW(parse_grid("nan,1,-1", 1), core::InvalidField);
   EXPECT_THROW(parse_grid("strip:100000000x100000000", 1), std::length_error);
   // 2^32 x 2^32 = 2^64 points: the product wrapped to 0 in size_t and passed the memory check (found writing the grid
   // fuzz harness).
@@ -95,7 +95,7 @@ TEST(Ensemble, ErrorsNameTheField) {
   try {
     linspace_r(0.5, 1.5, 10);
     FAIL();
-  } catch (const std::domain_error& e) {
+  } catch (const core::InvalidField& e) {
     EXPECT_NE(std::string(e.what()).find("r-max"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("(0, 1)"), std::string::npos) << e.what();
   }

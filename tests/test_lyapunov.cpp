@@ -432,8 +432,8 @@ TEST(Lyapunov, ErrorsNameTheField) {
   o = {};
   o.iterations = 5;
   EXPECT_EQ(msg(o).rfind("blocks: got 20, expected at most iterations = 5", 0), 0u);
-  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, -1), 1.5, {}), std::domain_error);
-  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, 1), 0.5, {}), std::domain_error);
+  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, -1), 1.5, {}), core::InvalidField);
+  EXPECT_THROW(lyapunov::projective_exponents<double>(V3(1, 0, 1), 0.5, {}), core::InvalidField);
   EXPECT_EQ(lyapunov::classify(0.01, 0.001, 100000), 1);
   EXPECT_EQ(lyapunov::classify(-0.01, 0.001, 100000), -1);
   EXPECT_EQ(lyapunov::classify(0.002, 0.001, 100000), 0);

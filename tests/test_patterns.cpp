@@ -188,7 +188,7 @@ TEST(Words, BadInputNamesTheField) {
     try {
       analyse<double>(W("132312"), r);
       ADD_FAILURE() << "no error for r = " << r;
-    } catch (const std::domain_error& e) {
+    } catch (const btob::core::InvalidField& e) {
       EXPECT_EQ(std::string(e.what()).rfind("r: got", 0), 0u) << e.what();
     }
   }

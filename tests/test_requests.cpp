@@ -2,16 +2,28 @@
 // The request API (core/request.hpp) of the analyses moved into their modules: validation names the field,
 // run(request) equals the lower-level routes it wraps bitwise, results describe their arrays, MPFR digits do not
 // leak from one run to the next, field parsers read what they write.
+#include "attractors/requests.hpp"
 #include "bifurcation/bifurcation.hpp"
 #include "core/fields.hpp"
+#include "core/map.hpp"
+#include "core/run.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
+#include "leaves/requests.hpp"
 #include "lyapunov/hyperbolicity.hpp"
+#include "lyapunov/hyperbolicity_requests.hpp"
 #include "lyapunov/lyapunov.hpp"
 #include "lyapunov/requests.hpp"
+#include "orbits/orbits.hpp"
+#include "particles/particles.hpp"
+#include "patterns/curves.hpp"
 #include "patterns/patterns.hpp"
+#include "patterns/requests.hpp"
+#include "precision/tradeoff.hpp"
+#include "stats/requests.hpp"
 #include "stats/stats.hpp"
+#include "transfer/transfer.hpp"
 #include "windows/windows.hpp"
 
 #include <boost/lexical_cast.hpp>
@@ -25,6 +37,7 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <typeinfo>
 
 using btob::test::bound;
 using btob::test::statistical;
@@ -76,6 +89,121 @@ TEST(Fields, ValidationBelowTheRequestsNamesTheField) {
 
 // One vocabulary of fields: ArgsWriter lists every field as text in declaration order, DocLister the same names
 // with their help and whether they must be given (a positional field is required everywhere but the command line).
+// ------------------------------------------------------------------------------------------------ shared checks
+// The message of the InvalidField thrown by f, "" when none is thrown (another exception type fails the test).
+template <class F> std::string failing_message(F&& f) {
+  try {
+    f();
+  } catch (const core::InvalidField& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// r = 0, 1, NaN and -0.1 set by `set` on a valid request `valid` are refused by its validate() with core's one
+// wording for r, naming `field` (before, each module had its own: "a number in the open interval", "a restitution
+// coefficient in ...", "a number in (0, 1)", std::domain_error from core::validate_r).
+template <class Req, class Set> void expect_one_r_wording(Req valid, const std::string& field, Set set) {
+  SCOPED_TRACE(field + " of " + typeid(Req).name());
+  ASSERT_EQ(failing_message([&] { valid.validate(); }), "");
+  for (double bad : {0.0, 1.0, std::nan(""), -0.1}) {
+    Req req = valid;
+    set(req, bad);
+    EXPECT_EQ(failing_message([&] { req.validate(); }),
+              fmt::format("{}: got {}, expected a value in the open interval (0, 1)", field, bad));
+  }
+}
+
+TEST(SharedChecks, EveryRequestRefusesROutsideTheOpenIntervalWithOneWording) {
+  const auto r = [](auto& q, double v) { q.r = v; };
+  const auto r_min = [](auto& q, double v) { q.r_min = v; };
+  const auto r_max = [](auto& q, double v) { q.r_max = v; };
+  attractors::ClassifyRequest classify;
+  classify.r = 0.3, classify.point = "1,0.1,-1";
+  expect_one_r_wording(classify, "r", r);
+  attractors::BasinsRequest basins;
+  basins.r = 0.3;
+  expect_one_r_wording(basins, "r", r);
+  attractors::BasinsRRequest basins_r;
+  basins_r.r_count = 3;
+  expect_one_r_wording(basins_r, "r-min", r_min);
+  expect_one_r_wording(basins_r, "r-max", r_max);
+  basins_r.r_count = 0, basins_r.r_values = {0.3};
+  expect_one_r_wording(basins_r, "r-values", [](auto& q, double v) { q.r_values = {0.3, v}; });
+  bifurcation::Request bif;
+  expect_one_r_wording(bif, "r-min", r_min);
+  expect_one_r_wording(bif, "r-max", r_max);
+  leaves::Request leaf;
+  expect_one_r_wording(leaf, "r", r);
+  leaf.r_count = 3, leaf.r_min = 0.2, leaf.r_max = 0.3;
+  expect_one_r_wording(leaf, "r-min", r_min);
+  expect_one_r_wording(leaf, "r-max", r_max);
+  lyapunov::OrbitRequest orbit;
+  orbit.r = 0.3, orbit.point = "1,0.1,-1";
+  expect_one_r_wording(orbit, "r", r);
+  lyapunov::MapRequest map;
+  expect_one_r_wording(map, "r-min", r_min);
+  expect_one_r_wording(map, "r-max", r_max);
+  expect_one_r_wording(lyapunov::StripRequest{}, "r", r);
+  lyapunov::HyperbolicityRequest hyperbolicity;
+  hyperbolicity.r = 0.3;
+  expect_one_r_wording(hyperbolicity, "r", r);
+  lyapunov::HyperbolicityOrbitsRequest hyperbolicity_orbits;
+  expect_one_r_wording(hyperbolicity_orbits, "r-min", r_min);
+  expect_one_r_wording(hyperbolicity_orbits, "r-max", r_max);
+  expect_one_r_wording(orbits::StripOrbitsRequest{}, "r", r);
+  expect_one_r_wording(particles::ParticlesRequest{}, "r", r);
+  patterns::WordRequest word;
+  word.word = "132312", word.r = "0.3";
+  expect_one_r_wording(word, "r", [](auto& q, double v) { q.r = fmt::format("{}", v); });
+  patterns::CurvesRequest curves;
+  expect_one_r_wording(curves, "r-min", r_min);
+  expect_one_r_wording(curves, "r-max", r_max);
+  expect_one_r_wording(precision::TradeoffRequest{}, "r-values", [](auto& q, double v) { q.r = {0.3, v}; });
+  expect_one_r_wording(stats::CorrelateRequest{}, "r", r);
+  expect_one_r_wording(stats::MeasureRequest{}, "r", r);
+  expect_one_r_wording(transfer::TransferRequest{}, "r", r);
+  transfer::TransferRRequest transfer_r;
+  expect_one_r_wording(transfer_r, "r-min", r_min);
+  expect_one_r_wording(transfer_r, "r-max", r_max);
+}
+
+// The other shared quantities: an r range's order, a list of r, threads, precision names, counts, a point.
+TEST(SharedChecks, OtherSharedQuantitiesHaveOneWordingEach) {
+  EXPECT_EQ(failing_message([] { core::require_r_range(0.3, 0.2, 5); }),
+            "r-max: got 0.2, expected a value in (r-min = 0.3, 1)");
+  EXPECT_EQ(failing_message([] { core::require_r_range(0.3, 0.3, 5); }),
+            "r-max: got 0.3, expected a value in (r-min = 0.3, 1)");
+  EXPECT_EQ(failing_message([] { core::require_r_range(0.3, 0.3, 1); }), "");  // one value: r-min = r-max
+  EXPECT_EQ(failing_message([] { core::require_r_range(0.3, 0.2, 1); }),
+            "r-max: got 0.2, expected a value in [r-min = 0.3, 1)");
+  EXPECT_EQ(failing_message([] { core::require_r_values({}, "r-values"); }),
+            "r-values: got no value, expected one or more r values in (0, 1)");
+  EXPECT_EQ(failing_message([] { core::require_threads(-1); }), "threads: got -1, expected 0 (all cores) or 1..1024");
+  EXPECT_EQ(failing_message([] { core::require_threads(1025); }),
+            "threads: got 1025, expected 0 (all cores) or 1..1024");
+  EXPECT_EQ(failing_message([] { core::require_threads(0); }), "");
+  EXPECT_EQ(failing_message([] { core::require_threads(1024); }), "");
+  EXPECT_EQ(failing_message([] { core::require_at_least(0, 1, "iterations"); }),
+            "iterations: got 0, expected at least 1");
+  EXPECT_EQ(failing_message([] {
+              (void)core::require_precision("long double", {"float", "double", "long-double"});
+            }),
+            "precision: got 'long double', expected float, double or long-double");
+  EXPECT_EQ(failing_message([] {
+              (void)core::require_precision("float", {"double", "mpfr"});
+            }),
+            "precision: got 'float', expected double or mpfr:D with 10 <= D <= 10000");
+  EXPECT_EQ(core::require_precision("mpfr:30", {"double", "mpfr"}).mpfr_digits, 30);
+  EXPECT_EQ(failing_message([] { core::validate_point(1, 0, 1, "point"); }),
+            "point: got (1, 0, 1) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.4)");
+  EXPECT_EQ(failing_message([] { core::validate_r(1.5L); }),
+            "r: got 1.5, expected a value in the open interval (0, 1)");
+  // The machine's helpers: 0 threads means OpenMP's default.
+  EXPECT_EQ(core::thread_count(0), omp_get_max_threads());
+  EXPECT_EQ(core::thread_count(3), 3);
+}
+
 TEST(Fields, ArgsWriterAndDocListerListTheSameFields) {
   lyapunov::OrbitRequest req;
   core::Args args;
@@ -111,7 +239,7 @@ TEST(Fields, PointsAcceptSubnormalsAndHugeValuesAndScaleExactly) {
   EXPECT_EQ(failing_field([] { core::parse_point("1,2"); }), "point");
   EXPECT_EQ(failing_field([] { core::parse_point("1,inf,-1"); }), "point");
   EXPECT_EQ(failing_field([] { core::parse_point("1e400,-1,-1"); }), "point");
-  EXPECT_THROW(core::parse_point("1,1,1"), std::domain_error);  // x*z > 0 is outside the domain
+  EXPECT_THROW(core::parse_point("1,1,1"), core::InvalidField);  // x*z > 0 is outside the domain
 }
 
 TEST(Fields, TextRoundTripsBitwise) {

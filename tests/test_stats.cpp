@@ -302,7 +302,7 @@ TEST(Stats, BadInputNamesTheField) {
   expect_message([&] { empirical_measure(s, Chart::strip, 10, 10, 50, 60); }, "iterations");
   expect_message([] { orbit_series(0.3, kGrid0, -1, 100); }, "transient");
   expect_message([] { fit_decay(std::vector<double>(10), 20, 2); }, "n-fit");
-  EXPECT_THROW(orbit_series(1.5, kGrid0, 10, 100), std::domain_error);
+  EXPECT_THROW(orbit_series(1.5, kGrid0, 10, 100), core::InvalidField);
 }
 
 // ---- the requests (`btob correlate`, `btob measure`) -----------------------------------------------------------

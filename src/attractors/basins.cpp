@@ -17,6 +17,7 @@
 #include "attractors/stages.hpp"
 #include "core/cancel.hpp"
 #include "core/coords.hpp"
+#include "core/run.hpp"
 #include "core/sweep.hpp"
 
 namespace btob::attractors {
@@ -99,7 +100,7 @@ struct ChunkBuffers {
   StateRecorder st{0, 1};
 };
 
-int threads_of(const Options& opt) { return opt.run.threads > 0 ? opt.run.threads : omp_get_max_threads(); }
+int threads_of(const Options& opt) { return core::thread_count(opt.run.threads); }
 
 // The decisions at checkpoint t of the active orbits, whose states st holds (threads write their orbits' only).
 void decide_at_checkpoint(const Certificates& cert, const StateRecorder& st, long t, const Options& opt,
@@ -462,7 +463,7 @@ BasinRows basin_rows(double r, const Grid& g, int replicates, std::uint64_t seed
     }
   }
   check_witnesses(r, witnesses, cert, opt);
-  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  part.seconds = core::seconds_since(t0);
   return part;
 }
 
@@ -601,7 +602,7 @@ Basins merge_basins(double r, const Grid& g, int replicates, const Options& opt,
   b.boundary = boundary_geometry(images, static_cast<std::size_t>(g.axis1.cells),
                                  static_cast<std::size_t>(g.axis2.cells), entropy_box);
   b.labels = std::move(images[0]);
-  b.seconds = part_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  b.seconds = part_seconds + core::seconds_since(t0);
   return b;
 }
 

@@ -16,6 +16,7 @@
 #include "attractors/stages.hpp"
 #include "core/coords.hpp"
 #include "core/error_bar.hpp"
+#include "core/fields.hpp"
 #include "iterate/cocycle.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/maps.hpp"
@@ -365,7 +366,7 @@ void validate(const Options& o) {
         fmt::format("at least 10 x lyap-blocks = {}", 10L * o.lyap_blocks));
   check(o.rotation_tol > 0 && o.rotation_tol <= 0.1, "rotation-tol", str(o.rotation_tol), "a value in (0, 0.1]");
   check(o.refine_factor >= 0 && o.refine_factor <= 1000, "refine-factor", str(o.refine_factor), "0..1000");
-  check(o.run.threads >= 0, "threads", str(o.run.threads), "at least 0 (0: all cores)");
+  core::require_threads(o.run.threads);
 }
 
 std::string attractor_key(const OrbitVerdict& v) { return v.key; }

@@ -4,6 +4,7 @@
 
 #include "core/cancel.hpp"
 #include "core/fields.hpp"
+#include "core/run.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
@@ -78,13 +79,10 @@ double Request::map_steps() const {
 }
 
 void Request::validate() const {
-  core::require_r(r_min, "r-min");
-  core::require_r(r_max, "r-max");
+  core::require_at_least(r_count, 1, "r-count");
   // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
-  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
-  if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
-  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
-  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
+  core::require_r_range(r_min, r_max, r_count);
+  core::require_at_least(iterations, 1, "iterations");
   if (tail < 1 || tail > iterations)
     throw core::InvalidField("tail", std::to_string(tail), fmt::format("1 <= tail <= iterations = {}", iterations));
   if (bins < 1 || bins > 100000) throw core::InvalidField("bins", std::to_string(bins), "1..100000");
@@ -134,7 +132,7 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   opt.threads = control.threads;
   opt.progress = control.progress;
   opt.cancel = control.cancel;
-  const int threads = control.threads > 0 ? control.threads : omp_get_max_threads();
+  const int threads = core::thread_count(control.threads);
   iterate::DensityRecorder dens(ax.coord, ens, req.iterations, req.tail, static_cast<std::size_t>(req.bins), ax.lo,
                                 ax.hi, threads);
   std::unique_ptr<iterate::TailRecorder> raw;
@@ -157,7 +155,7 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   } else {
     with_scalar(prec, [&]<class T>(T*) { run_kernel<T>(ens, req.iterations, dens, raw.get(), opt); });
   }
-  part.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  part.iteration_seconds = core::seconds_since(t1);
   part.density = dens.merge();
   part.underflow = std::move(dens.under);
   part.overflow = std::move(dens.over);

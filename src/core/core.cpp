@@ -13,18 +13,20 @@ namespace btob::core {
 
 std::string detail::shortest(double v) { return fmt::format("{}", v); }
 
+void detail::refuse_r(double r, const char* field) {
+  throw InvalidField(field, shortest(r), "a value in the open interval (0, 1)");
+}
+
 void validate_point(double x, double y, double z, const char* field) {
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
-    throw std::domain_error(fmt::format("{}: got ({}, {}, {}), expected finite coordinates x,y,z", field, x, y, z));
-  if (x == 0 && y == 0 && z == 0)
-    throw std::domain_error(fmt::format("{}: got the zero vector, expected a non-zero normal vector x,y,z", field));
+    throw InvalidField(field, fmt::format("({}, {}, {})", x, y, z), "finite coordinates x,y,z");
+  if (x == 0 && y == 0 && z == 0) throw InvalidField(field, "the zero vector", "a non-zero normal vector x,y,z");
   if (x == 0 && z == 0)
-    throw std::domain_error(fmt::format(
-        "{}: got ({}, {}, {}) with x = z = 0, expected x or z non-zero (x = z = 0 puts all four particles in contact)",
-        field, x, y, z));
+    throw InvalidField(field, fmt::format("({}, {}, {}) with x = z = 0", x, y, z),
+                       "x or z non-zero (x = z = 0 puts all four particles in contact)");
   if (x * z > 0 || (x != 0 && z != 0 && std::signbit(x) == std::signbit(z)))
-    throw std::domain_error(fmt::format(
-        "{}: got ({}, {}, {}) with x*z > 0, expected a point of the domain x*z <= 0 (eq. 3.4)", field, x, y, z));
+    throw InvalidField(field, fmt::format("({}, {}, {}) with x*z > 0", x, y, z),
+                       "a point of the domain x*z <= 0 (eq. 3.4)");
 }
 
 std::string Precision::name() const {

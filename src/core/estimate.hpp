@@ -20,6 +20,7 @@
 
 #include "core/pack.hpp"
 #include "core/request.hpp"
+#include "core/run.hpp"
 #include "core/size_model.hpp"
 #include "core/sweep.hpp"
 
@@ -119,7 +120,7 @@ SweepEstimate estimate_sweep(const Req& req, const core::RunControl& control, in
     for (std::size_t k = 0; k < m; ++k) items.push_back(k * e.items / m);
     const auto t0 = std::chrono::steady_clock::now();
     const auto part = run_part(req, items, control);
-    e.sample_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.sample_seconds = seconds_since(t0);
     e.sampled = m;
     e.bytes = static_cast<double>(core::pack(part).size()) * static_cast<double>(e.items) / static_cast<double>(m);
     if (m == e.items || e.sample_seconds >= cap || (e.sample_seconds >= target && m >= min_items)) break;

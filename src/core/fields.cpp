@@ -239,7 +239,44 @@ Vec3<double> parse_point(std::string_view text, const std::string& field) {
 }
 
 void require_r(double r, const std::string& field) {
-  if (!(r > 0 && r < 1)) throw InvalidField(field, fmt::format("{}", r), "a value in the open interval (0, 1)");
+  if (!(r > 0 && r < 1)) detail::refuse_r(r, field.c_str());
+}
+
+void require_r_range(double r_min, double r_max, long r_count) {
+  require_r(r_min, "r-min");
+  require_r(r_max, "r-max");
+  if (!(r_min < r_max || (r_count == 1 && r_min == r_max)))
+    throw InvalidField("r-max", fmt::format("{}", r_max),
+                       fmt::format("a value in {}r-min = {}, 1)", r_count == 1 ? "[" : "(", r_min));
+  require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
+}
+
+void require_r_values(const std::vector<double>& r, const std::string& field) {
+  if (r.empty()) throw InvalidField(field, "no value", "one or more r values in (0, 1)");
+  for (double v : r) require_r(v, field);
+}
+
+void require_threads(long threads, const std::string& field) {
+  if (threads < 0 || threads > RunControl::max_threads)
+    throw InvalidField(field, std::to_string(threads), fmt::format("0 (all cores) or 1..{}", RunControl::max_threads));
+}
+
+void require_at_least(long value, long least, const std::string& field) {
+  if (value < least) throw InvalidField(field, std::to_string(value), fmt::format("at least {}", least));
+}
+
+Precision require_precision(const std::string& text, const std::vector<std::string>& accepted,
+                            const std::string& field) {
+  if (std::find(accepted.begin(), accepted.end(), text) != accepted.end()) return parse_precision(text, field.c_str());
+  const bool mpfr = std::find(accepted.begin(), accepted.end(), "mpfr") != accepted.end();
+  if (mpfr && text.starts_with("mpfr")) return parse_precision(text, field.c_str());  // its digits checked there
+  std::string names;
+  for (std::size_t i = 0; i < accepted.size(); ++i)
+    names += (i == 0                     ? ""
+              : i + 1 == accepted.size() ? " or "
+                                         : ", ") +
+             (accepted[i] == "mpfr" ? std::string("mpfr:D with 10 <= D <= 10000") : accepted[i]);
+  throw InvalidField(field, fmt::format("'{}'", text), names);
 }
 
 // The smallest r whose exponents precision p resolves.  One step of the derivative cocycle contracts the tangent

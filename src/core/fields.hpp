@@ -45,15 +45,37 @@ Vec3<double> parse_point(std::string_view text, const std::string& field = "poin
 // InvalidField(field, "'text'", "A..B or A with lo <= A <= B <= hi").  Ranges of n, of lengths, of ranks.
 std::pair<long, long> parse_int_range(std::string_view text, long lo, long hi, const std::string& field);
 
-// r in the open interval (0, 1), else InvalidField naming `field`.
+struct Precision;
+
+// ---- the quantities every request shares: one check and one wording each, every failure a core::InvalidField ----
+// (A starting point is checked by parse_point above and core::validate_point, core/map.hpp.)
+
+// r in the open interval (0, 1): else "FIELD: got R, expected a value in the open interval (0, 1)".
 void require_r(double r, const std::string& field);
+// An r range of r-count values: r-min and r-max in (0, 1) (require_r), r-min <= r-max (equal only for one value:
+// "r-max: got B, expected a value in [r-min = A, 1)", or "(r-min = A, 1)" for r-count >= 2), and r-count distinct
+// doubles in it (require_distinct).  The fields are named r-min, r-max and r-count; r-count's own bounds are the
+// caller's (each sweep has its own).
+void require_r_range(double r_min, double r_max, long r_count);
+// A list of r, named `field`: at least one value ("FIELD: got no value, expected one or more r values in (0, 1)"),
+// each in (0, 1) (require_r).
+void require_r_values(const std::vector<double>& r, const std::string& field);
+// A thread count: 0 (all cores) or 1..RunControl::max_threads, else "threads: got T, expected 0 (all cores) or
+// 1..1024".
+void require_threads(long threads, const std::string& field = "threads");
+// A count of at least `least`: else "FIELD: got N, expected at least LEAST".
+void require_at_least(long value, long least, const std::string& field);
+// A precision name among `accepted`, spelled exactly as listed (a run that dispatches on the name sees only
+// these); the entry "mpfr" accepts any mpfr:D that parse_precision accepts.  Else "precision: got 'NAME', expected
+// float, double or long-double" (the accepted names, "mpfr" as mpfr:D with 10 <= D <= 10000).
+Precision require_precision(const std::string& text, const std::vector<std::string>& accepted,
+                            const std::string& field = "precision");
 // The smallest r whose Lyapunov exponents precision p resolves (sqrt(1e3 eps): 4.7e-7 in double), and r in
 // [that, 1) else InvalidField naming `field`, the precision and, as advice, the narrowest precision that resolves
 // r among `accepted`: the precisions the command's own --precision takes ("float", "double", "long-double",
 // "float128", "mpfr" for mpfr:D with D <= 10000), so that the advice is a command line the same command accepts.
 // A command without a precision choice (classify, basins) passes {} and gets no advice.  Every tool that reports
 // an exponent (lyapunov, classify, basins) accepts this one domain.
-struct Precision;
 double smallest_r_exponents(const Precision& p);
 void require_r_exponents(double r, const Precision& p, const std::string& field,
                          const std::vector<std::string>& accepted = {"float", "double", "long-double", "float128",

@@ -146,15 +146,17 @@ template <class T> std::string letters(int symbol, const Vec3<T>& u_in_quadrant)
 
 namespace detail {
 std::string shortest(double v);  // the shortest decimal that reads back as v
-}
-// Validation at the edge (CLI, scenes, public API); the kernel assumes valid input.
+// Throws core::InvalidField "FIELD: got R, expected a value in the open interval (0, 1)": the one wording of a bad
+// r (core::require_r and validate_r below).
+[[noreturn]] void refuse_r(double r, const char* field);
+}  // namespace detail
+// Validation at the edge (CLI, scenes, public API); the kernel assumes valid input.  r in (0, 1), compared in T
+// (an r of T outside (0, 1) converts to a double outside it too, so the message's double says why).
 template <class T> void validate_r(const T& r, const char* field = "r") {
   using std::isfinite;
-  if (!(r > 0 && r < 1) || !isfinite(static_cast<double>(r)))
-    throw std::domain_error(std::string(field) + ": got " + detail::shortest(static_cast<double>(r)) +
-                            ", expected a restitution coefficient in the open interval (0, 1)");
+  if (!(r > 0 && r < 1) || !isfinite(static_cast<double>(r))) detail::refuse_r(static_cast<double>(r), field);
 }
-// A point u = (x, y, z): finite, non-zero, in the domain x*z <= 0.
+// A point u = (x, y, z): finite, non-zero, in the domain x*z <= 0; else core::InvalidField naming `field`.
 void validate_point(double x, double y, double z, const char* field = "point");
 
 }  // namespace btob::core

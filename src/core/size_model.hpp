@@ -10,6 +10,7 @@
 #pragma once
 
 #include "core/cancel.hpp"
+#include "core/run.hpp"
 
 #include <fmt/format.h>
 
@@ -69,13 +70,13 @@ inline SizeFit fit_sizes(const std::string& parameter, double smallest, double l
     check_cancel(cancel);
     const auto t = std::chrono::steady_clock::now();
     run(s);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    const double dt = seconds_since(t);
     f.sizes.push_back(s);
     f.seconds.push_back(dt);
     const std::size_t k = f.sizes.size() - 1;
     if (k > 0 && f.seconds[k - 1] >= 2e-3 && dt >= 2e-3) b = f.segment(k);  // exponent still holds 3 before
     f.exponent = b;
-    f.spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    f.spent = seconds_since(t0);
     if (s >= largest) break;
     const double next = std::min(2 * s, std::floor(largest));
     const double predicted = dt * std::pow(next / s, b);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The checkpoint file of a resumable sweep (io/checkpoint.hpp): its header, its records, their validation.
 #include "io/checkpoint.hpp"
+#include "core/run.hpp"
 #include "io/result_files.hpp"
 
 #include <btob/build_info.hpp>
@@ -163,7 +164,7 @@ Checkpoint::~Checkpoint() {
 }
 
 std::size_t checkpoint_chunk(std::size_t share, int threads) {
-  const std::size_t t = static_cast<std::size_t>(threads > 0 ? threads : omp_get_max_threads());
+  const std::size_t t = static_cast<std::size_t>(core::thread_count(threads));
   return std::max<std::size_t>({1, (share + checkpoint_rounds - 1) / checkpoint_rounds, t});
 }
 

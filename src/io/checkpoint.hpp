@@ -24,6 +24,7 @@
 #include "core/fields.hpp"
 #include "core/pack.hpp"
 #include "core/request.hpp"
+#include "core/run.hpp"
 #include "core/sweep.hpp"
 #include "io/io.hpp"
 
@@ -156,7 +157,7 @@ auto run_in_rounds(const Req& req, const core::RunControl& control, Checkpoint& 
       parts.push_back(std::move(*p));
       continue;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds = core::seconds_since(t0);
     auto bytes = on.gather(p ? core::pack(*p) : std::vector<char>{}, seconds);
     if (me != 0) continue;
     for (auto& b : bytes) {

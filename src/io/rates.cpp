@@ -3,6 +3,7 @@
 #include "io/rates.hpp"
 
 #include "core/cancel.hpp"
+#include "core/run.hpp"
 #include "core/size_model.hpp"
 
 #include <btob/build_info.hpp>
@@ -95,7 +96,7 @@ RouteRate calibrate(const core::Term& term, const core::RunControl& control) {
     core::check_cancel(control.cancel);
     const auto t0 = std::chrono::steady_clock::now();
     const double done = term.probe(n, control);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double dt = core::seconds_since(t0);
     r.probe_units = done, r.probe_seconds = dt;
     if (dt >= probe_target_seconds || n >= 1e15) break;
     n *= dt <= probe_target_seconds / 8 ? 8 : std::max(1.25, 1.2 * probe_target_seconds / dt);

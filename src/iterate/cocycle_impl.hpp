@@ -2,6 +2,7 @@
 // Template bodies of the fused cocycle kernel (iterate/cocycle.hpp); included only by kernel units (kernel flags).
 #pragma once
 
+#include "core/run.hpp"
 #include "iterate/cocycle.hpp"
 #include "iterate/kernel_impl.hpp"
 
@@ -320,7 +321,7 @@ void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOption
         "r: too small for the cocycle kernel in this precision (the state would leave the "
         "normal range within one projection interval)");
   const std::size_t n_batches = (n_orbits + B - 1) / B;
-  const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+  const int threads = core::thread_count(opt.threads);
   detail::RunTally tally;
   std::atomic<std::size_t> redone{0};
   // r in T from the ensemble's decimal source, as iterate::run: float's r is the float nearest the request's decimal.

@@ -4,6 +4,7 @@
 
 #include "core/cancel.hpp"
 #include "core/map.hpp"
+#include "core/run.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/lanes.hpp"
 
@@ -433,7 +434,7 @@ template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, 
   const std::size_t n_batches = (n_orbits + B - 1) / B;
   const int K = renormalisation_interval<T>(ens.r);
   const long first = std::max<long>(rec.first_step(), 1);
-  const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+  const int threads = core::thread_count(opt.threads);
   detail::RunTally tally;
   std::vector<T> r_own;
   const T* r_t = detail::r_values<T>(ens, r_own);

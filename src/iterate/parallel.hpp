@@ -5,6 +5,8 @@
 // analyses' parallel loops live; a module calls it instead of opening a parallel region of its own.
 #pragma once
 
+#include "core/run.hpp"
+
 #include <omp.h>
 
 #include <cstddef>
@@ -16,7 +18,7 @@ namespace btob::iterate {
 // cost grows with their index).  No exception may leave body: a cancelled body returns early and the caller throws
 // after the loop.
 template <class Body> void parallel_for(std::size_t n, int threads, std::size_t chunk, Body&& body) {
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const int nt = core::thread_count(threads);
   if (chunk == 0) {
 #pragma omp parallel for schedule(static) num_threads(nt)
     for (std::size_t i = 0; i < n; ++i) body(i);
@@ -32,7 +34,7 @@ template <class Body> void parallel_for(std::size_t n, int threads, Body&& body)
 // The same with per-thread scratch: each thread makes its own (make()) once and passes it to body(scratch, i), items
 // dealt as by schedule(static).
 template <class Make, class Body> void parallel_for_scratch(std::size_t n, int threads, Make&& make, Body&& body) {
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const int nt = core::thread_count(threads);
 #pragma omp parallel num_threads(nt)
   {
     auto scratch = make();

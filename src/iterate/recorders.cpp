@@ -3,6 +3,7 @@
 #include "iterate/recorders.hpp"
 
 #include "core/request.hpp"
+#include "core/run.hpp"
 
 #include <fmt/format.h>
 
@@ -43,7 +44,7 @@ DensityRecorder::DensityRecorder(Coord c, const Ensemble& e, long iterations_, l
     throw core::InvalidField("bins", fmt::format("{}", bins),
                              fmt::format("at most {}", std::numeric_limits<std::int32_t>::max()));
   if (!(lo < hi)) throw core::InvalidField("range", fmt::format("[{}, {}]", lo, hi), "lo < hi");
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const int nt = core::thread_count(threads);
   checked_bytes(columns * bins * static_cast<std::size_t>(nt + 1), sizeof(std::uint32_t), "density image");
   // Each thread zeroes (first-touches) its own image: no serial memset and copy of nt images.
   per_thread.resize(static_cast<std::size_t>(nt));

@@ -146,11 +146,9 @@ ClvOptions clv_options(const HyperbolicityOrbitsRequest& req) {
 }  // namespace
 
 void HyperbolicityOrbitsRequest::validate() const {
-  core::require_r(r_min, "r-min");
-  core::require_r(r_max, "r-max");
   if (r_count < 1 || r_count > 1000000)
     throw core::InvalidField("r-count", std::to_string(r_count), "1 <= r-count <= 1000000");
-  if (r_min <= r_max) core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
+  core::require_r_range(r_min, r_max, r_count);
   // lambda1 comes from lyapunov::map_exponents with 10 batch-means blocks, which needs iterations >= 10.
   if (iterations < 10) throw core::InvalidField("iterations", std::to_string(iterations), "at least 10");
   if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");

@@ -185,12 +185,9 @@ core::Work work(const OrbitRequest& req) {
 }
 
 void MapRequest::validate() const {
-  core::require_r(r_min, "r-min");
-  core::require_r(r_max, "r-max");
+  core::require_at_least(r_count, 1, "r-count");
   // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
-  if (r_max < r_min) throw core::InvalidField("r-max", fmt::format("{} < r-min = {}", r_max, r_min), "r-min <= r-max");
-  if (r_count < 1) throw core::InvalidField("r-count", std::to_string(r_count), "at least 1");
-  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
+  core::require_r_range(r_min, r_max, r_count);
   check_lengths(iterations, transient, blocks);
   check_kernel_precision(precision);
   core::require_r_exponents(r_min, core::parse_precision(precision), "r-min",

@@ -6,6 +6,8 @@
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/error_bar.hpp"
+#include "core/fields.hpp"
+#include "core/run.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 
@@ -28,7 +30,7 @@ double unit_open(std::uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) 
 }  // namespace
 
 void StripOrbitsRequest::validate() const {
-  if (!(r > 0 && r < 1)) throw core::InvalidField("r", fmt::format("{}", r), "a number in the open interval (0, 1)");
+  core::require_r(r, "r");
   if (orbits < 1 || orbits > 1000) throw core::InvalidField("orbits", fmt::format("{}", orbits), "1..1000");
   if (tail < 1) throw core::InvalidField("tail", fmt::format("{}", tail), "at least 1");
   if (iterations < tail || iterations > 10000000)
@@ -97,7 +99,7 @@ StripOrbitsResult run(const StripOrbitsRequest& q, const core::RunControl& contr
     else ++res.other;
   }
   if (control.progress) control.progress->update(2, 2);
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = core::seconds_since(t0);
   return res;
 }
 

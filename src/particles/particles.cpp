@@ -4,6 +4,8 @@
 #include "particles/particles_impl.hpp"
 
 #include "core/cancel.hpp"
+#include "core/fields.hpp"
+#include "core/run.hpp"
 #include "core/scalar.hpp"
 #include "patterns/atlas.hpp"
 #include "patterns/patterns.hpp"
@@ -267,7 +269,7 @@ template <class T> ParticlesResult run_impl(const ParticlesRequest& req, const c
   res.events = timed_events<T>(run, res);
   res.split_events();
   unrescaled_run<T>(req, start, v.letters, r, control, res);
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = core::seconds_since(t0);
   return res;
 }
 
@@ -280,8 +282,7 @@ void ParticlesRequest::validate() const {
   } catch (const std::exception&) {
     throw InvalidField("word", "'" + word + "'", "a word over 1, 2, 3 such as 132312, 132^3312^3 or (ab)(cb)(acb)");
   }
-  if (!(r > 0 && r < 1) || !std::isfinite(r))
-    throw InvalidField("r", shortest(r), "a restitution coefficient in the open interval (0, 1)");
+  core::require_r(r, "r");
   if (periods < 1 || periods > 100000000) throw InvalidField("periods", std::to_string(periods), "1..100000000");
   core::Precision prec;
   try {

@@ -74,11 +74,8 @@ void CurvesRequest::validate() const {
   } catch (const std::invalid_argument& e) {
     throw core::InvalidField("word", "'" + word + "'", "a word over 1,2,3 such as 132312 or 132^2312^2");
   }
-  if (!(r_min > 0 && r_min < 1)) throw core::InvalidField("r-min", fmt::format("{}", r_min), "a number in (0, 1)");
-  if (!(r_max > r_min && r_max < 1))
-    throw core::InvalidField("r-max", fmt::format("{}", r_max), fmt::format("a number in (r-min = {}, 1)", r_min));
   if (r_count < 2 || r_count > 1000000) throw core::InvalidField("r-count", fmt::format("{}", r_count), "2..1000000");
-  core::require_distinct(r_min, r_max, r_count, "r-count", "r-min..r-max");
+  core::require_r_range(r_min, r_max, r_count);
   if (track != "dominant" && track != "negative")
     throw core::InvalidField("track", "'" + track + "'", "dominant or negative");
 }

@@ -94,7 +94,7 @@ template <class T> struct Verdict {
 };
 
 // The analysis of Section 7 for the word w at r in (0, 1).  T = double, long double, float128, mpfr_float.
-// Throws std::invalid_argument (field "word") on an empty word, std::domain_error (field "r") outside (0,1).
+// Throws std::invalid_argument (field "word") on an empty word, core::InvalidField (field "r") outside (0, 1).
 // Every function of the analysis below that takes `cancel` polls it along the word's symbols (every symbol in MPFR,
 // every core::cancel_stride symbols otherwise) and throws core::Cancelled once it is set; nullptr: never (a caller
 // inside an OpenMP region, which polls between words instead).

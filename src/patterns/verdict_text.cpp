@@ -22,40 +22,28 @@ std::string reason_text(const std::string& reason) {
   return reason;
 }
 
-}  // namespace
-
-std::string verdict_text(const WordResult& res) {
-  const Word& w = res.word;
-  const Word& u = res.primitive;
-  std::string s = fmt::format("word        {} = {} ({} symbols, {} collisions); canonical {}\n", to_paper(w),
-                              to_digits(w), w.size(), collisions(w), to_paper(canonical(w)));
-  if (!(u == w)) s += fmt::format("primitive   {} (the orbit of a power is the orbit of its root)\n", to_paper(u));
-  s += fmt::format("r           {}\n", res.r);
-  if (res.reduced) {
-    const Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
-    s += fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
+// The line of eigenvalue i (mu1, mu2, mu3): value, |mu|/|mu1|, and for a real one its eigenvector and feasibility.
+std::string eigen_line(std::size_t i, const EigenText& e) {
+  std::string s = fmt::format("mu{}         ", i + 1);
+  if (e.real) {
+    s += fmt::format("{} (real, |mu|/|mu1| = {}), eigenvector ({}, {}, {})", e.re, e.ratio, e.vector[0], e.vector[1],
+                     e.vector[2]);
+    if (e.feasible) s += ", in the domain, all feasibility inequalities hold";
+    else if (!e.in_domain) s += ", outside the domain x z < 0";
+    else
+      s += fmt::format(", in the domain, feasibility inequality {} fails (symbol {})", e.first_failure,
+                       e.failing_symbol);
   } else {
-    s += fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()),
-                     int(u.s.front()));
+    const bool neg = !e.im.empty() && e.im[0] == '-';
+    s += fmt::format("{} {} {} i (complex, |mu|/|mu1| = {})", e.re, neg ? "-" : "+", neg ? e.im.substr(1) : e.im,
+                     e.ratio);
   }
-  for (std::size_t i = 0; i < res.spectrum.size(); ++i) {
-    const EigenText& e = res.spectrum[i];
-    s += fmt::format("mu{}         ", i + 1);
-    if (e.real) {
-      s += fmt::format("{} (real, |mu|/|mu1| = {}), eigenvector ({}, {}, {})", e.re, e.ratio, e.vector[0], e.vector[1],
-                       e.vector[2]);
-      if (e.feasible) s += ", in the domain, all feasibility inequalities hold";
-      else if (!e.in_domain) s += ", outside the domain x z < 0";
-      else
-        s += fmt::format(", in the domain, feasibility inequality {} fails (symbol {})", e.first_failure,
-                         e.failing_symbol);
-    } else {
-      const bool neg = !e.im.empty() && e.im[0] == '-';
-      s += fmt::format("{} {} {} i (complex, |mu|/|mu1| = {})", e.re, neg ? "-" : "+", neg ? e.im.substr(1) : e.im,
-                       e.ratio);
-    }
-    s += "\n";
-  }
+  s += "\n";
+  return s;
+}
+
+// What the verdict line adds in parentheses after the outcome: why it is neutral, unstable, undecided or not stable.
+std::string outcome_explanation(const WordResult& res) {
   std::string why;
   if (res.outcome == outcome_name(Outcome::neutral))
     why = " (elliptic: both exponents zero within 64 eps; neither attracting nor repelling)";
@@ -77,6 +65,27 @@ std::string verdict_text(const WordResult& res) {
         "longer precision, --precision mpfr:<digits>)",
         res.scalar_type);
   else if (!res.reason.empty()) why = fmt::format(" (not stable: {}: {})", res.reason, reason_text(res.reason));
+  return why;
+}
+
+}  // namespace
+
+std::string verdict_text(const WordResult& res) {
+  const Word& w = res.word;
+  const Word& u = res.primitive;
+  std::string s = fmt::format("word        {} = {} ({} symbols, {} collisions); canonical {}\n", to_paper(w),
+                              to_digits(w), w.size(), collisions(w), to_paper(canonical(w)));
+  if (!(u == w)) s += fmt::format("primitive   {} (the orbit of a power is the orbit of its root)\n", to_paper(u));
+  s += fmt::format("r           {}\n", res.r);
+  if (res.reduced) {
+    const Word h{std::vector<std::uint8_t>(u.s.begin(), u.s.begin() + static_cast<long>(u.size() / 2))};
+    s += fmt::format("matrix      J M_h with h = {}: M_w = (J M_h)^2 (Section 7.1)\n", to_digits(h));
+  } else {
+    s += fmt::format("matrix      M_w = P_{} ... P_{} (first symbol applied first)\n", int(u.s.back()),
+                     int(u.s.front()));
+  }
+  for (std::size_t i = 0; i < res.spectrum.size(); ++i) s += eigen_line(i, res.spectrum[i]);
+  const std::string why = outcome_explanation(res);
   s += fmt::format("verdict     {}{}\n", res.outcome, why);
   if (res.orbit.empty()) return s;  // no periodic point: the period matrix's exponents describe no orbit
   s += fmt::format(

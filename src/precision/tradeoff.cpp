@@ -3,6 +3,7 @@
 #include "precision/tradeoff.hpp"
 
 #include "core/cancel.hpp"
+#include "core/run.hpp"
 
 #include "core/csv.hpp"
 #include "core/fields.hpp"
@@ -53,8 +54,7 @@ void TradeoffRequest::validate() const {
   if (orbits < 1 || orbits > 4096) throw core::InvalidField("orbits", std::to_string(orbits), "1..4096");
   if (iterations < 10 || iterations > 1000000)
     throw core::InvalidField("iterations", std::to_string(iterations), "10..1000000");
-  if (r.empty()) throw core::InvalidField("r-values", "no value", "one or more r values in (0, 1)");
-  for (double v : r) core::require_r(v, "r-values");
+  core::require_r_values(core::values(r), "r-values");
   if (window_n.empty()) throw core::InvalidField("window-n", "no value", "one or more integers 2..400");
   for (double n : window_n)
     if (!(n >= 2 && n <= 400 && n == std::floor(n)))
@@ -114,7 +114,7 @@ template <class T> double throughput(const Ensemble& e, long iterations, const R
     FinalRecorder f(e.orbits(), iterations);
     const auto t0 = Clock::now();
     run<T>(e, iterations, f, ro);
-    secs += std::chrono::duration<double>(Clock::now() - t0).count();
+    secs += core::seconds_since(t0);
     items += static_cast<double>(e.orbits()) * static_cast<double>(iterations);
   }
   return items / secs;
@@ -122,8 +122,7 @@ template <class T> double throughput(const Ensemble& e, long iterations, const R
 double trig_throughput(const Ensemble& e, long iterations, const RunOptions& ro) {
   const auto t0 = Clock::now();
   trig_symbols(e, iterations, ro);
-  return static_cast<double>(e.orbits()) * static_cast<double>(iterations) /
-         std::chrono::duration<double>(Clock::now() - t0).count();
+  return static_cast<double>(e.orbits()) * static_cast<double>(iterations) / core::seconds_since(t0);
 }
 
 using SymFn = std::function<std::vector<std::uint8_t>(const Ensemble&, long, const RunOptions&)>;

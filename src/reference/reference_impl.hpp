@@ -4,6 +4,7 @@
 
 #include "core/cancel.hpp"
 #include "core/request.hpp"
+#include "core/run.hpp"
 #include "iterate/parallel.hpp"
 #include "reference/reference.hpp"
 
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace btob::reference {
 namespace detail {
@@ -182,6 +184,25 @@ template <class T> TrigState<T> trig_start(const T& theta0, const T& phi0) {
   return s;
 }
 
+namespace detail {
+// The MATLAB code's table of the next contact after contact c (1, 2, 3 for a, b, c): the unnormalised point X and
+// its letter, on the branch phi < pi/2 (`low`) or above, from sin/cos of theta (st, ct) and of phi (sp, cp).
+template <class T>
+std::pair<Vec3<T>, char> trig_next_contact(int c, bool low, const T& st, const T& ct, const T& sp, const T& cp) {
+  switch (c) {
+    case 1:
+      if (low) return {Vec3<T>(ct * sp, T(0), cp), 'b'};
+      return {Vec3<T>(st * sp, -cp, T(0)), 'c'};
+    case 2:
+      if (low) return {Vec3<T>(cp, ct * sp, T(0)), 'c'};
+      return {Vec3<T>(T(0), st * sp, -cp), 'a'};
+    default:
+      if (low) return {Vec3<T>(T(0), cp, ct * sp), 'a'};
+      return {Vec3<T>(-cp, T(0), st * sp), 'b'};
+  }
+}
+}  // namespace detail
+
 template <class T> TrigStatus trig_collision(TrigState<T>& s, const T& r, T* theta_out, T* phi_out) {
   using std::acos;
   using std::cos;
@@ -206,37 +227,7 @@ template <class T> TrigStatus trig_collision(TrigState<T>& s, const T& r, T* the
   if (phi == half_pi) return TrigStatus::tie;
   const bool low = phi < half_pi;
   const T st = sin(theta), ct = cos(theta), sp = sin(phi), cp = cos(phi);
-  Vec3<T> X;
-  char letter;
-  switch (c) {
-    case 1:
-      if (low) {
-        X = Vec3<T>(ct * sp, T(0), cp);
-        letter = 'b';
-      } else {
-        X = Vec3<T>(st * sp, -cp, T(0));
-        letter = 'c';
-      }
-      break;
-    case 2:
-      if (low) {
-        X = Vec3<T>(cp, ct * sp, T(0));
-        letter = 'c';
-      } else {
-        X = Vec3<T>(T(0), st * sp, -cp);
-        letter = 'a';
-      }
-      break;
-    default:
-      if (low) {
-        X = Vec3<T>(T(0), cp, ct * sp);
-        letter = 'a';
-      } else {
-        X = Vec3<T>(-cp, T(0), st * sp);
-        letter = 'b';
-      }
-      break;
-  }
+  auto [X, letter] = detail::trig_next_contact(c, low, st, ct, sp, cp);
   X = X / X.norm();
   Vec3<T> V = collision_matrix<T>(letter, r) * s.V;
   V = V - V.dot(X) * X;
@@ -326,7 +317,7 @@ std::vector<std::uint64_t> trig_density(const iterate::Ensemble& ens, long itera
   std::vector<std::uint8_t> broken(n_orbits, 0);
   const long first = std::max<long>(rec.first_step(), 1);
   const long tail = iterations >= first ? iterations - first + 1 : 0;
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const int nt = core::thread_count(threads);
   if (static_cast<std::size_t>(nt) > rec.per_thread.size())
     throw core::InvalidField(
         "threads", std::to_string(nt),

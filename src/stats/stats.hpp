@@ -25,7 +25,7 @@ struct OrbitSeries {
   iterate::Vec3<double> state(long k) const { return {x[k], y[k], z[k]}; }
 };
 // Validates r, u0 (domain x z <= 0), transient >= 0, length >= 1 and the memory (25 bytes per point);
-// throws core::InvalidField / std::domain_error / std::length_error naming the field.
+// throws core::InvalidField / std::length_error naming the field.
 OrbitSeries orbit_series(double r, const iterate::Vec3<double>& u0, long transient, long length);
 // Many initial conditions at one r in one OpenMP run (threads <= 0: OpenMP's default; results do not
 // depend on it).

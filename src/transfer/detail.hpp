@@ -45,8 +45,4 @@ Eigen::MatrixXd pcca(const Eigen::MatrixXd& H);
 // (r > 3 - 2 sqrt 2).
 double p2_level(double r);
 
-inline double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 }  // namespace btob::transfer::detail

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/cancel.hpp"
+#include "core/run.hpp"
 #include "transfer/transfer.hpp"
 
 #include <omp.h>
@@ -107,7 +108,7 @@ UlamMatrix ulam(const Partition& p, int samples, BatchMap&& f, const core::RunCo
                          std::vector<std::vector<double>>(static_cast<std::size_t>(n))};
   std::vector<double> a, b;
   std::uint64_t lost = 0;
-  const int threads = c.threads > 0 ? c.threads : omp_get_max_threads();
+  const int threads = core::thread_count(c.threads);
   for (long box0 = 0; box0 < n; box0 += chunk) {
     core::check_cancel(c.cancel);
     const long count = std::min(chunk, n - box0);

@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The arrays and attributes of a leaves result (core/result.hpp): HDF5, manifest and Python read these.
+// The output of a leaves result: its CSV tables, and its arrays and attributes (core/result.hpp) that HDF5, the
+// manifest and Python read.
 #include "leaves/requests.hpp"
+
+#include "core/csv.hpp"
+#include "leaves/leaves.hpp"
 
 #include <fmt/format.h>
 
 namespace btob::leaves {
 
 namespace {
+std::string fmt_g(double x) { return fmt::format("{:.10g}", x); }
+
 void per_r_arrays(const Result& res, core::Contents& c) {
   const std::size_t R = res.r.size();
   c.array("r", res.r, {R}, "r", "1", "restitution coefficient");
@@ -117,6 +123,46 @@ void Result::describe(core::Contents& c) const {
   landing_arrays(*this, c);
   leaf_arrays(*this, c);
   attrs(*this, c);
+}
+
+core::Tables Result::tables() const {
+  const std::size_t R = r.size(), B = static_cast<std::size_t>(request.bins), L = request.labels.size();
+  core::CsvTable per_r(
+      "r,cos_theta,rotation,I_max,region_share,region_mean,mass,mass_low,mass_high,outside_mass,"
+      "landing_mean,landing_sd,q2,above_one,undecided,points,measure");
+  const std::string measure = attractors::measure_name(grid);
+  for (std::size_t i = 0; i < R; ++i)
+    per_r.row({fmt_g(r[i]), fmt_g(cos_theta[i]), fmt_g(rotation[i]), fmt_g(I_max[i]), fmt_g(region_share[i]),
+               fmt_g(region_mean[i]), fmt_g(mass[i]), fmt_g(mass_low[i]), fmt_g(mass_high[i]), fmt_g(outside_mass[i]),
+               fmt_g(landing_mean[i]), fmt_g(landing_sd[i]), fmt::format("{}", q2[i]), fmt::format("{}", above_one[i]),
+               fmt::format("{}", undecided[i]), fmt::format("{}", grid.cells()), measure});
+  core::CsvTable land("r,t_lo,t_hi,density,density_low,density_high,kde,density_coarse,region_density");
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t k = 0; k < B; ++k) {
+      const std::size_t j = i * B + k;
+      land.row({fmt_g(r[i]), fmt_g(static_cast<double>(k) / static_cast<double>(B)),
+                fmt_g(static_cast<double>(k + 1) / static_cast<double>(B)), fmt_g(density[j]), fmt_g(density_low[j]),
+                fmt_g(density_high[j]), fmt_g(kde[j]), fmt_g(density_coarse[i * (B / 2) + k / 2]),
+                fmt_g(region_density[j])});
+    }
+  core::CsvTable lv(
+      "r,t,exact_rotation,birkhoff_rotation,difference,birkhoff_half,stays,exit_step,label_drift,"
+      "ks_uniform,ks_strip_arc,ks_sphere_arc,law_distance_strip,law_distance_sphere,ks_critical,law");
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t k = 0; k < L; ++k) {
+      const std::size_t j = i * L + k;
+      const bool u = ks_uniform[j] < ks_critical, a = ks_strip[j] < ks_critical, s = ks_sphere[j] < ks_critical;
+      const std::string law = !leaf_stays[j]  ? "leaves the region"
+                              : u && !a && !s ? "uniform eigen-angle; arc length rejected"
+                              : u             ? "uniform eigen-angle; arc length not resolved at this n"
+                                              : "uniform eigen-angle rejected (a resonance?)";
+      lv.row({fmt_g(r[i]), fmt_g(request.labels[k]), fmt_g(leaf_exact[j]), fmt_g(leaf_birkhoff[j]),
+              fmt::format("{:.3g}", leaf_birkhoff[j] - leaf_exact[j]), fmt_g(leaf_birkhoff_half[j]),
+              fmt::format("{}", leaf_stays[j]), fmt::format("{}", leaf_exit[j]), fmt::format("{:.3g}", leaf_drift[j]),
+              fmt_g(ks_uniform[j]), fmt_g(ks_strip[j]), fmt_g(ks_sphere[j]), fmt_g(law_strip[j]), fmt_g(law_sphere[j]),
+              fmt_g(ks_critical), law});
+    }
+  return {{"", per_r.text()}, {"landing", land.text()}, {"leaves", lv.text()}};
 }
 
 }  // namespace btob::leaves

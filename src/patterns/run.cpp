@@ -1,10 +1,11 @@
-// SPDX-License-Identifier: GPL-3.0-or-later
-// `btob pattern` as requests: WordRequest (verdict, window, charpoly) and AtlasRequest (the atlas and its check).
+// The patterns requests' runs: a word's verdict, window or characteristic polynomial in the chosen precision, and
+// the atlas of stable or feasible windows with its check against Table 6.1 (run_part, merge).
 #include "patterns/requests.hpp"
 
 #include "core/cancel.hpp"
 #include "core/coords.hpp"
 #include "core/csv.hpp"
+#include "core/run.hpp"
 #include "core/scalar.hpp"
 #include "core/sweep.hpp"
 #include "patterns/accuracy.hpp"
@@ -19,6 +20,7 @@
 #include <stdexcept>
 
 namespace btob::patterns {
+
 namespace {
 
 // Decimal text of a value with at most the digits its type holds.
@@ -34,6 +36,45 @@ template <class T> T from_text(const std::string& s) {
   else if constexpr (std::is_same_v<T, double>) return std::stod(s);
   else if constexpr (std::is_same_v<T, long double>) return std::stold(s);
   else return T(s);
+}
+
+// The text of eigenvalue i of the verdict v: each part to the digits the reference vouches for (chk).
+template <class T> EigenText eigen_text(const Verdict<T>& v, const accuracy::Check& chk, std::size_t i, int digits) {
+  const Word& u = v.word;
+  const EigenInfo<T>& e = v.spectrum[i];
+  EigenText t;
+  const int dr = chk.re_digits[i], di = chk.im_digits[i];
+  t.re = accuracy::scaled_text(e.scaled_re, e.log_scale, dr, str(e.re, dr), e.re);
+  const T abs_im = e.im < 0 ? T(-e.im) : e.im;
+  t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di),
+                               abs_im);
+  if (e.im < 0) t.im = "-" + t.im;
+  // |mu|/|mu1| from the normalised moduli (the same scale): never 0/0
+  const T ratio = e.scaled_modulus / v.spectrum[0].scaled_modulus;
+  const int dq = accuracy::vouched_digits(chk.error[i] + chk.error[0], std::min(digits, 6));
+  t.ratio = accuracy::scaled_text(ratio, T(0), dq, str(ratio, std::max(dq, 1)), ratio);
+  t.real = e.real;
+  t.in_domain = e.in_domain;
+  t.feasible = e.feasible;
+  t.first_failure = e.first_failure;
+  if (e.first_failure > 0) t.failing_symbol = int(u.s[static_cast<std::size_t>(e.first_failure - 1)]);
+  if (e.real)
+    for (int i = 0; i < 3; ++i) t.vector[static_cast<std::size_t>(i)] = str(e.vector(i), 10);
+  return t;
+}
+
+// The periodic orbit's points of the verdict v: symbol, x, y, z to `digits`, theta, w1, w2 to 12.
+template <class T> void fill_orbit(WordResult& res, const Verdict<T>& v, int digits, const core::CancelToken* cancel) {
+  const Word& u = v.word;
+  for (std::size_t k = 0; k < v.orbit.size(); ++k) {
+    core::check_cancel(cancel);  // a point's seven decimals: milliseconds in MPFR at thousands of digits
+    const auto& p = v.orbit[k];
+    const auto [w1, w2] = core::strip<T>(p);
+    res.orbit.push_back({std::to_string(int(u.s[k])), str(p(0), digits), str(p(1), digits), str(p(2), digits),
+                         str(core::theta<T>(p), 12), str(w1, 12), str(w2, 12)});
+    for (int i = 0; i < 3; ++i) res.orbit_xyz.push_back(static_cast<double>(p(i)));
+    for (int i = 1; i <= 3; ++i) res.orbit_decimal.push_back(res.orbit.back()[static_cast<std::size_t>(i)]);
+  }
 }
 
 template <class T>
@@ -59,24 +100,7 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
   res.reduced = v.reduced;
   for (std::size_t i = 0; i < v.spectrum.size(); ++i) {
     const EigenInfo<T>& e = v.spectrum[i];
-    EigenText t;
-    const int dr = chk.re_digits[i], di = chk.im_digits[i];
-    t.re = accuracy::scaled_text(e.scaled_re, e.log_scale, dr, str(e.re, dr), e.re);
-    const T abs_im = e.im < 0 ? T(-e.im) : e.im;
-    t.im = accuracy::scaled_text(T(e.scaled_im < 0 ? T(-e.scaled_im) : e.scaled_im), e.log_scale, di, str(abs_im, di),
-                                 abs_im);
-    if (e.im < 0) t.im = "-" + t.im;
-    // |mu|/|mu1| from the normalised moduli (the same scale): never 0/0
-    const T ratio = e.scaled_modulus / v.spectrum[0].scaled_modulus;
-    const int dq = accuracy::vouched_digits(chk.error[i] + chk.error[0], std::min(digits, 6));
-    t.ratio = accuracy::scaled_text(ratio, T(0), dq, str(ratio, std::max(dq, 1)), ratio);
-    t.real = e.real;
-    t.in_domain = e.in_domain;
-    t.feasible = e.feasible;
-    t.first_failure = e.first_failure;
-    if (e.first_failure > 0) t.failing_symbol = int(u.s[static_cast<std::size_t>(e.first_failure - 1)]);
-    if (e.real)
-      for (int i = 0; i < 3; ++i) t.vector[static_cast<std::size_t>(i)] = str(e.vector(i), 10);
+    const EigenText t = eigen_text(v, chk, i, digits);
     res.spectrum.push_back(t);
     res.eigen_re.push_back(static_cast<double>(e.re));
     res.eigen_im.push_back(static_cast<double>(e.im));
@@ -97,15 +121,7 @@ void fill_verdict(WordResult& res, const Word& w, const std::string& r_text, int
   if (v.orbit_eigen < 0) return;
   res.exponents_decimal = {res.lyapunov2, res.lyapunov3};
   res.letters = v.letters;
-  for (std::size_t k = 0; k < v.orbit.size(); ++k) {
-    core::check_cancel(cancel);  // a point's seven decimals: milliseconds in MPFR at thousands of digits
-    const auto& p = v.orbit[k];
-    const auto [w1, w2] = core::strip<T>(p);
-    res.orbit.push_back({std::to_string(int(u.s[k])), str(p(0), digits), str(p(1), digits), str(p(2), digits),
-                         str(core::theta<T>(p), 12), str(w1, 12), str(w2, 12)});
-    for (int i = 0; i < 3; ++i) res.orbit_xyz.push_back(static_cast<double>(p(i)));
-    for (int i = 1; i <= 3; ++i) res.orbit_decimal.push_back(res.orbit.back()[static_cast<std::size_t>(i)]);
-  }
+  fill_orbit(res, v, digits, cancel);
 }
 
 template <class T>
@@ -163,32 +179,6 @@ void charpoly(WordResult& res, const Word& w) {
 }
 
 }  // namespace
-
-void WordRequest::validate() const {
-  const Word w = parse_word(word, "word");  // throws naming the field
-  (void)w;
-  if (window && charpoly) throw core::InvalidField("charpoly", "with --window", "one of --window, --charpoly or --r R");
-  if (charpoly && !r.empty())
-    throw core::InvalidField("charpoly", "with --r " + r, "no --r with --charpoly (exact in r)");
-  if (window && !r.empty()) throw core::InvalidField("r", r, "no --r with --window (the window is a set of r)");
-  if (!window && !charpoly && r.empty())
-    throw core::InvalidField("r", "nothing", "one of --r R (verdict at one r), --window or --charpoly");
-  if (digits != 0 && (!window || digits < 5 || digits > 1000))
-    throw core::InvalidField("digits", std::to_string(digits), window ? "5..1000" : "only with --window");
-  const core::Precision prec = core::parse_precision(precision, "precision");
-  if (window && prec.kind != core::Precision::Kind::mpfr && prec.kind != core::Precision::Kind::f64)
-    throw core::InvalidField("precision", precision, "double or mpfr:<digits> with --window");
-  if (r.empty()) return;
-  double x = 0;
-  try {
-    std::size_t pos = 0;
-    x = std::stod(r, &pos);
-    if (pos != r.size()) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw core::InvalidField("r", "'" + r + "'", "a number in the open interval (0, 1)");
-  }
-  if (!(x > 0 && x < 1)) throw core::InvalidField("r", r, "a restitution coefficient in the open interval (0, 1)");
-}
 
 WordResult run(const WordRequest& req, const core::RunControl& control) {
   req.validate();
@@ -387,28 +377,7 @@ void feasible_atlas(AtlasResult& res, const std::vector<std::vector<Followed>>& 
                                                            &res.followed_agree, &res.followed_checked));
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 }  // namespace
-
-void AtlasRequest::validate() const {
-  if (max_length < 1 || max_length > 16) throw core::InvalidField("max-length", std::to_string(max_length), "1..16");
-  if (feasible && no_check) throw core::InvalidField("no-check", "with --feasible", "only for the stable atlas");
-  if (ics < 1 || ics > 10'000'000) throw core::InvalidField("ics", std::to_string(ics), "1..10000000");
-  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
-  if (tail < 1 || tail > iterations)
-    throw core::InvalidField("tail", std::to_string(tail), fmt::format("1..iterations ({})", iterations));
-  if (max_period < 1 || 2 * max_period > tail)
-    throw core::InvalidField("max-period", std::to_string(max_period), fmt::format("1..tail/2 ({})", tail / 2));
-}
-
-std::size_t AtlasRequest::work_items() const { return work_items(nullptr); }
-
-std::size_t AtlasRequest::work_items(const core::CancelToken* cancel) const {
-  return enumerate_canonical(static_cast<int>(max_length), cancel).size() + (checks() ? table_6_1_r().size() : 0);
-}
 
 AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
   req.validate();
@@ -434,7 +403,7 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
     part.followed = follow_unstable(f, followed_max_periods, control.threads, control.cancel);
     for (const auto& e : f) part.feasible.push_back(e.intervals);
   }
-  part.atlas_seconds = seconds_since(t0);
+  part.atlas_seconds = core::seconds_since(t0);
   core::check_cancel(control.cancel);
   if (!rs.empty()) {
     t0 = std::chrono::steady_clock::now();
@@ -445,7 +414,7 @@ AtlasPart run_part(const AtlasRequest& req, const std::vector<std::size_t>& item
     for (const auto& f : d.found)  // sorted by r in the order of rs
       part.found[static_cast<std::size_t>(std::find(rs.begin(), rs.end(), f.r) - rs.begin())].emplace_back(f.word,
                                                                                                            f.count);
-    part.check_seconds = seconds_since(t0);
+    part.check_seconds = core::seconds_since(t0);
   }
   core::check_cancel(control.cancel);
   return part;
@@ -500,115 +469,13 @@ AtlasResult merge(const AtlasRequest& req, std::vector<AtlasPart> parts) {
     for (const auto& [w, count] : p.found.at(j)) d.found.push_back({d.r[k], w, count});
   }
   stable_atlas(req, res, &d);
-  res.check_seconds += seconds_since(t0);  // the status column and the long words' stability sets, here
+  res.check_seconds += core::seconds_since(t0);  // the status column and the long words' stability sets, here
   return res;
 }
 
 AtlasResult run(const AtlasRequest& req, const core::RunControl& control) {
   core::work_items(req, control.cancel);  // the words first, polling the token: later enumerations find them listed
   return merge(req, {run_part(req, core::all_items(req), control)});
-}
-
-std::string AtlasResult::summary() const {
-  if (feasible)
-    return fmt::format(
-        "feasible atlas of {} canonical primitive words: {} feasible for some r ({} stable somewhere, {} only "
-        "unstable) ({:.1f} s); unstable orbits followed by the map in double from their periodic point: {} "
-        "of {} within a factor 2 (+-2 periods) of ln(margin/eps)/ln(expansion)",
-        words_scanned, feasible_entries.size(), stable_words, unstable_only_words, atlas_seconds, followed_agree,
-        followed_checked);
-  std::string s = fmt::format("atlas of {} canonical primitive words: {} with a stability window ({:.1f} s)",
-                              words_scanned, stable_words, atlas_seconds);
-  if (checked)
-    s += fmt::format(
-        "; iterator check at {} r values: {} (r, pattern) pairs, {} not stable in the analysis, {} "
-        "quasi-periodic (neutral period matrix), {} stable atlas entries not reached ({:.1f} s)",
-        table_6_1_r().size(), detected, disagreements, quasi_periodic, missed, check_seconds);
-  return s;
-}
-
-// The iterator check's tables (NAME_detected.csv, NAME_long_windows.csv, NAME_missed.csv) as datasets.
-void AtlasResult::describe_check(core::Contents& c) const {
-  const Detections& d = detections;
-  const std::size_t n = d.r.size();
-  c.array("detected_r", d.r, {n}, "detection", "1", "r of the (r, pattern) pair: one of Table 6.1's r values");
-  c.text("detected_word", d.word, "detection", "word", "the pattern the iterator found at r, paper notation");
-  c.array("detected_symbols", d.symbols, {n}, "detection", "symbols", "length of the pattern's word");
-  c.array("detected_collisions", d.collisions, {n}, "detection", "collisions", "collisions in one period of the word");
-  c.array("detected_count", d.count, {n}, "detection", "orbits", "random initial points whose tail has this pattern");
-  c.array("detected_symbol_periodic_fraction", d.symbol_periodic_fraction, {n}, "detection", "1",
-          "fraction of the initial points at r whose symbol sequence is eventually periodic (P2's curves included)");
-  c.array("detected_periodic_fraction", d.periodic_fraction, {n}, "detection", "1",
-          "fraction of the initial points at r on a pattern whose status is not quasi-periodic (periodic orbits)");
-  c.text("detected_status", d.status, "detection", "text",
-         "the pattern against the atlas: stable in atlas; NOT stable in atlas (verdict); quasi-periodic (neutral "
-         "period matrix); longer than L: stable or NOT stable (verdict)");
-  const LongWindows& l = long_windows;
-  c.text("long_word", l.word, "long interval", "word",
-         "a found pattern longer than max_length (not in the atlas), one row per interval of its stability set");
-  c.array("long_symbols", l.symbols, {l.r_low.size()}, "long interval", "symbols", "length of the word");
-  c.array("long_r_low", l.r_low, {l.r_low.size()}, "long interval", "1", "lower end of the stability interval in r");
-  c.array("long_r_high", l.r_high, {l.r_high.size()}, "long interval", "1", "upper end of the stability interval in r");
-  const Missed& m = missed_entries;
-  c.array("missed_r", m.r, {m.r.size()}, "missed", "1",
-          "a Table 6.1 r inside a stability interval of an atlas word the iterator did not find there");
-  c.text("missed_word", m.word, "missed", "word", "that word, paper notation");
-  c.array("missed_symbols", m.symbols, {m.r.size()}, "missed", "symbols", "length of the word");
-  c.array("missed_r_low", m.r_low, {m.r.size()}, "missed", "1", "lower end of the interval containing r");
-  c.array("missed_r_high", m.r_high, {m.r.size()}, "missed", "1", "upper end of the interval containing r");
-}
-
-void AtlasResult::describe(core::Contents& c) const {
-  c.array("r_low", r_low, {r_low.size()}, "interval", "1", "lower ends of the intervals in r (all words, CSV order)");
-  c.array("r_high", r_high, {r_high.size()}, "interval", "1", "upper ends of the intervals in r");
-  c.array("symbols", symbols, {symbols.size()}, "interval", "symbols", "length of the interval's word");
-  c.array("stable", stable, {stable.size()}, "interval", "1",
-          "1: a stable periodic orbit on the interval, 0: unstable");
-  c.text("word", word, "interval", "word", "the interval's word in the paper's notation (e.g. 132^3312^3)");
-  c.text("low_reason", low_reason, "interval", "text", "what begins the interval at r_low (the analysis's words)");
-  c.text("high_reason", high_reason, "interval", "text", "what ends the interval at r_high");
-  if (feasible) {
-    c.array("count_r", counts.r, {counts.r.size()}, "count_r", "1",
-            "restitution coefficients of the counts (0.001, 0.002, ..., 0.999)");
-    c.array("count_stable", counts.stable, {counts.r.size()}, "count_r", "words",
-            "words with a stable feasible periodic point at r");
-    c.array("count_unstable", counts.unstable, {counts.r.size()}, "count_r", "words",
-            "words with an unstable feasible periodic point at r");
-    c.array("count_feasible", counts.feasible, {counts.r.size()}, "count_r", "words",
-            "words with a feasible periodic point at r (stable, unstable, neutral or undecided)");
-    c.array("count_stable_collapse", counts.stable_collapse, {counts.r.size()}, "count_r", "words",
-            "of count_stable, the orbits four particles can follow in a collapse");
-    c.array("count_unstable_collapse", counts.unstable_collapse, {counts.r.size()}, "count_r", "words",
-            "of count_unstable, the orbits four particles can follow in a collapse");
-  }
-  if (checked) describe_check(c);
-  c.attr("max_length", request.max_length);
-  c.attr("words", words_scanned);
-  c.attr("words_scanned", words_scanned);
-  c.attr("stable_words", stable_words);
-  c.attr("grid_points", grid_points);
-  c.attr("bisection_tol", tol);
-  c.attr("atlas_seconds", atlas_seconds);
-  if (feasible) {
-    c.attr("feasible_words", static_cast<long>(feasible_entries.size()));
-    c.attr("unstable_only_words", unstable_only_words);
-    c.attr("followed_checked", followed_checked);
-    c.attr("followed_agree", followed_agree);
-  }
-  if (checked) {
-    c.attr("check_r_values", static_cast<long>(table_6_1_r().size()));
-    c.attr("check_ics", request.ics);
-    c.attr("check_iterations", request.iterations);
-    c.attr("check_tail", request.tail);
-    c.attr("check_max_period", request.max_period);
-    c.attr("check_seed", static_cast<long>(request.seed));
-    c.attr("check_grid", std::string("random (uniform on the quarter sphere)"));
-    c.attr("check_detected_patterns", detected);
-    c.attr("check_disagreements", disagreements);
-    c.attr("check_quasi_periodic", quasi_periodic);
-    c.attr("check_missed", missed);
-    c.attr("check_seconds", check_seconds);
-  }
 }
 
 }  // namespace btob::patterns

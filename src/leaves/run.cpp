@@ -1,9 +1,11 @@
-// SPDX-License-Identifier: GPL-3.0-or-later
-// `btob leaves` (leaves/requests.hpp): validation, the run per r, the arrays and tables.
+// The leaves request's run: per r, the closed forms, the landing of the grid's orbits and the leaves followed
+// (run_part), merged in r order.
 #include "leaves/requests.hpp"
 
 #include "core/cancel.hpp"
 #include "core/csv.hpp"
+#include "core/fields.hpp"
+#include "core/run.hpp"
 #include "core/sweep.hpp"
 #include "leaves/leaves.hpp"
 #include "windows/windows.hpp"
@@ -21,13 +23,6 @@ namespace btob::leaves {
 
 namespace {
 constexpr double pi = std::numbers::pi;
-
-// r where P2 / r has the complex pair: r^2 - 6 r + 1 < 0 and r < 1 (3 - 2 sqrt(2) < r < 1).
-void require_leaf_r(double r, const char* field) {
-  if (!(std::isfinite(r) && r * r - 6 * r + 1 < 0 && r < 1))
-    throw core::InvalidField(field, fmt::format("{}", r),
-                             "a number in (3 - 2 sqrt(2), 1) = (0.17157287525, 1), where P2 has complex eigenvalues");
-}
 
 // The region {t <= x}'s share of the grid's measure and its density in t, in closed form: the sphere measure
 // (geometry.hpp) for a sphere grid; for a strip grid the ellipse 2 w2^2 - 4 alpha w1 w2 + 4 r w1^2 <= x^2 I_max of
@@ -89,55 +84,7 @@ void follow(Result& res, const Geometry& g, const Request& q, const core::Cancel
     res.law_strip.push_back(s.law_strip), res.law_sphere.push_back(s.law_sphere);
   }
 }
-
-std::string fmt_g(double x) { return fmt::format("{:.10g}", x); }
 }  // namespace
-
-attractors::Grid Request::parsed_grid() const {
-  if (w1_range.size() != 2)
-    throw core::InvalidField("w1-range", fmt::format("{} numbers", w1_range.size()), "two numbers a,b");
-  const attractors::Grid g = attractors::parse_grid(grid, w1_range[0], w1_range[1], "grid");
-  if (g.kind != core::GridKind::sphere && g.kind != core::GridKind::strip)
-    throw core::InvalidField("grid", "'" + grid + "'", "sphere:NxM or strip:NxM");
-  return g;
-}
-
-void Request::validate() const {
-  if (r_count < 0 || r_count > 1000) throw core::InvalidField("r-count", fmt::format("{}", r_count), "0..1000");
-  if (r_count == 0) require_leaf_r(r, "r");
-  if (r_count > 0) {
-    require_leaf_r(r_min, "r-min"), require_leaf_r(r_max, "r-max");
-    if (!(r_min < r_max || (r_count == 1 && r_min == r_max)))
-      throw core::InvalidField("r-max", fmt::format("{}", r_max), fmt::format("above r-min = {}", r_min));
-  }
-  const attractors::Grid g = parsed_grid();
-  if (g.cells() > 4000000) throw core::InvalidField("grid", "'" + grid + "'", "at most 4e6 points");
-  // A strip grid must hold the region (|w1| <= 1 / sqrt(2 r) on it) for the closed-form share of its measure.
-  const double r_lo = r_count == 0 ? r : r_min, reach = 1 / std::sqrt(2 * r_lo);
-  if (g.kind == core::GridKind::strip && !(g.axis1.lo <= -reach && g.axis1.hi >= reach))
-    throw core::InvalidField(
-        "w1-range", fmt::format("[{}, {}]", g.axis1.lo, g.axis1.hi),
-        fmt::format("a range holding [-{0:.6g}, {0:.6g}] (the region's w1 at r = {1})", reach, r_lo));
-  if (bins < 2 || bins > 1000 || bins % 2 != 0)
-    throw core::InvalidField("bins", fmt::format("{}", bins), "even, 2..1000");
-  if (labels.empty() || labels.size() > 100)
-    throw core::InvalidField("labels", fmt::format("{} values", labels.size()), "1..100 labels");
-  for (double t : labels)
-    if (!(t > 0 && t <= 3)) throw core::InvalidField("labels", fmt::format("{}", t), "labels in (0, 3]");
-  if (leaf_iterations < 100 || leaf_iterations > 10000000)
-    throw core::InvalidField("leaf-iterations", fmt::format("{}", leaf_iterations), "100..1e7");
-  if (max_m < 2 || max_m > 120) throw core::InvalidField("max-m", fmt::format("{}", max_m), "2..120");
-  attractors::validate(thresholds);
-}
-
-std::vector<double> Request::all_r() const {
-  if (r_count == 0) return {r};
-  std::vector<double> v;
-  for (long k = 0; k < r_count; ++k)
-    v.push_back(r_count == 1 ? r_min
-                             : r_min + (r_max - r_min) * static_cast<double>(k) / static_cast<double>(r_count - 1));
-  return v;
-}
 
 Part run_part(const Request& q, const std::vector<std::size_t>& items, const core::RunControl& control) {
   q.validate();
@@ -155,8 +102,8 @@ Part run_part(const Request& q, const std::vector<std::size_t>& items, const cor
     follow(part.rows, g, q, control.cancel);
     if (control.progress) control.progress->update(k + 1, items.size());
   }
-  part.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
-  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  part.threads = core::thread_count(control.threads);
+  part.seconds = core::seconds_since(t0);
   return part;
 }
 
@@ -202,46 +149,6 @@ Result merge(const Request& q, std::vector<Part> parts) {
 
 Result run(const Request& q, const core::RunControl& control) {
   return merge(q, {run_part(q, core::all_items(q), control)});
-}
-
-core::Tables Result::tables() const {
-  const std::size_t R = r.size(), B = static_cast<std::size_t>(request.bins), L = request.labels.size();
-  core::CsvTable per_r(
-      "r,cos_theta,rotation,I_max,region_share,region_mean,mass,mass_low,mass_high,outside_mass,"
-      "landing_mean,landing_sd,q2,above_one,undecided,points,measure");
-  const std::string measure = attractors::measure_name(grid);
-  for (std::size_t i = 0; i < R; ++i)
-    per_r.row({fmt_g(r[i]), fmt_g(cos_theta[i]), fmt_g(rotation[i]), fmt_g(I_max[i]), fmt_g(region_share[i]),
-               fmt_g(region_mean[i]), fmt_g(mass[i]), fmt_g(mass_low[i]), fmt_g(mass_high[i]), fmt_g(outside_mass[i]),
-               fmt_g(landing_mean[i]), fmt_g(landing_sd[i]), fmt::format("{}", q2[i]), fmt::format("{}", above_one[i]),
-               fmt::format("{}", undecided[i]), fmt::format("{}", grid.cells()), measure});
-  core::CsvTable land("r,t_lo,t_hi,density,density_low,density_high,kde,density_coarse,region_density");
-  for (std::size_t i = 0; i < R; ++i)
-    for (std::size_t k = 0; k < B; ++k) {
-      const std::size_t j = i * B + k;
-      land.row({fmt_g(r[i]), fmt_g(static_cast<double>(k) / static_cast<double>(B)),
-                fmt_g(static_cast<double>(k + 1) / static_cast<double>(B)), fmt_g(density[j]), fmt_g(density_low[j]),
-                fmt_g(density_high[j]), fmt_g(kde[j]), fmt_g(density_coarse[i * (B / 2) + k / 2]),
-                fmt_g(region_density[j])});
-    }
-  core::CsvTable lv(
-      "r,t,exact_rotation,birkhoff_rotation,difference,birkhoff_half,stays,exit_step,label_drift,"
-      "ks_uniform,ks_strip_arc,ks_sphere_arc,law_distance_strip,law_distance_sphere,ks_critical,law");
-  for (std::size_t i = 0; i < R; ++i)
-    for (std::size_t k = 0; k < L; ++k) {
-      const std::size_t j = i * L + k;
-      const bool u = ks_uniform[j] < ks_critical, a = ks_strip[j] < ks_critical, s = ks_sphere[j] < ks_critical;
-      const std::string law = !leaf_stays[j]  ? "leaves the region"
-                              : u && !a && !s ? "uniform eigen-angle; arc length rejected"
-                              : u             ? "uniform eigen-angle; arc length not resolved at this n"
-                                              : "uniform eigen-angle rejected (a resonance?)";
-      lv.row({fmt_g(r[i]), fmt_g(request.labels[k]), fmt_g(leaf_exact[j]), fmt_g(leaf_birkhoff[j]),
-              fmt::format("{:.3g}", leaf_birkhoff[j] - leaf_exact[j]), fmt_g(leaf_birkhoff_half[j]),
-              fmt::format("{}", leaf_stays[j]), fmt::format("{}", leaf_exit[j]), fmt::format("{:.3g}", leaf_drift[j]),
-              fmt_g(ks_uniform[j]), fmt_g(ks_strip[j]), fmt_g(ks_sphere[j]), fmt_g(law_strip[j]), fmt_g(law_sphere[j]),
-              fmt_g(ks_critical), law});
-    }
-  return {{"", per_r.text()}, {"landing", land.text()}, {"leaves", lv.text()}};
 }
 
 }  // namespace btob::leaves

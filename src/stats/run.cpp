@@ -1,10 +1,12 @@
-// SPDX-License-Identifier: GPL-3.0-or-later
-// The statistics requests: validation, the runs, and the description of their results.
+// The stats requests' runs: C_N by the chosen route and precision, the measures over a grid (run_part, merge), and the
+// work estimates.
+#include "stats/request_detail.hpp"
 #include "stats/requests.hpp"
 
 #include "core/cancel.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
+#include "core/run.hpp"
 
 #include <fmt/format.h>
 
@@ -15,24 +17,6 @@
 namespace btob::stats {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-Observable observable_field(const std::string& name) {
-  try {
-    return parse_observable(name, "observable");
-  } catch (const std::invalid_argument&) {
-    throw core::InvalidField("observable", "'" + name + "'", "one of " + observable_names() + " (phi[,psi])");
-  }
-}
-
-std::pair<Observable, Observable> observables(const std::string& spec) {
-  const auto comma = spec.find(',');
-  const Observable phi = observable_field(spec.substr(0, comma));
-  return {phi, comma == std::string::npos ? phi : observable_field(spec.substr(comma + 1))};
-}
-
 // C_N in precision T by the chosen route; the result in double.
 template <class T>
 std::vector<double> correlate_in(const std::vector<double>& x, const std::vector<double>& y, long N, long n_max,
@@ -86,25 +70,6 @@ double spectrum(const std::vector<double>& x, long N, std::vector<double>& freq,
 }
 }  // namespace
 
-void CorrelateRequest::validate() const {
-  core::require_r(r, "r");
-  (void)core::parse_point(point, "point");
-  (void)observables(observable);
-  if (iterations < 2) throw core::InvalidField("iterations", std::to_string(iterations), "at least 2");
-  if (n_max < 0 || n_max >= iterations)
-    throw core::InvalidField("n-max", std::to_string(n_max), fmt::format("0 <= n-max < iterations = {}", iterations));
-  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
-  if (method != "fft" && method != "direct" && method != "both")
-    throw core::InvalidField("method", "'" + method + "'", "fft, direct or both");
-  if (precision != "float" && precision != "double" && precision != "long-double")
-    throw core::InvalidField("precision", "'" + precision + "'", "float, double or long-double");
-  if (window < 1) throw core::InvalidField("window", std::to_string(window), "at least 1");
-  if (fit_lags < window)
-    throw core::InvalidField("fit-lags", std::to_string(fit_lags), fmt::format("at least window = {}", window));
-  iterate::checked_bytes(static_cast<std::size_t>(iterations + n_max), 3 * sizeof(double) + 1 + 4 * sizeof(double),
-                         "iterations");
-}
-
 namespace {
 // The probe of both routes: the default orbit (r = 0.11 from the first point of the Section 4 grid) with 200 lags.
 double correlate_probe(const std::string& precision, const std::string& method, long iterations,
@@ -157,7 +122,7 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   core::check_cancel(control.cancel);
   CorrelateResult res;
   res.request = req;
-  std::tie(res.phi, res.psi) = observables(req.observable);
+  std::tie(res.phi, res.psi) = detail::observables(req.observable);
   const long N = req.iterations, M = req.n_max;
   iterate::RunOptions opt;  // one orbit: one thread, cancellable between batches
   opt.threads = 1;
@@ -168,12 +133,12 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   core::check_cancel(control.cancel);
   auto t0 = std::chrono::steady_clock::now();
   res.c = correlate_as(req.precision, x, y, N, M, req.method != "direct", control.cancel);
-  res.seconds = seconds_since(t0);
+  res.seconds = core::seconds_since(t0);
   if (req.method == "both") {
     core::check_cancel(control.cancel);
     t0 = std::chrono::steady_clock::now();
     res.c_direct = correlate_as(req.precision, x, y, N, M, false, control.cancel);
-    res.seconds_direct = seconds_since(t0);
+    res.seconds_direct = core::seconds_since(t0);
     double scale = 0;
     for (std::size_t n = 0; n < res.c.size(); ++n) {
       scale = std::max(scale, std::fabs(res.c_direct[n]));
@@ -188,86 +153,6 @@ CorrelateResult run(const CorrelateRequest& req, const core::RunControl& control
   res.fitted = M >= req.fit_lags && req.fit_lags >= 3 * req.window;
   if (res.fitted) res.decay = fit_decay(res.c, req.fit_lags, req.window, res.noise_floor);
   return res;
-}
-
-core::Tables CorrelateResult::tables() const {
-  const bool both = !c_direct.empty();
-  core::CsvTable t(both ? "lag,C_N,C_N_direct" : "lag,C_N");
-  for (std::size_t n = 0; n < c.size(); ++n)
-    t.line(both ? fmt::format("{},{:.17g},{:.17g}", n, c[n], c_direct[n]) : fmt::format("{},{:.17g}", n, c[n]));
-  return {{"", t.text()}};
-}
-
-void CorrelateResult::describe(core::Contents& c) const {
-  const std::string lags = "lag n = 0..n-max", cn = "observable units squared (rad^2 for angles)";
-  c.array("C_N", this->c, {this->c.size()}, lags, cn, "C_N(phi, psi; n), the centred correlation along the orbit");
-  if (!c_direct.empty())
-    c.array("C_N_direct", c_direct, {c_direct.size()}, lags, cn, "C_N by the direct sum (method both)");
-  c.array("envelope", envelope, {envelope.size()}, "window of lags from lag 1", cn,
-          fmt::format("max |C_N| over consecutive windows of {} lags", request.window));
-  c.array("spectrum_frequency", frequency, {frequency.size()}, "frequency block", "cycles per iteration",
-          "centre of each block of periodogram frequencies");
-  c.array("power_spectrum", power, {power.size()}, "frequency block", "observable units squared",
-          "periodogram of phi over the first N values, averaged over each block");
-  c.attr("r", request.r);
-  c.attr("point", request.point);
-  c.attr("observables", observable_name(phi) + "," + observable_name(psi));
-  c.attr("N", N());
-  c.attr("n_max", request.n_max);
-  c.attr("transient", request.transient);
-  c.attr("method", request.method);
-  c.attr("seconds", seconds);
-  if (!c_direct.empty()) {
-    c.attr("seconds_direct", seconds_direct);
-    c.attr("max_rel_diff_fft_direct", max_rel_diff);
-  }
-  c.attr("spectrum_peak_frequency", peak_frequency);
-  c.attr("noise_floor", noise_floor);
-  if (fitted) {  // what the fit measured, only what it measured (stats.hpp, Decay)
-    c.attr("decay_verdict", decay.verdict);
-    c.attr("decay_reason", decay.reason);
-    c.attr("decay_windows", decay.windows);
-    c.attr("decay_window_lags", request.window);
-    c.attr("decay_fit_lags", request.fit_lags);
-    c.attr("decay_floor_reached", std::string(decay.floor_lag >= 0 ? "yes" : "no"));
-    if (decay.floor_lag >= 0) c.attr("decay_floor_lag", decay.floor_lag);
-    if (decay.windows >= 1) {
-      c.attr("envelope_first", decay.envelope_first);
-      c.attr("envelope_last", decay.envelope_last);
-    }
-    if (decay.windows >= 3) {
-      c.attr("decay_rate", decay.rate);
-      c.attr("decay_rate_error", decay.rate_error);
-      c.attr("decay_rate_low", decay.rate_low);
-      c.attr("decay_rate_high", decay.rate_high);
-    }
-  }
-  if (!envelope.empty()) {
-    c.attr("envelope_min", *std::min_element(envelope.begin(), envelope.end()));
-    c.attr("envelope_max", *std::max_element(envelope.begin(), envelope.end()));
-  }
-}
-
-// ---- measure --------------------------------------------------------------------------------------------------
-
-void MeasureRequest::validate() const {
-  core::require_r(r, "r");
-  if (iterations < 16) throw core::InvalidField("iterations", std::to_string(iterations), "at least 16");
-  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
-  if (bins < 1 || bins > 4000) throw core::InvalidField("bins", std::to_string(bins), "1..4000");
-  if (!(tv_same > 0 && tv_same <= 1)) throw core::InvalidField("tv-same", fmt::format("{}", tv_same), "in (0, 1]");
-  try {
-    (void)parse_chart(coords, "coords");
-  } catch (const std::invalid_argument&) {
-    throw core::InvalidField("coords", "'" + coords + "'", "strip or angles");
-  }
-  if (!extent.empty() && (extent.size() != 4 || !(extent[0] < extent[1]) || !(extent[2] < extent[3])))
-    throw core::InvalidField("extent", fmt::format("{} values", extent.size()),
-                             "u_lo,u_hi,v_lo,v_hi with u_lo < u_hi, v_lo < v_hi");
-  const auto ics = iterate::parse_grid(grid, seed, "grid");
-  iterate::checked_bytes(ics.size() * static_cast<std::size_t>(bins) * bins, 2 * sizeof(double), "grid x bins^2");
-  iterate::checked_bytes(2 * ics.size() * static_cast<std::size_t>(iterations), 3 * sizeof(double) + 1,
-                         "grid x iterations");
 }
 
 namespace {
@@ -353,7 +238,7 @@ MeasurePart run_part(const MeasureRequest& req, const std::vector<std::size_t>& 
     p.cells.insert(p.cells.end(), c.begin(), c.end());
     s = OrbitSeries{};  // free each orbit once binned
   }
-  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  p.seconds = core::seconds_since(t0);
   return p;
 }
 
@@ -391,62 +276,6 @@ MeasureResult merge(const MeasureRequest& req, std::vector<MeasurePart> parts) {
 
 MeasureResult run(const MeasureRequest& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
-}
-
-double MeasureResult::tv_max_within_groups() const {
-  return *std::max_element(tv_max_group.begin(), tv_max_group.end());
-}
-
-core::Tables MeasureResult::tables() const {
-  core::CsvTable t("ic,x,y,z,group,tv_to_group_head,w1_u_to_group_head,w1_v_to_group_head");
-  for (std::size_t i = 0; i < initial.size(); ++i) {
-    const auto& u = initial[i];
-    t.line(fmt::format("{},{},{},{},{},{:.6g},{:.6g},{:.6g}", i, u(0), u(1), u(2), group[i], tv[i], w1_u[i], w1_v[i]));
-  }
-  return {{"report", t.text()}};
-}
-
-void MeasureResult::describe(core::Contents& c) const {
-  const std::size_t G = groups(), B = static_cast<std::size_t>(request.bins), I = group.size(), C = conv_n.size();
-  const std::string chart = request.coords == "angles" ? "theta, phi (rad)" : "atan w1 (rad), w2";
-  c.array("group_counts", counts, {G, B, B}, "group, u bin, v bin (" + chart + ")", "count",
-          "points of the group's first orbit in each bin");
-  c.array("group_marginal_u", marginal_u, {G, B}, "group, u bin", "1", "marginal mass of the group's measure in u");
-  c.array("group_marginal_v", marginal_v, {G, B}, "group, v bin", "1", "marginal mass of the group's measure in v");
-  c.array("group_head", head, {G}, "group", "index", "first initial condition of each group");
-  c.array("group_size", size, {G}, "group", "count", "initial conditions in each group");
-  c.array("group_outside", outside, {G}, "group", "1", "mass of the group's measure outside the extent");
-  c.array("group_tv_max", tv_max_group, {G}, "group", "1", "largest total variation between two members");
-  c.array("group", group_index, {I}, "initial condition", "index", "group of each initial condition");
-  c.array("tv_to_group_head", tv, {I}, "initial condition", "1", "total variation to the group's first measure");
-  c.array("w1_u_to_group_head", w1_u, {I}, "initial condition", "u units",
-          "1-D Wasserstein distance of the u marginals to the group's first measure");
-  c.array("w1_v_to_group_head", w1_v, {I}, "initial condition", "v units",
-          "1-D Wasserstein distance of the v marginals to the group's first measure");
-  c.array("convergence_n", conv_n, {C}, "checkpoint", "iterations", "N = 16, 32, ..., iterations");
-  c.coordinate("checkpoint", "convergence_n");
-  c.array("convergence_tv_within_group", conv_within, {C, G}, "checkpoint, group", "1",
-          "largest TV between mu_N of a member and mu_N of the group's first orbit");
-  c.array("convergence_tv_to_full", conv_to_full, {C, G}, "checkpoint, group", "1",
-          "TV between mu_N of the group's first orbit and its measure at the full length");
-  c.array("extent", extent, {4}, "u_lo, u_hi, v_lo, v_hi", chart, "the histogram's window in the chart");
-  if (extent.size() == 4) {  // a result that ran: the bins' centres in the window
-    c.coordinate_array("u_bin", core::bin_centres(extent[0], extent[1], B), {"u bin"}, chart,
-                       "centre of each u bin of the histograms (the first chart coordinate)");
-    c.coordinate_array("v_bin", core::bin_centres(extent[2], extent[3], B), {"v bin", "v bin (" + chart + ")"}, chart,
-                       "centre of each v bin of the histograms (the second chart coordinate)");
-  }
-  c.attr("r", request.r);
-  c.attr("grid", request.grid);
-  c.attr("seed", static_cast<long>(request.seed));
-  c.attr("iterations", request.iterations);
-  c.attr("transient", request.transient);
-  c.attr("bins", static_cast<long>(request.bins));
-  c.attr("coords", request.coords);
-  c.attr("tv_same", request.tv_same);
-  c.attr("initial_conditions", static_cast<long>(I));
-  c.attr("groups", static_cast<long>(G));
-  c.attr("tv_max_within_groups", tv_max_within_groups());
 }
 
 }  // namespace btob::stats
