@@ -15,6 +15,7 @@
 #include "core/fields.hpp"
 #include "core/request.hpp"
 #include "core/result.hpp"
+#include "core/run.hpp"
 #include "extras/extras.hpp"
 #include "io/checkpoint.hpp"
 #include "io/io.hpp"
@@ -209,7 +210,7 @@ template <class Req> py::object call(py::kwargs kw) {
       },
       threads, kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
   if (cp) io::remove_checkpoint(*cp);
-  commands::record(*rec, commands::Provenance{call_text(req), S::stem_of(req), "", commands::threads_used(threads)});
+  commands::record(*rec, commands::Provenance{call_text(req), S::stem_of(req), "", core::thread_count(threads)});
   return py::cast(std::static_pointer_cast<ResultBase>(rec));
 }
 
@@ -261,7 +262,7 @@ template <class Req> void bind_estimate(py::module_& m) {
     const int threads = threads_of(kw);
     commands::ready(req);
     core::SweepEstimate e;
-    const auto start = static_cast<std::size_t>(commands::threads_used(threads));
+    const auto start = static_cast<std::size_t>(core::thread_count(threads));
     run_released([&](const core::RunControl& c) { e = core::estimate_sweep(req, c, 1, start); }, threads, py::none());
     py::dict d;
     d["items"] = e.items;
@@ -286,7 +287,7 @@ template <class Req> void bind_work_estimate(py::module_& m) {
     const int threads = threads_of(kw);
     commands::ready(req);
     io::WorkEstimate e;
-    const int used = commands::threads_used(threads);
+    const int used = core::thread_count(threads);
     run_released([&](const core::RunControl& c) { e = io::estimate_work(work(req), c, used); }, threads, py::none());
     py::list terms;
     for (std::size_t i = 0; i < e.work.terms.size(); ++i) {

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/sizes.py on a small tree made here: it finds what its rule says and nothing else.
 
 Usage: sizes_test.py REPOSITORY.  Exits 1 with the differences, 0 when every case holds.

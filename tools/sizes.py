@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The lab's size limits: no source file in src/ or python/ over 700 lines, no function over 60.
 
 Usage: tools/sizes.py [--exceptions FILE] [ROOT]

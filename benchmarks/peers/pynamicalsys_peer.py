@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """btob beside pynamicalsys, measured side by side on the b-to-b map P_r: iterates, exponents, periodic orbits and
 speed (docs/comparison.md quotes this script's output).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The attractors results' output: their CSV tables and the description of their arrays and attributes.
 #include "attractors/requests.hpp"
 

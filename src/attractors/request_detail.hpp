@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the attractors requests' files share (validate.cpp, run.cpp): the check of the Table 6.1 a sweep compares with.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The attractors requests' runs: classify, the basins' rows (run_part, merge), the sweep over r and its comparison
 // with Table 6.1, and the work estimates.
 #include "attractors/request_detail.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The attractors requests' validation (classify, basins, basins-r), their grids, r values and Table 6.1.
 #include "attractors/request_detail.hpp"
 #include "attractors/requests.hpp"

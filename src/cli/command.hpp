@@ -20,6 +20,7 @@
 #include "core/field_types.hpp"
 #include "core/fields.hpp"
 #include "core/request.hpp"
+#include "core/run.hpp"
 #include "core/sweep.hpp"
 #include "core/work.hpp"
 #include "extras/extras.hpp"
@@ -256,7 +257,7 @@ template <class Req> Args recorded_request(Req& req, const Output& out) {
 // --dry-run: the sweep's predicted cost from a sample of its own items, on rank 0's stdout; nothing written.
 template <class Req>
 void print_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = commands::threads_used(out.threads);
+  const int threads = core::thread_count(out.threads);
   if (mpi::rank() == 0)
     std::cout
         << core::estimate_sweep(req, ctx.control, mpi::size(), static_cast<std::size_t>(threads)).text(name, threads);
@@ -265,7 +266,7 @@ void print_estimate(const std::string& name, const Req& req, const Output& out, 
 // --dry-run of a request that is not a sweep: its work at the cached (else calibrated) route rates, on stdout.
 template <class Req>
 void print_work_estimate(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = commands::threads_used(out.threads);
+  const int threads = core::thread_count(out.threads);
   std::cout << io::estimate_work(work(req), ctx.control, threads).text(name);
 }
 
@@ -275,7 +276,7 @@ void print_work_estimate(const std::string& name, const Req& req, const Output& 
 constexpr double long_run_seconds = 600;
 template <class Req>
 void note_long_run(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
-  const int threads = commands::threads_used(out.threads);
+  const int threads = core::thread_count(out.threads);
   core::Work w = work(req);
   for (const core::Term& t : w.terms)
     if (t.probe_is_request || t.sized_run) return;  // pricing would run it, or instances of it for a second
@@ -295,7 +296,7 @@ template <class Req>
 void note_long_sweep(const std::string& name, const Req& req, const Output& out, const Context& ctx) {
   if constexpr (core::StepCounted<Req>) {
     if (out.quiet || mpi::rank() != 0) return;
-    const int threads = commands::threads_used(out.threads);
+    const int threads = core::thread_count(out.threads);
     const double fastest = core::fastest_steps_per_second(req.precision) * threads * mpi::size();
     if (req.map_steps() / fastest < 60) return;
     const core::SweepEstimate e =
@@ -312,7 +313,7 @@ template <class Req> void remember_self_rate(const Req& req, const Output& out, 
     if (w.terms.empty() ||
         !std::all_of(w.terms.begin(), w.terms.end(), [](const core::Term& t) { return t.probe_is_request; }))
       return;
-    const int threads = commands::threads_used(out.threads);
+    const int threads = core::thread_count(out.threads);
     for (const core::Term& t : w.terms)
       io::remember_rate(t, threads, t.units, seconds / static_cast<double>(w.terms.size()));
   }
@@ -342,12 +343,12 @@ template <class Req> void run_body(const Req& req, const Output& o, const Contex
   S::warn(req, rec->res, ctx.control);
   const bool latex_text = !o.files && o.out.empty() && o.format == "latex";
   if (!o.writes() && !latex_text) return S::print(req, rec->res);
-  commands::record(*rec, commands::Provenance{ctx.command_line, o.name, o.title, commands::threads_used(o.threads)});
+  commands::record(*rec, commands::Provenance{ctx.command_line, o.name, o.title, core::thread_count(o.threads)});
   add_mpi_attrs(rec->attrs);
   if (latex_text) return print_latex(*rec, ctx);
   const commands::WriteOptions opts{o.files && !o.no_plot, false, o.format == "latex", ctx.command_line, ctx.caption()};
   const commands::Written w{commands::write(*rec, o.out, o.name, o.title, opts), o.quiet,
-                            commands::threads_used(o.threads)};
+                            core::thread_count(o.threads)};
   if (!o.files) {  // a stdout command given --out writes its files instead of printing, as Python's save() does
     if (!o.quiet) std::cerr << "btob: wrote " << w.listing() << "\n";
     return;
@@ -391,7 +392,7 @@ template <class Req> void execute(Req req, Output out, bool threads_given, const
   }
   // The result is written (or printed): the finished items are no longer needed.
   if (ctx.checkpoint && mpi::rank() == 0) remove_checkpoint(*ctx.checkpoint);
-  remember_self_rate(req, out, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  remember_self_rate(req, out, core::seconds_since(t0));
 }
 
 // The output's flags and defaults of a declared request: a file command's folder and stem, or a stdout command.

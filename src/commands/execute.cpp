@@ -17,8 +17,6 @@ std::string Written::listing() const {
   return s;
 }
 
-int threads_used(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
-
 namespace {
 // The figure of `rec` drawn into the staged files; false when its script failed (its message is on stderr).
 bool draw(const Record& rec, io::ResultFiles& files, const std::string& name) {

@@ -18,6 +18,7 @@
 #include "core/fields.hpp"
 #include "core/pack.hpp"
 #include "core/request.hpp"
+#include "core/run.hpp"
 #include "core/sweep.hpp"
 #include "core/work.hpp"
 #include "extras/extras.hpp"
@@ -51,7 +52,7 @@ struct Record {
   std::string plot;      // analyses/plot script, "" for none
   std::vector<std::string> plot_inputs;
   bool plot_many = false;
-  double start_seconds = 0;  // steady clock at the start of compute (for Spec::timed's total_seconds)
+  std::chrono::steady_clock::time_point start;  // the start of compute (Spec::timed's total_seconds)
   virtual ~Record() = default;
 };
 template <class Req> struct Recorded : Record {
@@ -85,7 +86,7 @@ template <core::Sweep Req> std::optional<ResultOf<Req>> run_split(const Req& req
   const std::size_t n = core::work_items(req, how.control.cancel);  // counting may be long (the atlas): polled
   const auto items = core::cyclic_items(n, how.ranks.rank, how.ranks.ranks);
   auto mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, how.control); });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = core::seconds_since(t0);
   // Rank 0 keeps its own part as it is; the others send theirs as bytes.
   std::vector<std::vector<char>> bytes =
       how.ranks.gather(how.ranks.rank == 0 ? std::vector<char>{} : core::pack(mine), seconds);
@@ -96,7 +97,7 @@ template <core::Sweep Req> std::optional<ResultOf<Req>> run_split(const Req& req
   for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<decltype(mine)>(bytes[k]));
   bytes.clear();
   std::optional<ResultOf<Req>> res(merge(req, std::move(parts)));
-  if (how.merged) how.merged(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+  if (how.merged) how.merged(core::seconds_since(t1));
   return res;
 }
 
@@ -114,14 +115,14 @@ template <class Req> std::optional<ResultOf<Req>> run_request(const Req& req, co
 // Stage 3: the run, the files the request itself names (Spec::also_write) and the result's overlays; null on the
 // ranks other than 0.
 template <class Req> std::shared_ptr<Recorded<Req>> compute(const Req& req, const How& how) {
-  const double start = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const auto start = std::chrono::steady_clock::now();
   std::optional<ResultOf<Req>> res = run_request(req, how);
   if (!res) return nullptr;
   core::check_cancel(how.control.cancel);
   auto rec = std::make_shared<Recorded<Req>>();
   rec->req = req;
   rec->res = std::move(*res);
-  rec->start_seconds = start;
+  rec->start = start;
   if constexpr (requires { Spec<Req>::also_write(req, rec->res); }) Spec<Req>::also_write(req, rec->res);
   rec->extras = extras::of(req, rec->res, how.control);  // the windows' bounds, the orbits' attractors, ...
   return rec;
@@ -144,9 +145,7 @@ template <class Req> void record(Recorded<Req>& rec, const Provenance& p) {
                                S::scalar(rec.req, rec.res), p.threads);
   rec.extras.apply(rec.attrs);
   S::attrs(rec.req, rec.res, rec.attrs);
-  if constexpr (S::timed)
-    rec.attrs["total_seconds"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() - rec.start_seconds;
+  if constexpr (S::timed) rec.attrs["total_seconds"] = core::seconds_since(rec.start);
   rec.command = S::command;
   rec.function = S::function;
   if constexpr (requires { rec.res.tables(); }) rec.tables = rec.res.tables();
@@ -170,8 +169,5 @@ struct WriteOptions {
 // temporary folder moved into `out` when complete (io/result_files.hpp).  Returns the files written.
 std::vector<std::filesystem::path> write(const Record& rec, const std::string& out, const std::string& name,
                                          const std::string& title, const WriteOptions& opts);
-
-// The threads a run uses: `requested`, else (0) all cores (OpenMP's default).
-int threads_used(int requested);
 
 }  // namespace btob::commands

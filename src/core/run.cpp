@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The thread count and the clock of core/run.hpp.
 #include "core/run.hpp"
 

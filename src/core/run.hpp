@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How a run uses the machine: the number of OpenMP threads it asks for and its wall-clock timer.  What a run
 // computes never depends on either (core::RunControl says how to run, never what).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The leaves request's run: per r, the closed forms, the landing of the grid's orbits and the leaves followed
 // (run_part), merged in r order.
 #include "leaves/requests.hpp"

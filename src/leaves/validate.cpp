@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The leaves request's validation, its grid and its r values.
 #include "leaves/requests.hpp"
 

@@ -6,6 +6,7 @@
 #include "core/coords.hpp"
 #include "core/csv.hpp"
 #include "core/fields.hpp"
+#include "core/run.hpp"
 #include "lyapunov/lyapunov.hpp"
 
 #include <fmt/format.h>
@@ -65,7 +66,7 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
       p.s2.push_back(sv.s2);
       p.symbol.push_back(static_cast<std::uint8_t>(sv.symbol));
     }
-  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  p.seconds = core::seconds_since(t0);
   return p;
 }
 
@@ -202,7 +203,7 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   const std::size_t R = ens.r.size(), N = ens.orbits(), B = static_cast<std::size_t>(req.bins);
   HyperbolicityOrbitsPart res;
   res.items = items;
-  res.threads = control.threads > 0 ? control.threads : omp_get_max_threads();
+  res.threads = core::thread_count(control.threads);
   for (auto* v : {&res.orbit_frac_expanding, &res.orbit_angle_median, &res.orbit_angle_q05, &res.orbit_lambda1_qr,
                   &res.orbit_lambda2_qr})
     v->resize(N);
@@ -219,7 +220,7 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   const auto t0 = std::chrono::steady_clock::now();
   const ClvRows rows = covariant_vectors_batched(ens.r, ens.initial, clv_options(req), run);
   for (std::size_t j = 0; j < R; ++j) clv_row(res, j, rows[j], B);
-  res.clv_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.clv_seconds = core::seconds_since(t0);
   // lambda1 beside them, from the fused cocycle kernel (map_exponents) on the same orbits (same r, same grid).
   MapOptions mo;
   mo.transient = req.transient;

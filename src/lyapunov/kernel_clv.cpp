@@ -26,6 +26,7 @@
 // The expanding flag s1 >= 1 of D: with F = s1^2 + s2^2 = |D g1|^2 + |D g2|^2 and Dt = s1 s2 = det M c^3,
 // s1 >= 1 exactly when Dt >= 1 or F >= 1 + Dt^2 ((1 - s1^2)(1 - s2^2) = 1 - F + Dt^2).
 #include "core/cancel.hpp"
+#include "core/run.hpp"
 #include "iterate/cocycle_impl.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/hyperbolicity.hpp"
@@ -578,7 +579,7 @@ void check_batched(const std::vector<double>& rs, const std::vector<Vec3<double>
 
 ClvRows covariant_vectors_batched(const std::vector<double>& rs, const std::vector<Vec3<double>>& initial,
                                   const ClvOptions& opt, const iterate::RunOptions& run, bool keep_steps) {
-  const int threads = run.threads > 0 ? run.threads : omp_get_max_threads();
+  const int threads = core::thread_count(run.threads);
   // r values in rounds of 4 per thread: the batches of a round's r values on every thread, then each r's pooled
   // statistics on one thread (in parallel; dynamic schedules: no bit depends on which thread runs what, and a
   // thread the machine delays holds the others less).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The weighted sums of lyapunov/weighted.hpp, compiled with the kernel's flags so that the loops over an interval
 // vectorise (double: the log and exp below are branch-free polynomials on the bits; long double: libm).
 #include "lyapunov/weighted.hpp"

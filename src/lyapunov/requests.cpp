@@ -7,6 +7,7 @@
 #include "core/csv.hpp"
 #include "core/error_bar.hpp"
 #include "core/fields.hpp"
+#include "core/run.hpp"
 #include "core/scalar.hpp"
 
 #include <fmt/format.h>
@@ -52,7 +53,7 @@ void ProjectiveResult::describe(core::Contents& c) const {
     c.attr("lambda1_weighted", weighted[0]);
     c.attr("lambda2_weighted", weighted[1]);
     const core::Status w = core::estimated(
-      "weighted Birkhoff average (super-polynomial convergence on periodic and "
+        "weighted Birkhoff average (super-polynomial convergence on periodic and "
         "quasi-periodic orbits only)",
         "no error bar");
     c.status_of("lambda1_weighted", w);
@@ -235,7 +236,7 @@ MapResult run_ensemble(iterate::Ensemble ens, long iterations, long transient, i
   MapResult res;
   const auto t0 = std::chrono::steady_clock::now();
   res.exponents = map_exponents(ens, o);
-  res.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.iteration_seconds = core::seconds_since(t0);
   res.ensemble = std::move(ens);
   return res;
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The weighted Birkhoff averages of one orbit's projective exponents, exact under deferred projection.
 //
 // The weight exp(-1/(t (1 - t))) (Das, Sander, Yorke 2017; lyapunov.hpp) makes the average of a quasi-periodic

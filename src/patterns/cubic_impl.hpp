@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Template arithmetic of the periodic-orbit analysis (Section 7), shared by analysis_impl.hpp: the elementary
 // functions in T, cancellation polls per symbol, normalised matrix products, 3x3 determinants and cofactors, the
 // roots of the characteristic cubic and the eigenvector of a real eigenvalue.

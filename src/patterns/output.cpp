@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The atlas result's output: its summary and the description of its arrays and attributes (word_output.cpp
 // holds the pattern result's).
 #include "patterns/requests.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The patterns requests' runs: a word's verdict, window or characteristic polynomial in the chosen precision, and
 // the atlas of stable or feasible windows with its check against Table 6.1 (run_part, merge).
 #include "patterns/requests.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The patterns requests' validation (pattern, atlas) and the atlas's work items.
 #include "patterns/requests.hpp"
 

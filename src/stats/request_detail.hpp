@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the stats requests' files share (validate.cpp, run.cpp): the observables a request names.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stats requests' runs: C_N by the chosen route and precision, the measures over a grid (run_part, merge), and the
 // work estimates.
 #include "stats/request_detail.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stats requests' validation (correlate, measure) and the observables they name.
 #include "stats/request_detail.hpp"
 #include "stats/requests.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The transfer requests' validation (transfer, transfer-r): boxes, domain, samples, eigenvalues, the r range and the
 // cycles named.
 #include "transfer/transfer.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows results' output: their text and CSV tables and the description of their arrays and attributes.
 #include "windows/requests.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows requests' runs: run_part over the n of a range, merge of the parts, run, and the work estimates.
 #include "windows/requests.hpp"
 

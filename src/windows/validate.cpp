@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The windows requests' validation, their n ranges and the names of their files (requests.hpp).
 #include "windows/requests.hpp"
 
