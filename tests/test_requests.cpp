@@ -482,6 +482,7 @@ TEST(RInPrecision, OrbitRequestReadsRInItsPrecision) {
   req.iterations = 20000;
   req.transient = 100;
   req.precision = "float128";
+  req.weighted = true;  // the weighted averages too, which the library's Options compute by default
   const lyapunov::ProjectiveResult a = lyapunov::run(req);
   lyapunov::Options o;
   o.iterations = req.iterations;
