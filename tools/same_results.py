@@ -3,8 +3,8 @@
 """Whether two builds of btob give the same results: every committed manifest (results/**/NAME.json that records a
 request) is run by both executables with `btob run NAME.json --out DIR --no-plot`, and every file they write is
 compared: HDF5 datasets bitwise (tests/h5_same_data.py's rule: attributes hold provenance and are not compared),
-CSV tables cell for cell and every other file but the manifest byte for byte (datasets and columns of wall time,
-named "...seconds...", left out), and standard output byte for byte but for times in seconds and the
+CSV tables cell for cell and every other file but the manifest byte for byte (datasets and columns of wall time or
+throughput, named "...seconds..." or "..._per_second", left out), and standard output byte for byte but for times in seconds and the
 output folder's name.  A refactor that claims "behaviour
 unchanged, bit for bit" shows this table.
 
@@ -63,8 +63,9 @@ def run(btob, manifest, out):
 
 
 def timed(name):
-    """A dataset or CSV column that measures the run, not the result (its wall time)."""
-    return "seconds" in name
+    """A dataset or CSV column that measures the run, not the result: its wall time ("...seconds...") or a
+    throughput ("..._per_second": the precision study's iterations_per_second)."""
+    return "seconds" in name or "per_second" in name
 
 
 def h5_differences(pa, pb):
