@@ -3,9 +3,9 @@
 """Whether two builds of btob give the same results: every committed manifest (results/**/NAME.json that records a
 request) is run by both executables with `btob run NAME.json --out DIR --no-plot`, and every file they write is
 compared: HDF5 datasets bitwise (tests/h5_same_data.py's rule: attributes hold provenance and are not compared),
-CSV tables cell for cell and every other file but the manifest byte for byte (datasets and columns of wall time or
-throughput, named "...seconds..." or "..._per_second", left out), and standard output byte for byte but for times in seconds and the
-output folder's name.  A refactor that claims "behaviour
+CSV tables cell for cell and every other file but the manifest byte for byte, leaving out datasets and columns of
+wall time or throughput (named "...seconds..." or "..._per_second"), and standard output byte for byte but for times
+in seconds and the output folder's name.  A refactor that claims "behaviour
 unchanged, bit for bit" shows this table.
 
 Usage: same_results.py BTOB_BEFORE BTOB_AFTER [--only SUBSTRING ...] [--skip SUBSTRING ...] [--set KEY=VALUE ...]
