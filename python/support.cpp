@@ -2,10 +2,8 @@
 // The generic parts of the binding (bind.hpp): keyword conversion, numpy views of a result's arrays, the released
 // run with Ctrl-C and progress, and the Python class of results.
 #include "bind.hpp"
-#include "io/result_files.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <climits>
 #include <pybind11/stl.h>

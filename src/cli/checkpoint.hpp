@@ -5,7 +5,8 @@
 //   btob bifurcation ... --out results/b --resume      # OUT/NAME.checkpoint while it runs, removed once written
 //
 // The file, its rounds, its validation and its refusal are io/checkpoint.hpp's (Python's resume= uses the same);
-// a refused file is one line naming what differs, exit 2.  This layer adds the MPI ranks.
+// a refused file is one line naming what differs, exit 2.  This layer opens the file on every rank; the rounds run
+// through commands::compute, given the MPI ranks by the command line (cli::detail::how_of).
 //
 // Under mpirun, rank 0 alone reads and writes the one checkpoint: each round every rank computes its share of the
 // round's items and rank 0 gathers and appends them.  One file for the job rather than one per rank: it needs no
@@ -33,19 +34,5 @@ using io::remove_checkpoint;
 // another request or build is refused: a UsageError naming the first field that differs (under mpirun the same line
 // from rank 0 and exit 2 on every rank).
 std::shared_ptr<Checkpoint> open_checkpoint(const io::fs::path& path, const std::string& identity);
-
-// Computes the items of `req` that `cp` lacks in rounds, appending each round's parts to the checkpoint, and merges
-// them with the parts it held.  `split`: the MPI ranks share each round (rank k takes every P-th remaining item),
-// rank 0 gathers and writes; else this process computes every item.  The result on rank 0, nullopt elsewhere.
-template <core::Sweep Req>
-auto run_checkpointed(const Req& req, const core::RunControl& control, Checkpoint& cp, bool split) {
-  io::Ranks on;
-  if (split) {
-    on.ranks = static_cast<std::size_t>(mpi::size());
-    on.rank = static_cast<std::size_t>(mpi::rank());
-    on.gather = [](std::vector<char> bytes, double seconds) { return mpi::gather(std::move(bytes), seconds); };
-  }
-  return io::run_in_rounds(req, control, cp, on);
-}
 
 }  // namespace btob::cli

@@ -118,7 +118,6 @@ Context make_context(const std::string& command, const Output& o, const std::str
   c.request_args = std::move(request_args);
   c.command = command;
   c.quiet = o.quiet;
-  c.latex = o.format == "latex";
   c.title = o.title;
   return c;
 }

@@ -120,7 +120,6 @@ struct Context {
   Args request_args;         // the request as recorded in the manifest
   std::string command;       // the subcommand
   bool quiet = false;        // --quiet (and every MPI rank but 0)
-  bool latex = false;        // --format latex: the result's tables also as LaTeX (Context::manifest writes them)
   std::string title;         // --title, the LaTeX tables' caption
   std::shared_ptr<Checkpoint> checkpoint;  // --resume: the sweep's checkpoint (every rank), else null
   // The caption of its LaTeX tables: --title, else "btob COMMAND".

@@ -5,7 +5,6 @@
 #include "io/result_files.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <stdexcept>
 
