@@ -20,6 +20,7 @@ packages=(
   python3-dev pybind11-dev python3-pybind11   # the Python package `btob` (python/), built with the library
   python3-pytest python3-nbconvert python3-ipykernel python3-tqdm  # its tests, the notebooks run as tests, progress bars
   openmpi-bin libopenmpi-dev                  # sweeps split over ranks with `mpirun` (optional at build time)
+  libhdf5-openmpi-dev                         # parallel HDF5 (MPI-IO): each rank writes its own rows of NAME.h5
   python3-sphinx python3-myst-parser          # the documentation site (docs/, target `docs`): Sphinx, pages in Markdown
   python3-nbsphinx pandoc                     # the tutorials: notebooks executed in the site (pandoc renders their Markdown)
   furo                                        # the site's theme (responsive, with search)

@@ -214,6 +214,7 @@ Result merge(const Request& req, std::vector<Part> parts) {
   for (std::size_t i = 0; i < bins; ++i)  // bin i covers [lo + i h, lo + (i+1) h): its centre
     res.bin_centre.push_back(ax.lo + (static_cast<double>(i) + 0.5) * (ax.hi - ax.lo) / static_cast<double>(bins));
   res.vlines = req.vline;
+  res.raw = req.raw;
   res.scalar_type = prec.name();
   res.algorithm = req.algorithm;
   res.iterations = req.iterations;
@@ -263,7 +264,7 @@ void Result::describe(core::Contents& c) const {
     c.array("outside_matlab", matlab.outside, {R}, "r", "count", "tail values outside [0, pi]");
     c.array("stalled_matlab", matlab.stalled, {R}, "r", "count", "tail states never reached (no b-collision any more)");
   }
-  if (!tail.empty())
+  if (raw)
     c.array("tail", tail, {R, I, static_cast<std::size_t>(tail_length)}, "r, initial condition, step", unit,
             "the last values of the coordinate of every orbit");
   c.attr("r_min", r_min);

@@ -71,6 +71,8 @@ struct Result {
   std::vector<std::uint64_t> underflow, overflow;  // [r]: tail points below lo / above hi (or NaN)
   std::vector<std::uint64_t> broken;  // [r]: orbits the trigonometric algorithm lost (acos out of its domain)
   std::vector<double> tail;           // [r, initial condition, tail] when raw
+  bool raw = false;                   // the request kept the raw tails (`tail` is described even when the MPI ranks
+                                      // write its rows themselves and it is empty here)
   reference::MatlabTrigImage matlab;  // trig only: what the paper's MATLAB code draws (complex continuation past
                                       // acos's domain, Figure 4.7), over [0, pi]
   std::vector<double> vlines;         // the request's vertical lines
@@ -99,6 +101,11 @@ struct Part {
   template <class A> void members(A& a) {
     a(items, density, underflow, overflow, broken, tail, matlab.counts, matlab.complex_orbits, matlab.nan_points,
       matlab.outside, matlab.stalled, degenerate, iteration_seconds);
+  }
+  // The bulk, written by each MPI rank itself (core::HasRows): the density's rows and the raw tails (when kept).
+  template <class A> void rows(A& a) {
+    a("density", density);
+    a("tail", tail);
   }
 };
 Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});

@@ -2,11 +2,13 @@
 // The request-based subcommands' shared parts: cancellation, terminal progress, output validation.
 #include "cli/command.hpp"
 #include "cli/mpi.hpp"
+#include "cli/rows.hpp"
 #include "io/io.hpp"
 #include "io/latex.hpp"
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 
@@ -36,6 +38,19 @@ std::unique_ptr<core::ProgressSink> terminal_progress(const std::string& label) 
   return std::make_unique<TerminalProgress>(label);
 }
 
+namespace {
+// Whether the ranks write their own rows of NAME.h5 (parallel HDF5); BTOB_MPI_WRITE=gather sends them to rank 0
+// instead (the way of a build without parallel HDF5), for comparisons and the scaling model's measurements.
+bool parallel_rows() {
+#ifdef BTOB_PARALLEL_HDF5
+  const char* w = std::getenv("BTOB_MPI_WRITE");
+  return !(w && std::string(w) == "gather");
+#else
+  return false;
+#endif
+}
+}  // namespace
+
 namespace detail {
 commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::ProgressSink* bar) {
   commands::How how;
@@ -48,6 +63,19 @@ commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::Prog
     how.ranks.rank = static_cast<std::size_t>(mpi::rank());
     how.ranks.gather = [](std::vector<char> bytes, double seconds) { return mpi::gather(std::move(bytes), seconds); };
     const bool quiet = o.quiet;
+#ifdef BTOB_PARALLEL_HDF5
+    if (parallel_rows()) {
+      how.ranks.write_rows = [quiet](const std::string& path, const core::RowSet& mine) {
+        const rows::WriteStats w = rows::write(path, mine);
+        mpi::Stats& st = mpi::stats();
+        st.rows_bytes = w.bytes_total;
+        st.rows_seconds = w.seconds_max;
+        if (!quiet && mpi::rank() == 0 && !path.empty())
+          std::cerr << fmt::format("btob: {} ranks wrote their own rows ({} bytes) in {:.4f} s\n", st.ranks,
+                                   w.bytes_total, w.seconds_max);
+      };
+    }
+#endif
     how.merged = [quiet](double seconds) {
       mpi::Stats& st = mpi::stats();
       st.merge_seconds = seconds;

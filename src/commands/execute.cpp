@@ -36,7 +36,12 @@ std::vector<std::filesystem::path> write(const Record& rec, const std::string& o
   args.emplace_back("title", std::vector<std::string>{title});
   io::ResultFiles files(out, name);
   files.tables(rec.tables);
-  if (io::ResultFiles::has_data(rec.contents)) files.h5(rec.contents, at);
+  if (rec.rows) {  // a split sweep's bulk: NAME.h5 made with every dataset's shape, then each rank writes its rows
+    files.h5(rec.contents, at, rec.rows->names());
+    rec.rows->join(files.staged(name + ".h5").string());
+  } else if (io::ResultFiles::has_data(rec.contents)) {
+    files.h5(rec.contents, at);
+  }
   if (opts.latex) files.latex(opts.command_line, opts.caption);
   files.manifest(at, rec.command, args);  // lists the files staged so far
   if (opts.plot && !rec.plot.empty() && !draw(rec, files, name) && opts.plot_required)

@@ -28,7 +28,9 @@
 
 #include <chrono>
 #include <memory>
+#include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -53,7 +55,40 @@ struct Record {
   std::vector<std::string> plot_inputs;
   bool plot_many = false;
   std::chrono::steady_clock::time_point start;  // the start of compute (Spec::timed's total_seconds)
+  // A sweep split over MPI ranks with parallel HDF5: rank 0's own rows of the datasets the ranks write themselves
+  // (null otherwise); write() joins the other ranks' collective write with them.
+  std::shared_ptr<struct RankRows> rows;
   virtual ~Record() = default;
+};
+
+// This rank's rows of a split sweep's named datasets (core::HasRows), written by io::Ranks::write_rows into the
+// NAME.h5 that rank 0 creates.  Every rank joins that collective exactly once: the other ranks at the end of their
+// part, rank 0 in write(), or, when its record is dropped unwritten (an error, a front end that writes nothing),
+// here with no file, so that the other ranks are never left waiting.
+struct RankRows {
+  core::RowSet mine;
+  std::function<void(const std::string&, const core::RowSet&)> write;
+  bool joined = false;
+  RankRows(core::RowSet m, std::function<void(const std::string&, const core::RowSet&)> w)
+      : mine(std::move(m)), write(std::move(w)) {}
+  RankRows(const RankRows&) = delete;
+  RankRows& operator=(const RankRows&) = delete;
+  void join(const std::string& path) {
+    joined = true;
+    write(path, mine);
+  }
+  std::set<std::string> names() const {
+    std::set<std::string> n;
+    for (const auto& c : mine.columns) n.insert(c.name);
+    return n;
+  }
+  ~RankRows() {
+    if (joined) return;
+    try {
+      join("");
+    } catch (...) {  // a failing job: the error that dropped the record is the one reported
+    }
+  }
 };
 template <class Req> struct Recorded : Record {
   Req req;
@@ -80,33 +115,51 @@ struct How {
 };
 
 // A sweep's items split over the ranks (rank k takes items k, k + P, ...; core::cyclic_items) and merged on rank 0;
-// the result on rank 0, nullopt elsewhere.
-template <core::Sweep Req> std::optional<ResultOf<Req>> run_split(const Req& req, const How& how) {
+// the result on rank 0, nullopt elsewhere.  With io::Ranks::write_rows, the rows a part names (core::HasRows) stay
+// on their rank: the others join rank 0's write of NAME.h5 at once (waiting for it), rank 0 keeps its own in `kept`
+// for write(), and the merge on rank 0 leaves those arrays empty (core::ThinMerge).
+template <core::Sweep Req>
+std::optional<ResultOf<Req>> run_split(const Req& req, const How& how, std::shared_ptr<RankRows>* kept = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t n = core::work_items(req, how.control.cancel);  // counting may be long (the atlas): polled
   const auto items = core::cyclic_items(n, how.ranks.rank, how.ranks.ranks);
   auto mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, how.control); });
   const double seconds = core::seconds_since(t0);
+  core::RowSet rows;
+  if constexpr (core::HasRows<decltype(mine)>)
+    if (how.ranks.write_rows && kept) rows = core::take_rows(mine, n);
   // Rank 0 keeps its own part as it is; the others send theirs as bytes.
   std::vector<std::vector<char>> bytes =
       how.ranks.gather(how.ranks.rank == 0 ? std::vector<char>{} : core::pack(mine), seconds);
-  if (how.ranks.rank != 0) return std::nullopt;
+  if (how.ranks.rank != 0) {
+    if (!rows.empty()) how.ranks.write_rows("", rows);
+    return std::nullopt;
+  }
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<decltype(mine)> parts;
   parts.push_back(std::move(mine));
   for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<decltype(mine)>(bytes[k]));
   bytes.clear();
-  std::optional<ResultOf<Req>> res(merge(req, std::move(parts)));
+  std::optional<ResultOf<Req>> res;
+  if (rows.empty()) {
+    res.emplace(merge(req, std::move(parts)));
+  } else {
+    *kept = std::make_shared<RankRows>(std::move(rows), how.ranks.write_rows);  // joins even if merge throws
+    core::ThinMerge thin;
+    res.emplace(merge(req, std::move(parts)));
+  }
   if (how.merged) how.merged(core::seconds_since(t1));
   return res;
 }
 
 // The run itself: a resumed sweep in rounds kept in its checkpoint, a sweep split over ranks, else run(req) (a
-// request that is not a sweep runs on rank 0 alone).  Bit for bit the same result in every case.
-template <class Req> std::optional<ResultOf<Req>> run_request(const Req& req, const How& how) {
+// request that is not a sweep runs on rank 0 alone).  Bit for bit the same result in every case.  `kept`: where
+// rank 0 keeps the rows it writes itself (run_split).
+template <class Req>
+std::optional<ResultOf<Req>> run_request(const Req& req, const How& how, std::shared_ptr<RankRows>* kept = nullptr) {
   if constexpr (core::Sweep<Req>) {
     if (how.checkpoint) return io::run_in_rounds(req, how.control, *how.checkpoint, how.ranks);
-    if (how.ranks.ranks > 1) return run_split(req, how);
+    if (how.ranks.ranks > 1) return run_split(req, how, kept);
   }
   if (how.ranks.rank != 0) return std::nullopt;
   return run(req, how.control);
@@ -116,10 +169,12 @@ template <class Req> std::optional<ResultOf<Req>> run_request(const Req& req, co
 // ranks other than 0.
 template <class Req> std::shared_ptr<Recorded<Req>> compute(const Req& req, const How& how) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<ResultOf<Req>> res = run_request(req, how);
+  std::shared_ptr<RankRows> rows;
+  std::optional<ResultOf<Req>> res = run_request(req, how, &rows);
   if (!res) return nullptr;
   core::check_cancel(how.control.cancel);
   auto rec = std::make_shared<Recorded<Req>>();
+  rec->rows = std::move(rows);
   rec->req = req;
   rec->res = std::move(*res);
   rec->start = start;

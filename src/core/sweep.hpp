@@ -24,7 +24,10 @@
 #include <concepts>
 #include <cstddef>
 #include <stdexcept>
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 namespace btob::core {
@@ -74,10 +77,75 @@ template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& p
   return at;
 }
 
+// ---- Rows written by the ranks themselves (parallel HDF5) -------------------------------------------------------
+// A part may name its per-item arrays that are datasets of the result as they are (one row per item, in the
+// order of its items), the bulk of a large sweep's result (densities, raw tails, per-orbit values):
+//
+//   template <class A> void rows(A& a) { a("density", density); if (!tail.empty()) a("tail", tail); }
+//
+// The names are the result's datasets (describe()); nothing the result derives (attributes, tables, overlays) may
+// read them.  Under mpirun with parallel HDF5 each rank then keeps these rows and writes them into NAME.h5 itself
+// (rank k's rows are items k, k + P, ...: a strided selection of the dataset's first dimension), and only the rest
+// of its part (counts, per-item summaries, timings) goes to rank 0, whose merge() leaves the named arrays empty
+// (ThinMerge below) while describe() still gives their full shape.
+// (The check only names the member template; its body is instantiated with take_rows' visitor alone.)
+template <class Part>
+concept HasRows = requires(Part& p, int& probe) { p.rows(probe); };
+
+// One named dataset's rows of one rank: its items' rows, row-major, in item order (moved out of the part).
+struct RowColumn {
+  std::string name;
+  std::variant<std::vector<double>, std::vector<std::uint32_t>, std::vector<std::uint64_t>, std::vector<std::uint8_t>>
+      data;
+  std::size_t size() const {
+    return std::visit([](const auto& v) { return v.size(); }, data);
+  }
+};
+// A rank's rows: its items (ascending) of the sweep's `total`, and each named dataset's rows.
+struct RowSet {
+  std::vector<std::size_t> items;
+  std::size_t total = 0;
+  std::vector<RowColumn> columns;
+  bool empty() const { return columns.empty(); }
+};
+
+// Moves the rows a part names (Part::rows) out of it: the part keeps everything else, the arrays named stay empty.
+template <class Part> RowSet take_rows(Part& part, std::size_t total) {
+  RowSet rs;
+  rs.items = part.items;
+  rs.total = total;
+  const auto take = [&](const std::string& name, auto& vec) {
+    using V = typename std::decay_t<decltype(vec)>::value_type;
+    RowColumn col{name, std::vector<V>{}};
+    std::get<std::vector<V>>(col.data).swap(vec);
+    rs.columns.push_back(std::move(col));
+  };
+  part.rows(take);
+  return rs;
+}
+
+namespace detail {
+inline int& thin_merges() {
+  thread_local int depth = 0;
+  return depth;
+}
+}  // namespace detail
+// While alive (on the merging thread), merge_rows() gives an empty array for rows that every part left empty: a
+// merge of parts whose named rows the ranks keep (take_rows).  Outside it a missing row is a logic error.
+struct ThinMerge {
+  ThinMerge() { ++detail::thin_merges(); }
+  ~ThinMerge() { --detail::thin_merges(); }
+  ThinMerge(const ThinMerge&) = delete;
+  ThinMerge& operator=(const ThinMerge&) = delete;
+};
+
 // Rows of `width` values per item, in item order: the part of item i holds its row at index j of its own rows.
 template <class Part, class V, class Get>
 std::vector<V> merge_rows(const std::vector<Part>& parts, const std::vector<ItemRef>& order, std::size_t width,
                           Get get) {
+  if (detail::thin_merges() > 0 &&
+      std::all_of(parts.begin(), parts.end(), [&](const Part& p) { return get(p).empty(); }))
+    return {};
   std::vector<V> out(order.size() * width);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::vector<V>& src = get(parts[order[i].part]);

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,9 @@ class ResultFiles {
   // NAME.h5: every array of `c` with its dims, its decimals and texts as string datasets, on each dataset the
   // string attributes units, axes and description, and each axis's coordinates attached as an HDF5 dimension
   // scale (Contents::coordinates); `attrs` (provenance and summary) as file attributes.
-  void h5(const core::Contents& c, const Attrs& attrs);
+  // `by_ranks`: arrays only made (their shape, layout and attributes), for the MPI ranks to write their rows into
+  // afterwards (commands::RankRows); their views hold no data.
+  void h5(const core::Contents& c, const Attrs& attrs, const std::set<std::string>& by_ranks = {});
   // Whether `c` has anything for NAME.h5 (arrays, decimals, texts, or only attributes: a verdict).
   static bool has_data(const core::Contents& c) {
     return !c.arrays.empty() || !c.decimals.empty() || !c.texts.empty() || !c.attrs.empty();

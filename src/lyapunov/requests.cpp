@@ -269,24 +269,45 @@ MapResult merge_exponents(std::vector<MapPart>& parts, std::size_t items, std::s
 }  // namespace
 
 namespace {
-// MapResult's float check: every k-th r value's orbits again in double, their sign classes compared.
-void check_float(MapResult& res, const MapRequest& req, const core::RunControl& control) {
-  const std::size_t R = res.ensemble.r.size(), I = res.ensemble.initial.size(), k = (R + 63) / 64;
-  std::vector<std::size_t> every_k;
-  for (std::size_t i = 0; i < R; i += k) every_k.push_back(i);
-  const iterate::Ensemble sub = res.ensemble.with_r(every_k);
+// The float check of a part: of its r values, those whose index is a multiple of k = ceil(R / 64) (at most 64 over
+// the request) again in double, each orbit's sign class compared with float's.  Per r value, so the counts and the
+// first disagreeing r are the same for any partition.
+void check_float(MapPart& part, const iterate::Ensemble& ens, const MapRequest& req, const core::RunControl& control) {
+  const std::size_t R = req.work_items(), I = ens.initial.size(), k = (R + 63) / 64;
+  std::vector<std::size_t> checked;  // positions in the part
+  for (std::size_t j = 0; j < part.items.size(); ++j)
+    if (part.items[j] % k == 0) checked.push_back(j);
+  if (checked.empty()) return;
   core::RunControl quiet = control;
   quiet.progress = nullptr;
-  const MapResult d = run_ensemble(sub, req.iterations, req.transient, req.blocks, "double", quiet);
-  for (std::size_t j = 0; j < sub.r.size(); ++j)
+  const MapResult d =
+      run_ensemble(ens.with_r(checked), req.iterations, req.transient, req.blocks, "double", quiet);
+  for (std::size_t c = 0; c < checked.size(); ++c)
     for (std::size_t ic = 0; ic < I; ++ic) {
-      const std::size_t of = j * k * I + ic, od = j * I + ic;
-      ++res.float_checked;
-      if (classify(res.exponents.lambda1[of], res.exponents.err1[of], req.iterations) !=
+      const std::size_t of = checked[c] * I + ic, od = c * I + ic;
+      ++part.float_checked;
+      if (classify(part.exponents.lambda1[of], part.exponents.err1[of], req.iterations) !=
           classify(d.exponents.lambda1[od], d.exponents.err1[od], req.iterations)) {
-        if (res.float_disagree++ == 0) res.float_disagree_r = sub.r[j];
+        if (part.float_disagree++ == 0) part.float_disagree_item = part.items[checked[c]];
       }
     }
+}
+
+// The per-r rows of the parts (summary), in item order, and the float check's counts.
+void merge_per_r(MapResult& res, const std::vector<MapPart>& parts, std::size_t R) {
+  const auto order = core::item_order(parts, R);
+  RSummary& s = res.summary;
+  for (auto f : {&RSummary::min, &RSummary::median, &RSummary::max, &RSummary::err_min, &RSummary::err_median,
+                 &RSummary::err_max, &RSummary::frac_positive, &RSummary::frac_zero, &RSummary::frac_negative})
+    s.*f = core::merge_rows<MapPart, double>(parts, order, 1,
+                                             [f](const MapPart& p) -> const std::vector<double>& { return p.summary.*f; });
+  std::size_t first = static_cast<std::size_t>(-1);
+  for (const MapPart& p : parts) {
+    res.float_checked += p.float_checked;
+    res.float_disagree += p.float_disagree;
+    first = std::min(first, p.float_disagree_item);
+  }
+  if (res.float_disagree > 0) res.float_disagree_r = res.ensemble.r[first];
 }
 }  // namespace
 
@@ -295,8 +316,11 @@ MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, c
   iterate::Ensemble ens;  // the part's r values with the whole request's grid
   ens.set_r_range(req.r_min, req.r_max, req.r_count, &items);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
-  MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
-  return MapPart{items, std::move(res.exponents), res.iteration_seconds};
+  MapResult res = run_ensemble(ens, req.iterations, req.transient, req.blocks, req.precision, control);
+  MapPart part{items, std::move(res.exponents), {}, 0, 0, static_cast<std::size_t>(-1), res.iteration_seconds};
+  part.summary = summarise(part.exponents, items.size(), ens.initial.size());
+  if (req.precision == "float") check_float(part, ens, req, control);
+  return part;
 }
 
 MapResult merge(const MapRequest& req, std::vector<MapPart> parts) {
@@ -308,9 +332,7 @@ MapResult merge(const MapRequest& req, std::vector<MapPart> parts) {
   ens.initial = grid;
   ens.grid_description = req.grid;
   ens.seed = req.seed;
-  res.summary = summarise(res.exponents, ens.r.size(), grid.size());
-  // The float check re-runs some r values in double: in the merge, so that it is the same for any partition.
-  if (req.precision == "float") check_float(res, req, core::RunControl{});
+  merge_per_r(res, parts, ens.r.size());
   return res;
 }
 
@@ -329,7 +351,11 @@ MapPart run_part(const StripRequest& req, const std::vector<std::size_t>& items,
     ens.initial.insert(ens.initial.end(), grid.begin() + static_cast<std::ptrdiff_t>(i * n2),
                        grid.begin() + static_cast<std::ptrdiff_t>((i + 1) * n2));
   MapResult res = run_ensemble(std::move(ens), req.iterations, req.transient, req.blocks, req.precision, control);
-  return MapPart{items, std::move(res.exponents), res.iteration_seconds};
+  MapPart part;
+  part.items = items;
+  part.exponents = std::move(res.exponents);
+  part.iteration_seconds = res.iteration_seconds;
+  return part;
 }
 
 MapResult merge(const StripRequest& req, std::vector<MapPart> parts) {

@@ -132,15 +132,35 @@ struct MapResult {
 };
 
 // Some r values of a map (items: ascending indices into linspace(r-min, r-max, r-count)): the exponents of their
-// orbits, item-major ([items, initial conditions]).
+// orbits, item-major ([items, initial conditions]), and what the result derives from them per r, computed here
+// (each r's from its own orbits alone, so any partition gives the same rows): the summary of lambda1 and, in float,
+// the check of every k-th r value in double.  The per-orbit exponents are then the bulk that MPI ranks write
+// themselves (rows()): nothing merged reads them.
 struct MapPart {
   std::vector<std::size_t> items;
   OrbitExponents exponents;
+  RSummary summary;  // lyapunov-map: [items]
+  long float_checked = 0, float_disagree = 0;
+  std::size_t float_disagree_item = static_cast<std::size_t>(-1);  // the first item with a disagreement
   double iteration_seconds = 0;
   template <class A> void members(A& a) {
     a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max,
       exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations,
-      exponents.blocks, iteration_seconds);
+      exponents.blocks, summary.min, summary.median, summary.max, summary.err_min, summary.err_median,
+      summary.err_max, summary.frac_positive, summary.frac_zero, summary.frac_negative, float_checked,
+      float_disagree, float_disagree_item, iteration_seconds);
+  }
+  // The per-orbit exponents, by their datasets' names (core::HasRows).
+  template <class A> void rows(A& a) {
+    a("lambda1", exponents.lambda1);
+    a("err1", exponents.err1);
+    a("lambda2", exponents.lambda2);
+    a("err2", exponents.err2);
+    a("lambda_max", exponents.lambda_max);
+    a("err_max", exponents.err_max);
+    a("lambda_min", exponents.lambda_min);
+    a("err_min", exponents.err_min);
+    a("chi1", exponents.chi1);
   }
 };
 MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});

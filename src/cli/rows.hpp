@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Each MPI rank writes its own rows of a split sweep's bulk datasets into the one NAME.h5 (parallel HDF5 over
+// MPI-IO), instead of sending them to rank 0: the collective behind io::Ranks::write_rows (commands::RankRows).
+// Built only with parallel HDF5 (cmake/ParallelHdf5.cmake: BTOB_PARALLEL_HDF5); the command line alone calls it.
+#pragma once
+
+#include "core/sweep.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace btob::cli::rows {
+
+// What the last write cost, on every rank (its own) and reduced over the ranks.
+struct WriteStats {
+  double seconds = 0;           // this rank: open, write its rows, close
+  double seconds_max = 0;       // the slowest rank
+  std::uint64_t bytes = 0;      // this rank's rows
+  std::uint64_t bytes_total = 0;  // every rank's
+};
+
+// A collective over MPI_COMM_WORLD, called once by every rank: rank 0's `path` (an HDF5 file it has created and
+// closed, holding every dataset that `mine` names with its full shape) is sent to every rank; "" on rank 0 ends the
+// collective with nothing written.  Each rank then writes its rows of each named dataset that the file holds:
+// row j of `mine` is row mine.items[j] of the dataset's first dimension (a strided selection for the cyclic split),
+// all ranks in one collective H5Dwrite per dataset (chunked and deflated datasets need it).  Throws with the file
+// and HDF5's cause on failure (the command line then ends the job, cli/mpi.hpp).
+WriteStats write(const std::string& path, const core::RowSet& mine);
+
+}  // namespace btob::cli::rows
