@@ -1,16 +1,21 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Sweeps over MPI ranks (commands::compute, src/commands/execute.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3 writes the data files of
-# the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files and standard output byte
-# for byte), and a rank that fails ends the job with one line naming it, a non-zero status and no files.
+# Sweeps over MPI ranks (commands::compute, src/commands/execute.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3, 4
+# writes the data files of the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files and
+# standard output byte for byte), whether the ranks write their own rows (parallel HDF5, the sweeps whose parts name
+# rows: bifurcation, lyapunov-map, lyapunov-strip) or send them to rank 0 (BTOB_MPI_WRITE=gather, and every other
+# sweep); no rank holds much more memory than the others; and a rank that fails ends the job with one line naming
+# it, a non-zero status and no files.
 #
 # Usage: mpi_sweeps.sh BTOB [MPIRUN].  CI runs as root: Open MPI then wants --allow-run-as-root, given here
-# through its environment variables.  --oversubscribe: three ranks on two cores.
+# through its environment variables.  --oversubscribe: three and four ranks on two cores.
 set -u
 BTOB=$1
 MPIRUN=${2:-mpirun}
 HERE=$(cd "$(dirname "$0")" && pwd)
 PY=/usr/bin/python3
+# Whether this btob writes the ranks' rows with parallel HDF5: linked against Open MPI's HDF5 (cmake/ParallelHdf5.cmake).
+BTOB_PARALLEL=$(ldd "$BTOB" | grep -q 'libhdf5_openmpi' && echo 1 || echo 0)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 # No shared-memory transport warnings from containers without a usable /dev/shm, no help texts.
@@ -23,7 +28,7 @@ fail() {
   failures=$((failures + 1))
 }
 
-# same NAME ARGS...: the single process against P = 1, 2, 3 ranks (one OpenMP thread each).
+# same NAME ARGS...: the single process against P = 1, 2, 3, 4 ranks (one OpenMP thread each).
 same() {
   local name=$1
   shift
@@ -33,7 +38,7 @@ same() {
     fail "$name: the single-process run failed"
     return
   fi
-  for P in 1 2 3; do
+  for P in 1 2 3 4; do
     local out=$TMP/$name/p$P
     if ! "$MPIRUN" -n $P "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x > "$out.stdout"; then
       fail "$name: mpirun -n $P failed"
@@ -51,7 +56,7 @@ same() {
     cmp -s <(sed -e "s#$ref#OUT#g" -e 's/([0-9.]* s)//g' "$TMP/$name/single.stdout") \
       <(sed -e "s#$out#OUT#g" -e 's/([0-9.]* s)//g' "$out.stdout") || fail "$name, $P ranks: another standard output"
   done
-  echo "ok: $name, P = 1, 2, 3 equal to the single process"
+  echo "ok: $name, P = 1, 2, 3, 4 equal to the single process"
 }
 
 # same_columns NAME X_COLUMNS SUMMARY_COLUMNS ARGS...: like same for a command whose CSV files x.csv and
@@ -100,9 +105,27 @@ same_stdout() {
   echo "ok: $name, P = 1, 2, 3 print what the single process prints"
 }
 
+# The ranks' own rows against rows gathered to rank 0 (the way of a build without parallel HDF5).
+gathered() {
+  local name=$1
+  shift
+  local out=$TMP/$name/gathered
+  BTOB_MPI_WRITE=gather "$MPIRUN" -n 3 "$BTOB" "$@" --threads 1 --no-plot --quiet --out "$out" --name x ||
+    fail "$name: mpirun -n 3 with BTOB_MPI_WRITE=gather failed"
+  "$PY" "$HERE/h5_same_data.py" "$TMP/$name/single/x.h5" "$out/x.h5" > "$TMP/cmp.txt" ||
+    fail "$name, rows gathered: $(cat "$TMP/cmp.txt")"
+  echo "ok: $name, rows gathered to rank 0 equal to the single process"
+}
+
 # Sizes: each item costs about the same, a few items per rank, r ranges with chaos, windows and invariant curves.
 same bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
+gathered bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
 same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
+# Float: the check of every k-th r value in double is computed in the parts (per r value) since they keep their rows.
+same lyapunov-map-float lyapunov-map --r-min 0.17 --r-max 0.172 --r-count 70 --grid random:4 --iterations 3000 \
+  --transient 200 --blocks 5 --precision float
+same lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
+gathered lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
 same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --iterations 300 --max-period 200 \
   --lyap-iterations 400 --refine-factor 2
 same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --boundary-grid sphere:40x40 --transient 500 \
@@ -185,6 +208,30 @@ EOF
   "$MPIRUN" -n 3 "$BTOB" run "$TMP/scene.toml" --out "$TMP/scene3" --quiet --no-plot --threads 1 &&
   "$PY" "$HERE/h5_same_data.py" "$TMP/scene1/scene.h5" "$TMP/scene3/scene.h5" > /dev/null ||
   fail "btob run SCENE.toml under mpirun -n 3"
+
+# Memory: each rank's peak resident set (tests/peak_rss.py) for a 86 MB result of per-orbit exponents (1200 r values
+# x 1000 orbits x 9 doubles): every rank holds its share of it, so the largest peak is within 15% of the median.
+# With the rows gathered to rank 0, rank 0 holds the whole result and the same check fails (the check can fail).
+# peaks FILE: "max median" of the ranks' peaks in KB.
+peaks() { sort -k2 -n "$1" | awk '{v[NR] = $2} END {print v[NR], v[int((NR + 1) / 2)]}'; }
+big=(lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 1200 --grid random:1000 --iterations 60 --transient 6 --blocks 5
+     --threads 1 --no-plot --quiet --name x)
+for mode in rows gather; do
+  rm -f "$TMP/rss_$mode"
+  BTOB_MPI_WRITE=$mode "$MPIRUN" -n 3 "$PY" "$HERE/peak_rss.py" "$TMP/rss_$mode" "$BTOB" "${big[@]}" \
+    --out "$TMP/big_$mode" || fail "memory ($mode): the run failed"
+  read -r top median <<< "$(peaks "$TMP/rss_$mode")"
+  echo "peak resident set per rank ($mode; largest $top KB, median $median KB): $(sort -n "$TMP/rss_$mode" | awk '{printf "%s%d MB", (NR > 1 ? ", " : ""), $2 / 1024}')"
+  within=$(awk -v t="$top" -v m="$median" 'BEGIN {print (t <= 1.15 * m) ? 1 : 0}')
+  if [ "$mode" = rows ] && [ "$BTOB_PARALLEL" = 1 ] && [ "$within" != 1 ]; then
+    fail "memory: the largest peak $top KB is over 1.15 x the median $median KB"
+  fi
+  if [ "$mode" = gather ] && [ "$within" = 1 ]; then
+    fail "memory: rows gathered to rank 0 but its peak $top KB is within 1.15 x the median $median KB (no power)"
+  fi
+done
+"$PY" "$HERE/h5_same_data.py" "$TMP/big_rows/x.h5" "$TMP/big_gather/x.h5" > "$TMP/cmp.txt" ||
+  fail "memory runs: $(cat "$TMP/cmp.txt")"
 
 [ $failures -eq 0 ] && echo "mpi sweeps: all equal, failures reported" && exit 0
 exit 1

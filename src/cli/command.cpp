@@ -67,12 +67,12 @@ commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::Prog
     if (parallel_rows()) {
       how.ranks.write_rows = [quiet](const std::string& path, const core::RowSet& mine) {
         const rows::WriteStats w = rows::write(path, mine);
-        mpi::Stats& st = mpi::stats();
-        st.rows_bytes = w.bytes_total;
-        st.rows_seconds = w.seconds_max;
         if (!quiet && mpi::rank() == 0 && !path.empty())
-          std::cerr << fmt::format("btob: {} ranks wrote their own rows ({} bytes) in {:.4f} s\n", st.ranks,
+          std::cerr << fmt::format("btob: {} ranks wrote their own rows ({} bytes) in {:.4f} s\n", mpi::size(),
                                    w.bytes_total, w.seconds_max);
+        return core::Attrs{{"mpi_rows_bytes", static_cast<long>(w.bytes_total)},
+                           {"mpi_rows_seconds", w.seconds_max},
+                           {"mpi_rows_seconds_min", w.seconds_min}};
       };
     }
 #endif

@@ -54,8 +54,6 @@ struct Stats {
   double gather_seconds = 0;                     // the transfer of all parts to rank 0, after the barrier
   std::uint64_t bytes_total = 0, bytes_max = 0;  // bytes of the parts sent to rank 0 (all, largest per rank)
   double merge_seconds = 0;                      // rank 0 unpacking and merging the parts
-  std::uint64_t rows_bytes = 0;                  // rows the ranks wrote themselves (cli/rows.hpp), all ranks
-  double rows_seconds = 0;                       // the slowest rank's write of them
 };
 Stats& stats();
 

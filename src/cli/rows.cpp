@@ -124,6 +124,7 @@ WriteStats write(const std::string& root_path, const core::RowSet& mine) {
   }  // H5Fclose: collective, flushes the chunks
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   MPI_Allreduce(&st.seconds, &st.seconds_max, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(&st.seconds, &st.seconds_min, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
   unsigned long b = st.bytes, total = 0;
   MPI_Allreduce(&b, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
   st.bytes_total = total;

@@ -14,7 +14,7 @@ namespace btob::cli::rows {
 // What the last write cost, on every rank (its own) and reduced over the ranks.
 struct WriteStats {
   double seconds = 0;           // this rank: open, write its rows, close
-  double seconds_max = 0;       // the slowest rank
+  double seconds_min = 0, seconds_max = 0;  // the fastest and the slowest rank
   std::uint64_t bytes = 0;      // this rank's rows
   std::uint64_t bytes_total = 0;  // every rank's
 };

@@ -38,7 +38,7 @@ std::vector<std::filesystem::path> write(const Record& rec, const std::string& o
   files.tables(rec.tables);
   if (rec.rows) {  // a split sweep's bulk: NAME.h5 made with every dataset's shape, then each rank writes its rows
     files.h5(rec.contents, at, rec.rows->names());
-    rec.rows->join(files.staged(name + ".h5").string());
+    for (auto& [k, v] : rec.rows->join(files.staged(name + ".h5").string())) at[k] = v;  // the manifest's
   } else if (io::ResultFiles::has_data(rec.contents)) {
     files.h5(rec.contents, at);
   }

@@ -67,15 +67,16 @@ struct Record {
 // here with no file, so that the other ranks are never left waiting.
 struct RankRows {
   core::RowSet mine;
-  std::function<void(const std::string&, const core::RowSet&)> write;
+  std::function<core::Attrs(const std::string&, const core::RowSet&)> write;
   bool joined = false;
-  RankRows(core::RowSet m, std::function<void(const std::string&, const core::RowSet&)> w)
+  RankRows(core::RowSet m, std::function<core::Attrs(const std::string&, const core::RowSet&)> w)
       : mine(std::move(m)), write(std::move(w)) {}
   RankRows(const RankRows&) = delete;
   RankRows& operator=(const RankRows&) = delete;
-  void join(const std::string& path) {
+  // Joins the collective; what the write cost, for the manifest.
+  core::Attrs join(const std::string& path) {
     joined = true;
-    write(path, mine);
+    return write(path, mine);
   }
   std::set<std::string> names() const {
     std::set<std::string> n;
