@@ -1,30 +1,36 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Scaling model of `mpirun -n P btob lyapunov-map` (README, "Sweeps over MPI"), from the measurements of
+"""Scaling model of `mpirun -n P btob lyapunov-map` (docs/guides/mpi.md), from the measurements of
 analyses/mpi_scaling.sh.
 
-Usage: mpi_model.py RESULTS_DIR   (reads benchmark.csv and gather.csv, writes projection.csv, prints markdown)
+Usage: mpi_model.py RESULTS_DIR   (reads benchmark.csv, gather.csv, rows.csv, launch.csv; writes projection.csv,
+prints markdown)
 
 Measured here (one run on this shared 2-core machine):
   s        tangent-cocycle steps per second per core: the P = 1 run (one thread) of gather.csv
-  b        bytes gathered per orbit: bytes_gathered / orbits not on rank 0 (P = 2, 3)
-  g        gather rate on this machine (shared memory): bytes_gathered / gather_seconds of the large result
-  merge    rank 0 unpacking and merging (summary per r included): result bytes / merge_seconds, large result,
-           the slower of P = 2, 3
+  b        bytes of result per orbit (5 doubles gathered before; 9 doubles written now): rows.csv's rows_bytes / orbits
+  t        bytes each rank still sends rank 0 per r value when it keeps its rows (summary per r, item indices):
+           rows.csv's bytes_gathered / r values not on rank 0
+  c(P)     the ranks' write's fixed cost (collective open, selections, close): rows_seconds of the tiny result,
+           P = 2, 3, 4, fitted as c0 + c1 log2 P (a collective's tree depth)
+  W        write rate of one rank here: rows_bytes / rows_seconds / P of the large result (the ranks share one disk
+           here, so this is a lower bound of what a node writes to a parallel file system)
+  merge    rank 0 merging what it received (the per-r summary): bytes / merge_seconds, large result
 Assumed for a commodity InfiniBand cluster (stated, not measured):
-  BETA     12.5e9 B/s   node link (EDR, 100 Gb/s); rank 0 receives everything through its one link
+  BETA     12.5e9 B/s   node link (EDR, 100 Gb/s)
   ALPHA    2e-6 s       latency per message (three messages per rank)
-  WRITE    1e9 B/s      one HDF5 writer on a parallel file system
-  LAUNCH   0.5 s + 0.01 s per node: mpirun/srun start-up
-  One rank per node with one OpenMP thread per core; per-core speed as here (the kernel is compute bound: an
-  orbit's state stays in registers and cache, the recorder writes once per block); the items (r values) cost the
-  same, so the cyclic split leaves no imbalance beyond one item.
+  FS       1, 10, 100 GB/s: the parallel file system's aggregate bandwidth, a parameter; the ranks' write runs at
+           min(FS, nodes x W)
+  LAUNCH   0.5 s + 0.01 s per node: mpirun/srun start-up (shown apart: it is the launcher's, the same for any job)
+  One rank per node with one OpenMP thread per core (the ranks are the file's writers); per-core speed as here;
+  the r values cost the same, so the cyclic split leaves no imbalance beyond one item.
 """
 import csv
 import math
 import sys
 
 BETA, ALPHA, WRITE = 12.5e9, 2e-6, 1e9
+FS = (1e9, 10e9, 100e9)
 TARGET = dict(r=1_000_000, ic=1024, iterations=100_000, transient=1000)  # 1e14 steps of the tangent cocycle
 RECORDER_BYTES = 8 * (13 + 3 * (10 + 1))  # TangentRecorder per orbit, 10 blocks (lyapunov/tangent.hpp)
 
@@ -32,6 +38,111 @@ RECORDER_BYTES = 8 * (13 + 3 * (10 + 1))  # TangentRecorder per orbit, 10 blocks
 def read(path):
     with open(path) as f:
         return list(csv.DictReader(f))
+
+
+def gathered_projection(s, b, merge_rate, n_orbits, total_steps):
+    """The design before: every rank's rows to rank 0, merged and written there by one HDF5 writer."""
+    rows = []
+    result_bytes = n_orbits * b
+    for cores in (2, 64):
+        for nodes in (16, 64, 256):
+            compute = total_steps / (nodes * cores * s)
+            gather_t = result_bytes * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
+            merge_t = result_bytes / merge_rate
+            write_t = result_bytes / WRITE
+            launch = 0.5 + 0.01 * nodes
+            io = gather_t + merge_t + write_t
+            rows.append(dict(design="gathered", fs_gbs=WRITE / 1e9, nodes=nodes, cores_per_node=cores,
+                             compute_s=compute, gather_s=gather_t, merge_s=merge_t, write_s=write_t, launch_s=launch,
+                             wall_s=compute + io + launch, efficiency=compute / (compute + io),
+                             efficiency_launch=compute / (compute + io + launch),
+                             memory_per_rank_gb=n_orbits / nodes * (RECORDER_BYTES + b) / 1e9,
+                             memory_rank0_gb=(n_orbits / nodes * (RECORDER_BYTES + b) + 2 * result_bytes) / 1e9))
+    return rows
+
+
+def rows_measured(d):
+    print("| rows | ranks | r values | bytes written by the ranks | their write (s, slowest) | bytes gathered | "
+          "gather (s) | merge (s) | wall (s) | peak per rank, largest / median (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for x in read(f"{d}/rows.csv"):
+        def num(k, f="{:.4f}"):
+            return f.format(float(x[k])) if x[k] else "-"
+        print(f"| {x['mode']} | {x['ranks']} | {x['r_count']} | {x['rows_bytes'] or 0} | {num('rows_seconds')} | "
+              f"{x['bytes_gathered']} | {num('gather_seconds')} | {num('merge_seconds')} | {num('wall_seconds', '{:.2f}')} | "
+              f"{int(x['peak_kb_max']) / 1024:.0f} / {int(x['peak_kb_median']) / 1024:.0f} |")
+
+
+def rows_parameters(d):
+    rows = [x for x in read(f"{d}/rows.csv") if x["mode"] == "rows"]
+    large = max(int(x["r_count"]) for x in rows)
+    big = [x for x in rows if int(x["r_count"]) == large]
+    tiny = [x for x in rows if int(x["r_count"]) != large]
+    b = max(float(x["rows_bytes"]) / int(x["orbits"]) for x in big)
+    t = max(float(x["bytes_gathered"]) / (large - math.ceil(large / int(x["ranks"]))) for x in big)
+    W = min(float(x["rows_bytes"]) / float(x["rows_seconds"]) / int(x["ranks"]) for x in big)
+    merge = min(float(x["bytes_gathered"]) / max(float(x["merge_seconds"]), 1e-6) for x in big)
+    # c(P) = c0 + c1 log2 P, least squares over the tiny runs
+    xs = [math.log2(int(x["ranks"])) for x in tiny]
+    ys = [float(x["rows_seconds"]) for x in tiny]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
+    return dict(b=b, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1)
+
+
+def launch_here(d):
+    by = {}
+    for x in read(f"{d}/launch.csv"):
+        by.setdefault(int(x["ranks"]), []).append(float(x["wall_seconds"]))
+    return ", ".join(f"P = {p}: {sorted(v)[len(v) // 2]:.2f} s" for p, v in sorted(by.items()))
+
+
+def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs):
+    compute = total_steps / (nodes * cores * s)
+    sent = TARGET["r"] * m["t"]
+    gather_t = sent * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
+    merge_t = sent / m["merge"]
+    result_bytes = n_orbits * m["b"]
+    write_t = m["c0"] + m["c1"] * math.log2(nodes) + result_bytes / min(fs, nodes * m["W"])
+    return compute, gather_t, merge_t, write_t
+
+
+def parallel_projection(s, m, n_orbits, total_steps):
+    """Now: the ranks write their rows; rank 0 receives the per-r summary only."""
+    rows = []
+    for fs in FS:
+        for cores in (2, 64):
+            for nodes in (16, 64, 256):
+                compute, gather_t, merge_t, write_t = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs)
+                launch = 0.5 + 0.01 * nodes
+                io = gather_t + merge_t + write_t
+                mem = n_orbits / nodes * (RECORDER_BYTES + m["b"])
+                rows.append(dict(design="ranks write", fs_gbs=fs / 1e9, nodes=nodes, cores_per_node=cores,
+                                 compute_s=compute, gather_s=gather_t, merge_s=merge_t, write_s=write_t,
+                                 launch_s=launch, wall_s=compute + io + launch, efficiency=compute / (compute + io),
+                                 efficiency_launch=compute / (compute + io + launch), memory_per_rank_gb=mem / 1e9,
+                                 memory_rank0_gb=(mem + 2 * TARGET["r"] * m["t"]) / 1e9))
+    return rows
+
+
+def fs_for(target, s, m, n_orbits, total_steps, nodes, cores):
+    """The file system bandwidth at which the efficiency (launch apart) reaches `target` (bisection)."""
+    lo, hi = 1e6, 1e15
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, mid)
+        lo, hi = (lo, mid) if c / (c + g + mg + w) >= target else (mid, hi)
+    return hi
+
+
+def print_table(rows):
+    print("| file system | nodes x cores | compute | gather | merge | write | efficiency | with launch | "
+          "memory per rank | rank 0 |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['fs_gbs']:g} GB/s | {r['nodes']} x {r['cores_per_node']} | {r['compute_s']:.3g} s | "
+              f"{r['gather_s']:.2g} s | {r['merge_s']:.2g} s | {r['write_s']:.2g} s | {r['efficiency']:.3f} | "
+              f"{r['efficiency_launch']:.3f} | {r['memory_per_rank_gb']:.3g} GB | {r['memory_rank0_gb']:.3g} GB |")
 
 
 def main(d):
@@ -85,34 +196,32 @@ def main(d):
 
     n_orbits = TARGET["r"] * TARGET["ic"]
     total_steps = n_orbits * (TARGET["iterations"] + TARGET["transient"])
-    result_bytes = n_orbits * b
-    rows = []
-    for cores in (2, 64):
-        for nodes in (16, 64, 256):
-            compute = total_steps / (nodes * cores * s)
-            gather_t = result_bytes * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
-            merge_t = result_bytes / merge_rate
-            write_t = result_bytes / WRITE
-            launch = 0.5 + 0.01 * nodes
-            wall = compute + gather_t + merge_t + write_t + launch
-            mem_rank = n_orbits / nodes * (RECORDER_BYTES + b)
-            mem_root = mem_rank + 2 * result_bytes
-            rows.append(dict(nodes=nodes, cores_per_node=cores, compute_s=compute, gather_s=gather_t, merge_s=merge_t,
-                             write_s=write_t, launch_s=launch, wall_s=wall, efficiency=compute / wall,
-                             memory_per_rank_gb=mem_rank / 1e9, memory_rank0_gb=mem_root / 1e9))
-    with open(f"{d}/projection.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
     print(f"Projection: {TARGET['r']:.0e} r x {TARGET['ic']} orbits x ({TARGET['iterations']:.0e} + "
-          f"{TARGET['transient']}) steps = {total_steps:.3g} steps; result {result_bytes / 1e9:.1f} GB gathered to rank 0\n")
-    print("| nodes x cores | compute | gather | merge | write | wall | efficiency | memory per rank | rank 0 |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for r in rows:
-        print(f"| {r['nodes']} x {r['cores_per_node']} | {r['compute_s']:.3g} s | {r['gather_s']:.2g} s | "
-              f"{r['merge_s']:.2g} s | {r['write_s']:.2g} s | {r['wall_s'] / 3600:.3g} h | {r['efficiency']:.3f} | "
-              f"{r['memory_per_rank_gb']:.3g} GB | {r['memory_rank0_gb']:.3g} GB |")
+          f"{TARGET['transient']}) steps = {total_steps:.3g} steps.\n")
+    print("### Before: every rank's rows gathered to rank 0, which merges and writes\n")
+    before = gathered_projection(s, b, merge_rate, n_orbits, total_steps)
+    print_table(before)
+    print("\n### Now: each rank writes its own rows (parallel HDF5); rank 0 receives the summary per r only\n")
+    rows_measured(d)
+    m = rows_parameters(d)
+    print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), t = {m['t']:.1f} bytes per r value sent to rank 0, "
+          f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, W = {m['W'] / 1e6:.0f} MB/s per rank here, merge "
+          f"{m['merge'] / 1e6:.0f} MB/s; launch here {launch_here(d)}\n")
+    result_bytes = n_orbits * m["b"]
+    print(f"Result {result_bytes / 1e9:.1f} GB written by the ranks; rank 0 receives "
+          f"{TARGET['r'] * m['t'] / 1e6:.0f} MB.\n")
+    now = parallel_projection(s, m, n_orbits, total_steps)
+    print_table(now)
+    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
+    print(f"\nAt 256 nodes x 64 cores, an efficiency of 0.8 (launch apart) needs a file system of "
+          f"{need / 1e9:.0f} GB/s: the job's compute is {total_steps / (256 * 64 * s):.1f} s there, so the write's "
+          f"{result_bytes / 1e9:.0f} GB must take about a fifth of that.  With the launch counted, 0.8 is out of "
+          f"reach at that size for any file system: the job is too small for 16384 cores.")
+    with open(f"{d}/projection.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(now[0]))
+        w.writeheader()
+        for r in before + now:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
     return 0
 
 

@@ -8,7 +8,13 @@
 #                  how many cores the other users leave.
 #   gather.csv     P = 1, 2, 3 ranks of 1 thread (3 oversubscribed on 2 cores): work per rank, wait at the
 #                  barrier, bytes gathered to rank 0 and the gather's time
-#   projection.csv the scaling model of the README (analyses/mpi_model.py), from gather.csv
+#   rows.csv       P = 2, 3, 4 ranks of 1 thread on a large result (10 x R_COUNT r values x 32 orbits, 110 steps:
+#                  ~115 MB of per-orbit exponents) and on a tiny one (the write's fixed cost), each twice: the ranks
+#                  writing their own rows (parallel HDF5) and the rows gathered to rank 0 (BTOB_MPI_WRITE=gather):
+#                  bytes and seconds of the ranks' write, bytes gathered, gather and merge, wall time, and the peak
+#                  resident set of every rank (tests/peak_rss.py)
+#   launch.csv     mpirun -n P btob --version, P = 1..4: the launch's cost here
+#   projection.csv the scaling model (analyses/mpi_model.py), from gather.csv, rows.csv and launch.csv
 # The machine is shared: quote the ratios of one run, not absolute times.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -55,6 +61,29 @@ for run in "1 $r_count 10000" "2 $r_count 10000" "3 $r_count 10000" "2 $((10 * r
   fi
 done
 mv "$out/gather.csv.tmp" "$out/gather.csv"
+
+echo "mode,ranks,r_count,orbits,rows_bytes,rows_seconds,rows_seconds_min,bytes_gathered,gather_seconds,merge_seconds,wall_seconds,peak_kb_max,peak_kb_median" \
+  > "$out/rows.csv.tmp"
+for R in $((10 * r_count)) 64; do
+  for P in 2 3 4; do
+    for mode in rows gather; do
+      rm -f "$tmp/rss"
+      w=$(wall env BTOB_MPI_WRITE=$mode mpirun -n "$P" /usr/bin/python3 tests/peak_rss.py "$tmp/rss" "$btob" "${work[@]}" \
+          --r-count "$R" --iterations 100 --transient 10 --threads 1 --out "$tmp/w")
+      j="$tmp/w/x.json"
+      peaks=$(sort -k2 -n "$tmp/rss" | awk '{v[NR] = $2} END {print v[NR] "," v[int((NR + 1) / 2)]}')
+      echo "$mode,$P,$R,$((R * 32)),$(attr "$j" mpi_rows_bytes),$(attr "$j" mpi_rows_seconds),$(attr "$j" mpi_rows_seconds_min),$(attr "$j" mpi_gathered_bytes),$(attr "$j" mpi_gather_seconds),$(attr "$j" mpi_merge_seconds),$w,$peaks" \
+        >> "$out/rows.csv.tmp"
+    done
+  done
+done
+mv "$out/rows.csv.tmp" "$out/rows.csv"
+
+echo "ranks,wall_seconds" > "$out/launch.csv.tmp"
+for P in 1 2 3 4; do
+  for rep in 1 2 3; do echo "$P,$(wall sh -c "mpirun -n $P '$btob' --version > /dev/null")" >> "$out/launch.csv.tmp"; done
+done
+mv "$out/launch.csv.tmp" "$out/launch.csv"
 /usr/bin/python3 analyses/mpi_model.py "$out" | tee "$out/model.md"
 "$(dirname "$btob")/btob_manifest" "$out/manifest.json" "analyses/mpi_scaling.sh $btob $r_count" \
-  benchmark.csv gather.csv projection.csv model.md
+  benchmark.csv gather.csv rows.csv launch.csv projection.csv model.md
