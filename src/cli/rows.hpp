@@ -21,10 +21,10 @@ struct WriteStats {
 
 // A collective over MPI_COMM_WORLD, called once by every rank: rank 0's `path` (an HDF5 file it has created and
 // closed, holding every dataset that `mine` names with its full shape) is sent to every rank; "" on rank 0 ends the
-// collective with nothing written.  Each rank then writes its rows of each named dataset that the file holds:
-// row j of `mine` is row mine.items[j] of the dataset's first dimension (a strided selection for the cyclic split),
-// all ranks in one collective H5Dwrite per dataset (chunked and deflated datasets need it).  Throws with the file
-// and HDF5's cause on failure (the command line then ends the job, cli/mpi.hpp).
+// collective with nothing written.  Row j of `mine` is row mine.items[j] of each named dataset that the file holds:
+// the rows first move to the rank whose block of the file holds them (one all-to-all per dataset), then every rank
+// writes its block in one collective H5Dwrite.  Throws with the file and HDF5's cause on failure (the command line
+// then ends the job, cli/mpi.hpp).
 WriteStats write(const std::string& path, const core::RowSet& mine);
 
 }  // namespace btob::cli::rows
