@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """`btob explore`'s HTTP interface: malformed and oversized requests get HTTP 400 and one line of JSON naming the
-parameter, and the server keeps serving; a served command's answer (/api/run) is the record the command line writes; the PNG of a view is the density of `btob bifurcation` with the same
-parameters, coloured by the rule of explore.hpp (recomputed here from the HDF5 counts, an independent route through
-the colour and orientation stages); nothing is served from the file system; export writes only into its folder.
+parameter, and the server keeps serving; a served command's answer (/api/run) is the record the command line
+writes; the PNG of a view is the density of `btob bifurcation` with the same parameters, coloured by the rule of
+explore.hpp (recomputed here from the HDF5 counts, an independent route through the colour and orientation stages);
+nothing is served from the file system; export writes only into its folder.
 
 Usage: explore_server.py BTOB
 """
