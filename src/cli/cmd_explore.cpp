@@ -290,8 +290,7 @@ void open_browser(const std::string& url) {
 bool loopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
 
 void serve(const Settings& s) {
-  if (s.threads < 0 || s.threads > core::RunControl::max_threads)
-    throw UsageError(fmt::format("--threads: got {}, expected 1..{}", s.threads, core::RunControl::max_threads));
+  core::require_threads(s.threads);
   httplib::Server svr;
   // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second explorer would share a busy port
   // silently instead of saying that it is taken.
@@ -342,7 +341,7 @@ Register reg([](CLI::App& app) {
   c->add_flag("--no-browser", s->no_browser, "do not open a browser");
   c->add_option("--export", s->export_dir, "folder the page's exports are written to (nothing else is written)")
       ->capture_default_str();
-  c->add_option("--threads", s->threads, "OpenMP threads of each computation (default: all cores)");
+  c->add_option("--threads", s->threads, "OpenMP threads of each computation: " + core::threads_expected());
   c->callback([s] { serve(*s); });
 });
 
