@@ -136,7 +136,8 @@ struct AtomicProgress : core::ProgressSink {
 // Python exception (KeyboardInterrupt) it cancels the run, joins the worker and re-raises.
 void run_released(const std::function<void(const core::RunControl&)>& work, int threads, py::object progress);
 
-// Checks threads (0 = all cores, else 1..RunControl::max_threads); ValueError otherwise.
+// Checks threads (0 = all cores, else 1..RunControl::max_threads, an int); ValueError with core's wording otherwise.
+int threads_value(py::handle v);
 int threads_of(const py::kwargs& kw);
 
 namespace detail {

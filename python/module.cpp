@@ -30,6 +30,9 @@ PYBIND11_MODULE(_btob, m) {
       "cite", [](const std::string& format) { return io::citation(format); }, pybind11::arg("format") = "bibtex",
       "How to cite btob (the software at this build's version and commit, and the paper): format 'bibtex', 'cff' "
       "or 'text', as `btob cite --format F` prints it");
+  m.def(
+      "_check_threads", [](pybind11::handle v) { return threads_value(v); },
+      "threads as the compiled functions check it: 0 (all cores) or 1..1024, an int; ValueError otherwise");
   bind_result(m);
   commands::for_each_command(Bind{&m});
   bind_blocks(m);

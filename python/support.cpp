@@ -99,16 +99,18 @@ std::vector<std::string> save(const ResultBase& r, const std::string& out, const
   return written;
 }
 
-int threads_of(const py::kwargs& kw) {
-  if (!kw.contains("threads")) return 0;
-  const py::handle v = kw["threads"];
-  long t = -1;
-  if (py::isinstance<py::int_>(v) && !py::isinstance<py::bool_>(v)) t = v.cast<long>();
-  if (t < 0 || t > core::RunControl::max_threads)
-    throw core::InvalidField("threads", py::str(v).cast<std::string>(),
-                             fmt::format("0 (all cores) or 1..{}", core::RunControl::max_threads));
+int threads_value(py::handle v) {
+  // A value that is no int (a float, a bool, a string): core's wording, and that it must be an int.
+  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
+    throw core::InvalidField("threads", py::repr(v).cast<std::string>(), core::threads_expected() + ", an int");
+  int overflow = 0;  // an int beyond long is out of range too; the message quotes it as given
+  const long t = PyLong_AsLongAndOverflow(v.ptr(), &overflow);
+  if (overflow != 0 || t < 0 || t > core::RunControl::max_threads)
+    throw core::InvalidField("threads", py::str(v).cast<std::string>(), core::threads_expected());
   return static_cast<int>(t);
 }
+
+int threads_of(const py::kwargs& kw) { return kw.contains("threads") ? threads_value(kw["threads"]) : 0; }
 
 namespace {
 // Joins the worker on every exit path, cancelling it first unless it finished (GIL released while joining).

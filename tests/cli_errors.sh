@@ -24,6 +24,14 @@ expect_error "precision" "${b[@]}" --precision mpfr:5
 expect_error "bins" "${b[@]}" --bins 0
 expect_error "overlay" "${b[@]}" --overlay nonsense
 expect_error "threads" "${b[@]}" --threads -1
+# Every front end's one wording of a thread count (core::require_threads), 0 meaning all cores everywhere.
+expect_error "^btob: error: threads: got 1025, expected 0 (all cores) or 1..1024$" "${b[@]}" --threads 1025
+expect_error "^btob: error: threads: got -1, expected 0 (all cores) or 1..1024$" explore --threads -1 --no-browser
+all_cores=$(mktemp -d)
+if ! "$btob" bifurcation --out "$all_cores" --r-count 5 --iterations 50 --tail 10 --no-plot --quiet --threads 0; then
+  echo "FAIL: --threads 0 (all cores) refused"; fail=1
+fi
+rm -rf "$all_cores"
 expect_error "r-count" "${b[@]}" --r-count 100000000000
 expect_error "attractors: got with float" "${b[@]}" --attractors --precision float
 expect_error "attractors: got with double and algorithm trig" "${b[@]}" --attractors --algorithm trig

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """`btob explore`'s HTTP interface: malformed and oversized requests get HTTP 400 and one line of JSON naming the
-parameter, and the server keeps serving; the PNG of a view is the density of `btob bifurcation` with the same
-parameters, coloured by the rule of explore.hpp (recomputed here from the HDF5 counts, an independent route through
-the colour and orientation stages); nothing is served from the file system; export writes only into its folder.
+parameter, and the server keeps serving; a served command's answer (/api/run) is the record the command line
+writes; the PNG of a view is the density of `btob bifurcation` with the same parameters, coloured by the rule of
+explore.hpp (recomputed here from the HDF5 counts, an independent route through the colour and orientation stages);
+nothing is served from the file system; export writes only into its folder.
 
 Usage: explore_server.py BTOB
 """
@@ -60,9 +61,20 @@ def check_errors(base):
         ("/api/bifurcation?" + view + "&grid=strip:0x3", "grid"),
         ("/api/bifurcation?" + view + "&path=/etc/passwd", "path"),
         ("/api/bifurcation?" + view + "&session=" + "x" * 65, "session"),
-        ("/api/classify?point=1,-3,-1.1", "r"),
-        ("/api/classify?r=0.15&point=1,2", "point"),
-        ("/api/basins?r=0.15&n=100000", "n"),
+        ("/api/run?r=0.15", "command"),
+        ("/api/run?command=nothing&r=0.15", "command"),
+        ("/api/run?command=lyapunov&r=0.15", "command"),  # declared, but it may write a file: not served
+        ("/api/run?command=classify&point=1,-3,-1.1", "r"),
+        ("/api/run?command=classify&r=0.15&point=1,2", "point"),
+        ("/api/run?command=classify&r=0.15&point=1,-3,-1.1&path=/etc/passwd", "path"),
+        ("/api/run?command=basins&r=0.15&grid=sphere:0x3", "grid"),
+        ("/api/run?command=basins&r=0.15&replicates=101", "replicates"),
+        ("/api/run?command=basins&r=0.15&replicates=x", "replicates"),
+        ("/api/run?command=classify&r=0.15&point=1,-3,-1.1&session=a/b", "session"),
+        # 1000 orbits x 600 kept states x (w1, w2): 1.2e6 array elements, over the answer's limit of 1e6
+        ("/api/run?command=strip-orbits&r=0.2&orbits=1000&iterations=600&tail=600", "answer"),
+        ("/api/tail?point=1,-3,-1.1", "r"),
+        ("/api/tail?r=0.15&point=1,-3,-1.1&tail=0", "tail"),
         ("/api/overlays?r_min=0.1", "r_max"),
     ]
     for path, field in cases:
@@ -125,6 +137,37 @@ def check_export(btob, base, export_dir, tmp):
     print("explore_server: export wrote only its scene and PNG; btob run reproduces the view's density")
 
 
+def check_run_is_the_command(btob, base, tmp):
+    """/api/run answers the record the command line writes: classify's attributes and basins' labels and fractions
+    equal those of NAME.json and NAME.h5 from `btob classify` / `btob basins` with the same fields, bit for bit."""
+    status, _, body = get(base + "/api/run?command=classify&r=0.15&point=1,-3,-1.1")
+    assert status == 200, body
+    j = json.loads(body)
+    out = os.path.join(tmp, "cmdline")
+    subprocess.run([btob, "classify", "--r", "0.15", "--point", "1,-3,-1.1", "--out", out, "--name", "c", "--quiet"],
+                   check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(out, "c.json")) as f:
+        want = json.load(f)
+    for key in ["type", "pattern", "period", "lambda1", "batch_err", "detail", "iterations", "transient"]:
+        assert j["attrs"][key] == want[key], (key, j["attrs"][key], want[key])
+    assert j["command"] == "classify" and j["request"]["point"] == ["1,-3,-1.1"], j["request"]
+
+    q = "command=basins&r=0.15&grid=sphere:24x20&replicates=0"
+    status, _, body = get(base + "/api/run?" + q)
+    assert status == 200, body
+    j = json.loads(body)
+    subprocess.run([btob, "basins", "--r", "0.15", "--grid", "sphere:24x20", "--replicates", "0", "--out", out,
+                    "--name", "b", "--no-plot", "--quiet"], check=True)
+    with h5py.File(os.path.join(out, "b.h5")) as f:
+        labels = f["labels"][()]
+        assert j["arrays"]["labels"]["dims"] == list(labels.shape) == [20, 24], j["arrays"]["labels"]["dims"]
+        assert j["arrays"]["labels"]["data"] == labels.ravel().tolist()
+        assert j["arrays"]["fraction"]["data"] == f["fraction"][()].tolist()
+        assert j["attrs"]["undecided_fraction"] == f.attrs["undecided_fraction"]
+    print(f"explore_server: /api/run answers btob classify's attributes and btob basins' {labels.size} labels and "
+          f"{len(j['arrays']['fraction']['data'])} fractions exactly")
+
+
 def check_cancel(base):
     """A newer request of a session cancels the session's running one (409), whose progress was visible."""
     long_view = "r_min=0.1&r_max=0.2&width=1000&height=100&iterations=120000&tail=10&session=s1"  # 3.8e9 iterations
@@ -160,9 +203,10 @@ def main(btob):
             check_errors(base)
             check_png_is_the_density(btob, base, tmp)
             check_export(btob, base, export_dir, tmp)
+            check_run_is_the_command(btob, base, tmp)
             check_cancel(base)
             check_errors(base)  # still serving after all of the above
-            written = sorted(set(os.listdir(tmp)) - {"exports", "ref", "rerun"})
+            written = sorted(set(os.listdir(tmp)) - {"exports", "ref", "rerun", "cmdline"})
             assert written == [], f"the server wrote outside its export folder: {written}"
         finally:
             stop_server(proc)

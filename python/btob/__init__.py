@@ -144,7 +144,6 @@ def iterate(r, points, iterations, record="tail", coord="theta", tail=None, prec
     """
     if tail is None:
         tail = min(100, int(iterations))
-    if not isinstance(threads, int) or isinstance(threads, bool) or not 0 <= threads <= 1024:
-        raise ValueError(f"threads: got {threads}, expected 0 (all cores) or 1..1024")
+    threads = _btob._check_threads(threads)  # the compiled functions' check and wording
     with _progress.sink(progress, "iterate") as cb:
         return _btob._iterate(r, points, int(iterations), record, coord, int(tail), precision, threads, cb)

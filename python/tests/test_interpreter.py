@@ -58,8 +58,17 @@ def test_unknown_keyword_and_missing_required_raise_type_error():
         btob.lyapunov(r=0.2)
     with pytest.raises(TypeError):
         btob.bifurcation(0.1)  # keywords only
-    with pytest.raises(ValueError, match="^threads: got -1"):
+    with pytest.raises(ValueError, match=r"^threads: got -1, expected 0 \(all cores\) or 1\.\.1024$"):
         btob.bifurcation(threads=-1, **SMALL)
+    # Not an int: core's wording, and that it must be one; beyond a long: out of range.  btob.iterate checks alike.
+    not_int = r"^threads: got 2\.5, expected 0 \(all cores\) or 1\.\.1024, an int$"
+    with pytest.raises(ValueError, match=not_int):
+        btob.bifurcation(threads=2.5, **SMALL)
+    with pytest.raises(ValueError, match=not_int):
+        btob.iterate(0.2, [[1, -0.5, -1.1]], 10, threads=2.5)
+    too_many = r"^threads: got 1180591620717411303424, expected 0 \(all cores\) or 1\.\.1024$"
+    with pytest.raises(ValueError, match=too_many):
+        btob.bifurcation(threads=2**70, **SMALL)
     with pytest.raises(ValueError, match="^log: got 1, expected True or False"):
         btob.bifurcation(log=1, **SMALL)
 

@@ -15,6 +15,7 @@
 #include <sys/socket.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -93,22 +94,27 @@ struct Settings {
   int threads = 0;
 };
 
-// The query's parameters (the first value of each name); any name outside `known` is an error naming the known ones.
-ex::Params params_of(const httplib::Request& req, std::initializer_list<const char*> known) {
+// The query's parameters (the first value of each name), the session's name checked.
+ex::Params query_of(const httplib::Request& req) {
   ex::Params p;
-  for (const auto& [k, v] : req.params) {
-    if (std::find_if(known.begin(), known.end(), [&](const char* n) { return k == n; }) == known.end()) {
-      std::string names;
-      for (const char* n : known) names += (names.empty() ? "" : ", ") + std::string(n);
-      throw core::InvalidField(k, "a parameter", "one of " + names);
-    }
-    p.emplace(k, v);
-  }
+  for (const auto& [k, v] : req.params) p.emplace(k, v);
   const auto s = p.find("session");
   if (s != p.end() && (s->second.size() > 64 ||
                        s->second.find_first_not_of(
                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") != std::string::npos))
     throw core::InvalidField("session", "'" + s->second.substr(0, 64) + "'", "up to 64 letters, digits, - or _");
+  return p;
+}
+
+// The query's parameters, any name outside `known` an error naming the known ones.
+ex::Params params_of(const httplib::Request& req, std::initializer_list<const char*> known) {
+  ex::Params p = query_of(req);
+  for (const auto& [k, v] : p)
+    if (std::find_if(known.begin(), known.end(), [&](const char* n) { return k == n; }) == known.end()) {
+      std::string names;
+      for (const char* n : known) names += (names.empty() ? "" : ", ") + std::string(n);
+      throw core::InvalidField(k, "a parameter", "one of " + names);
+    }
   return p;
 }
 
@@ -193,16 +199,19 @@ void api_routes(httplib::Server& svr, Jobs& jobs, const Settings& s) {
   svr.Get("/api/bifurcation", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] { bifurcation_png(jobs, s, req, res); });
   });
-  svr.Get("/api/classify", [&](const httplib::Request& req, httplib::Response& res) {
+  // A served command of the registry, its fields by their flag names (explore_run.cpp); its session's job is the
+  // command's name, so that /api/progress reports it under that name.
+  svr.Get("/api/run", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const ex::Params p = params_of(req, {"r", "point", "tail", "session"});
-      with_job(jobs, s, p, "classify", [&](const core::RunControl& c) { json_reply(res, ex::classify_json(p, c)); });
+      const ex::Params p = query_of(req);
+      with_job(jobs, s, p, ex::served_command(p),
+               [&](const core::RunControl& c) { json_reply(res, ex::run_json(p, c)); });
     });
   });
-  svr.Get("/api/basins", [&](const httplib::Request& req, httplib::Response& res) {
+  svr.Get("/api/tail", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const ex::Params p = params_of(req, {"r", "n", "session"});
-      with_job(jobs, s, p, "basins", [&](const core::RunControl& c) { json_reply(res, ex::basins_json(p, c)); });
+      const ex::Params p = params_of(req, {"r", "point", "transient", "tail", "session"});
+      with_job(jobs, s, p, "tail", [&](const core::RunControl& c) { json_reply(res, ex::tail_json(p, c)); });
     });
   });
   svr.Get("/api/overlays", [&](const httplib::Request& req, httplib::Response& res) {
@@ -281,8 +290,7 @@ void open_browser(const std::string& url) {
 bool loopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
 
 void serve(const Settings& s) {
-  if (s.threads < 0 || s.threads > core::RunControl::max_threads)
-    throw UsageError(fmt::format("--threads: got {}, expected 1..{}", s.threads, core::RunControl::max_threads));
+  core::require_threads(s.threads);
   httplib::Server svr;
   // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second explorer would share a busy port
   // silently instead of saying that it is taken.
@@ -302,8 +310,8 @@ void serve(const Settings& s) {
   if (!loopback(s.host))
     std::cout << fmt::format(
         "btob explore: WARNING: listening on {} exposes the explorer to every machine that can reach "
-        "it: anyone can run computations (up to the work budget each) and write scenes and PNGs into "
-        "'{}'; there is no authentication\n",
+        "it: anyone can run views (up to the work budget each) and the commands it serves (as large as "
+        "their own limits allow) and write scenes and PNGs into '{}'; there is no authentication\n",
         s.host, s.export_dir);
   std::cout << "btob explore: serving " << url << " (exports go to '" << s.export_dir << "'; Ctrl-C stops)"
             << std::endl;
@@ -333,7 +341,7 @@ Register reg([](CLI::App& app) {
   c->add_flag("--no-browser", s->no_browser, "do not open a browser");
   c->add_option("--export", s->export_dir, "folder the page's exports are written to (nothing else is written)")
       ->capture_default_str();
-  c->add_option("--threads", s->threads, "OpenMP threads of each computation (default: all cores)");
+  c->add_option("--threads", s->threads, "OpenMP threads of each computation: " + core::threads_expected());
   c->callback([s] { serve(*s); });
 });
 

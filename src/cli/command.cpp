@@ -112,10 +112,8 @@ void print_latex(const commands::Record& rec, const Context& ctx) {
   std::cout << text << std::flush;
 }
 
-void validate_output(const Output& o, bool threads_given) {
-  if (threads_given && (o.threads < 1 || o.threads > core::RunControl::max_threads))
-    throw core::InvalidField("threads", std::to_string(o.threads),
-                             fmt::format("1..{} (omit the flag for all cores)", core::RunControl::max_threads));
+void validate_output(const Output& o) {
+  core::require_threads(o.threads);
   if (o.format != "csv" && o.format != "latex")
     throw core::InvalidField("format", "'" + o.format + "'", "csv or latex");
   if (!o.files) return;

@@ -80,7 +80,7 @@ struct Output {
       v("name", name, "file stem of the outputs (with --out)");
       v("title", title, "title recorded with the result (with --out)");
     }
-    v("threads", threads, fmt::format("OpenMP threads, 1..{} (default: all cores)", core::RunControl::max_threads));
+    v("threads", threads, "OpenMP threads: " + core::threads_expected());
     if (files) v("no-plot", no_plot, "write data only");
     if (tabular && files)
       v("format", format,
@@ -225,7 +225,7 @@ struct NameLister {
   }
 };
 
-void validate_output(const Output& o, bool threads_given);
+void validate_output(const Output& o);
 
 // Adds subcommand `name` to `app`; a name of several words ("windows bounds") goes under the subcommands named by
 // the words before the last, each found or else created (a parent registered earlier keeps its help and settings).
@@ -236,9 +236,9 @@ Context make_context(const std::string& command, const Output& o, const std::str
 namespace detail {
 // The output's defaults a request fills in: its declared file stem (commands::SpecBase::stem_of: e.g.
 // hyperbolicity_strip_r<r>, or the command's last word for a stdout command); then the output checked.
-template <class Req> void complete_output(const Req& req, Output& out, bool threads_given) {
+template <class Req> void complete_output(const Req& req, Output& out) {
   if (out.name.empty()) out.name = commands::Spec<Req>::stem_of(req);
-  validate_output(out, threads_given);
+  validate_output(out);
 }
 
 // The request as the manifest records it: its fields, and name and title when the run writes files (what the
@@ -358,10 +358,10 @@ template <class Req> void run_body(const Req& req, const Output& o, const Contex
 
 // The command line's stages around commands::ready and run_body: the output completed and checked, the request
 // recorded, the MPI ranks' checkpoint, then --dry-run, or --resume's checkpoint, then the body.
-template <class Req> void execute(Req req, Output out, bool threads_given, const std::string& invocation) {
+template <class Req> void execute(Req req, Output out, const std::string& invocation) {
   const std::string name = commands::Spec<Req>::command;
   commands::ready(req);
-  complete_output(req, out, threads_given);
+  complete_output(req, out);
   Args recorded = recorded_request(req, out);
   // Under mpirun every rank got here with a valid request (cli/mpi.hpp).  A sweep splits across the ranks; any other
   // request runs on rank 0 alone.  Only rank 0 speaks.
@@ -426,7 +426,7 @@ template <class Req> void add_flags_command(CLI::App& app) {
     if (!c->get_subcommands().empty()) return;  // `btob pattern atlas` runs the atlas, not `pattern`
     s->req.fields(FlagApplier{&s->raw, &s->opts});
     s->out.fields(FlagApplier{&s->raw, &s->opts});
-    execute<Req>(s->req, s->out, s->opts["threads"]->count() > 0, invocation());
+    execute<Req>(s->req, s->out, invocation());
   });
 }
 
@@ -446,9 +446,7 @@ template <class Req> void run_from_args(const Args& args, const std::string& inv
       throw UsageError(
           fmt::format("key '{}': not a field of '{}'; expected one of {}", args[i].first, S::command, known));
     }
-  bool threads_given = false;
-  for (const auto& a : args) threads_given |= a.first == "threads";
-  execute<Req>(std::move(req), std::move(out), threads_given, invocation);
+  execute<Req>(std::move(req), std::move(out), invocation);
 }
 }  // namespace detail
 

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The stages of `btob explore` (explore.hpp): view parsing, the density run, colouring, PNG encoding, and the JSON
-// answers (classification, basins, overlays, export).
+// answers of the explorer's own (an orbit's tail, overlays, export); a served command's record is explore_run.cpp's.
 #include "cli/explore.hpp"
 
-#include "attractors/requests.hpp"
 #include "cli/command.hpp"
 #include "commands/execute.hpp"
 #include "core/fields.hpp"
@@ -11,7 +10,6 @@
 #include "io/io.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
-#include "patterns/patterns.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -244,60 +242,16 @@ std::pair<std::vector<double>, std::vector<double>> strip_tail(double r, const c
 }
 }  // namespace
 
-std::string classify_json(const Params& p, const core::RunControl& control) {
-  attractors::ClassifyRequest req;
-  req.r = required_double(p, "r", "a number in (0,1)");
+std::string tail_json(const Params& p, const core::RunControl& control) {
+  const double r = required_double(p, "r", "a value in the open interval (0, 1)");
+  core::require_r(r, "r");
   const std::string* point = find(p, "point");
-  req.point = point ? *point : "1,-3,-1.1";  // the first point of the paper's grid (Section 4)
-  const long tail = get_long(p, "tail", 300, 1, 100000);
-  commands::ready(req);
-  const attractors::ClassifyResult res = std::move(*commands::run_request(req, commands::How{control}));
-  const auto [w1, w2] =
-      strip_tail(req.r, core::parse_point(req.point, "point"), req.thresholds.transient, tail, control);
-  const attractors::OrbitVerdict& v = res.verdict;
-  json j{{"r", req.r},
-         {"point", req.point},
-         {"type", attractors::type_name(v.type)},
-         {"pattern", res.pattern},
-         {"word", patterns::to_digits(v.word)},
-         {"period", v.period},
-         {"lambda1", v.lambda1},
-         {"err1", v.err1},
-         {"detail", res.detail},
-         {"transient", req.thresholds.transient}};
-  j["strip"] = {{"w1", w1}, {"w2", w2}};
-  return j.dump();
-}
-
-std::string basins_json(const Params& p, const core::RunControl& control, const Limits& lim) {
-  attractors::BasinsRequest req;
-  req.r = required_double(p, "r", "a number in (0,1)");
-  const long n = get_long(p, "n", 100, 2, lim.max_basin_side);
-  req.grid = fmt::format("sphere:{}x{}", n, n);
-  req.replicates = 0;
-  commands::ready(req);
-  const attractors::BasinsResult res = std::move(*commands::run_request(req, commands::How{control}));
-  json atts = json::array();
-  for (std::size_t a = 0; a < res.basins.attractors.size(); ++a) {
-    const attractors::Attractor& at = res.basins.attractors[a];
-    atts.push_back({{"id", at.id},
-                    {"type", attractors::type_name(at.type)},
-                    {"pattern", at.pattern},
-                    {"fraction", res.fraction[a]},
-                    {"low", res.ci_low[a]},
-                    {"high", res.ci_high[a]}});
-  }
-  const attractors::Fraction& u = res.basins.undecided;
-  return json{{"r", req.r},
-              {"n1", n},
-              {"n2", n},
-              {"grid", req.grid},
-              {"measure", attractors::measure_name(res.basins.grid)},
-              {"labels", res.basins.labels},
-              {"attractors", atts},
-              {"undecided", {{"fraction", u.value}, {"low", u.low}, {"high", u.high}}},
-              {"seconds", res.basins.seconds}}
-      .dump();
+  if (!point) throw core::InvalidField("point", "nothing", "an initial direction x,y,z with x z <= 0");
+  const core::Vec3<double> u0 = core::parse_point(*point, "point");
+  // The classifier's transients run up to 1e7 steps; one orbit of 1e7 steps is a fraction of a second.
+  const long transient = get_long(p, "transient", 0, 0, 10000000), tail = get_long(p, "tail", 300, 1, 100000);
+  const auto [w1, w2] = strip_tail(r, u0, transient, tail, control);
+  return json{{"w1", w1}, {"w2", w2}}.dump();
 }
 
 std::string overlays_json(const Params& p) {

@@ -4,9 +4,9 @@
 //
 //   query parameters --parse_view--> View --compute--> bifurcation::Result --colour--> Image --encode_png--> PNG
 //
-// and the JSON answers (classify, basins, overlays, export).  Every parser throws core::InvalidField naming the
-// parameter, the value and the accepted range (the server answers HTTP 400 with that line); nothing here reads a
-// file, and export writes only into the folder it is given.
+// and the JSON answers (a served command's record, an orbit's tail, overlays, export).  Every parser throws
+// core::InvalidField naming the parameter, the value and the accepted range (the server answers HTTP 400 with that
+// line); nothing here reads a file, and export writes only into the folder it is given.
 #pragma once
 
 #include "bifurcation/bifurcation.hpp"
@@ -27,8 +27,10 @@ using Params = std::map<std::string, std::string>;
 // map iterations (columns x initial conditions x iterations) to about a second of the batched kernel on 2 cores.
 struct Limits {
   long max_side = 4096;
-  double work_budget = 4e9;   // map iterations per image
-  long max_basin_side = 300;  // basin grids up to 300 x 300 points
+  double work_budget = 4e9;  // map iterations per image
+  // The numbers of one /api/run answer: a million array elements is about 20 MB of JSON, what the page parses and
+  // draws in about a second; a larger result is the command line's or Python's, which write HDF5.
+  std::size_t max_answer_elements = 1000000;
 };
 
 // ---- stage 1: the view ------------------------------------------------------------------------------------------
@@ -69,11 +71,18 @@ Image colour(const bifurcation::Result& res);
 std::string encode_png(const Image& img, bool fast);
 
 // ---- the other answers -------------------------------------------------------------------------------------------
-// GET /api/classify?r=&point=x,y,z[&tail=N]: the classification of one orbit (type, word, pattern, period, lambda1 and
-// its error) and its last N points in the strip (w1, w2), as one JSON object.
-std::string classify_json(const Params& p, const core::RunControl& control);
-// GET /api/basins?r=&n=: the basins at r over an n x n sphere grid: labels and fractions with their intervals.
-std::string basins_json(const Params& p, const core::RunControl& control, const Limits& lim = {});
+// GET /api/run?command=NAME&<field>=<value>...: a declared command (commands/commands.hpp) that its Spec marks
+// `served`, its fields set from the query by their flag names through the parser of scenes and manifests
+// (core::set_field), run through the one path of commands/execute.hpp (ready -> compute -> record) under `control`,
+// and answered as the Record in JSON (record_json).  A name that is no served command, a parameter that is no field
+// and a field the request refuses all throw core::InvalidField naming it; an answer of more than
+// lim.max_answer_elements array elements throws std::length_error naming the limit.
+std::string run_json(const Params& p, const core::RunControl& control, const Limits& lim = {});
+// The served command `p` names (its "command" parameter), else core::InvalidField listing the served ones.
+std::string served_command(const Params& p);
+// GET /api/tail?r=&point=x,y,z&transient=&tail=: the orbit of `point` at r after `transient` steps, its next `tail`
+// points in the strip (w1, w2), as {"w1": [...], "w2": [...]} (the orbit panel's picture; no request computes it).
+std::string tail_json(const Params& p, const core::RunControl& control);
 // GET /api/overlays?r_min=&r_max=: the lines of every overlay inside the window, by kind.
 std::string overlays_json(const Params& p);
 // POST /api/export?<view>: writes view-K.toml (a scene `btob run` reproduces) and view-K.png into `dir`, each

@@ -147,6 +147,7 @@ struct Spec<attractors::ClassifyRequest> : SpecBase<attractors::ClassifyRequest,
   static constexpr const char* function = "classify";
   static constexpr const char* summary = "Classify one orbit: periodic, collapse, quasi-periodic, chaotic or undecided";
   static constexpr const char* kind = "classify";
+  static constexpr bool served = true;  // the explorer's orbit panel
   static void print(const attractors::ClassifyRequest&, const attractors::ClassifyResult&);
 };
 
@@ -162,6 +163,7 @@ struct Spec<attractors::BasinsRequest> : SpecBase<attractors::BasinsRequest, Spe
   static constexpr const char* stem = "basins";
   static constexpr const char* kind = "basins";
   static constexpr const char* plot = "attractors_basins.py";
+  static constexpr bool served = true;  // the explorer's basins panel
   static void report(const attractors::BasinsRequest&, const attractors::BasinsResult&, const core::Contents&,
                      const Written&);
 };
@@ -361,6 +363,7 @@ template <> struct Spec<StripOrbitsRequest> : SpecBase<StripOrbitsRequest, Spec<
   static constexpr const char* stem = "strip_orbits";
   static constexpr const char* kind = "strip-orbits";
   static constexpr const char* plot = "strip_orbits.py";
+  static constexpr bool served = true;  // orbits at the picked r, for a page that draws them
   static std::vector<std::string> plot_inputs() { return {".h5"}; }
   static void attrs(const StripOrbitsRequest& req, const orbits::StripOrbitsResult&, core::Attrs& at);
   static void report(const StripOrbitsRequest&, const orbits::StripOrbitsResult&, const core::Contents&,

@@ -55,6 +55,9 @@ template <class Req, class Derived> struct SpecBase {
   static constexpr bool plot_many = false;
   // Whether the attributes record total_seconds, the time from the start of the run to its record.
   static constexpr bool timed = false;
+  // Whether `btob explore` runs the command for its page (GET /api/run?command=...): only commands that read and
+  // write no file of their own (no prepare, no also_write), since anyone who reaches the server may ask.
+  static constexpr bool served = false;
 
   // The request's defaults (the command line's flags' defaults, Python's keywords').
   static Req defaults() { return Req{}; }

@@ -256,9 +256,11 @@ void require_r_values(const std::vector<double>& r, const std::string& field) {
   for (double v : r) require_r(v, field);
 }
 
+std::string threads_expected() { return fmt::format("0 (all cores) or 1..{}", RunControl::max_threads); }
+
 void require_threads(long threads, const std::string& field) {
   if (threads < 0 || threads > RunControl::max_threads)
-    throw InvalidField(field, std::to_string(threads), fmt::format("0 (all cores) or 1..{}", RunControl::max_threads));
+    throw InvalidField(field, std::to_string(threads), threads_expected());
 }
 
 void require_at_least(long value, long least, const std::string& field) {

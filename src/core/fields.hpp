@@ -61,8 +61,9 @@ void require_r_range(double r_min, double r_max, long r_count);
 // each in (0, 1) (require_r).
 void require_r_values(const std::vector<double>& r, const std::string& field);
 // A thread count: 0 (all cores) or 1..RunControl::max_threads, else "threads: got T, expected 0 (all cores) or
-// 1..1024".
+// 1..1024" (threads_expected() is that "expected" text, for a front end that must append a fact of its own).
 void require_threads(long threads, const std::string& field = "threads");
+std::string threads_expected();
 // A count of at least `least`: else "FIELD: got N, expected at least LEAST".
 void require_at_least(long value, long least, const std::string& field);
 // A precision name among `accepted`, spelled exactly as listed (a run that dispatches on the name sees only

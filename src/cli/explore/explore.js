@@ -374,19 +374,26 @@ async function pick(r) {
   pickController = new AbortController();
   try {
     const point = encodeURIComponent($("point-input").value);
-    const res = await fetch(`api/classify?r=${r}&point=${point}&session=${session}`, { signal: pickController.signal });
+    // The classify command of the registry (GET /api/run), then the orbit's points after the classifier's transient.
+    const res = await fetch(`api/run?command=classify&r=${r}&point=${point}&session=${session}`,
+      { signal: pickController.signal });
     const j = await res.json();
     if (!res.ok) { $("info").textContent = "error: " + j.error; return; }
-    const lam = Number.isFinite(j.lambda1) ? `${j.lambda1.toPrecision(6)} \u00b1 ${(j.err1 || 0).toPrecision(2)}` : "n/a";
-    $("info").textContent = `r = ${j.r}\nword ${j.word || "-"}  pattern ${j.pattern || "-"}  period ${j.period}\n` +
-      `type ${j.type}\nlambda1 = ${lam}\nfrom (${j.point}), after ${j.transient} steps`;
-    drawStrip(j);
+    const a = j.attrs;
+    const lam = Number.isFinite(a.lambda1) ? `${a.lambda1.toPrecision(6)} \u00b1 ${(a.batch_err || 0).toPrecision(2)}` : "n/a";
+    $("info").textContent = `r = ${a.r}\npattern ${a.pattern || "-"}  period ${a.period}\n` +
+      `type ${a.type}\nlambda1 = ${lam}\nfrom (${a.point}), after ${a.transient} steps`;
+    const t = await fetch(`api/tail?r=${r}&point=${point}&transient=${a.transient}&tail=300&session=${session}`,
+      { signal: pickController.signal });
+    const strip = await t.json();
+    if (!t.ok) { $("info").textContent += "\nerror: " + strip.error; return; }
+    drawStrip(strip);
     $("basins-button").disabled = false;
   } catch (e) { /* a newer pick */ }
 }
 function drawStrip(j) {
   const c = $("strip-canvas"), ctx = c.getContext("2d");
-  const w1 = j.strip.w1, w2 = j.strip.w2, m = { l: 44, r: 8, t: 20, b: 34 };
+  const w1 = j.w1, w2 = j.w2, m = { l: 44, r: 8, t: 20, b: 34 };
   let lo = Math.min(...w1.filter(Number.isFinite)), hi = Math.max(...w1.filter(Number.isFinite));
   if (!(hi > lo)) { lo -= 1; hi += 1; }
   const pad = 0.05 * (hi - lo); lo -= pad; hi += pad;
@@ -411,27 +418,31 @@ async function basins() {
     } catch (e) { /* next poll */ }
   }, 200);
   try {
-    const res = await fetch(`api/basins?r=${r}&n=100&session=${session}`);
+    // The basins command of the registry on the main grid alone (no replicate grids: the page shows one image).
+    const res = await fetch(`api/run?command=basins&r=${r}&grid=sphere:100x100&replicates=0&session=${session}`);
     const j = await res.json();
     if (!res.ok) { $("basins-status").textContent = "error: " + j.error; return; }
-    drawBasins(j);
+    drawBasins(j.attrs, j.arrays);
   } finally { clearInterval(poll); }
 }
 const BASIN_COLOURS = ["#bbbbbb", "#1f5fd6", "#d62020", "#1c9e4a", "#f0a020", "#8a3ab9", "#20b0c0", "#c05020", "#606060"];
-function drawBasins(j) {
-  const c = $("basins-canvas"), ctx = c.getContext("2d"), s = c.width / j.n1;
-  for (let i2 = 0; i2 < j.n2; ++i2)
-    for (let i1 = 0; i1 < j.n1; ++i1) {
-      ctx.fillStyle = BASIN_COLOURS[j.labels[i2 * j.n1 + i1] % BASIN_COLOURS.length];
-      ctx.fillRect(i1 * s, (j.n2 - 1 - i2) * s, Math.ceil(s), Math.ceil(s));
+// The basins record: labels [n2 x n1] (0 undecided, else the attractor's id), per attractor (id k at index k - 1) its
+// fraction and interval, its legend_<id> attribute "pattern (type)", and the undecided share.
+function drawBasins(a, arrays) {
+  const c = $("basins-canvas"), ctx = c.getContext("2d"), s = c.width / a.n1, labels = arrays.labels.data;
+  for (let i2 = 0; i2 < a.n2; ++i2)
+    for (let i1 = 0; i1 < a.n1; ++i1) {
+      ctx.fillStyle = BASIN_COLOURS[labels[i2 * a.n1 + i1] % BASIN_COLOURS.length];
+      ctx.fillRect(i1 * s, (a.n2 - 1 - i2) * s, Math.ceil(s), Math.ceil(s));
     }
-  const rows = j.attractors.map((a) => `<tr><td style="color:${BASIN_COLOURS[a.id % BASIN_COLOURS.length]}">\u25a0</td>` +
-    `<td>${a.pattern || a.type}</td><td>${a.type}</td><td>${(100 * a.fraction).toFixed(2)}%</td>` +
-    `<td>[${(100 * a.low).toFixed(2)}, ${(100 * a.high).toFixed(2)}]</td></tr>`);
-  rows.push(`<tr><td style="color:${BASIN_COLOURS[0]}">\u25a0</td><td>undecided</td><td></td>` +
-    `<td>${(100 * j.undecided.fraction).toFixed(2)}%</td><td></td></tr>`);
+  const pct = (x) => (100 * x).toFixed(2);
+  const rows = arrays.fraction.data.map((f, k) => `<tr><td style="color:${BASIN_COLOURS[(k + 1) % BASIN_COLOURS.length]}">` +
+    `\u25a0</td><td>${a["legend_" + (k + 1)]}</td><td>${pct(f)}%</td>` +
+    `<td>[${pct(arrays.ci_low.data[k])}, ${pct(arrays.ci_high.data[k])}]</td></tr>`);
+  rows.push(`<tr><td style="color:${BASIN_COLOURS[0]}">\u25a0</td><td>undecided</td>` +
+    `<td>${pct(a.undecided_fraction)}%</td><td>[${pct(a.undecided_ci_low)}, ${pct(a.undecided_ci_high)}]</td></tr>`);
   $("basins-table").innerHTML = rows.join("");
-  $("basins-status").textContent = `r = ${j.r}: ${j.grid} (${j.measure}), 95% intervals`;
+  $("basins-status").textContent = `r = ${a.r}: ${a.grid} (${a.measure}), 95% intervals`;
 }
 async function exportView() {
   const v = state.imageView;

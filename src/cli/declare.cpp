@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The subcommands of every declared request (commands/commands.hpp), registered in the declarations' order.
-#include "commands/commands.hpp"
 #include "cli/app.hpp"
 #include "cli/command.hpp"
+#include "commands/commands.hpp"
 
 namespace btob::cli {
 namespace {
