@@ -12,7 +12,8 @@
 #                  ~115 MB of per-orbit exponents) and on a tiny one (the write's fixed cost), each twice: the ranks
 #                  writing their own rows (parallel HDF5) and the rows gathered to rank 0 (BTOB_MPI_WRITE=gather):
 #                  bytes and seconds of the ranks' write, bytes gathered, gather and merge, wall time, and the peak
-#                  resident set of every rank (tests/peak_rss.py)
+#                  resident set of every rank (tests/peak_rss.py); then 1e6 r values of one orbit on 2 ranks: rank 0's
+#                  merge per r value at scale
 #   launch.csv     mpirun -n P btob --version, P = 1..4: the launch's cost here
 #   projection.csv the scaling model (analyses/mpi_model.py), from gather.csv, rows.csv and launch.csv
 # The machine is shared: quote the ratios of one run, not absolute times.
@@ -76,6 +77,16 @@ for R in $((10 * r_count)) 64; do
         >> "$out/rows.csv.tmp"
     done
   done
+done
+# Rank 0's merge per r value at scale: 1e6 r values of one orbit each (what rank 0 still receives and merges).
+for mode in rows; do
+  rm -f "$tmp/rss"
+  w=$(wall env BTOB_MPI_WRITE=$mode mpirun -n 2 /usr/bin/python3 tests/peak_rss.py "$tmp/rss" "$btob" "${work[@]}" \
+      --r-count 1000000 --grid random:1 --iterations 10 --transient 1 --threads 1 --out "$tmp/w")
+  j="$tmp/w/x.json"
+  peaks=$(sort -k2 -n "$tmp/rss" | awk '{v[NR] = $2} END {print v[NR] "," v[int((NR + 1) / 2)]}')
+  echo "$mode,2,1000000,1000000,$(attr "$j" mpi_rows_bytes),$(attr "$j" mpi_rows_seconds),$(attr "$j" mpi_rows_seconds_min),$(attr "$j" mpi_gathered_bytes),$(attr "$j" mpi_gather_seconds),$(attr "$j" mpi_merge_seconds),$w,$peaks" \
+    >> "$out/rows.csv.tmp"
 done
 mv "$out/rows.csv.tmp" "$out/rows.csv"
 
