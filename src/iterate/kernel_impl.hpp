@@ -7,6 +7,7 @@
 #include "core/run.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/lanes.hpp"
+#include "iterate/mpfr_lane.hpp"
 
 #include <Eigen/Dense>
 #include <immintrin.h>
@@ -194,10 +195,12 @@ template <class V, class M> inline StepResult<V> map_step(V x, V y, V z, V r, V 
   else return {xn, V(k * (xn + zn) + sy), zn};
 }
 
-// Generic lanes (long double, or any T without a vector type): the per-lane loop.
+// Generic lanes (long double, or any T without a vector type): the per-lane loop; one MPFR lane on the C API
+// (mpfr_lane.hpp: the same operations without a temporary per operation).
 template <class T, int B, bool Sym>
 inline void steps(T* __restrict x, T* __restrict y, T* __restrict z, const T* __restrict r, const T* __restrict a,
                   const T* __restrict k, std::uint8_t* __restrict sym, int n) {
+  if constexpr (B == 1 && MpfrNumber<T>) return mpfr_lane_steps<T, Sym>(*x, *y, *z, *r, *a, *k, sym, n);
   for (int s = 0; s < n; ++s) {
 #pragma omp simd
     for (int l = 0; l < B; ++l) {
