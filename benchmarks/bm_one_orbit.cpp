@@ -6,6 +6,7 @@
 //  * lane_of_batch/<precision>: the route before, one orbit as one lane of a full batch (48 doubles, 96 floats, 8 of
 //    the other precisions): an ensemble of few_lanes<T>() + 1 copies of the orbit, items counted for one orbit.
 //  * few/double: 2 and 8 orbits (one vector), items counted for all of them.
+//  * fma_chain: the core's clock (4 cycles per dependent FMA), to turn the rates into cycles per step.
 //  * series, classify, strip_orbits: the users' routes for one point (correlate's and measure's series, the
 //    classification of one point as the explorer's click runs it, strip-orbits with one orbit).
 #include "attractors/attractors.hpp"
@@ -110,6 +111,28 @@ template <class T> void BM_pattern_verdict(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * static_cast<long>(w.size()));
 }
 
+// The core's clock in the same run, for the ceilings (docs/performance.md): a chain of dependent scalar FMAs, 4 cycles
+// each on AMD Zen 3-5 and Intel since Skylake, so 4 x items_per_second (CPU time) is the clock in cycles per second.
+void BM_fma_chain(benchmark::State& st) {
+  if (!__builtin_cpu_supports("fma")) {
+    st.SkipWithError("no FMA instruction");
+    return;
+  }
+  constexpr long n = 10000000;
+  double x = 1, a = 0.9999999, b = 1e-9;
+  __asm__ volatile("vzeroupper");  // this unit's SSE code after the kernel's 512-bit code: no dirty upper state
+  for (auto _ : st) {
+    long count = n / 4;  // 4 dependent FMAs per turn, the loop's counter beside them (other pipes)
+    __asm__ volatile(
+        "1:\n\tvfmadd132sd %3, %2, %0\n\tvfmadd132sd %3, %2, %0\n\tvfmadd132sd %3, %2, %0\n\t"
+        "vfmadd132sd %3, %2, %0\n\tdec %1\n\tjnz 1b"
+        : "+x"(x), "+r"(count)
+        : "x"(b), "x"(a));
+  }
+  benchmark::DoNotOptimize(x);
+  st.SetItemsProcessed(st.iterations() * n);
+}
+
 BENCHMARK(BM_iterate<double>)->Name("smoke_one")->Args({20000, 1, 0})->UseRealTime();
 BENCHMARK(BM_iterate<float>)->Name("one/float")->Args({10000000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_iterate<double>)->Name("one/double")->Args({10000000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -141,6 +164,7 @@ BENCHMARK(BM_pattern_verdict<core::mpfr_float>)
     ->Args({0, 50})
     ->Args({1, 50})
     ->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fma_chain)->Name("fma_chain")->Unit(benchmark::kMillisecond);
 BTOB_PLAIN_REFERENCE;
 
 }  // namespace
