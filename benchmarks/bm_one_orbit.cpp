@@ -1,6 +1,6 @@
-// Throughput of the single-orbit routes in map iterations per second (wall time, as plain_reference), beside the plain batched kernel
-// (plain_reference, in the same program: quote ratios of rates from one run).  The orbit is the issue's: r = 0.12
-// from (1, -0.5, -1.1), chaotic (lambda1 = 0.58), so the symbols are unpredictable.
+// Throughput of the single-orbit routes in map iterations per second (wall time, as plain_reference), beside the plain
+// batched kernel (plain_reference, in the same program: quote ratios of rates from one run).  The orbit is the issue's:
+// r = 0.12 from (1, -0.5, -1.1), chaotic (lambda1 = 0.58), so the symbols are unpredictable.
 //  * one/<precision>: iterate::run with one orbit and the final state only (`btob iterate` with record = final): the
 //    kernel's batch of few_lanes<T>() lanes (one vector for float and double, one lane for the others).
 //  * lane_of_batch/<precision>: the route before, one orbit as one lane of a full batch (48 doubles, 96 floats, 8 of
@@ -136,25 +136,52 @@ void BM_fma_chain(benchmark::State& st) {
 BENCHMARK(BM_iterate<double>)->Name("smoke_one")->Args({20000, 1, 0})->UseRealTime();
 BENCHMARK(BM_iterate<float>)->Name("one/float")->Args({10000000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_iterate<double>)->Name("one/double")->Args({10000000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<long double>)->Name("one/long-double")->Args({2000000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<core::float128>)->Name("one/float128")->Args({200000, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<core::mpfr_float>)->Name("one/mpfr")->Args({200000, 1, 50})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<long double>)
+    ->Name("one/long-double")
+    ->Args({2000000, 1, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<core::float128>)
+    ->Name("one/float128")
+    ->Args({200000, 1, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<core::mpfr_float>)
+    ->Name("one/mpfr")
+    ->Args({200000, 1, 50})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_iterate<float>)
     ->Name("lane_of_batch/float")
     ->Args({2000000, lane_of_batch_copies<float>(), 0})
-    ->UseRealTime()->Unit(benchmark::kMillisecond);
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_iterate<double>)
     ->Name("lane_of_batch/double")
     ->Args({2000000, lane_of_batch_copies<double>(), 0})
-    ->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<long double>)->Name("lane_of_batch/long-double")->Args({500000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<core::float128>)->Name("lane_of_batch/float128")->Args({50000, 2, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_iterate<core::mpfr_float>)->Name("lane_of_batch/mpfr")->Args({50000, 2, 50})->UseRealTime()->Unit(benchmark::kMillisecond);
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<long double>)
+    ->Name("lane_of_batch/long-double")
+    ->Args({500000, 2, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<core::float128>)
+    ->Name("lane_of_batch/float128")
+    ->Args({50000, 2, 0})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_iterate<core::mpfr_float>)
+    ->Name("lane_of_batch/mpfr")
+    ->Args({50000, 2, 50})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_iterate<double, true>)
     ->Name("few/double")
     ->Args({5000000, 2, 0})
     ->Args({5000000, 8, 0})
-    ->UseRealTime()->Unit(benchmark::kMillisecond);
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_series)->Name("series/double")->Args({1000000})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_classify)->Name("classify/double")->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_strip_orbits)->Name("strip_orbits/double")->Args({1000000})->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -163,7 +190,8 @@ BENCHMARK(BM_pattern_verdict<core::mpfr_float>)
     ->Name("pattern_verdict/mpfr")
     ->Args({0, 50})
     ->Args({1, 50})
-    ->UseRealTime()->Unit(benchmark::kMillisecond);
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_fma_chain)->Name("fma_chain")->Unit(benchmark::kMillisecond);
 BTOB_PLAIN_REFERENCE;
 

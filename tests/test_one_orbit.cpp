@@ -479,8 +479,8 @@ template <class T> void expect_one_orbit_is_a_lane_of_the_batch(const char* r, l
     SCOPED_TRACE(::testing::Message() << few << " orbits");
     const OneOrbitRun<T> one = run_orbits<T>(r, std::vector<Vec3<double>>(many.begin(), many.begin() + few), n);
     for (std::size_t o = 0; o < few; ++o) {
-      EXPECT_TRUE(std::equal(one.symbols.begin() + o * nn, one.symbols.begin() + (o + 1) * nn,
-                             full.symbols.begin() + o * nn))
+      EXPECT_TRUE(
+          std::equal(one.symbols.begin() + o * nn, one.symbols.begin() + (o + 1) * nn, full.symbols.begin() + o * nn))
           << "orbit " << o;
       EXPECT_EQ(one.final[o], full.final[o]) << "orbit " << o;  // Eigen's == compares every component exactly
     }

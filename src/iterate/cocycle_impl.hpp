@@ -139,8 +139,8 @@ inline void cocycle_block(CocycleRegs<T, NV>& st, const typename Simd<T>::V* r, 
 // before that block, `st` after it, blk[] that block's own eu/ev/counts (layout of acc, not added to acc), loss[] its
 // losses, and the return value is the number of steps before it.  Otherwise returns `steps` with failed = false.
 template <class T, int NV>
-inline long cocycle_blocks(CocycleLanes<T, NV>& st, CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks, long steps,
-                           int K, int budget, T* acc, T* blk, std::int64_t* loss, bool& failed) {
+inline long cocycle_blocks(CocycleLanes<T, NV>& st, CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks,
+                           long steps, int K, int budget, T* acc, T* blk, std::int64_t* loss, bool& failed) {
   using S = Simd<T>;
   using V = typename S::V;
   using I = typename S::I;
@@ -184,8 +184,8 @@ inline long cocycle_blocks(CocycleLanes<T, NV>& st, CocycleLanes<T, NV>& pre, co
 // The failed block again with a projection after every step, from `pre`; lanes over budget take its tangent vector
 // and its ev, the others keep the block's (a lane's bits never depend on its neighbours).  Returns lanes redone.
 template <class T, int NV>
-inline int cocycle_redo(CocycleLanes<T, NV>& st, const CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks, int n,
-                        int budget, T* blk, const std::int64_t* loss, int lanes) {
+inline int cocycle_redo(CocycleLanes<T, NV>& st, const CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks,
+                        int n, int budget, T* blk, const std::int64_t* loss, int lanes) {
   using S = Simd<T>;
   using V = typename S::V;
   using I = typename S::I;

@@ -495,8 +495,12 @@ void run_batch(const RunShape<T>& sh, std::size_t b, const Ensemble& ens, long i
 template <class T, int B, Recorder Rec>
 void run_batches(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
   const std::size_t n_orbits = ens.orbits();
-  RunShape<T> sh{n_orbits, ens.initial.size(), (n_orbits + B - 1) / B, renormalisation_interval<T>(ens.r),
-                 std::max<long>(rec.first_step(), 1), nullptr};
+  RunShape<T> sh{n_orbits,
+                 ens.initial.size(),
+                 (n_orbits + B - 1) / B,
+                 renormalisation_interval<T>(ens.r),
+                 std::max<long>(rec.first_step(), 1),
+                 nullptr};
   // No more threads than batches: one orbit is one batch, stepped by one thread either way.
   const int threads = static_cast<int>(std::min<std::size_t>(core::thread_count(opt.threads), sh.n_batches));
   RunTally tally;
