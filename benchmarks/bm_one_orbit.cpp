@@ -1,4 +1,4 @@
-// Throughput of the single-orbit routes in map iterations per second (wall time, as plain_reference), beside the plain
+// Throughput of the single-orbit routes in map iterations per second (wall time), beside the plain
 // batched kernel (plain_reference, in the same program: quote ratios of rates from one run).  The orbit is the issue's:
 // r = 0.12 from (1, -0.5, -1.1), chaotic (lambda1 = 0.58), so the symbols are unpredictable.
 //  * one/<precision>: iterate::run with one orbit and the final state only (`btob iterate` with record = final): the
