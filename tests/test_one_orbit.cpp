@@ -538,3 +538,38 @@ TEST(OneOrbit, OneOrbitCocycleIsALaneOfTheFullBatchBitwise) {
     EXPECT_EQ(full.lambda1[0] < 0, r == 0.15) << full.lambda1[0];
   }
 }
+
+// classify of one point, 2 and 8 points (one vector of the kernel, the cocycle, and of the return and rotation
+// recorders' loops) against the same points within a 33-point ensemble (full batches): every verdict to the bit, on
+// a chaotic r, a sink and r = 0.2, where orbits of the P2 parallelogram take the rotation run.
+TEST(OneOrbit, ClassifyOfFewPointsIsTheirVerdictInAFullBatchBitwise) {
+  std::vector<Vec3<double>> many = {Vec3<double>(1, -0.5, -1.1), Vec3<double>(1, 0.05, -1)};
+  for (const Vec3<double>& p : iterate::paper_grid()) many.push_back(p);
+  attractors::Options opt;
+  opt.run.threads = 2;
+  int rotations = 0;
+  for (const double r : {0.12, 0.15, 0.2}) {
+    iterate::Ensemble e;
+    e.r = {r};
+    e.initial = many;
+    const std::vector<attractors::OrbitVerdict> full = attractors::classify(e, opt);
+    for (std::size_t few : {std::size_t(1), std::size_t(2), std::size_t(8)}) {
+      SCOPED_TRACE(::testing::Message() << "r = " << r << ", " << few << " points");
+      e.initial.assign(many.begin(), many.begin() + static_cast<std::ptrdiff_t>(few));
+      const std::vector<attractors::OrbitVerdict> one = attractors::classify(e, opt);
+      for (std::size_t i = 0; i < few; ++i) {
+        const attractors::OrbitVerdict &a = one[i], &b = full[i];
+        EXPECT_EQ(a.key, b.key) << "point " << i;
+        EXPECT_EQ(a.residual, b.residual) << "point " << i;
+        EXPECT_EQ(a.lambda1, b.lambda1) << "point " << i;
+        EXPECT_EQ(a.err1, b.err1) << "point " << i;
+        EXPECT_EQ(a.rotation, b.rotation) << "point " << i;
+        EXPECT_EQ(a.invariant, b.invariant) << "point " << i;
+        EXPECT_EQ(a.invariant_spread, b.invariant_spread) << "point " << i;
+        EXPECT_EQ(a.point, b.point) << "point " << i;
+        rotations += i == 1 && few == 2 && a.rotation != 0;
+      }
+    }
+  }
+  EXPECT_GE(rotations, 1);  // the rotation recorder's loop was exercised on a partial batch
+}
