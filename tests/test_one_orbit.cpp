@@ -6,12 +6,14 @@
 #include "attractors/requests.hpp"
 #include "core/fields.hpp"
 #include "core/map.hpp"
+#include "core/request.hpp"
 #include "core/scalar.hpp"
 #include "iterate/ensemble.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 #include "lyapunov/hyperbolicity.hpp"
 #include "lyapunov/lyapunov.hpp"
+#include "lyapunov/maps.hpp"
 #include "patterns/patterns.hpp"
 #include "reference/reference.hpp"
 #include "tolerance.hpp"
@@ -19,9 +21,11 @@
 #include <boost/multiprecision/gmp.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 using namespace btob;
@@ -437,4 +441,135 @@ TEST(OneOrbit, AtlasIntervalsAndPatternSayTheSameWord) {
       EXPECT_EQ(v.outcome, real ? patterns::Outcome::undecided : patterns::Outcome::neutral) << "r = " << r;
     else EXPECT_EQ(v.outcome, patterns::Outcome::unstable) << "r = " << r << " lambda1 = " << v.lyapunov2;
   }
+}
+
+// The one-orbit route of the batched kernel (iterate::run on an ensemble of at most one vector's lanes: one vector
+// for float and double, one lane for the other precisions) against the route before it, the orbit as one lane of a
+// full batch: the same symbols at every step and the same final state to the bit, in every precision, on a chaotic
+// orbit (r = 0.12, lambda1 = 0.58) and on one that falls into a sink (r = 0.15, the cycle 1133).  On the chaotic
+// orbit a difference of one ulp anywhere would grow by e^0.58 per step and reach the symbols within a few hundred
+// steps (MPFR at 50 digits: 166 bits, about 200 steps), so equal symbols over n steps and an equal final state say
+// the two runs computed the same numbers; on the sink the final state carries the last steps' roundings.
+template <class T> struct OneOrbitRun {
+  std::vector<std::uint8_t> symbols;  // [orbits x n]
+  std::vector<Vec3<double>> final;    // [orbits]
+};
+template <class T> OneOrbitRun<T> run_orbits(const char* r, const std::vector<Vec3<double>>& starts, long n) {
+  iterate::Ensemble e;
+  e.set_r_list({core::Decimal::parse(r, "r")});
+  e.initial = starts;
+  iterate::SymbolRecorder sy(starts.size(), 1, n);
+  iterate::FinalRecorder fin(starts.size(), n);
+  iterate::Both<iterate::FinalRecorder, iterate::SymbolRecorder> both(fin, sy);
+  iterate::RunOptions opt;
+  opt.threads = 2;  // the full batch's ensemble is one batch: one thread steps it whatever the count
+  iterate::run<T>(e, n, both, opt);
+  return {sy.out, fin.out};
+}
+
+template <class T> void expect_one_orbit_is_a_lane_of_the_batch(const char* r, long n, bool sink) {
+  SCOPED_TRACE(::testing::Message() << "r = " << r);
+  const Vec3<double> u(1, -0.5, -1.1);
+  std::vector<Vec3<double>> many = {u};
+  for (const Vec3<double>& p : iterate::paper_grid()) many.push_back(p);  // 33 orbits: more than one vector's lanes
+  const OneOrbitRun<T> full = run_orbits<T>(r, many, n);
+  const std::size_t nn = static_cast<std::size_t>(n);
+  for (std::size_t few : {std::size_t(1), std::size_t(2), std::size_t(8)}) {  // 2 and 8: float and double only
+    if (few > 1 && !(std::is_same_v<T, float> || std::is_same_v<T, double>)) continue;
+    SCOPED_TRACE(::testing::Message() << few << " orbits");
+    const OneOrbitRun<T> one = run_orbits<T>(r, std::vector<Vec3<double>>(many.begin(), many.begin() + few), n);
+    for (std::size_t o = 0; o < few; ++o) {
+      EXPECT_TRUE(
+          std::equal(one.symbols.begin() + o * nn, one.symbols.begin() + (o + 1) * nn, full.symbols.begin() + o * nn))
+          << "orbit " << o;
+      EXPECT_EQ(one.final[o], full.final[o]) << "orbit " << o;  // Eigen's == compares every component exactly
+    }
+  }
+  // The orbit is what the case says: a sink repeats 1133 (in some rotation) at the end, a chaotic orbit does not.
+  const auto period4 = [&](const std::vector<std::uint8_t>& s) {
+    for (std::size_t k = nn - 40; k < nn; ++k)
+      if (s[k] != s[k - 4]) return false;
+    return true;
+  };
+  EXPECT_EQ(period4(full.symbols), sink);
+}
+
+TEST(OneOrbit, OneOrbitRouteIsALaneOfTheFullBatchBitwise) {
+  expect_one_orbit_is_a_lane_of_the_batch<double>("0.12", 20000, false);
+  expect_one_orbit_is_a_lane_of_the_batch<double>("0.15", 20000, true);
+  expect_one_orbit_is_a_lane_of_the_batch<float>("0.12", 20000, false);
+  expect_one_orbit_is_a_lane_of_the_batch<float>("0.15", 20000, true);
+  expect_one_orbit_is_a_lane_of_the_batch<long double>("0.12", 5000, false);
+  expect_one_orbit_is_a_lane_of_the_batch<long double>("0.15", 5000, true);
+  expect_one_orbit_is_a_lane_of_the_batch<core::float128>("0.12", 2000, false);
+  expect_one_orbit_is_a_lane_of_the_batch<core::float128>("0.15", 2000, true);
+  const core::MpfrDigits digits(50);
+  expect_one_orbit_is_a_lane_of_the_batch<core::mpfr_float>("0.12", 1000, false);
+  expect_one_orbit_is_a_lane_of_the_batch<core::mpfr_float>("0.15", 1000, true);
+}
+
+// The same for the fused cocycle kernel (iterate::run_cocycle: lyapunov::map_exponents, classify's second pass): one
+// orbit, and 2 and 8 orbits, run as one vector against the same orbits as lanes of a full batch (33 orbits): the
+// exponents and their error bars to the bit, on the chaotic orbit and on the sink.
+TEST(OneOrbit, OneOrbitCocycleIsALaneOfTheFullBatchBitwise) {
+  const Vec3<double> u(1, -0.5, -1.1);
+  std::vector<Vec3<double>> many = {u};
+  for (const Vec3<double>& p : iterate::paper_grid()) many.push_back(p);
+  lyapunov::MapOptions o;
+  o.transient = 1000;
+  o.iterations = 20000;
+  o.run.threads = 2;
+  for (const double r : {0.12, 0.15}) {
+    iterate::Ensemble e;
+    e.r = {r};
+    e.initial = many;
+    const lyapunov::OrbitExponents full = lyapunov::map_exponents(e, o);
+    for (std::size_t few : {std::size_t(1), std::size_t(2), std::size_t(8)}) {
+      SCOPED_TRACE(::testing::Message() << "r = " << r << ", " << few << " orbits");
+      e.initial.assign(many.begin(), many.begin() + static_cast<std::ptrdiff_t>(few));
+      const lyapunov::OrbitExponents one = lyapunov::map_exponents(e, o);
+      for (std::size_t i = 0; i < few; ++i) {
+        EXPECT_EQ(one.lambda1[i], full.lambda1[i]) << "orbit " << i;
+        EXPECT_EQ(one.lambda2[i], full.lambda2[i]) << "orbit " << i;
+        EXPECT_EQ(one.err1[i], full.err1[i]) << "orbit " << i;
+      }
+    }
+    // r = 0.15 falls into the sink 1133: both exponents negative; r = 0.12 is chaotic.
+    EXPECT_EQ(full.lambda1[0] < 0, r == 0.15) << full.lambda1[0];
+  }
+}
+
+// classify of one point, 2 and 8 points (one vector of the kernel, the cocycle, and of the return and rotation
+// recorders' loops) against the same points within a 33-point ensemble (full batches): every verdict to the bit, on
+// a chaotic r, a sink and r = 0.2, where orbits of the P2 parallelogram take the rotation run.
+TEST(OneOrbit, ClassifyOfFewPointsIsTheirVerdictInAFullBatchBitwise) {
+  std::vector<Vec3<double>> many = {Vec3<double>(1, -0.5, -1.1), Vec3<double>(1, 0.05, -1)};
+  for (const Vec3<double>& p : iterate::paper_grid()) many.push_back(p);
+  attractors::Options opt;
+  opt.run.threads = 2;
+  int rotations = 0;
+  for (const double r : {0.12, 0.15, 0.2}) {
+    iterate::Ensemble e;
+    e.r = {r};
+    e.initial = many;
+    const std::vector<attractors::OrbitVerdict> full = attractors::classify(e, opt);
+    for (std::size_t few : {std::size_t(1), std::size_t(2), std::size_t(8)}) {
+      SCOPED_TRACE(::testing::Message() << "r = " << r << ", " << few << " points");
+      e.initial.assign(many.begin(), many.begin() + static_cast<std::ptrdiff_t>(few));
+      const std::vector<attractors::OrbitVerdict> one = attractors::classify(e, opt);
+      for (std::size_t i = 0; i < few; ++i) {
+        const attractors::OrbitVerdict &a = one[i], &b = full[i];
+        EXPECT_EQ(a.key, b.key) << "point " << i;
+        EXPECT_EQ(a.residual, b.residual) << "point " << i;
+        EXPECT_EQ(a.lambda1, b.lambda1) << "point " << i;
+        EXPECT_EQ(a.err1, b.err1) << "point " << i;
+        EXPECT_EQ(a.rotation, b.rotation) << "point " << i;
+        EXPECT_EQ(a.invariant, b.invariant) << "point " << i;
+        EXPECT_EQ(a.invariant_spread, b.invariant_spread) << "point " << i;
+        EXPECT_EQ(a.point, b.point) << "point " << i;
+        rotations += i == 1 && few == 2 && a.rotation != 0;
+      }
+    }
+  }
+  EXPECT_GE(rotations, 1);  // the rotation recorder's loop was exercised on a partial batch
 }

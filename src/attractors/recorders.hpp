@@ -30,19 +30,27 @@ inline Vec3<double> unit_of(double X, double Y, double Z) {
   return Vec3<double>(X * inv, Y * inv, Z * inv);
 }
 
-// Calls f(x, y, z) with a whole batch of the kernel's width: the batch itself, or a partial one (the scalar route's
-// single lane too) as copies padded with its last lane.  A recorder's fixed-width loop over f's arrays then treats
-// every orbit alike: a vectorised loop and its scalar remainder contract multiply-adds differently, and an orbit's
-// bits would depend on where in a batch it falls.
-template <class T, class F> inline void as_whole_batch(int lanes, const T* x, const T* y, const T* z, F&& f) {
-  constexpr int B = iterate::detail::batch_lanes<T>();
-  if (lanes == B) return f(x, y, z);
-  alignas(64) T px[B], py[B], pz[B];
-  for (int l = 0; l < B; ++l) {
+// Calls f.template operator()<W>(x, y, z) with a whole batch of W lanes: the kernel's full batch itself (W =
+// batch_lanes), or a partial one (the scalar route's single lane too) as copies padded with its last lane, to one
+// vector's lanes when it fits in one (the one-vector batch of a few orbits, iterate::run's few_lanes: a single
+// orbit's record then costs one vector's work, not six), else to the full batch.  A recorder's fixed-width loop over
+// f's arrays then treats every orbit alike: a vectorised loop and its scalar remainder contract multiply-adds
+// differently, and an orbit's bits would depend on where in a batch it falls; a loop of one whole vector and a loop
+// of six whole vectors do the same operations on each lane.
+template <class T, int W, class F> inline void padded_batch(int lanes, const T* x, const T* y, const T* z, F& f) {
+  alignas(64) T px[W], py[W], pz[W];
+  for (int l = 0; l < W; ++l) {
     const int q = std::min(l, lanes - 1);
     px[l] = x[q], py[l] = y[q], pz[l] = z[q];
   }
-  f(px, py, pz);
+  f.template operator()<W>(px, py, pz);
+}
+template <class T, class F> inline void as_whole_batch(int lanes, const T* x, const T* y, const T* z, F&& f) {
+  constexpr int B = iterate::detail::batch_lanes<T>();
+  constexpr int V = iterate::detail::kVectorBytes / static_cast<int>(sizeof(T));
+  if (lanes == B) return f.template operator()<B>(x, y, z);
+  if (lanes <= V) return padded_batch<T, V>(lanes, x, y, z, f);
+  padded_batch<T, B>(lanes, x, y, z, f);
 }
 
 // First pass of the classification.  For every orbit, over the window of steps transient+1 .. transient+window:
@@ -119,9 +127,8 @@ struct ReturnRecorder {
     const unsigned shift = static_cast<unsigned>(b % 64);
 #pragma omp simd
     for (int l = 0; l < lanes; ++l) w[l] |= static_cast<std::uint64_t>(sym[l]) << shift;
-    as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
-      returns<T, iterate::detail::batch_lanes<T>()>(o0, j, bx, by, bz);
-    });
+    as_whole_batch(lanes, x, y, z,
+                   [&]<int W>(const T* bx, const T* by, const T* bz) { returns<T, W>(o0, j, bx, by, bz); });
   }
 
  private:
@@ -258,10 +265,9 @@ struct RotationRecorder {
         fx[o] = u(0), fy[o] = u(1), fz[o] = u(2);
       }
     // One fixed-width loop over the whole batch (as_whole_batch).
-    constexpr int B = iterate::detail::batch_lanes<T>();
-    as_whole_batch(lanes, x, y, z, [&](const T* bx, const T* by, const T* bz) {
-      if (rotation_defined) steps<T, B, true>(o0, j, bx, by, bz);
-      else steps<T, B, false>(o0, j, bx, by, bz);
+    as_whole_batch(lanes, x, y, z, [&]<int W>(const T* bx, const T* by, const T* bz) {
+      if (rotation_defined) steps<T, W, true>(o0, j, bx, by, bz);
+      else steps<T, W, false>(o0, j, bx, by, bz);
     });
   }
 

@@ -22,9 +22,12 @@ namespace detail {
 // measurements behind the choice of 4.)
 inline constexpr int kCocycleVectors = 4;
 
-template <class T> struct CocycleLanes {
+// NV vectors of W lanes: kCocycleVectors for a full batch, 1 for an ensemble of at most W orbits (one orbit's chain
+// is latency-bound: three more vectors would add their issue cost and nothing else; each lane's arithmetic is the
+// same whatever NV).
+template <class T, int NV_ = kCocycleVectors> struct CocycleLanes {
   static constexpr int W = Simd<T>::W;
-  static constexpr int NV = kCocycleVectors;
+  static constexpr int NV = NV_;
   static constexpr int B = W * NV;
   alignas(64) T x[B], y[B], z[B], vx[B], vy[B], vz[B];
 };
@@ -68,18 +71,18 @@ template <class T, class V, class I> inline V scale_for(I e) {
 }
 
 // Loads and stores of a batch's state in registers.
-template <class T> struct CocycleRegs {
+template <class T, int NV> struct CocycleRegs {
   using S = Simd<T>;
   using V = typename S::V;
-  static constexpr int NV = CocycleLanes<T>::NV, W = S::W;
+  static constexpr int W = S::W;
   V x[NV], y[NV], z[NV], vx[NV], vy[NV], vz[NV];
-  void load(const CocycleLanes<T>& m) {
+  void load(const CocycleLanes<T, NV>& m) {
     for (int j = 0; j < NV; ++j) {
       x[j] = S::load(m.x + j * W), y[j] = S::load(m.y + j * W), z[j] = S::load(m.z + j * W);
       vx[j] = S::load(m.vx + j * W), vy[j] = S::load(m.vy + j * W), vz[j] = S::load(m.vz + j * W);
     }
   }
-  void store(CocycleLanes<T>& m) const {
+  void store(CocycleLanes<T, NV>& m) const {
     for (int j = 0; j < NV; ++j) {
       S::store(m.x + j * W, x[j]), S::store(m.y + j * W, y[j]), S::store(m.z + j * W, z[j]);
       S::store(m.vx + j * W, vx[j]), S::store(m.vy + j * W, vy[j]), S::store(m.vz + j * W, vz[j]);
@@ -92,13 +95,12 @@ template <class T> struct CocycleRegs {
 // every step) and both are rescaled by exact powers of two.  Out, per lane: the exponents removed (eu, ev), the
 // count of symbols 1 and 3 (cnt) and the bits lost to cancellation in the final projection (loss).  The point's
 // arithmetic is the same code in both variants, so its bits are the same.
-template <class T, bool EveryStep>
-inline void cocycle_block(CocycleRegs<T>& st, const typename Simd<T>::V* r, const typename Simd<T>::V* a,
+template <class T, int NV, bool EveryStep>
+inline void cocycle_block(CocycleRegs<T, NV>& st, const typename Simd<T>::V* r, const typename Simd<T>::V* a,
                           const typename Simd<T>::V* k, int n, typename Simd<T>::V* eu, typename Simd<T>::V* ev,
                           typename Simd<T>::V* cnt, typename Simd<T>::I* loss) {
   using V = typename Simd<T>::V;
   using I = typename Simd<T>::I;
-  constexpr int NV = CocycleLanes<T>::NV;
   constexpr int bias = std::numeric_limits<T>::max_exponent - 1;
   V c[NV];
 #pragma GCC unroll 4
@@ -136,14 +138,14 @@ inline void cocycle_block(CocycleRegs<T>& st, const typename Simd<T>::V* r, cons
 // Stops after the first block whose projection lost more than `budget` bits in some lane: then `pre` holds the state
 // before that block, `st` after it, blk[] that block's own eu/ev/counts (layout of acc, not added to acc), loss[] its
 // losses, and the return value is the number of steps before it.  Otherwise returns `steps` with failed = false.
-template <class T>
-inline long cocycle_blocks(CocycleLanes<T>& st, CocycleLanes<T>& pre, const T* rs, const T* as, const T* ks, long steps,
-                           int K, int budget, T* acc, T* blk, std::int64_t* loss, bool& failed) {
+template <class T, int NV>
+inline long cocycle_blocks(CocycleLanes<T, NV>& st, CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks,
+                           long steps, int K, int budget, T* acc, T* blk, std::int64_t* loss, bool& failed) {
   using S = Simd<T>;
   using V = typename S::V;
   using I = typename S::I;
-  constexpr int NV = CocycleLanes<T>::NV, W = S::W, B = CocycleLanes<T>::B;
-  CocycleRegs<T> R;
+  constexpr int W = S::W, B = CocycleLanes<T, NV>::B;
+  CocycleRegs<T, NV> R;
   R.load(st);
   V r[NV], a[NV], k[NV];
   for (int j = 0; j < NV; ++j) r[j] = S::load(rs + j * W), a[j] = S::load(as + j * W), k[j] = S::load(ks + j * W);
@@ -155,7 +157,7 @@ inline long cocycle_blocks(CocycleLanes<T>& st, CocycleLanes<T>& pre, const T* r
     V eu[NV], ev[NV], cnt[NV];
     I loss_v[NV];
     I over{};
-    cocycle_block<T, false>(R, r, a, k, n, eu, ev, cnt, loss_v);
+    cocycle_block<T, NV, false>(R, r, a, k, n, eu, ev, cnt, loss_v);
     for (int j = 0; j < NV; ++j) over |= loss_v[j] > budget;
     bool any = false;
     for (int l = 0; l < W; ++l) any |= over[l] != 0;
@@ -181,22 +183,22 @@ inline long cocycle_blocks(CocycleLanes<T>& st, CocycleLanes<T>& pre, const T* r
 
 // The failed block again with a projection after every step, from `pre`; lanes over budget take its tangent vector
 // and its ev, the others keep the block's (a lane's bits never depend on its neighbours).  Returns lanes redone.
-template <class T>
-inline int cocycle_redo(CocycleLanes<T>& st, const CocycleLanes<T>& pre, const T* rs, const T* as, const T* ks, int n,
-                        int budget, T* blk, const std::int64_t* loss, int lanes) {
+template <class T, int NV>
+inline int cocycle_redo(CocycleLanes<T, NV>& st, const CocycleLanes<T, NV>& pre, const T* rs, const T* as, const T* ks,
+                        int n, int budget, T* blk, const std::int64_t* loss, int lanes) {
   using S = Simd<T>;
   using V = typename S::V;
   using I = typename S::I;
-  constexpr int NV = CocycleLanes<T>::NV, W = S::W, B = CocycleLanes<T>::B;
-  CocycleRegs<T> R;
+  constexpr int W = S::W, B = CocycleLanes<T, NV>::B;
+  CocycleRegs<T, NV> R;
   R.load(pre);
   alignas(64) T ev2[B];
   V r[NV], a[NV], k[NV], eu[NV], ev[NV], cnt[NV];
   I lo[NV];
   for (int j = 0; j < NV; ++j) r[j] = S::load(rs + j * W), a[j] = S::load(as + j * W), k[j] = S::load(ks + j * W);
-  cocycle_block<T, true>(R, r, a, k, n, eu, ev, cnt, lo);
+  cocycle_block<T, NV, true>(R, r, a, k, n, eu, ev, cnt, lo);
   for (int j = 0; j < NV; ++j) S::store(ev2 + j * W, ev[j]);
-  CocycleLanes<T> again;
+  CocycleLanes<T, NV> again;
   R.store(again);
   int redone = 0;
   for (int l = 0; l < B; ++l)
@@ -219,8 +221,8 @@ template <class T> inline void cocycle_start(const Vec3<double>& u0, T& x, T& y,
 
 // One batch of B lanes in flight: the state and its copy before the block, r and the branch constants, the
 // per-call sums and their double accumulators (log2 |u|, log2 |v|, symbols 1 and 3).
-template <class T> struct CocycleBatchState {
-  using L = CocycleLanes<T>;
+template <class T, int NV> struct CocycleBatchState {
+  using L = CocycleLanes<T, NV>;
   static constexpr int B = L::B;
   L cur, pre;
   alignas(64) T r[B], a[B], k[B], acc[3 * B], blk[3 * B];
@@ -232,15 +234,15 @@ template <class T> struct CocycleBatchState {
 
 // The batch of orbits o0..: every lane's start (a partial batch padded with its last orbit), r, alpha = (1 + r) / 2
 // and alpha / r in T, the sums at zero.
-template <class T>
-void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, CocycleBatchState<T>& b) {
-  constexpr int B = CocycleBatchState<T>::B;
+template <class T, int NV>
+void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, CocycleBatchState<T, NV>& b) {
+  constexpr int B = CocycleBatchState<T, NV>::B;
   const std::size_t n_orbits = ens.orbits(), n_ic = ens.initial.size();
   b.o0 = o0;
   b.lanes = static_cast<int>(std::min<std::size_t>(B, n_orbits - o0));
   for (int l = 0; l < B; ++l) {
     const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, b.lanes - 1));  // pad with the last orbit
-    CocycleLanes<T>& c = b.cur;
+    CocycleLanes<T, NV>& c = b.cur;
     cocycle_start<T>(ens.initial[o % n_ic], c.x[l], c.y[l], c.z[l], c.vx[l], c.vy[l], c.vz[l]);
     b.r[l] = r_t[o / n_ic];
     b.a[l] = (T(1) + b.r[l]) / T(2);
@@ -251,8 +253,8 @@ void cocycle_batch_start(const Ensemble& ens, const T* r_t, std::size_t o0, Cocy
 }
 
 // Adds T's per-call sums (exact integers) into the double accumulators.
-template <class T> inline void cocycle_flush(CocycleBatchState<T>& b, const T* s) {
-  constexpr int B = CocycleBatchState<T>::B;
+template <class T, int NV> inline void cocycle_flush(CocycleBatchState<T, NV>& b, const T* s) {
+  constexpr int B = CocycleBatchState<T, NV>::B;
 #pragma omp simd
   for (int l = 0; l < B; ++l) {
     b.lu[l] += static_cast<double>(s[l]);
@@ -262,7 +264,7 @@ template <class T> inline void cocycle_flush(CocycleBatchState<T>& b, const T* s
 }
 
 // The batch at a checkpoint, handed to the recorder.
-template <class T, class Rec> inline void cocycle_record(Rec& rec, CocycleBatchState<T>& b, long step) {
+template <class T, int NV, class Rec> inline void cocycle_record(Rec& rec, CocycleBatchState<T, NV>& b, long step) {
   CocycleBatch<T> v;
   v.orbit0 = b.o0, v.lanes = b.lanes, v.step = step;
   v.x = b.cur.x, v.y = b.cur.y, v.z = b.cur.z, v.vx = b.cur.vx, v.vy = b.cur.vy, v.vz = b.cur.vz;
@@ -274,15 +276,15 @@ template <class T, class Rec> inline void cocycle_record(Rec& rec, CocycleBatchS
 // and, where a block lost more than the budget, that block redone per step for the lanes that lost
 // (cocycle_redo); recorded at the recorder's checkpoints.  Polled once per call (about a millisecond): a cancelled
 // run leaves the batch early.  Returns the lanes redone.
-template <class T, class Rec>
-std::size_t cocycle_batch(CocycleBatchState<T>& b, long iterations, Rec& rec, const RunOptions& opt) {
-  constexpr int B = CocycleBatchState<T>::B;
+template <class T, int NV, class Rec>
+std::size_t cocycle_batch(CocycleBatchState<T, NV>& b, long iterations, Rec& rec, const RunOptions& opt) {
+  constexpr int B = CocycleBatchState<T, NV>::B;
   constexpr int K = cocycle_interval<T>();
   constexpr int budget = cocycle_loss_budget<T>();
   constexpr long kFlush = 1L << 16;
   const std::vector<long>& cps = rec.checkpoints();
   std::size_t ci = 0;
-  if (ci < cps.size() && cps[ci] == 0) cocycle_record<T>(rec, b, 0), ++ci;
+  if (ci < cps.size() && cps[ci] == 0) cocycle_record<T, NV>(rec, b, 0), ++ci;
   std::size_t redone = 0;
   long step = 0;
   while (step < iterations && !(opt.cancel && opt.cancel->cancelled())) {
@@ -291,57 +293,69 @@ std::size_t cocycle_batch(CocycleBatchState<T>& b, long iterations, Rec& rec, co
     const long want = std::min<long>(target - step, kFlush);
     std::fill(b.acc, b.acc + 3 * B, T(0));
     bool failed = false;
-    const long done = cocycle_blocks<T>(b.cur, b.pre, b.r, b.a, b.k, want, K, budget, b.acc, b.blk, b.loss, failed);
-    cocycle_flush<T>(b, b.acc);
+    const long done = cocycle_blocks<T, NV>(b.cur, b.pre, b.r, b.a, b.k, want, K, budget, b.acc, b.blk, b.loss, failed);
+    cocycle_flush<T, NV>(b, b.acc);
     step += done;
     if (failed) {
       const int n = static_cast<int>(std::min<long>(K, want - done));
       redone +=
-          static_cast<std::size_t>(cocycle_redo<T>(b.cur, b.pre, b.r, b.a, b.k, n, budget, b.blk, b.loss, b.lanes));
-      cocycle_flush<T>(b, b.blk);
+          static_cast<std::size_t>(cocycle_redo<T, NV>(b.cur, b.pre, b.r, b.a, b.k, n, budget, b.blk, b.loss, b.lanes));
+      cocycle_flush<T, NV>(b, b.blk);
       step += n;
     }
-    if (ci < cps.size() && step == cps[ci]) cocycle_record<T>(rec, b, step), ++ci;
+    if (ci < cps.size() && step == cps[ci]) cocycle_record<T, NV>(rec, b, step), ++ci;
   }
   return redone;
 }
 
 }  // namespace detail
 
-// Batches of B orbits over the threads (static schedule: each batch writes only its own lanes' records): start,
+namespace detail {
+// Batches of B = W NV orbits over the threads (static schedule: each batch writes only its own lanes' records): start,
 // step with the recorder at its checkpoints, tally (RunTally: progress, degenerate lanes, cancellation).
-template <class T, CocycleRecorder Rec>
-void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
-  static_assert(detail::has_simd<T>, "the cocycle kernel is written for float and double");
-  constexpr int B = detail::CocycleLanes<T>::B;
+template <class T, int NV, CocycleRecorder Rec>
+void cocycle_batches(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+  constexpr int B = CocycleLanes<T, NV>::B;
   const std::size_t n_orbits = ens.orbits();
-  if (n_orbits == 0 || iterations < 0) return;
-  if (!cocycle_accepts<T>(ens.r))
-    throw std::invalid_argument(
-        "r: too small for the cocycle kernel in this precision (the state would leave the "
-        "normal range within one projection interval)");
   const std::size_t n_batches = (n_orbits + B - 1) / B;
-  const int threads = core::thread_count(opt.threads);
-  detail::RunTally tally;
+  const int threads = static_cast<int>(std::min<std::size_t>(core::thread_count(opt.threads), n_batches));
+  RunTally tally;
   std::atomic<std::size_t> redone{0};
   // r in T from the ensemble's decimal source, as iterate::run: float's r is the float nearest the request's decimal.
   std::vector<T> r_own;
-  const T* r_t = detail::r_values<T>(ens, r_own);
+  const T* r_t = r_values<T>(ens, r_own);
 
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t b = 0; b < n_batches; ++b) {
     if (opt.cancel && opt.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
-    detail::CocycleBatchState<T> st;
-    detail::cocycle_batch_start<T>(ens, r_t, b * B, st);
-    const std::size_t redone_here = detail::cocycle_batch<T>(st, iterations, rec, opt);
+    CocycleBatchState<T, NV> st;
+    cocycle_batch_start<T, NV>(ens, r_t, b * B, st);
+    const std::size_t redone_here = cocycle_batch<T, NV>(st, iterations, rec, opt);
     if (redone_here) redone.fetch_add(redone_here, std::memory_order_relaxed);
     tally.batch_end(opt, n_batches, st.lanes, [&](int l) {
-      return detail::degenerate_vector(st.cur.x[l], st.cur.y[l], st.cur.z[l]) ||
-             detail::degenerate_vector(st.cur.vx[l], st.cur.vy[l], st.cur.vz[l]);
+      return degenerate_vector(st.cur.x[l], st.cur.y[l], st.cur.z[l]) ||
+             degenerate_vector(st.cur.vx[l], st.cur.vy[l], st.cur.vz[l]);
     });
   }
   tally.finish(opt, n_batches);
   if (opt.redone) *opt.redone = redone.load();
+}
+}  // namespace detail
+
+// An ensemble of at most one vector's lanes runs as one vector (NV = 1: the scalar limit of the cocycle's chain, as
+// iterate::run's few_lanes); a lane's bits are the same either way.  A block redone for one lane is redone for its
+// batch, whose other lanes keep their values: a single orbit's batch is copies of it, so its bits do not change.
+template <class T, CocycleRecorder Rec>
+void run_cocycle(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+  static_assert(detail::has_simd<T>, "the cocycle kernel is written for float and double");
+  if (ens.orbits() == 0 || iterations < 0) return;
+  if (!cocycle_accepts<T>(ens.r))
+    throw std::invalid_argument(
+        "r: too small for the cocycle kernel in this precision (the state would leave the "
+        "normal range within one projection interval)");
+  if (ens.orbits() <= static_cast<std::size_t>(detail::Simd<T>::W))
+    return detail::cocycle_batches<T, 1>(ens, iterations, rec, opt);
+  detail::cocycle_batches<T, detail::kCocycleVectors>(ens, iterations, rec, opt);
 }
 
 }  // namespace btob::iterate

@@ -7,6 +7,7 @@
 #include "core/run.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/lanes.hpp"
+#include "iterate/mpfr_lane.hpp"
 
 #include <Eigen/Dense>
 #include <immintrin.h>
@@ -194,10 +195,12 @@ template <class V, class M> inline StepResult<V> map_step(V x, V y, V z, V r, V 
   else return {xn, V(k * (xn + zn) + sy), zn};
 }
 
-// Generic lanes (long double, or any T without a vector type): the per-lane loop.
+// Generic lanes (long double, or any T without a vector type): the per-lane loop; one MPFR lane on the C API
+// (mpfr_lane.hpp: the same operations without a temporary per operation).
 template <class T, int B, bool Sym>
 inline void steps(T* __restrict x, T* __restrict y, T* __restrict z, const T* __restrict r, const T* __restrict a,
                   const T* __restrict k, std::uint8_t* __restrict sym, int n) {
+  if constexpr (B == 1 && MpfrNumber<T>) return mpfr_lane_steps<T, Sym>(*x, *y, *z, *r, *a, *k, sym, n);
   for (int s = 0; s < n; ++s) {
 #pragma omp simd
     for (int l = 0; l < B; ++l) {
@@ -239,15 +242,18 @@ template <class T> struct Simd {
   static void store(T* p, V v) { std::memcpy(p, &v, sizeof v); }
 };
 
-template <class T, bool Sym>
+// NV vectors of W lanes: kVectorsInFlight for a full batch, 1 for an ensemble of at most W orbits (one orbit's step is
+// latency-bound: the other five vectors would only add their issue cost to it, lanes.hpp).  Each lane's arithmetic
+// is the same whatever NV (the same map_step on the same vector type).
+template <class T, int NV, bool Sym>
 inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, const T* __restrict rs,
                        const T* __restrict as, const T* __restrict ks, std::uint8_t* __restrict sym, int n) {
   using S = Simd<T>;
   using V = typename S::V;
   using I = typename S::I;
-  V x[S::NV], y[S::NV], z[S::NV], r[S::NV], a[S::NV], k[S::NV];
-  I s1[S::NV], s3[S::NV];
-  for (int j = 0; j < S::NV; ++j) {
+  V x[NV], y[NV], z[NV], r[NV], a[NV], k[NV];
+  I s1[NV], s3[NV];
+  for (int j = 0; j < NV; ++j) {
     x[j] = S::load(xs + j * S::W);
     y[j] = S::load(ys + j * S::W);
     z[j] = S::load(zs + j * S::W);
@@ -257,14 +263,14 @@ inline void steps_simd(T* __restrict xs, T* __restrict ys, T* __restrict zs, con
   }
   for (int s = 0; s < n; ++s) {
 #pragma GCC unroll 8
-    for (int j = 0; j < S::NV; ++j) {
+    for (int j = 0; j < NV; ++j) {
       const StepResult<V> o = map_step<V, I>(x[j], y[j], z[j], r[j], a[j], k[j], s1[j], s3[j]);
       x[j] = o.x;
       y[j] = o.y;
       z[j] = o.z;
     }
   }
-  for (int j = 0; j < S::NV; ++j) {
+  for (int j = 0; j < NV; ++j) {
     S::store(xs + j * S::W, x[j]);
     S::store(ys + j * S::W, y[j]);
     S::store(zs + j * S::W, z[j]);
@@ -302,7 +308,8 @@ inline void advance(T* __restrict x, T* __restrict y, T* __restrict z, const T* 
       steps<T, B, Sym>(x, y, z, r, a, k, sym, 1);
       if (--n == 0) return;
     }
-    steps_simd<T, Sym>(x, y, z, r, a, k, sym, n);
+    static_assert(B % Simd<T>::W == 0, "a batch is whole vectors");
+    steps_simd<T, B / Simd<T>::W, Sym>(x, y, z, r, a, k, sym, n);
   } else {
     steps<T, B, Sym>(x, y, z, r, a, k, sym, n);
   }
@@ -426,65 +433,104 @@ template <class T> int renormalisation_interval(const std::vector<double>& r) {
   return static_cast<int>(std::clamp(std::floor(k), 1.0, 1024.0));
 }
 
-template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
-  constexpr int B = detail::batch_lanes<T>();
-  const std::size_t n_orbits = ens.orbits();
-  const std::size_t n_ic = ens.initial.size();
-  if (n_orbits == 0 || iterations < 0) return;
-  const std::size_t n_batches = (n_orbits + B - 1) / B;
-  const int K = renormalisation_interval<T>(ens.r);
-  const long first = std::max<long>(rec.first_step(), 1);
-  const int threads = core::thread_count(opt.threads);
-  detail::RunTally tally;
-  std::vector<T> r_own;
-  const T* r_t = detail::r_values<T>(ens, r_own);
+namespace detail {
 
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::size_t b = 0; b < n_batches; ++b) {
-    if (opt.cancel && opt.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
-    alignas(64) T x[B], y[B], z[B], r[B], a[B], k[B];
-    alignas(64) std::uint8_t sym[B];
-    const std::size_t o0 = b * B;
-    const int lanes = static_cast<int>(std::min<std::size_t>(B, n_orbits - o0));
-    for (int l = 0; l < B; ++l) {
-      const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
-      const core::Vec3<double> q = detail::unit_start(ens.initial[o % n_ic]);
-      x[l] = static_cast<T>(q(0));
-      y[l] = static_cast<T>(q(1));
-      z[l] = static_cast<T>(q(2));
-      r[l] = r_t[o / n_ic];
-      a[l] = (T(1) + r[l]) / T(2);
-      k[l] = a[l] / r[l];
-    }
-    detail::renormalise<T, B>(x, y, z);
-    bool corner = false;  // the other precisions' per-lane step settles every lane
-    if constexpr (detail::has_simd<T>) corner = detail::start_in_corner<T, B>(y);
-    // Phase 1: unrecorded steps, K at a time, then an exact power-of-two rescale.
-    long step = 0;
-    const long quiet = std::min(iterations, first - 1);
-    // A cancelled run leaves the batch early (a transient of 1e12 steps is one batch): polled once per K steps
-    // here and every core::cancel_stride steps below; the partial batch is discarded by RunTally::finish.
-    while (step < quiet && !(opt.cancel && opt.cancel->cancelled())) {
-      const int n = static_cast<int>(std::min<long>(K, quiet - step));
-      detail::advance<T, B, false>(x, y, z, r, a, k, sym, n, corner && step == 0);
-      detail::renormalise<T, B>(x, y, z);
-      step += n;
-    }
-    // Phase 2: recorded steps (none once cancelled: a recorder may only see steps from its first_step() on).
-    int since = 0;
-    if (step < quiet) step = iterations;
-    while (step < iterations && !core::cancel_due(opt.cancel, step)) {
-      detail::advance<T, B, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1, corner && step == 0);
-      ++step;
-      if (++since == K) {
-        detail::renormalise<T, B>(x, y, z);
-        since = 0;
-      }
-      rec.record(o0, lanes, step, x, y, z, Rec::needs_symbols ? sym : nullptr);
-    }
-    tally.batch_end(opt, n_batches, lanes, [&](int l) { return detail::degenerate_vector(x[l], y[l], z[l]); });
+// What every batch of a run shares.
+template <class T> struct RunShape {
+  std::size_t n_orbits, n_ic, n_batches;
+  int K;       // renormalisation_interval
+  long first;  // the recorder's first step (at least 1)
+  const T* r;  // r of each column in T (r_values)
+};
+
+// Batch b of B lanes through the run's two phases: the orbits b B .. b B + lanes - 1 (padded with the last one),
+// their unrecorded steps K at a time, each block followed by an exact power-of-two rescale, then the recorded steps.
+template <class T, int B, Recorder Rec>
+void run_batch(const RunShape<T>& sh, std::size_t b, const Ensemble& ens, long iterations, Rec& rec,
+               const RunOptions& opt, RunTally& tally) {
+  alignas(64) T x[B], y[B], z[B], r[B], a[B], k[B];
+  alignas(64) std::uint8_t sym[B];
+  const std::size_t o0 = b * B;
+  const int lanes = static_cast<int>(std::min<std::size_t>(B, sh.n_orbits - o0));
+  for (int l = 0; l < B; ++l) {
+    const std::size_t o = o0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last orbit
+    const core::Vec3<double> q = unit_start(ens.initial[o % sh.n_ic]);
+    x[l] = static_cast<T>(q(0));
+    y[l] = static_cast<T>(q(1));
+    z[l] = static_cast<T>(q(2));
+    r[l] = sh.r[o / sh.n_ic];
+    a[l] = (T(1) + r[l]) / T(2);
+    k[l] = a[l] / r[l];
   }
-  tally.finish(opt, n_batches);
+  renormalise<T, B>(x, y, z);
+  bool corner = false;  // the other precisions' per-lane step settles every lane
+  if constexpr (has_simd<T>) corner = start_in_corner<T, B>(y);
+  const int K = sh.K;
+  // Phase 1: unrecorded steps, K at a time, then an exact power-of-two rescale.
+  long step = 0;
+  const long quiet = std::min(iterations, sh.first - 1);
+  // A cancelled run leaves the batch early (a transient of 1e12 steps is one batch): polled once per K steps
+  // here and every core::cancel_stride steps below; the partial batch is discarded by RunTally::finish.
+  while (step < quiet && !(opt.cancel && opt.cancel->cancelled())) {
+    const int n = static_cast<int>(std::min<long>(K, quiet - step));
+    advance<T, B, false>(x, y, z, r, a, k, sym, n, corner && step == 0);
+    renormalise<T, B>(x, y, z);
+    step += n;
+  }
+  // Phase 2: recorded steps (none once cancelled: a recorder may only see steps from its first_step() on).
+  int since = 0;
+  if (step < quiet) step = iterations;
+  while (step < iterations && !core::cancel_due(opt.cancel, step)) {
+    advance<T, B, Rec::needs_symbols>(x, y, z, r, a, k, sym, 1, corner && step == 0);
+    ++step;
+    if (++since == K) {
+      renormalise<T, B>(x, y, z);
+      since = 0;
+    }
+    rec.record(o0, lanes, step, x, y, z, Rec::needs_symbols ? sym : nullptr);
+  }
+  tally.batch_end(opt, sh.n_batches, lanes, [&](int l) { return degenerate_vector(x[l], y[l], z[l]); });
+}
+
+template <class T, int B, Recorder Rec>
+void run_batches(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+  const std::size_t n_orbits = ens.orbits();
+  RunShape<T> sh{n_orbits,
+                 ens.initial.size(),
+                 (n_orbits + B - 1) / B,
+                 renormalisation_interval<T>(ens.r),
+                 std::max<long>(rec.first_step(), 1),
+                 nullptr};
+  // No more threads than batches: one orbit is one batch, stepped by one thread either way.
+  const int threads = static_cast<int>(std::min<std::size_t>(core::thread_count(opt.threads), sh.n_batches));
+  RunTally tally;
+  std::vector<T> r_own;
+  sh.r = r_values<T>(ens, r_own);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::size_t b = 0; b < sh.n_batches; ++b) {
+    if (opt.cancel && opt.cancel->cancelled()) continue;  // no exception may leave an OpenMP region
+    run_batch<T, B>(sh, b, ens, iterations, rec, opt, tally);
+  }
+  tally.finish(opt, sh.n_batches);
+}
+
+}  // namespace detail
+
+// An ensemble of at most few_lanes<T>() orbits runs as one batch of that width: one vector for float and double (8
+// and 16 lanes with AVX-512), one lane for the other precisions (a single orbit).  Its step is then the scalar
+// limit, a chain of dependent operations (fused a y - x, compare, select, x' + z', fused y': docs/performance.md),
+// instead of that chain for one lane and the issue cost of 47 others.  Every lane's arithmetic is the full batch's
+// (the same map_step on the same types, the same rescaling every K steps), so the results are the same bits.
+template <class T> constexpr int few_lanes() {
+  if constexpr (detail::has_simd<T>) return detail::Simd<T>::W;
+  else return 1;
+}
+
+template <class T, Recorder Rec> void run(const Ensemble& ens, long iterations, Rec& rec, const RunOptions& opt) {
+  if (ens.orbits() == 0 || iterations < 0) return;
+  if (ens.orbits() <= static_cast<std::size_t>(few_lanes<T>()))
+    return detail::run_batches<T, few_lanes<T>()>(ens, iterations, rec, opt);
+  detail::run_batches<T, detail::batch_lanes<T>()>(ens, iterations, rec, opt);
 }
 
 template <class T, Recorder Rec> void run_scalar(const Ensemble& ens, long iterations, Rec& rec) {

@@ -18,6 +18,7 @@
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 namespace btob::stats {
 
@@ -43,6 +44,11 @@ std::vector<OrbitSeries> orbit_series(double r, const std::vector<iterate::Vec3<
   stats::SeriesRecorder rec(u0.size(), transient + 1, length);
   iterate::run<double>(e, transient + length, rec, opt);
   std::vector<OrbitSeries> out(u0.size());
+  if (u0.size() == 1) {  // one orbit: the recorder's arrays are its series (a copy cost twice the run)
+    out[0].x = std::move(rec.x), out[0].y = std::move(rec.y), out[0].z = std::move(rec.z);
+    out[0].symbol = std::move(rec.symbol);
+    return out;
+  }
   for (std::size_t o = 0; o < u0.size(); ++o) {
     const auto b = static_cast<std::ptrdiff_t>(o * static_cast<std::size_t>(length)),
                n = static_cast<std::ptrdiff_t>(length);
