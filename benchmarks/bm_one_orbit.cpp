@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the single-orbit routes in map iterations per second (wall time), beside the plain
 // batched kernel (plain_reference, in the same program: quote ratios of rates from one run).  The orbit is the issue's:
 // r = 0.12 from (1, -0.5, -1.1), chaotic (lambda1 = 0.58), so the symbols are unpredictable.

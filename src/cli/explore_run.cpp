@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The explorer's API from the registry (explore.hpp, GET /api/run): a served command's request filled from the query
 // by its fields' flag names, run through commands/execute.hpp's one path, and its Record answered as JSON.  No
 // command is named here: the served ones are those whose Spec says so (commands/commands.hpp).

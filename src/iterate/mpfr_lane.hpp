@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One MPFR orbit's steps for the batched kernel's one-lane batch (kernel_impl.hpp, steps): map_step's operations on
 // the mpfr_* C API, in place on the lane's own numbers and on three scratch numbers kept per thread, so that a step
 // allocates nothing (Boost's operators allocate a temporary per operation).  Included only by kernel_impl.hpp.

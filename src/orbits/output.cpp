@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // strip-orbits: what its result says (the panels' words, the CSV table, the arrays and attributes).
 #include "orbits/orbits.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Individual orbits at fixed r in the strip (Figures 6.9-6.11): seeded initial points, tails, verdicts; and the
 // run's cost.
 #include "orbits/orbits.hpp"

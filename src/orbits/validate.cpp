@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // strip-orbits: the request's validation.
 #include "orbits/orbits.hpp"
 

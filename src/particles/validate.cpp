@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The particle check's request: its validation, and where its word is feasible when it is not at r.
 #include "particles/particles.hpp"
 

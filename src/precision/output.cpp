@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the precision study's result says: its notes, the CSV table (tradeoff.csv), the arrays and attributes.
 #include "precision/tradeoff.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The precision study (precision/tradeoff.hpp): every method against a 256-digit MPFR run of the same orbits; and
 // its cost.
 #include "precision/tradeoff.hpp"

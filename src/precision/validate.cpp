@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The precision study's request: its validation.
 #include "precision/tradeoff.hpp"
 
