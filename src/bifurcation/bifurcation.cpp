@@ -164,6 +164,26 @@ Part run_part(const Request& req, const std::vector<std::size_t>& items, const c
   return part;
 }
 
+namespace {
+// The trigonometric route's MATLAB image (Figure 4.7), rows by item.
+reference::MatlabTrigImage merge_matlab(const std::vector<Part>& parts, const std::vector<core::ItemRef>& order,
+                                        std::size_t bins) {
+  reference::MatlabTrigImage m;
+  using M = reference::MatlabTrigImage;
+  const auto per_r = [&](std::vector<std::uint64_t> M::*field) {
+    return core::merge_rows<Part, std::uint64_t>(
+        parts, order, 1, [field](const Part& p) -> auto& { return p.matlab.*field; });
+  };
+  m.counts = core::merge_rows<Part, std::uint32_t>(
+      parts, order, bins, [](const Part& p) -> auto& { return p.matlab.counts; });
+  m.complex_orbits = per_r(&M::complex_orbits);
+  m.nan_points = per_r(&M::nan_points);
+  m.outside = per_r(&M::outside);
+  m.stalled = per_r(&M::stalled);
+  return m;
+}
+}  // namespace
+
 Result merge(const Request& req, std::vector<Part> parts) {
   req.validate();
   const core::Precision prec = core::parse_precision(req.precision, "precision");
@@ -188,19 +208,7 @@ Result merge(const Request& req, std::vector<Part> parts) {
     res.tail = core::merge_rows<Part, double>(
         parts, order, ens.initial.size() * static_cast<std::size_t>(req.tail),
         [](const Part& p) -> auto& { return p.tail; });
-  if (req.algorithm == "trig") {
-    using M = reference::MatlabTrigImage;
-    const auto per_r = [&](std::vector<std::uint64_t> M::*field) {
-      return core::merge_rows<Part, std::uint64_t>(
-          parts, order, 1, [field](const Part& p) -> auto& { return p.matlab.*field; });
-    };
-    res.matlab.counts = core::merge_rows<Part, std::uint32_t>(
-        parts, order, bins, [](const Part& p) -> auto& { return p.matlab.counts; });
-    res.matlab.complex_orbits = per_r(&M::complex_orbits);
-    res.matlab.nan_points = per_r(&M::nan_points);
-    res.matlab.outside = per_r(&M::outside);
-    res.matlab.stalled = per_r(&M::stalled);
-  }
+  if (req.algorithm == "trig") res.matlab = merge_matlab(parts, order, bins);
   for (const Part& p : parts) {
     res.degenerate += p.degenerate;
     res.iteration_seconds = std::max(res.iteration_seconds, p.iteration_seconds);  // the slowest part's wall time

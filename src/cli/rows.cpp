@@ -91,8 +91,8 @@ Plan plan_exchange(const core::RowSet& mine, int rank, int ranks) {
   p.block_first = b.first(r);
   p.block_rows = b.first(r + 1) - b.first(r);
   std::vector<unsigned long> sent(mine.items.begin(), mine.items.end()), got(p.block_rows);
-  MPI_Alltoallv(sent.data(), p.send_count.data(), p.send_at.data(), MPI_UNSIGNED_LONG, got.data(),
-                p.recv_count.data(), p.recv_at.data(), MPI_UNSIGNED_LONG, MPI_COMM_WORLD);
+  MPI_Alltoallv(sent.data(), p.send_count.data(), p.send_at.data(), MPI_UNSIGNED_LONG, got.data(), p.recv_count.data(),
+                p.recv_at.data(), MPI_UNSIGNED_LONG, MPI_COMM_WORLD);
   p.place.resize(got.size());
   for (std::size_t j = 0; j < got.size(); ++j) p.place[j] = got[j] - p.block_first;
   return p;
@@ -125,12 +125,12 @@ void write_column(const std::string& path, hid_t file, hid_t dxpl, const core::R
     fail(path, fmt::format("dataset '{}' has not one row per item ({} items)", col.name, mine.total));
   const std::size_t width = std::accumulate(dims.begin() + 1, dims.end(), std::size_t{1}, std::multiplies<>());
   if (col.size() != mine.items.size() * width)
-    fail(path, fmt::format("dataset '{}': {} values for {} rows of {}", col.name, col.size(), mine.items.size(), width));
+    fail(path,
+         fmt::format("dataset '{}': {} values for {} rows of {}", col.name, col.size(), mine.items.size(), width));
   std::visit(
       [&](const auto& v) {
         using V = typename std::decay_t<decltype(v)>::value_type;
-        const std::vector<char> block =
-            exchange(plan, reinterpret_cast<const char*>(v.data()), width * sizeof(V));
+        const std::vector<char> block = exchange(plan, reinterpret_cast<const char*>(v.data()), width * sizeof(V));
         std::vector<hsize_t> start(dims.size(), 0), count(dims);
         start[0] = plan.block_first;
         count[0] = plan.block_rows;

@@ -13,10 +13,10 @@ namespace btob::cli::rows {
 
 // What the last write cost, on every rank (its own) and reduced over the ranks.
 struct WriteStats {
-  double seconds = 0;           // this rank: open, write its rows, close
+  double seconds = 0;                       // this rank: open, write its rows, close
   double seconds_min = 0, seconds_max = 0;  // the fastest and the slowest rank
-  std::uint64_t bytes = 0;      // this rank's rows
-  std::uint64_t bytes_total = 0;  // every rank's
+  std::uint64_t bytes = 0;                  // this rank's rows
+  std::uint64_t bytes_total = 0;            // every rank's
 };
 
 // A collective over MPI_COMM_WORLD, called once by every rank: rank 0's `path` (an HDF5 file it has created and

@@ -27,8 +27,8 @@
 #include "io/rates.hpp"
 
 #include <chrono>
-#include <memory>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>

@@ -23,8 +23,8 @@
 #include <algorithm>
 #include <concepts>
 #include <cstddef>
-#include <stdexcept>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
@@ -90,7 +90,9 @@ template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& p
 // (ThinMerge below) while describe() still gives their full shape.
 // (The check only names the member template; its body is instantiated with take_rows' visitor alone.)
 template <class Part>
-concept HasRows = requires(Part& p, int& probe) { p.rows(probe); };
+concept HasRows = requires(Part& p, int& probe) {
+  p.rows(probe);
+};
 
 // One named dataset's rows of one rank: its items' rows, row-major, in item order (moved out of the part).
 struct RowColumn {

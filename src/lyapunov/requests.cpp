@@ -280,8 +280,7 @@ void check_float(MapPart& part, const iterate::Ensemble& ens, const MapRequest& 
   if (checked.empty()) return;
   core::RunControl quiet = control;
   quiet.progress = nullptr;
-  const MapResult d =
-      run_ensemble(ens.with_r(checked), req.iterations, req.transient, req.blocks, "double", quiet);
+  const MapResult d = run_ensemble(ens.with_r(checked), req.iterations, req.transient, req.blocks, "double", quiet);
   for (std::size_t c = 0; c < checked.size(); ++c)
     for (std::size_t ic = 0; ic < I; ++ic) {
       const std::size_t of = checked[c] * I + ic, od = c * I + ic;
@@ -299,8 +298,8 @@ void merge_per_r(MapResult& res, const std::vector<MapPart>& parts, std::size_t 
   RSummary& s = res.summary;
   for (auto f : {&RSummary::min, &RSummary::median, &RSummary::max, &RSummary::err_min, &RSummary::err_median,
                  &RSummary::err_max, &RSummary::frac_positive, &RSummary::frac_zero, &RSummary::frac_negative})
-    s.*f = core::merge_rows<MapPart, double>(parts, order, 1,
-                                             [f](const MapPart& p) -> const std::vector<double>& { return p.summary.*f; });
+    s.*f = core::merge_rows<MapPart, double>(
+        parts, order, 1, [f](const MapPart& p) -> const std::vector<double>& { return p.summary.*f; });
   std::size_t first = static_cast<std::size_t>(-1);
   for (const MapPart& p : parts) {
     res.float_checked += p.float_checked;

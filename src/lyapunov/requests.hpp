@@ -146,9 +146,9 @@ struct MapPart {
   template <class A> void members(A& a) {
     a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max,
       exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations,
-      exponents.blocks, summary.min, summary.median, summary.max, summary.err_min, summary.err_median,
-      summary.err_max, summary.frac_positive, summary.frac_zero, summary.frac_negative, float_checked,
-      float_disagree, float_disagree_item, iteration_seconds);
+      exponents.blocks, summary.min, summary.median, summary.max, summary.err_min, summary.err_median, summary.err_max,
+      summary.frac_positive, summary.frac_zero, summary.frac_negative, float_checked, float_disagree,
+      float_disagree_item, iteration_seconds);
   }
   // The per-orbit exponents, by their datasets' names (core::HasRows).
   template <class A> void rows(A& a) {
