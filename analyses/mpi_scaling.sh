@@ -6,7 +6,8 @@
 #                  whole command (mpirun and its ranks), and the work's time (the kernel's; for MPI the slowest
 #                  rank's run_part).  CPU time is the steadier measure on a shared machine: wall time depends on
 #                  how many cores the other users leave.
-#   gather.csv     P = 1, 2, 3 ranks of 1 thread (3 oversubscribed on 2 cores): work per rank, wait at the
+#   gather.csv     P = 1, 2, 3 ranks of 1 thread (3 oversubscribed on 2 cores), every row gathered to rank 0 (the
+#                  design before the ranks wrote their own rows: BTOB_MPI_WRITE=gather): work per rank, wait at the
 #                  barrier, bytes gathered to rank 0 and the gather's time
 #   rows.csv       P = 2, 3, 4 ranks of 1 thread on a large result (10 x R_COUNT r values x 32 orbits, 110 steps:
 #                  ~115 MB of per-orbit exponents) and on a tiny one (the write's fixed cost), each twice: the ranks
@@ -51,8 +52,8 @@ echo "ranks,r_count,iterations,compute_min_seconds,compute_max_seconds,wait_seco
 # merge's rates on 64 MB rather than 6 MB, where fixed costs no longer dominate.
 for run in "1 $r_count 10000" "2 $r_count 10000" "3 $r_count 10000" "2 $((10 * r_count)) 100" "3 $((10 * r_count)) 100"; do
   read -r P R N <<< "$run"
-  w=$(wall mpirun -n "$P" "$btob" "${work[@]}" --r-count "$R" --iterations "$N" --transient $((N / 10)) --threads 1 \
-      --out "$tmp/g$P")
+  w=$(wall env BTOB_MPI_WRITE=gather mpirun -n "$P" "$btob" "${work[@]}" --r-count "$R" --iterations "$N" \
+      --transient $((N / 10)) --threads 1 --out "$tmp/g$P")
   j="$tmp/g$P/x.json"
   if [ "$P" -eq 1 ]; then  # one rank runs run() itself: its work is the kernel's time, nothing is gathered
     echo "1,$R,$N,$(attr "$j" iteration_seconds),$(attr "$j" iteration_seconds),0,0,0,0,$w" >> "$out/gather.csv.tmp"
