@@ -1,17 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Bifurcation diagrams: validation, the kernel run with the density recorder, the trigonometric route.
+// The bifurcation sweep's run: its parts (the kernel's density and raw tails per r value), their merge, and run().
+#include "core/run.hpp"
 #include "bifurcation/bifurcation.hpp"
-
+#include "bifurcation/request_detail.hpp"
 #include "core/cancel.hpp"
 #include "core/fields.hpp"
-#include "core/run.hpp"
 #include "core/scalar.hpp"
 #include "iterate/kernel.hpp"
 #include "iterate/recorders.hpp"
 #include "reference/reference.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,30 +21,8 @@
 namespace btob::bifurcation {
 
 namespace {
-struct Axis {
-  iterate::Coord coord;
-  double lo, hi;
-};
-
-// The coordinate and its default range: theta in [0, pi/2], phi in [0, pi], log10 theta in [-16, 0.25],
-// w1 in [-4, 4], w2 in [-1, 1]; a request's range replaces it.
-Axis axis_of(const Request& req) {
-  iterate::Coord c = iterate::parse_coord(req.coord, "coord");
-  if (req.log) {
-    if (c != iterate::Coord::theta) throw core::InvalidField("log", "--log with coord " + req.coord, "coord theta");
-    c = iterate::Coord::log10_theta;
-  }
-  Axis a{c, 0, std::numbers::pi / 2};
-  if (c == iterate::Coord::phi) a.hi = std::numbers::pi;
-  if (c == iterate::Coord::log10_theta) a.lo = -16, a.hi = 0.25;
-  if (c == iterate::Coord::w1) a.lo = -4, a.hi = 4;
-  if (c == iterate::Coord::w2) a.lo = -1, a.hi = 1;
-  if (!req.range.empty()) {
-    a.lo = req.range[0];
-    a.hi = req.range[1];
-  }
-  return a;
-}
+using detail::Axis;
+using detail::axis_of;
 
 template <class T>
 void run_kernel(const iterate::Ensemble& ens, long iterations, iterate::DensityRecorder& dens,
@@ -76,42 +53,6 @@ template <class F> auto with_scalar(const core::Precision& p, F&& f) {
 double Request::map_steps() const {
   const double orbits = static_cast<double>(iterate::parse_grid(grid, seed, "grid").size());
   return static_cast<double>(r_count) * orbits * static_cast<double>(iterations);
-}
-
-void Request::validate() const {
-  core::require_at_least(r_count, 1, "r-count");
-  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
-  core::require_r_range(r_min, r_max, r_count);
-  core::require_at_least(iterations, 1, "iterations");
-  if (tail < 1 || tail > iterations)
-    throw core::InvalidField("tail", std::to_string(tail), fmt::format("1 <= tail <= iterations = {}", iterations));
-  if (bins < 1 || bins > 100000) throw core::InvalidField("bins", std::to_string(bins), "1..100000");
-  const core::Precision prec = core::parse_precision(precision, "precision");
-  if (!range.empty() && (range.size() != 2 || !(range[0] < range[1])))
-    throw core::InvalidField("range", fmt::format("{} values", range.size()), "two numbers lo hi with lo < hi");
-  if (!range.empty()) core::require_distinct(range[0], range[1], bins, "bins", "range");
-  (void)axis_of(*this);
-  if (algorithm != "linear" && algorithm != "trig")
-    throw core::InvalidField("algorithm", "'" + algorithm + "'", "linear (Theorem 3.3) or trig (Appendix A.1)");
-  if (algorithm == "trig" &&
-      (raw || (prec.kind != core::Precision::Kind::f64 && prec.kind != core::Precision::Kind::f80)))
-    throw core::InvalidField("algorithm", "trig with " + std::string(raw ? "--raw" : prec.name()),
-                             "trig in double or long-double, without raw tails");
-  iterate::Ensemble probe;
-  probe.initial = iterate::parse_grid(grid, seed, "grid");
-  iterate::checked_bytes(static_cast<std::size_t>(r_count) * probe.initial.size(), 64, "r-count x grid");
-  if (raw)
-    iterate::checked_bytes(static_cast<std::size_t>(r_count) * probe.initial.size() * static_cast<std::size_t>(tail), 8,
-                           "r-count x grid x tail (raw)");
-  if (attractors) {  // classify runs in double, on the linear map, from transient iterations - tail >= 1
-    if (prec.kind != core::Precision::Kind::f64 || algorithm != "linear")
-      throw core::InvalidField("attractors", "with " + std::string(prec.name()) + " and algorithm " + algorithm,
-                               "precision double and algorithm linear (classify's)");
-    if (tail >= iterations)
-      throw core::InvalidField("attractors", fmt::format("with tail = iterations = {}", iterations),
-                               "tail < iterations (classify's transient iterations - tail >= 1)");
-    core::require_r_exponents(r_min, prec, "r-min", {});  // classify computes in double only
-  }
 }
 
 Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control) {
@@ -236,63 +177,6 @@ Result merge(const Request& req, std::vector<Part> parts) {
 
 Result run(const Request& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
-}
-
-std::uint64_t Result::points_below() const {
-  std::uint64_t n = 0;
-  for (auto v : underflow) n += v;
-  return n;
-}
-std::uint64_t Result::points_above() const {
-  std::uint64_t n = 0;
-  for (auto v : overflow) n += v;
-  return n;
-}
-
-void Result::describe(core::Contents& c) const {
-  const std::size_t R = ensemble.r.size(), I = ensemble.initial.size();
-  const std::string unit = coord == "log10_theta" ? "log10(rad)" : (coord == "w1" || coord == "w2") ? "1" : "rad";
-  c.array("density", density, {R, bins}, "r, bin of " + coord, "count",
-          fmt::format("tail points per bin; bin i covers [lo + i h, lo + (i+1) h), h = (hi - lo)/bins, the last bin "
-                      "also holds hi ({} in {})",
-                      coord, unit));
-  c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients (the image's columns)");
-  c.array("bin_centre", bin_centre, {bins}, "bin of " + coord, unit,
-          "centre of each bin of " + coord + " (the image's rows)");
-  c.coordinate("bin of " + coord, "bin_centre");
-  c.array("underflow", underflow, {R}, "r", "count", "tail points below lo (or NaN) at each r");
-  c.array("overflow", overflow, {R}, "r", "count", "tail points above hi at each r");
-  c.array("vlines", vlines, {vlines.size()}, "line", "1", "r values drawn as vertical lines");
-  c.array("broken", broken, {R}, "r", "count", "orbits the trigonometric algorithm lost (acos out of its domain)");
-  if (!matlab.counts.empty()) {
-    c.array("density_matlab", matlab.counts, {R, bins}, "r, bin of " + coord + " over [0, pi]", "count",
-            "what the paper's MATLAB code draws: Re acos of the complex continuation past acos's domain");
-    c.array("complex_orbits", matlab.complex_orbits, {R}, "r", "count", "orbits that took a complex acos at some step");
-    c.array("nan_points_matlab", matlab.nan_points, {R}, "r", "count", "tail values that were NaN (not in the image)");
-    c.array("outside_matlab", matlab.outside, {R}, "r", "count", "tail values outside [0, pi]");
-    c.array("stalled_matlab", matlab.stalled, {R}, "r", "count", "tail states never reached (no b-collision any more)");
-  }
-  if (raw)
-    c.array("tail", tail, {R, I, static_cast<std::size_t>(tail_length)}, "r, initial condition, step", unit,
-            "the last values of the coordinate of every orbit");
-  c.attr("r_min", r_min);
-  c.attr("r_max", r_max);
-  c.attr("r_count", static_cast<long>(R));
-  c.attr("grid", ensemble.grid_description);
-  c.attr("initial_conditions", static_cast<long>(I));
-  c.attr("seed", static_cast<long>(ensemble.seed));
-  c.attr("iterations", iterations);
-  c.attr("tail", tail_length);
-  c.attr("coord", coord);
-  c.attr("range_lo", lo);
-  c.attr("range_hi", hi);
-  c.attr("bins", static_cast<long>(bins));
-  c.attr("algorithm", algorithm);
-  c.attr("renormalisation_interval", renormalisation_interval);
-  c.attr("points_below_range", static_cast<long>(points_below()));
-  c.attr("points_above_range", static_cast<long>(points_above()));
-  c.attr("degenerate_orbits", static_cast<long>(degenerate));
-  c.attr("iteration_seconds", iteration_seconds);
 }
 
 }  // namespace btob::bifurcation

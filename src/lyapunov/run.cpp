@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The Lyapunov requests: validation, the runs, and the description of their results.
+// The Lyapunov requests' runs: one orbit, the maps' parts and merges, the hyperbolicity images and CLV sweeps.
+#include "lyapunov/hyperbolicity_requests.hpp"
+#include "lyapunov/request_detail.hpp"
 #include "lyapunov/requests.hpp"
 
 #include "core/cancel.hpp"
@@ -9,84 +11,19 @@
 #include "core/fields.hpp"
 #include "core/run.hpp"
 #include "core/scalar.hpp"
+#include "lyapunov/lyapunov.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace btob::lyapunov {
 
 namespace {
-// What an orbit's exponent is (docs/reference/numbers.md): an estimate whose bar is the batch-means standard error.
-core::Status exponent_status(int blocks) {
-  return core::estimated(
-      fmt::format("batch-means standard error over {} blocks (err1, err2), at least 4 eps |lambda| "
-                  "for the arithmetic; the finite-time bias of a slowly converging orbit is not in it",
-                  blocks),
-      "one standard error (68% if the block means are normal)");
-}
-}  // namespace
-
-std::string ProjectiveResult::csv() const {
-  core::CsvTable t(weighted_columns ? "lambda1_weighted,lambda2_weighted,lambda1,err1,lambda2,err2,iterations,status"
-                                    : "lambda1,err1,lambda2,err2,iterations,status");
-  const core::ValueWithError a = core::with_error(lambda[0].value, lambda[0].error),
-                             b = core::with_error(lambda[1].value, lambda[1].error);
-  const std::string row = fmt::format("{},{},{},{},{},estimated", a.value, a.error, b.value, b.error, iterations);
-  t.line(weighted_columns ? fmt::format("{:.15g},{:.15g},{}", weighted[0], weighted[1], row) : row);
-  return t.text();
-}
-
-void ProjectiveResult::describe(core::Contents& c) const {
-  c.attr("lambda1", lambda[0].value);
-  c.attr("err1", lambda[0].error);
-  c.attr("lambda2", lambda[1].value);
-  c.attr("err2", lambda[1].error);
-  c.attr("iterations", iterations);
-  c.attr("blocks", static_cast<long>(blocks));
-  const core::Status st = exponent_status(blocks);
-  c.status_of("lambda1", st);
-  c.status_of("lambda2", st);
-  if (has_weighted) {  // computed when asked (OrbitRequest::weighted; the library's default)
-    c.attr("lambda1_weighted", weighted[0]);
-    c.attr("lambda2_weighted", weighted[1]);
-    const core::Status w = core::estimated(
-        "weighted Birkhoff average (super-polynomial convergence on periodic and "
-        "quasi-periodic orbits only)",
-        "no error bar");
-    c.status_of("lambda1_weighted", w);
-    c.status_of("lambda2_weighted", w);
-  }
-  if (convergence.exponents.size() < 2) return;  // a result that was never run
-  const std::vector<std::size_t> dims{convergence.n.size()};
-  c.array("convergence_n", convergence.n, dims, "checkpoint", "iterations",
-          "averaged steps at the checkpoint (powers of two and block ends)");
-  c.coordinate("checkpoint", "convergence_n");
-  c.array("convergence_lambda1", convergence.exponents[0], dims, "checkpoint", "1/iteration (natural log)",
-          "running average of lambda1 at the checkpoint");
-  c.array("convergence_lambda2", convergence.exponents[1], dims, "checkpoint", "1/iteration (natural log)",
-          "running average of lambda2 at the checkpoint");
-}
-
-namespace {
-void check_lengths(long iterations, long transient, int blocks) {
-  if (iterations < 1) throw core::InvalidField("iterations", std::to_string(iterations), "at least 1");
-  if (transient < 0) throw core::InvalidField("transient", std::to_string(transient), "at least 0");
-  if (transient > iterations)
-    throw core::InvalidField("transient", std::to_string(transient),
-                             fmt::format("at most iterations = {}", iterations));
-  if (blocks < 2 || blocks > iterations)
-    throw core::InvalidField("blocks", std::to_string(blocks),
-                             fmt::format("2 <= blocks <= iterations = {}", iterations));
-}
-
-void check_kernel_precision(const std::string& p) {
-  if (p != "float" && p != "double")
-    throw core::InvalidField("precision", "'" + p + "'", "float or double (the batched tangent kernel)");
-}
-
 template <class T> void all_finite(const T& values, const std::string& what) {
   for (double v : values)
     if (!std::isfinite(v))
@@ -96,15 +33,6 @@ template <class T> void all_finite(const T& values, const std::string& what) {
                       what));
 }
 }  // namespace
-
-void OrbitRequest::validate() const {
-  core::require_r(r, "r");
-  check_lengths(iterations, transient, blocks);
-  if (reorthonormalise < 1)
-    throw core::InvalidField("reorthonormalise", std::to_string(reorthonormalise), "at least 1");
-  (void)core::parse_point(point, "point");
-  core::require_r_exponents(r, core::parse_precision(precision, "precision"), "r");
-}
 
 ProjectiveResult run(const OrbitRequest& req, const core::RunControl& control) {
   req.validate();
@@ -185,22 +113,6 @@ core::Work work(const OrbitRequest& req) {
   return w;
 }
 
-void MapRequest::validate() const {
-  core::require_at_least(r_count, 1, "r-count");
-  // Checked here, before an MPI job's checkpoint, not only where the r values are made: every rank refuses it alike.
-  core::require_r_range(r_min, r_max, r_count);
-  check_lengths(iterations, transient, blocks);
-  check_kernel_precision(precision);
-  core::require_r_exponents(r_min, core::parse_precision(precision), "r-min",
-                            {"float", "double"});  // r-min <= r-max from here on
-  (void)iterate::parse_grid(grid, seed, "grid");
-  // classify runs in double from transient >= 1 (attractors::validate refuses the rest of its options).
-  if (attractors && precision != "double")
-    throw core::InvalidField("attractors", "with precision " + precision, "precision double (classify's precision)");
-  if (attractors && transient < 1)
-    throw core::InvalidField("attractors", "with transient 0", "transient >= 1 (classify's transient)");
-}
-
 double MapRequest::map_steps() const {
   const double orbits = static_cast<double>(iterate::parse_grid(grid, seed, "grid").size());
   return static_cast<double>(r_count) * orbits * (static_cast<double>(transient) + static_cast<double>(iterations));
@@ -210,16 +122,6 @@ double StripRequest::map_steps() const {
   const core::Grid g = spec();
   return static_cast<double>(g.axis1.cells) * static_cast<double>(g.axis2.cells) *
          (static_cast<double>(transient) + static_cast<double>(iterations));
-}
-
-void StripRequest::validate() const {
-  core::require_r(r, "r");
-  const core::Grid g = spec();  // N, M >= 1 and the range checked by the parser
-  check_lengths(iterations, transient, blocks);
-  check_kernel_precision(precision);
-  core::require_r_exponents(r, core::parse_precision(precision), "r",
-                            {"float", "double"});  // the cocycle runs in this precision
-  iterate::checked_bytes(static_cast<std::size_t>(g.axis1.cells), static_cast<std::size_t>(g.axis2.cells), 200, "grid");
 }
 
 namespace {
@@ -381,82 +283,201 @@ MapResult run(const StripRequest& req, const core::RunControl& control) {
   return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
-void MapResult::describe(core::Contents& c) const {
-  const std::size_t R = ensemble.r.size(), I = ensemble.initial.size();
-  const bool strip = n1 > 0;
-  const std::vector<std::size_t> dims = strip ? std::vector<std::size_t>{n1, n2} : std::vector<std::size_t>{R, I};
-  const std::string axes = strip ? "w1 cell, w2 cell" : "r, initial condition";
-  const std::string per = "1/iteration (natural log)";
-  c.array("r", ensemble.r, {R}, "r", "1", "restitution coefficients");
-  const auto& e = exponents;
-  c.array("lambda1", e.lambda1, dims, axes, per,
-          "projective exponent of one tangent vector (v0 = e1; converges to the larger one), = chi2 - chi1");
-  c.array("err1", e.err1, dims, axes, per, "batch-means standard error of lambda1");
-  c.array("lambda2", e.lambda2, dims, axes, per,
-          "log|det D^n|/n - lambda1, = chi3 - chi1 (may exceed lambda1 by O(1/n))");
-  c.array("err2", e.err2, dims, axes, per, "batch-means standard error of lambda2");
-  c.array("lambda_max", e.lambda_max, dims, axes, per, "the larger of lambda1, lambda2");
-  c.array("err_max", e.err_max, dims, axes, per, "batch-means standard error of lambda_max");
-  c.array("lambda_min", e.lambda_min, dims, axes, per, "the smaller of lambda1, lambda2");
-  c.array("err_min", e.err_min, dims, axes, per, "batch-means standard error of lambda_min");
-  c.array("chi1", e.chi1, dims, axes, per,
-          "growth rate of the orbit vector u under the linear cocycle of the P_s (not P_s/r): log|P^n u0|/n");
-  if (strip) {
-    c.array("w1", w1, dims, axes, "1", "strip coordinate w1 of the cell centre");
-    c.array("w2", w2, dims, axes, "1", "strip coordinate w2 of the cell centre");
-    c.array("w1_cell", w1_cell, {n1}, "w1 cell", "1", "strip coordinate w1 (eq. (6.4)) of each column of cells");
-    c.array("w2_cell", w2_cell, {n2}, "w2 cell", "1", "strip coordinate w2 (eq. (6.4)) of each row of cells");
-    c.coordinate("w1 cell", "w1_cell");
-    c.coordinate("w2 cell", "w2_cell");
-  } else {
-    const std::string s = "of lambda1 over the initial conditions at each r";
-    c.array("min", summary.min, {R}, "r", per, "minimum " + s);
-    c.array("median", summary.median, {R}, "r", per, "median " + s);
-    c.array("max", summary.max, {R}, "r", per, "maximum " + s);
-    c.array("min_err", summary.err_min, {R}, "r", per, "batch-means error of the orbit realising min");
-    c.array("median_err", summary.err_median, {R}, "r", per,
-            "batch-means error of the median (middle orbit, or half the RSS of the two middle orbits)");
-    c.array("max_err", summary.err_max, {R}, "r", per, "batch-means error of the orbit realising max");
-    c.array("frac_positive", summary.frac_positive, {R}, "r", "1", "fraction of orbits with lambda1 > 3 err1 + 10/n");
-    c.array("frac_zero", summary.frac_zero, {R}, "r", "1", "fraction of orbits with |lambda1| <= 3 err1 + 10/n");
-    c.array("frac_negative", summary.frac_negative, {R}, "r", "1",
-            "fraction of orbits with lambda1 < -(3 err1 + 10/n)");
-  }
-  c.attr("iterations", e.iterations);
-  c.attr("blocks", static_cast<long>(e.blocks));
-  c.attr("convention",
-         std::string("per map iteration, natural log; lambda1: one tangent vector's growth (-> the larger projective "
-                     "exponent), lambda2 = log|det D^n|/n - lambda1; lambda_i = chi_{i+1} - chi1 with chi the linear "
-                     "cocycle's exponents in frame order (chi1: the orbit vector); equal exponents (invariant curves, "
-                     "complex pairs) fall either way by O(1/n), so lambda_max/lambda_min give them ordered"));
-  c.attr("grid", ensemble.grid_description);
-  c.attr("initial_conditions", static_cast<long>(I));
-  c.attr("seed", static_cast<long>(ensemble.seed));
-  c.attr("iteration_seconds", iteration_seconds);
-  if (float_checked > 0) {
-    c.attr("float_check_orbits", float_checked);
-    c.attr("float_check_disagree", float_disagree);
-    if (float_disagree > 0) c.attr("float_check_first_r", float_disagree_r);
-  }
+// ---- hyperbolicity -----------------------------------------------------------------------------------------------
+
+HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
+                           const core::RunControl& control) {
+  req.validate();
+  core::check_cancel(control.cancel);
+  const core::Grid s = req.strip();
+  const auto t0 = std::chrono::steady_clock::now();
+  // Cell (i, j) at i * n2 + j, as strip_singular_values (hyperbolicity.cpp) walks it: each cell the same call.
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
+  const std::size_t n2 = static_cast<std::size_t>(s.axis2.cells);
+  HyperbolicityPart p;
+  p.items = items;
+  for (auto* v : {&p.s1, &p.s2}) v->reserve(items.size() * n2);
+  p.symbol.reserve(items.size() * n2);
+  for (std::size_t i : items)
+    for (std::size_t j = 0; j < n2; ++j) {
+      core::poll_cancel(control.cancel, static_cast<long>(j));
+      const StepSingularValues sv = step_singular_values(grid.at(i * n2 + j), req.r);
+      p.s1.push_back(sv.s1);
+      p.s2.push_back(sv.s2);
+      p.symbol.push_back(static_cast<std::uint8_t>(sv.symbol));
+    }
+  p.seconds = core::seconds_since(t0);
+  return p;
 }
 
-core::Tables MapResult::tables() const {
-  if (n1 > 0) return {};  // a strip has no per-r summary
-  const auto& s = summary;
-  core::CsvTable csv(
-      "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
-      "frac_zero,frac_negative");
-  // Each exponent with its bar by core::with_error (the printed interval contains the value of NAME.h5).
-  const auto pair = [](double v, double e) {
-    if (!std::isfinite(v) || !std::isfinite(e) || e < 0) return core::csv_number(v) + "," + core::csv_number(e);
-    const core::ValueWithError p = core::with_error(v, e);
-    return p.value + "," + p.error;
+HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts) {
+  req.validate();
+  const core::Grid s = req.strip();
+  const std::size_t n2 = static_cast<std::size_t>(s.axis2.cells);
+  const auto order = core::item_order(parts, req.work_items());
+  HyperbolicityResult res;
+  res.request = req;
+  StripSingularValues& m = res.image;
+  m.n1 = s.axis1.cells;
+  m.n2 = s.axis2.cells;
+  m.w1_min = s.axis1.lo;
+  m.w1_max = s.axis1.hi;
+  using V = std::vector<double>;
+  m.s1 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2,
+                                                     [](const HyperbolicityPart& p) -> const V& { return p.s1; });
+  m.s2 = core::merge_rows<HyperbolicityPart, double>(parts, order, n2,
+                                                     [](const HyperbolicityPart& p) -> const V& { return p.s2; });
+  m.symbol = core::merge_rows<HyperbolicityPart, std::uint8_t>(
+      parts, order, n2, [](const HyperbolicityPart& p) -> const std::vector<std::uint8_t>& { return p.symbol; });
+  const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
+  m.w1.resize(grid.size());
+  m.w2.resize(grid.size());
+  long expanding = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
+    expanding += m.s1[i] >= 1;
+  }
+  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
+  for (long i = 0; i < s.axis1.cells; ++i)
+    res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
+  for (long j = 0; j < s.axis2.cells; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
+  for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
+  return res;
+}
+
+HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
+}
+
+// ---- hyperbolicity-orbits ---------------------------------------------------------------------------------------
+
+namespace {
+// Row j of the part from the batched CLVs of every orbit at its r (covariant_vectors_batched: the same for any
+// thread count and any other r in the part); angles only from non-degenerate orbits.
+void clv_row(HyperbolicityOrbitsPart& res, std::size_t j, const ClvRow& row, std::size_t B) {
+  const std::size_t I = row.orbit.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> l1s;
+  double f = 0;
+  long deg = 0;
+  for (std::size_t i = 0; i < I; ++i) {
+    const auto& c = row.orbit[i];
+    const std::size_t o = j * I + i;
+    res.orbit_frac_expanding[o] = c.expanding_fraction;
+    res.orbit_angle_median[o] = c.degenerate ? nan : c.median_angle;
+    res.orbit_angle_q05[o] = c.degenerate ? nan : c.q05_angle;
+    res.orbit_lambda1_qr[o] = c.lambda[0];
+    res.orbit_lambda2_qr[o] = c.lambda[1];
+    res.orbit_degenerate[o] = c.degenerate;
+    l1s.push_back(c.lambda[0]);
+    f += c.expanding_fraction;
+    deg += c.degenerate;
+  }
+  std::copy(row.histogram.begin(), row.histogram.end(), res.angle_histogram.begin() + static_cast<long>(j * B));
+  res.frac_expanding[j] = f / static_cast<double>(I);
+  res.frac_degenerate[j] = static_cast<double>(deg) / static_cast<double>(I);
+  res.lambda1_qr_median[j] = median(l1s);  // as lyapunov-map's median column
+  res.angle_median[j] = row.median_angle;
+  res.angle_q05[j] = row.q05_angle;
+  res.angle_min[j] = row.min_angle;
+}
+}  // namespace
+
+HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const std::vector<std::size_t>& items,
+                                 const core::RunControl& control) {
+  req.validate();
+  const std::vector<double> all_r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  iterate::Ensemble ens;  // the part's r values with the whole request's grid
+  for (std::size_t i : items) ens.r.push_back(all_r.at(i));
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  const std::size_t R = ens.r.size(), N = ens.orbits(), B = static_cast<std::size_t>(req.bins);
+  HyperbolicityOrbitsPart res;
+  res.items = items;
+  res.threads = core::thread_count(control.threads);
+  for (auto* v : {&res.orbit_frac_expanding, &res.orbit_angle_median, &res.orbit_angle_q05, &res.orbit_lambda1_qr,
+                  &res.orbit_lambda2_qr})
+    v->resize(N);
+  res.orbit_degenerate.resize(N);
+  res.frac_expanding.resize(R);
+  res.frac_degenerate.resize(R);
+  res.lambda1_qr_median.resize(R);
+  for (auto* v : {&res.angle_median, &res.angle_q05, &res.angle_min}) v->resize(R);
+  res.angle_histogram.assign(R * B, 0.0);
+  iterate::RunOptions run;
+  run.threads = res.threads;
+  run.progress = control.progress;
+  run.cancel = control.cancel;
+  const auto t0 = std::chrono::steady_clock::now();
+  const ClvRows rows = covariant_vectors_batched(ens.r, ens.initial, detail::clv_options(req), run);
+  for (std::size_t j = 0; j < R; ++j) clv_row(res, j, rows[j], B);
+  res.clv_seconds = core::seconds_since(t0);
+  // lambda1 beside them, from the fused cocycle kernel (map_exponents) on the same orbits (same r, same grid).
+  MapOptions mo;
+  mo.transient = req.transient;
+  mo.iterations = req.iterations;
+  mo.blocks = 10;
+  mo.run.threads = control.threads;
+  mo.run.cancel = control.cancel;
+  res.exponents = map_exponents(ens, mo);
+  return res;
+}
+
+HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vector<HyperbolicityOrbitsPart> parts) {
+  req.validate();
+  HyperbolicityOrbitsResult res;
+  res.request = req;
+  auto& ens = res.ensemble;
+  ens.r = iterate::linspace_r(req.r_min, req.r_max, req.r_count);
+  ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
+  ens.grid_description = req.grid;
+  ens.seed = req.seed;
+  const std::size_t R = ens.r.size(), I = ens.initial.size();
+  res.bins = static_cast<std::size_t>(req.bins);
+  const auto order = core::item_order(parts, req.work_items());
+  using P = HyperbolicityOrbitsPart;
+  using V = std::vector<double>;
+  const auto rows = [&](V P::*f, std::size_t width) {
+    return core::merge_rows<P, double>(parts, order, width, [f](const P& p) -> const V& { return p.*f; });
   };
-  for (std::size_t i = 0; i < ensemble.r.size(); ++i)
-    csv.line(fmt::format("{:.9f},{},{},{},{:.4f},{:.4f},{:.4f}", ensemble.r[i], pair(s.min[i], s.err_min[i]),
-                         pair(s.median[i], s.err_median[i]), pair(s.max[i], s.err_max[i]), s.frac_positive[i],
-                         s.frac_zero[i], s.frac_negative[i]));
-  return {{"summary", csv.text()}};
+  res.frac_expanding = rows(&P::frac_expanding, 1);
+  res.angle_median = rows(&P::angle_median, 1);
+  res.angle_q05 = rows(&P::angle_q05, 1);
+  res.angle_min = rows(&P::angle_min, 1);
+  res.frac_degenerate = rows(&P::frac_degenerate, 1);
+  res.lambda1_qr_median = rows(&P::lambda1_qr_median, 1);
+  res.angle_histogram = rows(&P::angle_histogram, res.bins);
+  res.orbit_frac_expanding = rows(&P::orbit_frac_expanding, I);
+  res.orbit_angle_median = rows(&P::orbit_angle_median, I);
+  res.orbit_angle_q05 = rows(&P::orbit_angle_q05, I);
+  res.orbit_lambda1_qr = rows(&P::orbit_lambda1_qr, I);
+  res.orbit_lambda2_qr = rows(&P::orbit_lambda2_qr, I);
+  res.orbit_degenerate = core::merge_rows<P, std::uint8_t>(
+      parts, order, I, [](const P& p) -> const std::vector<std::uint8_t>& { return p.orbit_degenerate; });
+  OrbitExponents& e = res.exponents;
+  const auto ex = [&](V OrbitExponents::*f) {
+    return core::merge_rows<P, double>(parts, order, I, [f](const P& p) -> const V& { return p.exponents.*f; });
+  };
+  e.lambda1 = ex(&OrbitExponents::lambda1);
+  e.err1 = ex(&OrbitExponents::err1);
+  e.lambda2 = ex(&OrbitExponents::lambda2);
+  e.err2 = ex(&OrbitExponents::err2);
+  e.lambda_max = ex(&OrbitExponents::lambda_max);
+  e.err_max = ex(&OrbitExponents::err_max);
+  e.lambda_min = ex(&OrbitExponents::lambda_min);
+  e.err_min = ex(&OrbitExponents::err_min);
+  e.chi1 = ex(&OrbitExponents::chi1);
+  e.iterations = req.iterations;
+  e.blocks = 10;
+  for (const P& p : parts) {
+    res.threads = std::max(res.threads, p.threads);
+    res.clv_seconds = std::max(res.clv_seconds, p.clv_seconds);  // the slowest part
+  }
+  res.summary = summarise(res.exponents, R, I);
+  return res;
+}
+
+HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control) {
+  return merge(req, {run_part(req, core::all_items(req), control)});
 }
 
 }  // namespace btob::lyapunov
