@@ -10,6 +10,7 @@
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace btob::cli::rows {
@@ -31,11 +32,17 @@ struct Id {
   throw std::runtime_error(fmt::format("cannot write the ranks' rows into '{}': {}", path, what));
 }
 
+// Rank 0's path on every rank.  The other ranks arrive here right after their part and wait for rank 0's merge and
+// file: polled with a 1 ms sleep (MPI_Ibcast) rather than a blocking broadcast, which spins, so that a waiting rank
+// leaves its core to rank 0 on shared or oversubscribed nodes (as the gather does, cli/mpi.cpp).
 std::string broadcast_path(const std::string& mine) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   unsigned long n = rank == 0 ? mine.size() : 0;
-  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+  MPI_Request length;
+  MPI_Ibcast(&n, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD, &length);
+  for (int done = 0; MPI_Test(&length, &done, MPI_STATUS_IGNORE), !done;)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   std::string path(n, '\0');
   if (rank == 0) path = mine;
   if (n > 0) MPI_Bcast(path.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
