@@ -81,13 +81,14 @@ template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& p
 // A part may name its per-item arrays that are datasets of the result as they are (one row per item, in the
 // order of its items), the bulk of a large sweep's result (densities, raw tails, per-orbit values):
 //
-//   template <class A> void rows(A& a) { a("density", density); if (!tail.empty()) a("tail", tail); }
+//   template <class A> void rows(A& a) { a("density", density); a("tail", tail); }
 //
 // The names are the result's datasets (describe()); nothing the result derives (attributes, tables, overlays) may
-// read them.  Under mpirun with parallel HDF5 each rank then keeps these rows and writes them into NAME.h5 itself
-// (rank k's rows are items k, k + P, ...: a strided selection of the dataset's first dimension), and only the rest
-// of its part (counts, per-item summaries, timings) goes to rank 0, whose merge() leaves the named arrays empty
-// (ThinMerge below) while describe() still gives their full shape.
+// read them.  Every rank names the same arrays, whatever its items (a collective write follows): an array the
+// request leaves empty (no raw tails) is named all the same, and skipped where the result describes no such
+// dataset.  Under mpirun with parallel HDF5 each rank then keeps these rows and they are written into NAME.h5 by the
+// ranks (cli/rows.hpp), and only the rest of its part (counts, per-item summaries, timings) goes to rank 0, whose
+// merge() leaves the named arrays empty (ThinMerge below) while describe() still gives their full shape.
 // (The check only names the member template; its body is instantiated with take_rows' visitor alone.)
 template <class Part>
 concept HasRows = requires(Part& p, int& probe) {

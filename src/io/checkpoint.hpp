@@ -83,12 +83,10 @@ std::size_t checkpoint_chunk(std::size_t share, int threads);
 // the datasets of the HDF5 file at rank 0's `path`, which rank 0 has created with their full shapes: a collective,
 // every rank calls it once, rank 0 when its file is written (commands::write), the others after their part; a `path`
 // of "" on rank 0 means nothing is written (the others' paths are ignored).  It returns what the write cost, as
-// attributes of the result's manifest.  Without it every rank's rows are
-// gathered to rank 0 with the rest of its part.
+// attributes of the result's manifest.  Without it every rank's rows are gathered to rank 0 with the rest of its part.
 struct Ranks {
   std::size_t ranks = 1, rank = 0;
   std::function<std::vector<std::vector<char>>(std::vector<char>, double)> gather;
-  // Returns what the write cost, as attributes for the manifest (the file is closed by then).
   std::function<core::Attrs(const std::string& path, const core::RowSet& mine)> write_rows;
 };
 inline Ranks alone() { return {}; }

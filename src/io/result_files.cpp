@@ -257,8 +257,20 @@ void write_by_chunks(H5::DataSet& ds, const V* data, const std::vector<hsize_t>&
   }
 }
 
+// The creation properties of an array the MPI ranks write (commands::RankRows): contiguous, allocated now and never
+// filled, so that their collective write is plain MPI-IO into known offsets.  Not chunked and deflated as a single
+// process writes it: parallel HDF5 1.10 funnels each filtered chunk through one rank, and every chunk would hold rows
+// of several ranks.  The data are the same; only the file's layout differs.
+H5::DSetCreatPropList ranks_layout() {
+  H5::DSetCreatPropList plist;
+  H5Pset_layout(plist.getId(), H5D_CONTIGUOUS);
+  H5Pset_alloc_time(plist.getId(), H5D_ALLOC_TIME_EARLY);
+  H5Pset_fill_time(plist.getId(), H5D_FILL_TIME_NEVER);
+  return plist;
+}
+
 // One array of the result as a dataset with its units, axes and description; `by_ranks`: only made, with its
-// shape and layout, for the MPI ranks to write their rows into (commands::RankRows).
+// shape and layout, for the MPI ranks to write their rows into (its view holds no data).
 void write_array(H5::H5File& file, const core::ArrayView& a, bool by_ranks) {
   std::visit(
       [&](const auto* vec) {
@@ -266,31 +278,17 @@ void write_array(H5::H5File& file, const core::ArrayView& a, bool by_ranks) {
         std::vector<hsize_t> d(a.dims.begin(), a.dims.end());
         std::size_t total = 1;
         for (auto x : a.dims) total *= x;
-        if (by_ranks) {
-          // Contiguous, allocated now and never filled: the ranks' collective write is then plain MPI-IO into known
-          // offsets (two-phase I/O gathers each stripe's strided rows on one aggregator).  Chunked and deflated, as a
-          // single process writes it, every chunk would hold rows of every rank (the cyclic split), and parallel
-          // HDF5 1.10 funnels each filtered chunk through one rank: measured 2x slower than the serial write on
-          // 3 ranks.  The data are the same; only the file's layout differs.
-          H5::DSetCreatPropList plist;
-          H5Pset_layout(plist.getId(), H5D_CONTIGUOUS);
-          H5Pset_alloc_time(plist.getId(), H5D_ALLOC_TIME_EARLY);
-          H5Pset_fill_time(plist.getId(), H5D_FILL_TIME_NEVER);
-          H5::DataSet ds =
-              file.createDataSet(a.name, h5_type<V>(), H5::DataSpace(static_cast<int>(d.size()), d.data()), plist);
-          string_attr(ds, "units", a.units);
-          string_attr(ds, "axes", a.axes);
-          string_attr(ds, "description", a.description);
-          return;
-        }
-        if (total != vec->size())
+        if (!by_ranks && total != vec->size())
           throw std::logic_error(
               fmt::format("result array {}: {} elements for dims of {}", a.name, vec->size(), total));
         H5::DataSpace space(static_cast<int>(d.size()), d.data());
-        const std::vector<hsize_t> chunk = array_chunk(d, total);
-        H5::DataSet ds = file.createDataSet(a.name, h5_type<V>(), space, array_layout(chunk));
-        if (!chunk.empty()) write_by_chunks(ds, vec->data(), d, chunk);
-        else if (total > 0) ds.write(vec->data(), h5_type<V>());
+        const std::vector<hsize_t> chunk = by_ranks ? std::vector<hsize_t>{} : array_chunk(d, total);
+        H5::DataSet ds =
+            file.createDataSet(a.name, h5_type<V>(), space, by_ranks ? ranks_layout() : array_layout(chunk));
+        if (!by_ranks) {  // else the ranks write it
+          if (!chunk.empty()) write_by_chunks(ds, vec->data(), d, chunk);
+          else if (total > 0) ds.write(vec->data(), h5_type<V>());
+        }
         string_attr(ds, "units", a.units);
         string_attr(ds, "axes", a.axes);
         string_attr(ds, "description", a.description);
