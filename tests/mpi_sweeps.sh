@@ -193,6 +193,25 @@ code=$?
 grep -q '^btob: rank 1: items 1, 3, 5, \.\.\. of 2000: out of memory' "$TMP/err.txt" || fail "out of memory on rank 1: $(cat "$TMP/err.txt")"
 [ "$(ls "$TMP/kept")" = "x.h5" ] && [ "$(cat "$TMP/kept/x.h5")" = old ] || fail "out of memory: the old result changed"
 
+# A rank fails inside the ranks' collective write of NAME.h5 (BTOB_MPI_ROWS_FAIL=K, the write's fault injection), with
+# the file open on every rank: one line naming the rank and the file, a non-zero status, within the timeout (a rank
+# that threw there unwound through a collective close the others never matched, and the job hung), and neither the
+# result nor rank 0's hidden staging folder left in the output folder.  Rank 1: another rank fails under rank 0;
+# rank 0: the writer itself.
+if [ "$BTOB_PARALLEL" = 1 ]; then
+  for k in 1 0; do
+    rm -rf "$TMP/abort" && mkdir -p "$TMP/abort"
+    BTOB_MPI_ROWS_FAIL=$k timeout 60 "$MPIRUN" -n 3 "$BTOB" lyapunov-map --r-min 0.1 --r-max 0.3 --r-count 30 \
+      --grid random:4 --iterations 50 --transient 1 --threads 1 --out "$TMP/abort" --quiet --no-plot \
+      > "$TMP/out.txt" 2> "$TMP/err.txt"
+    code=$?
+    [ $code -ne 0 ] && [ $code -ne 124 ] || fail "rank $k failing in the write: exit $code (124: hung)"
+    grep -q "^btob: rank $k: cannot write the ranks' rows into .*failed on purpose" "$TMP/err.txt" ||
+      fail "rank $k failing in the write: no line naming it: $(cat "$TMP/err.txt")"
+    [ -z "$(ls -A "$TMP/abort")" ] || fail "rank $k failing in the write left: $(ls -A "$TMP/abort")"
+  done
+fi
+
 # `btob run SCENE.toml` splits the same way.
 cat > "$TMP/scene.toml" << 'EOF'
 command = "bifurcation"
@@ -212,15 +231,13 @@ EOF
 # Memory: each rank's peak resident set (tests/peak_rss.py) for a 86 MB result of per-orbit exponents (1200 r values
 # x 1000 orbits x 9 doubles): every rank holds its share of it, so the largest peak is within 15% of the median.
 # With the rows gathered to rank 0, rank 0 holds the whole result and the same check fails (the check can fail).
-# peaks FILE: "max median" of the ranks' peaks in KB.
-peaks() { sort -k2 -n "$1" | awk '{v[NR] = $2} END {print v[NR], v[int((NR + 1) / 2)]}'; }
 big=(lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 1200 --grid random:1000 --iterations 60 --transient 6 --blocks 5
      --threads 1 --no-plot --quiet --name x)
 for mode in rows gather; do
   rm -f "$TMP/rss_$mode"
   BTOB_MPI_WRITE=$mode "$MPIRUN" -n 3 "$PY" "$HERE/peak_rss.py" "$TMP/rss_$mode" "$BTOB" "${big[@]}" \
     --out "$TMP/big_$mode" || fail "memory ($mode): the run failed"
-  read -r top median <<< "$(peaks "$TMP/rss_$mode")"
+  read -r top median <<< "$("$PY" "$HERE/peak_rss.py" --peaks "$TMP/rss_$mode")"
   echo "peak resident set per rank ($mode; largest $top KB, median $median KB): $(sort -n "$TMP/rss_$mode" | awk '{printf "%s%d MB", (NR > 1 ? ", " : ""), $2 / 1024}')"
   within=$(awk -v t="$top" -v m="$median" 'BEGIN {print (t <= 1.15 * m) ? 1 : 0}')
   if [ "$mode" = rows ] && [ "$BTOB_PARALLEL" = 1 ] && [ "$within" != 1 ]; then

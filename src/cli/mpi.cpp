@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <iostream>
 #include <thread>
 #include <unistd.h>
@@ -20,6 +22,7 @@ struct State {
   bool initialised = false, checked = false, solo = false;
   int rank = 0, size = 1;
   Stats stats;
+  std::filesystem::path remove_on_abort;  // RemoveOnAbort's folder, empty for none
 };
 State& state() {
   static State s;
@@ -156,9 +159,21 @@ void fail(const std::string& cause, int code, const std::string& label) {
   say("btob: rank " + std::to_string(s.rank) + ": " + cause);
   std::cout.flush();
   std::cerr.flush();
+  if (!s.remove_on_abort.empty()) {
+    std::error_code ec;
+    std::filesystem::remove_all(s.remove_on_abort, ec);  // best effort: the job is failing already
+  }
   MPI_Abort(MPI_COMM_WORLD, code);
 #endif
   end(code);
+}
+
+RemoveOnAbort::RemoveOnAbort(const std::string& staged_file) : unwinding_(std::uncaught_exceptions()) {
+  const std::filesystem::path folder = std::filesystem::path(staged_file).parent_path();
+  if (folder.filename().string().rfind(".btob-tmp-", 0) == 0) state().remove_on_abort = folder;
+}
+RemoveOnAbort::~RemoveOnAbort() {
+  if (std::uncaught_exceptions() == unwinding_) state().remove_on_abort.clear();
 }
 
 void fail_everywhere(const std::string& cause, int code, const std::string& label) {

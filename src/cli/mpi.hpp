@@ -35,6 +35,23 @@ bool checked();
 // mpirun sends SIGTERM to every rank when one aborted or when it was interrupted, and the cause was said already.
 [[noreturn]] void fail(const std::string& cause, int code, const std::string& label = "error: ");
 
+// While alive, this rank's failure (fail() above, which ends every rank with MPI_Abort) first removes `folder`:
+// rank 0's staging folder of the result (io::ResultFiles, `.btob-tmp-...`) that the ranks are writing into
+// together.  A rank that fails inside the collective write would otherwise abort rank 0 in mid-write, before its
+// own clean-up runs, and leave the hidden folder behind; the result folder itself is untouched either way.  One at
+// a time; "" or a path outside a staging folder registers nothing.  The registration ends with the scope, unless an
+// exception is leaving it: then it stays for the fail() that reports that exception.
+class RemoveOnAbort {
+ public:
+  explicit RemoveOnAbort(const std::string& staged_file);
+  ~RemoveOnAbort();
+  RemoveOnAbort(const RemoveOnAbort&) = delete;
+  RemoveOnAbort& operator=(const RemoveOnAbort&) = delete;
+
+ private:
+  int unwinding_;  // std::uncaught_exceptions() at construction: an exception leaving the scope keeps the folder
+};                 // registered for the fail() that follows
+
 // Every rank fails the same way at the same point after the checkpoint (rank 0 found a checkpoint of another
 // request and told every rank): rank 0 says the single process's one line, every rank ends with `code`, no abort.
 [[noreturn]] void fail_everywhere(const std::string& cause, int code, const std::string& label = "error: ");

@@ -2,12 +2,15 @@
 // The ranks' collective write of their rows (cli/rows.hpp), with HDF5's C API and its MPI-IO driver.
 #include "cli/rows.hpp"
 
+#include "cli/mpi.hpp"
+
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -28,8 +31,11 @@ struct Id {
   }
 };
 
+// A failure inside the collective ends the job at once (cli/mpi.hpp fail: one line, rank 0's staging folder
+// removed, MPI_Abort).  Throwing would unwind through H5Fclose, itself a collective, which the other ranks, still
+// in the write, never match: the job would hang instead of failing.
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::runtime_error(fmt::format("cannot write the ranks' rows into '{}': {}", path, what));
+  mpi::fail(fmt::format("cannot write the ranks' rows into '{}': {}", path, what), 1);
 }
 
 // Rank 0's path on every rank.  The other ranks arrive here right after their part and wait for rank 0's merge and
@@ -160,6 +166,7 @@ WriteStats write(const std::string& root_path, const core::RowSet& mine) {
   const auto t0 = std::chrono::steady_clock::now();
   WriteStats st;
   if (path.empty()) return st;
+  const mpi::RemoveOnAbort staging(path);       // a rank failing from here on removes rank 0's staging folder first
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures become one line (fail), not HDF5's stack on stderr
   Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fapl_mpio(fapl.id, MPI_COMM_WORLD, MPI_INFO_NULL);
@@ -174,6 +181,10 @@ WriteStats write(const std::string& root_path, const core::RowSet& mine) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     const Plan plan = plan_exchange(mine, rank, ranks);
+    // Fault injection for the tests (tests/mpi_sweeps.sh): BTOB_MPI_ROWS_FAIL=K makes rank K fail here, inside the
+    // collective with the file open on every rank, as a full disk or a lost node would.
+    if (const char* f = std::getenv("BTOB_MPI_ROWS_FAIL"); f && std::to_string(rank) == f)
+      fail(path, "failed on purpose (BTOB_MPI_ROWS_FAIL)");
     for (const auto& col : mine.columns) {
       if (H5Lexists(file.id, col.name.c_str(), H5P_DEFAULT) <= 0) continue;
       write_column(path, file.id, dxpl.id, mine, plan, col);

@@ -23,8 +23,8 @@ struct WriteStats {
 // closed, holding every dataset that `mine` names with its full shape) is sent to every rank; "" on rank 0 ends the
 // collective with nothing written.  Row j of `mine` is row mine.items[j] of each named dataset that the file holds:
 // the rows first move to the rank whose block of the file holds them (one all-to-all per dataset), then every rank
-// writes its block in one collective H5Dwrite.  Throws with the file and HDF5's cause on failure (the command line
-// then ends the job, cli/mpi.hpp).
+// writes its block in one collective H5Dwrite.  A failure ends the job at once with one line naming the file and HDF5's
+// cause (cli/mpi.hpp fail, MPI_Abort) after removing rank 0's staging folder: no partial file, no hanging ranks.
 WriteStats write(const std::string& path, const core::RowSet& mine);
 
 }  // namespace btob::cli::rows

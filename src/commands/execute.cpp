@@ -43,6 +43,7 @@ std::vector<std::filesystem::path> write(const Record& rec, const std::string& o
     files.h5(rec.contents, at);
   }
   if (opts.latex) files.latex(opts.command_line, opts.caption);
+  if (rec.rows) at["mpi_root_seconds"] = core::seconds_since(rec.rows->since);
   files.manifest(at, rec.command, args);  // lists the files staged so far
   if (opts.plot && !rec.plot.empty() && !draw(rec, files, name) && opts.plot_required)
     throw std::runtime_error(fmt::format(

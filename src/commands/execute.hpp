@@ -69,6 +69,9 @@ struct RankRows {
   core::RowSet mine;
   std::function<core::Attrs(const std::string&, const core::RowSet&)> write;
   bool joined = false;
+  // On rank 0: made when its parts are gathered, before the merge; write() records the seconds since then in the
+  // manifest (mpi_root_seconds: what rank 0 does alone after the gather, the ranks' write included).
+  std::chrono::steady_clock::time_point since = std::chrono::steady_clock::now();
   RankRows(core::RowSet m, std::function<core::Attrs(const std::string&, const core::RowSet&)> w)
       : mine(std::move(m)), write(std::move(w)) {}
   RankRows(const RankRows&) = delete;
