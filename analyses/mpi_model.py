@@ -15,6 +15,10 @@ Measured here (one run on this shared 2-core machine):
            P = 2, 3, 4, fitted as c0 + c1 log2 P (a collective's tree depth)
   m        rank 0's merge per r value (unpacking and placing the per-r summaries): merge_seconds / r values of the
            1e6-r run
+  a, tau   what rank 0 does alone after the gather besides the ranks' write (the merge, the result's overlays, its
+           own datasets, deflated, the per-r table, the manifest), a + tau R: its manifest's mpi_root_seconds minus
+           the ranks' write; a from the tiny runs (median), tau from the 1e6-r run.  Measured with one thread per
+           rank and not scaled down for more threads: the table and the deflate run on one thread
   (the ranks' write rate here, rows_bytes / rows_seconds, is one shared disk's and is shown, not projected)
 Assumed for a commodity InfiniBand cluster (stated, not measured):
   BETA     12.5e9 B/s   node link (EDR, 100 Gb/s)
@@ -40,15 +44,16 @@ def read(path):
         return list(csv.DictReader(f))
 
 
-def gathered_projection(s, b, merge_rate, n_orbits, total_steps):
-    """The design before: every rank's rows to rank 0, merged and written there by one HDF5 writer."""
+def gathered_projection(s, b, merge_rate, n_orbits, total_steps, m):
+    """The design before: every rank's rows to rank 0, merged and written there by one HDF5 writer, and rank 0's
+    share per r value as now (root_alone: the overlays, the per-r table)."""
     rows = []
     result_bytes = n_orbits * b
     for cores in (2, 64):
         for nodes in (16, 64, 256):
             compute = total_steps / (nodes * cores * s)
             gather_t = result_bytes * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
-            merge_t = result_bytes / merge_rate
+            merge_t = result_bytes / merge_rate + root_alone(m)
             write_t = result_bytes / WRITE
             launch = 0.5 + 0.01 * nodes
             io = gather_t + merge_t + write_t
@@ -63,13 +68,13 @@ def gathered_projection(s, b, merge_rate, n_orbits, total_steps):
 
 def rows_measured(d):
     print("| rows | ranks | r values | bytes written by the ranks | their write (s, slowest) | bytes gathered | "
-          "gather (s) | merge (s) | wall (s) | peak per rank, largest / median (MB) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "gather (s) | merge (s) | rank 0 alone (s) | wall (s) | peak per rank, largest / median (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for x in read(f"{d}/rows.csv"):
         def num(k, f="{:.4f}"):
             return f.format(float(x[k])) if x[k] else "-"
         print(f"| {x['mode']} | {x['ranks']} | {x['r_count']} | {x['rows_bytes'] or 0} | {num('rows_seconds')} | "
-              f"{x['bytes_gathered']} | {num('gather_seconds')} | {num('merge_seconds')} | {num('wall_seconds', '{:.2f}')} | "
+              f"{x['bytes_gathered']} | {num('gather_seconds')} | {num('merge_seconds')} | {num('root_seconds')} | {num('wall_seconds', '{:.2f}')} | "
               f"{int(x['peak_kb_max']) / 1024:.0f} / {int(x['peak_kb_median']) / 1024:.0f} |")
 
 
@@ -84,12 +89,15 @@ def rows_parameters(d):
             for x in big)
     W = min(float(x["rows_bytes"]) / float(x["rows_seconds"]) for x in big)
     merge = float(at_scale["merge_seconds"]) / int(at_scale["r_count"])
+    alone = sorted(float(x["root_seconds"]) - float(x["rows_seconds"]) for x in tiny)
+    a = alone[len(alone) // 2]
+    tau = (float(at_scale["root_seconds"]) - float(at_scale["rows_seconds"]) - a) / int(at_scale["r_count"])
     # c(P) = c0 + c1 log2 P, least squares over the tiny runs
     xs = [math.log2(int(x["ranks"])) for x in tiny]
     ys = [float(x["rows_seconds"]) for x in tiny]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
-    return dict(b=b, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1)
+    return dict(b=b, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau)
 
 
 def launch_here(d):
@@ -99,11 +107,17 @@ def launch_here(d):
     return ", ".join(f"P = {p}: {sorted(v)[len(v) // 2]:.2f} s" for p, v in sorted(by.items()))
 
 
-def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs):
+def root_alone(m, per_r=True):
+    """Rank 0 alone after the gather, the ranks' write apart: a + tau R (per_r False: a alone, rank 0's share per r
+    value moved to the ranks)."""
+    return m["a"] + (m["tau"] * TARGET["r"] if per_r else 0.0)
+
+
+def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs, per_r=True):
     compute = total_steps / (nodes * cores * s)
     sent = TARGET["r"] * m["t"]
     gather_t = sent * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
-    merge_t = TARGET["r"] * m["merge"]
+    merge_t = root_alone(m, per_r)
     result_bytes = n_orbits * m["b"]
     exchange = result_bytes / nodes / BETA  # each rank's share to its block's rank, over its link
     write_t = m["c0"] + m["c1"] * math.log2(nodes) + exchange + result_bytes / min(fs, nodes * BETA)
@@ -128,24 +142,47 @@ def parallel_projection(s, m, n_orbits, total_steps):
     return rows
 
 
-def fs_for(target, s, m, n_orbits, total_steps, nodes, cores):
+def fs_for(target, s, m, n_orbits, total_steps, nodes, cores, per_r=True):
     """The file system bandwidth at which the efficiency (launch apart) reaches `target` (bisection)."""
     lo, hi = 1e6, 1e15
     for _ in range(200):
         mid = math.sqrt(lo * hi)
-        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, mid)
+        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, mid, per_r)
         lo, hi = (lo, mid) if c / (c + g + mg + w) >= target else (mid, hi)
     return hi
 
 
-def print_table(rows):
-    print("| file system | nodes x cores | compute | gather | merge | write | efficiency | with launch | "
+def print_table(rows, merge="merge"):
+    print(f"| file system | nodes x cores | compute | gather | {merge} | write | efficiency | with launch | "
           "memory per rank | rank 0 |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['fs_gbs']:g} GB/s | {r['nodes']} x {r['cores_per_node']} | {r['compute_s']:.3g} s | "
               f"{r['gather_s']:.2g} s | {r['merge_s']:.2g} s | {r['write_s']:.2g} s | {r['efficiency']:.3f} | "
               f"{r['efficiency_launch']:.3f} | {r['memory_per_rank_gb']:.3g} GB | {r['memory_rank0_gb']:.3g} GB |")
+
+
+def conclusion(s, m, n_orbits, total_steps):
+    """The target (0.8 at 256 nodes x 64 cores) against the measured parts, and what the next step would give."""
+    compute = total_steps / (256 * 64 * s)
+    fixed = root_alone(m) + m["c0"] + m["c1"] * 8
+    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
+    if need < 1e14:
+        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s; an efficiency of 0.8 (launch apart) "
+              f"needs a file system of {need / 1e9:.0f} GB/s or more.")
+    else:
+        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s, and what does not depend on the "
+              f"file system (rank 0 alone after the gather, {root_alone(m):.1f} s, and the write's fixed cost) takes "
+              f"{fixed:.2f} s: an efficiency of 0.8 (launch apart) is out of reach for any file system at this job's "
+              f"size, {compute / (compute + fixed):.2f} at most.  Rank 0's share per r value (tau) is the bound.")
+    effs = []
+    for fs in FS:
+        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, 256, 64, fs, per_r=False)
+        effs.append(f"{c / (c + g + mg + w):.2f} at {fs / 1e9:g} GB/s")
+    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64, per_r=False)
+    print(f"\nProjected, not measured: with rank 0's share per r value written by the ranks as their rows too (the per-r "
+          f"datasets and table lines), rank 0 would keep a = {m['a']:.2f} s and the efficiency at 256 x 64 would be "
+          f"{', '.join(effs)}; 0.8 from {need / 1e9:.0f} GB/s.")
 
 
 def main(d):
@@ -201,31 +238,23 @@ def main(d):
     total_steps = n_orbits * (TARGET["iterations"] + TARGET["transient"])
     print(f"Projection: {TARGET['r']:.0e} r x {TARGET['ic']} orbits x ({TARGET['iterations']:.0e} + "
           f"{TARGET['transient']}) steps = {total_steps:.3g} steps.\n")
+    m = rows_parameters(d)
     print("### Before: every rank's rows gathered to rank 0, which merges and writes\n")
-    before = gathered_projection(s, b, merge_rate, n_orbits, total_steps)
-    print_table(before)
+    before = gathered_projection(s, b, merge_rate, n_orbits, total_steps, m)
+    print_table(before, "merge and rank 0 alone")
     print("\n### Now: each rank writes its own rows (parallel HDF5); rank 0 receives the summary per r only\n")
     rows_measured(d)
-    m = rows_parameters(d)
     print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), t = {m['t']:.1f} bytes per r value sent to rank 0, "
           f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
+          f"rank 0 alone after the gather (its write apart) a + tau R with a = {m['a']:.2f} s, tau = "
+          f"{m['tau'] * 1e6:.2f} us per r value ({root_alone(m):.1f} s at {TARGET['r']:.0e} r values); "
           f"the ranks' write here {m['W'] / 1e6:.0f} MB/s in all (one shared disk); launch here {launch_here(d)}\n")
     result_bytes = n_orbits * m["b"]
     print(f"Result {result_bytes / 1e9:.1f} GB written by the ranks; rank 0 receives "
           f"{TARGET['r'] * m['t'] / 1e6:.0f} MB.\n")
     now = parallel_projection(s, m, n_orbits, total_steps)
-    print_table(now)
-    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
-    compute = total_steps / (256 * 64 * s)
-    fixed = TARGET["r"] * m["merge"] + m["c0"] + m["c1"] * 8
-    if need < 1e14:
-        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s; an efficiency of 0.8 (launch apart) "
-              f"needs a file system of {need / 1e9:.0f} GB/s or more.")
-    else:
-        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s, and what does not depend on the "
-              f"file system (rank 0's merge of {TARGET['r']:.0e} summaries, the write's fixed cost) takes {fixed:.2f} "
-              f"s: an efficiency of 0.8 (launch apart) is out of reach for any file system at this job's size, "
-              f"{compute / (compute + fixed):.2f} at most.")
+    print_table(now, "rank 0 alone")
+    conclusion(s, m, n_orbits, total_steps)
     with open(f"{d}/projection.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(now[0]))
         w.writeheader()

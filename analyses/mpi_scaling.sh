@@ -12,9 +12,10 @@
 #   rows.csv       P = 2, 3, 4 ranks of 1 thread on a large result (10 x R_COUNT r values x 32 orbits, 110 steps:
 #                  ~115 MB of per-orbit exponents) and on a tiny one (the write's fixed cost), each twice: the ranks
 #                  writing their own rows (parallel HDF5) and the rows gathered to rank 0 (BTOB_MPI_WRITE=gather):
-#                  bytes and seconds of the ranks' write, bytes gathered, gather and merge, wall time, and the peak
-#                  resident set of every rank (tests/peak_rss.py); then 1e6 r values of one orbit on 2 ranks: rank 0's
-#                  merge per r value at scale
+#                  bytes and seconds of the ranks' write, bytes gathered, gather and merge, rank 0's time alone after
+#                  the gather (its manifest's mpi_root_seconds), the slowest rank's work, wall time, and the peak
+#                  resident set of every rank (tests/peak_rss.py); then 1e6 r values of one orbit on 2 ranks: what
+#                  rank 0 still does per r value at scale (merge, its own datasets, the per-r table)
 #   launch.csv     mpirun -n P btob --version, P = 1..4: the launch's cost here
 #   projection.csv the scaling model (analyses/mpi_model.py), from gather.csv, rows.csv and launch.csv
 # The machine is shared: quote the ratios of one run, not absolute times.
@@ -64,31 +65,31 @@ for run in "1 $r_count 10000" "2 $r_count 10000" "3 $r_count 10000" "2 $((10 * r
 done
 mv "$out/gather.csv.tmp" "$out/gather.csv"
 
-echo "mode,ranks,r_count,orbits,rows_bytes,rows_seconds,rows_seconds_min,bytes_gathered,gather_seconds,merge_seconds,wall_seconds,peak_kb_max,peak_kb_median" \
+echo "mode,ranks,r_count,orbits,rows_bytes,rows_seconds,rows_seconds_min,bytes_gathered,gather_seconds,merge_seconds,root_seconds,compute_max_seconds,wall_seconds,peak_kb_max,peak_kb_median" \
   > "$out/rows.csv.tmp"
+# rows_run MODE P R ORBITS ARGS...: one run of the workload with ARGS, its manifest's MPI statistics and the ranks' peaks
+# as a line of rows.csv (root_seconds: rank 0 alone after the gather, the ranks' write included; rows mode only).
+rows_run() {
+  local mode=$1 P=$2 R=$3 orbits=$4
+  shift 4
+  rm -f "$tmp/rss"
+  w=$(wall env BTOB_MPI_WRITE=$mode mpirun -n "$P" /usr/bin/python3 tests/peak_rss.py "$tmp/rss" "$btob" "${work[@]}" \
+      --r-count "$R" "$@" --threads 1 --out "$tmp/w")
+  j="$tmp/w/x.json"
+  local peaks
+  peaks=$(/usr/bin/python3 tests/peak_rss.py --peaks "$tmp/rss" | tr ' ' ,)
+  local a=""
+  for k in mpi_rows_bytes mpi_rows_seconds mpi_rows_seconds_min mpi_gathered_bytes mpi_gather_seconds \
+           mpi_merge_seconds mpi_root_seconds mpi_compute_seconds_max; do a="$a$(attr "$j" $k),"; done
+  echo "$mode,$P,$R,$orbits,$a$w,$peaks" >> "$out/rows.csv.tmp"
+}
 for R in $((10 * r_count)) 64; do
   for P in 2 3 4; do
-    for mode in rows gather; do
-      rm -f "$tmp/rss"
-      w=$(wall env BTOB_MPI_WRITE=$mode mpirun -n "$P" /usr/bin/python3 tests/peak_rss.py "$tmp/rss" "$btob" "${work[@]}" \
-          --r-count "$R" --iterations 100 --transient 10 --threads 1 --out "$tmp/w")
-      j="$tmp/w/x.json"
-      peaks=$(sort -k2 -n "$tmp/rss" | awk '{v[NR] = $2} END {print v[NR] "," v[int((NR + 1) / 2)]}')
-      echo "$mode,$P,$R,$((R * 32)),$(attr "$j" mpi_rows_bytes),$(attr "$j" mpi_rows_seconds),$(attr "$j" mpi_rows_seconds_min),$(attr "$j" mpi_gathered_bytes),$(attr "$j" mpi_gather_seconds),$(attr "$j" mpi_merge_seconds),$w,$peaks" \
-        >> "$out/rows.csv.tmp"
-    done
+    for mode in rows gather; do rows_run "$mode" "$P" "$R" $((R * 32)) --iterations 100 --transient 10; done
   done
 done
-# Rank 0's merge per r value at scale: 1e6 r values of one orbit each (what rank 0 still receives and merges).
-for mode in rows; do
-  rm -f "$tmp/rss"
-  w=$(wall env BTOB_MPI_WRITE=$mode mpirun -n 2 /usr/bin/python3 tests/peak_rss.py "$tmp/rss" "$btob" "${work[@]}" \
-      --r-count 1000000 --grid random:1 --iterations 10 --transient 1 --threads 1 --out "$tmp/w")
-  j="$tmp/w/x.json"
-  peaks=$(sort -k2 -n "$tmp/rss" | awk '{v[NR] = $2} END {print v[NR] "," v[int((NR + 1) / 2)]}')
-  echo "$mode,2,1000000,1000000,$(attr "$j" mpi_rows_bytes),$(attr "$j" mpi_rows_seconds),$(attr "$j" mpi_rows_seconds_min),$(attr "$j" mpi_gathered_bytes),$(attr "$j" mpi_gather_seconds),$(attr "$j" mpi_merge_seconds),$w,$peaks" \
-    >> "$out/rows.csv.tmp"
-done
+# Rank 0's share at scale: 1e6 r values of one orbit each (what rank 0 still receives, merges and writes alone).
+rows_run rows 2 1000000 1000000 --grid random:1 --iterations 10 --transient 1
 mv "$out/rows.csv.tmp" "$out/rows.csv"
 
 echo "ranks,wall_seconds" > "$out/launch.csv.tmp"
