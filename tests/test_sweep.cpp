@@ -289,8 +289,13 @@ TEST(Sweep, HyperbolicityAnyPartitionEqualsRun) {
   const auto items = random_partition(q.work_items(), 3, 7);
   std::vector<lyapunov::HyperbolicityPart> parts;
   for (const auto& i : items) parts.push_back(run_part(q, i, one));
-  EXPECT_EQ(merge(q, std::move(parts)).image.expanding_fraction, whole.image.expanding_fraction);
+  const auto merged = merge(q, std::move(parts));
+  EXPECT_EQ(merged.image.expanding_fraction, whole.image.expanding_fraction);
   EXPECT_EQ(whole.image.expanding_fraction, lyapunov::strip_singular_values(0.11, 17, 9, -1.5, 2.5).expanding_fraction);
+  // s1's extremes (the printed line) folded over the parts: those of the merged cells.
+  const auto [lo, hi] = std::minmax_element(whole.image.s1.begin(), whole.image.s1.end());
+  EXPECT_EQ(merged.s1_min, *lo);
+  EXPECT_EQ(merged.s1_max, *hi);
 }
 
 TEST(Sweep, HyperbolicityOrbitsAnyPartitionEqualsRun) {

@@ -12,6 +12,7 @@
 #include "lyapunov/maps.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -39,23 +40,35 @@ struct HyperbolicityResult {
   HyperbolicityRequest request;          // the request, as run (validated)
   StripSingularValues image;             // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
   std::vector<double> w1_cell, w2_cell;  // [n1], [n2]: the cell centres along each axis
+  double s1_min = 0, s1_max = 0;         // the extremes of s1 over the cells (the printed line)
   double seconds = 0;                    // wall time of the run, seconds
 
   // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.
   void describe(core::Contents& c) const;
 };
 
-// Some w1 columns of the strip (items: ascending indices 0..N-1): the n2 cells of each, item-major.
+// Some w1 columns of the strip (items: ascending indices 0..N-1): the n2 cells of each, item-major, and what the
+// result derives from them, counted here (a count and extremes over the part's cells: any partition sums and folds
+// them to the same numbers).  The cells' values are then the bulk that MPI ranks write themselves (rows()).
 struct HyperbolicityPart {
   std::vector<std::size_t> items;
-  std::vector<double> s1, s2;
-  std::vector<std::uint8_t> symbol;
+  std::vector<double> s1, s2;        // [items, n2]
+  std::vector<std::uint8_t> symbol;  // [items, n2]
+  long expanding = 0;                // cells with s1 >= 1
+  double s1_min = std::numeric_limits<double>::infinity(), s1_max = -std::numeric_limits<double>::infinity();
   double seconds = 0;
-  template <class A> void members(A& a) { a(items, s1, s2, symbol, seconds); }
+  template <class A> void members(A& a) { a(items, s1, s2, symbol, expanding, s1_min, s1_max, seconds); }
+  // The cells' singular values and branches, by their datasets' names (core::HasRows).
+  template <class A> void rows(A& a) {
+    a("s1", s1);
+    a("s2", s2);
+    a("symbol", symbol);
+  }
 };
 HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
                            const core::RunControl& control = {});
-// The columns in item order; the cell centres and the expanding fraction (counted over every cell) from them.
+// The columns in item order; the cell centres from the grid, the expanding fraction and s1's extremes from the
+// parts' counts (never from the merged cells, which the MPI ranks may keep).
 HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts);
 // merge(req, {run_part(req, every column)}).
 HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control = {});

@@ -305,6 +305,9 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
       p.s1.push_back(sv.s1);
       p.s2.push_back(sv.s2);
       p.symbol.push_back(static_cast<std::uint8_t>(sv.symbol));
+      p.expanding += sv.s1 >= 1;
+      p.s1_min = std::min(p.s1_min, sv.s1);
+      p.s1_max = std::max(p.s1_max, sv.s1);
     }
   p.seconds = core::seconds_since(t0);
   return p;
@@ -332,16 +335,18 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
   const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
   m.w1.resize(grid.size());
   m.w2.resize(grid.size());
-  long expanding = 0;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
-    expanding += m.s1[i] >= 1;
-  }
-  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
   for (long i = 0; i < s.axis1.cells; ++i)
     res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
   for (long j = 0; j < s.axis2.cells; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
-  for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
+  long expanding = 0;
+  res.s1_min = std::numeric_limits<double>::infinity(), res.s1_max = -res.s1_min;
+  for (const auto& p : parts) {
+    expanding += p.expanding;
+    res.s1_min = std::min(res.s1_min, p.s1_min), res.s1_max = std::max(res.s1_max, p.s1_max);
+    res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
+  }
+  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
   return res;
 }
 
