@@ -318,9 +318,9 @@ TEST(Sweep, HyperbolicityOrbitsPartPackRoundTrips) {
   EXPECT_EQ(u.items, p.items);
   EXPECT_EQ(u.angle_histogram, p.angle_histogram);
   EXPECT_EQ(u.orbit_degenerate, p.orbit_degenerate);
-  EXPECT_EQ(u.exponents.lambda1, p.exponents.lambda1);
-  EXPECT_EQ(u.exponents.iterations, p.exponents.iterations);
-  EXPECT_EQ(u.exponents.blocks, p.exponents.blocks);
+  EXPECT_EQ(u.orbit_lambda1, p.orbit_lambda1);
+  EXPECT_EQ(u.summary.median, p.summary.median);
+  EXPECT_EQ(u.summary.frac_positive, p.summary.frac_positive);
   EXPECT_EQ(u.threads, p.threads);
   EXPECT_EQ(0, std::memcmp(u.angle_median.data(), p.angle_median.data(), p.angle_median.size() * sizeof(double)));
   auto bytes = core::pack(p);

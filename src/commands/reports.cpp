@@ -121,8 +121,8 @@ void Spec<lyapunov::HyperbolicityRequest>::print(const lyapunov::HyperbolicityRe
                                                  const lyapunov::HyperbolicityResult& res) {
   const auto& img = res.image;  // its cells' s1 may be with the MPI ranks (their rows): the counts of the parts
   std::cout << "r,cells,expanding_fraction,s1_min,s1_max\n"
-            << fmt::format("{},{},{:.6f},{:.6g},{:.6g}\n", req.r, img.n1 * img.n2, img.expanding_fraction,
-                           res.s1_min, res.s1_max);
+            << fmt::format("{},{},{:.6f},{:.6g},{:.6g}\n", req.r, img.n1 * img.n2, img.expanding_fraction, res.s1_min,
+                           res.s1_max);
 }
 
 void Spec<lyapunov::HyperbolicityRequest>::report(const lyapunov::HyperbolicityRequest&,
