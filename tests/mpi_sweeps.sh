@@ -3,9 +3,9 @@
 # Sweeps over MPI ranks (commands::compute, src/commands/execute.hpp): `mpirun -n P btob <command>` for P = 1, 2, 3, 4
 # writes the data files of the single-process run bitwise (HDF5 datasets through tests/h5_same_data.py, CSV files and
 # standard output byte for byte), whether the ranks write their own rows (parallel HDF5, the sweeps whose parts name
-# rows: bifurcation, lyapunov-map, lyapunov-strip) or send them to rank 0 (BTOB_MPI_WRITE=gather, and every other
-# sweep); no rank holds much more memory than the others; and a rank that fails ends the job with one line naming
-# it, a non-zero status and no files.
+# rows: bifurcation, lyapunov-map, lyapunov-strip, hyperbolicity, hyperbolicity-orbits, leaves) or send them to rank 0
+# (BTOB_MPI_WRITE=gather, and every other sweep); no rank holds much more memory than the others; and a rank that
+# fails ends the job with one line naming it, a non-zero status and no files.
 #
 # Usage: mpi_sweeps.sh BTOB [MPIRUN].  CI runs as root: Open MPI then wants --allow-run-as-root, given here
 # through its environment variables.  --oversubscribe: three and four ranks on two cores.
@@ -117,24 +117,46 @@ gathered() {
   echo "ok: $name, rows gathered to rank 0 equal to the single process"
 }
 
+# rank_written NAME: with parallel HDF5, the runs of `same NAME` on 2, 3 and 4 ranks wrote their rows themselves
+# (the manifest records the bytes they wrote), so the comparisons above were of rank-written datasets.
+rank_written() {
+  [ "$BTOB_PARALLEL" = 1 ] || return 0
+  for P in 2 3 4; do
+    grep -q '"mpi_rows_bytes": [1-9]' "$TMP/$1/p$P/x.json" || fail "$1, $P ranks: the ranks did not write their rows"
+  done
+}
+
 # Sizes: each item costs about the same, a few items per rank, r ranges with chaos, windows and invariant curves.
 same bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
+rank_written bifurcation
 gathered bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
 same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
+rank_written lyapunov-map
 # Float: the check of every k-th r value in double is computed in the parts (per r value) since they keep their rows.
 same lyapunov-map-float lyapunov-map --r-min 0.17 --r-max 0.172 --r-count 70 --grid random:4 --iterations 3000 \
   --transient 200 --blocks 5 --precision float
 same lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
+rank_written lyapunov-strip
 gathered lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
 same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --iterations 300 --max-period 200 \
   --lyap-iterations 400 --refine-factor 2
 same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --boundary-grid sphere:40x40 --transient 500 \
   --iterations 300 --max-period 200 --lyap-iterations 400 --refine-factor 2
+# The label map is the ranks' rows; the landing law and mass are computed per r in the parts.
 same leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 --transient 500 \
   --iterations 300 --max-period 200
+rank_written leaves
+gathered leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 \
+  --transient 500 --iterations 300 --max-period 200
+# The cells are the ranks' rows; the printed expanding fraction and s1's extremes are counted in the parts.
 same hyperbolicity hyperbolicity --r 0.11 --grid strip:60x30
-# r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.
+rank_written hyperbolicity
+# r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.  The per-orbit arrays
+# (uint8 and double) and the histograms are the ranks' rows; lambda1's summary per r is computed in the parts.
 same hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
+  --iterations 1000 --transient 500 --backward 500 --bins 30
+rank_written hyperbolicity-orbits
+gathered hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
   --iterations 1000 --transient 500 --backward 500 --bins 30
 # r = 0.3: four groups of measures (invariant curves) whose heads lie on different ranks.
 same measure measure --r 0.3 --grid random:12 --iterations 20000 --transient 1000 --bins 50

@@ -23,11 +23,19 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <set>
 #include <thread>
 #include <variant>
 
 namespace {
 using namespace btob;
+
+// Two arrays of one type, bitwise.
+template <class V> void expect_same_bytes(const std::vector<V>& u, const std::vector<V>& v, const std::string& what) {
+  ASSERT_EQ(u.size(), v.size()) << what;
+  if (!u.empty())  // memcmp must not see an empty vector's null data() (UBSan: nonnull)
+    EXPECT_EQ(0, std::memcmp(u.data(), v.data(), u.size() * sizeof(V))) << what << " differs";
+}
 
 // The arrays of two results, bitwise (same names, shapes and bytes).
 template <class R> void expect_same_arrays(const R& a, const R& b, const std::string& what) {
@@ -40,17 +48,74 @@ template <class R> void expect_same_arrays(const R& a, const R& b, const std::st
     const auto& y = cb.arrays[i];
     EXPECT_EQ(x.name, y.name) << what;
     EXPECT_EQ(x.dims, y.dims) << what << " " << x.name;
+    std::visit([&](const auto* u) { expect_same_bytes(*u, *std::get<decltype(u)>(y.data), what + ": " + x.name); },
+               x.data);
+  }
+}
+
+// The rows named `name` of every rank (core::RowSet), placed by item: n rows of `width` values.
+template <class V>
+std::vector<V> place_rows(const std::vector<core::RowSet>& kept, const std::string& name, std::size_t n,
+                          std::size_t width) {
+  std::vector<V> placed(n * width);
+  for (const core::RowSet& rs : kept)
+    for (const core::RowColumn& col : rs.columns) {
+      if (col.name != name) continue;
+      const auto& v = std::get<std::vector<V>>(col.data);  // throws when the part's type is not the dataset's
+      if (v.size() != rs.items.size() * width) throw std::logic_error(name + ": not one row per item");
+      for (std::size_t j = 0; j < rs.items.size(); ++j)
+        std::copy_n(v.begin() + static_cast<std::ptrdiff_t>(j * width), width,
+                    placed.begin() + static_cast<std::ptrdiff_t>(rs.items[j] * width));
+    }
+  return placed;
+}
+
+// A merge of parts whose named rows (Part::rows) were taken out, as under mpirun when the ranks write their own
+// rows (core::take_rows, core::ThinMerge): every other array bitwise the whole run's, the named ones empty with the
+// whole run's shape (describe gives the datasets' shapes), their rows placed by item bitwise the whole run's, and
+// the attributes (but wall times) and tables the same.  A merge or a table that read a named row would fail here.
+template <class Req, class Part, class R>
+void expect_thin_merge_equals_run(const Req& req, std::vector<Part> parts, const R& whole, const std::string& what) {
+  const std::size_t n = req.work_items();
+  std::vector<core::RowSet> kept;
+  std::set<std::string> named;
+  for (Part& p : parts) {
+    kept.push_back(core::take_rows(p, n));
+    for (const auto& c : kept.back().columns) named.insert(c.name);
+  }
+  const R thin = [&] {
+    core::ThinMerge t;
+    return merge(req, std::move(parts));
+  }();
+  core::Contents cw, ct;
+  whole.describe(cw);
+  thin.describe(ct);
+  ASSERT_EQ(cw.arrays.size(), ct.arrays.size()) << what;
+  std::size_t rows_checked = 0;
+  for (std::size_t i = 0; i < cw.arrays.size(); ++i) {
+    const auto &x = cw.arrays[i], &y = ct.arrays[i];
+    EXPECT_EQ(x.name, y.name) << what;
+    EXPECT_EQ(x.dims, y.dims) << what << " " << x.name;
     std::visit(
         [&](const auto* u) {
-          using V = std::remove_cvref_t<decltype(*u)>;
-          const V* v = std::get<const V*>(y.data);
-          ASSERT_EQ(u->size(), v->size()) << what << " " << x.name;
-          if (!u->empty())  // memcmp must not see an empty vector's null data() (UBSan: nonnull)
-            EXPECT_EQ(0, std::memcmp(u->data(), v->data(), u->size() * sizeof(typename V::value_type)))
-                << what << ": " << x.name << " differs";
+          using V = typename std::remove_cvref_t<decltype(*u)>::value_type;
+          const auto* v = std::get<decltype(u)>(y.data);
+          if (!named.count(x.name)) return expect_same_bytes(*u, *v, what + ", thin merge: " + x.name);
+          EXPECT_TRUE(v->empty()) << what << ": the named rows of " << x.name << " were merged";
+          ASSERT_EQ(x.dims.at(0), n) << what << ": " << x.name << " has not one row per item";
+          expect_same_bytes(*u, place_rows<V>(kept, x.name, n, u->size() / n), what + ", rows of " + x.name);
+          ++rows_checked;
         },
         x.data);
   }
+  EXPECT_GT(rows_checked, 0u) << what << ": no named rows among the datasets";
+  // The attributes but wall times (the whole run and the parts are timed apart).
+  const auto untimed = [](core::Attrs a) {
+    std::erase_if(a, [](const auto& kv) { return kv.first.find("seconds") != std::string::npos; });
+    return a;
+  };
+  EXPECT_EQ(untimed(cw.attrs), untimed(ct.attrs)) << what << ": attributes";
+  if constexpr (requires { whole.tables(); }) EXPECT_EQ(whole.tables(), thin.tables()) << what;
 }
 
 // `parts` random parts of 0..n-1 (some possibly empty), each ascending, returned in shuffled order.
@@ -78,6 +143,7 @@ void expect_any_partition_equals_run(const Req& req, const std::string& what, Te
     std::vector<Part> got;
     for (const auto& items : random_partition(n, parts, parts))
       got.push_back(core::unpack<Part>(core::pack(run_part(req, items, one))));
+    if constexpr (core::HasRows<Part>) expect_thin_merge_equals_run(req, got, whole, what + ", thin");
     const auto merged = merge(req, std::move(got));
     expect_same_arrays(whole, merged, what + ", " + std::to_string(parts) + " parts");
     same_text(whole, merged, what + ", " + std::to_string(parts) + " parts");
@@ -223,8 +289,13 @@ TEST(Sweep, HyperbolicityAnyPartitionEqualsRun) {
   const auto items = random_partition(q.work_items(), 3, 7);
   std::vector<lyapunov::HyperbolicityPart> parts;
   for (const auto& i : items) parts.push_back(run_part(q, i, one));
-  EXPECT_EQ(merge(q, std::move(parts)).image.expanding_fraction, whole.image.expanding_fraction);
+  const auto merged = merge(q, std::move(parts));
+  EXPECT_EQ(merged.image.expanding_fraction, whole.image.expanding_fraction);
   EXPECT_EQ(whole.image.expanding_fraction, lyapunov::strip_singular_values(0.11, 17, 9, -1.5, 2.5).expanding_fraction);
+  // s1's extremes (the printed line) folded over the parts: those of the merged cells.
+  const auto [lo, hi] = std::minmax_element(whole.image.s1.begin(), whole.image.s1.end());
+  EXPECT_EQ(merged.s1_min, *lo);
+  EXPECT_EQ(merged.s1_max, *hi);
 }
 
 TEST(Sweep, HyperbolicityOrbitsAnyPartitionEqualsRun) {
@@ -247,9 +318,9 @@ TEST(Sweep, HyperbolicityOrbitsPartPackRoundTrips) {
   EXPECT_EQ(u.items, p.items);
   EXPECT_EQ(u.angle_histogram, p.angle_histogram);
   EXPECT_EQ(u.orbit_degenerate, p.orbit_degenerate);
-  EXPECT_EQ(u.exponents.lambda1, p.exponents.lambda1);
-  EXPECT_EQ(u.exponents.iterations, p.exponents.iterations);
-  EXPECT_EQ(u.exponents.blocks, p.exponents.blocks);
+  EXPECT_EQ(u.orbit_lambda1, p.orbit_lambda1);
+  EXPECT_EQ(u.summary.median, p.summary.median);
+  EXPECT_EQ(u.summary.frac_positive, p.summary.frac_positive);
   EXPECT_EQ(u.threads, p.threads);
   EXPECT_EQ(0, std::memcmp(u.angle_median.data(), p.angle_median.data(), p.angle_median.size() * sizeof(double)));
   auto bytes = core::pack(p);

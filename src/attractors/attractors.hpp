@@ -215,6 +215,8 @@ struct BasinClass {
     a(first, first_index, count, rotation_min, rotation_max, invariant_min, invariant_max, first_pending, lo, hi);
   }
 };
+// No rows(): the labels are numbered by the part's own classes (merge_basins renumbers them), and the boundary
+// geometry reads them across neighbouring grid rows on rank 0, so they are gathered.
 struct BasinRows {
   std::vector<std::size_t> items;        // ascending
   std::vector<std::uint32_t> labels;     // n1 per item, in item order: 1 + class, 0 undecided

@@ -234,6 +234,8 @@ struct BasinsRResult {
 };
 
 // Some r values (items: ascending indices into all_r()), one row each.
+// No rows(): per r a few attractors, fractions and the boundary geometry (from that r's own labels, in the part),
+// all read by the tables; no per-point array leaves the part.
 struct BasinsRPart {
   std::vector<std::size_t> items;
   std::vector<BasinsRRow> rows;  // in item order

@@ -119,17 +119,18 @@ void Spec<lyapunov::StripRequest>::report(const lyapunov::StripRequest& req, con
 
 void Spec<lyapunov::HyperbolicityRequest>::print(const lyapunov::HyperbolicityRequest& req,
                                                  const lyapunov::HyperbolicityResult& res) {
-  const auto& img = res.image;
-  const auto [mn, mx] = std::minmax_element(img.s1.begin(), img.s1.end());
+  const auto& img = res.image;  // its cells' s1 may be with the MPI ranks (their rows): the counts of the parts
   std::cout << "r,cells,expanding_fraction,s1_min,s1_max\n"
-            << fmt::format("{},{},{:.6f},{:.6g},{:.6g}\n", req.r, img.s1.size(), img.expanding_fraction, *mn, *mx);
+            << fmt::format("{},{},{:.6f},{:.6g},{:.6g}\n", req.r, img.n1 * img.n2, img.expanding_fraction, res.s1_min,
+                           res.s1_max);
 }
 
 void Spec<lyapunov::HyperbolicityRequest>::report(const lyapunov::HyperbolicityRequest&,
                                                   const lyapunov::HyperbolicityResult& res, const core::Contents&,
                                                   const Written& w) {
   if (!w.quiet)
-    std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", res.image.s1.size(), res.seconds, w.listing());
+    std::cerr << fmt::format("btob: {} cells in {:.3f} s; wrote {}\n", res.image.n1 * res.image.n2, res.seconds,
+                             w.listing());
 }
 
 void Spec<lyapunov::HyperbolicityOrbitsRequest>::report(const lyapunov::HyperbolicityOrbitsRequest& req,

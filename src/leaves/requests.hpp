@@ -62,7 +62,8 @@ struct Result {
   std::vector<std::uint64_t> q2, above_one, undecided;
   // [R, bins] (coarse: [R, bins / 2]):
   std::vector<double> density, density_low, density_high, kde, density_coarse, region_density;
-  std::vector<double> label_map;  // [R, n2, n1]: the landing label, -1 off the P2 curves
+  std::vector<double> label_map;  // [R, n2, n1]: the landing label, -1 off the P2 curves (empty where the MPI
+                                  // ranks write its rows themselves)
   // [R, labels]: the leaves followed by the map
   std::vector<double> leaf_exact, leaf_birkhoff, leaf_birkhoff_half, leaf_exit, leaf_drift;
   std::vector<double> ks_uniform, ks_strip, ks_sphere, law_strip, law_sphere;
@@ -97,15 +98,20 @@ template <class R, class F> void per_r_arrays(R& res, std::size_t B, std::size_t
 
 // Some r values (items: ascending indices into all_r()): their rows of every per-r array (per_r_arrays), in item
 // order.  Each r's numbers depend only on the request and the r, so any partition merges to run()'s result bitwise.
+// The landing labels of the grid's points (label_map, C values per r) are the bulk, written by the MPI ranks
+// themselves (rows()): the landing law, mass and moments are computed from them per r here, and nothing merged
+// reads them.
 struct Part {
   std::vector<std::size_t> items;
-  Result rows;  // only the per-r arrays are set
+  Result per_r;  // only the per-r arrays are set
   double seconds = 0;
   int threads = 0;
   template <class A> void members(A& a) {
     a(items, seconds, threads);
-    per_r_arrays(rows, 0, 0, 0, [&](auto& v, std::size_t) { a(v); });
+    per_r_arrays(per_r, 0, 0, 0, [&](auto& v, std::size_t) { a(v); });
   }
+  // The label map, by its dataset's name (core::HasRows).
+  template <class A> void rows(A& a) { a("label_map", per_r.label_map); }
 };
 Part run_part(const Request& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});
 Result merge(const Request& req, std::vector<Part> parts);

@@ -92,15 +92,15 @@ Part run_part(const Request& q, const std::vector<std::size_t>& items, const cor
   const auto t0 = std::chrono::steady_clock::now();
   Part part;
   part.items = items;
-  part.rows.grid = q.parsed_grid();  // closed_forms and landing read it
+  part.per_r.grid = q.parsed_grid();  // closed_forms and landing read it
   const attractors::Options opt = attractors::run_options(q.thresholds, control);
   const std::vector<double> rs = q.all_r();
   for (std::size_t k = 0; k < items.size(); ++k) {
     core::check_cancel(control.cancel);
     const Geometry g = geometry(rs.at(items[k]));
-    closed_forms(part.rows, g, q.bins);
-    landing(part.rows, g, opt, q.bins);
-    follow(part.rows, g, q, control.cancel);
+    closed_forms(part.per_r, g, q.bins);
+    landing(part.per_r, g, opt, q.bins);
+    follow(part.per_r, g, q, control.cancel);
     if (control.progress) control.progress->update(k + 1, items.size());
   }
   part.threads = core::thread_count(control.threads);
@@ -134,8 +134,8 @@ Result merge(const Request& q, std::vector<Part> parts) {
   per_r_arrays(res, static_cast<std::size_t>(q.bins), res.grid.cells(), q.labels.size(), [&](auto& out, std::size_t w) {
     using V = typename std::decay_t<decltype(out)>::value_type;
     const std::size_t mine = idx++;
-    out = core::merge_rows<Part, V>(parts, order, w,
-                                    [&](const Part& p) -> const std::vector<V>& { return nth_array<V>(p.rows, mine); });
+    out = core::merge_rows<Part, V>(
+        parts, order, w, [&](const Part& p) -> const std::vector<V>& { return nth_array<V>(p.per_r, mine); });
   });
   for (const Part& p : parts)
     res.seconds = std::max(res.seconds, p.seconds), res.threads = std::max(res.threads, p.threads);

@@ -12,6 +12,7 @@
 #include "lyapunov/maps.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,24 +39,37 @@ struct HyperbolicityRequest {
 struct HyperbolicityResult {
   HyperbolicityRequest request;          // the request, as run (validated)
   StripSingularValues image;             // s1, s2, symbol, w1, w2 over n1 x n2 cells, and the expanding fraction
+                                         // (s1, s2, symbol empty where the MPI ranks write their rows themselves)
   std::vector<double> w1_cell, w2_cell;  // [n1], [n2]: the cell centres along each axis
+  double s1_min = 0, s1_max = 0;         // the extremes of s1 over the cells (the printed line)
   double seconds = 0;                    // wall time of the run, seconds
 
   // Arrays: s1, s2, symbol, w1, w2 [n1, n2]; attributes: r, alpha, grid, w1 range, metric, expanding_fraction.
   void describe(core::Contents& c) const;
 };
 
-// Some w1 columns of the strip (items: ascending indices 0..N-1): the n2 cells of each, item-major.
+// Some w1 columns of the strip (items: ascending indices 0..N-1): the n2 cells of each, item-major, and what the
+// result derives from them, counted here (a count and extremes over the part's cells: any partition sums and folds
+// them to the same numbers).  The cells' values are then the bulk that MPI ranks write themselves (rows()).
 struct HyperbolicityPart {
   std::vector<std::size_t> items;
-  std::vector<double> s1, s2;
-  std::vector<std::uint8_t> symbol;
+  std::vector<double> s1, s2;        // [items, n2]
+  std::vector<std::uint8_t> symbol;  // [items, n2]
+  long expanding = 0;                // cells with s1 >= 1
+  double s1_min = std::numeric_limits<double>::infinity(), s1_max = -std::numeric_limits<double>::infinity();
   double seconds = 0;
-  template <class A> void members(A& a) { a(items, s1, s2, symbol, seconds); }
+  template <class A> void members(A& a) { a(items, s1, s2, symbol, expanding, s1_min, s1_max, seconds); }
+  // The cells' singular values and branches, by their datasets' names (core::HasRows).
+  template <class A> void rows(A& a) {
+    a("s1", s1);
+    a("s2", s2);
+    a("symbol", symbol);
+  }
 };
 HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<std::size_t>& items,
                            const core::RunControl& control = {});
-// The columns in item order; the cell centres and the expanding fraction (counted over every cell) from them.
+// The columns in item order; the cell centres from the grid, the expanding fraction and s1's extremes from the
+// parts' counts (never from the merged cells, which the MPI ranks may keep).
 HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<HyperbolicityPart> parts);
 // merge(req, {run_part(req, every column)}).
 HyperbolicityResult run(const HyperbolicityRequest& req, const core::RunControl& control = {});
@@ -93,12 +107,12 @@ struct HyperbolicityOrbitsResult {
   // Per r [R]: pooled over the orbits (angles only from non-degenerate ones), NaN when no orbit contributes.
   std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median;
   std::vector<double> angle_histogram;  // [R, bins]
-  // Per orbit [R, I].
+  // Per orbit [R, I] (with angle_histogram: empty where the MPI ranks write their rows themselves).
   std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr;
   std::vector<std::uint8_t> orbit_degenerate;
-  OrbitExponents exponents;  // lambda1 from the batched tangent recorder on the same orbits, 10 blocks
-  RSummary summary;          // its summary per r
-  int threads = 0;           // threads of the CLV loop
+  std::vector<double> orbit_lambda1;  // lambda1 from the batched tangent recorder on the same orbits, 10 blocks
+  RSummary summary;                   // its summary per r [R]
+  int threads = 0;                    // threads of the CLV loop
   double clv_seconds = 0;
 
   void describe(core::Contents& c) const;
@@ -108,29 +122,42 @@ struct HyperbolicityOrbitsResult {
 };
 
 // Some r values (items: ascending indices into linspace(r-min, r-max, r-count)): everything per r and per orbit
-// of them, item-major, and lambda1 of their orbits (the whole request's grid).  Each r's pooled statistics depend
-// on its own orbits only, so they are rows like the rest.
+// of them, item-major, and lambda1 of their orbits (the whole request's grid) with its summary per r.  Each r's
+// pooled statistics and summary depend on its own orbits only, so they are rows like the rest, computed here; the
+// per-orbit arrays and the histograms are then the bulk that MPI ranks write themselves (rows()): nothing merged
+// reads them.
 struct HyperbolicityOrbitsPart {
   std::vector<std::size_t> items;
   std::vector<double> frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate,
       lambda1_qr_median;                // [items]
+  RSummary summary;                     // [items]: lambda1's (summarise)
   std::vector<double> angle_histogram;  // [items, bins]
-  std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr;
+  std::vector<double> orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr,
+      orbit_lambda1;                           // [items, I]
   std::vector<std::uint8_t> orbit_degenerate;  // [items, I]
-  OrbitExponents exponents;                    // [items, I]
   int threads = 0;
   double clv_seconds = 0;
   template <class A> void members(A& a) {
-    a(items, frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median, angle_histogram,
-      orbit_frac_expanding, orbit_angle_median, orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr, orbit_degenerate,
-      exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max, exponents.err_max,
-      exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations, exponents.blocks, threads,
-      clv_seconds);
+    a(items, frac_expanding, angle_median, angle_q05, angle_min, frac_degenerate, lambda1_qr_median, summary.min,
+      summary.median, summary.max, summary.err_min, summary.err_median, summary.err_max, summary.frac_positive,
+      summary.frac_zero, summary.frac_negative, angle_histogram, orbit_frac_expanding, orbit_angle_median,
+      orbit_angle_q05, orbit_lambda1_qr, orbit_lambda2_qr, orbit_lambda1, orbit_degenerate, threads, clv_seconds);
+  }
+  // The per-orbit arrays and the angle histograms, by their datasets' names (core::HasRows).
+  template <class A> void rows(A& a) {
+    a("angle_histogram", angle_histogram);
+    a("orbit_frac_expanding", orbit_frac_expanding);
+    a("orbit_angle_median", orbit_angle_median);
+    a("orbit_angle_q05", orbit_angle_q05);
+    a("orbit_lambda1_qr", orbit_lambda1_qr);
+    a("orbit_lambda2_qr", orbit_lambda2_qr);
+    a("orbit_lambda1", orbit_lambda1);
+    a("orbit_degenerate", orbit_degenerate);
   }
 };
 HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const std::vector<std::size_t>& items,
                                  const core::RunControl& control = {});
-// The rows in item order; the lambda1 summary per r from the merged exponents.
+// The rows in item order (the parts' per-r rows, lambda1's summary among them).
 HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vector<HyperbolicityOrbitsPart> parts);
 // merge(req, {run_part(req, every r)}).
 HyperbolicityOrbitsResult run(const HyperbolicityOrbitsRequest& req, const core::RunControl& control = {});

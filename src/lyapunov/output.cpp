@@ -199,7 +199,7 @@ void HyperbolicityOrbitsResult::describe(core::Contents& c) const {
   c.array("orbit_angle_q05", orbit_angle_q05, {R, I}, oi, rad, "5% quantile of the CLV angle (NaN if degenerate)");
   c.array("orbit_lambda1_qr", orbit_lambda1_qr, {R, I}, oi, per, "lambda1 from the forward QR over the window");
   c.array("orbit_lambda2_qr", orbit_lambda2_qr, {R, I}, oi, per, "lambda2 from the forward QR over the window");
-  c.array("orbit_lambda1", exponents.lambda1, {R, I}, oi, per, "lambda1 from the batched tangent recorder");
+  c.array("orbit_lambda1", orbit_lambda1, {R, I}, oi, per, "lambda1 from the batched tangent recorder");
   c.array("orbit_degenerate", orbit_degenerate, {R, I}, oi, "1", "1 when lambda1 - lambda2 < 10/window");
   c.attr("r_min", request.r_min);
   c.attr("r_max", request.r_max);

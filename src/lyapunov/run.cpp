@@ -305,6 +305,9 @@ HyperbolicityPart run_part(const HyperbolicityRequest& req, const std::vector<st
       p.s1.push_back(sv.s1);
       p.s2.push_back(sv.s2);
       p.symbol.push_back(static_cast<std::uint8_t>(sv.symbol));
+      p.expanding += sv.s1 >= 1;
+      p.s1_min = std::min(p.s1_min, sv.s1);
+      p.s1_max = std::max(p.s1_max, sv.s1);
     }
   p.seconds = core::seconds_since(t0);
   return p;
@@ -332,16 +335,18 @@ HyperbolicityResult merge(const HyperbolicityRequest& req, std::vector<Hyperboli
   const std::vector<iterate::Vec3<double>> grid = iterate::strip_grid(s);
   m.w1.resize(grid.size());
   m.w2.resize(grid.size());
-  long expanding = 0;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
-    expanding += m.s1[i] >= 1;
-  }
-  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) std::tie(m.w1[i], m.w2[i]) = core::strip<double>(grid[i]);
   for (long i = 0; i < s.axis1.cells; ++i)
     res.w1_cell.push_back(m.w1[static_cast<std::size_t>(i * s.axis2.cells)]);  // (i, j) at i n2 + j
   for (long j = 0; j < s.axis2.cells; ++j) res.w2_cell.push_back(m.w2[static_cast<std::size_t>(j)]);
-  for (const auto& p : parts) res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
+  long expanding = 0;
+  res.s1_min = std::numeric_limits<double>::infinity(), res.s1_max = -res.s1_min;
+  for (const auto& p : parts) {
+    expanding += p.expanding;
+    res.s1_min = std::min(res.s1_min, p.s1_min), res.s1_max = std::max(res.s1_max, p.s1_max);
+    res.seconds = std::max(res.seconds, p.seconds);  // the slowest part
+  }
+  m.expanding_fraction = static_cast<double>(expanding) / static_cast<double>(grid.size());
   return res;
 }
 
@@ -418,7 +423,10 @@ HyperbolicityOrbitsPart run_part(const HyperbolicityOrbitsRequest& req, const st
   mo.blocks = 10;
   mo.run.threads = control.threads;
   mo.run.cancel = control.cancel;
-  res.exponents = map_exponents(ens, mo);
+  OrbitExponents e = map_exponents(ens, mo);
+  e.iterations = req.iterations;  // the classification's floor 10/n (summarise)
+  res.summary = summarise(e, R, ens.initial.size());
+  res.orbit_lambda1 = std::move(e.lambda1);  // the one exponent the result keeps per orbit (a dataset)
   return res;
 }
 
@@ -431,7 +439,7 @@ HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vect
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   ens.grid_description = req.grid;
   ens.seed = req.seed;
-  const std::size_t R = ens.r.size(), I = ens.initial.size();
+  const std::size_t I = ens.initial.size();
   res.bins = static_cast<std::size_t>(req.bins);
   const auto order = core::item_order(parts, req.work_items());
   using P = HyperbolicityOrbitsPart;
@@ -445,34 +453,22 @@ HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vect
   res.angle_min = rows(&P::angle_min, 1);
   res.frac_degenerate = rows(&P::frac_degenerate, 1);
   res.lambda1_qr_median = rows(&P::lambda1_qr_median, 1);
+  for (auto f : {&RSummary::min, &RSummary::median, &RSummary::max, &RSummary::err_min, &RSummary::err_median,
+                 &RSummary::err_max, &RSummary::frac_positive, &RSummary::frac_zero, &RSummary::frac_negative})
+    res.summary.*f = core::merge_rows<P, double>(parts, order, 1, [f](const P& p) -> const V& { return p.summary.*f; });
   res.angle_histogram = rows(&P::angle_histogram, res.bins);
   res.orbit_frac_expanding = rows(&P::orbit_frac_expanding, I);
   res.orbit_angle_median = rows(&P::orbit_angle_median, I);
   res.orbit_angle_q05 = rows(&P::orbit_angle_q05, I);
   res.orbit_lambda1_qr = rows(&P::orbit_lambda1_qr, I);
   res.orbit_lambda2_qr = rows(&P::orbit_lambda2_qr, I);
+  res.orbit_lambda1 = rows(&P::orbit_lambda1, I);
   res.orbit_degenerate = core::merge_rows<P, std::uint8_t>(
       parts, order, I, [](const P& p) -> const std::vector<std::uint8_t>& { return p.orbit_degenerate; });
-  OrbitExponents& e = res.exponents;
-  const auto ex = [&](V OrbitExponents::*f) {
-    return core::merge_rows<P, double>(parts, order, I, [f](const P& p) -> const V& { return p.exponents.*f; });
-  };
-  e.lambda1 = ex(&OrbitExponents::lambda1);
-  e.err1 = ex(&OrbitExponents::err1);
-  e.lambda2 = ex(&OrbitExponents::lambda2);
-  e.err2 = ex(&OrbitExponents::err2);
-  e.lambda_max = ex(&OrbitExponents::lambda_max);
-  e.err_max = ex(&OrbitExponents::err_max);
-  e.lambda_min = ex(&OrbitExponents::lambda_min);
-  e.err_min = ex(&OrbitExponents::err_min);
-  e.chi1 = ex(&OrbitExponents::chi1);
-  e.iterations = req.iterations;
-  e.blocks = 10;
   for (const P& p : parts) {
     res.threads = std::max(res.threads, p.threads);
     res.clv_seconds = std::max(res.clv_seconds, p.clv_seconds);  // the slowest part
   }
-  res.summary = summarise(res.exponents, R, I);
   return res;
 }
 

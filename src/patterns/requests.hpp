@@ -169,6 +169,8 @@ struct AtlasResult {
 };
 
 // Some items of an atlas (ascending: words first, then r values of the check), item-major: what each computed.
+// No rows(): per word a stability set of varying length and per r its patterns, which merge sorts into the tables;
+// no dataset has one row per item.
 struct AtlasPart {
   std::vector<std::size_t> items;
   std::vector<std::vector<Interval<double>>> stable;            // per word (stable atlas): its stability set

@@ -132,6 +132,7 @@ struct MeasureResult {
 // measure_cells, -1 outside the extent), item-major [items, iterations].  Every measure of the result, at the full
 // length and at the convergence checkpoints, is counted from these bins in merge, so the orbits never travel and
 // the groups, distances and convergence are computed once, over all initial conditions in grid order.
+// No rows(): the orbits' bins are no dataset; merge counts every measure, group and distance from them.
 struct MeasurePart {
   std::vector<std::size_t> items;
   std::vector<std::int32_t> cells;

@@ -59,6 +59,7 @@ struct PolyResult {
   void describe(core::Contents& c) const;  // arrays n, degree; attributes Q_<n>_developed / Q_<n>_factorised
 };
 // Some n of the range (items: ascending indices, n = first + item): Q_n's degree and text, item-major.
+// No rows(): the bulk is Q_n's text (attributes and the printed lines), not rows of a dataset.
 struct PolyPart {
   std::vector<std::size_t> items;
   std::vector<std::uint32_t> degree;
@@ -114,6 +115,7 @@ struct BoundsResult {
 };
 // Some n of the range (items ascending, n = first + item), item-major: the bounds, and with --certify the
 // certificate's bracket (exact rationals as GMP text "p/q") and its signs and root counts.
+// No rows(): a few numbers per n, which the CSV table reads.
 struct BoundsPart {
   std::vector<std::size_t> items;
   std::vector<std::string> lower_text, upper_text;
@@ -212,6 +214,7 @@ struct VerifyResult {
   void describe(core::Contents& c) const;
 };
 // Some n of the range (items ascending, n = first + item): their 4 rows each, item-major, and the seconds spent.
+// No rows(): 4 rows per n, which the CSV table and the pass counts read.
 struct VerifyPart {
   std::vector<std::size_t> items;
   std::vector<VerifyRow> rows;
@@ -271,6 +274,7 @@ struct BoundPrecisionResult {
 };
 // Some n of the range (items ascending, n = first + item): per n its 10 bounds, route-major then precision (float,
 // double, long-double, float128, mpfr:D), as in BoundPrecisionResult::rows; and the part's seconds.
+// No rows(): 10 values per n, which the summary reads; the datasets are [precision x route, n] (not a row per n).
 struct BoundPrecisionPart {
   std::vector<std::size_t> items;
   std::vector<double> value, abs_error, seconds;  // [items x 10]
