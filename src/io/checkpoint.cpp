@@ -24,7 +24,9 @@ namespace btob::io {
 namespace {
 constexpr const char* kMagic = "btob-checkpoint 1\n";
 
-// FNV-1a, 64 bits: tells a whole record from one cut short or overwritten (not a defence against tampering).
+// FNV-1a, 64 bits: tells a whole record from one cut short or overwritten (not a defence against tampering).  Its
+// offset basis is the published 14695981039346656037 without the last digit, as the format has had it from the start
+// (any basis serves; kept so that the format stays the same, tests/test_checkpoint.cpp recomputes it).
 std::uint64_t fnv1a(const char* p, std::size_t n) {
   std::uint64_t h = 1469598103934665603ull;
   for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
