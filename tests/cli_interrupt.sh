@@ -59,7 +59,7 @@ interrupt() {
   # --resume: the finished items stay in OUT/NAME.checkpoint, and a line says so before the interruption's.
   if [[ " $* " == *" --resume "* ]]; then
     kept=1
-    want_files=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint' | tr '\n' ' ')
+    want_files=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint\(\.[1-9][0-9]*\)\?' | tr '\n' ' ')
     grep -q "^btob: the finished items are kept in .*\.checkpoint; the same command with --resume continues$" \
       "$work/stderr" || kept=2
   fi
@@ -80,7 +80,7 @@ interrupt() {
 }
 
 # interrupt_mpi <INT|TERM> <btob arguments...>: the job's every process gets the signal; its ranks must be gone
-# within the bound and the folder (@OUT) hold keep.txt and, with --resume, the checkpoint alone.
+# within the bound and the folder (@OUT) hold keep.txt and, with --resume, the checkpoint (a file per rank) alone.
 interrupt_mpi() {
   local sig="$1"
   shift
@@ -114,7 +114,9 @@ interrupt_mpi() {
   wait "$pid" 2>/dev/null
   local latency files want="keep.txt "
   latency=$(echo "$t1 - $t0" | bc)
-  [[ " $* " == *" --resume "* ]] && want=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint' | tr '\n' ' ')
+  # With --resume: each rank's checkpoint (OUT/NAME.checkpoint, OUT/NAME.checkpoint.K).
+  [[ " $* " == *" --resume "* ]] &&
+    want=$(cd "$out" && ls -A | grep -x -e keep.txt -e '.*\.checkpoint\(\.[1-9][0-9]*\)\?' | tr '\n' ' ')
   files=$(cd "$out" && ls -A | tr '\n' ' ')
   if [ "$files" != "$want" ] || [ "$(cat "$out/keep.txt")" != "an earlier result" ]; then
     echo "FAIL (output folder holds '$files'): mpirun -n 2 btob $*"; fail=1

@@ -374,7 +374,7 @@ template <class Req> void execute(Req req, Output out, const std::string& invoca
   if constexpr (core::Sweep<Req>) {
     if (out.dry_run) return print_estimate(name, req, out, ctx);
     if (!out.resume) note_long_sweep(name, req, out, ctx);  // a resumed run's bar says what is left at its own rate
-    if (out.resume)  // a collective under mpirun: rank 0 reads the file, every rank its items
+    if (out.resume)  // a collective under mpirun: each rank reads its files, every rank learns every finished item
       ctx.checkpoint = open_checkpoint(out.checkpoint_path(), checkpoint_identity(name, ctx.request_args));
   } else if constexpr (core::Costed<Req>) {  // runs on rank 0 alone (returned above on the others)
     if (out.dry_run) return print_work_estimate(name, req, out, ctx);
@@ -386,10 +386,12 @@ template <class Req> void execute(Req req, Output out, const std::string& invoca
   } catch (const core::Cancelled&) {
     if (ctx.checkpoint && mpi::rank() == 0 && !out.quiet)
       std::cerr << "btob: the finished items are kept in " << ctx.checkpoint->path.string()
+                << (mpi::size() > 1 ? " and its ranks' files beside it (.1, .2, ...)" : "")
                 << "; the same command with --resume continues\n";
     throw;
   }
-  // The result is written (or printed): the finished items are no longer needed.
+  // The result is written (or printed; under mpirun by the ranks' collective write too): the finished items are no
+  // longer needed, and rank 0 removes every rank's file.
   if (ctx.checkpoint && mpi::rank() == 0) remove_checkpoint(*ctx.checkpoint);
   remember_self_rate(req, out, core::seconds_since(t0));
 }

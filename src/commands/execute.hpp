@@ -118,32 +118,35 @@ struct How {
   std::function<void(double)> merged;
 };
 
-// A sweep's items split over the ranks (rank k takes items k, k + P, ...; core::cyclic_items) and merged on rank 0;
-// the result on rank 0, nullopt elsewhere.  With io::Ranks::write_rows, the rows a part names (core::HasRows) stay
-// on their rank: the others join rank 0's write of NAME.h5 at once (waiting for it), rank 0 keeps its own in `kept`
-// for write(), and the merge on rank 0 leaves those arrays empty (core::ThinMerge).
-template <core::Sweep Req>
-std::optional<ResultOf<Req>> run_split(const Req& req, const How& how, std::shared_ptr<RankRows>* kept = nullptr) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t n = core::work_items(req, how.control.cancel);  // counting may be long (the atlas): polled
-  const auto items = core::cyclic_items(n, how.ranks.rank, how.ranks.ranks);
-  auto mine = io::detail::naming_items(items, n, [&] { return run_part(req, items, how.control); });
-  const double seconds = core::seconds_since(t0);
+// The end of a sweep over the ranks, from each rank's parts (run_split: the one it computed; a resumed run: those its
+// checkpoint files held and those of its rounds): alone, their merge; else one gather to rank 0, the result there
+// and nullopt elsewhere.  With io::Ranks::write_rows, the rows the parts name (core::HasRows) stay on their rank
+// (core::take_rows, items ascending): the others join rank 0's write of NAME.h5 at once (waiting for it), rank 0
+// keeps its own in `kept` for write(), and only the thin rest travels and is merged (core::ThinMerge).
+template <core::Sweep Req, class Part>
+std::optional<ResultOf<Req>> merge_ranks(const Req& req, const How& how, io::RankParts<Part> mine,
+                                         std::shared_ptr<RankRows>* kept) {
+  if (how.ranks.ranks == 1) return merge(req, std::move(mine.parts));
   core::RowSet rows;
-  if constexpr (core::HasRows<decltype(mine)>)
-    if (how.ranks.write_rows && kept) rows = core::take_rows(mine, n);
-  // Rank 0 keeps its own part as it is; the others send theirs as bytes.
-  std::vector<std::vector<char>> bytes =
-      how.ranks.gather(how.ranks.rank == 0 ? std::vector<char>{} : core::pack(mine), seconds);
+  if constexpr (core::HasRows<Part>)
+    if (how.ranks.write_rows && kept) rows = core::take_rows(mine.parts, mine.items);
+  // Rank 0 keeps its own parts as they are; the others send theirs as bytes (and drop them before the write).
+  std::vector<char> sent;
+  if (how.ranks.rank != 0) {
+    sent = core::pack(mine.parts);
+    std::vector<Part>().swap(mine.parts);
+  }
+  std::vector<std::vector<char>> bytes = how.ranks.gather(std::move(sent), mine.seconds);
   if (how.ranks.rank != 0) {
     if (!rows.empty()) how.ranks.write_rows("", rows);
     return std::nullopt;
   }
   const auto t1 = std::chrono::steady_clock::now();
-  std::vector<decltype(mine)> parts;
-  parts.push_back(std::move(mine));
-  for (std::size_t k = 1; k < bytes.size(); ++k) parts.push_back(core::unpack<decltype(mine)>(bytes[k]));
-  bytes.clear();
+  std::vector<Part> parts = std::move(mine.parts);
+  for (std::size_t k = 1; k < bytes.size(); ++k) {
+    for (Part& p : core::unpack<std::vector<Part>>(bytes[k])) parts.push_back(std::move(p));
+    std::vector<char>().swap(bytes[k]);
+  }
   std::optional<ResultOf<Req>> res;
   if (rows.empty()) {
     res.emplace(merge(req, std::move(parts)));
@@ -156,13 +159,29 @@ std::optional<ResultOf<Req>> run_split(const Req& req, const How& how, std::shar
   return res;
 }
 
+// A sweep's items split over the ranks (rank k takes items k, k + P, ...; core::cyclic_items), each rank's one part
+// ending in merge_ranks.
+template <core::Sweep Req>
+std::optional<ResultOf<Req>> run_split(const Req& req, const How& how, std::shared_ptr<RankRows>* kept = nullptr) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = core::work_items(req, how.control.cancel);  // counting may be long (the atlas): polled
+  const auto items = core::cyclic_items(n, how.ranks.rank, how.ranks.ranks);
+  using Part = decltype(run_part(req, items, how.control));
+  io::RankParts<Part> mine;
+  mine.parts.push_back(io::detail::naming_items(items, n, [&] { return run_part(req, items, how.control); }));
+  mine.items = n;
+  mine.seconds = core::seconds_since(t0);
+  return merge_ranks(req, how, std::move(mine), kept);
+}
+
 // The run itself: a resumed sweep in rounds kept in its checkpoint, a sweep split over ranks, else run(req) (a
 // request that is not a sweep runs on rank 0 alone).  Bit for bit the same result in every case.  `kept`: where
-// rank 0 keeps the rows it writes itself (run_split).
+// rank 0 keeps the rows it writes itself (merge_ranks).
 template <class Req>
 std::optional<ResultOf<Req>> run_request(const Req& req, const How& how, std::shared_ptr<RankRows>* kept = nullptr) {
   if constexpr (core::Sweep<Req>) {
-    if (how.checkpoint) return io::run_in_rounds(req, how.control, *how.checkpoint, how.ranks);
+    if (how.checkpoint)
+      return merge_ranks(req, how, io::run_in_rounds(req, how.control, *how.checkpoint, how.ranks), kept);
     if (how.ranks.ranks > 1) return run_split(req, how, kept);
   }
   if (how.ranks.rank != 0) return std::nullopt;

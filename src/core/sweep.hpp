@@ -127,6 +127,26 @@ template <class Part> RowSet take_rows(Part& part, std::size_t total) {
   return rs;
 }
 
+// The rows of several RowSets of one rank (of the same `total`), as one in ascending item order: the row order
+// cli/rows.hpp needs.  Each column is copied into place and its sources freed before the next, so the rank holds
+// its rows once plus one column.  Throws std::logic_error when an item repeats or a column's size is not a whole
+// number of rows.
+RowSet join_rows(std::vector<RowSet> sets, std::size_t total);
+
+// take_rows over every part of one rank (a resumed run's rank holds the parts its checkpoint files kept and those of
+// its rounds, their items interleaved): one RowSet, items ascending.  A rank without parts names the same columns,
+// empty (its rows join the collective write like the others').
+template <class Part> RowSet take_rows(std::vector<Part>& parts, std::size_t total) {
+  if (parts.size() == 1) return take_rows(parts[0], total);
+  std::vector<RowSet> sets;
+  if (parts.empty()) {
+    Part none{};
+    sets.push_back(take_rows(none, total));
+  }
+  for (Part& p : parts) sets.push_back(take_rows(p, total));
+  return join_rows(std::move(sets), total);
+}
+
 namespace detail {
 inline int& thin_merges() {
   thread_local int depth = 0;

@@ -24,7 +24,9 @@ namespace btob::io {
 namespace {
 constexpr const char* kMagic = "btob-checkpoint 1\n";
 
-// FNV-1a, 64 bits: tells a whole record from one cut short or overwritten (not a defence against tampering).
+// FNV-1a, 64 bits: tells a whole record from one cut short or overwritten (not a defence against tampering).  Its
+// offset basis is the published 14695981039346656037 without the last digit, as the format has had it from the start
+// (any basis serves; kept so that the format stays the same, tests/test_checkpoint.cpp recomputes it).
 std::uint64_t fnv1a(const char* p, std::size_t n) {
   std::uint64_t h = 1469598103934665603ull;
   for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
@@ -78,65 +80,132 @@ std::string first_difference(const std::string& got, const std::string& want) {
   return "the same fields in another order";
 }
 
-// Reads the records of an existing checkpoint into `cp` (truncating a record cut short), or says why it is refused.
-std::string read_existing(Checkpoint& cp) {
-  std::ifstream in(cp.path, std::ios::binary);
+// Reads the records of an existing checkpoint file into `cp` (truncating a record cut short), or says why it is
+// refused.
+std::string read_existing(Checkpoint& cp, const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string magic = kMagic;
   const auto refuse = [&](const std::string& why) {
-    return fmt::format("{}: {}; remove it to start again, or resume with the request that made it", cp.path.string(),
-                       why);
+    return fmt::format("{}: {}; remove it to start again, or resume with the request that made it", path.string(), why);
   };
   if (!in.good() && !in.eof()) return refuse("cannot be read");
   if (bytes.compare(0, magic.size(), magic) != 0) return refuse("not a btob checkpoint");
   std::size_t at = magic.size();
-  std::vector<std::string> payloads;
+  std::size_t records = 0;
   while (bytes.size() - at >= 16) {
     std::uint64_t size = 0, hash = 0;
     std::memcpy(&size, bytes.data() + at, 8);
     std::memcpy(&hash, bytes.data() + at + 8, 8);
     if (size > bytes.size() - at - 16 || fnv1a(bytes.data() + at + 16, size) != hash) break;
-    payloads.emplace_back(bytes, at + 16, size);
+    const char* payload = bytes.data() + at + 16;
+    if (records++ == 0) {
+      if (std::string(payload, size) != cp.identity)
+        return refuse("a checkpoint of another request or build (" +
+                      first_difference(std::string(payload, size), cp.identity) + ")");
+    } else {
+      auto rec = core::unpack<std::pair<std::vector<std::size_t>, std::vector<char>>>(
+          std::vector<char>(payload, payload + size));
+      cp.done.insert(cp.done.end(), rec.first.begin(), rec.first.end());
+      cp.parts.push_back(std::move(rec.second));
+    }
     at += 16 + size;
   }
-  if (payloads.empty()) return refuse("its header is cut short");
-  if (payloads[0] != cp.identity)
-    return refuse("a checkpoint of another request or build (" + first_difference(payloads[0], cp.identity) + ")");
-  for (std::size_t k = 1; k < payloads.size(); ++k) {
-    const auto rec = core::unpack<std::pair<std::vector<std::size_t>, std::vector<char>>>(
-        std::vector<char>(payloads[k].begin(), payloads[k].end()));
-    cp.done.insert(cp.done.end(), rec.first.begin(), rec.first.end());
-    cp.parts.push_back(rec.second);
-  }
-  std::sort(cp.done.begin(), cp.done.end());
-  if (at < bytes.size()) fs::resize_file(cp.path, at);  // a record cut short by a kill: dropped
+  if (records == 0) return refuse("its header is cut short");
+  if (at < bytes.size()) fs::resize_file(path, at);  // a record cut short by a kill: dropped
   return "";
 }
 
-// Opens and locks the file (never replaced once made: appended to, truncated, so the lock stays on it).
-std::string lock(Checkpoint& cp) {
-  cp.lock = ::open(cp.path.c_str(), O_RDWR);
-  if (cp.lock < 0) return fmt::format("{}: cannot be opened ({})", cp.path.string(), std::strerror(errno));
-  if (::flock(cp.lock, LOCK_EX | LOCK_NB) != 0)
-    return fmt::format("{}: in use by another run of btob (wait for it to end, or end it)", cp.path.string());
+// Opens and locks a file (never replaced once made: appended to, truncated, so the lock stays on it).
+std::string lock(Checkpoint& cp, const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDWR);
+  if (fd < 0) return fmt::format("{}: cannot be opened ({})", path.string(), std::strerror(errno));
+  cp.locks.push_back(fd);
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
+    return fmt::format("{}: in use by another run of btob (wait for it to end, or end it)", path.string());
   return "";
+}
+
+// Starts the file with its header (written to a temporary file, renamed into place) when it is absent.
+bool start(const Checkpoint& cp, const fs::path& path) {
+  if (fs::exists(path)) return false;
+  fs::create_directories(path.parent_path().empty() ? "." : path.parent_path());
+  const fs::path tmp = path.string() + ".tmp";
+  write_synced(tmp, kMagic + record(std::vector<char>(cp.identity.begin(), cp.identity.end())), false);
+  fs::rename(tmp, path);
+  return true;
+}
+
+// The files rank `rank` of `ranks` opens: its own first, then the earlier ones that fall to it.
+std::vector<fs::path> files_of(const fs::path& path, std::size_t rank, std::size_t ranks,
+                               const std::vector<std::size_t>& earlier) {
+  std::vector<fs::path> f{checkpoint_file(path, rank)};
+  for (const std::size_t k : earlier)
+    if (k % ranks == rank && k != rank) f.push_back(checkpoint_file(path, k));
+  return f;
 }
 
 }  // namespace
 
-std::string open_checkpoint_file(Checkpoint& cp) {
+fs::path checkpoint_file(const fs::path& path, std::size_t k) {
+  return k == 0 ? path : fs::path(path.string() + "." + std::to_string(k));
+}
+
+std::vector<std::size_t> checkpoint_rank_files(const fs::path& path) {
+  std::vector<std::size_t> ks;
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  const std::string stem = path.filename().string() + ".";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= stem.size() || name.compare(0, stem.size(), stem) != 0) continue;
+    const std::string digits = name.substr(stem.size());
+    if (digits.size() > 9 || digits[0] == '0' ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;  // NAME.checkpoint.tmp, or not a rank's number as checkpoint_file writes it
+    ks.push_back(std::stoul(digits));
+  }
+  std::sort(ks.begin(), ks.end());
+  return ks;
+}
+
+std::string open_checkpoint_files(Checkpoint& cp, std::size_t rank, std::size_t ranks,
+                                  const std::vector<std::size_t>& earlier) {
   try {
-    if (!fs::exists(cp.path)) {
-      fs::create_directories(cp.path.parent_path().empty() ? "." : cp.path.parent_path());
-      const fs::path tmp = cp.path.string() + ".tmp";
-      write_synced(tmp, kMagic + record(std::vector<char>(cp.identity.begin(), cp.identity.end())), false);
-      fs::rename(tmp, cp.path);
+    cp.own = checkpoint_file(cp.path, rank);
+    cp.job.clear();
+    for (std::size_t k = 0; k < ranks; ++k) cp.job.push_back(checkpoint_file(cp.path, k));
+    for (const std::size_t k : earlier)
+      if (k >= ranks) cp.job.push_back(checkpoint_file(cp.path, k));
+    for (const fs::path& f : files_of(cp.path, rank, ranks, earlier)) {
+      if (f == cp.own) cp.created = start(cp, f);
+      std::string error = lock(cp, f);
+      if (error.empty()) error = read_existing(cp, f);
+      if (!error.empty()) return error;
     }
-    std::string error = lock(cp);
-    return error.empty() ? read_existing(cp) : error;
+    return check_done(cp.path, cp.done);
   } catch (const std::exception& e) {
     return e.what();
   }
+}
+
+std::string open_checkpoint_file(Checkpoint& cp) {
+  const std::string error = open_checkpoint_files(cp, 0, 1, checkpoint_rank_files(cp.path));
+  if (!error.empty()) discard_created(cp);
+  return error;
+}
+
+std::string check_done(const fs::path& path, std::vector<std::size_t>& done) {
+  std::sort(done.begin(), done.end());
+  const auto twice = std::adjacent_find(done.begin(), done.end());
+  if (twice == done.end()) return "";
+  return fmt::format("{}: item {} is held by two of its files (files of two runs mixed); remove them to start again",
+                     path.string(), *twice);
+}
+
+void discard_created(const Checkpoint& cp) {
+  std::error_code ec;
+  if (cp.created) fs::remove(cp.own, ec);
 }
 
 std::string checkpoint_identity(const std::string& command, const core::Args& args) {
@@ -151,16 +220,16 @@ std::string checkpoint_identity(const std::string& command, const core::Args& ar
 }
 
 void append_checkpoint(const Checkpoint& cp, const std::vector<std::size_t>& items, const std::vector<char>& part) {
-  write_synced(cp.path, record(core::pack(std::make_pair(items, part))), true);
+  write_synced(cp.own, record(core::pack(std::make_pair(items, part))), true);
 }
 
 void remove_checkpoint(const Checkpoint& cp) {
   std::error_code ec;
-  fs::remove(cp.path, ec);
+  for (const fs::path& f : cp.job) fs::remove(f, ec);
 }
 
 Checkpoint::~Checkpoint() {
-  if (lock >= 0) ::close(lock);  // releases the flock
+  for (const int fd : locks) ::close(fd);  // releases the flocks
 }
 
 std::size_t checkpoint_chunk(std::size_t share, int threads) {
