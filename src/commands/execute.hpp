@@ -152,6 +152,7 @@ std::optional<ResultOf<Req>> merge_ranks(const Req& req, const How& how, io::Ran
     res.emplace(merge(req, std::move(parts)));
   } else {
     *kept = std::make_shared<RankRows>(std::move(rows), how.ranks.write_rows);  // joins even if merge throws
+    (*kept)->since = t1;  // rank 0 alone from the end of the gather: the unpacking and merge included
     core::ThinMerge thin;
     res.emplace(merge(req, std::move(parts)));
   }
