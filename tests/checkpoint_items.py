@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """What the checkpoint files of a resumable run hold (src/io/checkpoint.hpp), read independently of btob: the line
 "btob-checkpoint 1", then records [uint64 size][uint64 hash][payload]; the first payload the request's identity, each
 further one a part: [uint64 n][n uint64 items][its packed bytes].  A record cut short at the end is ignored (as

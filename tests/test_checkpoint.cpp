@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The checkpoint of a resumable sweep (io/checkpoint.hpp) without MPI: the ranks of a job simulated as checkpoints
 // opened side by side on one folder.  Each rank appends only its own parts to its own file; a job resumed with
 // another number of ranks reads every earlier file once (file K on rank K mod P), so the union of the ranks'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The rows of one rank's parts joined in item order (core/sweep.hpp).
 #include "core/sweep.hpp"
 
