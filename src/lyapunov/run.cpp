@@ -194,14 +194,21 @@ void check_float(MapPart& part, const iterate::Ensemble& ens, const MapRequest& 
     }
 }
 
-// The per-r rows of the parts (summary), in item order, and the float check's counts.
-void merge_per_r(MapResult& res, const std::vector<MapPart>& parts, std::size_t R) {
-  const auto order = core::item_order(parts, R);
-  RSummary& s = res.summary;
+// The parts' per-r summaries of lambda1 (Part::summary, one row per item) in item order: lyapunov-map's and
+// hyperbolicity-orbits', each computed in its part from the r value's own orbits.
+template <class Part>
+RSummary merge_summaries(const std::vector<Part>& parts, const std::vector<core::ItemRef>& order) {
+  RSummary s;
   for (auto f : {&RSummary::min, &RSummary::median, &RSummary::max, &RSummary::err_min, &RSummary::err_median,
                  &RSummary::err_max, &RSummary::frac_positive, &RSummary::frac_zero, &RSummary::frac_negative})
-    s.*f = core::merge_rows<MapPart, double>(
-        parts, order, 1, [f](const MapPart& p) -> const std::vector<double>& { return p.summary.*f; });
+    s.*f = core::merge_rows<Part, double>(parts, order, 1,
+                                          [f](const Part& p) -> const std::vector<double>& { return p.summary.*f; });
+  return s;
+}
+
+// The per-r rows of the parts (summary), in item order, and the float check's counts.
+void merge_per_r(MapResult& res, const std::vector<MapPart>& parts, std::size_t R) {
+  res.summary = merge_summaries(parts, core::item_order(parts, R));
   std::size_t first = static_cast<std::size_t>(-1);
   for (const MapPart& p : parts) {
     res.float_checked += p.float_checked;
@@ -453,9 +460,7 @@ HyperbolicityOrbitsResult merge(const HyperbolicityOrbitsRequest& req, std::vect
   res.angle_min = rows(&P::angle_min, 1);
   res.frac_degenerate = rows(&P::frac_degenerate, 1);
   res.lambda1_qr_median = rows(&P::lambda1_qr_median, 1);
-  for (auto f : {&RSummary::min, &RSummary::median, &RSummary::max, &RSummary::err_min, &RSummary::err_median,
-                 &RSummary::err_max, &RSummary::frac_positive, &RSummary::frac_zero, &RSummary::frac_negative})
-    res.summary.*f = core::merge_rows<P, double>(parts, order, 1, [f](const P& p) -> const V& { return p.summary.*f; });
+  res.summary = merge_summaries(parts, order);
   res.angle_histogram = rows(&P::angle_histogram, res.bins);
   res.orbit_frac_expanding = rows(&P::orbit_frac_expanding, I);
   res.orbit_angle_median = rows(&P::orbit_angle_median, I);
