@@ -69,11 +69,12 @@ struct RankRows {
   core::RowSet mine;
   std::function<core::Attrs(const std::string&, const core::RowSet&)> write;
   bool joined = false;
-  // On rank 0: made when its parts are gathered, before the merge; write() records the seconds since then in the
-  // manifest (mpi_root_seconds: what rank 0 does alone after the gather, the ranks' write included).
-  std::chrono::steady_clock::time_point since = std::chrono::steady_clock::now();
-  RankRows(core::RowSet m, std::function<core::Attrs(const std::string&, const core::RowSet&)> w)
-      : mine(std::move(m)), write(std::move(w)) {}
+  // On rank 0: the end of the gather; write() records the seconds since then in the manifest (mpi_root_seconds:
+  // what rank 0 does alone after the gather, the unpacking, merge and the ranks' write included).
+  std::chrono::steady_clock::time_point since;
+  RankRows(core::RowSet m, std::function<core::Attrs(const std::string&, const core::RowSet&)> w,
+           std::chrono::steady_clock::time_point gathered)
+      : mine(std::move(m)), write(std::move(w)), since(gathered) {}
   RankRows(const RankRows&) = delete;
   RankRows& operator=(const RankRows&) = delete;
   // Joins the collective; what the write cost, for the manifest.
@@ -151,8 +152,7 @@ std::optional<ResultOf<Req>> merge_ranks(const Req& req, const How& how, io::Ran
   if (rows.empty()) {
     res.emplace(merge(req, std::move(parts)));
   } else {
-    *kept = std::make_shared<RankRows>(std::move(rows), how.ranks.write_rows);  // joins even if merge throws
-    (*kept)->since = t1;  // rank 0 alone from the end of the gather: the unpacking and merge included
+    *kept = std::make_shared<RankRows>(std::move(rows), how.ranks.write_rows, t1);  // joins even if merge throws
     core::ThinMerge thin;
     res.emplace(merge(req, std::move(parts)));
   }
