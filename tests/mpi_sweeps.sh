@@ -126,37 +126,34 @@ rank_written() {
   done
 }
 
+# rows_sweep NAME ARGS...: a sweep whose ranks write their rows: `same`, checked to be rank-written, and `gathered`.
+rows_sweep() {
+  same "$@"
+  rank_written "$1"
+  gathered "$@"
+}
+
 # Sizes: each item costs about the same, a few items per rank, r ranges with chaos, windows and invariant curves.
-same bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
-rank_written bifurcation
-gathered bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
+rows_sweep bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
 same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
 rank_written lyapunov-map
 # Float: the check of every k-th r value in double is computed in the parts (per r value) since they keep their rows.
 same lyapunov-map-float lyapunov-map --r-min 0.17 --r-max 0.172 --r-count 70 --grid random:4 --iterations 3000 \
   --transient 200 --blocks 5 --precision float
-same lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
-rank_written lyapunov-strip
-gathered lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
+rows_sweep lyapunov-strip lyapunov-strip --r 0.11 --grid strip:30x20 --iterations 500 --transient 100
 same basins basins --r 0.2 --grid strip:24x17 --replicates 1 --transient 500 --iterations 300 --max-period 200 \
   --lyap-iterations 400 --refine-factor 2
 same basins-r basins-r --r-values 0.11 0.15 0.2 0.25 --grid random:60 --boundary-grid sphere:40x40 --transient 500 \
   --iterations 300 --max-period 200 --lyap-iterations 400 --refine-factor 2
 # The label map is the ranks' rows; the landing law and mass are computed per r in the parts.
-same leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 --transient 500 \
-  --iterations 300 --max-period 200
-rank_written leaves
-gathered leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 \
+rows_sweep leaves leaves --r-min 0.18 --r-max 0.9 --r-count 6 --grid sphere:30x30 --leaf-iterations 500 \
   --transient 500 --iterations 300 --max-period 200
 # The cells are the ranks' rows; the printed expanding fraction and s1's extremes are counted in the parts.
 same hyperbolicity hyperbolicity --r 0.11 --grid strip:60x30
 rank_written hyperbolicity
 # r up to 0.31: degenerate orbits (NaN angles) beside pooled quantiles and histograms per r.  The per-orbit arrays
 # (uint8 and double) and the histograms are the ranks' rows; lambda1's summary per r is computed in the parts.
-same hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
-  --iterations 1000 --transient 500 --backward 500 --bins 30
-rank_written hyperbolicity-orbits
-gathered hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
+rows_sweep hyperbolicity-orbits hyperbolicity-orbits --r-min 0.09 --r-max 0.31 --r-count 7 --grid random:6 \
   --iterations 1000 --transient 500 --backward 500 --bins 30
 # r = 0.3: four groups of measures (invariant curves) whose heads lie on different ranks.
 same measure measure --r 0.3 --grid random:12 --iterations 20000 --transient 1000 --bins 50
