@@ -25,7 +25,10 @@ struct Precision {
 Precision parse_precision(std::string_view text, const char* field = "precision");
 
 // MPFR's default precision set to `digits` decimal digits for the guard's lifetime, the previous one restored on
-// every exit path (two runs at different precisions in one process see no state of each other).
+// every exit path (two runs at different precisions in one process see no state of each other).  In Boost 1.74
+// (Debian 12) the default precision is one per process, not per thread (mpfr_float_backend<0>'s plain static):
+// that is what lets an OpenMP loop's threads work at the digits set on the thread that opened it, and why two threads
+// must never hold guards of different digits at once (each would change the other's working precision).
 class MpfrDigits {
  public:
   explicit MpfrDigits(int digits) : previous_(mpfr_float::default_precision()) {

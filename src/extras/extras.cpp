@@ -19,12 +19,13 @@ namespace btob::extras {
 namespace {
 
 using OverlayFn =
-    std::function<std::vector<std::pair<double, int>>(double r_min, double r_max, const core::CancelToken* cancel)>;
+    std::function<std::vector<std::pair<double, int>>(double r_min, double r_max, const core::CancelToken* cancel,
+                                                      int threads)>;
 
 // Constants quoted in the paper (Sections 1, 4, 5): three-particle collapse 7-4*sqrt(3), end of the
 // (ab)^2(cb)^2 window 3-2*sqrt(2), end of the (ab)^3(cb)^3 window 5-2*sqrt(6), no four-particle
 // collapse above 2^(2/3)-1.
-std::vector<std::pair<double, int>> thresholds(double, double, const core::CancelToken*) {
+std::vector<std::pair<double, int>> thresholds(double, double, const core::CancelToken*, int) {
   return {
       {7 - 4 * std::sqrt(3.0), 0}, {3 - 2 * std::sqrt(2.0), 0}, {5 - 2 * std::sqrt(6.0), 0}, {std::cbrt(4.0) - 1, 0}};
 }
@@ -33,7 +34,8 @@ const std::map<std::string, OverlayFn>& overlays() {
   static const std::map<std::string, OverlayFn> m{
       {"thresholds", thresholds},
       {"windows", windows::window_overlay},
-      {"stripes", [](double a, double b, const core::CancelToken*) { return windows::stripes_overlay(a, b); }}};
+      {"stripes",
+       [](double a, double b, const core::CancelToken*, int) { return windows::stripes_overlay(a, b); }}};
   return m;
 }
 
@@ -70,13 +72,13 @@ std::string line_label(const std::string& overlay, double r, int colour) {
 }  // namespace
 
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
-                                   std::vector<std::string>* labels, const core::CancelToken* cancel) {
+                                   std::vector<std::string>* labels, const core::CancelToken* cancel, int threads) {
   check_overlays(names);
   std::vector<double> out;
   std::vector<std::string> lab;
   for (const auto& n : names) {
     auto it = overlays().find(n);
-    for (const auto& [r, colour] : it->second(r_min, r_max, cancel)) {
+    for (const auto& [r, colour] : it->second(r_min, r_max, cancel, threads)) {
       if (!(r >= r_min && r <= r_max)) continue;
       // One line per r: a value two overlays share (3-2sqrt2 is a threshold and r_crit,2(2)) is drawn once, its
       // labels joined; 1e-12 relative: the routes round the same number differently by a few ulps at most.
@@ -105,10 +107,10 @@ void Extras::add_to(core::Contents& c) const {
   c.text("overlay_labels", overlay_labels, "line", "name", "what each line of overlay_lines is (overlay: value)");
 }
 
-Extras of(const bifurcation::Request& req, const core::CancelToken* cancel) {
+Extras of(const bifurcation::Request& req, const core::RunControl& control) {
   Extras e;
   e.has_overlay = true;
-  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels, cancel);
+  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
   return e;
 }
 
@@ -124,7 +126,7 @@ template <class Req> Extras lyapunov_common(const Req& req) {
 }
 }  // namespace
 
-Extras of(const lyapunov::MapRequest& req, const core::CancelToken* cancel) {
+Extras of(const lyapunov::MapRequest& req, const core::RunControl& control) {
   Extras e = lyapunov_common(req);
   e.attrs["r_min"] = req.r_min;
   e.attrs["r_max"] = req.r_max;
@@ -132,7 +134,7 @@ Extras of(const lyapunov::MapRequest& req, const core::CancelToken* cancel) {
   std::vector<std::string> names = req.overlay;
   if (names.empty()) names = {"thresholds", "windows"};
   e.has_overlay = true;
-  e.overlay_lines = overlay_values(names, req.r_min, req.r_max, &e.overlay_labels, cancel);
+  e.overlay_lines = overlay_values(names, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
   e.attrs["overlays"] = fmt::format("{}", fmt::join(names, ","));
   return e;
 }
@@ -224,7 +226,7 @@ attractors::Options attractor_options(const bifurcation::Request& req) {
 }
 
 Extras of(const lyapunov::MapRequest& req, const lyapunov::MapResult& res, const core::RunControl& control) {
-  Extras e = of(req, control.cancel);
+  Extras e = of(req, control);
   if (!req.attractors) return e;
   e.has_attractors = true;
   e.attractors = orbit_attractors(res.ensemble, attractor_options(req), control);
@@ -232,7 +234,7 @@ Extras of(const lyapunov::MapRequest& req, const lyapunov::MapResult& res, const
 }
 
 Extras of(const bifurcation::Request& req, const bifurcation::Result& res, const core::RunControl& control) {
-  Extras e = of(req, control.cancel);
+  Extras e = of(req, control);
   if (!req.attractors) return e;
   e.has_attractors = true;
   e.attractors = orbit_attractors(res.ensemble, attractor_options(req), control);

@@ -25,10 +25,10 @@ std::string overlay_names();
 // The lines of the named overlays inside [r_min, r_max], flattened as (r, colour) pairs (colour 0 red, 1 blue,
 // 2 grey), one per r value (a value of two overlays once); `labels` (when given) gets what each line is.  An
 // unknown name throws core::InvalidField("overlay", ...).  `cancel` is polled while they are computed (the windows'
-// bounds take seconds the first time).
+// bounds take ~1 s of one core the first time, spread over `threads`: 0 = all cores).
 std::vector<double> overlay_values(const std::vector<std::string>& names, double r_min, double r_max,
                                    std::vector<std::string>* labels = nullptr,
-                                   const core::CancelToken* cancel = nullptr);
+                                   const core::CancelToken* cancel = nullptr, int threads = 1);
 
 // The attractor of every orbit of an ensemble (orbit o = r index * initial conditions + initial condition index):
 // attractors::classify at each r with `options`, the orbit's verdict named as `btob classify` names it (its pattern:
@@ -69,16 +69,17 @@ struct Extras {
 
 // Unknown overlay names throw core::InvalidField("overlay", ...) without computing any line.  A command calls it
 // before its run (an unknown name fails before any work) and of() after it, on MPI rank 0 only: the windows
-// overlay is ~1 s of multiprecision root finding that no other rank uses.
+// overlay is ~1 s of multiprecision root finding (one core; over the run's threads) that no other rank uses.
 void check_overlays(const std::vector<std::string>& names);
 template <class Req> void check(const Req& req) {
   if constexpr (requires { req.overlay; }) check_overlays(req.overlay);
 }
 
-// Per request type (overlay lines computed here).  Requests without extras get none.
+// Per request type (overlay lines computed here, with `control`'s cancellation and threads).  Requests without
+// extras get none.
 template <class Req> Extras of(const Req&) { return {}; }
-Extras of(const bifurcation::Request& req, const core::CancelToken* cancel = nullptr);
-Extras of(const lyapunov::MapRequest& req, const core::CancelToken* cancel = nullptr);
+Extras of(const bifurcation::Request& req, const core::RunControl& control = {});
+Extras of(const lyapunov::MapRequest& req, const core::RunControl& control = {});
 Extras of(const lyapunov::StripRequest& req);
 Extras of(const precision::TradeoffRequest& req);
 Extras of(const windows::BoundPrecisionRequest& req);

@@ -3,11 +3,14 @@
 #include "windows/overlays.hpp"
 
 #include "core/cancel.hpp"
+#include "iterate/parallel.hpp"
 
 #include "windows/direct.hpp"
 #include "windows/windows.hpp"
 
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <mutex>
 
@@ -17,31 +20,82 @@ namespace {
 constexpr int kOverlayPolynomialMaxN = 150;
 constexpr int kOverlayMaxN = 400;
 
-// n -> (lower bound, r_crit,2 or NaN) in double, computed once.
+std::mutex cache_mu;
+std::map<int, std::pair<double, double>> cache;  // n -> (lower bound, r_crit,2 or NaN) in double
+
+// Lower bounds: n <= 150 by the polynomial route (window_lower_bound, MPFR), n > 150 by the matrix route in long
+// double; r_crit,2(n) in MPFR.
+double lower_in_double(int n) {
+  return n <= kOverlayPolynomialMaxN ? static_cast<double>(window_lower_bound(n, 20))
+                                     : static_cast<double>(window_lower_bound_in<long double>(n, Route::matrix));
+}
+double upper_in_double(int n) { return n >= 2 ? static_cast<double>(r_crit2(n, 20)) : std::nan(""); }
+
+// The bounds of n = 1..last that no earlier call computed.  Only the long-double route (n > 150, about a third of
+// the cost at r_min = 0.0717) runs over `threads` threads: everything in MPFR stays on the calling thread, because
+// Boost 1.74's MPFR default precision, which core::MpfrDigits sets, is one per process, not per thread (two threads
+// raising it for different n make each other's root finding unreliable: seen as "no reliable root of Q_150").
+void compute_missing(int last, const core::CancelToken* cancel, int threads) {
+  std::vector<int> missing;
+  {
+    std::lock_guard<std::mutex> lock(cache_mu);
+    for (int n = 1; n <= last; ++n)
+      if (!cache.count(n)) missing.push_back(n);
+  }
+  std::vector<std::pair<double, double>> got(missing.size());
+  std::vector<std::size_t> matrix;  // positions in `missing` of the n for the threads
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    core::check_cancel(cancel);
+    got[i].second = upper_in_double(missing[i]);
+    if (missing[i] <= kOverlayPolynomialMaxN) got[i].first = lower_in_double(missing[i]);
+    else matrix.push_back(i);
+  }
+  std::atomic<bool> stop{false};
+  std::exception_ptr error;
+  std::mutex error_mu;
+  iterate::parallel_for(matrix.size(), threads, 1, [&](std::size_t k) {  // round robin: the cost grows with n
+    if (stop.load(std::memory_order_relaxed)) return;
+    if (cancel && cancel->cancelled()) {
+      stop = true;
+      return;
+    }
+    try {
+      got[matrix[k]].first = lower_in_double(missing[matrix[k]]);
+    } catch (...) {  // no exception may leave the loop (iterate::parallel_for): kept, rethrown after it
+      std::lock_guard<std::mutex> lock(error_mu);
+      if (!error) error = std::current_exception();
+      stop = true;
+    }
+  });
+  if (error) std::rethrow_exception(error);
+  core::check_cancel(cancel);
+  std::lock_guard<std::mutex> lock(cache_mu);
+  for (std::size_t i = 0; i < missing.size(); ++i) cache[missing[i]] = got[i];
+}
+
+// n -> (lower bound, r_crit,2 or NaN) in double, computed once per process.
 std::pair<double, double> bounds_in_double(int n) {
-  static std::mutex mu;
-  static std::map<int, std::pair<double, double>> cache;
-  std::lock_guard<std::mutex> lock(mu);
-  auto it = cache.find(n);
-  if (it != cache.end()) return it->second;
-  const double lo = n <= kOverlayPolynomialMaxN
-                        ? static_cast<double>(window_lower_bound(n, 20))
-                        : static_cast<double>(window_lower_bound_in<long double>(n, Route::matrix));
-  const double up = n >= 2 ? static_cast<double>(r_crit2(n, 20)) : std::nan("");
-  return cache[n] = {lo, up};
+  {
+    std::lock_guard<std::mutex> lock(cache_mu);
+    if (auto it = cache.find(n); it != cache.end()) return it->second;
+  }
+  const std::pair<double, double> b{lower_in_double(n), upper_in_double(n)};
+  std::lock_guard<std::mutex> lock(cache_mu);
+  return cache[n] = b;
 }
 }  // namespace
 
-std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel) {
+std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel,
+                                                   int threads) {
+  // The n the range needs: 1..last, last the largest n <= 400 with r_crit,2(n) >= r_min (one cos and one sqrt at 30
+  // digits each); their lower bounds are the cost, computed first (in part over the threads).
+  int last = 1;
+  while (last < kOverlayMaxN && static_cast<double>(r_crit2(last + 1, 20)) >= r_min) ++last;
+  compute_missing(last, cancel, threads);
   std::vector<std::pair<double, int>> out;
-  for (int n = 1; n <= kOverlayMaxN; ++n) {
-    core::check_cancel(cancel);
-    const double up_closed = n >= 2 ? static_cast<double>(r_crit2(n, 20)) : 1.0;
-    if (up_closed < r_min) break;
-    if (n >= 2 && up_closed >= r_min && up_closed <= r_max) out.push_back({up_closed, 0});  // red: r_crit,2(n)
-    // lower(n) > 7 - 4 sqrt 3; skip the root finding when the whole window is above the range.
-    if (n >= 2 && bounds_in_double(n).first > r_max) continue;
-    const double lo = bounds_in_double(n).first;
+  for (int n = 1; n <= last; ++n) {
+    const auto [lo, up] = bounds_in_double(n);
+    if (n >= 2 && up <= r_max) out.push_back({up, 0});  // red: r_crit,2(n) (>= r_min for every n <= last)
     if (lo >= r_min && lo <= r_max) out.push_back({lo, 1});  // blue: lower bound
   }
   return out;

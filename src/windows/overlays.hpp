@@ -15,9 +15,11 @@ namespace btob::windows {
 // Lower bounds: n <= 150 from the 20-decimal root of Q_n (the certified route); n > 150 from the matrix route in
 // long double, which the precision study (results/windows/precision.csv) shows correct to ~20 decimals for every
 // n <= 150, while the polynomial route for n = 150..400 costs ~20 s in all.  Computed once per n (thread-safe).
-// `cancel` is polled before every n (core::Cancelled): the first use over the whole r range takes seconds.
+// `cancel` is polled before every n (core::Cancelled): the first use over the whole r range takes ~0.75 s on one
+// thread; the long-double route's third of it is spread over `threads` (0 = all cores; each n independent, so the
+// result does not depend on them).  Not to be called from two threads at once with other MPFR work (core::MpfrDigits).
 std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max,
-                                                   const core::CancelToken* cancel = nullptr);
+                                                   const core::CancelToken* cancel = nullptr, int threads = 1);
 
 // The thin stripes r(l/m) of eq. (6.3) with m <= 120 (Figure 6.8) in [r_min, r_max], colour 1.
 std::vector<std::pair<double, int>> stripes_overlay(double r_min, double r_max);

@@ -36,7 +36,7 @@ void validate_digits(long digits, const char* field) {
 
 namespace {
 
-// MPFR working precision for the scope of an object (boost's default precision is thread-local).
+// MPFR working precision for the scope of an object (process-wide in Boost 1.74: core::MpfrDigits).
 using ScopedDigits = core::MpfrDigits;
 
 using Mat = std::array<IntPoly, 9>;  // row-major 3x3 matrix of integer polynomials
