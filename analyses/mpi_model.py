@@ -8,7 +8,9 @@ prints markdown)
 
 Measured here (one run on this shared 2-core machine):
   s        tangent-cocycle steps per second per core: the P = 1 run (one thread) of gather.csv
-  b        bytes of result per orbit (5 doubles gathered before; 9 doubles written now): rows.csv's rows_bytes / orbits
+  b, p     bytes of result per orbit (5 doubles gathered before; 9 doubles written now) and per r value (the per-r
+           summary's 9 doubles and its table line, written by the ranks too): rows.csv's rows_bytes = orbits b + R p,
+           from the 32-orbit runs and the 1-orbit run
   t        bytes each rank still sends rank 0 per r value when it keeps its rows (summary per r, item indices):
            rows.csv's bytes_gathered / r values not on rank 0
   c(P)     the ranks' write's fixed cost (collective open, exchange plan, close): rows_seconds of the tiny result,
@@ -16,14 +18,14 @@ Measured here (one run on this shared 2-core machine):
   m        rank 0's merge per r value (unpacking and placing the per-r summaries): merge_seconds / r values of the
            1e6-r run
   a, tau   what rank 0 does alone after the gather besides the ranks' write (the merge, the result's overlays, its
-           own datasets, deflated, the per-r table, the manifest), a + tau R: its manifest's mpi_root_seconds minus
+           own datasets (r), deflated, the table's header, the manifest), a + tau R: its manifest's mpi_root_seconds minus
            the ranks' write; a from the tiny runs (median), tau from the 1e6-r run.  Measured with one thread per
            rank and not scaled down for more threads: the table and the deflate run on one thread
   (the ranks' write rate here, rows_bytes / rows_seconds, is one shared disk's and is shown, not projected)
 Assumed for a commodity InfiniBand cluster (stated, not measured):
   BETA     12.5e9 B/s   node link (EDR, 100 Gb/s)
   ALPHA    2e-6 s       latency per message (three messages per rank)
-  FS       1, 10, 100 GB/s: the parallel file system's aggregate bandwidth, a parameter; the ranks' write runs at
+  FS       1, 10, 100, 1000 GB/s: the parallel file system's aggregate bandwidth, a parameter; the ranks' write runs at
            min(FS, nodes x BETA), after the exchange that gives each rank one block of rows (its share over its link)
   LAUNCH   0.5 s + 0.01 s per node: mpirun/srun start-up (shown apart: it is the launcher's, the same for any job)
   One rank per node with one OpenMP thread per core (the ranks are the file's writers); per-core speed as here;
@@ -34,7 +36,7 @@ import math
 import sys
 
 BETA, ALPHA, WRITE = 12.5e9, 2e-6, 1e9
-FS = (1e9, 10e9, 100e9)
+FS = (1e9, 10e9, 100e9, 1000e9)
 TARGET = dict(r=1_000_000, ic=1024, iterations=100_000, transient=1000)  # 1e14 steps of the tangent cocycle
 RECORDER_BYTES = 8 * (13 + 3 * (10 + 1))  # TangentRecorder per orbit, 10 blocks (lyapunov/tangent.hpp)
 
@@ -84,20 +86,32 @@ def rows_parameters(d):
     big = [x for x in big if int(x["orbits"]) > int(x["r_count"])]  # 32 orbits per r
     at_scale = max(rows, key=lambda x: int(x["r_count"]))             # 1e6 r values of one orbit
     tiny = [x for x in rows if int(x["r_count"]) < 1000]
-    b = max(float(x["rows_bytes"]) / int(x["orbits"]) for x in big)
+    # bytes = orbits b + R p: b per orbit (9 doubles), p per r value (9 summary doubles and its table line), from the
+    # 32-orbit runs and the 1-orbit run
+    per_r_big = max(float(x["rows_bytes"]) / int(x["r_count"]) for x in big)          # 32 b + p
+    per_r_one = float(at_scale["rows_bytes"]) / int(at_scale["r_count"])              # b + p
+    b = (per_r_big - per_r_one) / 31
+    p = max(0.0, per_r_one - b)
     t = max(float(x["bytes_gathered"]) / (int(x["r_count"]) - math.ceil(int(x["r_count"]) / int(x["ranks"])))
             for x in big)
     W = min(float(x["rows_bytes"]) / float(x["rows_seconds"]) for x in big)
     merge = float(at_scale["merge_seconds"]) / int(at_scale["r_count"])
     alone = sorted(float(x["root_seconds"]) - float(x["rows_seconds"]) for x in tiny)
     a = alone[len(alone) // 2]
-    tau = (float(at_scale["root_seconds"]) - float(at_scale["rows_seconds"]) - a) / int(at_scale["r_count"])
+    # (clamped at 0: with the per-r output written by the ranks, the 1e6-r run's rank 0 differs from the tiny runs'
+    # by less than this shared machine's noise)
+    tau = max(0.0, (float(at_scale["root_seconds"]) - float(at_scale["rows_seconds"]) - a) / int(at_scale["r_count"]))
     # c(P) = c0 + c1 log2 P, least squares over the tiny runs
     xs = [math.log2(int(x["ranks"])) for x in tiny]
     ys = [float(x["rows_seconds"]) for x in tiny]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
-    return dict(b=b, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau)
+    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau)
+
+
+def result_bytes_of(m, n_orbits):
+    """What the ranks write: b per orbit and p per r value."""
+    return n_orbits * m["b"] + TARGET["r"] * m["p"]
 
 
 def launch_here(d):
@@ -107,18 +121,17 @@ def launch_here(d):
     return ", ".join(f"P = {p}: {sorted(v)[len(v) // 2]:.2f} s" for p, v in sorted(by.items()))
 
 
-def root_alone(m, per_r=True):
-    """Rank 0 alone after the gather, the ranks' write apart: a + tau R (per_r False: a alone, rank 0's share per r
-    value moved to the ranks)."""
-    return m["a"] + (m["tau"] * TARGET["r"] if per_r else 0.0)
+def root_alone(m):
+    """Rank 0 alone after the gather, the ranks' write apart: a + tau R."""
+    return m["a"] + m["tau"] * TARGET["r"]
 
 
-def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs, per_r=True):
+def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs):
     compute = total_steps / (nodes * cores * s)
     sent = TARGET["r"] * m["t"]
     gather_t = sent * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
-    merge_t = root_alone(m, per_r)
-    result_bytes = n_orbits * m["b"]
+    merge_t = root_alone(m)
+    result_bytes = result_bytes_of(m, n_orbits)
     exchange = result_bytes / nodes / BETA  # each rank's share to its block's rank, over its link
     write_t = m["c0"] + m["c1"] * math.log2(nodes) + exchange + result_bytes / min(fs, nodes * BETA)
     return compute, gather_t, merge_t, write_t
@@ -142,12 +155,12 @@ def parallel_projection(s, m, n_orbits, total_steps):
     return rows
 
 
-def fs_for(target, s, m, n_orbits, total_steps, nodes, cores, per_r=True):
+def fs_for(target, s, m, n_orbits, total_steps, nodes, cores):
     """The file system bandwidth at which the efficiency (launch apart) reaches `target` (bisection)."""
     lo, hi = 1e6, 1e15
     for _ in range(200):
         mid = math.sqrt(lo * hi)
-        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, mid, per_r)
+        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, nodes, cores, mid)
         lo, hi = (lo, mid) if c / (c + g + mg + w) >= target else (mid, hi)
     return hi
 
@@ -163,28 +176,24 @@ def print_table(rows, merge="merge"):
 
 
 def conclusion(s, m, n_orbits, total_steps):
-    """The target (0.8 at 256 nodes x 64 cores) against the measured parts, and what the next step would give."""
+    """The target (0.8 at 256 nodes x 64 cores) against the measured parts: the file system it needs, and what
+    bounds the efficiency on any file system."""
     compute = total_steps / (256 * 64 * s)
     fixed = root_alone(m) + m["c0"] + m["c1"] * 8
-    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
-    if need < 1e14:
-        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s; an efficiency of 0.8 (launch apart) "
-              f"needs a file system of {need / 1e9:.0f} GB/s or more.")
-    else:
-        print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s, and what does not depend on the "
-              f"file system (rank 0 alone after the gather, {root_alone(m):.1f} s, and the write's fixed cost) takes "
-              f"{fixed:.2f} s: an efficiency of 0.8 (launch apart) is out of reach for any file system at this job's "
-              f"size, {compute / (compute + fixed):.2f} at most.  Rank 0's share per r value (tau) is the bound.")
     effs = []
     for fs in FS:
-        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, 256, 64, fs, per_r=False)
+        c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, 256, 64, fs)
         effs.append(f"{c / (c + g + mg + w):.2f} at {fs / 1e9:g} GB/s")
-    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64, per_r=False)
-    reach = (f"0.8 from {need / 1e9:.0f} GB/s" if need < 1e14 else
-             f"0.8 out of reach (a alone bounds it at {compute / (compute + m['a'] + m['c0'] + m['c1'] * 8):.2f})")
-    print(f"\nProjected, not measured: with rank 0's share per r value written by the ranks as their rows too (the per-r "
-          f"datasets and table lines), rank 0 would keep a = {m['a']:.2f} s (mostly the overlays' window bounds, "
-          f"computed once per process) and the efficiency at 256 x 64 would be {', '.join(effs)}; {reach}.")
+    need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
+    print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s.  What does not depend on the file system "
+          f"(rank 0 alone after the gather, {root_alone(m):.2f} s, and the write's fixed cost) takes {fixed:.2f} s, "
+          f"which bounds the efficiency at {compute / (compute + fixed):.2f} on any file system; the efficiency is "
+          f"{', '.join(effs)}.")
+    if need < 1e14:
+        print(f"\nAn efficiency of 0.8 (launch apart) needs a file system of {need / 1e9:.0f} GB/s or more: the "
+              f"{result_bytes_of(m, n_orbits) / 1e9:.0f} GB are written after the compute, not during it.")
+    else:
+        print("\nAn efficiency of 0.8 (launch apart) is out of reach for any file system at this job's size.")
 
 
 def main(d):
@@ -246,12 +255,13 @@ def main(d):
     print_table(before, "merge and rank 0 alone")
     print("\n### Now: each rank writes its own rows (parallel HDF5); rank 0 receives the summary per r only\n")
     rows_measured(d)
-    print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), t = {m['t']:.1f} bytes per r value sent to rank 0, "
+    print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), p = {m['p']:.0f} bytes per r value (its summary's "
+          f"9 doubles and table line), t = {m['t']:.1f} bytes per r value sent to rank 0, "
           f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
           f"rank 0 alone after the gather (its write apart) a + tau R with a = {m['a']:.2f} s, tau = "
           f"{m['tau'] * 1e6:.2f} us per r value ({root_alone(m):.1f} s at {TARGET['r']:.0e} r values); "
           f"the ranks' write here {m['W'] / 1e6:.0f} MB/s in all (one shared disk); launch here {launch_here(d)}\n")
-    result_bytes = n_orbits * m["b"]
+    result_bytes = result_bytes_of(m, n_orbits)
     print(f"Result {result_bytes / 1e9:.1f} GB written by the ranks; rank 0 receives "
           f"{TARGET['r'] * m['t'] / 1e6:.0f} MB.\n")
     now = parallel_projection(s, m, n_orbits, total_steps)

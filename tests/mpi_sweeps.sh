@@ -51,6 +51,10 @@ same() {
       [ -e "$f" ] || continue
       cmp -s "$f" "$out/$(basename "$f")" || fail "$name, $P ranks: $(basename "$f") differs"
     done
+    for f in "$ref"/*.tex; do  # --format latex: read back from the CSV the ranks wrote; line 1 is the command line
+      [ -e "$f" ] || continue
+      cmp -s <(tail -n +2 "$f") <(tail -n +2 "$out/$(basename "$f")") || fail "$name, $P ranks: $(basename "$f") differs"
+    done
     [ "$(cd "$ref" && ls)" = "$(cd "$out" && ls)" ] || fail "$name, $P ranks: other files than the single process's"
     # What a summary line may differ in: the output folder and a time in seconds, "(0.2 s)".
     cmp -s <(sed -e "s#$ref#OUT#g" -e 's/([0-9.]* s)//g' "$TMP/$name/single.stdout") \
@@ -135,7 +139,9 @@ rows_sweep() {
 
 # Sizes: each item costs about the same, a few items per rank, r ranges with chaos, windows and invariant curves.
 rows_sweep bifurcation bifurcation --r-min 0.08 --r-max 0.4 --r-count 41 --iterations 3000 --tail 40 --bins 200 --raw
-same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5
+# Its summary table's lines are written by the ranks too (after rank 0's header); --format latex reads them back.
+same lyapunov-map lyapunov-map --r-min 0.08 --r-max 0.3 --r-count 23 --iterations 1000 --transient 200 --blocks 5 \
+  --format latex
 rank_written lyapunov-map
 # Float: the check of every k-th r value in double is computed in the parts (per r value) since they keep their rows.
 same lyapunov-map-float lyapunov-map --r-min 0.17 --r-max 0.172 --r-count 70 --grid random:4 --iterations 3000 \

@@ -23,8 +23,11 @@ struct WriteStats {
 // closed, holding every dataset that `mine` names with its full shape) is sent to every rank; "" on rank 0 ends the
 // collective with nothing written.  Row j of `mine` is row mine.items[j] of each named dataset that the file holds:
 // the rows first move to the rank whose block of the file holds them (one all-to-all per dataset), then every rank
-// writes its block in one collective H5Dwrite.  A failure ends the job at once with one line naming the file and HDF5's
-// cause (cli/mpi.hpp fail, MPI_Abort) after removing rank 0's staging folder: no partial file, no hanging ranks.
+// writes its block in one collective H5Dwrite.  A column of strings is a table's lines (core::RowColumn): rank 0
+// has staged the table's header beside `path` (core::table_file); the lines move to the same block owners and each
+// rank writes its block's bytes after the header and the blocks before it (MPI-IO, collective).  A failure ends the job
+// at once with one line naming the file and HDF5's cause (cli/mpi.hpp fail, MPI_Abort) after removing rank 0's staging
+// folder: no partial file, no hanging ranks.
 WriteStats write(const std::string& path, const core::RowSet& mine);
 
 }  // namespace btob::cli::rows

@@ -81,28 +81,34 @@ template <class Part> std::vector<ItemRef> item_order(const std::vector<Part>& p
 // A part may name its per-item arrays that are datasets of the result as they are (one row per item, in the
 // order of its items), the bulk of a large sweep's result (densities, raw tails, per-orbit values):
 //
-//   template <class A> void rows(A& a) { a("density", density); a("tail", tail); }
+//   template <class A> void rows(A& a) { a("density", density); a("tail", tail); a("summary", summary_lines); }
 //
-// The names are the result's datasets (describe()); nothing the result derives (attributes, tables, overlays) may
-// read them.  Every rank names the same arrays, whatever its items (a collective write follows): an array the
-// request leaves empty (no raw tails) is named all the same, and skipped where the result describes no such
-// dataset.  Under mpirun with parallel HDF5 each rank then keeps these rows and they are written into NAME.h5 by the
-// ranks (cli/rows.hpp), and only the rest of its part (counts, per-item summaries, timings) goes to rank 0, whose
-// merge() leaves the named arrays empty (ThinMerge below) while describe() still gives their full shape.
-// (The check only names the member template; its body is instantiated with take_rows' visitor alone.)
+// The names are the result's datasets (describe()), or for a std::vector<std::string> of one line per item the role
+// of one of its CSV tables (tables(): the table is its header and these lines in item order); nothing else the
+// result derives (attributes, other tables, overlays) may read them.  Every rank names the same arrays, whatever its
+// items (a collective write follows): an array the request leaves empty (no raw tails) is named all the same, and
+// skipped where the result describes no such dataset.  Under mpirun with parallel HDF5 each rank then keeps these rows
+// and they are written into NAME.h5 by the ranks (cli/rows.hpp), and only the rest of its part (counts, per-item
+// summaries, timings) goes to rank 0, whose merge() leaves the named arrays empty (ThinMerge below) while describe()
+// still gives their full shape. (The check only names the member template; its body is instantiated with take_rows'
+// visitor alone.)
 template <class Part>
 concept HasRows = requires(Part& p, int& probe) {
   p.rows(probe);
 };
 
-// One named dataset's rows of one rank: its items' rows, row-major, in item order (moved out of the part).
+// One named dataset's rows of one rank: its items' rows, row-major, in item order (moved out of the part).  A column
+// of strings is a table's lines instead: one line of the CSV table `name` (the result's table of that role,
+// core::table_file) per item, without its newline; rank 0 writes the table's header, the ranks its lines after it.
 struct RowColumn {
   std::string name;
-  std::variant<std::vector<double>, std::vector<std::uint32_t>, std::vector<std::uint64_t>, std::vector<std::uint8_t>>
+  std::variant<std::vector<double>, std::vector<std::uint32_t>, std::vector<std::uint64_t>, std::vector<std::uint8_t>,
+               std::vector<std::string>>
       data;
   std::size_t size() const {
     return std::visit([](const auto& v) { return v.size(); }, data);
   }
+  bool is_table() const { return std::holds_alternative<std::vector<std::string>>(data); }
 };
 // A rank's rows: its items (ascending) of the sweep's `total`, and each named dataset's rows.
 struct RowSet {

@@ -18,9 +18,8 @@
 namespace btob::extras {
 namespace {
 
-using OverlayFn =
-    std::function<std::vector<std::pair<double, int>>(double r_min, double r_max, const core::CancelToken* cancel,
-                                                      int threads)>;
+using OverlayFn = std::function<std::vector<std::pair<double, int>>(double r_min, double r_max,
+                                                                    const core::CancelToken* cancel, int threads)>;
 
 // Constants quoted in the paper (Sections 1, 4, 5): three-particle collapse 7-4*sqrt(3), end of the
 // (ab)^2(cb)^2 window 3-2*sqrt(2), end of the (ab)^3(cb)^3 window 5-2*sqrt(6), no four-particle
@@ -34,8 +33,7 @@ const std::map<std::string, OverlayFn>& overlays() {
   static const std::map<std::string, OverlayFn> m{
       {"thresholds", thresholds},
       {"windows", windows::window_overlay},
-      {"stripes",
-       [](double a, double b, const core::CancelToken*, int) { return windows::stripes_overlay(a, b); }}};
+      {"stripes", [](double a, double b, const core::CancelToken*, int) { return windows::stripes_overlay(a, b); }}};
   return m;
 }
 
@@ -110,7 +108,8 @@ void Extras::add_to(core::Contents& c) const {
 Extras of(const bifurcation::Request& req, const core::RunControl& control) {
   Extras e;
   e.has_overlay = true;
-  e.overlay_lines = overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
+  e.overlay_lines =
+      overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
   return e;
 }
 

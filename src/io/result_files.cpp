@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <optional>
 
 namespace btob::io {
@@ -77,9 +78,14 @@ void ResultFiles::tables(const core::Tables& t) {
 
 void ResultFiles::latex(const std::string& command_line, const std::string& caption) {
   for (const auto& [role, content] : tables_) {
-    std::string file = core::table_file(name_, role);
+    const std::string csv = core::table_file(name_, role);
+    std::string file = csv;
     file.replace(file.size() - 4, 4, ".tex");
-    text(file, latex_document(content, status_, command_line, caption + (role.empty() ? "" : " (" + role + ")")));
+    // The staged CSV as it is now: under MPI the ranks append a table's lines after the header given to tables().
+    std::ifstream in(staged(csv), std::ios::binary);
+    const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) throw std::runtime_error("cannot read back the staged table " + staged(csv).string());
+    text(file, latex_document(written, status_, command_line, caption + (role.empty() ? "" : " (" + role + ")")));
   }
 }
 

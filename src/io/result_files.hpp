@@ -45,7 +45,8 @@ class ResultFiles {
   // A result's CSV tables (core::Tables), each to its core::table_file(NAME, role).
   void tables(const core::Tables& t);
   // --format latex: each table given to tables() also as a booktabs LaTeX table (io/latex.hpp) beside its CSV
-  // (NAME.tex, NAME_role.tex), the status of its numbers from the Contents given to h5(); `command_line` heads it,
+  // (NAME.tex, NAME_role.tex), read back from the staged CSV (whose lines MPI ranks may have written after the header
+  // given to tables()), the status of its numbers from the Contents given to h5(); `command_line` heads it,
   // `caption` (with the table's role) is its caption.
   void latex(const std::string& command_line, const std::string& caption);
   // NAME.json: the attributes, and the request that made the result as {"command": ..., "args": {...}}.

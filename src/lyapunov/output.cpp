@@ -134,22 +134,28 @@ void MapResult::describe(core::Contents& c) const {
   }
 }
 
-core::Tables MapResult::tables() const {
-  if (n1 > 0) return {};  // a strip has no per-r summary
-  const auto& s = summary;
-  core::CsvTable csv(
-      "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
-      "frac_zero,frac_negative");
+namespace {
+constexpr const char* kSummaryHeader =
+    "r,lambda1_min,lambda1_min_err,lambda1_median,lambda1_median_err,lambda1_max,lambda1_max_err,frac_positive,"
+    "frac_zero,frac_negative";
+}  // namespace
+
+std::string summary_line(double r, const RSummary& s, std::size_t j) {
   // Each exponent with its bar by core::with_error (the printed interval contains the value of NAME.h5).
   const auto pair = [](double v, double e) {
     if (!std::isfinite(v) || !std::isfinite(e) || e < 0) return core::csv_number(v) + "," + core::csv_number(e);
     const core::ValueWithError p = core::with_error(v, e);
     return p.value + "," + p.error;
   };
-  for (std::size_t i = 0; i < ensemble.r.size(); ++i)
-    csv.line(fmt::format("{:.9f},{},{},{},{:.4f},{:.4f},{:.4f}", ensemble.r[i], pair(s.min[i], s.err_min[i]),
-                         pair(s.median[i], s.err_median[i]), pair(s.max[i], s.err_max[i]), s.frac_positive[i],
-                         s.frac_zero[i], s.frac_negative[i]));
+  return fmt::format("{:.9f},{},{},{},{:.4f},{:.4f},{:.4f}", r, pair(s.min[j], s.err_min[j]),
+                     pair(s.median[j], s.err_median[j]), pair(s.max[j], s.err_max[j]), s.frac_positive[j],
+                     s.frac_zero[j], s.frac_negative[j]);
+}
+
+core::Tables MapResult::tables() const {
+  if (n1 > 0) return {};  // a strip has no per-r summary
+  core::CsvTable csv(kSummaryHeader);
+  for (const std::string& line : summary_lines) csv.line(line);  // none when the MPI ranks write them
   return {{"summary", csv.text()}};
 }
 

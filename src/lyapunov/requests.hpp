@@ -114,7 +114,10 @@ struct MapResult {
   iterate::Ensemble ensemble;  // the r values and initial conditions iterated (orbit = r index * I + initial condition)
   OrbitExponents exponents;    // per orbit: lambda1, lambda2 and their batch-means errors, chi1, iterations
   RSummary summary;            // lyapunov-map only
-  std::vector<double> w1, w2;  // lyapunov-strip only: the cell centres, n1 x n2
+  // lyapunov-map only: the line of NAME_summary.csv of each r value (summary_line), formatted by the part that
+  // computed it; empty, like summary, on MPI rank 0 when the ranks write their rows (core::HasRows).
+  std::vector<std::string> summary_lines;
+  std::vector<double> w1, w2;            // lyapunov-strip only: the cell centres, n1 x n2
   std::vector<double> w1_cell, w2_cell;  // lyapunov-strip only: the cell centres along each axis, [n1] and [n2]
   std::size_t n1 = 0, n2 = 0;            // lyapunov-strip only
   double iteration_seconds = 0;          // wall time of the iteration, seconds
@@ -127,9 +130,13 @@ struct MapResult {
   // Arrays: r [R]; lambda1, err1, lambda2, err2, chi1 [R, I] (map) or [n1, n2] (strip); summary [R].
   void describe(core::Contents& c) const;
   // lyapunov-map: NAME_summary.csv, per r each statistic of lambda1 with its error bar and the sign fractions (the
-  // classification adds the floor 10/n); lyapunov-strip: none.
+  // classification adds the floor 10/n): its header and summary_lines; lyapunov-strip: none.
   core::Tables tables() const;
 };
+
+// Line j of NAME_summary.csv (without its newline): r and row j of `s`, each exponent with its error bar
+// (core::with_error).  Formatted where the summary is computed (run_part), so that MPI ranks write their lines.
+std::string summary_line(double r, const RSummary& s, std::size_t j);
 
 // Some r values of a map (items: ascending indices into linspace(r-min, r-max, r-count)): the exponents of their
 // orbits, item-major ([items, initial conditions]), and what the result derives from them per r, computed here
@@ -139,7 +146,8 @@ struct MapResult {
 struct MapPart {
   std::vector<std::size_t> items;
   OrbitExponents exponents;
-  RSummary summary;  // lyapunov-map: [items]
+  RSummary summary;                        // lyapunov-map: [items]
+  std::vector<std::string> summary_lines;  // lyapunov-map: [items], summary_line
   long float_checked = 0, float_disagree = 0;
   std::size_t float_disagree_item = static_cast<std::size_t>(-1);  // the first item with a disagreement
   double iteration_seconds = 0;
@@ -147,10 +155,12 @@ struct MapPart {
     a(items, exponents.lambda1, exponents.err1, exponents.lambda2, exponents.err2, exponents.lambda_max,
       exponents.err_max, exponents.lambda_min, exponents.err_min, exponents.chi1, exponents.iterations,
       exponents.blocks, summary.min, summary.median, summary.max, summary.err_min, summary.err_median, summary.err_max,
-      summary.frac_positive, summary.frac_zero, summary.frac_negative, float_checked, float_disagree,
+      summary.frac_positive, summary.frac_zero, summary.frac_negative, summary_lines, float_checked, float_disagree,
       float_disagree_item, iteration_seconds);
   }
-  // The per-orbit exponents, by their datasets' names (core::HasRows).
+  // The per-orbit exponents, the per-r summary and its table's lines, by their datasets' and table's names
+  // (core::HasRows; lyapunov-strip has no summary: its datasets and table do not exist and are skipped).  Rank 0 then
+  // keeps of each r value only its r and the float check's counts.
   template <class A> void rows(A& a) {
     a("lambda1", exponents.lambda1);
     a("err1", exponents.err1);
@@ -161,6 +171,16 @@ struct MapPart {
     a("lambda_min", exponents.lambda_min);
     a("err_min", exponents.err_min);
     a("chi1", exponents.chi1);
+    a("min", summary.min);
+    a("median", summary.median);
+    a("max", summary.max);
+    a("min_err", summary.err_min);
+    a("median_err", summary.err_median);
+    a("max_err", summary.err_max);
+    a("frac_positive", summary.frac_positive);
+    a("frac_zero", summary.frac_zero);
+    a("frac_negative", summary.frac_negative);
+    a("summary", summary_lines);
   }
 };
 MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, const core::RunControl& control = {});

@@ -208,7 +208,10 @@ RSummary merge_summaries(const std::vector<Part>& parts, const std::vector<core:
 
 // The per-r rows of the parts (summary), in item order, and the float check's counts.
 void merge_per_r(MapResult& res, const std::vector<MapPart>& parts, std::size_t R) {
-  res.summary = merge_summaries(parts, core::item_order(parts, R));
+  const auto order = core::item_order(parts, R);
+  res.summary = merge_summaries(parts, order);
+  res.summary_lines = core::merge_rows<MapPart, std::string>(
+      parts, order, 1, [](const MapPart& p) -> const std::vector<std::string>& { return p.summary_lines; });
   std::size_t first = static_cast<std::size_t>(-1);
   for (const MapPart& p : parts) {
     res.float_checked += p.float_checked;
@@ -225,8 +228,10 @@ MapPart run_part(const MapRequest& req, const std::vector<std::size_t>& items, c
   ens.set_r_range(req.r_min, req.r_max, req.r_count, &items);
   ens.initial = iterate::parse_grid(req.grid, req.seed, "grid");
   MapResult res = run_ensemble(ens, req.iterations, req.transient, req.blocks, req.precision, control);
-  MapPart part{items, std::move(res.exponents), {}, 0, 0, static_cast<std::size_t>(-1), res.iteration_seconds};
+  MapPart part{items, std::move(res.exponents), {}, {}, 0, 0, static_cast<std::size_t>(-1), res.iteration_seconds};
   part.summary = summarise(part.exponents, items.size(), ens.initial.size());
+  part.summary_lines.reserve(items.size());
+  for (std::size_t j = 0; j < items.size(); ++j) part.summary_lines.push_back(summary_line(ens.r[j], part.summary, j));
   if (req.precision == "float") check_float(part, ens, req, control);
   return part;
 }

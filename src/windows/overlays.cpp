@@ -95,7 +95,7 @@ std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, c
   std::vector<std::pair<double, int>> out;
   for (int n = 1; n <= last; ++n) {
     const auto [lo, up] = bounds_in_double(n);
-    if (n >= 2 && up <= r_max) out.push_back({up, 0});  // red: r_crit,2(n) (>= r_min for every n <= last)
+    if (n >= 2 && up <= r_max) out.push_back({up, 0});       // red: r_crit,2(n) (>= r_min for every n <= last)
     if (lo >= r_min && lo <= r_max) out.push_back({lo, 1});  // blue: lower bound
   }
   return out;
