@@ -17,6 +17,9 @@ Measured here (one run on this shared 2-core machine):
            P = 2, 3, 4, fitted as c0 + c1 log2 P (a collective's tree depth)
   m        rank 0's merge per r value (unpacking and placing the per-r summaries): merge_seconds / r values of the
            1e6-r run
+  S, w     the windows overlay's bounds, computed in shares by the ranks before the run (extras::share_overlays):
+           S + w / P fitted to rank 0's mpi_share_seconds of the tiny runs (S: what every rank repeats); counted with
+           rank 0's time below
   a, tau   what rank 0 does alone after the gather besides the ranks' write (the merge, the result's overlays, its
            own datasets (r), deflated, the table's header, the manifest), a + tau R: its manifest's mpi_root_seconds minus
            the ranks' write; a from the tiny runs (median), tau from the 1e6-r run.  Measured with one thread per
@@ -106,7 +109,20 @@ def rows_parameters(d):
     ys = [float(x["rows_seconds"]) for x in tiny]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
-    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau)
+    # the overlays' bounds computed in shares before the run (rank 0's share and the exchange): S + w / P, least
+    # squares over the tiny runs (S: what every rank repeats, the integer trace polynomials up to its largest n)
+    pts = [(1 / int(x["ranks"]), float(x["share_seconds"])) for x in tiny if x.get("share_seconds")]
+    S, w = 0.0, 0.0
+    if len(pts) >= 2:
+        px, py = sum(u for u, _ in pts) / len(pts), sum(v for _, v in pts) / len(pts)
+        w = max(0.0, sum((u - px) * (v - py) for u, v in pts) / sum((u - px) ** 2 for u, _ in pts))
+        S = max(0.0, py - w * px)
+    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau, w=w, S=S)
+
+
+def shares_at(m, nodes):
+    """The overlays' shares before the run on `nodes` ranks: S + w / P and the exchange's latency."""
+    return m["S"] + m["w"] / nodes + ALPHA * math.log2(nodes)
 
 
 def result_bytes_of(m, n_orbits):
@@ -130,7 +146,7 @@ def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs):
     compute = total_steps / (nodes * cores * s)
     sent = TARGET["r"] * m["t"]
     gather_t = sent * (nodes - 1) / nodes / BETA + 3 * (nodes - 1) * ALPHA
-    merge_t = root_alone(m)
+    merge_t = root_alone(m) + shares_at(m, nodes)  # rank 0 after the gather, and the shares before the run
     result_bytes = result_bytes_of(m, n_orbits)
     exchange = result_bytes / nodes / BETA  # each rank's share to its block's rank, over its link
     write_t = m["c0"] + m["c1"] * math.log2(nodes) + exchange + result_bytes / min(fs, nodes * BETA)
@@ -179,14 +195,15 @@ def conclusion(s, m, n_orbits, total_steps):
     """The target (0.8 at 256 nodes x 64 cores) against the measured parts: the file system it needs, and what
     bounds the efficiency on any file system."""
     compute = total_steps / (256 * 64 * s)
-    fixed = root_alone(m) + m["c0"] + m["c1"] * 8
+    fixed = root_alone(m) + shares_at(m, 256) + m["c0"] + m["c1"] * 8
     effs = []
     for fs in FS:
         c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, 256, 64, fs)
         effs.append(f"{c / (c + g + mg + w):.2f} at {fs / 1e9:g} GB/s")
     need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
     print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s.  What does not depend on the file system "
-          f"(rank 0 alone after the gather, {root_alone(m):.2f} s, and the write's fixed cost) takes {fixed:.2f} s, "
+          f"(rank 0 alone after the gather, {root_alone(m):.2f} s, the overlays' shares before the run, "
+          f"{shares_at(m, 256):.3f} s, and the write's fixed cost) takes {fixed:.2f} s, "
           f"which bounds the efficiency at {compute / (compute + fixed):.2f} on any file system; the efficiency is "
           f"{', '.join(effs)}.")
     if need < 1e14:
@@ -258,6 +275,7 @@ def main(d):
     print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), p = {m['p']:.0f} bytes per r value (its summary's "
           f"9 doubles and table line), t = {m['t']:.1f} bytes per r value sent to rank 0, "
           f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
+          f"the overlays' shares before the run S + w / P with S = {m['S']:.2f} s, w = {m['w']:.2f} s; "
           f"rank 0 alone after the gather (its write apart) a + tau R with a = {m['a']:.2f} s, tau = "
           f"{m['tau'] * 1e6:.2f} us per r value ({root_alone(m):.1f} s at {TARGET['r']:.0e} r values); "
           f"the ranks' write here {m['W'] / 1e6:.0f} MB/s in all (one shared disk); launch here {launch_here(d)}\n")
@@ -265,7 +283,7 @@ def main(d):
     print(f"Result {result_bytes / 1e9:.1f} GB written by the ranks; rank 0 receives "
           f"{TARGET['r'] * m['t'] / 1e6:.0f} MB.\n")
     now = parallel_projection(s, m, n_orbits, total_steps)
-    print_table(now, "rank 0 alone")
+    print_table(now, "rank 0 alone, shares")
     conclusion(s, m, n_orbits, total_steps)
     with open(f"{d}/projection.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(now[0]))

@@ -65,10 +65,11 @@ for run in "1 $r_count 10000" "2 $r_count 10000" "3 $r_count 10000" "2 $((10 * r
 done
 mv "$out/gather.csv.tmp" "$out/gather.csv"
 
-echo "mode,ranks,r_count,orbits,rows_bytes,rows_seconds,rows_seconds_min,bytes_gathered,gather_seconds,merge_seconds,root_seconds,compute_max_seconds,wall_seconds,peak_kb_max,peak_kb_median" \
+echo "mode,ranks,r_count,orbits,rows_bytes,rows_seconds,rows_seconds_min,bytes_gathered,gather_seconds,merge_seconds,root_seconds,compute_max_seconds,share_seconds,wall_seconds,peak_kb_max,peak_kb_median" \
   > "$out/rows.csv.tmp"
 # rows_run MODE P R ORBITS ARGS...: one run of the workload with ARGS, its manifest's MPI statistics and the ranks' peaks
-# as a line of rows.csv (root_seconds: rank 0 alone after the gather, the ranks' write included; rows mode only).
+# as a line of rows.csv (root_seconds: rank 0 alone after the gather, the ranks' write included; rows mode only;
+# share_seconds: rank 0 in the overlays' shares before the run).
 rows_run() {
   local mode=$1 P=$2 R=$3 orbits=$4
   shift 4
@@ -80,7 +81,7 @@ rows_run() {
   peaks=$(/usr/bin/python3 tests/peak_rss.py --peaks "$tmp/rss" | tr ' ' ,)
   local a=""
   for k in mpi_rows_bytes mpi_rows_seconds mpi_rows_seconds_min mpi_gathered_bytes mpi_gather_seconds \
-           mpi_merge_seconds mpi_root_seconds mpi_compute_seconds_max; do a="$a$(attr "$j" $k),"; done
+           mpi_merge_seconds mpi_root_seconds mpi_compute_seconds_max mpi_share_seconds; do a="$a$(attr "$j" $k),"; done
   echo "$mode,$P,$R,$orbits,$a$w,$peaks" >> "$out/rows.csv.tmp"
 }
 for R in $((10 * r_count)) 64; do

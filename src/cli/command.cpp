@@ -62,6 +62,7 @@ commands::How how_of(const Output& o, const Context& ctx, bool sweep, core::Prog
     how.ranks.ranks = static_cast<std::size_t>(mpi::size());
     how.ranks.rank = static_cast<std::size_t>(mpi::rank());
     how.ranks.gather = [](std::vector<char> bytes, double seconds) { return mpi::gather(std::move(bytes), seconds); };
+    how.ranks.all_gather = [](std::vector<char> bytes) { return mpi::all_gather(std::move(bytes)); };
     const bool quiet = o.quiet;
 #ifdef BTOB_PARALLEL_HDF5
     if (parallel_rows()) {

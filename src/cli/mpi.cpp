@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <thread>
 #include <unistd.h>
 
@@ -192,6 +194,33 @@ std::vector<char> broadcast(std::vector<char> bytes) {
     MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
 #endif
   return bytes;
+}
+
+std::vector<std::vector<char>> all_gather(std::vector<char> mine) {
+  State& s = state();
+  std::vector<std::vector<char>> all;
+  if (s.size == 1) {
+    all.push_back(std::move(mine));
+    return all;
+  }
+#ifdef BTOB_MPI
+  if (mine.size() > static_cast<std::size_t>(INT_MAX))
+    throw std::length_error("all_gather: more than 2 GiB from a rank");
+  const int n = static_cast<int>(mine.size());
+  std::vector<int> sizes(static_cast<std::size_t>(s.size)), at(static_cast<std::size_t>(s.size), 0);
+  MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  long total = 0;
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    if (total > INT_MAX) throw std::length_error("all_gather: more than 2 GiB in all");
+    at[k] = static_cast<int>(total);
+    total += sizes[k];
+  }
+  std::vector<char> got(static_cast<std::size_t>(total) + 1);  // + 1: a valid buffer when every rank sends none
+  static char none = 0;
+  MPI_Allgatherv(n ? mine.data() : &none, n, MPI_CHAR, got.data(), sizes.data(), at.data(), MPI_CHAR, MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < sizes.size(); ++k) all.emplace_back(got.begin() + at[k], got.begin() + at[k] + sizes[k]);
+#endif
+  return all;
 }
 
 std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_seconds) {

@@ -59,6 +59,10 @@ class RemoveOnAbort {
 // Rank 0's bytes on every rank (a collective: every rank calls it; the others' `bytes` are ignored).
 std::vector<char> broadcast(std::vector<char> bytes);
 
+// Every rank's bytes on every rank (index = rank; a collective: every rank calls it).  For small exchanges (a few KB
+// per rank): no statistics are kept.
+std::vector<std::vector<char>> all_gather(std::vector<char> mine);
+
 // Rank 0 receives every rank's bytes (index = rank, its own moved in); the other ranks send theirs and get {}.
 // `compute_seconds` is this rank's work time, kept for the statistics below.
 std::vector<std::vector<char>> gather(std::vector<char> mine, double compute_seconds);

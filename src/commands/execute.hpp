@@ -58,6 +58,9 @@ struct Record {
   // A sweep split over MPI ranks with parallel HDF5: rank 0's own rows of the datasets the ranks write themselves
   // (null otherwise); write() joins the other ranks' collective write with them.
   std::shared_ptr<struct RankRows> rows;
+  // A sweep split over MPI ranks: rank 0's seconds in extras::share_overlays before the run (its share and the
+  // exchange), the manifest's mpi_share_seconds.
+  std::optional<double> share_seconds;
   virtual ~Record() = default;
 };
 
@@ -193,11 +196,18 @@ std::optional<ResultOf<Req>> run_request(const Req& req, const How& how, std::sh
 // ranks other than 0.
 template <class Req> std::shared_ptr<Recorded<Req>> compute(const Req& req, const How& how) {
   const auto start = std::chrono::steady_clock::now();
+  // Split over ranks: what rank 0 alone would compute after the run for its overlays, computed in shares first.
+  std::optional<double> shared;
+  if (how.ranks.ranks > 1 && how.ranks.all_gather) {
+    extras::share_overlays(req, how.ranks.rank, how.ranks.ranks, how.ranks.all_gather, how.control);
+    shared = core::seconds_since(start);
+  }
   std::shared_ptr<RankRows> rows;
   std::optional<ResultOf<Req>> res = run_request(req, how, &rows);
   if (!res) return nullptr;
   core::check_cancel(how.control.cancel);
   auto rec = std::make_shared<Recorded<Req>>();
+  rec->share_seconds = shared;
   rec->rows = std::move(rows);
   rec->req = req;
   rec->res = std::move(*res);
@@ -225,6 +235,7 @@ template <class Req> void record(Recorded<Req>& rec, const Provenance& p) {
   rec.extras.apply(rec.attrs);
   S::attrs(rec.req, rec.res, rec.attrs);
   if constexpr (S::timed) rec.attrs["total_seconds"] = core::seconds_since(rec.start);
+  if (rec.share_seconds) rec.attrs["mpi_share_seconds"] = *rec.share_seconds;
   rec.command = S::command;
   rec.function = S::function;
   if constexpr (requires { rec.res.tables(); }) rec.tables = rec.res.tables();

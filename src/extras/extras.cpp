@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <tuple>
@@ -105,11 +107,41 @@ void Extras::add_to(core::Contents& c) const {
   c.text("overlay_labels", overlay_labels, "line", "name", "what each line of overlay_lines is (overlay: value)");
 }
 
+std::vector<std::string> overlays_of(const bifurcation::Request& req) { return req.overlay; }
+std::vector<std::string> overlays_of(const lyapunov::MapRequest& req) {
+  return req.overlay.empty() ? std::vector<std::string>{"thresholds", "windows"} : req.overlay;
+}
+
+void share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
+                         const AllGather& all_gather, const core::RunControl& control) {
+  if (ranks <= 1 || !all_gather || std::find(names.begin(), names.end(), "windows") == names.end()) return;
+  std::vector<int> mine;  // largest n first: the long-double route's cost grows with n, as the polynomial route's
+  for (int n = windows::window_overlay_last_n(r_min), k = 0; n >= 1; --n, ++k)
+    if (static_cast<std::size_t>(k) % ranks == rank) mine.push_back(n);
+  const std::vector<std::pair<double, double>> b =
+      windows::window_overlay_bounds(mine, control.cancel, control.threads);
+  struct Entry {  // one n's bounds as bytes: the same binary on every rank
+    int n;
+    double lower, upper;
+  };
+  std::vector<char> bytes(mine.size() * sizeof(Entry));
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const Entry e{mine[i], b[i].first, b[i].second};
+    std::memcpy(bytes.data() + i * sizeof(Entry), &e, sizeof(Entry));
+  }
+  for (const std::vector<char>& from : all_gather(std::move(bytes)))
+    for (std::size_t at = 0; at + sizeof(Entry) <= from.size(); at += sizeof(Entry)) {
+      Entry e;
+      std::memcpy(&e, from.data() + at, sizeof(Entry));
+      windows::remember_window_overlay_bounds(e.n, {e.lower, e.upper});
+    }
+}
+
 Extras of(const bifurcation::Request& req, const core::RunControl& control) {
   Extras e;
   e.has_overlay = true;
   e.overlay_lines =
-      overlay_values(req.overlay, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
+      overlay_values(overlays_of(req), req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
   return e;
 }
 
@@ -130,8 +162,7 @@ Extras of(const lyapunov::MapRequest& req, const core::RunControl& control) {
   e.attrs["r_min"] = req.r_min;
   e.attrs["r_max"] = req.r_max;
   e.attrs["r_count"] = req.r_count;
-  std::vector<std::string> names = req.overlay;
-  if (names.empty()) names = {"thresholds", "windows"};
+  const std::vector<std::string> names = overlays_of(req);
   e.has_overlay = true;
   e.overlay_lines = overlay_values(names, req.r_min, req.r_max, &e.overlay_labels, control.cancel, control.threads);
   e.attrs["overlays"] = fmt::format("{}", fmt::join(names, ","));

@@ -14,6 +14,7 @@
 #include "precision/tradeoff.hpp"
 #include "windows/requests.hpp"
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,28 @@ struct Extras {
 void check_overlays(const std::vector<std::string>& names);
 template <class Req> void check(const Req& req) {
   if constexpr (requires { req.overlay; }) check_overlays(req.overlay);
+}
+
+// The overlays a request draws: bifurcation's --overlay, lyapunov-map's (thresholds and windows unless named).
+std::vector<std::string> overlays_of(const bifurcation::Request& req);
+std::vector<std::string> overlays_of(const lyapunov::MapRequest& req);
+
+// Every rank's bytes on every rank, in rank order (a collective: io::Ranks::all_gather under mpirun).
+using AllGather = std::function<std::vector<std::vector<char>>(std::vector<char>)>;
+// Under mpirun, before a sweep's run, on every rank: the windows overlay's bounds that of() will read on rank 0
+// (windows::window_overlay_last_n of r_min), computed in shares (n dealt round robin from the largest, rank k's
+// every P-th) and exchanged, each rank's remembered by all (windows::remember_window_overlay_bounds; the same
+// program's same computation, sent as bytes: bitwise what rank 0 would compute).  Rank 0 then does not compute them
+// alone after the gather (~0.75 s of one core over the whole r range, most of it MPFR, which runs on one thread per
+// process).  A collective when `names` holds "windows" (the same on every rank: it depends on the request alone);
+// nothing otherwise.
+void share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
+                         const AllGather& all_gather, const core::RunControl& control);
+template <class Req>
+void share_overlays(const Req& req, std::size_t rank, std::size_t ranks, const AllGather& all_gather,
+                    const core::RunControl& control) {
+  if constexpr (requires { overlays_of(req); })
+    share_window_bounds(overlays_of(req), static_cast<double>(req.r_min), rank, ranks, all_gather, control);
 }
 
 // Per request type (overlay lines computed here, with `control`'s cancellation and threads).  Requests without

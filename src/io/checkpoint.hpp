@@ -119,6 +119,9 @@ std::size_t checkpoint_chunk(std::size_t share, int threads);
 struct Ranks {
   std::size_t ranks = 1, rank = 0;
   std::function<std::vector<std::vector<char>>(std::vector<char>, double)> gather;
+  // Every rank's bytes on every rank, in rank order (a collective; under mpirun only): what the ranks compute in
+  // shares for rank 0 before the run (extras::share_overlays).
+  std::function<std::vector<std::vector<char>>(std::vector<char>)> all_gather;
   std::function<core::Attrs(const std::string& path, const core::RowSet& mine)> write_rows;
 };
 inline Ranks alone() { return {}; }

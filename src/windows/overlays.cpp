@@ -13,6 +13,7 @@
 #include <exception>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 
 namespace btob::windows {
 
@@ -31,15 +32,16 @@ double lower_in_double(int n) {
 }
 double upper_in_double(int n) { return n >= 2 ? static_cast<double>(r_crit2(n, 20)) : std::nan(""); }
 
-// The bounds of n = 1..last that no earlier call computed.  Only the long-double route (n > 150, about a third of
-// the cost at r_min = 0.0717) runs over `threads` threads: everything in MPFR stays on the calling thread, because
-// Boost 1.74's MPFR default precision, which core::MpfrDigits sets, is one per process, not per thread (two threads
-// raising it for different n make each other's root finding unreliable: seen as "no reliable root of Q_150").
-void compute_missing(int last, const core::CancelToken* cancel, int threads) {
+// The bounds of the n of `ns` that no earlier call computed (or remembered).  Only the long-double route (n > 150,
+// about a third of the cost at r_min = 0.0717) runs over `threads` threads: everything in MPFR stays on the calling
+// thread, because Boost 1.74's MPFR default precision, which core::MpfrDigits sets, is one per process, not per thread
+// (two threads raising it for different n make each other's root finding unreliable: seen as "no reliable root of
+// Q_150").
+void compute_missing(const std::vector<int>& ns, const core::CancelToken* cancel, int threads) {
   std::vector<int> missing;
   {
     std::lock_guard<std::mutex> lock(cache_mu);
-    for (int n = 1; n <= last; ++n)
+    for (int n : ns)
       if (!cache.count(n)) missing.push_back(n);
   }
   std::vector<std::pair<double, double>> got(missing.size());
@@ -85,13 +87,35 @@ std::pair<double, double> bounds_in_double(int n) {
 }
 }  // namespace
 
-std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel,
-                                                   int threads) {
-  // The n the range needs: 1..last, last the largest n <= 400 with r_crit,2(n) >= r_min (one cos and one sqrt at 30
-  // digits each); their lower bounds are the cost, computed first (in part over the threads).
+int window_overlay_last_n(double r_min) {
+  // r_crit,2(n) decreases with n: one cos and one sqrt at 30 digits per n
   int last = 1;
   while (last < kOverlayMaxN && static_cast<double>(r_crit2(last + 1, 20)) >= r_min) ++last;
-  compute_missing(last, cancel, threads);
+  return last;
+}
+
+std::vector<std::pair<double, double>> window_overlay_bounds(const std::vector<int>& ns,
+                                                             const core::CancelToken* cancel, int threads) {
+  for (int n : ns)
+    if (n < 1 || n > kOverlayMaxN) throw std::logic_error("window_overlay_bounds: n outside 1..400");
+  compute_missing(ns, cancel, threads);
+  std::vector<std::pair<double, double>> out;
+  for (int n : ns) out.push_back(bounds_in_double(n));
+  return out;
+}
+
+void remember_window_overlay_bounds(int n, std::pair<double, double> bounds) {
+  std::lock_guard<std::mutex> lock(cache_mu);
+  cache.emplace(n, bounds);
+}
+
+std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, const core::CancelToken* cancel,
+                                                   int threads) {
+  // The n the range needs, 1..last; their lower bounds are the cost, computed first (in part over the threads).
+  const int last = window_overlay_last_n(r_min);
+  std::vector<int> ns(static_cast<std::size_t>(last));
+  for (int n = 1; n <= last; ++n) ns[static_cast<std::size_t>(n - 1)] = n;
+  compute_missing(ns, cancel, threads);
   std::vector<std::pair<double, int>> out;
   for (int n = 1; n <= last; ++n) {
     const auto [lo, up] = bounds_in_double(n);

@@ -21,6 +21,17 @@ namespace btob::windows {
 std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max,
                                                    const core::CancelToken* cancel = nullptr, int threads = 1);
 
+// The n whose bounds window_overlay(r_min, ...) reads: 1..the returned n (the largest n <= 400 with
+// r_crit,2(n) >= r_min).
+int window_overlay_last_n(double r_min);
+// The (lower bound, r_crit,2 or NaN) in double of each n of `ns` (1..400) as window_overlay computes them, kept for
+// the process's later calls; and such bounds computed by another process of the same program (an MPI rank's share,
+// commands::compute) remembered as if computed here.
+std::vector<std::pair<double, double>> window_overlay_bounds(const std::vector<int>& ns,
+                                                             const core::CancelToken* cancel = nullptr,
+                                                             int threads = 1);
+void remember_window_overlay_bounds(int n, std::pair<double, double> bounds);
+
 // The thin stripes r(l/m) of eq. (6.3) with m <= 120 (Figure 6.8) in [r_min, r_max], colour 1.
 std::vector<std::pair<double, int>> stripes_overlay(double r_min, double r_max);
 
