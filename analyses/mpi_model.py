@@ -17,9 +17,9 @@ Measured here (one run on this shared 2-core machine):
            P = 2, 3, 4, fitted as c0 + c1 log2 P (a collective's tree depth)
   m        rank 0's merge per r value (unpacking and placing the per-r summaries): merge_seconds / r values of the
            1e6-r run
-  S, w     the windows overlay's bounds, computed in shares by the ranks before the run (extras::share_overlays):
-           S + w / P fitted to rank 0's mpi_share_seconds of the tiny runs (S: what every rank repeats); counted with
-           rank 0's time below
+  w        the windows overlay's bounds, computed in shares by the ranks before the run (extras::share_overlays):
+           w / P, w = rank 0's mpi_share_seconds x min(P, cores here) of the tiny runs (median: P ranks on this
+           machine's cores run their shares side by side only up to its cores); counted with rank 0's time below
   a, tau   what rank 0 does alone after the gather besides the ranks' write (the merge, the result's overlays, its
            own datasets (r), deflated, the table's header, the manifest), a + tau R: its manifest's mpi_root_seconds minus
            the ranks' write; a from the tiny runs (median), tau from the 1e6-r run.  Measured with one thread per
@@ -36,6 +36,7 @@ Assumed for a commodity InfiniBand cluster (stated, not measured):
 """
 import csv
 import math
+import os
 import sys
 
 BETA, ALPHA, WRITE = 12.5e9, 2e-6, 1e9
@@ -109,20 +110,18 @@ def rows_parameters(d):
     ys = [float(x["rows_seconds"]) for x in tiny]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
-    # the overlays' bounds computed in shares before the run (rank 0's share and the exchange): S + w / P, least
-    # squares over the tiny runs (S: what every rank repeats, the integer trace polynomials up to its largest n)
-    pts = [(1 / int(x["ranks"]), float(x["share_seconds"])) for x in tiny if x.get("share_seconds")]
-    S, w = 0.0, 0.0
-    if len(pts) >= 2:
-        px, py = sum(u for u, _ in pts) / len(pts), sum(v for _, v in pts) / len(pts)
-        w = max(0.0, sum((u - px) * (v - py) for u, v in pts) / sum((u - px) ** 2 for u, _ in pts))
-        S = max(0.0, py - w * px)
-    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau, w=w, S=S)
+    # the overlays' bounds computed in shares before the run: rank 0's own share w / P of w seconds of one core.  Here
+    # P ranks share this machine's cores, so a share of w / P CPU seconds takes w / min(P, cores) of wall time:
+    # w = share x min(P, cores), the median over the tiny runs
+    cores = os.cpu_count() or 1
+    ws = sorted(float(x["share_seconds"]) * min(int(x["ranks"]), cores) for x in tiny if x.get("share_seconds"))
+    w = ws[len(ws) // 2] if ws else 0.0
+    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau, w=w)
 
 
 def shares_at(m, nodes):
-    """The overlays' shares before the run on `nodes` ranks: S + w / P and the exchange's latency."""
-    return m["S"] + m["w"] / nodes + ALPHA * math.log2(nodes)
+    """The overlays' shares before the run on `nodes` ranks: w / P and the exchange's latency."""
+    return m["w"] / nodes + ALPHA * math.log2(nodes)
 
 
 def result_bytes_of(m, n_orbits):
@@ -275,7 +274,7 @@ def main(d):
     print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), p = {m['p']:.0f} bytes per r value (its summary's "
           f"9 doubles and table line), t = {m['t']:.1f} bytes per r value sent to rank 0, "
           f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
-          f"the overlays' shares before the run S + w / P with S = {m['S']:.2f} s, w = {m['w']:.2f} s; "
+          f"the overlays' shares before the run w / P with w = {m['w']:.2f} s; "
           f"rank 0 alone after the gather (its write apart) a + tau R with a = {m['a']:.2f} s, tau = "
           f"{m['tau'] * 1e6:.2f} us per r value ({root_alone(m):.1f} s at {TARGET['r']:.0e} r values); "
           f"the ranks' write here {m['W'] / 1e6:.0f} MB/s in all (one shared disk); launch here {launch_here(d)}\n")

@@ -58,8 +58,8 @@ struct Record {
   // A sweep split over MPI ranks with parallel HDF5: rank 0's own rows of the datasets the ranks write themselves
   // (null otherwise); write() joins the other ranks' collective write with them.
   std::shared_ptr<struct RankRows> rows;
-  // A sweep split over MPI ranks: rank 0's seconds in extras::share_overlays before the run (its share and the
-  // exchange), the manifest's mpi_share_seconds.
+  // A sweep split over MPI ranks: rank 0's seconds on its own share in extras::share_overlays before the run, the
+  // manifest's mpi_share_seconds.
   std::optional<double> share_seconds;
   virtual ~Record() = default;
 };
@@ -198,10 +198,8 @@ template <class Req> std::shared_ptr<Recorded<Req>> compute(const Req& req, cons
   const auto start = std::chrono::steady_clock::now();
   // Split over ranks: what rank 0 alone would compute after the run for its overlays, computed in shares first.
   std::optional<double> shared;
-  if (how.ranks.ranks > 1 && how.ranks.all_gather) {
-    extras::share_overlays(req, how.ranks.rank, how.ranks.ranks, how.ranks.all_gather, how.control);
-    shared = core::seconds_since(start);
-  }
+  if (how.ranks.ranks > 1 && how.ranks.all_gather)
+    shared = extras::share_overlays(req, how.ranks.rank, how.ranks.ranks, how.ranks.all_gather, how.control);
   std::shared_ptr<RankRows> rows;
   std::optional<ResultOf<Req>> res = run_request(req, how, &rows);
   if (!res) return nullptr;

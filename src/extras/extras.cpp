@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -112,9 +113,10 @@ std::vector<std::string> overlays_of(const lyapunov::MapRequest& req) {
   return req.overlay.empty() ? std::vector<std::string>{"thresholds", "windows"} : req.overlay;
 }
 
-void share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
-                         const AllGather& all_gather, const core::RunControl& control) {
-  if (ranks <= 1 || !all_gather || std::find(names.begin(), names.end(), "windows") == names.end()) return;
+double share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
+                           const AllGather& all_gather, const core::RunControl& control) {
+  if (ranks <= 1 || !all_gather || std::find(names.begin(), names.end(), "windows") == names.end()) return 0;
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<int> mine;  // largest n first: the long-double route's cost grows with n, as the polynomial route's
   for (int n = windows::window_overlay_last_n(r_min), k = 0; n >= 1; --n, ++k)
     if (static_cast<std::size_t>(k) % ranks == rank) mine.push_back(n);
@@ -129,12 +131,14 @@ void share_window_bounds(const std::vector<std::string>& names, double r_min, st
     const Entry e{mine[i], b[i].first, b[i].second};
     std::memcpy(bytes.data() + i * sizeof(Entry), &e, sizeof(Entry));
   }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::vector<char>& from : all_gather(std::move(bytes)))
     for (std::size_t at = 0; at + sizeof(Entry) <= from.size(); at += sizeof(Entry)) {
       Entry e;
       std::memcpy(&e, from.data() + at, sizeof(Entry));
       windows::remember_window_overlay_bounds(e.n, {e.lower, e.upper});
     }
+  return seconds;
 }
 
 Extras of(const bifurcation::Request& req, const core::RunControl& control) {

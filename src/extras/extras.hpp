@@ -88,14 +88,16 @@ using AllGather = std::function<std::vector<std::vector<char>>(std::vector<char>
 // program's same computation, sent as bytes: bitwise what rank 0 would compute).  Rank 0 then does not compute them
 // alone after the gather (~0.75 s of one core over the whole r range, most of it MPFR, which runs on one thread per
 // process).  A collective when `names` holds "windows" (the same on every rank: it depends on the request alone);
-// nothing otherwise.
-void share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
-                         const AllGather& all_gather, const core::RunControl& control);
+// nothing otherwise.  Returns the seconds this rank spent on its own share (the exchange's wait for the others, who
+// may have started later, apart); 0 when nothing was shared.
+double share_window_bounds(const std::vector<std::string>& names, double r_min, std::size_t rank, std::size_t ranks,
+                           const AllGather& all_gather, const core::RunControl& control);
 template <class Req>
-void share_overlays(const Req& req, std::size_t rank, std::size_t ranks, const AllGather& all_gather,
-                    const core::RunControl& control) {
+double share_overlays(const Req& req, std::size_t rank, std::size_t ranks, const AllGather& all_gather,
+                      const core::RunControl& control) {
   if constexpr (requires { overlays_of(req); })
-    share_window_bounds(overlays_of(req), static_cast<double>(req.r_min), rank, ranks, all_gather, control);
+    return share_window_bounds(overlays_of(req), static_cast<double>(req.r_min), rank, ranks, all_gather, control);
+  return 0;
 }
 
 // Per request type (overlay lines computed here, with `control`'s cancellation and threads).  Requests without
