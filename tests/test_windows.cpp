@@ -20,11 +20,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 using btob::test::bound;
@@ -717,6 +719,44 @@ TEST(WindowRequests, PrecisionStudyRunsAtTwoPrecisionsInOneProcess) {
   btob::core::Contents c;
   b.describe(c);
   EXPECT_EQ(c.find("value")->dims, (std::vector<std::size_t>{10, 12}));
+}
+
+// The first use computes the bounds; two callers at once (the explorer's server threads) must take turns, since
+// MPFR's precision is one per process (core::MpfrDigits): when they did not, each raised it for its own n and the
+// other's root finding failed ("no reliable root of Q_n").  Both get the lines of window_lower_bound and r_crit,2
+// computed alone.  r_min = 0.07182: n = 1..93, all by the MPFR route, none computed by an earlier case.
+TEST(WindowOverlays, TwoCallersAtOnceGetTheBoundsComputedAlone) {
+  const double r_min = 0.07182, r_max = 0.3;
+  std::vector<std::pair<double, int>> got[2];
+  std::exception_ptr failed[2];
+  std::vector<std::thread> callers;
+  for (int k = 0; k < 2; ++k)
+    callers.emplace_back([&, k] {
+      try {
+        got[k] = window_overlay(r_min, r_max, nullptr, 1);
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    });
+  for (auto& t : callers) t.join();
+  for (int k = 0; k < 2; ++k)
+    if (failed[k]) {
+      try {
+        std::rethrow_exception(failed[k]);
+      } catch (const std::exception& e) {
+        FAIL() << "caller " << k << ": " << e.what();
+      }
+    }
+  std::vector<std::pair<double, int>> want;
+  for (int n = 1; n <= window_overlay_last_n(r_min); ++n) {
+    const double up = n >= 2 ? static_cast<double>(r_crit2(n, 20)) : 1.0,
+                 lo = static_cast<double>(window_lower_bound(n, 20));
+    if (n >= 2 && up <= r_max) want.push_back({up, 0});
+    if (lo >= r_min && lo <= r_max) want.push_back({lo, 1});
+  }
+  EXPECT_EQ(window_overlay_last_n(r_min), 93);
+  EXPECT_EQ(got[0], want);
+  EXPECT_EQ(got[1], want);
 }
 
 TEST(WindowOverlays, LinesAreTheBoundsInTheRange) {

@@ -23,6 +23,9 @@ constexpr int kOverlayMaxN = 400;
 
 std::mutex cache_mu;
 std::map<int, std::pair<double, double>> cache;  // n -> (lower bound, r_crit,2 or NaN) in double
+// Held while bounds are computed: two callers at once (the explorer's server threads) would each set MPFR's
+// process-wide precision for their own n (core::MpfrDigits), so computations take turns; the cache is read freely.
+std::mutex compute_mu;
 
 // Lower bounds: n <= 150 by the polynomial route (window_lower_bound, MPFR), n > 150 by the matrix route in long
 // double; r_crit,2(n) in MPFR.
@@ -38,6 +41,7 @@ double upper_in_double(int n) { return n >= 2 ? static_cast<double>(r_crit2(n, 2
 // (two threads raising it for different n make each other's root finding unreliable: seen as "no reliable root of
 // Q_150").
 void compute_missing(const std::vector<int>& ns, const core::CancelToken* cancel, int threads) {
+  std::lock_guard<std::mutex> computing(compute_mu);
   std::vector<int> missing;
   {
     std::lock_guard<std::mutex> lock(cache_mu);
@@ -81,6 +85,7 @@ std::pair<double, double> bounds_in_double(int n) {
     std::lock_guard<std::mutex> lock(cache_mu);
     if (auto it = cache.find(n); it != cache.end()) return it->second;
   }
+  std::lock_guard<std::mutex> computing(compute_mu);
   const std::pair<double, double> b{lower_in_double(n), upper_in_double(n)};
   std::lock_guard<std::mutex> lock(cache_mu);
   return cache[n] = b;
