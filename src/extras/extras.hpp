@@ -69,8 +69,8 @@ struct Extras {
 };
 
 // Unknown overlay names throw core::InvalidField("overlay", ...) without computing any line.  A command calls it
-// before its run (an unknown name fails before any work) and of() after it, on MPI rank 0 only: the windows
-// overlay is ~1 s of multiprecision root finding (one core; over the run's threads) that no other rank uses.
+// before its run (an unknown name fails before any work) and of() after it, on MPI rank 0 only (the windows
+// overlay's ~1 s of multiprecision root finding shared by the ranks before the run: share_overlays).
 void check_overlays(const std::vector<std::string>& names);
 template <class Req> void check(const Req& req) {
   if constexpr (requires { req.overlay; }) check_overlays(req.overlay);

@@ -73,11 +73,11 @@ void ResultFiles::text(const std::string& filename, const std::string& content) 
 
 void ResultFiles::tables(const core::Tables& t) {
   for (const auto& [role, content] : t) text(core::table_file(name_, role), content);
-  tables_.insert(tables_.end(), t.begin(), t.end());
+  for (const auto& table : t) table_roles_.push_back(table.first);
 }
 
 void ResultFiles::latex(const std::string& command_line, const std::string& caption) {
-  for (const auto& [role, content] : tables_) {
+  for (const std::string& role : table_roles_) {
     const std::string csv = core::table_file(name_, role);
     std::string file = csv;
     file.replace(file.size() - 4, 4, ".tex");

@@ -71,7 +71,7 @@ class ResultFiles {
   fs::path out_, tmp_;
   std::string name_;
   std::vector<std::string> files_;
-  core::Tables tables_;                         // what tables() wrote, for latex()
+  std::vector<std::string> table_roles_;        // the tables tables() staged, for latex() (which reads them back)
   std::map<std::string, core::Status> status_;  // the status of the numbers h5() wrote, for latex()
   bool committed_ = false;
 };

@@ -79,16 +79,10 @@ void compute_missing(const std::vector<int>& ns, const core::CancelToken* cancel
   for (std::size_t i = 0; i < missing.size(); ++i) cache[missing[i]] = got[i];
 }
 
-// n -> (lower bound, r_crit,2 or NaN) in double, computed once per process.
-std::pair<double, double> bounds_in_double(int n) {
-  {
-    std::lock_guard<std::mutex> lock(cache_mu);
-    if (auto it = cache.find(n); it != cache.end()) return it->second;
-  }
-  std::lock_guard<std::mutex> computing(compute_mu);
-  const std::pair<double, double> b{lower_in_double(n), upper_in_double(n)};
+// n -> (lower bound, r_crit,2 or NaN) in double, of an n that compute_missing has put in the cache.
+std::pair<double, double> cached(int n) {
   std::lock_guard<std::mutex> lock(cache_mu);
-  return cache[n] = b;
+  return cache.at(n);
 }
 }  // namespace
 
@@ -105,7 +99,7 @@ std::vector<std::pair<double, double>> window_overlay_bounds(const std::vector<i
     if (n < 1 || n > kOverlayMaxN) throw std::logic_error("window_overlay_bounds: n outside 1..400");
   compute_missing(ns, cancel, threads);
   std::vector<std::pair<double, double>> out;
-  for (int n : ns) out.push_back(bounds_in_double(n));
+  for (int n : ns) out.push_back(cached(n));
   return out;
 }
 
@@ -123,7 +117,7 @@ std::vector<std::pair<double, int>> window_overlay(double r_min, double r_max, c
   compute_missing(ns, cancel, threads);
   std::vector<std::pair<double, int>> out;
   for (int n = 1; n <= last; ++n) {
-    const auto [lo, up] = bounds_in_double(n);
+    const auto [lo, up] = cached(n);
     if (n >= 2 && up <= r_max) out.push_back({up, 0});       // red: r_crit,2(n) (>= r_min for every n <= last)
     if (lo >= r_min && lo <= r_max) out.push_back({lo, 1});  // blue: lower bound
   }
