@@ -3,8 +3,8 @@
 """Scaling model of `mpirun -n P btob lyapunov-map` (docs/guides/mpi.md), from the measurements of
 analyses/mpi_scaling.sh.
 
-Usage: mpi_model.py RESULTS_DIR   (reads benchmark.csv, gather.csv, rows.csv, launch.csv; writes projection.csv,
-prints markdown)
+Usage: mpi_model.py RESULTS_DIR   (reads benchmark.csv, gather.csv, rows.csv, collectives.csv, launch.csv; writes
+projection.csv, prints markdown)
 
 Measured here (one run on this shared 2-core machine):
   s        tangent-cocycle steps per second per core: the P = 1 run (one thread) of gather.csv
@@ -13,8 +13,17 @@ Measured here (one run on this shared 2-core machine):
            from the 32-orbit runs and the 1-orbit run
   t        bytes each rank still sends rank 0 per r value when it keeps its rows (summary per r, item indices):
            rows.csv's bytes_gathered / r values not on rank 0
-  c(P)     the ranks' write's fixed cost (collective open, exchange plan, close): rows_seconds of the tiny result,
-           P = 2, 3, 4, fitted as c0 + c1 log2 P (a collective's tree depth)
+  c(P)     the ranks' write's fixed cost (collective open, exchange plan, close) on P ranks:
+             c(P) = c_2 + ALPHA [n_tree (log2 P - 1) + n_pair (P - 2)]
+           c_2: the write's time on the tiny result at P = 2 (rows.csv's rows_seconds, median), everything that does
+           not grow with P (creating, opening and closing the file, HDF5's own work, the collectives on 2 ranks);
+           n_tree, n_pair: the collective calls per rank, counted (collectives.csv, analyses/mpi_count.c) at the
+           largest P measured, by how their latency grows: n_tree calls of log2 P rounds (barrier, broadcast,
+           reductions, scans, gathers), n_pair calls of P - 1 messages (the all-to-all exchanges, and the MPI-IO
+           collectives, btob's and HDF5's, whose exchange between aggregators is pairwise: P - 1 messages each is an
+           upper bound).  All of the run's collectives are counted, not only the write's: an upper bound too.  The tiny
+           result's write at P = 3 and 4 is not used: this machine has 2 cores, and the longer write there is the
+           ranks waiting for a core, not the collectives' growth with P
   m        rank 0's merge per r value (unpacking and placing the per-r summaries): merge_seconds / r values of the
            1e6-r run
   w        the windows overlay's bounds, computed in shares by the ranks before the run (extras::share_overlays):
@@ -27,7 +36,8 @@ Measured here (one run on this shared 2-core machine):
   (the ranks' write rate here, rows_bytes / rows_seconds, is one shared disk's and is shown, not projected)
 Assumed for a commodity InfiniBand cluster (stated, not measured):
   BETA     12.5e9 B/s   node link (EDR, 100 Gb/s)
-  ALPHA    2e-6 s       latency per message (three messages per rank)
+  ALPHA    2e-6 s       latency per message (three messages per rank to rank 0; per round or message of the write's
+                        collectives in c(P))
   FS       1, 10, 100, 1000 GB/s: the parallel file system's aggregate bandwidth, a parameter; the ranks' write runs at
            min(FS, nodes x BETA), after the exchange that gives each rank one block of rows (its share over its link)
   LAUNCH   0.5 s + 0.01 s per node: mpirun/srun start-up (shown apart: it is the launcher's, the same for any job)
@@ -105,18 +115,58 @@ def rows_parameters(d):
     # (clamped at 0: with the per-r output written by the ranks, the 1e6-r run's rank 0 differs from the tiny runs'
     # by less than this shared machine's noise)
     tau = max(0.0, (float(at_scale["root_seconds"]) - float(at_scale["rows_seconds"]) - a) / int(at_scale["r_count"]))
-    # c(P) = c0 + c1 log2 P, least squares over the tiny runs
-    xs = [math.log2(int(x["ranks"])) for x in tiny]
-    ys = [float(x["rows_seconds"]) for x in tiny]
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    c1 = max(0.0, sum((a - mx) * (y - my) for a, y in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs))
+    # c(P) = c_2 + ALPHA [n_tree (log2 P - 1) + n_pair (P - 2)]: c_2 the tiny write at P = 2 (no oversubscription
+    # here), n_tree and n_pair the collectives per rank counted at the largest P measured
+    at_2 = sorted(float(x["rows_seconds"]) for x in tiny if int(x["ranks"]) == 2)
+    c2 = at_2[len(at_2) // 2]
+    counts = collective_counts(d)
+    P_counted = max(counts)
     # the overlays' bounds computed in shares before the run: rank 0's own share w / P of w seconds of one core.  Here
     # P ranks share this machine's cores, so a share of w / P CPU seconds takes w / min(P, cores) of wall time:
     # w = share x min(P, cores), the median over the tiny runs
     cores = os.cpu_count() or 1
     ws = sorted(float(x["share_seconds"]) * min(int(x["ranks"]), cores) for x in tiny if x.get("share_seconds"))
     w = ws[len(ws) // 2] if ws else 0.0
-    return dict(b=b, p=p, t=t, W=W, merge=merge, c0=my - c1 * mx, c1=c1, a=a, tau=tau, w=w)
+    return dict(b=b, p=p, t=t, W=W, merge=merge, c2=c2, n_tree=counts[P_counted]["tree"],
+                n_pair=counts[P_counted]["pair"], P_counted=P_counted, counts=counts,
+                tiny={int(x["ranks"]): float(x["rows_seconds"]) for x in tiny}, a=a, tau=tau, w=w)
+
+
+def collective_counts(d):
+    """Per ranks P: the collective calls per rank by class (calls_max summed over the functions) and the functions
+    by calls (collectives.csv)."""
+    counts = {}
+    for x in read(f"{d}/collectives.csv"):
+        c = counts.setdefault(int(x["ranks"]), {"tree": 0, "pair": 0, "functions": []})
+        c[x["class"]] += int(x["calls_max"])
+        c["functions"].append((int(x["calls_max"]), x["function"], x["class"]))
+    return counts
+
+
+def write_fixed(m, nodes):
+    """c(P), the ranks' write's fixed cost on P = nodes ranks: c_2 and the counted collectives' latency beyond P = 2."""
+    return m["c2"] + ALPHA * (m["n_tree"] * (math.log2(nodes) - 1) + m["n_pair"] * (nodes - 2))
+
+
+def write_fixed_derived(m):
+    """The write's fixed cost c(P): the measured write of the tiny result, the counted collectives, c(P)."""
+    tiny = ", ".join(f"{m['tiny'][P]:.3f} s at P = {P}" for P in sorted(m["tiny"]))
+    print(f"The ranks' write of the tiny result took {tiny}.  Only P = 2 is used: this machine has 2 cores, so at "
+          f"P = 3 and 4 the ranks take turns on them and the longer write is their waiting, not the growth of the "
+          f"collectives with P; that growth is taken from the collectives counted per rank times the assumed latency "
+          f"ALPHA = {ALPHA * 1e6:g} us.\n")
+    counts = m["counts"]
+    by_P = "; ".join(f"P = {P}: {c['tree']} tree, {c['pair']} pair" for P, c in sorted(counts.items()))
+    same = all((c["tree"], c["pair"]) == (m["n_tree"], m["n_pair"]) for c in counts.values())
+    growth = "the same at every P" if same else f"they grow with P, and those at P = {m['P_counted']} are used"
+    top = ", ".join(f"{f} {n} ({k})" for n, f, k in sorted(counts[m["P_counted"]]["functions"], reverse=True)[:6])
+    print(f"Collective calls per rank (the largest count over the ranks; tree: log2 P rounds each, pair: P - 1 "
+          f"messages each): {by_P}; {growth}.  The most called at P = {m['P_counted']}: {top}.  These are all of the "
+          f"run's collectives, the write's and the few outside it.\n")
+    print(f"Derived: c(P) = c_2 + ALPHA [n_tree (log2 P - 1) + n_pair (P - 2)] with c_2 = {m['c2']:.4f} s (the tiny "
+          f"write at P = 2), n_tree = {m['n_tree']}, n_pair = {m['n_pair']} (counted at P = {m['P_counted']}): "
+          f"c(16) = {write_fixed(m, 16):.4f} s, c(64) = {write_fixed(m, 64):.4f} s, "
+          f"c(256) = {write_fixed(m, 256):.4f} s\n")
 
 
 def shares_at(m, nodes):
@@ -148,7 +198,7 @@ def parallel_cost(s, m, n_orbits, total_steps, nodes, cores, fs):
     merge_t = root_alone(m) + shares_at(m, nodes)  # rank 0 after the gather, and the shares before the run
     result_bytes = result_bytes_of(m, n_orbits)
     exchange = result_bytes / nodes / BETA  # each rank's share to its block's rank, over its link
-    write_t = m["c0"] + m["c1"] * math.log2(nodes) + exchange + result_bytes / min(fs, nodes * BETA)
+    write_t = write_fixed(m, nodes) + exchange + result_bytes / min(fs, nodes * BETA)
     return compute, gather_t, merge_t, write_t
 
 
@@ -194,7 +244,7 @@ def conclusion(s, m, n_orbits, total_steps):
     """The target (0.8 at 256 nodes x 64 cores) against the measured parts: the file system it needs, and what
     bounds the efficiency on any file system."""
     compute = total_steps / (256 * 64 * s)
-    fixed = root_alone(m) + shares_at(m, 256) + m["c0"] + m["c1"] * 8
+    fixed = root_alone(m) + shares_at(m, 256) + write_fixed(m, 256)
     effs = []
     for fs in FS:
         c, g, mg, w = parallel_cost(s, m, n_orbits, total_steps, 256, 64, fs)
@@ -202,7 +252,8 @@ def conclusion(s, m, n_orbits, total_steps):
     need = fs_for(0.8, s, m, n_orbits, total_steps, 256, 64)
     print(f"\nAt 256 nodes x 64 cores the job computes for {compute:.1f} s.  What does not depend on the file system "
           f"(rank 0 alone after the gather, {root_alone(m):.2f} s, the overlays' shares before the run, "
-          f"{shares_at(m, 256):.3f} s, and the write's fixed cost) takes {fixed:.2f} s, "
+          f"{shares_at(m, 256):.3f} s, and the write's fixed cost c(256), {write_fixed(m, 256):.3f} s) takes "
+          f"{fixed:.2f} s, "
           f"which bounds the efficiency at {compute / (compute + fixed):.2f} on any file system; the efficiency is "
           f"{', '.join(effs)}.")
     if need < 1e14:
@@ -273,11 +324,12 @@ def main(d):
     rows_measured(d)
     print(f"\nDerived: b = {m['b']:.1f} bytes per orbit (9 doubles), p = {m['p']:.0f} bytes per r value (its summary's "
           f"9 doubles and table line), t = {m['t']:.1f} bytes per r value sent to rank 0, "
-          f"c(P) = {m['c0']:.3f} + {m['c1']:.3f} log2 P s, rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
+          f"rank 0's merge {m['merge'] * 1e6:.2f} us per r value; "
           f"the overlays' shares before the run w / P with w = {m['w']:.2f} s; "
           f"rank 0 alone after the gather (its write apart) a + tau R with a = {m['a']:.2f} s, tau = "
           f"{m['tau'] * 1e6:.2f} us per r value ({root_alone(m):.1f} s at {TARGET['r']:.0e} r values); "
           f"the ranks' write here {m['W'] / 1e6:.0f} MB/s in all (one shared disk); launch here {launch_here(d)}\n")
+    write_fixed_derived(m)
     result_bytes = result_bytes_of(m, n_orbits)
     print(f"Result {result_bytes / 1e9:.1f} GB written by the ranks; rank 0 receives "
           f"{TARGET['r'] * m['t'] / 1e6:.0f} MB.\n")

@@ -16,8 +16,13 @@
 #                  the gather (its manifest's mpi_root_seconds), the slowest rank's work, wall time, and the peak
 #                  resident set of every rank (tests/peak_rss.py); then 1e6 r values of one orbit on 2 ranks: what
 #                  rank 0 still does per r value at scale (merge, its own datasets, the per-r table)
+#   collectives.csv P = 2, 3, 4 ranks on the tiny result (ranks writing their rows), one more run each with the
+#                  collectives counted (analyses/mpi_count.c, preloaded; apart from the timed runs, since counting adds
+#                  its own time): per MPI collective, its class (tree: log2 P rounds; pair: P - 1 messages, the
+#                  all-to-all exchanges and the MPI-IO collectives), the calls per rank (largest and median over the
+#                  ranks) and the largest time in it over the ranks
 #   launch.csv     mpirun -n P btob --version, P = 1..4: the launch's cost here
-#   projection.csv the scaling model (analyses/mpi_model.py), from gather.csv, rows.csv and launch.csv
+#   projection.csv the scaling model (analyses/mpi_model.py), from gather.csv, rows.csv, collectives.csv and launch.csv
 # The machine is shared: quote the ratios of one run, not absolute times.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,6 +33,12 @@ mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# The collectives' counter, preloaded into the counted runs below.
+if ! command -v mpicc > /dev/null; then
+  echo "mpi_scaling.sh: mpicc not found: it builds analyses/mpi_count.c, the counter of the MPI collectives" >&2
+  exit 1
+fi
+mpicc -shared -fPIC -O2 -o "$tmp/mpi_count.so" analyses/mpi_count.c
 # The workload: r in [0.0717, 0.6] x the 32-point grid of Section 4 x 1e4 averaged steps (+1e3 transient).
 work=(lyapunov-map --r-min 0.0717 --r-max 0.6 --r-count "$r_count" --grid paper --iterations 10000 --transient 1000
       --no-plot --quiet --name x)
@@ -93,6 +104,30 @@ done
 rows_run rows 2 1000000 1000000 --grid random:1 --iterations 10 --transient 1
 mv "$out/rows.csv.tmp" "$out/rows.csv"
 
+echo "ranks,function,class,calls_max,calls_median,seconds_max" > "$out/collectives.csv.tmp"
+# The tiny result again, the ranks writing their rows, with every rank's collectives counted (rank<R>.csv at
+# MPI_Finalize), then taken over the ranks (largest and median calls, largest time; a rank that did not call a
+# function counts 0 calls of it).
+for P in 2 3 4; do
+  mkdir -p "$tmp/count$P"
+  BTOB_MPI_WRITE=rows BTOB_MPI_COUNT_DIR="$tmp/count$P" mpirun -n "$P" -x LD_PRELOAD="$tmp/mpi_count.so" \
+    -x BTOB_MPI_COUNT_DIR "$btob" "${work[@]}" --r-count 64 --iterations 100 --transient 10 --threads 1 \
+    --out "$tmp/c" > /dev/null
+  /usr/bin/python3 - "$tmp/count$P" "$P" >> "$out/collectives.csv.tmp" <<'EOF'
+import csv, sys
+d, P = sys.argv[1], int(sys.argv[2])
+by = {}
+for rank in range(P):
+    with open(f"{d}/rank{rank}.csv") as f:
+        for x in csv.DictReader(f):
+            by.setdefault((x["function"], x["class"]), []).append((int(x["calls"]), float(x["seconds"])))
+for (function, kind), v in by.items():
+    calls = sorted([c for c, _ in v] + [0] * (P - len(v)))
+    print(f"{P},{function},{kind},{calls[-1]},{calls[P // 2]},{max(t for _, t in v):.6f}")
+EOF
+done
+mv "$out/collectives.csv.tmp" "$out/collectives.csv"
+
 echo "ranks,wall_seconds" > "$out/launch.csv.tmp"
 for P in 1 2 3 4; do
   for rep in 1 2 3; do echo "$P,$(wall sh -c "mpirun -n $P '$btob' --version > /dev/null")" >> "$out/launch.csv.tmp"; done
@@ -100,4 +135,4 @@ done
 mv "$out/launch.csv.tmp" "$out/launch.csv"
 /usr/bin/python3 analyses/mpi_model.py "$out" | tee "$out/model.md"
 "$(dirname "$btob")/btob_manifest" "$out/manifest.json" "analyses/mpi_scaling.sh $btob $r_count" \
-  benchmark.csv gather.csv rows.csv launch.csv projection.csv model.md
+  benchmark.csv gather.csv rows.csv collectives.csv launch.csv projection.csv model.md

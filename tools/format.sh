@@ -4,7 +4,7 @@
 # Usage: tools/format.sh [--fix]
 #   (no option)  check: change nothing, print clang-format's findings and how many, exit 1 when there is any
 #   --fix        reformat every C++ file in place (then rebuild and run the tests: include order may change)
-# The files: the tracked *.cpp, *.hpp and *.h (git ls-files; outside a git checkout, those under src, tests, python,
+# The files: the tracked *.cpp, *.hpp, *.h and *.c (git ls-files; outside a git checkout, those under src, tests, python,
 # benchmarks and examples).  The configure templates (*.hpp.in) are left out: clang-format would split their
 # @VARIABLE@ placeholders.  Exit 2 on usage, or when clang-format 14 is missing (another version formats otherwise).
 set -euo pipefail
@@ -22,9 +22,9 @@ cf=$(command -v clang-format-14 || command -v clang-format || true)
   || { echo "format: $cf is not clang-format 14 ($("$cf" --version)); the style is tuned to 14" >&2; exit 2; }
 [ -f .clang-format ] || { echo "format: no .clang-format at the repository's root" >&2; exit 2; }
 if git rev-parse --is-inside-work-tree > /dev/null 2>&1; then
-  mapfile -t files < <(git ls-files -- '*.cpp' '*.hpp' '*.h')
+  mapfile -t files < <(git ls-files -- '*.cpp' '*.hpp' '*.h' '*.c')
 else
-  mapfile -t files < <(find src tests python benchmarks examples -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) | sort)
+  mapfile -t files < <(find src tests python benchmarks examples -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.c' \) | sort)
 fi
 [ ${#files[@]} -gt 0 ] || { echo "format: no C++ file found" >&2; exit 2; }
 if [ $fix -eq 1 ]; then

@@ -34,7 +34,8 @@ class ResultFiles {
   // string attributes units, axes and description, and each axis's coordinates attached as an HDF5 dimension
   // scale (Contents::coordinates); `attrs` (provenance and summary) as file attributes.
   // `by_ranks`: arrays only made (their shape, layout and attributes), for the MPI ranks to write their rows into
-  // afterwards (commands::RankRows); their views hold no data.
+  // afterwards (commands::RankRows); their views hold no data.  With a non-empty `by_ranks` the other arrays are
+  // written contiguous rather than deflated (rank 0 alone writes them while every rank waits): the same data.
   void h5(const core::Contents& c, const Attrs& attrs, const std::set<std::string>& by_ranks = {});
   // Whether `c` has anything for NAME.h5 (arrays, decimals, texts, or only attributes: a verdict).
   static bool has_data(const core::Contents& c) {
