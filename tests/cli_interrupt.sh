@@ -189,4 +189,33 @@ interrupt TERM pattern "(132312)^300 1" --window --precision mpfr:100
 # Inside the deflated write of two 48 MB datasets (chaotic tails compress little: an 89 MB NAME.h5, seconds to
 # write), which is written one chunk at a time.
 writing=1 interrupt TERM strip-orbits --r 0.9 --orbits 1000 --iterations 6000 --tail 6000 --threads 1 --out @OUT --no-plot
+
+# Killed outright (SIGKILL: no handler runs) while writing, a run leaves its staging folder; the next run of the same
+# result into the same folder removes it (its process no longer runs on this host) and leaves alone a folder of a
+# process that still runs (this shell's, made up here) and one of another host.
+killed_outright() {
+  local out="$work/killed" host live other stale files
+  rm -rf "$out" && mkdir -p "$out"
+  "$btob" strip-orbits --r 0.9 --orbits 1000 --iterations 6000 --tail 6000 --threads 1 --out "$out" --name so \
+    --no-plot >/dev/null 2>&1 &
+  local pid=$!
+  for _ in $(seq 1 4000); do compgen -G "$out/.btob-tmp-*/*.h5" >/dev/null && break; sleep 0.005; done
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null
+  stale=$(cd "$out" && ls -A | grep '^\.btob-tmp-' | tr '\n' ' ')
+  host=$(hostname | tr - _)
+  live=".btob-tmp-so-$host-$$-0"
+  other=".btob-tmp-so-another_host-$pid-0"
+  mkdir "$out/$live" "$out/$other"
+  "$btob" strip-orbits --r 0.9 --orbits 10 --iterations 100 --tail 10 --out "$out" --name so --no-plot --quiet
+  files=$(cd "$out" && ls -A | grep -v '^so[._]' | sort | tr '\n' ' ')
+  if [ -z "$stale" ]; then
+    echo "FAIL (SIGKILL while writing left no staging folder to clean: the check tests nothing)"; fail=1
+  elif [ "$files" != "$(printf '%s\n' "$other" "$live" | sort | tr '\n' ' ')" ] || [ ! -e "$out/so.h5" ]; then
+    echo "FAIL (after a run killed outright and the next run, the folder holds '$files'; killed: '$stale')"; fail=1
+  else
+    echo "ok: SIGKILL left '$stale'; the next run removed it and kept a live process's and another host's"
+  fi
+}
+killed_outright
 exit $fail

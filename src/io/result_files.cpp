@@ -9,10 +9,12 @@
 #include <fmt/format.h>
 #include <hdf5_hl.h>
 #include <nlohmann/json.hpp>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -38,6 +40,43 @@ fs::path existing_ancestor(fs::path p) {
   return p;
 }
 std::atomic<int> counter{0};
+
+// This host's name as a field of a staging folder's name ('-' separates the fields, so it becomes '_').
+std::string host_field() {
+  char h[256] = {};
+  if (gethostname(h, sizeof h - 1) != 0 || h[0] == '\0') return "host";
+  std::string s(h);
+  std::replace(s.begin(), s.end(), '-', '_');
+  return s;
+}
+
+// Whether the staging folder `folder` (.btob-tmp-NAME-HOST-PID-N) of result `name` was left by a process of this host
+// that no longer runs: killed outright (SIGKILL, the out-of-memory killer, a batch system's hard limit) before its
+// ResultFiles could remove it.  A folder of another host (its PID means nothing here), of a live process, or of a
+// process this one may not signal (EPERM: it exists) is not.
+bool stale_staging(const std::string& folder, const std::string& name, const std::string& host) {
+  const std::string prefix = ".btob-tmp-" + name + "-" + host + "-";
+  if (folder.rfind(prefix, 0) != 0) return false;
+  const std::string rest = folder.substr(prefix.size());  // PID-N
+  const auto dash = rest.find('-');
+  if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789", 0) != dash) return false;
+  if (rest.find_first_not_of("0123456789", dash + 1) != std::string::npos || dash + 1 == rest.size()) return false;
+  const long pid = std::stol(rest.substr(0, dash));
+  if (pid <= 0 || pid == static_cast<long>(getpid())) return false;
+  return kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+// Removes from `base` the stale staging folders of result `name` (stale_staging): a run killed outright leaves its
+// staged files behind (no handler runs on SIGKILL), and the next run of the same result into the same place cleans
+// them.  Best effort: a folder that cannot be listed or removed is left.
+void remove_stale_staging(const fs::path& base, const std::string& name, const std::string& host) {
+  std::error_code ec;
+  for (fs::directory_iterator it(base, ec), end; !ec && it != end; it.increment(ec))
+    if (stale_staging(it->path().filename().string(), name, host)) {
+      std::error_code rm;
+      fs::remove_all(it->path(), rm);
+    }
+}
 }  // namespace
 
 ResultFiles::ResultFiles(fs::path out, std::string name) : out_(std::move(out)), name_(std::move(name)) {
@@ -47,7 +86,9 @@ ResultFiles::ResultFiles(fs::path out, std::string name) : out_(std::move(out)),
   if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
     throw core::InvalidField("out", fmt::format("'{}'", out_.string()), "a folder (it is a file)");
   const fs::path base = existing_ancestor(out_);
-  tmp_ = base / fmt::format(".btob-tmp-{}-{}-{}", name_, getpid(), counter.fetch_add(1));
+  const std::string host = host_field();
+  remove_stale_staging(base, name_, host);
+  tmp_ = base / fmt::format(".btob-tmp-{}-{}-{}-{}", name_, host, getpid(), counter.fetch_add(1));
   if (!fs::create_directory(tmp_, ec) || ec) throw_file_error("out: cannot write in", base, ec);
 }
 
