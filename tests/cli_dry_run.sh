@@ -28,14 +28,23 @@ fail() {
   failures=$((failures + 1))
 }
 
+# predict NAME ARGS...: the dry run's predicted seconds into $predicted (empty, and a failure, when it printed none);
+# the dry run must write nothing.
+predict() {
+  local name=$1
+  shift
+  predicted=$("$BTOB" "$@" --threads 1 --quiet --dry-run --out dry | sed -n 's/^  predicted: \([0-9.e+-]*\) s.*/\1/p')
+  [ -n "$predicted" ] || fail "$name: no prediction"
+  [ ! -e dry ] && [ -z "$(ls)" ] || fail "$name: the dry run wrote $(ls)"
+}
+
 # within NAME ARGS...: 0 when the dry run's prediction is within a factor 2 of the run's wall time (printed).
 within() {
   local name=$1
+  local t0 t1 actual
+  predict "$@"
+  [ -n "$predicted" ] || return 0
   shift
-  local predicted t0 t1 actual
-  predicted=$("$BTOB" "$@" --threads 1 --quiet --dry-run --out dry | sed -n 's/^  predicted: \([0-9.e+-]*\) s.*/\1/p')
-  [ -n "$predicted" ] || { fail "$name: no prediction"; return 0; }
-  [ ! -e dry ] && [ -z "$(ls)" ] || fail "$name: the dry run wrote $(ls)"
   t0=$(date +%s.%N)
   "$BTOB" "$@" --threads 1 --quiet --out run > /dev/null || { fail "$name: the run failed"; return 0; }
   t1=$(date +%s.%N)
@@ -57,13 +66,8 @@ win=(windows bounds --n 1..80 --certify --digits 15)
 
 # plan NAME ARGS...: the dry run alone prints a prediction and writes nothing.
 plan() {
-  local name=$1
-  shift
-  local predicted
-  predicted=$("$BTOB" "$@" --threads 1 --quiet --dry-run --out dry | sed -n 's/^  predicted: \([0-9.e+-]*\) s.*/\1/p')
-  [ -n "$predicted" ] || fail "$name: no prediction"
-  [ ! -e dry ] && [ -z "$(ls)" ] || fail "$name: the dry run wrote $(ls)"
-  echo "$name: predicted $predicted s (the dry run alone)"
+  predict "$@"
+  [ -z "$predicted" ] || echo "$1: predicted $predicted s (the dry run alone)"
 }
 
 if [ "$PART" = all ] || [ "$PART" = sweeps ]; then

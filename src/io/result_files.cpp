@@ -15,11 +15,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <optional>
+#include <string_view>
 
 namespace btob::io {
 
@@ -50,20 +53,28 @@ std::string host_field() {
   return s;
 }
 
+// The value of `s` when it is a decimal number alone (digits, no sign or space) that fits a long.
+std::optional<long> decimal(std::string_view s) {
+  long v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || s.front() == '-' || ec != std::errc{} || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
 // Whether the staging folder `folder` (.btob-tmp-NAME-HOST-PID-N) of result `name` was left by a process of this host
 // that no longer runs: killed outright (SIGKILL, the out-of-memory killer, a batch system's hard limit) before its
 // ResultFiles could remove it.  A folder of another host (its PID means nothing here), of a live process, or of a
-// process this one may not signal (EPERM: it exists) is not.
+// process this one may not signal (EPERM: it exists) is not; nor is a name that does not parse.
 bool stale_staging(const std::string& folder, const std::string& name, const std::string& host) {
   const std::string prefix = ".btob-tmp-" + name + "-" + host + "-";
   if (folder.rfind(prefix, 0) != 0) return false;
-  const std::string rest = folder.substr(prefix.size());  // PID-N
+  const std::string_view rest = std::string_view(folder).substr(prefix.size());  // PID-N
   const auto dash = rest.find('-');
-  if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789", 0) != dash) return false;
-  if (rest.find_first_not_of("0123456789", dash + 1) != std::string::npos || dash + 1 == rest.size()) return false;
-  const long pid = std::stol(rest.substr(0, dash));
-  if (pid <= 0 || pid == static_cast<long>(getpid())) return false;
-  return kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  if (dash == std::string_view::npos) return false;
+  const std::optional<long> pid = decimal(rest.substr(0, dash)), n = decimal(rest.substr(dash + 1));
+  if (!pid || !n || *pid <= 0 || *pid > std::numeric_limits<pid_t>::max() || *pid == static_cast<long>(getpid()))
+    return false;
+  return kill(static_cast<pid_t>(*pid), 0) != 0 && errno == ESRCH;
 }
 
 // Removes from `base` the stale staging folders of result `name` (stale_staging): a run killed outright leaves its
@@ -318,8 +329,8 @@ H5::DSetCreatPropList ranks_layout() {
 
 // How write_array lays out one array: a single process deflates the large ones in chunks; in a split sweep's file
 // (rows written by the MPI ranks) rank 0 writes its own arrays contiguous, not deflated, since deflating there is
-// work on rank 0 alone while every rank waits for its file (the per-r `r` of 1e6 r values took 0.28 s, most of what
-// rank 0 did alone), and the arrays the ranks write are only made.
+// work on rank 0 alone while every rank waits for its file (a per-r array of a sweep of millions of r values is
+// most of what rank 0 does alone), and the arrays the ranks write are only made.
 enum class Layout { deflated, contiguous, by_ranks };
 
 // One array of the result as a dataset with its units, axes and description, laid out as `layout` says (a by_ranks
